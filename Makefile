@@ -1,0 +1,108 @@
+# wrinkle — build, test, validate, benchmark, install.
+# The two commands a new user needs: `make demo` and `make test` (both install missing Debian
+# packages first through the `deps` target).
+
+PREFIX  ?= /usr/local
+DESTDIR ?=
+CC      ?= cc
+CXX     ?= c++
+# No -ffast-math anywhere: the exact geometric predicates in triangulate.h need strict IEEE
+# double arithmetic, and -ffp-contract=off keeps FMA contraction from changing their results.
+OPT     ?= -O2
+CFLAGS_COMMON = -g $(OPT) -Wall -Wextra -pedantic -ffp-contract=off -Iinclude -Idrivers/lib \
+                -I/usr/include/suitesparse -DWR_USE_CHOLMOD=1
+CFLAGS  ?=
+ALL_CFLAGS   = -std=c11 $(CFLAGS_COMMON) $(CFLAGS)
+ALL_CXXFLAGS = -std=c++17 $(CFLAGS_COMMON) $(CFLAGS)
+LIBS    = -lcjson -lcholmod -lfftw3 -lgsl -lgslcblas -lm
+
+# Debian packages the kit builds against. libopenblas0 gives CHOLMOD an optimized BLAS
+# (through the libblas.so.3 alternative) instead of the reference one.
+DEB_PACKAGES = libgsl-dev libfftw3-dev libsuitesparse-dev libopenblas0 libcjson-dev \
+               libcriterion-dev gnuplot-nox pkg-config
+BENCH_PACKAGES = libcgal-dev
+
+SAN = -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
+
+HEADERS     = $(wildcard include/wrinkle/*.h)
+DRIVER_SRC  = $(wildcard drivers/*.c)
+DRIVERS     = $(patsubst drivers/%.c,bin/%,$(DRIVER_SRC))
+VALID_SRC   = $(wildcard validation/*.c)
+VALIDATORS  = $(patsubst validation/%.c,bin/%,$(VALID_SRC))
+LIB_SRC     = $(wildcard drivers/lib/*.c)
+LIB_OBJ     = $(patsubst drivers/lib/%.c,build/obj/%.o,$(LIB_SRC))
+TEST_SRC    = $(wildcard tests/test_*.c)
+BENCH_SRC   = $(wildcard bench/*.c)
+BENCH_CXX   = $(wildcard bench/*.cpp)
+BENCHES     = $(patsubst bench/%.c,bin/%,$(BENCH_SRC)) $(patsubst bench/%.cpp,bin/%,$(BENCH_CXX))
+EXTRA_HDR   = $(wildcard drivers/lib/*.h)
+
+.PHONY: all deps deps-bench demo test validate bench install uninstall clean check-headers
+
+all: $(DRIVERS) $(VALIDATORS)
+
+deps:
+	@sh tools/deps.sh $(DEB_PACKAGES)
+
+deps-bench: deps
+	@sh tools/deps.sh $(BENCH_PACKAGES)
+
+build/obj/%.o: drivers/lib/%.c $(HEADERS) $(EXTRA_HDR)
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) -c $< -o $@
+
+bin/%: drivers/%.c $(LIB_OBJ) $(HEADERS) $(EXTRA_HDR)
+	@mkdir -p bin
+	$(CC) $(ALL_CFLAGS) $< $(LIB_OBJ) -o $@ $(LIBS)
+
+bin/%: validation/%.c $(LIB_OBJ) $(HEADERS) $(EXTRA_HDR)
+	@mkdir -p bin
+	$(CC) $(ALL_CFLAGS) $< $(LIB_OBJ) -o $@ $(LIBS)
+
+bin/%: bench/%.c $(LIB_OBJ) $(HEADERS) $(EXTRA_HDR)
+	@mkdir -p bin
+	$(CC) $(ALL_CFLAGS) -O3 $< $(LIB_OBJ) -o $@ $(LIBS)
+
+bin/%: bench/%.cpp $(LIB_OBJ) $(HEADERS) $(EXTRA_HDR)
+	@mkdir -p bin
+	$(CXX) $(ALL_CXXFLAGS) -O3 -frounding-math $< $(LIB_OBJ) -o $@ $(LIBS) -lgmp -lmpfr
+
+# Unit tests: every tests/test_*.c plus tests/impl.c (the one WRINKLE_IMPLEMENTATION unit) in one
+# Criterion binary, built with ASan+UBSan. Driver helpers are rebuilt with the sanitizers too.
+build/test/wrinkle_tests: $(TEST_SRC) tests/impl.c $(LIB_SRC) $(HEADERS) $(EXTRA_HDR) $(wildcard tests/*.h)
+	@mkdir -p build/test
+	$(CC) $(ALL_CFLAGS) $(SAN) -O1 $(TEST_SRC) tests/impl.c $(LIB_SRC) -o $@ $(LIBS) -lcriterion
+
+check-headers:
+	@sh tests/check_headers.sh
+
+test: deps
+	@$(MAKE) --no-print-directory all build/test/wrinkle_tests
+	@sh tests/check_headers.sh
+	@sh tests/run_tests.sh
+
+demo: deps
+	@$(MAKE) --no-print-directory all
+	@sh tools/demo.sh
+
+validate: deps
+	@$(MAKE) --no-print-directory all
+	@sh validation/run_all.sh
+
+bench: deps-bench
+	@$(MAKE) --no-print-directory $(BENCHES)
+	@sh bench/run_all.sh
+
+install: all
+	install -d $(DESTDIR)$(PREFIX)/include/wrinkle $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/lib/pkgconfig
+	install -m 644 $(HEADERS) $(DESTDIR)$(PREFIX)/include/wrinkle/
+	install -m 755 $(DRIVERS) $(DESTDIR)$(PREFIX)/bin/
+	sed -e 's|@PREFIX@|$(PREFIX)|g' tools/wrinkle.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/wrinkle.pc
+
+uninstall:
+	rm -rf $(DESTDIR)$(PREFIX)/include/wrinkle
+	rm -f $(patsubst bin/%,$(DESTDIR)$(PREFIX)/bin/%,$(DRIVERS))
+	rm -f $(DESTDIR)$(PREFIX)/lib/pkgconfig/wrinkle.pc
+
+clean:
+	rm -rf bin build
