@@ -5,15 +5,9 @@
  * Modules that need a Debian library say so at their top: spectrum.h needs FFTW (-lfftw3);
  * the CHOLMOD backend in pcg.h is compiled only with -DWR_USE_CHOLMOD=1 (-lcholmod).
  * Everything else needs only libc and libm.
+ *
+ * This file deliberately has no include guard: every module guards its declarations and, separately,
+ * its implementation, so including this file again after defining WRINKLE_IMPLEMENTATION works.
  */
-#ifndef WRINKLE_WRINKLE_H
-#define WRINKLE_WRINKLE_H
 #include "core.h"
-/* modules (one line each, foundations first) */
-#endif /* WRINKLE_WRINKLE_H */
-
-/* Each module guards its own implementation, so re-including under WRINKLE_IMPLEMENTATION is safe. */
-#ifdef WRINKLE_IMPLEMENTATION
-#include "core.h"
-/* modules-impl */
-#endif
+/* modules, foundations first (one line each) */
