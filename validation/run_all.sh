@@ -1,0 +1,17 @@
+#!/bin/sh
+# Runs every validation driver (bin/validate_*), then writes validation/REPORT.md.
+# Exits non-zero when any driver fails or any quantity misses its pass band.
+cd "$(dirname "$0")/.." || exit 2
+mkdir -p validation/results validation/figures
+status=0
+for src in validation/validate_*.c; do
+    [ -f "$src" ] || continue
+    name=$(basename "$src" .c)
+    echo "== $name"
+    if ! "./bin/$name"; then
+        echo "   $name: FAILED (exit $?)"
+        status=1
+    fi
+done
+./bin/wrinkle-report validation/results -o validation/REPORT.md || status=1
+exit $status
