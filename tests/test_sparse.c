@@ -1,0 +1,219 @@
+/* Tests for wrinkle/sparse.h: triplet assembly, CSR construction, pattern reuse, SpMV, blocks. */
+#include <criterion/criterion.h>
+#include <math.h>
+#include <string.h>
+
+#include "wrinkle/sparse.h"
+
+/* Random sparse n×n matrix as triplets with many duplicates, plus the same sum in a dense array. */
+static void random_triplets(wr_triplets *t, double *dense, int32_t n, int64_t m, wr_rng *rng) {
+    int64_t k;
+    memset(dense, 0, sizeof(double) * (size_t)n * (size_t)n);
+    for (k = 0; k < m; ++k) {
+        int32_t i = (int32_t)wr_rng_below(rng, (uint32_t)n), j = (int32_t)wr_rng_below(rng, (uint32_t)n);
+        double v = wr_rng_normal(rng);
+        cr_assert_eq(wr_triplets_add(t, i, j, v, NULL), WR_OK);
+        dense[(size_t)i * n + j] += v;
+    }
+}
+
+Test(sparse, triplets_sum_duplicates_and_sort) {
+    wr_triplets t;
+    wr_csr A;
+    wr_diag d;
+    cr_assert_eq(wr_triplets_create(&t, 4, 0, &d), WR_OK);
+    cr_assert_eq(wr_triplets_add(&t, 2, 3, 1.5, &d), WR_OK);
+    cr_assert_eq(wr_triplets_add(&t, 2, 0, -1.0, &d), WR_OK);
+    cr_assert_eq(wr_triplets_add(&t, 2, 3, 2.25, &d), WR_OK);
+    cr_assert_eq(wr_triplets_add(&t, 1, 1, 7.0, &d), WR_OK);
+    cr_assert_eq(wr_triplets_add(&t, 2, 0, 0.5, &d), WR_OK);
+    cr_assert_eq(wr_csr_from_triplets(&A, &t, &d), WR_OK);
+    /* row 2: (2,0) -0.5, (2,2) explicit diagonal 0, (2,3) 3.75; rows 0,1,3 only their diagonal */
+    cr_assert_eq(A.n, 4);
+    cr_assert_eq(A.nnz, 6);
+    cr_assert_eq(A.rowptr[2], 2);
+    cr_assert_eq(A.rowptr[3], 5);
+    cr_assert_eq(A.col[2], 0);
+    cr_assert_eq(A.col[3], 2);
+    cr_assert_eq(A.col[4], 3);
+    cr_assert_eq(A.val[2], -0.5);
+    cr_assert_eq(A.val[3], 0.0);
+    cr_assert_eq(A.val[4], 3.75);
+    cr_assert_eq(A.val[wr_csr_find(&A, 1, 1)], 7.0);
+    cr_assert_eq(wr_csr_find(&A, 0, 3), -1);
+    wr_csr_free(&A);
+    wr_triplets_free(&t);
+}
+
+Test(sparse, random_matches_dense_spmv_and_growth) {
+    enum { N = 37 };
+    static double dense[N * N];
+    double x[N], y[N], yd[N], diagv[N];
+    wr_triplets t;
+    wr_csr A;
+    wr_rng rng;
+    int32_t i, j, p;
+    wr_rng_seed(&rng, 7);
+    cr_assert_eq(wr_triplets_create(&t, N, 1, NULL), WR_OK); /* forces many regrowths */
+    random_triplets(&t, dense, N, 3000, &rng);
+    cr_assert_eq(t.count, 3000);
+    cr_assert_eq(wr_csr_from_triplets(&A, &t, NULL), WR_OK);
+    for (i = 0; i < N; ++i) {
+        for (p = A.rowptr[i]; p + 1 < A.rowptr[i + 1]; ++p) cr_assert_lt(A.col[p], A.col[p + 1]);
+        cr_assert_geq(wr_csr_find(&A, i, i), 0);
+        x[i] = wr_rng_normal(&rng);
+    }
+    wr_csr_spmv(&A, x, y);
+    for (i = 0; i < N; ++i) {
+        yd[i] = 0.0;
+        for (j = 0; j < N; ++j) {
+            yd[i] += dense[i * N + j] * x[j];
+            p = wr_csr_find(&A, i, j);
+            if (p >= 0) cr_assert_float_eq(A.val[p], dense[i * N + j], 1e-12);
+            else cr_assert_eq(dense[i * N + j], 0.0);
+        }
+        cr_assert_float_eq(y[i], yd[i], 1e-11 * (1.0 + fabs(yd[i])));
+    }
+    wr_csr_diagonal(&A, diagv);
+    for (i = 0; i < N; ++i) cr_assert_float_eq(diagv[i], dense[i * N + i], 1e-12);
+    wr_csr_free(&A);
+    wr_triplets_free(&t);
+}
+
+/* Newton-style reuse: pattern from zero element matrices, then values via wr_csr_add_element must
+ * equal a fresh triplet assembly of the same element matrices. */
+Test(sparse, pattern_reuse_equals_fresh_assembly) {
+    enum { NV = 5, NE = 4 };
+    const int32_t tri[NE][3] = {{0, 1, 2}, {1, 3, 2}, {2, 3, 4}, {0, 2, 4}};
+    static double Ke[NE][81], zeros[81];
+    int32_t idx[NE][9];
+    wr_triplets t, t2;
+    wr_csr K, K2;
+    wr_rng rng;
+    int e, a, b, round;
+    wr_rng_seed(&rng, 11);
+    for (e = 0; e < NE; ++e)
+        for (a = 0; a < 3; ++a)
+            for (b = 0; b < 3; ++b) idx[e][3 * a + b] = 3 * tri[e][a] + b;
+    cr_assert_eq(wr_triplets_create(&t, 3 * NV, 0, NULL), WR_OK);
+    for (e = 0; e < NE; ++e) cr_assert_eq(wr_triplets_add_element(&t, 9, idx[e], zeros, NULL), WR_OK);
+    cr_assert_eq(wr_csr_from_triplets(&K, &t, NULL), WR_OK);
+    for (round = 0; round < 3; ++round) {
+        int32_t p;
+        for (e = 0; e < NE; ++e)
+            for (a = 0; a < 81; ++a) Ke[e][a] = wr_rng_normal(&rng);
+        wr_csr_zero_values(&K);
+        for (e = 0; e < NE; ++e) cr_assert_eq(wr_csr_add_element(&K, 9, idx[e], Ke[e], NULL), WR_OK);
+        cr_assert_eq(wr_triplets_create(&t2, 3 * NV, 0, NULL), WR_OK);
+        for (e = 0; e < NE; ++e) cr_assert_eq(wr_triplets_add_element(&t2, 9, idx[e], Ke[e], NULL), WR_OK);
+        cr_assert_eq(wr_csr_from_triplets(&K2, &t2, NULL), WR_OK);
+        cr_assert_eq(K.nnz, K2.nnz);
+        for (p = 0; p < K.nnz; ++p) {
+            cr_assert_eq(K.col[p], K2.col[p]);
+            cr_assert_float_eq(K.val[p], K2.val[p], 1e-13);
+        }
+        wr_csr_free(&K2);
+        wr_triplets_free(&t2);
+    }
+    /* vertices 1 and 4 share no triangle: that block is outside the pattern */
+    {
+        double B[9];
+        wr_diag d;
+        int32_t bad[2] = {3, 12};
+        double K4[4] = {1, 2, 3, 4};
+        cr_assert_eq(wr_csr_block3(&K, 1, 4, B), 0);
+        cr_assert_eq(wr_csr_block3(&K, 1, 2, B), 9);
+        cr_assert_eq(wr_csr_add(&K, 3, 12, 1.0, &d), WR_ERR_INVALID_ARG);
+        cr_assert_eq(d.item, 3);
+        cr_assert_eq(wr_csr_add_element(&K, 2, bad, K4, &d), WR_ERR_INVALID_ARG);
+    }
+    wr_csr_free(&K);
+    wr_triplets_free(&t);
+}
+
+Test(sparse, block3_helpers_and_negative_index_skip) {
+    double B[9] = {1, 2, 3, 4, 5, 6, 7, 8, 9}, R[9], D[18];
+    double Ke[4] = {10, 20, 30, 40};
+    int32_t idx[2] = {-1, 4};
+    wr_triplets t;
+    wr_csr A;
+    wr_diag d;
+    int a;
+    cr_assert_eq(wr_triplets_create(&t, 6, 0, NULL), WR_OK);
+    cr_assert_eq(wr_triplets_add_block3(&t, 1, 0, B, NULL), WR_OK);
+    cr_assert_eq(wr_triplets_add_block3(&t, 1, 1, B, NULL), WR_OK);
+    cr_assert_eq(wr_triplets_add_element(&t, 2, idx, Ke, NULL), WR_OK); /* only (4,4) += 40 */
+    cr_assert_eq(t.count, 19);
+    cr_assert_eq(wr_triplets_add_block3(&t, 2, 0, B, &d), WR_ERR_INVALID_ARG);
+    cr_assert_eq(wr_csr_from_triplets(&A, &t, NULL), WR_OK);
+    cr_assert_eq(wr_csr_block3(&A, 1, 0, R), 9);
+    for (a = 0; a < 9; ++a) cr_assert_eq(R[a], B[a]);
+    cr_assert_eq(wr_csr_add_block3(&A, 1, 0, B, NULL), WR_OK);
+    wr_csr_block3(&A, 1, 0, R);
+    for (a = 0; a < 9; ++a) cr_assert_eq(R[a], 2 * B[a]);
+    cr_assert_eq(wr_csr_add_block3(&A, 0, 1, B, &d), WR_ERR_INVALID_ARG); /* (0..2, 3..5) not stored */
+    wr_csr_block3_diagonal(&A, D);
+    for (a = 0; a < 9; ++a) cr_assert_eq(D[9 + a], B[a] + (a == 4 ? 40.0 : 0.0));
+    cr_assert_eq(D[0], 0.0); /* explicit diagonal zero of block 0 */
+    cr_assert_float_eq(wr_csr_asymmetry(&A), 18.0 / 45.0, 1e-15); /* 2*9 missing from the transpose, max |a| = 5+40 */
+    wr_csr_free(&A);
+    wr_triplets_free(&t);
+}
+
+Test(sparse, symmetric_assembly_has_zero_asymmetry_and_copy) {
+    double Ke[9] = {2, -1, 0.5, -1, 3, 0.25, 0.5, 0.25, 4};
+    int32_t idx[3] = {0, 2, 3};
+    wr_triplets t;
+    wr_csr A, C;
+    int32_t p;
+    cr_assert_eq(wr_triplets_create(&t, 4, 0, NULL), WR_OK);
+    cr_assert_eq(wr_triplets_add_element(&t, 3, idx, Ke, NULL), WR_OK);
+    cr_assert_eq(wr_csr_from_triplets(&A, &t, NULL), WR_OK);
+    cr_assert_eq(wr_csr_asymmetry(&A), 0.0);
+    cr_assert_eq(wr_csr_copy(&C, &A, NULL), WR_OK);
+    cr_assert_eq(C.nnz, A.nnz);
+    for (p = 0; p < A.nnz; ++p) cr_assert_eq(C.val[p], A.val[p]);
+    C.val[0] = 99.0;
+    cr_assert_neq(A.val[0], 99.0);
+    wr_csr_free(&C);
+    wr_csr_free(&A);
+    wr_csr_free(&A); /* free is idempotent on a zeroed matrix */
+    wr_triplets_free(&t);
+}
+
+Test(sparse, error_paths) {
+    wr_triplets t;
+    wr_csr A;
+    wr_diag d;
+    double Ke[1] = {1.0};
+    int32_t idx[1] = {5};
+    cr_assert_eq(wr_triplets_create(NULL, 3, 0, &d), WR_ERR_INVALID_ARG);
+    cr_assert_eq(wr_triplets_create(&t, -1, 0, &d), WR_ERR_INVALID_ARG);
+    cr_assert_eq(wr_triplets_create(&t, 3, 0, &d), WR_OK);
+    cr_assert_eq(wr_triplets_add(&t, 3, 0, 1.0, &d), WR_ERR_INVALID_ARG);
+    cr_assert_eq(d.item, 3);
+    cr_assert_eq(wr_triplets_add(&t, 0, -1, 1.0, &d), WR_ERR_INVALID_ARG);
+    cr_assert_eq(wr_triplets_add(NULL, 0, 0, 1.0, &d), WR_ERR_INVALID_ARG);
+    cr_assert_eq(wr_triplets_add_element(&t, 1, idx, Ke, &d), WR_ERR_INVALID_ARG);
+    cr_assert_eq(wr_triplets_add_element(&t, 1, NULL, Ke, &d), WR_ERR_INVALID_ARG);
+    cr_assert_eq(wr_triplets_add_element(&t, -2, idx, Ke, &d), WR_ERR_INVALID_ARG);
+    cr_assert_eq(t.count, 0);
+    cr_assert_eq(wr_csr_from_triplets(NULL, &t, &d), WR_ERR_INVALID_ARG);
+    cr_assert_eq(wr_csr_from_triplets(&A, NULL, &d), WR_ERR_INVALID_ARG);
+    /* a corrupted triplet (user wrote past the API) is caught, A stays freeable */
+    cr_assert_eq(wr_triplets_add(&t, 1, 1, 1.0, &d), WR_OK);
+    t.col[0] = 9;
+    cr_assert_eq(wr_csr_from_triplets(&A, &t, &d), WR_ERR_INVALID_ARG);
+    cr_assert_eq(A.rowptr, NULL);
+    wr_csr_free(&A);
+    cr_assert_eq(wr_csr_copy(&A, NULL, &d), WR_ERR_INVALID_ARG);
+    cr_assert_eq(wr_csr_add(NULL, 0, 0, 1.0, &d), WR_ERR_INVALID_ARG);
+    cr_assert_eq(wr_csr_find(NULL, 0, 0), -1);
+    wr_triplets_free(&t);
+    /* empty matrix: n = 0 is legal */
+    cr_assert_eq(wr_triplets_create(&t, 0, 0, &d), WR_OK);
+    cr_assert_eq(wr_csr_from_triplets(&A, &t, &d), WR_OK);
+    cr_assert_eq(A.nnz, 0);
+    wr_csr_free(&A);
+    wr_triplets_free(&t);
+}
