@@ -11,3 +11,4 @@
  */
 #include "core.h"
 /* modules, foundations first (one line each) */
+#include "mesh.h"
