@@ -1,0 +1,854 @@
+/* wrinkle/pcg.h — one entry point for symmetric positive definite sparse systems A x = b:
+ * preconditioned conjugate gradients (Jacobi, 3×3 block-Jacobi, incomplete Cholesky) or CHOLMOD's
+ * supernodal Cholesky, with Dirichlet (fixed) DOFs, for the shell statics Newton solver and the TFW
+ * SQP (TFW Sec. 5) and the Style3D Sec. 5 "PCG with 3×3 block diagonal preconditioning".
+ * wrinkle v0.1.0 — MIT licence (see LICENSE).
+ *
+ * DEPENDENCIES
+ *   sparse.h, core.h (libc/libm). The CHOLMOD backend is compiled only when WR_USE_CHOLMOD is
+ *   defined to 1: then this header includes <cholmod.h> (Debian: libsuitesparse-dev, add
+ *   -I/usr/include/suitesparse) and the program links -lcholmod. Without it WR_SOLVER_CHOLMOD
+ *   returns WR_ERR_UNSUPPORTED and WR_SOLVER_AUTO means WR_SOLVER_PCG_IC0.
+ *   CHOLMOD allocates its own workspace and factor with malloc: WR_MALLOC cannot reach that memory
+ *   (only wrinkle's own arrays go through the hooks).
+ *
+ * API (create/free pair: wr_spd_solver_create / wr_spd_solver_free)
+ *   wr_spd_solve(A, b, x, desc, stats, diag)         one-shot: setup + solve
+ *   wr_spd_solver_create(S, A, desc, diag)           symbolic work on A's pattern (CHOLMOD analyze,
+ *                                                    IC pattern), copies desc->fixed
+ *   wr_spd_solver_factor(S, A, diag)                 numeric setup with A's current values
+ *   wr_spd_solver_solve(S, A, b, x, stats, diag)     solve with the last factored values
+ *   wr_spd_solver_free(S)
+ *   wr_solver_method_name(m)                         "pcg-ic0", "cholmod", ...
+ *
+ * EXAMPLE (Newton loop reusing the symbolic analysis)
+ *     wr_spd_desc sd; wr_spd_solver S; wr_spd_stats st;
+ *     memset(&sd, 0, sizeof sd);  sd.fixed = clamped;           // zero = defaults
+ *     wr_spd_solver_create(&S, &K, &sd, &d);                     // K: pattern from sparse.h
+ *     for (it = 0; it < n_newton; ++it) {
+ *         assemble K values and -gradient g (wr_csr_zero_values + wr_csr_add_element);
+ *         memset(dx, 0, ...);                                     // fixed DOFs: increment 0
+ *         if (wr_spd_solver_factor(&S, &K, &d) || wr_spd_solver_solve(&S, &K, g, dx, &st, &d)) break;
+ *         ... x += dx ...
+ *     }
+ *     wr_spd_solver_free(&S);
+ *
+ * ON FIXED DOFS
+ *   desc->fixed[i] != 0 marks DOF i as Dirichlet: x[i] keeps its input value and row i of the
+ *   equations is dropped; the coupling A(free, fixed) x(fixed) moves to the right-hand side. The
+ *   matrix is never rebuilt by the caller. PCG works on a masked copy of the values (rows and
+ *   columns of fixed DOFs replaced by the identity; residual and search direction are zero on fixed
+ *   DOFs), so the preconditioners see the reduced matrix A_ff exactly. CHOLMOD factors the reduced
+ *   system A_ff (eliminated, no penalty): its pattern is extracted once in create.
+ *
+ * ON ACCURACY AND STOPPING
+ *   Relative residual = ||(b - A x)_free|| / ||(b - A x0)_free|| where x0 is the input x with the
+ *   free entries set to 0 (= ||b - A x|| / ||b|| without fixed DOFs). PCG stops when the recursive
+ *   residual passes rel_tol, then recomputes the true residual; if that misses it replaces the
+ *   residual and continues (at most WR_SPD_MAX_REPLACEMENTS times). stats->rel_residual is always
+ *   the true residual of the returned x. CHOLMOD's solution gets up to WR_SPD_MAX_REFINEMENTS
+ *   steps of iterative refinement when its residual misses rel_tol. A zero right-hand side gives
+ *   x_free = 0 at once. When max_iter is reached the status is WR_ERR_NOT_CONVERGED and x holds the
+ *   last iterate, which is the best one in the A-norm of the error (CG minimises that norm over the
+ *   growing Krylov space); its residual is reported. p^T A p <= 0 (or a non-positive diagonal /
+ *   3×3 block / CHOLMOD pivot) returns WR_ERR_NOT_SPD with the last valid iterate in x.
+ *
+ * ON THREADS
+ *   No global state; one solver object per thread. CHOLMOD calls its BLAS, which may start threads.
+ */
+#ifndef WRINKLE_PCG_H
+#define WRINKLE_PCG_H
+
+#include "core.h"
+#include "sparse.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum wr_solver_method {
+    WR_SOLVER_AUTO = 0,    /* CHOLMOD when built with WR_USE_CHOLMOD, else WR_SOLVER_PCG_IC0 */
+    WR_SOLVER_PCG_JACOBI,  /* PCG, diagonal preconditioner */
+    WR_SOLVER_PCG_BLOCK3,  /* PCG, 3×3 block-Jacobi (Style3D Sec. 5); n must be a multiple of 3 */
+    WR_SOLVER_PCG_IC0,     /* PCG, incomplete Cholesky IC(0) with Manteuffel diagonal-shift retries */
+    WR_SOLVER_CHOLMOD,     /* CHOLMOD supernodal Cholesky of the reduced system */
+    WR_SOLVER_METHOD_COUNT
+} wr_solver_method;
+
+typedef enum wr_spd_stop {
+    WR_SPD_STOP_NONE = 0,
+    WR_SPD_STOP_CONVERGED,  /* true relative residual <= rel_tol */
+    WR_SPD_STOP_ZERO_RHS,   /* effective right-hand side is zero: x_free = 0 */
+    WR_SPD_STOP_MAX_ITER,   /* max_iter reached (WR_ERR_NOT_CONVERGED) */
+    WR_SPD_STOP_NOT_SPD,    /* p^T A p <= 0, bad pivot or block (WR_ERR_NOT_SPD) */
+    WR_SPD_STOP_NONFINITE,  /* NaN/Inf appeared (WR_ERR_DOMAIN) */
+    WR_SPD_STOP_DIRECT_INACCURATE /* CHOLMOD + refinement could not reach rel_tol (WR_ERR_NOT_CONVERGED) */
+} wr_spd_stop;
+
+/* Defaults (zero means default):
+ *   method   WR_SOLVER_AUTO
+ *   rel_tol  1e-10 relative residual (see ON ACCURACY)
+ *   max_iter 10 * n PCG iterations
+ *   fixed    NULL = no Dirichlet DOFs; else n flags, nonzero = fixed (copied by create) */
+typedef struct wr_spd_desc {
+    wr_solver_method method;
+    double rel_tol;
+    int32_t max_iter;
+    const uint8_t *fixed;
+} wr_spd_desc;
+
+typedef struct wr_spd_stats {
+    wr_solver_method method; /* the method actually used (AUTO resolved) */
+    int32_t iterations;      /* PCG iterations (refinement steps for CHOLMOD) */
+    double rel_residual;     /* true relative residual of the returned x */
+    double setup_seconds;    /* symbolic (create) + numeric (last factor) setup */
+    double analyze_seconds;  /* the symbolic part alone */
+    double solve_seconds;    /* this solve */
+    wr_spd_stop stop;
+    double ic_shift;         /* IC0: Manteuffel shift alpha used (A_ii scaled by 1+alpha), 0 if none */
+    int32_t n_free;          /* DOFs not fixed */
+} wr_spd_stats;
+
+struct wr__spd_backend;
+typedef struct wr_spd_solver {
+    int32_t n, nnz;             /* pattern the solver was created for */
+    wr_solver_method method;    /* resolved */
+    double rel_tol;
+    int32_t max_iter;
+    uint8_t *fixed;             /* n flags (own copy) or NULL */
+    int32_t n_free;
+    int factored;
+    double analyze_seconds, factor_seconds;
+    double *mval;               /* masked values (fixed rows/cols -> identity), or NULL if none fixed */
+    double *prec;               /* Jacobi: n inverse diagonals; block3: 9*(n/3) inverse blocks */
+    int32_t *lrow, *lcol, *lsrc;/* IC0: lower-triangular CSR of L and the A index of each entry */
+    double *lval;
+    double ic_shift;
+    struct wr__spd_backend *backend; /* CHOLMOD state, NULL otherwise */
+} wr_spd_solver;
+
+WRDEF const char *wr_solver_method_name(wr_solver_method m);
+WRDEF wr_status wr_spd_solve(const wr_csr *A, const double *b, double *x, const wr_spd_desc *desc,
+                             wr_spd_stats *stats, wr_diag *diag);
+WRDEF wr_status wr_spd_solver_create(wr_spd_solver *S, const wr_csr *A, const wr_spd_desc *desc, wr_diag *diag);
+WRDEF wr_status wr_spd_solver_factor(wr_spd_solver *S, const wr_csr *A, wr_diag *diag);
+/* A must be the matrix given to the last wr_spd_solver_factor, values unchanged. */
+WRDEF wr_status wr_spd_solver_solve(wr_spd_solver *S, const wr_csr *A, const double *b, double *x,
+                                    wr_spd_stats *stats, wr_diag *diag);
+WRDEF void wr_spd_solver_free(wr_spd_solver *S);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* WRINKLE_PCG_H */
+
+/* ============================================================================================ */
+#ifdef WRINKLE_IMPLEMENTATION
+#ifndef WRINKLE_PCG_IMPLEMENTATION_DONE
+#define WRINKLE_PCG_IMPLEMENTATION_DONE
+
+#include <math.h>
+#include <string.h>
+#if defined(WR_USE_CHOLMOD) && WR_USE_CHOLMOD
+#include <cholmod.h>
+#endif
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Defaults and limits, each with its reason. */
+#define WR_SPD_DEFAULT_REL_TOL 1e-10  /* brief: 1e-10 relative residual for Newton/SQP steps */
+#define WR_SPD_DEFAULT_ITER_FACTOR 10 /* max_iter = 10 n: CG is exact after n steps in exact arithmetic */
+#define WR_SPD_MAX_REPLACEMENTS 5     /* true-residual restarts before accepting the drift as final */
+#define WR_SPD_MAX_REFINEMENTS 3      /* CHOLMOD iterative-refinement steps */
+/* Manteuffel (1980) shifted IC: factor D(1+alpha) + offdiag. Start small so a matrix that only
+ * barely breaks down keeps most of IC(0)'s strength, double until the pivots stay positive. */
+#define WR_IC_SHIFT_START 1e-3
+#define WR_IC_SHIFT_MAX 1e3
+/* A pivot is a breakdown when it falls below this fraction of the original diagonal: a tiny pivot
+ * makes L^-1 huge and the preconditioner useless even if it is technically positive. */
+#define WR_IC_PIVOT_REL 1e-12
+
+WRDEF const char *wr_solver_method_name(wr_solver_method m) {
+    switch (m) {
+    case WR_SOLVER_AUTO: return "auto";
+    case WR_SOLVER_PCG_JACOBI: return "pcg-jacobi";
+    case WR_SOLVER_PCG_BLOCK3: return "pcg-block3";
+    case WR_SOLVER_PCG_IC0: return "pcg-ic0";
+    case WR_SOLVER_CHOLMOD: return "cholmod";
+    default: return "unknown";
+    }
+}
+
+/* ---------------------------------------------------------------- CHOLMOD backend ---------- */
+#if defined(WR_USE_CHOLMOD) && WR_USE_CHOLMOD
+struct wr__spd_backend {
+    cholmod_common cc;
+    int started;
+    cholmod_sparse *Ar;   /* reduced lower triangle, CSC (stype -1) */
+    cholmod_factor *L;
+    int32_t *src;         /* for each entry of Ar: index into A.val */
+    int32_t *free_of;     /* reduced index -> original DOF */
+};
+
+static void wr__chol_free(struct wr__spd_backend *B) {
+    if (!B) return;
+    if (B->started) {
+        if (B->L) cholmod_l_free_factor(&B->L, &B->cc);
+        if (B->Ar) cholmod_l_free_sparse(&B->Ar, &B->cc);
+        cholmod_l_finish(&B->cc);
+    }
+    wr_free(B->src);
+    wr_free(B->free_of);
+    wr_free(B);
+}
+
+static wr_status wr__chol_fail(wr_diag *diag, struct wr__spd_backend *B, const char *what) {
+    wr_status s = wr_fail(diag, WR_ERR_BACKEND, -1, "CHOLMOD %s failed (status %d)", what, B ? B->cc.status : 0);
+    if (diag && B) diag->backend_code = B->cc.status;
+    return s;
+}
+
+static wr_status wr__chol_create(wr_spd_solver *S, const wr_csr *A, wr_diag *diag) {
+    struct wr__spd_backend *B;
+    int32_t *red = NULL, i, p, nf = 0;
+    int64_t nz = 0;
+    SuiteSparse_long *Ap, *Ai;
+    B = (struct wr__spd_backend *)wr_calloc_array(1, sizeof *B);
+    if (!B) return wr_fail(diag, WR_ERR_NOMEM, -1, "CHOLMOD backend: out of memory");
+    S->backend = B;
+    red = (int32_t *)wr_alloc_array((size_t)A->n, sizeof(int32_t));
+    B->free_of = (int32_t *)wr_alloc_array((size_t)A->n, sizeof(int32_t));
+    if (!red || !B->free_of) {
+        wr_free(red);
+        return wr_fail(diag, WR_ERR_NOMEM, -1, "CHOLMOD backend: out of memory");
+    }
+    for (i = 0; i < A->n; ++i) {
+        if (S->fixed && S->fixed[i]) {
+            red[i] = -1;
+        } else {
+            B->free_of[nf] = i;
+            red[i] = nf++;
+        }
+    }
+    /* Row i of the full symmetric CSR is column i; keep its entries j >= i between free DOFs: the
+     * lower triangle of A_ff in CSC, rows ascending because CSR columns are sorted. */
+    for (i = 0; i < A->n; ++i)
+        if (red[i] >= 0)
+            for (p = A->rowptr[i]; p < A->rowptr[i + 1]; ++p)
+                if (A->col[p] >= i && red[A->col[p]] >= 0) nz++;
+    B->src = (int32_t *)wr_alloc_array((size_t)nz, sizeof(int32_t));
+    if (!B->src) {
+        wr_free(red);
+        return wr_fail(diag, WR_ERR_NOMEM, -1, "CHOLMOD backend: out of memory");
+    }
+    if (!cholmod_l_start(&B->cc)) {
+        wr_free(red);
+        return wr__chol_fail(diag, B, "start");
+    }
+    B->started = 1;
+    B->cc.print = 0; /* library code never prints */
+    B->cc.supernodal = CHOLMOD_SUPERNODAL;
+    B->Ar = cholmod_l_allocate_sparse((size_t)nf, (size_t)nf, (size_t)nz, 1, 1, -1, CHOLMOD_REAL, &B->cc);
+    if (!B->Ar) {
+        wr_free(red);
+        return wr__chol_fail(diag, B, "allocate_sparse");
+    }
+    Ap = (SuiteSparse_long *)B->Ar->p;
+    Ai = (SuiteSparse_long *)B->Ar->i;
+    nz = 0;
+    for (i = 0; i < A->n; ++i) {
+        if (red[i] < 0) continue;
+        Ap[red[i]] = (SuiteSparse_long)nz;
+        for (p = A->rowptr[i]; p < A->rowptr[i + 1]; ++p)
+            if (A->col[p] >= i && red[A->col[p]] >= 0) {
+                Ai[nz] = red[A->col[p]];
+                B->src[nz] = p;
+                ((double *)B->Ar->x)[nz] = 0.0;
+                nz++;
+            }
+    }
+    Ap[nf] = (SuiteSparse_long)nz;
+    wr_free(red);
+    B->L = cholmod_l_analyze(B->Ar, &B->cc);
+    if (!B->L || B->cc.status < CHOLMOD_OK) return wr__chol_fail(diag, B, "analyze");
+    return WR_OK;
+}
+
+static wr_status wr__chol_factor(wr_spd_solver *S, const wr_csr *A, wr_diag *diag) {
+    struct wr__spd_backend *B = S->backend;
+    double *x = (double *)B->Ar->x;
+    size_t k, nz = (size_t)((SuiteSparse_long *)B->Ar->p)[B->Ar->ncol];
+    for (k = 0; k < nz; ++k) x[k] = A->val[B->src[k]];
+    if (!cholmod_l_factorize(B->Ar, B->L, &B->cc) || B->cc.status < CHOLMOD_OK)
+        return wr__chol_fail(diag, B, "factorize");
+    if (B->cc.status == CHOLMOD_NOT_POSDEF || B->L->minor < B->L->n) {
+        wr_status s;
+        int32_t col = B->L->minor < B->L->n ? B->free_of[B->L->minor] : -1;
+        s = wr_fail(diag, WR_ERR_NOT_SPD, col, "CHOLMOD: matrix not positive definite (pivot at DOF %d)", (int)col);
+        if (diag) diag->backend_code = B->cc.status;
+        return s;
+    }
+    return WR_OK;
+}
+
+/* x_f = A_ff^{-1} rhs_f on the reduced numbering; rhs and out are full-length (free entries used). */
+static wr_status wr__chol_solve(wr_spd_solver *S, const double *rhs, double *out, wr_diag *diag) {
+    struct wr__spd_backend *B = S->backend;
+    cholmod_dense *Bd, *X;
+    size_t k, nf = B->Ar->nrow;
+    Bd = cholmod_l_allocate_dense(nf, 1, nf, CHOLMOD_REAL, &B->cc);
+    if (!Bd) return wr__chol_fail(diag, B, "allocate_dense");
+    for (k = 0; k < nf; ++k) ((double *)Bd->x)[k] = rhs[B->free_of[k]];
+    X = cholmod_l_solve(CHOLMOD_A, B->L, Bd, &B->cc);
+    cholmod_l_free_dense(&Bd, &B->cc);
+    if (!X || B->cc.status < CHOLMOD_OK) {
+        if (X) cholmod_l_free_dense(&X, &B->cc);
+        return wr__chol_fail(diag, B, "solve");
+    }
+    for (k = 0; k < nf; ++k) out[B->free_of[k]] = ((double *)X->x)[k];
+    cholmod_l_free_dense(&X, &B->cc);
+    return WR_OK;
+}
+#else
+struct wr__spd_backend {
+    int unused;
+};
+static void wr__chol_free(struct wr__spd_backend *B) { wr_free(B); }
+#endif
+
+/* ---------------------------------------------------------------- helpers ------------------ */
+static double wr__dot(int32_t n, const double *a, const double *b) {
+    double s = 0.0;
+    int32_t i;
+    for (i = 0; i < n; ++i) s += a[i] * b[i];
+    return s;
+}
+
+/* y = A x with the masked values when some DOFs are fixed (then fixed rows give y_c = x_c and
+ * fixed columns do not couple). */
+static void wr__spmv_vals(const wr_csr *A, const double *val, const double *x, double *y) {
+    int32_t i;
+    for (i = 0; i < A->n; ++i) {
+        double s = 0.0;
+        int32_t p;
+        for (p = A->rowptr[i]; p < A->rowptr[i + 1]; ++p) s += val[p] * x[A->col[p]];
+        y[i] = s;
+    }
+}
+
+/* r = b - A x on free DOFs, 0 on fixed DOFs; returns ||r||. */
+static double wr__residual(const wr_spd_solver *S, const wr_csr *A, const double *b, const double *x, double *r) {
+    int32_t i;
+    double s = 0.0;
+    wr_csr_spmv(A, x, r);
+    for (i = 0; i < A->n; ++i) {
+        r[i] = (S->fixed && S->fixed[i]) ? 0.0 : b[i] - r[i];
+        s += r[i] * r[i];
+    }
+    return sqrt(s);
+}
+
+static void wr__solver_resolve(wr_spd_solver *S, const wr_spd_desc *desc) {
+    S->method = desc ? desc->method : WR_SOLVER_AUTO;
+    if (S->method == WR_SOLVER_AUTO) {
+#if defined(WR_USE_CHOLMOD) && WR_USE_CHOLMOD
+        S->method = WR_SOLVER_CHOLMOD;
+#else
+        S->method = WR_SOLVER_PCG_IC0;
+#endif
+    }
+    S->rel_tol = (desc && desc->rel_tol > 0.0) ? desc->rel_tol : WR_SPD_DEFAULT_REL_TOL;
+    if (desc && desc->max_iter > 0)
+        S->max_iter = desc->max_iter;
+    else
+        S->max_iter = S->n > INT32_MAX / WR_SPD_DEFAULT_ITER_FACTOR ? INT32_MAX : WR_SPD_DEFAULT_ITER_FACTOR * S->n;
+}
+
+static wr_status wr__check_matrix(const wr_csr *A, const char *who, wr_diag *diag) {
+    if (!A || !A->rowptr || !A->col || !A->val || A->n < 0)
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "%s: NULL or empty matrix", who);
+    return WR_OK;
+}
+
+/* ---------------------------------------------------------------- solver object ------------ */
+WRDEF void wr_spd_solver_free(wr_spd_solver *S) {
+    if (!S) return;
+    wr_free(S->fixed);
+    wr_free(S->mval);
+    wr_free(S->prec);
+    wr_free(S->lrow);
+    wr_free(S->lcol);
+    wr_free(S->lsrc);
+    wr_free(S->lval);
+    if (S->backend) wr__chol_free(S->backend);
+    memset(S, 0, sizeof *S);
+}
+
+/* IC(0) symbolic part: the lower triangle (diagonal last in each row) of A's pattern, restricted
+ * to free DOFs; a fixed DOF keeps only its diagonal (value 1 in the masked matrix). */
+static wr_status wr__ic_create(wr_spd_solver *S, const wr_csr *A, wr_diag *diag) {
+    int32_t i, p, nz = 0;
+    for (i = 0; i < A->n; ++i)
+        for (p = A->rowptr[i]; p < A->rowptr[i + 1] && A->col[p] <= i; ++p) nz++;
+    S->lrow = (int32_t *)wr_alloc_array((size_t)A->n + 1, sizeof(int32_t));
+    S->lcol = (int32_t *)wr_alloc_array((size_t)nz, sizeof(int32_t));
+    S->lsrc = (int32_t *)wr_alloc_array((size_t)nz, sizeof(int32_t));
+    S->lval = (double *)wr_alloc_array((size_t)nz, sizeof(double));
+    if (!S->lrow || !S->lcol || !S->lsrc || !S->lval)
+        return wr_fail(diag, WR_ERR_NOMEM, -1, "IC(0): out of memory for %d entries", (int)nz);
+    nz = 0;
+    for (i = 0; i < A->n; ++i) {
+        S->lrow[i] = nz;
+        for (p = A->rowptr[i]; p < A->rowptr[i + 1] && A->col[p] <= i; ++p) {
+            S->lcol[nz] = A->col[p];
+            S->lsrc[nz] = p;
+            nz++;
+        }
+        /* wr_csr always stores the diagonal, so the row ends with (i, i). */
+        if (nz == S->lrow[i] || S->lcol[nz - 1] != i)
+            return wr_fail(diag, WR_ERR_INVALID_ARG, i, "IC(0): row %d has no diagonal entry", (int)i);
+    }
+    S->lrow[A->n] = nz;
+    return WR_OK;
+}
+
+/* IC(0) numeric part with Manteuffel shifts: L L^T ~= offdiag(A) + (1+alpha) diag(A).
+ * Row-oriented: L_ij = (a_ij - sum_{m<j} L_im L_jm) / L_jj over the fixed pattern, using a scatter
+ * map of row i so each row j of L is read once. */
+static wr_status wr__ic_factor(wr_spd_solver *S, const double *val, wr_diag *diag) {
+    int32_t n = S->n, i, p, q, attempt;
+    int32_t *pos = (int32_t *)wr_alloc_array((size_t)n, sizeof(int32_t));
+    double alpha = 0.0;
+    if (!pos) return wr_fail(diag, WR_ERR_NOMEM, -1, "IC(0): out of memory");
+    for (i = 0; i < n; ++i) pos[i] = -1;
+    for (i = 0; i < n; ++i) {
+        double d = val[S->lsrc[S->lrow[i + 1] - 1]];
+        if (!(d > 0.0)) {
+            wr_free(pos);
+            return wr_fail(diag, WR_ERR_NOT_SPD, i, "IC(0): diagonal A(%d,%d) = %g is not positive", (int)i, (int)i, d);
+        }
+    }
+    for (attempt = 0;; ++attempt) {
+        int broke = 0;
+        for (i = 0; i < n && !broke; ++i) {
+            int32_t b = S->lrow[i], e = S->lrow[i + 1] - 1; /* e = diagonal */
+            double dsum;
+            for (p = b; p < e; ++p) pos[S->lcol[p]] = p;
+            for (p = b; p < e; ++p) {
+                int32_t j = S->lcol[p];
+                double s = val[S->lsrc[p]];
+                for (q = S->lrow[j]; q < S->lrow[j + 1] - 1; ++q) {
+                    int32_t m = S->lcol[q];
+                    if (pos[m] >= 0) s -= S->lval[pos[m]] * S->lval[q];
+                }
+                S->lval[p] = s / S->lval[S->lrow[j + 1] - 1];
+            }
+            dsum = (1.0 + alpha) * val[S->lsrc[e]];
+            for (p = b; p < e; ++p) {
+                dsum -= S->lval[p] * S->lval[p];
+                pos[S->lcol[p]] = -1;
+            }
+            if (!(dsum > WR_IC_PIVOT_REL * val[S->lsrc[e]])) {
+                broke = 1;
+                break;
+            }
+            S->lval[e] = sqrt(dsum);
+        }
+        if (!broke) break;
+        for (p = S->lrow[i]; p < S->lrow[i + 1]; ++p) pos[S->lcol[p]] = -1;
+        alpha = alpha == 0.0 ? WR_IC_SHIFT_START : 2.0 * alpha;
+        if (alpha > WR_IC_SHIFT_MAX) {
+            wr_free(pos);
+            return wr_fail(diag, WR_ERR_NOT_SPD, i, "IC(0): breakdown at row %d even with shift %g", (int)i,
+                           alpha / 2.0);
+        }
+    }
+    S->ic_shift = alpha;
+    wr_free(pos);
+    return WR_OK;
+}
+
+/* z = (L L^T)^{-1} r: forward with the rows of L, backward with the rows of L read as columns of L^T. */
+static void wr__ic_apply(const wr_spd_solver *S, const double *r, double *z) {
+    int32_t n = S->n, i, p;
+    for (i = 0; i < n; ++i) {
+        int32_t e = S->lrow[i + 1] - 1;
+        double s = r[i];
+        for (p = S->lrow[i]; p < e; ++p) s -= S->lval[p] * z[S->lcol[p]];
+        z[i] = s / S->lval[e];
+    }
+    for (i = n - 1; i >= 0; --i) {
+        int32_t e = S->lrow[i + 1] - 1;
+        double zi = z[i] / S->lval[e];
+        z[i] = zi;
+        for (p = S->lrow[i]; p < e; ++p) z[S->lcol[p]] -= S->lval[p] * zi;
+    }
+}
+
+WRDEF wr_status wr_spd_solver_create(wr_spd_solver *S, const wr_csr *A, const wr_spd_desc *desc, wr_diag *diag) {
+    wr_status st;
+    double t0 = wr_time_seconds();
+    int32_t i;
+    if (!S) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "spd_solver_create: NULL solver");
+    memset(S, 0, sizeof *S);
+    if ((st = wr__check_matrix(A, "spd_solver_create", diag)) != WR_OK) return st;
+    if (desc && (desc->method < WR_SOLVER_AUTO || desc->method >= WR_SOLVER_METHOD_COUNT))
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "spd_solver_create: unknown method %d", (int)desc->method);
+    if (desc && (desc->rel_tol < 0.0 || desc->rel_tol != desc->rel_tol || desc->max_iter < 0))
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "spd_solver_create: rel_tol = %g, max_iter = %d", desc->rel_tol,
+                       (int)desc->max_iter);
+    S->n = A->n;
+    S->nnz = A->nnz;
+    wr__solver_resolve(S, desc);
+    if (S->method == WR_SOLVER_PCG_BLOCK3 && A->n % 3 != 0)
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "pcg-block3: n = %d is not a multiple of 3", (int)A->n);
+#if !(defined(WR_USE_CHOLMOD) && WR_USE_CHOLMOD)
+    if (S->method == WR_SOLVER_CHOLMOD)
+        return wr_fail(diag, WR_ERR_UNSUPPORTED, -1, "CHOLMOD backend not compiled in (define WR_USE_CHOLMOD=1)");
+#endif
+    S->n_free = A->n;
+    if (desc && desc->fixed) {
+        S->fixed = (uint8_t *)wr_alloc_array((size_t)A->n, 1);
+        if (!S->fixed) return wr_fail(diag, WR_ERR_NOMEM, -1, "spd_solver_create: out of memory");
+        for (i = 0; i < A->n; ++i) {
+            S->fixed[i] = desc->fixed[i] ? 1 : 0;
+            S->n_free -= S->fixed[i];
+        }
+    }
+    st = WR_OK;
+    switch (S->method) {
+    case WR_SOLVER_PCG_JACOBI:
+        S->prec = (double *)wr_alloc_array((size_t)A->n, sizeof(double));
+        if (!S->prec) st = wr_fail(diag, WR_ERR_NOMEM, -1, "pcg-jacobi: out of memory");
+        break;
+    case WR_SOLVER_PCG_BLOCK3:
+        S->prec = (double *)wr_alloc_array((size_t)A->n / 3, 9 * sizeof(double));
+        if (!S->prec) st = wr_fail(diag, WR_ERR_NOMEM, -1, "pcg-block3: out of memory");
+        break;
+    case WR_SOLVER_PCG_IC0:
+        st = wr__ic_create(S, A, diag);
+        break;
+    case WR_SOLVER_CHOLMOD:
+#if defined(WR_USE_CHOLMOD) && WR_USE_CHOLMOD
+        st = wr__chol_create(S, A, diag);
+#endif
+        break;
+    default:
+        st = wr_fail(diag, WR_ERR_INVALID_ARG, -1, "spd_solver_create: bad method");
+    }
+    if (st == WR_OK && S->fixed && S->method != WR_SOLVER_CHOLMOD) {
+        S->mval = (double *)wr_alloc_array((size_t)A->nnz, sizeof(double));
+        if (!S->mval) st = wr_fail(diag, WR_ERR_NOMEM, -1, "spd_solver_create: out of memory");
+    }
+    if (st != WR_OK) {
+        wr_spd_solver_free(S);
+        return st;
+    }
+    S->analyze_seconds = wr_time_seconds() - t0;
+    return WR_OK;
+}
+
+/* Cholesky of a 3×3 SPD block, then its inverse (row-major). 0 when not positive definite. */
+static int wr__block3_inverse(const double *M, double *inv) {
+    double l00, l10, l20, l11, l21, l22, i00, i10, i20, i11, i21, i22;
+    double s = fabs(M[0]) + fabs(M[4]) + fabs(M[8]);
+    if (!(M[0] > 1e-14 * s)) return 0;
+    l00 = sqrt(M[0]);
+    l10 = M[3] / l00;
+    l20 = M[6] / l00;
+    if (!(M[4] - l10 * l10 > 1e-14 * s)) return 0;
+    l11 = sqrt(M[4] - l10 * l10);
+    l21 = (M[7] - l20 * l10) / l11;
+    if (!(M[8] - l20 * l20 - l21 * l21 > 1e-14 * s)) return 0;
+    l22 = sqrt(M[8] - l20 * l20 - l21 * l21);
+    /* inverse of L (lower), then inv = L^-T L^-1 */
+    i00 = 1.0 / l00;
+    i11 = 1.0 / l11;
+    i22 = 1.0 / l22;
+    i10 = -l10 * i00 * i11;
+    i21 = -l21 * i11 * i22;
+    i20 = -(l20 * i00 + l21 * i10) * i22;
+    inv[0] = i00 * i00 + i10 * i10 + i20 * i20;
+    inv[1] = inv[3] = i10 * i11 + i20 * i21;
+    inv[2] = inv[6] = i20 * i22;
+    inv[4] = i11 * i11 + i21 * i21;
+    inv[5] = inv[7] = i21 * i22;
+    inv[8] = i22 * i22;
+    return 1;
+}
+
+WRDEF wr_status wr_spd_solver_factor(wr_spd_solver *S, const wr_csr *A, wr_diag *diag) {
+    wr_status st;
+    const double *val;
+    double t0 = wr_time_seconds();
+    int32_t i, p;
+    if (!S || (!S->prec && !S->lval && !S->backend))
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "spd_solver_factor: solver not created");
+    if ((st = wr__check_matrix(A, "spd_solver_factor", diag)) != WR_OK) return st;
+    if (A->n != S->n || A->nnz != S->nnz)
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "spd_solver_factor: matrix n = %d, nnz = %d but solver has %d, %d",
+                       (int)A->n, (int)A->nnz, (int)S->n, (int)S->nnz);
+    S->factored = 0;
+    val = A->val;
+    if (S->mval) {
+        /* Masked copy: fixed rows and columns become identity rows/columns. */
+        for (i = 0; i < A->n; ++i)
+            for (p = A->rowptr[i]; p < A->rowptr[i + 1]; ++p) {
+                int32_t j = A->col[p];
+                if (S->fixed[i] || S->fixed[j])
+                    S->mval[p] = i == j ? 1.0 : 0.0;
+                else
+                    S->mval[p] = A->val[p];
+            }
+        val = S->mval;
+    }
+    for (p = 0; p < A->nnz; ++p)
+        if (!isfinite(val[p])) return wr_fail(diag, WR_ERR_DOMAIN, p, "spd_solver_factor: non-finite value at entry %d", (int)p);
+    switch (S->method) {
+    case WR_SOLVER_PCG_JACOBI:
+        for (i = 0; i < A->n; ++i) {
+            int32_t q = wr_csr_find(A, i, i);
+            double d = q >= 0 ? val[q] : 0.0;
+            if (!(d > 0.0)) return wr_fail(diag, WR_ERR_NOT_SPD, i, "pcg-jacobi: diagonal A(%d,%d) = %g <= 0", (int)i, (int)i, d);
+            S->prec[i] = 1.0 / d;
+        }
+        break;
+    case WR_SOLVER_PCG_BLOCK3: {
+        int32_t I, nb = A->n / 3;
+        for (I = 0; I < nb; ++I) {
+            double M[9];
+            int a;
+            for (a = 0; a < 9; ++a) M[a] = 0.0;
+            for (a = 0; a < 3; ++a)
+                for (p = A->rowptr[3 * I + a]; p < A->rowptr[3 * I + a + 1]; ++p) {
+                    int32_t c = A->col[p] - 3 * I;
+                    if (c >= 0 && c < 3) M[3 * a + c] = val[p];
+                }
+            /* symmetrise the block: the caller's A is symmetric up to round-off */
+            M[1] = M[3] = 0.5 * (M[1] + M[3]);
+            M[2] = M[6] = 0.5 * (M[2] + M[6]);
+            M[5] = M[7] = 0.5 * (M[5] + M[7]);
+            if (!wr__block3_inverse(M, S->prec + 9 * (size_t)I))
+                return wr_fail(diag, WR_ERR_NOT_SPD, I, "pcg-block3: diagonal block %d is not positive definite", (int)I);
+        }
+        break;
+    }
+    case WR_SOLVER_PCG_IC0:
+        if ((st = wr__ic_factor(S, val, diag)) != WR_OK) return st;
+        break;
+    case WR_SOLVER_CHOLMOD:
+#if defined(WR_USE_CHOLMOD) && WR_USE_CHOLMOD
+        if ((st = wr__chol_factor(S, A, diag)) != WR_OK) return st;
+#endif
+        break;
+    default:
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "spd_solver_factor: bad method");
+    }
+    S->factored = 1;
+    S->factor_seconds = wr_time_seconds() - t0;
+    return WR_OK;
+}
+
+static void wr__prec_apply(const wr_spd_solver *S, const double *r, double *z) {
+    int32_t i, n = S->n;
+    switch (S->method) {
+    case WR_SOLVER_PCG_JACOBI:
+        for (i = 0; i < n; ++i) z[i] = S->prec[i] * r[i];
+        break;
+    case WR_SOLVER_PCG_BLOCK3:
+        for (i = 0; i < n; i += 3) {
+            const double *M = S->prec + 3 * (size_t)i;
+            double a = r[i], b = r[i + 1], c = r[i + 2];
+            z[i] = M[0] * a + M[1] * b + M[2] * c;
+            z[i + 1] = M[3] * a + M[4] * b + M[5] * c;
+            z[i + 2] = M[6] * a + M[7] * b + M[8] * c;
+        }
+        break;
+    case WR_SOLVER_PCG_IC0:
+        wr__ic_apply(S, r, z);
+        break;
+    default:
+        for (i = 0; i < n; ++i) z[i] = r[i];
+    }
+    if (S->fixed)
+        for (i = 0; i < n; ++i)
+            if (S->fixed[i]) z[i] = 0.0;
+}
+
+static void wr__fill_stats(wr_spd_stats *st, const wr_spd_solver *S, int32_t it, double rel, double t0, wr_spd_stop stop) {
+    if (!st) return;
+    st->method = S->method;
+    st->iterations = it;
+    st->rel_residual = rel;
+    st->analyze_seconds = S->analyze_seconds;
+    st->setup_seconds = S->analyze_seconds + S->factor_seconds;
+    st->solve_seconds = wr_time_seconds() - t0;
+    st->stop = stop;
+    st->ic_shift = S->ic_shift;
+    st->n_free = S->n_free;
+}
+
+WRDEF wr_status wr_spd_solver_solve(wr_spd_solver *S, const wr_csr *A, const double *b, double *x,
+                                    wr_spd_stats *stats, wr_diag *diag) {
+    double t0 = wr_time_seconds(), bnorm, rnorm, tol_abs, rz;
+    double *r = NULL, *z = NULL, *pv = NULL, *q = NULL;
+    const double *val;
+    int32_t n, i, it = 0, replacements = 0;
+    wr_status st = WR_OK;
+    wr_spd_stop stop = WR_SPD_STOP_NONE;
+    if (stats) memset(stats, 0, sizeof *stats);
+    if (!S || !S->factored) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "spd_solver_solve: solver not factored");
+    if ((st = wr__check_matrix(A, "spd_solver_solve", diag)) != WR_OK) return st;
+    if (A->n != S->n || A->nnz != S->nnz)
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "spd_solver_solve: matrix n = %d, nnz = %d but solver has %d, %d",
+                       (int)A->n, (int)A->nnz, (int)S->n, (int)S->nnz);
+    if (!b || !x) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "spd_solver_solve: NULL b or x");
+    n = S->n;
+    for (i = 0; i < n; ++i)
+        if (!isfinite(b[i]) || !isfinite(x[i]))
+            return wr_fail(diag, WR_ERR_DOMAIN, i, "spd_solver_solve: b[%d] = %g, x[%d] = %g", (int)i, b[i], (int)i, x[i]);
+    r = (double *)wr_alloc_array((size_t)n, sizeof(double));
+    z = (double *)wr_alloc_array((size_t)n, sizeof(double));
+    pv = (double *)wr_alloc_array((size_t)n, sizeof(double));
+    q = (double *)wr_alloc_array((size_t)n, sizeof(double));
+    if (!r || !z || !pv || !q) {
+        st = wr_fail(diag, WR_ERR_NOMEM, -1, "spd_solver_solve: out of memory (n = %d)", (int)n);
+        goto done;
+    }
+    /* Effective right-hand side (b - A x_fixed) on free DOFs: the scale of the relative residual. */
+    for (i = 0; i < n; ++i) pv[i] = (S->fixed && S->fixed[i]) ? x[i] : 0.0;
+    bnorm = wr__residual(S, A, b, pv, r);
+    if (bnorm == 0.0) {
+        for (i = 0; i < n; ++i) x[i] = pv[i];
+        wr__fill_stats(stats, S, 0, 0.0, t0, WR_SPD_STOP_ZERO_RHS);
+        goto done;
+    }
+    tol_abs = S->rel_tol * bnorm;
+    if (S->method == WR_SOLVER_CHOLMOD) {
+#if defined(WR_USE_CHOLMOD) && WR_USE_CHOLMOD
+        /* x_f = A_ff^-1 (b - A_fc x_c); r currently holds exactly that right-hand side. */
+        if ((st = wr__chol_solve(S, r, x, diag)) != WR_OK) goto done;
+        rnorm = wr__residual(S, A, b, x, r);
+        while (rnorm > tol_abs && it < WR_SPD_MAX_REFINEMENTS) {
+            /* iterative refinement: x += A_ff^-1 r */
+            for (i = 0; i < n; ++i) z[i] = 0.0;
+            if ((st = wr__chol_solve(S, r, z, diag)) != WR_OK) goto done;
+            for (i = 0; i < n; ++i) x[i] += z[i];
+            rnorm = wr__residual(S, A, b, x, r);
+            it++;
+        }
+        stop = rnorm <= tol_abs ? WR_SPD_STOP_CONVERGED : WR_SPD_STOP_DIRECT_INACCURATE;
+        wr__fill_stats(stats, S, it, rnorm / bnorm, t0, stop);
+        if (stop != WR_SPD_STOP_CONVERGED)
+            st = wr_fail(diag, WR_ERR_NOT_CONVERGED, -1, "cholmod: relative residual %g > %g after %d refinements",
+                         rnorm / bnorm, S->rel_tol, (int)it);
+#endif
+        goto done;
+    }
+    /* ---- PCG on the masked operator (Hestenes–Stiefel with residual replacement) ---- */
+    val = S->mval ? S->mval : A->val;
+    rnorm = wr__residual(S, A, b, x, r);
+    if (rnorm <= tol_abs) {
+        stop = WR_SPD_STOP_CONVERGED;
+    } else {
+        wr__prec_apply(S, r, z);
+        memcpy(pv, z, sizeof(double) * (size_t)n);
+        rz = wr__dot(n, r, z);
+        while (stop == WR_SPD_STOP_NONE) {
+            double pq, alpha, beta, rz_new, rr = 0.0;
+            if (it >= S->max_iter) {
+                stop = WR_SPD_STOP_MAX_ITER;
+                break;
+            }
+            wr__spmv_vals(A, val, pv, q);
+            pq = wr__dot(n, pv, q);
+            if (!isfinite(pq) || !isfinite(rz)) {
+                stop = WR_SPD_STOP_NONFINITE;
+                break;
+            }
+            if (!(pq > 0.0)) {
+                stop = WR_SPD_STOP_NOT_SPD;
+                break;
+            }
+            alpha = rz / pq;
+            for (i = 0; i < n; ++i) {
+                x[i] += alpha * pv[i];
+                r[i] -= alpha * q[i];
+                rr += r[i] * r[i];
+            }
+            it++;
+            if (sqrt(rr) <= tol_abs) {
+                /* recursive residual says done: check the true one */
+                rnorm = wr__residual(S, A, b, x, r);
+                if (rnorm <= tol_abs) {
+                    stop = WR_SPD_STOP_CONVERGED;
+                    break;
+                }
+                if (replacements >= WR_SPD_MAX_REPLACEMENTS) {
+                    stop = WR_SPD_STOP_MAX_ITER;
+                    break;
+                }
+                replacements++;
+                wr__prec_apply(S, r, z);
+                memcpy(pv, z, sizeof(double) * (size_t)n);
+                rz = wr__dot(n, r, z);
+                continue;
+            }
+            wr__prec_apply(S, r, z);
+            rz_new = wr__dot(n, r, z);
+            beta = rz_new / rz;
+            rz = rz_new;
+            for (i = 0; i < n; ++i) pv[i] = z[i] + beta * pv[i];
+        }
+    }
+    rnorm = wr__residual(S, A, b, x, r);
+    if (stop == WR_SPD_STOP_CONVERGED && !(rnorm <= tol_abs)) stop = WR_SPD_STOP_MAX_ITER;
+    wr__fill_stats(stats, S, it, rnorm / bnorm, t0, stop);
+    switch (stop) {
+    case WR_SPD_STOP_CONVERGED: st = WR_OK; break;
+    case WR_SPD_STOP_NOT_SPD:
+        st = wr_fail(diag, WR_ERR_NOT_SPD, it, "%s: p^T A p <= 0 at iteration %d (matrix not SPD)",
+                     wr_solver_method_name(S->method), (int)it);
+        break;
+    case WR_SPD_STOP_NONFINITE:
+        st = wr_fail(diag, WR_ERR_DOMAIN, it, "%s: non-finite value at iteration %d", wr_solver_method_name(S->method),
+                     (int)it);
+        break;
+    default:
+        st = wr_fail(diag, WR_ERR_NOT_CONVERGED, it, "%s: relative residual %g > %g after %d iterations",
+                     wr_solver_method_name(S->method), rnorm / bnorm, S->rel_tol, (int)it);
+    }
+done:
+    wr_free(r);
+    wr_free(z);
+    wr_free(pv);
+    wr_free(q);
+    return st;
+}
+
+WRDEF wr_status wr_spd_solve(const wr_csr *A, const double *b, double *x, const wr_spd_desc *desc,
+                             wr_spd_stats *stats, wr_diag *diag) {
+    wr_spd_solver S;
+    wr_status st;
+    if (stats) memset(stats, 0, sizeof *stats);
+    if ((st = wr_spd_solver_create(&S, A, desc, diag)) != WR_OK) return st;
+    if ((st = wr_spd_solver_factor(&S, A, diag)) != WR_OK) {
+        if (stats) {
+            stats->method = S.method;
+            stats->stop = st == WR_ERR_NOT_SPD ? WR_SPD_STOP_NOT_SPD : WR_SPD_STOP_NONE;
+        }
+        wr_spd_solver_free(&S);
+        return st;
+    }
+    st = wr_spd_solver_solve(&S, A, b, x, stats, diag);
+    wr_spd_solver_free(&S);
+    return st;
+}
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* WRINKLE_PCG_IMPLEMENTATION_DONE */
+#endif /* WRINKLE_IMPLEMENTATION */
