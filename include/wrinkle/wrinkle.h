@@ -12,3 +12,5 @@
 #include "core.h"
 /* modules, foundations first (one line each) */
 #include "mesh.h"
+#include "sparse.h"
+#include "pcg.h"
