@@ -14,3 +14,4 @@
 #include "mesh.h"
 #include "sparse.h"
 #include "pcg.h"
+#include "spectrum.h"
