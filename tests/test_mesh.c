@@ -1,10 +1,16 @@
 /* tests/test_mesh.c — wr_mesh: sign/orientation conventions, topology, validation, generators, I/O. */
+#define _POSIX_C_SOURCE 200809L /* mkdtemp, opendir for the atomic-write tests */
 #include <criterion/criterion.h>
+#include <dirent.h>
+#include <stdlib.h>
+#include <unistd.h>
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
 
 #include "wrinkle/mesh.h"
+
+#define WR_TEST_PI 3.14159265358979323846
 
 /* Two triangles sharing the diagonal 1–2 of the unit square:
  *   2---3
@@ -355,4 +361,588 @@ Test(mesh, face_rest_sources) {
     cr_assert_float_eq(hypot(uv[4] - uv[2], uv[5] - uv[3]), sqrt(13.0), 1e-14);
     cr_assert_gt(uv[5], 0.0);
     wr_mesh_free(&m);
+}
+
+/* ---- generators ---------------------------------------------------------------------------------- */
+
+Test(mesh, disk_counts_area_quality) {
+    int32_t n;
+    for (n = 1; n <= 6; ++n) {
+        wr_mesh m;
+        wr_diag d;
+        wr_mesh_quality_stats q;
+        double R = 0.7, want;
+        int32_t f;
+        cr_assert_eq(wr_mesh_disk(&m, R, n, &d), WR_OK, "%s", d.message);
+        cr_assert_eq(m.nv, 1 + 3 * n * (n + 1));
+        cr_assert_eq(m.nf, 6 * n * n);
+        cr_assert_eq(m.nv - m.ne + m.nf, 1);
+        cr_assert_eq(m.n_loops, 1);
+        cr_assert_eq(m.loop_start[1], 6 * n);
+        check_invariants(&m);
+        wr_mesh_quality(&m, 1, &q);
+        cr_assert_eq(q.n_inverted, 0);
+        cr_assert_eq(q.n_zero_area, 0);
+        /* the disk is the regular 6n-gon inscribed in radius R */
+        want = 0.5 * 6 * n * R * R * sin(2.0 * WR_TEST_PI / (6 * n));
+        cr_assert_float_eq(q.area, want, 1e-13, "n=%d area %.17g want %.17g", n, q.area, want);
+        cr_assert_gt(q.min_angle_deg, 25.0, "n=%d min angle %g", n, q.min_angle_deg);
+        for (f = 0; f < m.nf; ++f) {
+            double uv[6];
+            wr_mesh_face_rest(&m, f, uv);
+            cr_assert_gt(0.5 * ((uv[2] - uv[0]) * (uv[5] - uv[1]) - (uv[4] - uv[0]) * (uv[3] - uv[1])), 0.0);
+        }
+        wr_mesh_free(&m);
+    }
+    {
+        wr_mesh m;
+        cr_assert_eq(wr_mesh_disk(&m, -1.0, 3, NULL), WR_ERR_INVALID_ARG);
+        cr_assert_eq(wr_mesh_disk(&m, 1.0, 0, NULL), WR_ERR_INVALID_ARG);
+        cr_assert_eq(wr_mesh_disk(&m, 1.0, 100000, NULL), WR_ERR_OVERFLOW);
+    }
+}
+
+Test(mesh, cylinder_is_a_closed_tube) {
+    wr_mesh m;
+    wr_diag d;
+    wr_mesh_quality_stats q;
+    const double R = 0.3, H = 0.5;
+    const int32_t nu = 12, nh = 4;
+    double *len, *nrm, du = 2.0 * WR_TEST_PI * R / nu;
+    int32_t e, v, i;
+    cr_assert_eq(wr_mesh_cylinder_flat(&m, R, H, nu, nh, &d), WR_OK, "%s", d.message);
+    cr_assert_eq(m.nv, nu * (nh + 1));
+    cr_assert_eq(m.nf, 2 * nu * nh);
+    cr_assert_eq(m.nv - m.ne + m.nf, 0, "tube: χ = 0");
+    cr_assert_null(m.rest);
+    cr_assert_not_null(m.corner_rest);
+    cr_assert_eq(m.n_loops, 2);
+    check_invariants(&m);
+    /* bottom loop runs in +u (mesh on the left), top loop in −u */
+    for (i = 0; i < nu; ++i) cr_assert_eq(m.loop_verts[i], i);
+    cr_assert_eq(m.loop_verts[nu], nh * nu);
+    cr_assert_eq(m.loop_verts[nu + 1], nh * nu + nu - 1);
+    /* rest domain is the unrolled rectangle: total area 2πR H, no inverted faces */
+    wr_mesh_quality(&m, 1, &q);
+    cr_assert_float_eq(q.area, 2.0 * WR_TEST_PI * R * H, 1e-14);
+    cr_assert_eq(q.n_inverted, 0);
+    cr_assert_float_eq(q.min_angle_deg, atan((H / nh) / du) * 180.0 / WR_TEST_PI < atan(du / (H / nh)) * 180.0 / WR_TEST_PI
+                                            ? atan((H / nh) / du) * 180.0 / WR_TEST_PI
+                                            : atan(du / (H / nh)) * 180.0 / WR_TEST_PI,
+                       1e-9);
+    /* rest lengths of horizontal edges are du (also across the seam); 3D lengths are chords */
+    len = (double *)malloc(sizeof(double) * (size_t)m.ne);
+    wr_mesh_edge_lengths(&m, 1, len);
+    for (e = 0; e < m.ne; ++e) {
+        int32_t a = m.edges[2 * e], b = m.edges[2 * e + 1];
+        if (a / nu == b / nu) cr_assert_float_eq(len[e], du, 1e-14, "edge %d-%d rest length %g", a, b, len[e]);
+    }
+    wr_mesh_edge_lengths(&m, 0, len);
+    for (e = 0; e < m.ne; ++e) {
+        int32_t a = m.edges[2 * e], b = m.edges[2 * e + 1];
+        if (a / nu == b / nu) cr_assert_float_eq(len[e], 2.0 * R * sin(WR_TEST_PI / nu), 1e-14);
+    }
+    free(len);
+    /* outward normals */
+    nrm = (double *)malloc(sizeof(double) * 3 * (size_t)m.nv);
+    wr_mesh_vertex_normals(&m, nrm);
+    for (v = 0; v < m.nv; ++v) {
+        double radial = (nrm[3 * v] * m.pos[3 * v] + nrm[3 * v + 1] * m.pos[3 * v + 1]) / R;
+        cr_assert_gt(radial, 0.95, "vertex %d normal·radial = %g", v, radial);
+    }
+    free(nrm);
+    wr_mesh_free(&m);
+    cr_assert_eq(wr_mesh_cylinder_flat(&m, R, H, 2, 4, NULL), WR_ERR_INVALID_ARG);
+    cr_assert_eq(wr_mesh_cylinder_flat(&m, R, 0.0, 6, 4, NULL), WR_ERR_INVALID_ARG);
+}
+
+/* ---- measures ------------------------------------------------------------------------------------- */
+
+Test(mesh, lengths_areas_normals_on_rectangle) {
+    wr_mesh m;
+    double len[64], area[32], fn[96], vn[64 * 3];
+    int32_t e, f, v;
+    cr_assert_eq(wr_mesh_rectangle(&m, 3.0, 2.0, 3, 2, NULL), WR_OK); /* unit cells */
+    cr_assert_leq(m.ne, 64);
+    wr_mesh_edge_lengths(&m, 1, len);
+    for (e = 0; e < m.ne; ++e) {
+        int32_t dd = m.edges[2 * e + 1] - m.edges[2 * e];
+        double want = (dd == 1 || dd == 4) ? 1.0 : sqrt(2.0);
+        cr_assert_float_eq(len[e], want, 1e-15, "edge %d", e);
+    }
+    wr_mesh_face_areas(&m, 1, area);
+    for (f = 0; f < m.nf; ++f) cr_assert_float_eq(area[f], 0.5, 1e-15);
+    wr_mesh_face_normals(&m, fn);
+    wr_mesh_vertex_normals(&m, vn);
+    for (f = 0; f < m.nf; ++f) cr_assert_eq(fn[3 * f + 2], 1.0);
+    for (v = 0; v < m.nv; ++v) cr_assert_eq(vn[3 * v + 2], 1.0);
+    /* lift vertex 5 (interior): 3D lengths and areas change, rest ones do not */
+    m.pos[3 * 5 + 2] = 1.0;
+    wr_mesh_edge_lengths(&m, 0, len);
+    for (e = 0; e < m.ne; ++e)
+        if (m.edges[2 * e] == 5 || m.edges[2 * e + 1] == 5) {
+            int32_t dd = m.edges[2 * e + 1] - m.edges[2 * e];
+            cr_assert_float_eq(len[e], (dd == 1 || dd == 4) ? sqrt(2.0) : sqrt(3.0), 1e-15);
+        }
+    wr_mesh_face_areas(&m, 0, area);
+    for (f = 0; f < m.nf; ++f) cr_assert_geq(area[f], 0.5);
+    wr_mesh_face_areas(&m, 1, area);
+    for (f = 0; f < m.nf; ++f) cr_assert_float_eq(area[f], 0.5, 1e-15);
+    wr_mesh_free(&m);
+}
+
+Test(mesh, quality_counts_inverted_and_degenerate) {
+    wr_mesh m;
+    wr_mesh_quality_stats q;
+    cr_assert_eq(wr_mesh_rectangle(&m, 2.0, 2.0, 2, 2, NULL), WR_OK);
+    wr_mesh_quality(&m, 1, &q);
+    cr_assert_float_eq(q.min_angle_deg, 45.0, 1e-12);
+    cr_assert_float_eq(q.max_angle_deg, 90.0, 1e-12);
+    cr_assert_float_eq(q.mean_min_angle_deg, 45.0, 1e-12);
+    cr_assert_float_eq(q.min_edge, 1.0, 1e-15);
+    cr_assert_float_eq(q.max_edge, sqrt(2.0), 1e-15);
+    cr_assert_float_eq(q.mean_edge, (12.0 + 4.0 * sqrt(2.0)) / 16.0, 1e-15);
+    cr_assert_float_eq(q.area, 4.0, 1e-14);
+    cr_assert_eq(q.n_inverted, 0);
+    cr_assert_eq(q.n_zero_area, 0);
+    cr_assert_eq(q.n_boundary_edges, 8);
+    cr_assert_eq(q.n_loops, 1);
+    cr_assert_eq(q.euler, 1);
+    /* move centre vertex 4 past the corner (0,0): the faces touching it flip or collapse */
+    m.rest[2 * 4] = 0.0;
+    m.rest[2 * 4 + 1] = 0.0; /* onto vertex 0 */
+    wr_mesh_quality(&m, 1, &q);
+    cr_assert_eq(q.n_zero_area, 4, "zero-area %d", q.n_zero_area); /* also (1,2,4) and (3,4,6): collinear */
+    m.rest[2 * 4] = -0.5;
+    m.rest[2 * 4 + 1] = -0.5; /* faces around 4 whose opposite edge lies on x=0 or y=0 invert */
+    wr_mesh_quality(&m, 1, &q);
+    cr_assert_eq(q.n_zero_area, 0);
+    cr_assert_eq(q.n_inverted, 4, "inverted %d", q.n_inverted); /* (0,1,4) (0,4,3) (1,2,4) (3,4,6) */
+    /* 3D quality of the same mesh is unaffected by rest edits */
+    wr_mesh_quality(&m, 0, &q);
+    cr_assert_float_eq(q.min_angle_deg, 45.0, 1e-12);
+    wr_mesh_free(&m);
+}
+
+Test(mesh, ratio_histogram) {
+    static const double r[10] = {0.0, 0.49, 0.5, 0.99, 1.0, 1.5, 1.999, 2.0, -3.0, 7.0};
+    double with_nan[3] = {0.25, NAN, 0.75};
+    int32_t c[4];
+    cr_assert_eq(wr_mesh_ratio_histogram(r, 10, 4, 0.0, 2.0, c), WR_OK);
+    /* bins [0,.5) [.5,1) [1,1.5) [1.5,2): -3 clamps to bin 0, 2.0 and 7.0 to bin 3 */
+    cr_assert_eq(c[0], 3);
+    cr_assert_eq(c[1], 2);
+    cr_assert_eq(c[2], 1);
+    cr_assert_eq(c[3], 4);
+    cr_assert_eq(wr_mesh_ratio_histogram(with_nan, 3, 2, 0.0, 1.0, c), WR_OK);
+    cr_assert_eq(c[0], 1);
+    cr_assert_eq(c[1], 1);
+    cr_assert_eq(wr_mesh_ratio_histogram(r, 10, 0, 0.0, 2.0, c), WR_ERR_INVALID_ARG);
+    cr_assert_eq(wr_mesh_ratio_histogram(r, 10, 4, 2.0, 2.0, c), WR_ERR_INVALID_ARG);
+    cr_assert_eq(wr_mesh_ratio_histogram(r, 10, 4, 0.0, INFINITY, c), WR_ERR_INVALID_ARG);
+    cr_assert_eq(wr_mesh_ratio_histogram(r, -1, 4, 0.0, 2.0, c), WR_ERR_INVALID_ARG);
+    cr_assert_eq(wr_mesh_ratio_histogram(NULL, 0, 4, 0.0, 2.0, c), WR_OK);
+    cr_assert_eq(c[0] + c[1] + c[2] + c[3], 0);
+}
+
+Test(mesh, corner_rest_and_panels_setters) {
+    wr_mesh m;
+    wr_diag d;
+    double cr[12] = {0, 0, 2, 0, 0, 2, 2, 0, 2, 2, 0, 2}, uv[6], len[5];
+    int32_t panel[2] = {3, 1}, badp[2] = {0, -1};
+    cr_assert_eq(wr_mesh_create(&m, 4, NULL, sq_rest, 2, sq_faces, &d), WR_OK);
+    cr_assert_eq(wr_mesh_set_corner_rest(&m, cr, &d), WR_OK);
+    wr_mesh_face_rest(&m, 1, uv); /* corner_rest wins over rest */
+    cr_assert_eq(uv[2], 2.0);
+    cr_assert_eq(uv[3], 2.0);
+    wr_mesh_edge_lengths(&m, 1, len);
+    cr_assert_float_eq(len[2], 2.0 * sqrt(2.0), 1e-15);
+    cr[7] = NAN;
+    cr_assert_eq(wr_mesh_set_corner_rest(&m, cr, &d), WR_ERR_TOPOLOGY);
+    cr_assert_eq(d.item, 1);
+    cr_assert_eq(wr_mesh_set_corner_rest(&m, NULL, &d), WR_OK);
+    wr_mesh_face_rest(&m, 1, uv);
+    cr_assert_eq(uv[2], 1.0);
+    cr_assert_eq(wr_mesh_set_face_panel(&m, panel, &d), WR_OK);
+    cr_assert_eq(m.face_panel[0], 3);
+    cr_assert_eq(wr_mesh_set_face_panel(&m, badp, &d), WR_ERR_INVALID_ARG);
+    cr_assert_eq(d.item, 1);
+    cr_assert_eq(m.face_panel[1], 1, "failed set keeps the old panels");
+    wr_mesh_free(&m);
+}
+
+/* ---- I/O ---------------------------------------------------------------------------------------- */
+
+static char tmpdir[256];
+
+static void make_tmpdir(void) {
+    snprintf(tmpdir, sizeof tmpdir, "/tmp/wr_mesh_test_XXXXXX");
+    cr_assert_not_null(mkdtemp(tmpdir));
+}
+
+/* Counts directory entries other than . and .. (and reports leftover temporaries). */
+static int count_entries(const char *dir, int *n_tmp) {
+    DIR *dp = opendir(dir);
+    struct dirent *de;
+    int n = 0;
+    *n_tmp = 0;
+    cr_assert_not_null(dp);
+    while ((de = readdir(dp)) != NULL) {
+        if (!strcmp(de->d_name, ".") || !strcmp(de->d_name, "..")) continue;
+        ++n;
+        if (strstr(de->d_name, ".wrtmp")) ++*n_tmp;
+    }
+    closedir(dp);
+    return n;
+}
+
+static void remove_tmpdir(void) {
+    DIR *dp = opendir(tmpdir);
+    struct dirent *de;
+    char p[600];
+    if (!dp) return;
+    while ((de = readdir(dp)) != NULL) {
+        if (!strcmp(de->d_name, ".") || !strcmp(de->d_name, "..")) continue;
+        snprintf(p, sizeof p, "%s/%s", tmpdir, de->d_name);
+        remove(p);
+    }
+    closedir(dp);
+    rmdir(tmpdir);
+}
+
+static char *slurp(const char *path, size_t *len) {
+    FILE *fp = fopen(path, "rb");
+    char *b;
+    long n;
+    cr_assert_not_null(fp, "cannot open %s", path);
+    fseek(fp, 0, SEEK_END);
+    n = ftell(fp);
+    fseek(fp, 0, SEEK_SET);
+    b = (char *)malloc((size_t)n + 1);
+    cr_assert_eq(fread(b, 1, (size_t)n, fp), (size_t)n);
+    b[n] = 0;
+    fclose(fp);
+    if (len) *len = (size_t)n;
+    return b;
+}
+
+Test(mesh_io, obj_round_trip_rest_and_groups) {
+    wr_mesh a, b;
+    wr_diag d;
+    char path[400];
+    int32_t *panel, f, v, n_tmp;
+    make_tmpdir();
+    snprintf(path, sizeof path, "%s/rect.obj", tmpdir);
+    cr_assert_eq(wr_mesh_rectangle(&a, 1.0 / 3.0, 0.7, 5, 3, &d), WR_OK);
+    for (v = 0; v < a.nv; ++v) a.pos[3 * v + 2] = 0.01 * sin(1.0 + v); /* non-trivial 3D, inexact decimals */
+    panel = (int32_t *)malloc(sizeof(int32_t) * (size_t)a.nf);
+    for (f = 0; f < a.nf; ++f) panel[f] = f < 10 ? 0 : (f < 20 ? 1 : 2); /* ids in order of appearance */
+    cr_assert_eq(wr_mesh_set_face_panel(&a, panel, &d), WR_OK);
+    cr_assert_eq(wr_mesh_write_obj(&a, path, NULL, &d), WR_OK, "%s", d.message);
+    cr_assert_eq(count_entries(tmpdir, &n_tmp), 1);
+    cr_assert_eq(n_tmp, 0);
+    cr_assert_eq(wr_mesh_read_obj(&b, path, &d), WR_OK, "%s", d.message);
+    cr_assert_eq(b.nv, a.nv);
+    cr_assert_eq(b.nf, a.nf);
+    cr_assert_arr_eq(b.pos, a.pos, sizeof(double) * 3 * (size_t)a.nv, "positions round-trip exactly");
+    cr_assert_not_null(b.rest);
+    cr_assert_null(b.corner_rest);
+    cr_assert_arr_eq(b.rest, a.rest, sizeof(double) * 2 * (size_t)a.nv);
+    cr_assert_arr_eq(b.faces, a.faces, sizeof(int32_t) * 3 * (size_t)a.nf);
+    cr_assert_not_null(b.face_panel);
+    cr_assert_arr_eq(b.face_panel, panel, sizeof(int32_t) * (size_t)a.nf);
+    cr_assert_arr_eq(b.edges, a.edges, sizeof(int32_t) * 2 * (size_t)a.ne);
+    wr_mesh_free(&b);
+    /* without vt and groups */
+    {
+        wr_obj_desc od;
+        memset(&od, 0, sizeof od);
+        od.no_rest = 1;
+        od.no_groups = 1;
+        od.comment = "two\nlines";
+        cr_assert_eq(wr_mesh_write_obj(&a, path, &od, &d), WR_OK);
+        cr_assert_eq(wr_mesh_read_obj(&b, path, &d), WR_OK, "%s", d.message);
+        cr_assert_null(b.rest);
+        cr_assert_null(b.face_panel);
+        cr_assert_arr_eq(b.pos, a.pos, sizeof(double) * 3 * (size_t)a.nv);
+        wr_mesh_free(&b);
+    }
+    free(panel);
+    wr_mesh_free(&a);
+    remove_tmpdir();
+}
+
+Test(mesh_io, obj_round_trip_corner_rest) {
+    wr_mesh a, b;
+    wr_diag d;
+    char path[400];
+    make_tmpdir();
+    snprintf(path, sizeof path, "%s/tube.obj", tmpdir);
+    cr_assert_eq(wr_mesh_cylinder_flat(&a, 0.2, 0.3, 8, 3, &d), WR_OK);
+    cr_assert_eq(wr_mesh_write_obj(&a, path, NULL, &d), WR_OK, "%s", d.message);
+    cr_assert_eq(wr_mesh_read_obj(&b, path, &d), WR_OK, "%s", d.message);
+    cr_assert_null(b.rest, "seam vertices have two vt values → corner_rest");
+    cr_assert_not_null(b.corner_rest);
+    cr_assert_arr_eq(b.corner_rest, a.corner_rest, sizeof(double) * 6 * (size_t)a.nf);
+    cr_assert_arr_eq(b.pos, a.pos, sizeof(double) * 3 * (size_t)a.nv);
+    cr_assert_eq(b.n_loops, 2);
+    wr_mesh_free(&a);
+    wr_mesh_free(&b);
+    remove_tmpdir();
+}
+
+static wr_status parse_str(wr_mesh *m, const char *s, wr_diag *d) { return wr_mesh_parse_obj(m, s, strlen(s), d); }
+
+Test(mesh_io, obj_features) {
+    wr_mesh m;
+    wr_diag d;
+    /* quad + pentagon with v/vt/vn, v//vn and negative indices, CRLF, comments, groups, no final newline */
+    const char *txt = "# test\r\n"
+                      "mtllib x.mtl\n"
+                      "v 0 0 0\nv 1 0 0\nv 1 1 0 1.0\nv 0 1 0 0.5 0.5 0.5\n"
+                      "vn 0 0 1\n"
+                      "f 1//1 2//1 3//1 4//1   # a quad\n"
+                      "o second\n"
+                      "v 2 0 0\r\nv 3 0.5 0\nv 2 1 0\n"
+                      "usemtl red\ns off\n"
+                      "f 2 -3 -2 -1 3";
+    cr_assert_eq(parse_str(&m, txt, &d), WR_OK, "%s", d.message);
+    cr_assert_eq(m.nv, 7);
+    cr_assert_eq(m.nf, 2 + 3);
+    {
+        static const int32_t want[15] = {0, 1, 2, 0, 2, 3, 1, 4, 5, 1, 5, 6, 1, 6, 2};
+        cr_assert_arr_eq(m.faces, want, sizeof want);
+    }
+    cr_assert_not_null(m.face_panel);
+    cr_assert_eq(m.face_panel[0], 0);
+    cr_assert_eq(m.face_panel[1], 0);
+    cr_assert_eq(m.face_panel[2], 1);
+    cr_assert_eq(m.face_panel[4], 1);
+    cr_assert_null(m.rest);
+    cr_assert_eq(m.pos[3 * 5], 3.0);
+    wr_mesh_free(&m);
+    /* vt per vertex consistent → rest; text without a NUL terminator (exact-size heap copy) */
+    {
+        const char *src = "v 0 0 5\nv 1 0 5\nv 0 1 5\nvt 0.1 0.2\nvt 0.3 0.2\nvt 0.1 0.4\nf 1/1 2/2 3/3";
+        size_t n = strlen(src);
+        char *exact = (char *)malloc(n);
+        memcpy(exact, src, n);
+        cr_assert_eq(wr_mesh_parse_obj(&m, exact, n, &d), WR_OK, "%s", d.message);
+        free(exact);
+        cr_assert_not_null(m.rest);
+        cr_assert_eq(m.rest[2], 0.3);
+        cr_assert_eq(m.rest[5], 0.4);
+        cr_assert_eq(m.pos[2], 5.0);
+        wr_mesh_free(&m);
+    }
+    /* two faces giving vertex 2 different vt → corner_rest */
+    cr_assert_eq(parse_str(&m, "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nvt 1 1\nvt 9 9\n"
+                               "f 1/1 2/2 3/3\nf 2/5 4/4 3/3\n", &d),
+              WR_OK, "%s", d.message);
+    cr_assert_null(m.rest);
+    cr_assert_not_null(m.corner_rest);
+    cr_assert_eq(m.corner_rest[6], 9.0);
+    wr_mesh_free(&m);
+    /* topology errors surface from the parser too */
+    cr_assert_eq(parse_str(&m, "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 3 4\n", &d), WR_ERR_TOPOLOGY);
+    cr_assert_null(m.pos);
+}
+
+Test(mesh_io, hostile_obj_gives_parse_errors) {
+    static const struct {
+        const char *text;
+        int32_t line;
+    } bad[] = {
+        {"", 1},
+        {"# only a comment\n", 2},
+        {"v 0 0 0\nv 1 0 0\nv 0 1 0\n", 4},                       /* no faces */
+        {"f 1 2 3\n", 1},                                        /* no vertices yet */
+        {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 0\n", 4},             /* index 0 */
+        {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n", 4},             /* beyond the vertices */
+        {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -4\n", 4},            /* relative before the first */
+        {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 2147483648\n", 4},
+        {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 99999999999999999999999999999\n", 4},
+        {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -99999999999999999999999999999\n", 4},
+        {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2\n", 4},               /* truncated face */
+        {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf\n", 4},
+        {"v 0 0 0\nv 1 0\n", 2},                                 /* truncated vertex */
+        {"v 0 0 0\nv\n", 2},
+        {"v 0 nan 0\n", 1},
+        {"v 0 0 inf\n", 1},
+        {"v 1e999 0 0\n", 1},
+        {"v 0 0 0x\n", 1},
+        {"v 0 0 0 abc\n", 1},
+        {"vt 0.5\n", 1},
+        {"vt nan 0\n", 1},
+        {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1/ 2 3\n", 4},            /* empty vt field */
+        {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1/x 2/1 3/1\n", 4},
+        {"v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/2 3/1\n", 5}, /* vt index out of range */
+        {"v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2 3\n", 5},     /* vt on some corners only */
+        {"v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/1 3/1\nf 1 2 3\n", 6},
+        {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1//x 2 3\n", 4},
+        {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3abc\n", 4},
+        {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3/1/1/1\n", 4},
+        {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf - 2 3\n", 4},
+        {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1.5 2 3\n", 4},
+    };
+    size_t i;
+    for (i = 0; i < sizeof bad / sizeof bad[0]; ++i) {
+        wr_mesh m;
+        wr_diag d;
+        char needle[32];
+        wr_status st;
+        memset(&d, 0, sizeof d);
+        st = parse_str(&m, bad[i].text, &d);
+        cr_assert_eq(st, WR_ERR_PARSE, "case %zu: status %s (%s)", i, wr_status_string(st), d.message);
+        cr_assert_null(m.pos);
+        if (strstr(d.message, "no faces") || strstr(d.message, "no vertices")) continue;
+        cr_assert_eq(d.item, bad[i].line, "case %zu: item %d, want line %d (%s)", i, d.item, bad[i].line, d.message);
+        snprintf(needle, sizeof needle, "line %d", bad[i].line);
+        cr_assert(strstr(d.message, needle) != NULL, "case %zu: '%s' lacks '%s'", i, d.message, needle);
+    }
+    /* embedded NUL byte */
+    {
+        static const char nul[] = "v 0 0 0\nv 1 0\0 0\n";
+        wr_mesh m;
+        wr_diag d;
+        cr_assert_eq(wr_mesh_parse_obj(&m, nul, sizeof nul - 1, &d), WR_ERR_PARSE);
+        cr_assert_eq(d.item, 2);
+    }
+    {
+        wr_mesh m;
+        wr_diag d;
+        cr_assert_eq(wr_mesh_parse_obj(&m, NULL, 0, &d), WR_ERR_PARSE); /* empty input */
+        cr_assert_eq(wr_mesh_parse_obj(&m, NULL, 5, &d), WR_ERR_INVALID_ARG);
+        cr_assert_eq(wr_mesh_read_obj(&m, "/nonexistent_dir_wr/x.obj", &d), WR_ERR_IO);
+    }
+}
+
+/* Seeded mutation fuzzing: random byte edits of a valid OBJ must never crash (ASan/UBSan watch) and
+ * must end in OK, PARSE or TOPOLOGY with a zeroed mesh on failure. */
+Test(mesh_io, obj_mutation_fuzz) {
+    const char *seed_txt = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
+                           "g a\nf 1/1/1 2/2/1 3/3/1\ng b\nf -4/-4 -2/-2 -1/-1\n";
+    static const char alphabet[] = "0123456789-+./ \n\tvfgtnxe#\r";
+    wr_rng rng;
+    size_t n = strlen(seed_txt);
+    char *buf = (char *)malloc(n + 16);
+    int it, ok = 0, parse = 0, topo = 0;
+    wr_rng_seed(&rng, 2024);
+    for (it = 0; it < 4000; ++it) {
+        wr_mesh m;
+        wr_diag d;
+        wr_status st;
+        size_t len = n, k, edits = 1 + wr_rng_below(&rng, 4);
+        memcpy(buf, seed_txt, n);
+        for (k = 0; k < edits; ++k) {
+            size_t at = wr_rng_below(&rng, (uint32_t)len);
+            uint32_t op = wr_rng_below(&rng, 3);
+            char c = wr_rng_below(&rng, 8) == 0 ? (char)wr_rng_below(&rng, 256) : alphabet[wr_rng_below(&rng, sizeof alphabet - 1)];
+            if (op == 0) buf[at] = c;                   /* replace */
+            else if (op == 1 && len > 1) {              /* delete */
+                memmove(buf + at, buf + at + 1, len - at - 1);
+                --len;
+            } else if (len < n + 15) {                  /* insert */
+                memmove(buf + at + 1, buf + at, len - at);
+                buf[at] = c;
+                ++len;
+            }
+        }
+        if (it % 7 == 0) len = wr_rng_below(&rng, (uint32_t)len + 1); /* truncation */
+        st = wr_mesh_parse_obj(&m, buf, len, &d);
+        cr_assert(st == WR_OK || st == WR_ERR_PARSE || st == WR_ERR_TOPOLOGY, "iteration %d: %s", it,
+                  wr_status_string(st));
+        if (st == WR_OK) {
+            ++ok;
+            check_invariants(&m);
+        } else {
+            cr_assert_null(m.pos);
+            if (st == WR_ERR_PARSE) ++parse;
+            else ++topo;
+        }
+        wr_mesh_free(&m);
+    }
+    free(buf);
+    /* the mutations must actually exercise both outcomes */
+    cr_assert_gt(ok, 100, "ok %d parse %d topology %d", ok, parse, topo);
+    cr_assert_gt(parse, 100, "ok %d parse %d topology %d", ok, parse, topo);
+}
+
+Test(mesh_io, ply_and_vtk_writers) {
+    wr_mesh m;
+    wr_diag d;
+    char path[400], *txt;
+    double h[6] = {0.5, 1, 2, 3, 4, 5}, fc[4] = {1, 2, 3, 4.25};
+    const char *names[1] = {"height"}, *cnames[1] = {"area_ratio"};
+    const double *vals[1] = {h}, *cvals[1] = {fc};
+    int n_tmp;
+    make_tmpdir();
+    cr_assert_eq(wr_mesh_rectangle(&m, 2.0, 1.0, 2, 1, &d), WR_OK); /* 6 vertices, 4 faces */
+    snprintf(path, sizeof path, "%s/m.ply", tmpdir);
+    cr_assert_eq(wr_mesh_write_ply(&m, path, 1, names, vals, &d), WR_OK, "%s", d.message);
+    txt = slurp(path, NULL);
+    cr_assert(strncmp(txt, "ply\nformat ascii 1.0\n", 21) == 0);
+    cr_assert(strstr(txt, "element vertex 6\n") && strstr(txt, "property double height\n"));
+    cr_assert(strstr(txt, "element face 4\nproperty list uchar int vertex_indices\nend_header\n0 0 0 0.5\n1 0 0 1\n"));
+    cr_assert(strstr(txt, "\n3 0 1 4\n"));
+    free(txt);
+    snprintf(path, sizeof path, "%s/m.vtk", tmpdir);
+    cr_assert_eq(wr_mesh_write_vtk(&m, path, 1, names, vals, 1, cnames, cvals, &d), WR_OK, "%s", d.message);
+    txt = slurp(path, NULL);
+    cr_assert(strncmp(txt, "# vtk DataFile Version 3.0\n", 27) == 0);
+    cr_assert(strstr(txt, "DATASET POLYDATA\nPOINTS 6 double\n"));
+    cr_assert(strstr(txt, "POLYGONS 4 16\n3 0 1 4\n"));
+    cr_assert(strstr(txt, "POINT_DATA 6\nSCALARS height double 1\nLOOKUP_TABLE default\n0.5\n1\n"));
+    cr_assert(strstr(txt, "CELL_DATA 4\nSCALARS area_ratio double 1\nLOOKUP_TABLE default\n1\n2\n3\n4.25\n"));
+    free(txt);
+    cr_assert_eq(wr_mesh_write_vtk(&m, path, 0, NULL, NULL, 0, NULL, NULL, &d), WR_OK);
+    /* bad names */
+    {
+        const char *bad1[1] = {"has space"}, *bad2[1] = {"x"}, *bad3[1] = {""};
+        cr_assert_eq(wr_mesh_write_ply(&m, path, 1, bad1, vals, &d), WR_ERR_INVALID_ARG);
+        cr_assert_eq(wr_mesh_write_ply(&m, path, 1, bad2, vals, &d), WR_ERR_INVALID_ARG);
+        cr_assert_eq(wr_mesh_write_vtk(&m, path, 1, bad3, vals, 0, NULL, NULL, &d), WR_ERR_INVALID_ARG);
+        cr_assert_eq(wr_mesh_write_ply(&m, path, -1, NULL, NULL, &d), WR_ERR_INVALID_ARG);
+    }
+    cr_assert_eq(count_entries(tmpdir, &n_tmp), 2);
+    cr_assert_eq(n_tmp, 0);
+    wr_mesh_free(&m);
+    remove_tmpdir();
+}
+
+/* A failed write leaves the previous file byte-for-byte and no temporary behind; a path in a missing
+ * directory is WR_ERR_IO. */
+Test(mesh_io, atomic_writes) {
+    wr_mesh m;
+    wr_diag d;
+    char path[400], *before, *after;
+    size_t lb, la;
+    double h[6] = {0, 1, 2, NAN, 4, 5}, fc[4] = {1, 2, INFINITY, 4};
+    const char *names[1] = {"h"};
+    const double *vals[1] = {h}, *cvals[1] = {fc};
+    int n_tmp;
+    make_tmpdir();
+    cr_assert_eq(wr_mesh_rectangle(&m, 2.0, 1.0, 2, 1, &d), WR_OK);
+    snprintf(path, sizeof path, "%s/keep.out", tmpdir);
+    cr_assert_eq(wr_mesh_write_obj(&m, path, NULL, &d), WR_OK);
+    before = slurp(path, &lb);
+    cr_assert_eq(wr_mesh_write_ply(&m, path, 1, names, vals, &d), WR_ERR_DOMAIN);
+    cr_assert_eq(d.item, 3);
+    cr_assert(strstr(d.message, "'h'") && strstr(d.message, "vertex 3"), "%s", d.message);
+    cr_assert_eq(wr_mesh_write_vtk(&m, path, 0, NULL, NULL, 1, names, cvals, &d), WR_ERR_DOMAIN);
+    cr_assert_eq(d.item, 2);
+    after = slurp(path, &la);
+    cr_assert_eq(la, lb);
+    cr_assert(memcmp(before, after, lb) == 0, "failed write clobbered the file");
+    cr_assert_eq(count_entries(tmpdir, &n_tmp), 1);
+    cr_assert_eq(n_tmp, 0, "temporary left behind");
+    free(before);
+    free(after);
+    snprintf(path, sizeof path, "%s/no/such/dir/x.obj", tmpdir);
+    cr_assert_eq(wr_mesh_write_obj(&m, path, NULL, &d), WR_ERR_IO);
+    cr_assert_eq(wr_mesh_write_ply(&m, path, 0, NULL, NULL, &d), WR_ERR_IO);
+    cr_assert_eq(wr_mesh_write_vtk(&m, path, 0, NULL, NULL, 0, NULL, NULL, &d), WR_ERR_IO);
+    cr_assert_eq(count_entries(tmpdir, &n_tmp), 1);
+    wr_mesh_free(&m);
+    remove_tmpdir();
 }

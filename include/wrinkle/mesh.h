@@ -14,6 +14,18 @@
  *   wr_mesh_copy(dst, src, diag)                          deep copy
  *   wr_mesh_face_rest(m, f, uv[6])                        rest-domain corners of face f
  *   wr_mesh_rectangle(m, w, h, nx, ny, diag)              regular grid on [0,w]×[0,h], alternating diagonals
+ *   wr_mesh_disk(m, R, n_rings, diag)                     hexagonal-ring disk, near-equilateral faces
+ *   wr_mesh_cylinder_flat(m, R, height, nu, nh, diag)     closed tube with an unrolled pattern (corner_rest)
+ *   wr_mesh_set_corner_rest / wr_mesh_set_face_panel      attach optional per-face data (copied)
+ *   wr_mesh_edge_lengths(m, use_rest, out[ne])            rest or 3D edge lengths
+ *   wr_mesh_face_areas(m, use_rest, out[nf])              signed rest areas or 3D areas
+ *   wr_mesh_face_normals(m, out[3nf]) / _vertex_normals(m, out[3nv])   unit 3D normals
+ *   wr_mesh_quality(m, use_rest, &stats)                  angles, edge lengths, inverted/zero-area faces, χ
+ *   wr_mesh_ratio_histogram(ratio, n, nbins, lo, hi, counts)   e.g. edge length / target length
+ *   wr_mesh_parse_obj(m, text, len, diag) / wr_mesh_read_obj(m, path, diag)   Wavefront OBJ in
+ *   wr_mesh_write_obj(m, path, desc, diag)                OBJ out (vt = rest, g = panels), atomic
+ *   wr_mesh_write_ply(m, path, nprops, names, values, diag)   ASCII PLY with per-vertex doubles, atomic
+ *   wr_mesh_write_vtk(m, path, np, pnames, pvals, nc, cnames, cvals, diag)   legacy VTK POLYDATA, atomic
  *
  * EXAMPLE
  *     wr_mesh m; wr_diag d;
@@ -104,6 +116,98 @@ WRDEF void wr_mesh_face_rest(const wr_mesh *m, int32_t f, double uv[6]);
  * ("union jack"), so the mesh has no preferred shear direction. w, h > 0 finite; nx, ny >= 1. */
 WRDEF wr_status wr_mesh_rectangle(wr_mesh *m, double w, double h, int32_t nx, int32_t ny, wr_diag *diag);
 
+/* ---- more generators (free with wr_mesh_free) ----------------------------------------------- */
+/* Disk of radius R [m] centred at the origin in z = 0, rest = (x, y): a centre vertex and n_rings
+ * concentric rings, ring k having 6k equally spaced vertices at radius R k / n_rings, so triangles
+ * are close to equilateral. nv = 1 + 3 n (n+1), nf = 6 n². R > 0 finite, n_rings >= 1. */
+WRDEF wr_status wr_mesh_disk(wr_mesh *m, double R, int32_t n_rings, wr_diag *diag);
+/* Closed tube from an unrolled rectangle: rest domain [0, 2πR] × [0, height], nu cells around and
+ * nh cells along (alternating diagonals as wr_mesh_rectangle), pos = (R cos(u/R), R sin(u/R), v)
+ * (outward normals). The seam columns u = 0 and u = 2πR share vertices (nv = nu (nh+1)), so a seam
+ * vertex has two pattern positions: rest is NULL and corner_rest is filled. Vertex index j*nu + i
+ * at angle 2π i / nu, height height j / nh. R, height > 0 finite; nu >= 3, nh >= 1. */
+WRDEF wr_status wr_mesh_cylinder_flat(wr_mesh *m, double R, double height, int32_t nu, int32_t nh, wr_diag *diag);
+
+/* ---- optional per-face data (copied; replaces what was there) ------------------------------- */
+/* cr: nf*6 finite rest corners [m], or NULL to drop corner_rest. */
+WRDEF wr_status wr_mesh_set_corner_rest(wr_mesh *m, const double *cr, wr_diag *diag);
+/* panel: nf ids (>= 0), or NULL to drop face_panel. */
+WRDEF wr_status wr_mesh_set_face_panel(wr_mesh *m, const int32_t *panel, wr_diag *diag);
+
+/* ---- measures --------------------------------------------------------------------------------- */
+/* out[ne]: edge lengths [m]. use_rest = 0: 3D lengths from pos. use_rest != 0: rest lengths; with
+ * corner_rest, the mean of the lengths the edge has in its incident faces (a sewn seam edge can
+ * differ slightly between its two panels); with neither rest nor corner_rest, the 3D length. */
+WRDEF void wr_mesh_edge_lengths(const wr_mesh *m, int use_rest, double *out);
+/* out[nf]: face areas [m²]. use_rest = 0: 3D area (>= 0). use_rest != 0: signed rest area from
+ * wr_mesh_face_rest (> 0 for CCW, < 0 for an inverted face). */
+WRDEF void wr_mesh_face_areas(const wr_mesh *m, int use_rest, double *out);
+/* out[nf*3]: unit 3D face normals (p1-p0)×(p2-p0)/|·|; zero vector for a degenerate face. */
+WRDEF void wr_mesh_face_normals(const wr_mesh *m, double *out);
+/* out[nv*3]: unit vertex normals, area-weighted (sum of the unnormalised face cross products over
+ * incident faces, then normalised); zero vector for an isolated vertex or a cancelling sum. */
+WRDEF void wr_mesh_vertex_normals(const wr_mesh *m, double *out);
+
+/* Relative area below which a rest face counts as zero-area: |A| <= WR_MESH_ZERO_AREA_REL * l_max²
+ * (l_max its longest rest edge). 1e-12 is ~1e4 ulps of the area scale: clearly degenerate, yet far
+ * above round-off of the cross product. */
+#define WR_MESH_ZERO_AREA_REL 1e-12
+typedef struct wr_mesh_quality_stats {
+    double min_angle_deg, max_angle_deg; /* over all face corners [deg] */
+    double mean_min_angle_deg;           /* mean over faces of the face's smallest angle [deg] */
+    double min_edge, mean_edge, max_edge; /* edge lengths [m] */
+    double area;                          /* total area [m²] (signed rest areas summed when use_rest) */
+    int32_t n_inverted;                   /* faces with rest area < 0 beyond the zero threshold */
+    int32_t n_zero_area;                  /* faces with |rest area| <= WR_MESH_ZERO_AREA_REL l_max² */
+    int32_t n_boundary_edges, n_loops;
+    int32_t euler;                        /* nv - ne + nf */
+} wr_mesh_quality_stats;
+/* Angles and edge lengths in the rest domain (use_rest != 0) or in 3D (use_rest = 0); inverted and
+ * zero-area faces are always counted in the rest domain. Zero-area faces give angles of 0 or 180. */
+WRDEF void wr_mesh_quality(const wr_mesh *m, int use_rest, wr_mesh_quality_stats *q);
+/* Histogram of ratio[n] (e.g. edge length / target length, Style3D Sec. 6) into nbins equal bins on
+ * [lo, hi): counts[nbins] is overwritten. Values below lo count in bin 0, values >= hi in the last
+ * bin; NaN values are skipped. WR_ERR_INVALID_ARG when n < 0, nbins < 1 or !(lo < hi) finite. */
+WRDEF wr_status wr_mesh_ratio_histogram(const double *ratio, int32_t n, int32_t nbins, double lo, double hi,
+                                        int32_t *counts);
+
+/* ---- I/O (writes are atomic through wr_afile: the file appears whole or not at all) ------------ */
+/* Wavefront OBJ reader. Understands v (x y z, extra numbers ignored), vt (u v [w], read as metres,
+ * no scaling), f with v, v/vt, v//vn, v/vt/vn corners, negative (relative) indices, polygons
+ * (fan-triangulated from their first corner), g / o (each distinct name becomes a panel id in
+ * order of first appearance; faces before the first g/o form their own panel 0). Ignores vn,
+ * comments, usemtl, mtllib, s, l, p and unknown statements. Either every face corner has a vt or
+ * none does. When every vertex sees one vt value across its faces, rest = those values (a vertex
+ * in no face gets (x, y)); otherwise corner_rest gets one vt per corner and rest stays NULL.
+ * face_panel is set only when the file has g or o lines. Malformed input → WR_ERR_PARSE with
+ * "line N" in the message and diag->item = N; the mesh is then validated as wr_mesh_create does
+ * (WR_ERR_TOPOLOGY). On failure *m is left zeroed. */
+WRDEF wr_status wr_mesh_parse_obj(wr_mesh *m, const char *text, size_t len, wr_diag *diag);
+WRDEF wr_status wr_mesh_read_obj(wr_mesh *m, const char *path, wr_diag *diag); /* WR_ERR_IO if unreadable */
+
+/* Options of wr_mesh_write_obj; zero means default:
+ *   no_rest = 0    write vt (rest per vertex, or corner_rest per corner) when available
+ *   no_groups = 0  write "g panel<id>" whenever face_panel changes between consecutive faces
+ *   comment = NULL no extra comment line (else one "# <comment>" line; newlines become spaces) */
+typedef struct wr_obj_desc {
+    int no_rest;
+    int no_groups;
+    const char *comment;
+} wr_obj_desc;
+/* Coordinates printed with 17 significant digits, so a write→read round trip is exact. */
+WRDEF wr_status wr_mesh_write_obj(const wr_mesh *m, const char *path, const wr_obj_desc *desc, wr_diag *diag);
+/* ASCII PLY: x y z as double, then nprops per-vertex double properties names[k] with values[k][nv],
+ * faces as "vertex_indices" lists. Names: non-empty, printable, no whitespace, not x/y/z.
+ * Non-finite property values → WR_ERR_DOMAIN (nothing written, an existing file is kept). */
+WRDEF wr_status wr_mesh_write_ply(const wr_mesh *m, const char *path, int32_t nprops, const char *const *names,
+                                  const double *const *values, wr_diag *diag);
+/* Legacy ASCII VTK POLYDATA: POINTS, POLYGONS, then n_point POINT_DATA scalars (values[k][nv]) and
+ * n_cell CELL_DATA scalars (values[k][nf]). Same name and finiteness rules as the PLY writer. */
+WRDEF wr_status wr_mesh_write_vtk(const wr_mesh *m, const char *path, int32_t n_point,
+                                  const char *const *point_names, const double *const *point_values,
+                                  int32_t n_cell, const char *const *cell_names, const double *const *cell_values,
+                                  wr_diag *diag);
+
 #ifdef __cplusplus
 }
 #endif
@@ -115,6 +219,7 @@ WRDEF wr_status wr_mesh_rectangle(wr_mesh *m, double w, double h, int32_t nx, in
 #define WRINKLE_MESH_IMPLEMENTATION_DONE
 
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #ifdef __cplusplus
@@ -527,6 +632,872 @@ WRDEF wr_status wr_mesh_rectangle(wr_mesh *m, double w, double h, int32_t nx, in
     wr_free(rest);
     wr_free(faces);
     return st;
+}
+
+/* ---- more generators -------------------------------------------------------------------------- */
+
+WRDEF wr_status wr_mesh_disk(wr_mesh *m, double R, int32_t n_rings, wr_diag *diag) {
+    int64_t nv64, nf64;
+    int32_t nv, nf = 0, k, i, j;
+    double *rest = NULL;
+    int32_t *faces = NULL;
+    wr_status st;
+    const double two_pi = 6.283185307179586;
+    if (!m) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "wr_mesh_disk: NULL mesh");
+    memset(m, 0, sizeof *m);
+    if (!(isfinite(R) && R > 0.0)) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "disk radius must be finite and > 0 (R=%g)", R);
+    if (n_rings < 1) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "disk needs n_rings >= 1 (%d)", n_rings);
+    nv64 = 1 + (int64_t)3 * n_rings * ((int64_t)n_rings + 1);
+    nf64 = (int64_t)6 * n_rings * n_rings;
+    if (nv64 > INT32_MAX || nf64 > INT32_MAX / 3)
+        return wr_fail(diag, WR_ERR_OVERFLOW, -1, "disk with %d rings is too large for int32 indices", n_rings);
+    nv = (int32_t)nv64;
+    rest = (double *)wr_alloc_array((size_t)nv * 2, sizeof(double));
+    faces = (int32_t *)wr_alloc_array((size_t)nf64 * 3, sizeof(int32_t));
+    if (!rest || !faces) {
+        wr_free(rest);
+        wr_free(faces);
+        return wr_fail(diag, WR_ERR_NOMEM, -1, "wr_mesh_disk: out of memory (%d vertices)", nv);
+    }
+    rest[0] = rest[1] = 0.0;
+    for (k = 1; k <= n_rings; ++k) {
+        int32_t base = 1 + 3 * k * (k - 1); /* first vertex of ring k */
+        double r = R * (double)k / (double)n_rings;
+        for (i = 0; i < 6 * k; ++i) {
+            double t = two_pi * (double)i / (6.0 * k);
+            rest[2 * (base + i)] = r * cos(t);
+            rest[2 * (base + i) + 1] = r * sin(t);
+        }
+    }
+    for (k = 1; k <= n_rings; ++k) {
+        /* strip between ring k-1 (p vertices, p = 1 for the centre) and ring k (q = 6k vertices):
+         * advance whichever ring's next vertex has the smaller angle; integer comparison of
+         * (i+1)/p against (j+1)/q keeps it exact. Each step emits one CCW triangle. */
+        int32_t pin = k == 1 ? 1 : 6 * (k - 1), q = 6 * k;
+        int32_t ib = k == 1 ? 0 : 1 + 3 * (k - 1) * (k - 2), ob = 1 + 3 * k * (k - 1);
+        i = 0;
+        j = 0;
+        while (i < (k == 1 ? 0 : pin) || j < q) {
+            int adv_outer = (k == 1) || i >= pin || (j < q && (int64_t)(j + 1) * pin <= (int64_t)(i + 1) * q);
+            int32_t a = ib + (k == 1 ? 0 : i % pin);
+            if (adv_outer) {
+                faces[3 * nf] = a, faces[3 * nf + 1] = ob + j % q, faces[3 * nf + 2] = ob + (j + 1) % q, ++nf;
+                ++j;
+            } else {
+                faces[3 * nf] = a, faces[3 * nf + 1] = ob + j % q, faces[3 * nf + 2] = ib + (i + 1) % pin, ++nf;
+                ++i;
+            }
+        }
+    }
+    WR_ASSERT(nf == (int32_t)nf64);
+    st = wr_mesh_create(m, nv, NULL, rest, nf, faces, diag);
+    wr_free(rest);
+    wr_free(faces);
+    return st;
+}
+
+WRDEF wr_status wr_mesh_cylinder_flat(wr_mesh *m, double R, double height, int32_t nu, int32_t nh, wr_diag *diag) {
+    int64_t nv64, nf64;
+    int32_t nv, nf = 0, i, j, k;
+    double *pos = NULL, *cr = NULL;
+    int32_t *faces = NULL;
+    double circ, du, dv;
+    wr_status st;
+    const double two_pi = 6.283185307179586;
+    if (!m) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "wr_mesh_cylinder_flat: NULL mesh");
+    memset(m, 0, sizeof *m);
+    if (!(isfinite(R) && isfinite(height) && R > 0.0 && height > 0.0))
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "cylinder R and height must be finite and > 0 (R=%g, h=%g)", R,
+                       height);
+    if (nu < 3 || nh < 1)
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "cylinder needs nu >= 3 and nh >= 1 (%d, %d)", nu, nh);
+    nv64 = (int64_t)nu * ((int64_t)nh + 1);
+    nf64 = (int64_t)2 * nu * nh;
+    if (nv64 > INT32_MAX || nf64 > INT32_MAX / 6)
+        return wr_fail(diag, WR_ERR_OVERFLOW, -1, "cylinder %d x %d is too large for int32 indices", nu, nh);
+    nv = (int32_t)nv64;
+    circ = two_pi * R;
+    du = circ / (double)nu;
+    dv = height / (double)nh;
+    pos = (double *)wr_alloc_array((size_t)nv * 3, sizeof(double));
+    faces = (int32_t *)wr_alloc_array((size_t)nf64 * 3, sizeof(int32_t));
+    cr = (double *)wr_alloc_array((size_t)nf64 * 6, sizeof(double));
+    if (!pos || !faces || !cr) {
+        st = wr_fail(diag, WR_ERR_NOMEM, -1, "wr_mesh_cylinder_flat: out of memory (%d vertices)", nv);
+        goto done;
+    }
+    for (j = 0; j <= nh; ++j)
+        for (i = 0; i < nu; ++i) {
+            double t = two_pi * (double)i / (double)nu;
+            pos[3 * (j * nu + i)] = R * cos(t);
+            pos[3 * (j * nu + i) + 1] = R * sin(t);
+            pos[3 * (j * nu + i) + 2] = height * (double)j / (double)nh;
+        }
+    for (j = 0; j < nh; ++j)
+        for (i = 0; i < nu; ++i) {
+            /* grid corners (column, row) before wrapping; the column nu is vertex column 0 */
+            int32_t ci[6], cj[6];
+            if (((i + j) & 1) == 0) {
+                ci[0] = i, cj[0] = j, ci[1] = i + 1, cj[1] = j, ci[2] = i + 1, cj[2] = j + 1;
+                ci[3] = i, cj[3] = j, ci[4] = i + 1, cj[4] = j + 1, ci[5] = i, cj[5] = j + 1;
+            } else {
+                ci[0] = i, cj[0] = j, ci[1] = i + 1, cj[1] = j, ci[2] = i, cj[2] = j + 1;
+                ci[3] = i + 1, cj[3] = j, ci[4] = i + 1, cj[4] = j + 1, ci[5] = i, cj[5] = j + 1;
+            }
+            for (k = 0; k < 6; ++k) {
+                int32_t f = nf + k / 3;
+                faces[3 * f + k % 3] = cj[k] * nu + ci[k] % nu;
+                /* exact seam coordinate: column nu sits at u = 2πR */
+                cr[6 * f + 2 * (k % 3)] = ci[k] == nu ? circ : du * (double)ci[k];
+                cr[6 * f + 2 * (k % 3) + 1] = cj[k] == nh ? height : dv * (double)cj[k];
+            }
+            nf += 2;
+        }
+    st = wr_mesh_create(m, nv, pos, NULL, nf, faces, diag);
+    if (st == WR_OK) {
+        m->corner_rest = cr;
+        cr = NULL;
+    }
+done:
+    wr_free(pos);
+    wr_free(faces);
+    wr_free(cr);
+    return st;
+}
+
+WRDEF wr_status wr_mesh_set_corner_rest(wr_mesh *m, const double *cr, wr_diag *diag) {
+    double *p;
+    int32_t i;
+    if (!m || !m->faces) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "wr_mesh_set_corner_rest: empty mesh");
+    if (!cr) {
+        wr_free(m->corner_rest);
+        m->corner_rest = NULL;
+        return WR_OK;
+    }
+    for (i = 0; i < 6 * m->nf; ++i)
+        if (!isfinite(cr[i]))
+            return wr_fail(diag, WR_ERR_TOPOLOGY, i / 6, "face %d has a non-finite corner rest coordinate (%g)", i / 6,
+                           cr[i]);
+    p = (double *)wr_alloc_array((size_t)m->nf * 6, sizeof(double));
+    if (!p) return wr_fail(diag, WR_ERR_NOMEM, -1, "wr_mesh_set_corner_rest: out of memory");
+    memcpy(p, cr, sizeof(double) * 6 * (size_t)m->nf);
+    wr_free(m->corner_rest);
+    m->corner_rest = p;
+    return WR_OK;
+}
+
+WRDEF wr_status wr_mesh_set_face_panel(wr_mesh *m, const int32_t *panel, wr_diag *diag) {
+    int32_t *p, i;
+    if (!m || !m->faces) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "wr_mesh_set_face_panel: empty mesh");
+    if (!panel) {
+        wr_free(m->face_panel);
+        m->face_panel = NULL;
+        return WR_OK;
+    }
+    for (i = 0; i < m->nf; ++i)
+        if (panel[i] < 0) return wr_fail(diag, WR_ERR_INVALID_ARG, i, "face %d has negative panel id %d", i, panel[i]);
+    p = (int32_t *)wr_alloc_array((size_t)m->nf, sizeof(int32_t));
+    if (!p) return wr_fail(diag, WR_ERR_NOMEM, -1, "wr_mesh_set_face_panel: out of memory");
+    memcpy(p, panel, sizeof(int32_t) * (size_t)m->nf);
+    wr_free(m->face_panel);
+    m->face_panel = p;
+    return WR_OK;
+}
+
+/* ---- measures --------------------------------------------------------------------------------- */
+
+static double wr__mesh_dist3(const double *a, const double *b) {
+    return sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
+}
+
+WRDEF void wr_mesh_edge_lengths(const wr_mesh *m, int use_rest, double *out) {
+    int32_t e, f, k;
+    if (use_rest && m->corner_rest) {
+        for (e = 0; e < m->ne; ++e) out[e] = 0.0;
+        for (f = 0; f < m->nf; ++f)
+            for (k = 0; k < 3; ++k) {
+                const double *c = m->corner_rest + 6 * f;
+                int a = (k + 1) % 3, b = (k + 2) % 3;
+                int32_t e2 = m->face_edges[3 * f + k];
+                int two = m->edge_faces[2 * e2] >= 0 && m->edge_faces[2 * e2 + 1] >= 0;
+                out[e2] += hypot(c[2 * b] - c[2 * a], c[2 * b + 1] - c[2 * a + 1]) * (two ? 0.5 : 1.0);
+            }
+    } else if (use_rest && m->rest) {
+        for (e = 0; e < m->ne; ++e) {
+            const double *a = m->rest + 2 * m->edges[2 * e], *b = m->rest + 2 * m->edges[2 * e + 1];
+            out[e] = hypot(b[0] - a[0], b[1] - a[1]);
+        }
+    } else {
+        for (e = 0; e < m->ne; ++e) out[e] = wr__mesh_dist3(m->pos + 3 * m->edges[2 * e], m->pos + 3 * m->edges[2 * e + 1]);
+    }
+}
+
+static double wr__mesh_signed_area2(const double uv[6]) {
+    return 0.5 * ((uv[2] - uv[0]) * (uv[5] - uv[1]) - (uv[4] - uv[0]) * (uv[3] - uv[1]));
+}
+
+static wr_vec3 wr__mesh_face_cross(const wr_mesh *m, int32_t f) {
+    const int32_t *t = m->faces + 3 * f;
+    wr_vec3 p0 = wr_v3_load(m->pos + 3 * t[0]);
+    return wr_v3_cross(wr_v3_sub(wr_v3_load(m->pos + 3 * t[1]), p0), wr_v3_sub(wr_v3_load(m->pos + 3 * t[2]), p0));
+}
+
+WRDEF void wr_mesh_face_areas(const wr_mesh *m, int use_rest, double *out) {
+    int32_t f;
+    for (f = 0; f < m->nf; ++f) {
+        if (use_rest) {
+            double uv[6];
+            wr_mesh_face_rest(m, f, uv);
+            out[f] = wr__mesh_signed_area2(uv);
+        } else {
+            out[f] = 0.5 * wr_v3_norm(wr__mesh_face_cross(m, f));
+        }
+    }
+}
+
+WRDEF void wr_mesh_face_normals(const wr_mesh *m, double *out) {
+    int32_t f;
+    for (f = 0; f < m->nf; ++f) wr_v3_store(wr_v3_normalized(wr__mesh_face_cross(m, f)), out + 3 * f);
+}
+
+WRDEF void wr_mesh_vertex_normals(const wr_mesh *m, double *out) {
+    int32_t v, i;
+    for (v = 0; v < m->nv; ++v) {
+        wr_vec3 s = wr_v3(0.0, 0.0, 0.0);
+        /* |cross| = 2 × area, so summing cross products is the area weighting */
+        for (i = m->vf_start[v]; i < m->vf_start[v + 1]; ++i) s = wr_v3_add(s, wr__mesh_face_cross(m, m->vf[i]));
+        wr_v3_store(wr_v3_normalized(s), out + 3 * v);
+    }
+}
+
+/* Corner angles [deg] of a triangle given its three side lengths (law of cosines, clamped). */
+static double wr__mesh_angle_deg(double adj1, double adj2, double opp) {
+    double c;
+    if (!(adj1 > 0.0 && adj2 > 0.0)) return 0.0;
+    c = (adj1 * adj1 + adj2 * adj2 - opp * opp) / (2.0 * adj1 * adj2);
+    if (c > 1.0) c = 1.0;
+    if (c < -1.0) c = -1.0;
+    return acos(c) * (180.0 / 3.14159265358979323846);
+}
+
+WRDEF void wr_mesh_quality(const wr_mesh *m, int use_rest, wr_mesh_quality_stats *q) {
+    int32_t f, e, k;
+    double sum_edge = 0.0, sum_min = 0.0;
+    memset(q, 0, sizeof *q);
+    q->min_angle_deg = 180.0;
+    q->min_edge = INFINITY;
+    for (f = 0; f < m->nf; ++f) {
+        double uv[6], l[3], lr[3], area, lmax, amin = 180.0;
+        wr_mesh_face_rest(m, f, uv);
+        for (k = 0; k < 3; ++k) {
+            int a = (k + 1) % 3, b = (k + 2) % 3;
+            lr[k] = hypot(uv[2 * b] - uv[2 * a], uv[2 * b + 1] - uv[2 * a + 1]);
+            l[k] = use_rest ? lr[k]
+                            : wr__mesh_dist3(m->pos + 3 * m->faces[3 * f + a], m->pos + 3 * m->faces[3 * f + b]);
+        }
+        area = wr__mesh_signed_area2(uv);
+        lmax = fmax(lr[0], fmax(lr[1], lr[2]));
+        if (fabs(area) <= WR_MESH_ZERO_AREA_REL * lmax * lmax) ++q->n_zero_area;
+        else if (area < 0.0) ++q->n_inverted;
+        q->area += use_rest ? area : 0.5 * wr_v3_norm(wr__mesh_face_cross(m, f));
+        for (k = 0; k < 3; ++k) {
+            double ang = wr__mesh_angle_deg(l[(k + 1) % 3], l[(k + 2) % 3], l[k]);
+            if (ang < amin) amin = ang;
+            if (ang < q->min_angle_deg) q->min_angle_deg = ang;
+            if (ang > q->max_angle_deg) q->max_angle_deg = ang;
+        }
+        sum_min += amin;
+    }
+    q->mean_min_angle_deg = m->nf > 0 ? sum_min / m->nf : 0.0;
+    {
+        double *len = (double *)wr_alloc_array((size_t)m->ne, sizeof(double));
+        if (len) {
+            wr_mesh_edge_lengths(m, use_rest, len);
+            for (e = 0; e < m->ne; ++e) {
+                if (len[e] < q->min_edge) q->min_edge = len[e];
+                if (len[e] > q->max_edge) q->max_edge = len[e];
+                sum_edge += len[e];
+            }
+            wr_free(len);
+        } else {
+            /* no memory for the scratch array: per-face pass instead (interior edges counted twice) */
+            int32_t cnt = 0;
+            for (f = 0; f < m->nf; ++f)
+                for (k = 0; k < 3; ++k) {
+                    double l = wr__mesh_dist3(m->pos + 3 * m->faces[3 * f + (k + 1) % 3],
+                                              m->pos + 3 * m->faces[3 * f + (k + 2) % 3]);
+                    q->min_edge = fmin(q->min_edge, l);
+                    q->max_edge = fmax(q->max_edge, l);
+                    sum_edge += l;
+                    ++cnt;
+                }
+            sum_edge *= cnt > 0 ? (double)m->ne / cnt : 0.0;
+        }
+    }
+    q->mean_edge = m->ne > 0 ? sum_edge / m->ne : 0.0;
+    if (m->ne == 0) q->min_edge = 0.0;
+    for (e = 0; e < m->ne; ++e) q->n_boundary_edges += (m->edge_faces[2 * e] < 0 || m->edge_faces[2 * e + 1] < 0);
+    q->n_loops = m->n_loops;
+    q->euler = m->nv - m->ne + m->nf;
+}
+
+WRDEF wr_status wr_mesh_ratio_histogram(const double *ratio, int32_t n, int32_t nbins, double lo, double hi,
+                                        int32_t *counts) {
+    int32_t i;
+    double scale;
+    if (n < 0 || nbins < 1 || !counts || (n > 0 && !ratio) || !(isfinite(lo) && isfinite(hi) && lo < hi))
+        return WR_ERR_INVALID_ARG;
+    for (i = 0; i < nbins; ++i) counts[i] = 0;
+    scale = (double)nbins / (hi - lo);
+    for (i = 0; i < n; ++i) {
+        double x = ratio[i];
+        int32_t b;
+        if (isnan(x)) continue;
+        if (x < lo) b = 0;
+        else if (x >= hi) b = nbins - 1;
+        else {
+            double t = (x - lo) * scale;
+            b = t >= (double)nbins ? nbins - 1 : (int32_t)t; /* rounding can land exactly on nbins */
+        }
+        counts[b]++;
+    }
+    return WR_OK;
+}
+
+/* ---- OBJ reader ------------------------------------------------------------------------------- */
+
+/* Limits that keep every count in int32 (3 per face, 6 per corner_rest row). */
+#define WR__OBJ_MAX_V (INT32_MAX / 3)
+#define WR__OBJ_MAX_F (INT32_MAX / 6)
+
+typedef struct wr__obj_grow {
+    void *p;
+    size_t n, cap, size;
+} wr__obj_grow;
+
+/* Makes room for `add` more elements; 0 on overflow / exhaustion. */
+static int wr__obj_reserve(wr__obj_grow *g, size_t add) {
+    if (g->n + add > g->cap) {
+        size_t cap = g->cap ? g->cap : 64;
+        void *np;
+        while (cap < g->n + add) {
+            if (cap > SIZE_MAX / 2) return 0;
+            cap *= 2;
+        }
+        np = wr_realloc_array(g->p, cap, g->size);
+        if (!np) return 0;
+        g->p = np;
+        g->cap = cap;
+    }
+    return 1;
+}
+
+static int wr__obj_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
+
+static char *wr__obj_skip(char *s) {
+    while (*s && wr__obj_space(*s)) ++s;
+    return s;
+}
+
+/* Parses one finite number token at *s. 1 = ok, 0 = no token (end of line), -1 = malformed. */
+static int wr__obj_number(char **s, double *out) {
+    char *p = wr__obj_skip(*s), *end;
+    if (!*p) return 0;
+    *out = strtod(p, &end);
+    if (end == p || (*end && !wr__obj_space(*end)) || !isfinite(*out)) return -1;
+    *s = end;
+    return 1;
+}
+
+/* Parses one OBJ index (1-based, or negative = relative to `count` elements so far) into a 0-based
+ * index in [0, count). Stops at '/', whitespace or end. 1 = ok, 0 = empty field, -1 = malformed,
+ * -2 = out of range. */
+static int wr__obj_index(char **s, int64_t count, int32_t *out) {
+    char *p = *s;
+    int neg = 0;
+    int64_t v = 0;
+    if (*p == '/' || !*p || wr__obj_space(*p)) return 0;
+    if (*p == '-' || *p == '+') neg = *p++ == '-';
+    if (*p < '0' || *p > '9') return -1;
+    while (*p >= '0' && *p <= '9') {
+        if (v > ((int64_t)1 << 40)) return -2; /* far beyond any int32 count: stop before overflow */
+        v = v * 10 + (*p++ - '0');
+    }
+    if (*p && *p != '/' && !wr__obj_space(*p)) return -1;
+    *s = p;
+    if (neg) v = count - v; /* -1 is the last element */
+    else v = v - 1;
+    if (v < 0 || v >= count) return -2;
+    *out = (int32_t)v;
+    return 1;
+}
+
+/* FNV-1a hash table of group names → panel id (ids in order of first appearance). */
+typedef struct wr__obj_groups {
+    char **names;
+    int32_t *slot; /* cap entries: panel id or -1 */
+    int32_t n, cap;
+} wr__obj_groups;
+
+static uint32_t wr__obj_hash(const char *s) {
+    uint32_t h = 2166136261u;
+    while (*s) h = (h ^ (uint8_t)*s++) * 16777619u;
+    return h;
+}
+
+/* Returns the id of `name` (adding it), or -1 on out of memory. */
+static int32_t wr__obj_group_id(wr__obj_groups *g, const char *name) {
+    uint32_t h, i;
+    if (2 * (g->n + 1) > g->cap) { /* grow and rehash at load 1/2 */
+        int32_t ncap = g->cap ? 2 * g->cap : 16, k;
+        int32_t *ns;
+        char **nn;
+        if (g->cap > INT32_MAX / 4) return -1;
+        ns = (int32_t *)wr_alloc_array((size_t)ncap, sizeof(int32_t));
+        nn = (char **)wr_realloc_array(g->names, (size_t)ncap / 2, sizeof(char *));
+        if (!ns || !nn) {
+            wr_free(ns);
+            if (nn) g->names = nn;
+            return -1;
+        }
+        g->names = nn;
+        for (k = 0; k < ncap; ++k) ns[k] = -1;
+        for (k = 0; k < g->n; ++k) {
+            i = wr__obj_hash(g->names[k]) & (uint32_t)(ncap - 1);
+            while (ns[i] >= 0) i = (i + 1) & (uint32_t)(ncap - 1);
+            ns[i] = k;
+        }
+        wr_free(g->slot);
+        g->slot = ns;
+        g->cap = ncap;
+    }
+    h = wr__obj_hash(name);
+    for (i = h & (uint32_t)(g->cap - 1); g->slot[i] >= 0; i = (i + 1) & (uint32_t)(g->cap - 1))
+        if (strcmp(g->names[g->slot[i]], name) == 0) return g->slot[i];
+    {
+        size_t len = strlen(name);
+        char *copy = (char *)wr_alloc_array(len + 1, 1);
+        if (!copy) return -1;
+        memcpy(copy, name, len + 1);
+        g->names[g->n] = copy;
+        g->slot[i] = g->n;
+        return g->n++;
+    }
+}
+
+static void wr__obj_groups_free(wr__obj_groups *g) {
+    int32_t k;
+    for (k = 0; k < g->n; ++k) wr_free(g->names[k]);
+    wr_free(g->names);
+    wr_free(g->slot);
+}
+
+WRDEF wr_status wr_mesh_parse_obj(wr_mesh *m, const char *text, size_t len, wr_diag *diag) {
+    wr__obj_grow V, T, FV, FT, FP, CV, CT;
+    wr__obj_groups groups;
+    char *buf = NULL, *s, *end;
+    long line = 0;
+    int have_groups = 0, vt_mode = -1; /* -1 unknown, 0 faces without vt, 1 faces with vt */
+    int32_t panel = -1;
+    wr_status st = WR_OK;
+    double *rest = NULL, *cr = NULL;
+    int32_t nv, nf, i;
+
+    if (!m) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "wr_mesh_parse_obj: NULL mesh");
+    memset(m, 0, sizeof *m);
+    if (!text && len) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "wr_mesh_parse_obj: NULL text");
+    memset(&V, 0, sizeof V);
+    T = FV = FT = FP = CV = CT = V;
+    V.size = T.size = sizeof(double);
+    FV.size = FT.size = FP.size = CV.size = CT.size = sizeof(int32_t);
+    memset(&groups, 0, sizeof groups);
+
+    /* A private NUL-terminated copy: strtod needs a terminator and the caller's text may lack one. */
+    buf = (char *)wr_alloc_array(len + 1, 1);
+    if (!buf) return wr_fail(diag, WR_ERR_NOMEM, -1, "OBJ: out of memory for %zu bytes", len);
+    if (len) memcpy(buf, text, len);
+    buf[len] = 0;
+    end = buf + len;
+
+#define WR__OBJ_FAIL(...)                                   \
+    do {                                                    \
+        st = wr_fail(diag, WR_ERR_PARSE, (int32_t)(line > INT32_MAX ? INT32_MAX : line), __VA_ARGS__); \
+        goto done;                                          \
+    } while (0)
+#define WR__OBJ_NOMEM()                                                         \
+    do {                                                                        \
+        st = wr_fail(diag, WR_ERR_NOMEM, -1, "OBJ: out of memory at line %ld", line); \
+        goto done;                                                              \
+    } while (0)
+
+    for (s = buf; s < end || line == 0;) {
+        char *eol = (char *)memchr(s, '\n', (size_t)(end - s)), *p, *kw;
+        size_t kwlen;
+        if (!eol) eol = end;
+        ++line;
+        if (memchr(s, 0, (size_t)(eol - s))) WR__OBJ_FAIL("OBJ line %ld: NUL byte", line);
+        *eol = 0;
+        {
+            char *hash = strchr(s, '#'); /* comments run to the end of the line */
+            if (hash) *hash = 0;
+        }
+        p = wr__obj_skip(s);
+        kw = p;
+        while (*p && !wr__obj_space(*p)) ++p;
+        kwlen = (size_t)(p - kw);
+        if (kwlen == 0) {
+            /* blank line */
+        } else if (kwlen == 1 && kw[0] == 'v') {
+            double x[3], extra;
+            int k, r;
+            for (k = 0; k < 3; ++k) {
+                r = wr__obj_number(&p, &x[k]);
+                if (r == 0) WR__OBJ_FAIL("OBJ line %ld: vertex needs 3 coordinates, got %d", line, k);
+                if (r < 0) WR__OBJ_FAIL("OBJ line %ld: vertex coordinate %d is not a finite number", line, k + 1);
+            }
+            while ((r = wr__obj_number(&p, &extra)) > 0) {
+            } /* w or per-vertex colour: ignored */
+            if (r < 0) WR__OBJ_FAIL("OBJ line %ld: junk after vertex coordinates", line);
+            if (V.n / 3 >= (size_t)WR__OBJ_MAX_V) WR__OBJ_FAIL("OBJ line %ld: too many vertices", line);
+            if (!wr__obj_reserve(&V, 3)) WR__OBJ_NOMEM();
+            memcpy((double *)V.p + V.n, x, sizeof x);
+            V.n += 3;
+        } else if (kwlen == 2 && kw[0] == 'v' && kw[1] == 't') {
+            double x[2], extra;
+            int k, r;
+            for (k = 0; k < 2; ++k) {
+                r = wr__obj_number(&p, &x[k]);
+                if (r == 0) WR__OBJ_FAIL("OBJ line %ld: texture coordinate needs u and v, got %d numbers", line, k);
+                if (r < 0) WR__OBJ_FAIL("OBJ line %ld: texture coordinate %d is not a finite number", line, k + 1);
+            }
+            while ((r = wr__obj_number(&p, &extra)) > 0) {
+            }
+            if (r < 0) WR__OBJ_FAIL("OBJ line %ld: junk after texture coordinates", line);
+            if (T.n / 2 >= (size_t)WR__OBJ_MAX_V) WR__OBJ_FAIL("OBJ line %ld: too many texture coordinates", line);
+            if (!wr__obj_reserve(&T, 2)) WR__OBJ_NOMEM();
+            memcpy((double *)T.p + T.n, x, sizeof x);
+            T.n += 2;
+        } else if (kwlen == 1 && kw[0] == 'f') {
+            int32_t ncorner = 0;
+            CV.n = CT.n = 0;
+            for (;;) {
+                int32_t vi, ti = -1, ni;
+                int r, has_t;
+                p = wr__obj_skip(p);
+                if (!*p) break;
+                r = wr__obj_index(&p, (int64_t)(V.n / 3), &vi);
+                if (r == 0 || r == -1) WR__OBJ_FAIL("OBJ line %ld: corner %d: malformed vertex index", line, ncorner + 1);
+                if (r == -2)
+                    WR__OBJ_FAIL("OBJ line %ld: corner %d: vertex index out of range (index 0, or beyond the %zu vertices defined so far)",
+                                 line, ncorner + 1, V.n / 3);
+                has_t = 0;
+                if (*p == '/') {
+                    ++p;
+                    r = wr__obj_index(&p, (int64_t)(T.n / 2), &ti);
+                    if (r == -1 || (r == 0 && *p != '/'))
+                        WR__OBJ_FAIL("OBJ line %ld: corner %d: malformed texture index", line, ncorner + 1);
+                    if (r == -2)
+                        WR__OBJ_FAIL("OBJ line %ld: corner %d: texture index out of range (%zu defined so far)", line,
+                                     ncorner + 1, T.n / 2);
+                    has_t = r == 1;
+                    if (*p == '/') {
+                        /* normals are not stored, but their index must still be well formed */
+                        ++p;
+                        r = wr__obj_index(&p, INT32_MAX, &ni);
+                        if (r != 1) WR__OBJ_FAIL("OBJ line %ld: corner %d: malformed normal index", line, ncorner + 1);
+                    }
+                }
+                if (*p && !wr__obj_space(*p)) WR__OBJ_FAIL("OBJ line %ld: corner %d: junk after indices", line, ncorner + 1);
+                if (vt_mode < 0) vt_mode = has_t;
+                if (vt_mode != has_t)
+                    WR__OBJ_FAIL("OBJ line %ld: corner %d %s a texture index while earlier corners %s", line,
+                                 ncorner + 1, has_t ? "has" : "lacks", has_t ? "lack one" : "have one");
+                if (ncorner >= WR__OBJ_MAX_F) WR__OBJ_FAIL("OBJ line %ld: polygon too large", line);
+                if (!wr__obj_reserve(&CV, 1) || !wr__obj_reserve(&CT, 1)) WR__OBJ_NOMEM();
+                ((int32_t *)CV.p)[CV.n++] = vi;
+                ((int32_t *)CT.p)[CT.n++] = ti;
+                ++ncorner;
+            }
+            if (ncorner < 3) WR__OBJ_FAIL("OBJ line %ld: face needs at least 3 corners, got %d", line, ncorner);
+            if (FV.n / 3 + (size_t)(ncorner - 2) > (size_t)WR__OBJ_MAX_F) WR__OBJ_FAIL("OBJ line %ld: too many faces", line);
+            if (!wr__obj_reserve(&FV, 3 * (size_t)(ncorner - 2)) || !wr__obj_reserve(&FT, 3 * (size_t)(ncorner - 2)) ||
+                !wr__obj_reserve(&FP, (size_t)(ncorner - 2)))
+                WR__OBJ_NOMEM();
+            for (i = 1; i + 1 < ncorner; ++i) { /* fan from corner 0 keeps the polygon's orientation */
+                int32_t c[3];
+                int k;
+                c[0] = 0, c[1] = i, c[2] = i + 1;
+                for (k = 0; k < 3; ++k) {
+                    ((int32_t *)FV.p)[FV.n++] = ((int32_t *)CV.p)[c[k]];
+                    ((int32_t *)FT.p)[FT.n++] = ((int32_t *)CT.p)[c[k]];
+                }
+                ((int32_t *)FP.p)[FP.n++] = panel;
+            }
+        } else if (kwlen == 1 && (kw[0] == 'g' || kw[0] == 'o')) {
+            char *name = wr__obj_skip(p), *t = name + strlen(name);
+            while (t > name && wr__obj_space(t[-1])) *--t = 0;
+            panel = wr__obj_group_id(&groups, name);
+            if (panel < 0) WR__OBJ_NOMEM();
+            have_groups = 1;
+        } else {
+            /* vn, vp, usemtl, mtllib, s, l, p, curves…: not needed for a triangle mesh */
+        }
+        s = eol + 1;
+        if (eol == end) break;
+    }
+
+    nv = (int32_t)(V.n / 3);
+    nf = (int32_t)(FV.n / 3);
+    if (nv == 0) WR__OBJ_FAIL("OBJ: no vertices (%ld lines)", line);
+    if (nf == 0) WR__OBJ_FAIL("OBJ: no faces (%ld lines)", line);
+
+    if (vt_mode == 1) {
+        /* one vt per vertex if every vertex sees a single (u, v) value; else per-corner rest */
+        uint8_t *set = (uint8_t *)wr_calloc_array((size_t)nv, 1);
+        int consistent = 1;
+        const int32_t *fv = (const int32_t *)FV.p, *ft = (const int32_t *)FT.p;
+        const double *tv = (const double *)T.p;
+        rest = (double *)wr_alloc_array((size_t)nv * 2, sizeof(double));
+        if (!set || !rest) {
+            wr_free(set);
+            WR__OBJ_NOMEM();
+        }
+        for (i = 0; i < 3 * nf && consistent; ++i) {
+            int32_t v = fv[i];
+            const double *uv = tv + 2 * ft[i];
+            if (!set[v]) {
+                rest[2 * v] = uv[0];
+                rest[2 * v + 1] = uv[1];
+                set[v] = 1;
+            } else if (rest[2 * v] != uv[0] || rest[2 * v + 1] != uv[1]) {
+                consistent = 0;
+            }
+        }
+        for (i = 0; i < nv && consistent; ++i)
+            if (!set[i]) {
+                rest[2 * i] = ((const double *)V.p)[3 * i];
+                rest[2 * i + 1] = ((const double *)V.p)[3 * i + 1];
+            }
+        wr_free(set);
+        if (!consistent) {
+            wr_free(rest);
+            rest = NULL;
+            cr = (double *)wr_alloc_array((size_t)nf * 6, sizeof(double));
+            if (!cr) WR__OBJ_NOMEM();
+            for (i = 0; i < 3 * nf; ++i) {
+                cr[2 * i] = tv[2 * ft[i]];
+                cr[2 * i + 1] = tv[2 * ft[i] + 1];
+            }
+        }
+    }
+    st = wr_mesh_create(m, nv, (const double *)V.p, rest, nf, (const int32_t *)FV.p, diag);
+    if (st != WR_OK) goto done;
+    if (cr) {
+        m->corner_rest = cr;
+        cr = NULL;
+    }
+    if (have_groups) {
+        int32_t *fp = (int32_t *)FP.p;
+        int any_none = 0;
+        for (i = 0; i < nf; ++i) any_none |= fp[i] < 0;
+        if (any_none) /* faces before the first g/o form panel 0 */
+            for (i = 0; i < nf; ++i) fp[i] += 1;
+        m->face_panel = fp;
+        FP.p = NULL;
+    }
+#undef WR__OBJ_FAIL
+#undef WR__OBJ_NOMEM
+done:
+    wr_free(buf);
+    wr_free(V.p);
+    wr_free(T.p);
+    wr_free(FV.p);
+    wr_free(FT.p);
+    wr_free(FP.p);
+    wr_free(CV.p);
+    wr_free(CT.p);
+    wr_free(rest);
+    wr_free(cr);
+    wr__obj_groups_free(&groups);
+    if (st != WR_OK) wr_mesh_free(m);
+    return st;
+}
+
+WRDEF wr_status wr_mesh_read_obj(wr_mesh *m, const char *path, wr_diag *diag) {
+    FILE *fp;
+    char *data = NULL;
+    size_t n = 0, cap = 0;
+    wr_status st;
+    if (!m) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "wr_mesh_read_obj: NULL mesh");
+    memset(m, 0, sizeof *m);
+    if (!path) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "wr_mesh_read_obj: NULL path");
+    fp = fopen(path, "rb");
+    if (!fp) return wr_fail(diag, WR_ERR_IO, -1, "cannot open '%s' for reading", path);
+    for (;;) {
+        size_t got;
+        if (n == cap) {
+            size_t ncap = cap ? 2 * cap : 65536;
+            char *nd = ncap > cap ? (char *)wr_realloc_array(data, ncap, 1) : NULL;
+            if (!nd) {
+                wr_free(data);
+                fclose(fp);
+                return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory reading '%s'", path);
+            }
+            data = nd;
+            cap = ncap;
+        }
+        got = fread(data + n, 1, cap - n, fp);
+        n += got;
+        if (got == 0) break;
+    }
+    if (ferror(fp)) {
+        wr_free(data);
+        fclose(fp);
+        return wr_fail(diag, WR_ERR_IO, -1, "read error on '%s'", path);
+    }
+    fclose(fp);
+    st = wr_mesh_parse_obj(m, data, n, diag);
+    wr_free(data);
+    return st;
+}
+
+/* ---- writers ------------------------------------------------------------------------------------ */
+
+/* Property names for PLY/VTK headers: printable ASCII without whitespace, not empty. */
+static wr_status wr__mesh_check_names(int32_t n, const char *const *names, const double *const *values,
+                                      const char *what, int xyz_reserved, wr_diag *diag) {
+    int32_t k;
+    if (n < 0) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "%s: negative property count %d", what, n);
+    if (n > 0 && (!names || !values)) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "%s: NULL names or values", what);
+    for (k = 0; k < n; ++k) {
+        const char *c = names[k];
+        if (!c || !*c || !values[k]) return wr_fail(diag, WR_ERR_INVALID_ARG, k, "%s: property %d has no name or no values", what, k);
+        for (; *c; ++c)
+            if (*c <= ' ' || *c > '~')
+                return wr_fail(diag, WR_ERR_INVALID_ARG, k, "%s: property %d name '%s' has whitespace or non-ASCII",
+                               what, k, names[k]);
+        if (xyz_reserved && (!strcmp(names[k], "x") || !strcmp(names[k], "y") || !strcmp(names[k], "z")))
+            return wr_fail(diag, WR_ERR_INVALID_ARG, k, "%s: property name '%s' is reserved", what, names[k]);
+    }
+    return WR_OK;
+}
+
+static wr_status wr__mesh_write_begin(const wr_mesh *m, const char *path, wr_afile *f, wr_diag *diag) {
+    if (!m || !m->pos || !m->faces) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "write: empty mesh");
+    return wr_afile_open(f, path, diag);
+}
+
+WRDEF wr_status wr_mesh_write_obj(const wr_mesh *m, const char *path, const wr_obj_desc *desc, wr_diag *diag) {
+    wr_obj_desc d;
+    wr_afile f;
+    wr_status st;
+    int32_t v, t, k, cur = -1;
+    int vt;
+    if (desc) d = *desc;
+    else memset(&d, 0, sizeof d);
+    st = wr__mesh_write_begin(m, path, &f, diag);
+    if (st != WR_OK) return st;
+    vt = d.no_rest ? 0 : (m->corner_rest ? 2 : (m->rest ? 1 : 0));
+    fprintf(f.fp, "# wrinkle mesh.h: %d vertices, %d faces%s\n", m->nv, m->nf,
+            vt == 2 ? ", vt per face corner (corner_rest) [m]" : (vt == 1 ? ", vt = rest [m]" : ""));
+    if (d.comment) {
+        const char *c;
+        fputs("# ", f.fp);
+        for (c = d.comment; *c; ++c) fputc(*c == '\n' || *c == '\r' ? ' ' : *c, f.fp);
+        fputc('\n', f.fp);
+    }
+    for (v = 0; v < m->nv; ++v)
+        fprintf(f.fp, "v %.17g %.17g %.17g\n", m->pos[3 * v], m->pos[3 * v + 1], m->pos[3 * v + 2]);
+    if (vt == 1)
+        for (v = 0; v < m->nv; ++v) fprintf(f.fp, "vt %.17g %.17g\n", m->rest[2 * v], m->rest[2 * v + 1]);
+    if (vt == 2)
+        for (k = 0; k < 3 * m->nf; ++k) fprintf(f.fp, "vt %.17g %.17g\n", m->corner_rest[2 * k], m->corner_rest[2 * k + 1]);
+    for (t = 0; t < m->nf; ++t) {
+        const int32_t *c = m->faces + 3 * t;
+        if (m->face_panel && !d.no_groups && (t == 0 || m->face_panel[t] != cur)) {
+            cur = m->face_panel[t];
+            fprintf(f.fp, "g panel%d\n", cur);
+        }
+        if (vt == 1) fprintf(f.fp, "f %d/%d %d/%d %d/%d\n", c[0] + 1, c[0] + 1, c[1] + 1, c[1] + 1, c[2] + 1, c[2] + 1);
+        else if (vt == 2)
+            fprintf(f.fp, "f %d/%d %d/%d %d/%d\n", c[0] + 1, 3 * t + 1, c[1] + 1, 3 * t + 2, c[2] + 1, 3 * t + 3);
+        else fprintf(f.fp, "f %d %d %d\n", c[0] + 1, c[1] + 1, c[2] + 1);
+    }
+    return wr_afile_commit(&f, diag);
+}
+
+/* Writes n values with one per line; non-finite → WR_ERR_DOMAIN (the caller aborts the file). */
+static wr_status wr__mesh_write_scalars(FILE *fp, const char *name, const double *x, int32_t n, wr_diag *diag) {
+    int32_t i;
+    for (i = 0; i < n; ++i) {
+        if (!isfinite(x[i]))
+            return wr_fail(diag, WR_ERR_DOMAIN, i, "property '%s' is not finite at index %d (%g)", name, i, x[i]);
+        fprintf(fp, "%.17g\n", x[i]);
+    }
+    return WR_OK;
+}
+
+WRDEF wr_status wr_mesh_write_ply(const wr_mesh *m, const char *path, int32_t nprops, const char *const *names,
+                                  const double *const *values, wr_diag *diag) {
+    wr_afile f;
+    wr_status st;
+    int32_t v, k, t;
+    st = wr__mesh_check_names(nprops, names, values, "PLY", 1, diag);
+    if (st != WR_OK) return st;
+    st = wr__mesh_write_begin(m, path, &f, diag);
+    if (st != WR_OK) return st;
+    fprintf(f.fp, "ply\nformat ascii 1.0\ncomment wrinkle mesh.h\nelement vertex %d\n", m->nv);
+    fputs("property double x\nproperty double y\nproperty double z\n", f.fp);
+    for (k = 0; k < nprops; ++k) fprintf(f.fp, "property double %s\n", names[k]);
+    fprintf(f.fp, "element face %d\nproperty list uchar int vertex_indices\nend_header\n", m->nf);
+    for (v = 0; v < m->nv; ++v) {
+        fprintf(f.fp, "%.17g %.17g %.17g", m->pos[3 * v], m->pos[3 * v + 1], m->pos[3 * v + 2]);
+        for (k = 0; k < nprops; ++k) {
+            double x = values[k][v];
+            if (!isfinite(x)) {
+                wr_afile_abort(&f);
+                return wr_fail(diag, WR_ERR_DOMAIN, v, "PLY property '%s' is not finite at vertex %d (%g)", names[k],
+                               v, x);
+            }
+            fprintf(f.fp, " %.17g", x);
+        }
+        fputc('\n', f.fp);
+    }
+    for (t = 0; t < m->nf; ++t) fprintf(f.fp, "3 %d %d %d\n", m->faces[3 * t], m->faces[3 * t + 1], m->faces[3 * t + 2]);
+    return wr_afile_commit(&f, diag);
+}
+
+WRDEF wr_status wr_mesh_write_vtk(const wr_mesh *m, const char *path, int32_t n_point,
+                                  const char *const *point_names, const double *const *point_values,
+                                  int32_t n_cell, const char *const *cell_names, const double *const *cell_values,
+                                  wr_diag *diag) {
+    wr_afile f;
+    wr_status st;
+    int32_t v, k, t;
+    st = wr__mesh_check_names(n_point, point_names, point_values, "VTK point data", 0, diag);
+    if (st == WR_OK) st = wr__mesh_check_names(n_cell, cell_names, cell_values, "VTK cell data", 0, diag);
+    if (st != WR_OK) return st;
+    st = wr__mesh_write_begin(m, path, &f, diag);
+    if (st != WR_OK) return st;
+    fprintf(f.fp, "# vtk DataFile Version 3.0\nwrinkle mesh\nASCII\nDATASET POLYDATA\nPOINTS %d double\n", m->nv);
+    for (v = 0; v < m->nv; ++v) fprintf(f.fp, "%.17g %.17g %.17g\n", m->pos[3 * v], m->pos[3 * v + 1], m->pos[3 * v + 2]);
+    fprintf(f.fp, "POLYGONS %d %lld\n", m->nf, 4LL * m->nf);
+    for (t = 0; t < m->nf; ++t) fprintf(f.fp, "3 %d %d %d\n", m->faces[3 * t], m->faces[3 * t + 1], m->faces[3 * t + 2]);
+    if (n_point > 0) fprintf(f.fp, "POINT_DATA %d\n", m->nv);
+    for (k = 0; k < n_point && st == WR_OK; ++k) {
+        fprintf(f.fp, "SCALARS %s double 1\nLOOKUP_TABLE default\n", point_names[k]);
+        st = wr__mesh_write_scalars(f.fp, point_names[k], point_values[k], m->nv, diag);
+    }
+    if (n_cell > 0 && st == WR_OK) fprintf(f.fp, "CELL_DATA %d\n", m->nf);
+    for (k = 0; k < n_cell && st == WR_OK; ++k) {
+        fprintf(f.fp, "SCALARS %s double 1\nLOOKUP_TABLE default\n", cell_names[k]);
+        st = wr__mesh_write_scalars(f.fp, cell_names[k], cell_values[k], m->nf, diag);
+    }
+    if (st != WR_OK) {
+        wr_afile_abort(&f);
+        return st;
+    }
+    return wr_afile_commit(&f, diag);
 }
 
 #ifdef __cplusplus
