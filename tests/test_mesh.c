@@ -744,8 +744,10 @@ Test(mesh_io, obj_features) {
     cr_assert_eq(m.corner_rest[6], 9.0);
     wr_mesh_free(&m);
     /* topology errors surface from the parser too */
-    cr_assert_eq(parse_str(&m, "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 3 4\n", &d), WR_ERR_TOPOLOGY);
+    cr_assert_eq(parse_str(&m, "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\n\nf 2 3 4\n", &d), WR_ERR_TOPOLOGY);
     cr_assert_null(m.pos);
+    cr_assert_eq(d.item, 1);
+    cr_assert(strstr(d.message, "orientation") && strstr(d.message, "OBJ line 7"), "%s", d.message);
 }
 
 Test(mesh_io, hostile_obj_gives_parse_errors) {
@@ -945,4 +947,88 @@ Test(mesh_io, atomic_writes) {
     cr_assert_eq(count_entries(tmpdir, &n_tmp), 1);
     wr_mesh_free(&m);
     remove_tmpdir();
+}
+
+/* Relabelling vertices, shuffling faces and rotating each face's corners changes no topological
+ * count, keeps every invariant, and gradients stay closed (dω = 0). */
+Test(mesh, relabelling_property) {
+    wr_mesh a, b;
+    wr_diag d;
+    wr_rng rng;
+    int32_t *perm, *fperm, *faces, i, f, k, e, trial;
+    double *rest, *fv, *om;
+    wr_rng_seed(&rng, 7);
+    cr_assert_eq(wr_mesh_disk(&a, 1.0, 5, &d), WR_OK);
+    perm = (int32_t *)malloc(sizeof(int32_t) * (size_t)a.nv);
+    fperm = (int32_t *)malloc(sizeof(int32_t) * (size_t)a.nf);
+    faces = (int32_t *)malloc(sizeof(int32_t) * 3 * (size_t)a.nf);
+    rest = (double *)malloc(sizeof(double) * 2 * (size_t)a.nv);
+    fv = (double *)malloc(sizeof(double) * (size_t)a.nv);
+    for (trial = 0; trial < 5; ++trial) {
+        for (i = 0; i < a.nv; ++i) perm[i] = i;
+        for (i = a.nv - 1; i > 0; --i) {
+            int32_t j = (int32_t)wr_rng_below(&rng, (uint32_t)i + 1), t = perm[i];
+            perm[i] = perm[j], perm[j] = t;
+        }
+        for (i = 0; i < a.nf; ++i) fperm[i] = i;
+        for (i = a.nf - 1; i > 0; --i) {
+            int32_t j = (int32_t)wr_rng_below(&rng, (uint32_t)i + 1), t = fperm[i];
+            fperm[i] = fperm[j], fperm[j] = t;
+        }
+        for (i = 0; i < a.nv; ++i) {
+            rest[2 * perm[i]] = a.rest[2 * i];
+            rest[2 * perm[i] + 1] = a.rest[2 * i + 1];
+        }
+        for (f = 0; f < a.nf; ++f) {
+            int r = (int)wr_rng_below(&rng, 3);
+            for (k = 0; k < 3; ++k) faces[3 * fperm[f] + k] = perm[a.faces[3 * f + (k + r) % 3]];
+        }
+        cr_assert_eq(wr_mesh_create(&b, a.nv, NULL, rest, a.nf, faces, &d), WR_OK, "%s", d.message);
+        cr_assert_eq(b.ne, a.ne);
+        cr_assert_eq(b.n_loops, 1);
+        cr_assert_eq(b.loop_start[1], a.loop_start[1]);
+        check_invariants(&b);
+        for (i = 0; i < b.nv; ++i) fv[i] = wr_rng_normal(&rng);
+        om = (double *)malloc(sizeof(double) * (size_t)b.ne);
+        for (e = 0; e < b.ne; ++e) om[e] = fv[b.edges[2 * e + 1]] - fv[b.edges[2 * e]];
+        for (f = 0; f < b.nf; ++f) {
+            double dw = 0.0, uv[6];
+            for (k = 0; k < 3; ++k) dw += b.face_edge_sign[3 * f + k] * om[b.face_edges[3 * f + k]];
+            cr_assert_float_eq(dw, 0.0, 1e-13);
+            wr_mesh_face_rest(&b, f, uv);
+            cr_assert_gt((uv[2] - uv[0]) * (uv[5] - uv[1]) - (uv[4] - uv[0]) * (uv[3] - uv[1]), 0.0);
+        }
+        free(om);
+        wr_mesh_free(&b);
+    }
+    free(perm);
+    free(fperm);
+    free(faces);
+    free(rest);
+    free(fv);
+    wr_mesh_free(&a);
+}
+
+/* A vertex of very high degree (closed fan of 3000 faces) is handled in one pass. */
+Test(mesh, high_degree_vertex) {
+    const int32_t n = 3000;
+    double *rest = (double *)malloc(sizeof(double) * 2 * (size_t)(n + 1));
+    int32_t *faces = (int32_t *)malloc(sizeof(int32_t) * 3 * (size_t)n), i;
+    wr_mesh m;
+    wr_diag d;
+    rest[0] = rest[1] = 0.0;
+    for (i = 0; i < n; ++i) {
+        rest[2 * (i + 1)] = cos(2.0 * WR_TEST_PI * i / n);
+        rest[2 * (i + 1) + 1] = sin(2.0 * WR_TEST_PI * i / n);
+        faces[3 * i] = 0, faces[3 * i + 1] = 1 + i, faces[3 * i + 2] = 1 + (i + 1) % n;
+    }
+    cr_assert_eq(wr_mesh_create(&m, n + 1, NULL, rest, n, faces, &d), WR_OK, "%s", d.message);
+    cr_assert_eq(m.vf_start[1] - m.vf_start[0], n);
+    cr_assert_eq(m.ne, 2 * n);
+    cr_assert_eq(m.n_loops, 1);
+    cr_assert_eq(m.loop_start[1], n);
+    check_invariants(&m);
+    wr_mesh_free(&m);
+    free(rest);
+    free(faces);
 }

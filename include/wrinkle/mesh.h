@@ -181,7 +181,8 @@ WRDEF wr_status wr_mesh_ratio_histogram(const double *ratio, int32_t n, int32_t 
  * in no face gets (x, y)); otherwise corner_rest gets one vt per corner and rest stays NULL.
  * face_panel is set only when the file has g or o lines. Malformed input → WR_ERR_PARSE with
  * "line N" in the message and diag->item = N; the mesh is then validated as wr_mesh_create does
- * (WR_ERR_TOPOLOGY). On failure *m is left zeroed. */
+ * (WR_ERR_TOPOLOGY, item = triangle index after fan triangulation, message also names the OBJ line
+ * of that face). On failure *m is left zeroed. */
 WRDEF wr_status wr_mesh_parse_obj(wr_mesh *m, const char *text, size_t len, wr_diag *diag);
 WRDEF wr_status wr_mesh_read_obj(wr_mesh *m, const char *path, wr_diag *diag); /* WR_ERR_IO if unreadable */
 
@@ -1093,7 +1094,7 @@ static void wr__obj_groups_free(wr__obj_groups *g) {
 }
 
 WRDEF wr_status wr_mesh_parse_obj(wr_mesh *m, const char *text, size_t len, wr_diag *diag) {
-    wr__obj_grow V, T, FV, FT, FP, CV, CT;
+    wr__obj_grow V, T, FV, FT, FP, FL, CV, CT; /* FL: OBJ line of each triangle, for topology errors */
     wr__obj_groups groups;
     char *buf = NULL, *s, *end;
     long line = 0;
@@ -1107,9 +1108,10 @@ WRDEF wr_status wr_mesh_parse_obj(wr_mesh *m, const char *text, size_t len, wr_d
     memset(m, 0, sizeof *m);
     if (!text && len) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "wr_mesh_parse_obj: NULL text");
     memset(&V, 0, sizeof V);
-    T = FV = FT = FP = CV = CT = V;
+    T = FV = FT = FP = FL = CV = CT = V;
     V.size = T.size = sizeof(double);
     FV.size = FT.size = FP.size = CV.size = CT.size = sizeof(int32_t);
+    FL.size = sizeof(long);
     memset(&groups, 0, sizeof groups);
 
     /* A private NUL-terminated copy: strtod needs a terminator and the caller's text may lack one. */
@@ -1221,7 +1223,7 @@ WRDEF wr_status wr_mesh_parse_obj(wr_mesh *m, const char *text, size_t len, wr_d
             if (ncorner < 3) WR__OBJ_FAIL("OBJ line %ld: face needs at least 3 corners, got %d", line, ncorner);
             if (FV.n / 3 + (size_t)(ncorner - 2) > (size_t)WR__OBJ_MAX_F) WR__OBJ_FAIL("OBJ line %ld: too many faces", line);
             if (!wr__obj_reserve(&FV, 3 * (size_t)(ncorner - 2)) || !wr__obj_reserve(&FT, 3 * (size_t)(ncorner - 2)) ||
-                !wr__obj_reserve(&FP, (size_t)(ncorner - 2)))
+                !wr__obj_reserve(&FP, (size_t)(ncorner - 2)) || !wr__obj_reserve(&FL, (size_t)(ncorner - 2)))
                 WR__OBJ_NOMEM();
             for (i = 1; i + 1 < ncorner; ++i) { /* fan from corner 0 keeps the polygon's orientation */
                 int32_t c[3];
@@ -1232,6 +1234,7 @@ WRDEF wr_status wr_mesh_parse_obj(wr_mesh *m, const char *text, size_t len, wr_d
                     ((int32_t *)FT.p)[FT.n++] = ((int32_t *)CT.p)[c[k]];
                 }
                 ((int32_t *)FP.p)[FP.n++] = panel;
+                ((long *)FL.p)[FL.n++] = line;
             }
         } else if (kwlen == 1 && (kw[0] == 'g' || kw[0] == 'o')) {
             char *name = wr__obj_skip(p), *t = name + strlen(name);
@@ -1291,6 +1294,13 @@ WRDEF wr_status wr_mesh_parse_obj(wr_mesh *m, const char *text, size_t len, wr_d
         }
     }
     st = wr_mesh_create(m, nv, (const double *)V.p, rest, nf, (const int32_t *)FV.p, diag);
+    if (st == WR_ERR_TOPOLOGY && diag && diag->item >= 0 && diag->item < nf &&
+        strncmp(diag->message, "non-manifold vertex", 19) != 0) {
+        /* the item is a (triangulated) face: say where it came from */
+        size_t ml = strlen(diag->message);
+        snprintf(diag->message + ml, sizeof diag->message - ml, " (face %d is from OBJ line %ld)", diag->item,
+                 ((const long *)FL.p)[diag->item]);
+    }
     if (st != WR_OK) goto done;
     if (cr) {
         m->corner_rest = cr;
@@ -1314,6 +1324,7 @@ done:
     wr_free(FV.p);
     wr_free(FT.p);
     wr_free(FP.p);
+    wr_free(FL.p);
     wr_free(CV.p);
     wr_free(CT.p);
     wr_free(rest);
