@@ -270,6 +270,17 @@ Test(mesh, topology_errors) {
     expect_topology_error(4, bad_pos, sq_rest, 2, sq_faces, 3, "vertex 3");
     expect_topology_error(5, NULL, fan_rest, 3, nonmanifold, 2, "non-manifold edge (0,1)");
     expect_topology_error(5, NULL, bow_rest, 2, bowtie, 0, "non-manifold vertex 0");
+    {
+        /* two closed tetrahedra sharing only vertex 0: two closed fans there, every edge manifold */
+        static const double tp[21] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, -1, 0, 0, 0, -1, 0, 0, 0, -1};
+        static const int32_t tt[24] = {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3, 0, 5, 4, 0, 4, 6, 0, 6, 5, 4, 5, 6};
+        wr_mesh one;
+        cr_assert_eq(wr_mesh_create(&one, 4, tp, NULL, 4, tt, NULL), WR_OK, "a single tetrahedron is fine");
+        cr_assert_eq(one.nv - one.ne + one.nf, 2);
+        cr_assert_eq(one.n_loops, 0);
+        wr_mesh_free(&one);
+        expect_topology_error(7, tp, NULL, 8, tt, 0, "non-manifold vertex 0");
+    }
 }
 
 Test(mesh, invalid_arguments) {

@@ -64,7 +64,12 @@
  *   (a quality report counts them). Vertices in no face are allowed (empty vf range).
  *
  * ON UNITS
- *   Metres everywhere (pos, rest, corner_rest).
+ *   Metres everywhere (pos, rest, corner_rest). OBJ vt values are taken as metres, unscaled.
+ *
+ * ON FILES
+ *   Text I/O uses strtod / fprintf, so it assumes the "C" numeric locale (a program that switched
+ *   LC_NUMERIC to a comma-decimal locale must switch back around these calls). Writers print 17
+ *   significant digits: a write → read round trip reproduces every double exactly.
  *
  * ON THREADS
  *   No global state. Read-only functions may run concurrently on one mesh.
@@ -910,6 +915,7 @@ WRDEF void wr_mesh_quality(const wr_mesh *m, int use_rest, wr_mesh_quality_stats
         sum_min += amin;
     }
     q->mean_min_angle_deg = m->nf > 0 ? sum_min / m->nf : 0.0;
+    if (m->nf == 0) q->min_angle_deg = 0.0;
     {
         double *len = (double *)wr_alloc_array((size_t)m->ne, sizeof(double));
         if (len) {
