@@ -15,3 +15,5 @@
 #include "sparse.h"
 #include "pcg.h"
 #include "spectrum.h"
+#include "resolution.h"
+#include "transition.h"
