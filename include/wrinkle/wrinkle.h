@@ -17,3 +17,5 @@
 #include "spectrum.h"
 #include "resolution.h"
 #include "transition.h"
+#include "tft.h"
+#include "shell.h"

@@ -1,0 +1,1065 @@
+/* wrinkle/shell.h — discrete thin-shell elastic energy: StVK or tension-field membrane, mid-edge
+ * (Koiter) or quadratic (Bergou) bending; values, gradients and per-element Hessians.
+ * wrinkle v0.1.0 — MIT licence (see LICENSE). Needs only libc and libm (and core.h, mesh.h, tft.h).
+ *
+ * This is the one place wrinkle writes shell energy. The StVK reference solver and the TFT
+ * base-surface solve of TFW ("Fine Wrinkling on Coarsely Meshed Thin Shells", 2021, Sec. 4.1) both
+ * use it. Discretisation (TFW App. A):
+ *   - first fundamental form per face, I = drᵀdr from the edge vectors, rest I_u from the 2D rest
+ *     (pattern) corners (wr_mesh_face_rest) or from a 3D rest shape;
+ *   - second fundamental form per face from mid-edge normals (Grinspun 2003, Weischedel 2012, Chen et
+ *     al. 2018), TFW App. A: II = 2 [[e1·(n̂1−n̂0), e2·(n̂1−n̂0)], [e2·(n̂1−n̂0), e2·(n̂2−n̂0)]] with
+ *     e1 = v1−v0, e2 = v2−v0 and n̂c the mid-edge normal of the edge opposite corner c;
+ *     n̂c = the unit face normal on a boundary edge, otherwise the NORMALISED average of the two
+ *     adjacent unit face normals ("mid-edge average normal"). Normalising is our reading of the hat
+ *     in the paper; it makes a crease of dihedral angle φ contribute 2 sin(φ/2), which is exact for a
+ *     cylinder sampled by vertices on it (see the tests). Each n̂c is perpendicular to its own edge,
+ *     so the two off-diagonal readings e1·(n̂2−n̂0) and e2·(n̂1−n̂0) agree and II is symmetric.
+ *   - membrane: StVK (TFW Eq. 2, 4, 33) or its tension-field relaxation (TFW App. B, tft.h), or an
+ *     orthotropic StVK (warp/weft moduli, shear modulus, grain angle) for anisotropic fabrics;
+ *   - bending: Koiter with the mid-edge II (TFW Eq. 3), or Bergou et al. 2006 quadratic bending
+ *     (TFW Eq. 28, recommended for the TFT base surface), or none.
+ *
+ * API (create/free pair: wr_shell_create → wr_shell_free)
+ *   wr_shell_create(s, mesh, desc, diag)            material, model choice, precomputed rest data
+ *   wr_shell_free(s)                                free and zero (safe on a zeroed shell)
+ *   wr_shell_energy(s, x, E, grad, diag)            total energy [J] and gradient (nv*3) at x (nv*3)
+ *   wr_shell_energy_parts(s, x, Emem, Ebend, diag)  membrane and bending parts
+ *   wr_shell_hessian_elements(s, x, project, sink, diag)  element Hessians streamed to a callback
+ *   wr_shell_vertex_masses(s, mass)                 lumped masses ρ·h·A/3 [kg] (for gravity)
+ *   wr_shell_face_strain(s, f, x, eps)              Green strain (ε11, ε22, ε12) of face f
+ *   wr_shell_face_stencil(s, f, verts)              the 6 vertices of face f's bending stencil
+ *   wr_shell_membrane_element(s, f, x9, g, H)       one face's membrane energy, gradient, Hessian
+ *   wr_shell_midedge_element(x18, mask, Q, bbar, E, g, H)   one face's mid-edge bending
+ *   wr_shell_stvk_density(C, eps, dW, d2W)          Voigt StVK density in Green-strain coordinates
+ *
+ * EXAMPLE
+ *     wr_mesh m; wr_shell s; wr_shell_desc d; wr_diag dg; double E;
+ *     wr_mesh_rectangle(&m, 1.0, 1.0, 20, 20, &dg);
+ *     memset(&d, 0, sizeof d);
+ *     d.young = 1e6; d.poisson = 0.3; d.thickness = 1e-3;         // SI units
+ *     d.membrane = WR_MEMBRANE_TFT; d.bending = WR_BENDING_QUADRATIC; // TFW Sec. 4.1 base surface
+ *     if (wr_shell_create(&s, &m, &d, &dg) != WR_OK) puts(dg.message);
+ *     double *g = malloc(sizeof(double) * 3 * m.nv);
+ *     wr_shell_energy(&s, m.pos, &E, g, &dg);                       // E = 0 at rest
+ *     wr_shell_free(&s); wr_mesh_free(&m); free(g);
+ *
+ * ON NORMALISATION
+ *   TFW Eq. (1) as printed reads E = ½∫(h/4 W_s + h³/12 W_b) with ‖M‖²_SV = α/2 tr²M + β tr M²,
+ *   α = Yν/(1−ν²), β = Y/(2(1+ν)) (Eq. 33). Expanding that gives exactly HALF the standard
+ *   plane-stress StVK membrane energy h(α/2 tr²ε + β tr ε²) (ε = ½(I_u⁻¹I − id), Green strain) and
+ *   half the Kirchhoff plate energy D/2[(κ1+κ2)² − 2(1−ν)κ1κ2]. The factor does not move an unloaded
+ *   minimiser but it does matter against gravity, so we use the standard normalisation:
+ *       E_mem  = Σ_f A_f · (h/4) ‖I_u⁻¹I − id‖²_SV        = Σ_f A_f · ½ γᵀ (h C) γ
+ *       E_bend = Σ_f A_f · (h³/12) ‖I_u⁻¹(II − II_u)‖²_SV  = Σ_f A_f · ½ κᵀ C_b κ
+ *   with Voigt vectors γ = (ε11, ε22, 2ε12), κ = (K11, K22, 2K12), K = I_u⁻¹(II − II_u) expressed in
+ *   an orthonormal rest frame, C = Y/(1−ν²)[[1,ν,0],[ν,1,0],[0,0,(1−ν)/2]] and C_b = B/Y·(1−ν²)·C
+ *   with B = Y h³/(12(1−ν²)) by default (desc.bending_stiffness overrides B). A cylinder of radius
+ *   R then stores B/(2R²) per unit area, the plate value. Quadratic bending:
+ *       E_qb = (B/2) Σ_{interior v} |(L x)_v|² / A_v
+ *   with L the cotangent Laplacian of the flat rest mesh and A_v the mixed Voronoi area (Meyer et al.
+ *   2003), i.e. (B/2)∫|Δx|² = (B/2)∫(κ1+κ2)², the plate energy for isometric bending of a flat
+ *   sheet (Bergou et al. 2006, vertex form; TFW Eq. 28 writes the first Lamé parameter α as the
+ *   coefficient, which vanishes at ν = 0, so we read it as the bending modulus B). Its Hessian is
+ *   constant. Boundary vertices carry no term: the cotangent Laplacian of a boundary vertex does not
+ *   vanish on the flat rest mesh (it sees the boundary flux), so including it would put energy into
+ *   the rest state; Wang et al. 2015's boundary correction is not implemented. A free boundary thus
+ *   only resists bending through its interior neighbours' stencils.
+ *
+ * ON ORTHOTROPY
+ *   desc.orthotropic: C = 1/(1−ν12ν21)[[E1, ν12E2, 0], [ν12E2, E2, 0], [0, 0, G12(1−ν12ν21)]]
+ *   (E1 warp, E2 weft, ν21 = ν12E2/E1), membrane h·C and bending h³/12·C, in the material frame of
+ *   each face: warp at grain_angle[f] [rad] from the rest-domain x axis. Needs a 2D rest domain.
+ *   TFT and quadratic bending are isotropic models and reject orthotropy (WR_ERR_UNSUPPORTED).
+ *
+ * ON ELEMENT HESSIANS
+ *   wr_shell_hessian_elements calls sink->add(user, k, verts, Ke) once per element: per face, the
+ *   membrane (3 vertices) plus mid-edge bending (3 face vertices + up to 3 vertices across the
+ *   edges, k <= 6) summed into one 3k×3k row-major block, dof order (v0x, v0y, v0z, v1x, …); and,
+ *   with quadratic bending, one block per interior vertex stencil (the vertex and its neighbours).
+ *   project_spd != 0 replaces each face block by its nearest PSD matrix (wr_dense_project_spd, floor
+ *   0); the quadratic blocks are PSD by construction. A non-WR_OK return from add stops the loop.
+ *
+ * ON UNITS
+ *   Y, E1, E2, G12 [Pa], h [m], B [N·m], ρ [kg/m³], positions [m], energies [J], angles [rad].
+ *
+ * ON THREADS
+ *   A created shell is read-only; concurrent evaluations on distinct x are safe.
+ */
+#ifndef WRINKLE_SHELL_H
+#define WRINKLE_SHELL_H
+
+#include "core.h"
+#include "mesh.h"
+#include "tft.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum wr_membrane_model {
+    WR_MEMBRANE_STVK = 0, /* St. Venant–Kirchhoff (TFW Eq. 2) */
+    WR_MEMBRANE_TFT = 1,  /* tension-field relaxation (TFW App. B, tft.h) */
+    WR_MEMBRANE_NONE = 2
+} wr_membrane_model;
+
+typedef enum wr_bending_model {
+    WR_BENDING_MIDEDGE = 0,   /* Koiter bending with the mid-edge II (TFW Eq. 3, App. A) */
+    WR_BENDING_QUADRATIC = 1, /* Bergou et al. 2006 quadratic bending, flat rest (TFW Eq. 28) */
+    WR_BENDING_NONE = 2
+} wr_bending_model;
+
+/* Defaults (zero means default):
+ *   membrane WR_MEMBRANE_STVK, bending WR_BENDING_MIDEDGE;
+ *   young [Pa] and thickness [m]: required > 0 (isotropic); poisson 0 is ν = 0, must be in (−1, 1);
+ *   bending_stiffness [N·m]: 0 → Y h³/(12(1−ν²)); density [kg/m³]: 0 → massless;
+ *   orthotropic 0 → isotropic; with orthotropic != 0: young_warp, young_weft, shear_modulus > 0,
+ *   poisson_warp = ν12 (0 allowed) with ν12²·E2/E1 < 1; grain_angle NULL → all 0;
+ *   rest_pos3 NULL → rest from the mesh (corner_rest, else rest, else pos); non-NULL: an nv*3 3D rest
+ *   shape whose metric AND curvature (II_u) are the rest state. */
+typedef struct wr_shell_desc {
+    wr_membrane_model membrane;
+    wr_bending_model bending;
+    double young;
+    double poisson;
+    double thickness;
+    double bending_stiffness;
+    double density;
+    int32_t orthotropic;
+    double young_warp, young_weft, shear_modulus, poisson_warp;
+    const double *grain_angle; /* nf [rad], copied */
+    const double *rest_pos3;   /* nv*3 [m], copied into rest data, not kept */
+} wr_shell_desc;
+
+typedef struct wr_shell {
+    int32_t nv, nf;
+    wr_membrane_model membrane;
+    wr_bending_model bending;
+    double young, poisson, thickness, density, bending_stiffness; /* resolved; B also for orthotropic (warp) */
+    int32_t orthotropic;
+    double C_mem[9];  /* h·C, Voigt (ε11, ε22, 2ε12), row-major [N/m] */
+    double C_bend[9]; /* bending Voigt stiffness [N·m] */
+    int32_t *faces;   /* nf*3 copy of the mesh faces */
+    int32_t *opp;     /* nf*3: vertex across the edge opposite corner k, or -1 on a boundary edge */
+    double *dinv;     /* nf*4 row-major inverse of the rest edge matrix [ū1−ū0, ū2−ū0], material frame */
+    double *area;     /* nf rest areas [m²] */
+    double *qbend;    /* nf*9: E_bend,f = ½ δbᵀ Q δb, δb = (b11, b22, b12) − rest, barycentric coords */
+    double *bbar;     /* nf*3 rest II (b11, b22, b12), or NULL when the rest is flat */
+    int32_t n_qb;     /* quadratic-bending stencils (interior vertices) */
+    int32_t *qb_start, *qb_vert; /* stencil s: qb_vert[qb_start[s] .. qb_start[s+1]), centre first */
+    double *qb_w;     /* cotangent weights L_vj (centre weight = −Σ) */
+    double *qb_coef;  /* n_qb: B / A_v [N/m] */
+    double total_area;
+} wr_shell;
+
+/* Element Hessian consumer. Ke is 3k×3k row-major over verts[0..k). */
+typedef struct wr_hess_sink {
+    void *user;
+    wr_status (*add)(void *user, int32_t k, const int32_t *verts, const double *Ke);
+} wr_hess_sink;
+
+WRDEF wr_status wr_shell_create(wr_shell *s, const wr_mesh *m, const wr_shell_desc *desc, wr_diag *diag);
+WRDEF void wr_shell_free(wr_shell *s);
+/* Total energy [J] at positions x (nv*3 [m]); grad (nv*3 [N]) is overwritten when non-NULL.
+ * WR_ERR_GEOMETRY (item = face) when a deformed face or mid-edge normal is degenerate (zero area, or
+ * two adjacent faces folded flat onto each other); WR_ERR_DOMAIN (item = vertex) for a non-finite
+ * coordinate, or when the result is not finite. */
+WRDEF wr_status wr_shell_energy(const wr_shell *s, const double *x, double *E, double *grad, wr_diag *diag);
+WRDEF wr_status wr_shell_energy_parts(const wr_shell *s, const double *x, double *E_membrane, double *E_bending,
+                                      wr_diag *diag);
+WRDEF wr_status wr_shell_hessian_elements(const wr_shell *s, const double *x, int32_t project_spd,
+                                          const wr_hess_sink *sink, wr_diag *diag);
+WRDEF void wr_shell_vertex_masses(const wr_shell *s, double *mass);
+WRDEF void wr_shell_face_strain(const wr_shell *s, int32_t f, const double *x, double eps[3]);
+/* verts[0..2] = face corners, verts[3+k] = vertex across the edge opposite corner k or -1.
+ * Returns the mask (bit k set when verts[3+k] exists). */
+WRDEF int32_t wr_shell_face_stencil(const wr_shell *s, int32_t f, int32_t verts[6]);
+/* Membrane energy of face f with corner positions x9; g (9) and H (81) may be NULL. */
+WRDEF double wr_shell_membrane_element(const wr_shell *s, int32_t f, const double x[9], double *g, double *H);
+/* Mid-edge bending of one stencil x18 (layout of wr_shell_face_stencil; absent vertices ignored):
+ * E = ½ δbᵀ Q δb, δb = II − bbar (bbar NULL = 0). g (18), H (324), b (3: b11, b22, b12) may be NULL.
+ * WR_ERR_GEOMETRY when a normal is undefined. */
+WRDEF wr_status wr_shell_midedge_element(const double x[18], int32_t mask, const double Q[9], const double *bbar,
+                                         double *E, double *g, double *H, double *b);
+/* ½ γᵀCγ with γ = (ε11, ε22, 2ε12); dW, d2W w.r.t. (ε11, ε22, ε12); either may be NULL. */
+WRDEF double wr_shell_stvk_density(const double C[9], const double eps[3], double *dW, double *d2W);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* WRINKLE_SHELL_H */
+
+/* ============================================================================================ */
+#ifdef WRINKLE_IMPLEMENTATION
+#ifndef WRINKLE_SHELL_IMPLEMENTATION_DONE
+#define WRINKLE_SHELL_IMPLEMENTATION_DONE
+
+#include <math.h>
+#include <string.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+WRDEF double wr_shell_stvk_density(const double C[9], const double eps[3], double *dW, double *d2W) {
+    /* γ = T ε with T = diag(1, 1, 2): dW = T C γ, d2W = T C T. */
+    double gam[3], Cg[3];
+    int i, j;
+    gam[0] = eps[0];
+    gam[1] = eps[1];
+    gam[2] = 2.0 * eps[2];
+    for (i = 0; i < 3; ++i) Cg[i] = C[3 * i] * gam[0] + C[3 * i + 1] * gam[1] + C[3 * i + 2] * gam[2];
+    if (dW) {
+        dW[0] = Cg[0];
+        dW[1] = Cg[1];
+        dW[2] = 2.0 * Cg[2];
+    }
+    if (d2W)
+        for (i = 0; i < 3; ++i)
+            for (j = 0; j < 3; ++j) d2W[3 * i + j] = C[3 * i + j] * (i == 2 ? 2.0 : 1.0) * (j == 2 ? 2.0 : 1.0);
+    return 0.5 * (gam[0] * Cg[0] + gam[1] * Cg[1] + gam[2] * Cg[2]);
+}
+
+/* Rows of the rest-frame gradient operator: F = Σ_v x_v ⊗ G[v], G[1] = dinv row 0, G[2] = row 1. */
+static void wr__shell_G(const double *dinv, double G[6]) {
+    G[2] = dinv[0];
+    G[3] = dinv[1];
+    G[4] = dinv[2];
+    G[5] = dinv[3];
+    G[0] = -G[2] - G[4];
+    G[1] = -G[3] - G[5];
+}
+
+static void wr__shell_F(const double *dinv, const double x[9], double F1[3], double F2[3]) {
+    double G[6];
+    int i;
+    wr__shell_G(dinv, G);
+    for (i = 0; i < 3; ++i) {
+        F1[i] = G[0] * x[i] + G[2] * x[3 + i] + G[4] * x[6 + i];
+        F2[i] = G[1] * x[i] + G[3] * x[3 + i] + G[5] * x[6 + i];
+    }
+}
+
+static void wr__shell_eps(const double F1[3], const double F2[3], double eps[3]) {
+    eps[0] = 0.5 * (F1[0] * F1[0] + F1[1] * F1[1] + F1[2] * F1[2] - 1.0);
+    eps[1] = 0.5 * (F2[0] * F2[0] + F2[1] * F2[1] + F2[2] * F2[2] - 1.0);
+    eps[2] = 0.5 * (F1[0] * F2[0] + F1[1] * F2[1] + F1[2] * F2[2]);
+}
+
+WRDEF double wr_shell_membrane_element(const wr_shell *s, int32_t f, const double x[9], double *g, double *H) {
+    const double *dinv = s->dinv + 4 * f;
+    double A = s->area[f], G[6], F1[3], F2[3], eps[3], dW[3], d2W[9], W, D[3][3][3];
+    int c, d, v, w, i, j;
+    if (s->membrane == WR_MEMBRANE_NONE) {
+        if (g) memset(g, 0, sizeof(double) * 9);
+        if (H) memset(H, 0, sizeof(double) * 81);
+        return 0.0;
+    }
+    wr__shell_G(dinv, G);
+    wr__shell_F(dinv, x, F1, F2);
+    wr__shell_eps(F1, F2, eps);
+    if (s->membrane == WR_MEMBRANE_TFT)
+        W = wr_tft_density(eps, s->young, s->poisson, s->thickness, dW, d2W);
+    else
+        W = wr_shell_stvk_density(s->C_mem, eps, dW, d2W);
+    if (!g && !H) return A * W;
+    /* D[c][v] = ∂ε_c/∂x_v (3-vector): ε11 → G_v1 F1, ε22 → G_v2 F2, ε12 → ½(G_v1 F2 + G_v2 F1). */
+    for (v = 0; v < 3; ++v)
+        for (i = 0; i < 3; ++i) {
+            D[0][v][i] = G[2 * v] * F1[i];
+            D[1][v][i] = G[2 * v + 1] * F2[i];
+            D[2][v][i] = 0.5 * (G[2 * v] * F2[i] + G[2 * v + 1] * F1[i]);
+        }
+    if (g)
+        for (v = 0; v < 3; ++v)
+            for (i = 0; i < 3; ++i) g[3 * v + i] = A * (dW[0] * D[0][v][i] + dW[1] * D[1][v][i] + dW[2] * D[2][v][i]);
+    if (H)
+        for (v = 0; v < 3; ++v)
+            for (w = 0; w < 3; ++w) {
+                /* geometric stiffness: Σ_c dW_c ∂²ε_c/∂x_v∂x_w, a multiple of the 3×3 identity */
+                double geo = dW[0] * G[2 * v] * G[2 * w] + dW[1] * G[2 * v + 1] * G[2 * w + 1] +
+                             dW[2] * 0.5 * (G[2 * v] * G[2 * w + 1] + G[2 * v + 1] * G[2 * w]);
+                for (i = 0; i < 3; ++i)
+                    for (j = 0; j < 3; ++j) {
+                        double hv = i == j ? geo : 0.0;
+                        for (c = 0; c < 3; ++c)
+                            for (d = 0; d < 3; ++d) hv += d2W[3 * c + d] * D[c][v][i] * D[d][w][j];
+                        H[(3 * v + i) * 9 + 3 * w + j] = A * hv;
+                    }
+            }
+    return A * W;
+}
+
+WRDEF void wr_shell_face_strain(const wr_shell *s, int32_t f, const double *x, double eps[3]) {
+    double x9[9], F1[3], F2[3];
+    int k, i;
+    for (k = 0; k < 3; ++k)
+        for (i = 0; i < 3; ++i) x9[3 * k + i] = x[3 * s->faces[3 * f + k] + i];
+    wr__shell_F(s->dinv + 4 * f, x9, F1, F2);
+    wr__shell_eps(F1, F2, eps);
+}
+
+/* ---- mid-edge bending ---------------------------------------------------------------------- */
+/* 3×18 Jacobians are row-major J[r*18 + col]; local vertex v occupies columns 3v..3v+2. */
+#define WR__ME_N 18
+
+static void wr__skew_add(double *J, int v, const double u[3], double sgn) {
+    /* J[:, 3v..3v+2] += sgn·[u]×, [u]× y = u × y */
+    J[0 * 18 + 3 * v + 1] += -sgn * u[2];
+    J[0 * 18 + 3 * v + 2] += sgn * u[1];
+    J[1 * 18 + 3 * v + 0] += sgn * u[2];
+    J[1 * 18 + 3 * v + 2] += -sgn * u[0];
+    J[2 * 18 + 3 * v + 0] += -sgn * u[1];
+    J[2 * 18 + 3 * v + 1] += sgn * u[0];
+}
+
+/* N = (x_b − x_a) × (x_c − x_a) and its Jacobian: dN = −[u2]× du1 + [u1]× du2. */
+static void wr__cross_jac(const double *x, int a, int b, int c, double N[3], double J[54]) {
+    double u1[3], u2[3];
+    int i;
+    for (i = 0; i < 3; ++i) {
+        u1[i] = x[3 * b + i] - x[3 * a + i];
+        u2[i] = x[3 * c + i] - x[3 * a + i];
+    }
+    N[0] = u1[1] * u2[2] - u1[2] * u2[1];
+    N[1] = u1[2] * u2[0] - u1[0] * u2[2];
+    N[2] = u1[0] * u2[1] - u1[1] * u2[0];
+    memset(J, 0, sizeof(double) * 54);
+    wr__skew_add(J, b, u2, -1.0);
+    wr__skew_add(J, c, u1, 1.0);
+    wr__skew_add(J, a, u2, 1.0);
+    wr__skew_add(J, a, u1, -1.0);
+}
+
+/* H += Hessian of z·N for N of wr__cross_jac: blocks α_v β_w Z + β_v α_w Zᵀ with Z_de = ε_dec z_c,
+ * u1 = Σ α_v x_v, u2 = Σ β_v x_v. */
+static void wr__cross_hess_add(int a, int b, int c, const double z[3], double *H) {
+    double Z[9];
+    int vs[3], v, w, i, j;
+    double al[3], be[3];
+    Z[0] = 0.0;
+    Z[1] = z[2];
+    Z[2] = -z[1];
+    Z[3] = -z[2];
+    Z[4] = 0.0;
+    Z[5] = z[0];
+    Z[6] = z[1];
+    Z[7] = -z[0];
+    Z[8] = 0.0;
+    vs[0] = a;
+    vs[1] = b;
+    vs[2] = c;
+    al[0] = -1.0;
+    al[1] = 1.0;
+    al[2] = 0.0;
+    be[0] = -1.0;
+    be[1] = 0.0;
+    be[2] = 1.0;
+    for (v = 0; v < 3; ++v)
+        for (w = 0; w < 3; ++w) {
+            double p = al[v] * be[w], q = be[v] * al[w];
+            if (p == 0.0 && q == 0.0) continue;
+            for (i = 0; i < 3; ++i)
+                for (j = 0; j < 3; ++j) H[(3 * vs[v] + i) * 18 + 3 * vs[w] + j] += p * Z[3 * i + j] + q * Z[3 * j + i];
+        }
+}
+
+/* u = y/|y|, P = (I − uuᵀ)/|y| (Jacobian of the normalisation). Returns |y|. */
+static double wr__normalize(const double y[3], double u[3], double P[9]) {
+    double r = sqrt(y[0] * y[0] + y[1] * y[1] + y[2] * y[2]);
+    int i, j;
+    if (!(r > 0.0)) return 0.0;
+    for (i = 0; i < 3; ++i) u[i] = y[i] / r;
+    if (P)
+        for (i = 0; i < 3; ++i)
+            for (j = 0; j < 3; ++j) P[3 * i + j] = ((i == j ? 1.0 : 0.0) - u[i] * u[j]) / r;
+    return r;
+}
+
+/* Σ_c w_c ∂²u_c/∂y∂y for u = y/|y|: [−(w uᵀ + u wᵀ) − (w·u) I + 3 (w·u) u uᵀ] / |y|². */
+static void wr__normalize_hess(const double u[3], double r, const double w[3], double N2[9]) {
+    double wu = w[0] * u[0] + w[1] * u[1] + w[2] * u[2];
+    int i, j;
+    for (i = 0; i < 3; ++i)
+        for (j = 0; j < 3; ++j)
+            N2[3 * i + j] = (-(w[i] * u[j] + u[i] * w[j]) - (i == j ? wu : 0.0) + 3.0 * wu * u[i] * u[j]) / (r * r);
+}
+
+static void wr__m3_mul_J(const double *M, const double *J, double *out) {
+    int i, k, c;
+    for (i = 0; i < 3; ++i)
+        for (c = 0; c < 18; ++c) {
+            double t = 0.0;
+            for (k = 0; k < 3; ++k) t += M[3 * i + k] * J[k * 18 + c];
+            out[i * 18 + c] = t;
+        }
+}
+
+static void wr__m3_mulv(const double *M, const double *v, double *out) {
+    int i;
+    for (i = 0; i < 3; ++i) out[i] = M[3 * i] * v[0] + M[3 * i + 1] * v[1] + M[3 * i + 2] * v[2];
+}
+
+/* H += s · Jaᵀ A Jb (A 3×3, NULL = identity). */
+static void wr__add_JtAJ(double *H, const double *Ja, const double *A, const double *Jb, double s) {
+    double AJ[54];
+    int r, c, k;
+    if (A)
+        wr__m3_mul_J(A, Jb, AJ);
+    else
+        memcpy(AJ, Jb, sizeof AJ);
+    for (r = 0; r < 18; ++r) {
+        double a0 = Ja[r], a1 = Ja[18 + r], a2 = Ja[36 + r];
+        if (a0 == 0.0 && a1 == 0.0 && a2 == 0.0) continue;
+        for (c = 0; c < 18; ++c) H[r * 18 + c] += s * (a0 * AJ[c] + a1 * AJ[18 + c] + a2 * AJ[36 + c]);
+    }
+    (void)k;
+}
+
+WRDEF wr_status wr_shell_midedge_element(const double x[18], int32_t mask, const double Q[9], const double *bbar,
+                                         double *E, double *g, double *H, double *bout) {
+    double Nf[3], JNf[54], nf[3], Pf[9], Jnf[54], rf;
+    double Ng[3][3], JNg[3][54], ng[3][3], Png[3][9], rg[3];
+    double sv[3][3], m[3][3], Ps[3][9], rs[3], Jm[3][54], Js[3][54];
+    double e1[3], e2[3], Je1[54], Je2[54], b[3], db[3], gb[3];
+    double dm[3][3], Jdm[3][54], Jb[3][54];
+    int k, i, c, need = (g || H);
+    /* comp → (edge vector, mid-edge normals plus/minus): b11 = 2e1·(n̂1−n̂0), b22 = 2e2·(n̂2−n̂0),
+     * b12 = 2e2·(n̂1−n̂0) (TFW App. A). */
+    static const int cplus[3] = {1, 2, 1};
+
+    rf = 0.0;
+    wr__cross_jac(x, 0, 1, 2, Nf, JNf);
+    rf = wr__normalize(Nf, nf, Pf);
+    if (!(rf > 0.0)) return WR_ERR_GEOMETRY;
+    wr__m3_mul_J(Pf, JNf, Jnf);
+    for (k = 0; k < 3; ++k) {
+        if (mask & (1 << k)) {
+            int a = (k + 1) % 3, bb = (k + 2) % 3, q = 3 + k;
+            double Jng[54];
+            /* the neighbour traverses the shared edge b → a; its third vertex is q */
+            wr__cross_jac(x, bb, a, q, Ng[k], JNg[k]);
+            rg[k] = wr__normalize(Ng[k], ng[k], Png[k]);
+            if (!(rg[k] > 0.0)) return WR_ERR_GEOMETRY;
+            for (i = 0; i < 3; ++i) sv[k][i] = nf[i] + ng[k][i];
+            rs[k] = wr__normalize(sv[k], m[k], Ps[k]);
+            if (!(rs[k] > 1e-12)) return WR_ERR_GEOMETRY; /* faces folded onto each other */
+            if (need) {
+                wr__m3_mul_J(Png[k], JNg[k], Jng);
+                for (i = 0; i < 54; ++i) Js[k][i] = Jnf[i] + Jng[i];
+                wr__m3_mul_J(Ps[k], Js[k], Jm[k]);
+            }
+        } else {
+            for (i = 0; i < 3; ++i) m[k][i] = nf[i];
+            if (need) memcpy(Jm[k], Jnf, sizeof Jnf);
+        }
+    }
+    for (i = 0; i < 3; ++i) {
+        e1[i] = x[3 + i] - x[i];
+        e2[i] = x[6 + i] - x[i];
+    }
+    for (c = 0; c < 3; ++c) {
+        const double *e = c == 0 ? e1 : e2;
+        for (i = 0; i < 3; ++i) dm[c][i] = m[cplus[c]][i] - m[0][i];
+        b[c] = 2.0 * (e[0] * dm[c][0] + e[1] * dm[c][1] + e[2] * dm[c][2]);
+    }
+    if (bout)
+        for (c = 0; c < 3; ++c) bout[c] = b[c];
+    if (!Q) return WR_OK;
+    for (c = 0; c < 3; ++c) db[c] = b[c] - (bbar ? bbar[c] : 0.0);
+    wr__m3_mulv(Q, db, gb);
+    if (E) *E = 0.5 * (db[0] * gb[0] + db[1] * gb[1] + db[2] * gb[2]);
+    if (!need) return WR_OK;
+
+    memset(Je1, 0, sizeof Je1);
+    memset(Je2, 0, sizeof Je2);
+    for (i = 0; i < 3; ++i) {
+        Je1[i * 18 + i] = -1.0;
+        Je1[i * 18 + 3 + i] = 1.0;
+        Je2[i * 18 + i] = -1.0;
+        Je2[i * 18 + 6 + i] = 1.0;
+    }
+    for (c = 0; c < 3; ++c) {
+        const double *e = c == 0 ? e1 : e2;
+        const double *Je = c == 0 ? Je1 : Je2;
+        int col;
+        for (i = 0; i < 54; ++i) Jdm[c][i] = Jm[cplus[c]][i] - Jm[0][i];
+        for (col = 0; col < 18; ++col) {
+            double t = 0.0;
+            for (i = 0; i < 3; ++i) t += dm[c][i] * Je[i * 18 + col] + e[i] * Jdm[c][i * 18 + col];
+            Jb[c][col] = 2.0 * t;
+        }
+    }
+    if (g)
+        for (i = 0; i < 18; ++i) g[i] = gb[0] * Jb[0][i] + gb[1] * Jb[1][i] + gb[2] * Jb[2][i];
+    if (H) {
+        double w[3][3], vf[3], vg[3][3], N2[9], z[3];
+        int r, col;
+        memset(H, 0, sizeof(double) * 324);
+        /* Gauss–Newton part Jbᵀ Q Jb */
+        for (r = 0; r < 18; ++r)
+            for (col = 0; col < 18; ++col) {
+                double t = 0.0;
+                int p, q;
+                for (p = 0; p < 3; ++p)
+                    for (q = 0; q < 3; ++q) t += Jb[p][r] * Q[3 * p + q] * Jb[q][col];
+                H[r * 18 + col] = t;
+            }
+        /* Σ_c gb_c ∇²b_c: the bilinear cross terms 2(Jeᵀ Jdm + Jdmᵀ Je) … */
+        for (c = 0; c < 3; ++c) {
+            const double *Je = c == 0 ? Je1 : Je2;
+            wr__add_JtAJ(H, Je, NULL, Jdm[c], 2.0 * gb[c]);
+            wr__add_JtAJ(H, Jdm[c], NULL, Je, 2.0 * gb[c]);
+        }
+        /* … and the mid-edge normals' second derivatives contracted with w_k = ∂E/∂n̂_k. */
+        for (i = 0; i < 3; ++i) {
+            w[1][i] = 2.0 * (gb[0] * e1[i] + gb[2] * e2[i]);
+            w[2][i] = 2.0 * gb[1] * e2[i];
+            w[0][i] = -w[1][i] - w[2][i];
+        }
+        vf[0] = vf[1] = vf[2] = 0.0;
+        for (k = 0; k < 3; ++k) {
+            if (mask & (1 << k)) {
+                double v[3];
+                wr__normalize_hess(m[k], rs[k], w[k], N2);
+                wr__add_JtAJ(H, Js[k], N2, Js[k], 1.0);
+                wr__m3_mulv(Ps[k], w[k], v);
+                for (i = 0; i < 3; ++i) {
+                    vf[i] += v[i];
+                    vg[k][i] = v[i];
+                }
+            } else {
+                for (i = 0; i < 3; ++i) vf[i] += w[k][i];
+            }
+        }
+        wr__normalize_hess(nf, rf, vf, N2);
+        wr__add_JtAJ(H, JNf, N2, JNf, 1.0);
+        wr__m3_mulv(Pf, vf, z);
+        wr__cross_hess_add(0, 1, 2, z, H);
+        for (k = 0; k < 3; ++k) {
+            if (!(mask & (1 << k))) continue;
+            wr__normalize_hess(ng[k], rg[k], vg[k], N2);
+            wr__add_JtAJ(H, JNg[k], N2, JNg[k], 1.0);
+            wr__m3_mulv(Png[k], vg[k], z);
+            wr__cross_hess_add((k + 2) % 3, (k + 1) % 3, 3 + k, z, H);
+        }
+        /* symmetrise round-off */
+        for (r = 0; r < 18; ++r)
+            for (col = r + 1; col < 18; ++col) {
+                double t = 0.5 * (H[r * 18 + col] + H[col * 18 + r]);
+                H[r * 18 + col] = H[col * 18 + r] = t;
+            }
+    }
+    return WR_OK;
+}
+
+WRDEF int32_t wr_shell_face_stencil(const wr_shell *s, int32_t f, int32_t verts[6]) {
+    int32_t mask = 0;
+    int k;
+    for (k = 0; k < 3; ++k) {
+        verts[k] = s->faces[3 * f + k];
+        verts[3 + k] = s->opp[3 * f + k];
+        if (verts[3 + k] >= 0) mask |= 1 << k;
+    }
+    return mask;
+}
+
+static void wr__shell_gather(const wr_shell *s, int32_t f, const double *x, int32_t verts[6], int32_t *mask,
+                             double x18[18]) {
+    int k, i;
+    *mask = wr_shell_face_stencil(s, f, verts);
+    for (k = 0; k < 6; ++k)
+        for (i = 0; i < 3; ++i) x18[3 * k + i] = verts[k] >= 0 ? x[3 * verts[k] + i] : 0.0;
+}
+
+/* ---- creation ------------------------------------------------------------------------------ */
+
+static void wr__shell_voigt_iso(double Y, double nu, double scale, double C[9]) {
+    double k = scale * Y / (1.0 - nu * nu);
+    memset(C, 0, sizeof(double) * 9);
+    C[0] = C[4] = k;
+    C[1] = C[3] = k * nu;
+    C[8] = k * 0.5 * (1.0 - nu);
+}
+
+/* Q = A Pᵀ C_b P with P: δb (b11, b22, b12) → κ = Voigt of dinvᵀ δb dinv. */
+static void wr__shell_qbend(const double *dinv, double A, const double *Cb, double Q[9]) {
+    double r1x = dinv[0], r1y = dinv[1], r2x = dinv[2], r2y = dinv[3], P[9], CP[9];
+    int i, j, k;
+    P[0] = r1x * r1x;
+    P[3] = r1y * r1y;
+    P[6] = 2.0 * r1x * r1y;
+    P[1] = r2x * r2x;
+    P[4] = r2y * r2y;
+    P[7] = 2.0 * r2x * r2y;
+    P[2] = 2.0 * r1x * r2x;
+    P[5] = 2.0 * r1y * r2y;
+    P[8] = 2.0 * (r1x * r2y + r2x * r1y);
+    for (i = 0; i < 3; ++i)
+        for (j = 0; j < 3; ++j) {
+            CP[3 * i + j] = 0.0;
+            for (k = 0; k < 3; ++k) CP[3 * i + j] += Cb[3 * i + k] * P[3 * k + j];
+        }
+    for (i = 0; i < 3; ++i)
+        for (j = 0; j < 3; ++j) {
+            Q[3 * i + j] = 0.0;
+            for (k = 0; k < 3; ++k) Q[3 * i + j] += A * P[3 * k + i] * CP[3 * k + j];
+        }
+}
+
+WRDEF void wr_shell_free(wr_shell *s) {
+    if (!s) return;
+    wr_free(s->faces);
+    wr_free(s->opp);
+    wr_free(s->dinv);
+    wr_free(s->area);
+    wr_free(s->qbend);
+    wr_free(s->bbar);
+    wr_free(s->qb_start);
+    wr_free(s->qb_vert);
+    wr_free(s->qb_w);
+    wr_free(s->qb_coef);
+    memset(s, 0, sizeof *s);
+}
+
+static double wr__cot2(const double *o, const double *p, const double *q) {
+    /* cotangent of the angle at o in triangle (o, p, q), 2D */
+    double ax = p[0] - o[0], ay = p[1] - o[1], bx = q[0] - o[0], by = q[1] - o[1];
+    return (ax * bx + ay * by) / fabs(ax * by - ay * bx);
+}
+
+static wr_status wr__shell_build_qb(wr_shell *s, const wr_mesh *m, const double *uvall, wr_diag *diag) {
+    int8_t *bnd = (int8_t *)wr_calloc_array((size_t)m->nv, 1);
+    double *avor = (double *)wr_calloc_array((size_t)m->nv, sizeof(double));
+    int32_t v, e, nst = 0, total = 0, cap = 0;
+    int32_t *lv = NULL;
+    double *lw = NULL;
+    if (!bnd || !avor) {
+        wr_free(bnd);
+        wr_free(avor);
+        return wr_fail(diag, WR_ERR_NOMEM, -1, "quadratic bending: out of memory");
+    }
+    for (e = 0; e < m->ne; ++e)
+        if (m->edge_faces[2 * e] < 0 || m->edge_faces[2 * e + 1] < 0) bnd[m->edges[2 * e]] = bnd[m->edges[2 * e + 1]] = 1;
+    /* mixed Voronoi areas (Meyer et al. 2003) */
+    {
+        int32_t f;
+        for (f = 0; f < m->nf; ++f) {
+            const double *uv = uvall + 6 * f;
+            double A = s->area[f], cot[3];
+            int c, obtuse = -1;
+            for (c = 0; c < 3; ++c) {
+                cot[c] = wr__cot2(uv + 2 * c, uv + 2 * ((c + 1) % 3), uv + 2 * ((c + 2) % 3));
+                if (cot[c] < 0.0) obtuse = c;
+            }
+            for (c = 0; c < 3; ++c) {
+                int32_t vi = m->faces[3 * f + c];
+                if (obtuse < 0) {
+                    int a = (c + 1) % 3, b = (c + 2) % 3;
+                    double la2 = (uv[2 * a] - uv[2 * c]) * (uv[2 * a] - uv[2 * c]) +
+                                 (uv[2 * a + 1] - uv[2 * c + 1]) * (uv[2 * a + 1] - uv[2 * c + 1]);
+                    double lb2 = (uv[2 * b] - uv[2 * c]) * (uv[2 * b] - uv[2 * c]) +
+                                 (uv[2 * b + 1] - uv[2 * c + 1]) * (uv[2 * b + 1] - uv[2 * c + 1]);
+                    avor[vi] += 0.125 * (la2 * cot[b] + lb2 * cot[a]);
+                } else {
+                    avor[vi] += obtuse == c ? 0.5 * A : 0.25 * A;
+                }
+            }
+        }
+    }
+    for (v = 0; v < m->nv; ++v)
+        if (!bnd[v] && m->vf_start[v + 1] > m->vf_start[v]) {
+            ++nst;
+            total += 1 + 2 * (m->vf_start[v + 1] - m->vf_start[v]);
+        }
+    s->n_qb = nst;
+    s->qb_start = (int32_t *)wr_alloc_array((size_t)nst + 1, sizeof(int32_t));
+    s->qb_vert = (int32_t *)wr_alloc_array((size_t)total, sizeof(int32_t));
+    s->qb_w = (double *)wr_alloc_array((size_t)total, sizeof(double));
+    s->qb_coef = (double *)wr_alloc_array((size_t)nst, sizeof(double));
+    if (!s->qb_start || !s->qb_vert || !s->qb_w || !s->qb_coef) {
+        wr_free(bnd);
+        wr_free(avor);
+        return wr_fail(diag, WR_ERR_NOMEM, -1, "quadratic bending: out of memory");
+    }
+    nst = 0;
+    total = 0;
+    (void)cap;
+    for (v = 0; v < m->nv; ++v) {
+        int32_t j, n = 1, t;
+        double wsum = 0.0;
+        if (bnd[v] || m->vf_start[v + 1] <= m->vf_start[v]) continue;
+        s->qb_start[nst] = total;
+        lv = s->qb_vert + total;
+        lw = s->qb_w + total;
+        lv[0] = v;
+        lw[0] = 0.0;
+        for (j = m->vf_start[v]; j < m->vf_start[v + 1]; ++j) {
+            int32_t f = m->vf[j], c = 0, side;
+            const double *uv = uvall + 6 * f;
+            while (m->faces[3 * f + c] != v) ++c;
+            /* edge (v, a) gets ½cot of the angle at b; edge (v, b) gets ½cot of the angle at a */
+            for (side = 0; side < 2; ++side) {
+                int a = (c + 1 + side) % 3, b = (c + 2 - side) % 3;
+                int32_t va = m->faces[3 * f + a];
+                double wv = 0.5 * wr__cot2(uv + 2 * b, uv + 2 * c, uv + 2 * a);
+                for (t = 1; t < n; ++t)
+                    if (lv[t] == va) break;
+                if (t == n) {
+                    lv[n] = va;
+                    lw[n] = 0.0;
+                    ++n;
+                }
+                lw[t] += wv;
+                wsum += wv;
+            }
+        }
+        lw[0] = -wsum;
+        if (!(avor[v] > 0.0)) {
+            wr_free(bnd);
+            wr_free(avor);
+            return wr_fail(diag, WR_ERR_GEOMETRY, v, "quadratic bending: vertex %d has zero rest area", (int)v);
+        }
+        s->qb_coef[nst] = s->bending_stiffness / avor[v];
+        total += n;
+        ++nst;
+    }
+    s->qb_start[nst] = total;
+    wr_free(bnd);
+    wr_free(avor);
+    return WR_OK;
+}
+
+static int wr__shell_finite(double v) { return v == v && v - v == 0.0; }
+
+WRDEF wr_status wr_shell_create(wr_shell *s, const wr_mesh *m, const wr_shell_desc *desc, wr_diag *diag) {
+    int32_t f, k, i;
+    int is3d, flat_pos = 1;
+    double *uvall = NULL;
+    wr_status st = WR_OK;
+    const double *R3;
+    if (!s) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "shell: NULL output");
+    memset(s, 0, sizeof *s);
+    if (!m || !desc || !m->faces || m->nf < 1 || m->nv < 3)
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "shell: NULL mesh/desc or empty mesh");
+    if ((int)desc->membrane < 0 || (int)desc->membrane > 2)
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "shell: unknown membrane model %d", (int)desc->membrane);
+    if ((int)desc->bending < 0 || (int)desc->bending > 2)
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "shell: unknown bending model %d", (int)desc->bending);
+    if (!(desc->thickness > 0.0) || !wr__shell_finite(desc->thickness))
+        return wr_fail(diag, WR_ERR_DOMAIN, -1, "shell: thickness %g m must be > 0", desc->thickness);
+    if (!(desc->density >= 0.0) || !wr__shell_finite(desc->density))
+        return wr_fail(diag, WR_ERR_DOMAIN, -1, "shell: density %g kg/m^3 must be >= 0", desc->density);
+    if (!(desc->bending_stiffness >= 0.0) || !wr__shell_finite(desc->bending_stiffness))
+        return wr_fail(diag, WR_ERR_DOMAIN, -1, "shell: bending_stiffness %g N*m must be >= 0",
+                       desc->bending_stiffness);
+    s->nv = m->nv;
+    s->nf = m->nf;
+    s->membrane = desc->membrane;
+    s->bending = desc->bending;
+    s->thickness = desc->thickness;
+    s->density = desc->density;
+    s->orthotropic = desc->orthotropic != 0;
+    if (!s->orthotropic) {
+        double Y = desc->young, nu = desc->poisson, h = desc->thickness;
+        if (!(Y > 0.0) || !wr__shell_finite(Y)) return wr_fail(diag, WR_ERR_DOMAIN, -1, "shell: young %g Pa must be > 0", Y);
+        if (!(nu > -1.0 && nu < 1.0))
+            return wr_fail(diag, WR_ERR_DOMAIN, -1, "shell: poisson %g outside (-1, 1) (plane-stress stability)", nu);
+        s->young = Y;
+        s->poisson = nu;
+        s->bending_stiffness =
+            desc->bending_stiffness > 0.0 ? desc->bending_stiffness : Y * h * h * h / (12.0 * (1.0 - nu * nu));
+        wr__shell_voigt_iso(Y, nu, h, s->C_mem);
+        wr__shell_voigt_iso(1.0 - nu * nu, nu, s->bending_stiffness, s->C_bend); /* B·[[1,ν,0],[ν,1,0],[0,0,(1−ν)/2]] */
+    } else {
+        double E1 = desc->young_warp, E2 = desc->young_weft, G = desc->shear_modulus, n12 = desc->poisson_warp;
+        double h = desc->thickness, n21, den, C[9];
+        if (!(E1 > 0.0) || !(E2 > 0.0) || !(G > 0.0) || !wr__shell_finite(E1 + E2 + G))
+            return wr_fail(diag, WR_ERR_DOMAIN, -1, "shell: orthotropic moduli E1=%g E2=%g G12=%g Pa must be > 0", E1,
+                           E2, G);
+        if (!(n12 * n12 * E2 / E1 < 1.0))
+            return wr_fail(diag, WR_ERR_DOMAIN, -1, "shell: poisson_warp %g violates nu12^2*E2/E1 < 1", n12);
+        if (desc->membrane == WR_MEMBRANE_TFT || desc->bending == WR_BENDING_QUADRATIC)
+            return wr_fail(diag, WR_ERR_UNSUPPORTED, -1, "shell: TFT membrane and quadratic bending are isotropic-only");
+        if (desc->bending_stiffness > 0.0)
+            return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "shell: bending_stiffness override is isotropic-only");
+        if (desc->rest_pos3 || (!m->rest && !m->corner_rest))
+            return wr_fail(diag, WR_ERR_UNSUPPORTED, -1, "shell: orthotropy needs a 2D rest domain for the grain");
+        n21 = n12 * E2 / E1;
+        den = 1.0 - n12 * n21;
+        C[0] = E1 / den;
+        C[1] = C[3] = n12 * E2 / den;
+        C[4] = E2 / den;
+        C[2] = C[5] = C[6] = C[7] = 0.0;
+        C[8] = G;
+        for (i = 0; i < 9; ++i) {
+            s->C_mem[i] = h * C[i];
+            s->C_bend[i] = h * h * h / 12.0 * C[i];
+        }
+        s->young = E1;
+        s->poisson = n12;
+        s->bending_stiffness = s->C_bend[0];
+    }
+    if (desc->rest_pos3) {
+        for (i = 0; i < 3 * m->nv; ++i)
+            if (!wr__shell_finite(desc->rest_pos3[i]))
+                return wr_fail(diag, WR_ERR_DOMAIN, i / 3, "shell: rest_pos3 of vertex %d is not finite", (int)(i / 3));
+    }
+    if (!m->rest && !m->corner_rest)
+        for (i = 0; i < m->nv; ++i)
+            if (m->pos[3 * i + 2] != 0.0) flat_pos = 0;
+    is3d = desc->rest_pos3 != NULL || (!m->rest && !m->corner_rest && !flat_pos);
+    R3 = desc->rest_pos3 ? desc->rest_pos3 : m->pos;
+    if (is3d && desc->bending == WR_BENDING_QUADRATIC) {
+        wr_shell_free(s);
+        return wr_fail(diag, WR_ERR_UNSUPPORTED, -1, "shell: quadratic bending assumes a flat rest (TFW Sec. 4.1)");
+    }
+    s->faces = (int32_t *)wr_alloc_array((size_t)m->nf * 3, sizeof(int32_t));
+    s->opp = (int32_t *)wr_alloc_array((size_t)m->nf * 3, sizeof(int32_t));
+    s->dinv = (double *)wr_alloc_array((size_t)m->nf * 4, sizeof(double));
+    s->area = (double *)wr_alloc_array((size_t)m->nf, sizeof(double));
+    s->qbend = (double *)wr_calloc_array((size_t)m->nf * 9, sizeof(double));
+    uvall = (double *)wr_alloc_array((size_t)m->nf * 6, sizeof(double));
+    if (is3d) s->bbar = (double *)wr_calloc_array((size_t)m->nf * 3, sizeof(double));
+    if (!s->faces || !s->opp || !s->dinv || !s->area || !s->qbend || !uvall || (is3d && !s->bbar)) {
+        st = wr_fail(diag, WR_ERR_NOMEM, -1, "shell: out of memory (%d faces)", (int)m->nf);
+        goto fail;
+    }
+    memcpy(s->faces, m->faces, sizeof(int32_t) * 3 * (size_t)m->nf);
+    for (f = 0; f < m->nf; ++f)
+        for (k = 0; k < 3; ++k) {
+            int32_t e = m->face_edges[3 * f + k];
+            int32_t g = m->edge_faces[2 * e] == f ? m->edge_faces[2 * e + 1] : m->edge_faces[2 * e];
+            int32_t a = m->faces[3 * f + (k + 1) % 3], b = m->faces[3 * f + (k + 2) % 3], q = -1, c;
+            if (g >= 0)
+                for (c = 0; c < 3; ++c) {
+                    int32_t vv = m->faces[3 * g + c];
+                    if (vv != a && vv != b) q = vv;
+                }
+            s->opp[3 * f + k] = q;
+        }
+    for (f = 0; f < m->nf; ++f) {
+        double *uv = uvall + 6 * f, D[4], det, ang, cs, sn;
+        if (is3d) {
+            const int32_t *t = m->faces + 3 * f;
+            double e1[3], e2[3], l1, n[3], nn, t2[3];
+            for (i = 0; i < 3; ++i) {
+                e1[i] = R3[3 * t[1] + i] - R3[3 * t[0] + i];
+                e2[i] = R3[3 * t[2] + i] - R3[3 * t[0] + i];
+            }
+            l1 = sqrt(e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]);
+            n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+            n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+            n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+            nn = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+            if (!(l1 > 0.0) || !(nn > 0.0)) {
+                st = wr_fail(diag, WR_ERR_GEOMETRY, f, "shell: rest face %d is degenerate", (int)f);
+                goto fail;
+            }
+            /* in-plane frame (e1/|e1|, n̂ × e1/|e1|): corner 2 lands at v = |e1×e2|/|e1| > 0 */
+            t2[0] = (n[1] * e1[2] - n[2] * e1[1]) / (nn * l1);
+            t2[1] = (n[2] * e1[0] - n[0] * e1[2]) / (nn * l1);
+            t2[2] = (n[0] * e1[1] - n[1] * e1[0]) / (nn * l1);
+            uv[0] = uv[1] = 0.0;
+            uv[2] = l1;
+            uv[3] = 0.0;
+            uv[4] = (e1[0] * e2[0] + e1[1] * e2[1] + e1[2] * e2[2]) / l1;
+            uv[5] = t2[0] * e2[0] + t2[1] * e2[1] + t2[2] * e2[2];
+        } else {
+            wr_mesh_face_rest(m, f, uv);
+        }
+        D[0] = uv[2] - uv[0];
+        D[1] = uv[4] - uv[0];
+        D[2] = uv[3] - uv[1];
+        D[3] = uv[5] - uv[1];
+        det = D[0] * D[3] - D[1] * D[2];
+        if (!(det > 0.0) || !wr__shell_finite(det)) {
+            st = wr_fail(diag, WR_ERR_GEOMETRY, f, "shell: rest face %d has area %g (degenerate or clockwise)", (int)f,
+                         0.5 * det);
+            goto fail;
+        }
+        s->area[f] = 0.5 * det;
+        s->total_area += 0.5 * det;
+        /* material frame: coordinates along (cos θ, sin θ) and its left normal, dinv = D⁻¹ R(θ) */
+        ang = (s->orthotropic && desc->grain_angle) ? desc->grain_angle[f] : 0.0;
+        if (!wr__shell_finite(ang)) {
+            st = wr_fail(diag, WR_ERR_DOMAIN, f, "shell: grain_angle of face %d is not finite", (int)f);
+            goto fail;
+        }
+        cs = cos(ang);
+        sn = sin(ang);
+        {
+            double i00 = D[3] / det, i01 = -D[1] / det, i10 = -D[2] / det, i11 = D[0] / det;
+            double *di = s->dinv + 4 * f;
+            di[0] = i00 * cs + i01 * sn;
+            di[1] = -i00 * sn + i01 * cs;
+            di[2] = i10 * cs + i11 * sn;
+            di[3] = -i10 * sn + i11 * cs;
+        }
+        if (s->bending == WR_BENDING_MIDEDGE) wr__shell_qbend(s->dinv + 4 * f, s->area[f], s->C_bend, s->qbend + 9 * f);
+    }
+    if (is3d) {
+        for (f = 0; f < m->nf; ++f) {
+            int32_t verts[6], mask;
+            double x18[18];
+            wr__shell_gather(s, f, R3, verts, &mask, x18);
+            if (wr_shell_midedge_element(x18, mask, NULL, NULL, NULL, NULL, NULL, s->bbar + 3 * f) != WR_OK) {
+                st = wr_fail(diag, WR_ERR_GEOMETRY, f, "shell: rest mid-edge normal of face %d undefined", (int)f);
+                goto fail;
+            }
+        }
+    }
+    if (s->bending == WR_BENDING_QUADRATIC) {
+        st = wr__shell_build_qb(s, m, uvall, diag);
+        if (st != WR_OK) goto fail;
+    }
+    wr_free(uvall);
+    return WR_OK;
+fail:
+    wr_free(uvall);
+    wr_shell_free(s);
+    return st;
+}
+
+/* ---- mesh-level evaluation ----------------------------------------------------------------- */
+
+static wr_status wr__shell_eval(const wr_shell *s, const double *x, double *Em, double *Eb, double *grad,
+                                wr_diag *diag) {
+    int32_t f, st, k, i;
+    double em = 0.0, eb = 0.0;
+    if (!s || !x || !s->faces) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "shell energy: NULL shell or x");
+    for (f = 0; f < 3 * s->nv; ++f)
+        if (!wr__shell_finite(x[f]))
+            return wr_fail(diag, WR_ERR_DOMAIN, f / 3, "shell energy: vertex %d has a non-finite coordinate", (int)(f / 3));
+    if (grad) memset(grad, 0, sizeof(double) * 3 * (size_t)s->nv);
+    for (f = 0; f < s->nf; ++f) {
+        int32_t verts[6], mask;
+        double x18[18], g9[9], g18[18], e = 0.0;
+        wr__shell_gather(s, f, x, verts, &mask, x18);
+        if (s->membrane != WR_MEMBRANE_NONE) {
+            em += wr_shell_membrane_element(s, f, x18, grad ? g9 : NULL, NULL);
+            if (grad)
+                for (k = 0; k < 3; ++k)
+                    for (i = 0; i < 3; ++i) grad[3 * verts[k] + i] += g9[3 * k + i];
+        }
+        if (s->bending == WR_BENDING_MIDEDGE) {
+            if (wr_shell_midedge_element(x18, mask, s->qbend + 9 * f, s->bbar ? s->bbar + 3 * f : NULL, &e,
+                                         grad ? g18 : NULL, NULL, NULL) != WR_OK)
+                return wr_fail(diag, WR_ERR_GEOMETRY, f, "shell energy: face %d has an undefined normal", (int)f);
+            eb += e;
+            if (grad)
+                for (k = 0; k < 6; ++k)
+                    if (verts[k] >= 0)
+                        for (i = 0; i < 3; ++i) grad[3 * verts[k] + i] += g18[3 * k + i];
+        }
+    }
+    if (s->bending == WR_BENDING_QUADRATIC)
+        for (st = 0; st < s->n_qb; ++st) {
+            double lx[3] = {0.0, 0.0, 0.0};
+            int32_t j;
+            for (j = s->qb_start[st]; j < s->qb_start[st + 1]; ++j)
+                for (i = 0; i < 3; ++i) lx[i] += s->qb_w[j] * x[3 * s->qb_vert[j] + i];
+            eb += 0.5 * s->qb_coef[st] * (lx[0] * lx[0] + lx[1] * lx[1] + lx[2] * lx[2]);
+            if (grad)
+                for (j = s->qb_start[st]; j < s->qb_start[st + 1]; ++j)
+                    for (i = 0; i < 3; ++i) grad[3 * s->qb_vert[j] + i] += s->qb_coef[st] * s->qb_w[j] * lx[i];
+        }
+    if (!wr__shell_finite(em + eb)) return wr_fail(diag, WR_ERR_DOMAIN, -1, "shell energy is not finite (%g)", em + eb);
+    if (Em) *Em = em;
+    if (Eb) *Eb = eb;
+    return WR_OK;
+}
+
+WRDEF wr_status wr_shell_energy(const wr_shell *s, const double *x, double *E, double *grad, wr_diag *diag) {
+    double em = 0.0, eb = 0.0;
+    wr_status st = wr__shell_eval(s, x, &em, &eb, grad, diag);
+    if (st == WR_OK && E) *E = em + eb;
+    return st;
+}
+
+WRDEF wr_status wr_shell_energy_parts(const wr_shell *s, const double *x, double *E_membrane, double *E_bending,
+                                      wr_diag *diag) {
+    return wr__shell_eval(s, x, E_membrane, E_bending, NULL, diag);
+}
+
+WRDEF wr_status wr_shell_hessian_elements(const wr_shell *s, const double *x, int32_t project_spd,
+                                          const wr_hess_sink *sink, wr_diag *diag) {
+    int32_t f, st;
+    if (!s || !x || !sink || !sink->add || !s->faces)
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "shell Hessian: NULL shell, x or sink");
+    for (f = 0; f < 3 * s->nv; ++f)
+        if (!wr__shell_finite(x[f]))
+            return wr_fail(diag, WR_ERR_DOMAIN, f / 3, "shell Hessian: vertex %d has a non-finite coordinate", (int)(f / 3));
+    if (s->membrane != WR_MEMBRANE_NONE || s->bending == WR_BENDING_MIDEDGE)
+        for (f = 0; f < s->nf; ++f) {
+            int32_t verts[6], mask, idx[6], n = 0, a, b, i, j;
+            double x18[18], H18[324], H9[81], Ke[324];
+            wr_status rs;
+            wr__shell_gather(s, f, x, verts, &mask, x18);
+            if (s->bending == WR_BENDING_MIDEDGE) {
+                if (wr_shell_midedge_element(x18, mask, s->qbend + 9 * f, s->bbar ? s->bbar + 3 * f : NULL, NULL, NULL,
+                                             H18, NULL) != WR_OK)
+                    return wr_fail(diag, WR_ERR_GEOMETRY, f, "shell Hessian: face %d has an undefined normal", (int)f);
+            } else {
+                memset(H18, 0, sizeof H18);
+            }
+            if (s->membrane != WR_MEMBRANE_NONE) {
+                wr_shell_membrane_element(s, f, x18, NULL, H9);
+                for (a = 0; a < 9; ++a)
+                    for (b = 0; b < 9; ++b) H18[a * 18 + b] += H9[a * 9 + b];
+            }
+            for (a = 0; a < 6; ++a)
+                if (verts[a] >= 0) idx[n++] = a;
+            for (a = 0; a < n; ++a)
+                for (b = 0; b < n; ++b)
+                    for (i = 0; i < 3; ++i)
+                        for (j = 0; j < 3; ++j)
+                            Ke[(3 * a + i) * 3 * n + 3 * b + j] = H18[(3 * idx[a] + i) * 18 + 3 * idx[b] + j];
+            if (project_spd) wr_dense_project_spd(3 * n, Ke, 0.0);
+            for (a = 0; a < n; ++a) idx[a] = verts[idx[a]];
+            rs = sink->add(sink->user, n, idx, Ke);
+            if (rs != WR_OK) return wr_fail(diag, rs, f, "shell Hessian: sink rejected face %d", (int)f);
+        }
+    if (s->bending == WR_BENDING_QUADRATIC) {
+        double *Ke = NULL;
+        int32_t cap = 0;
+        for (st = 0; st < s->n_qb; ++st) {
+            int32_t j0 = s->qb_start[st], n = s->qb_start[st + 1] - j0, a, b, i;
+            wr_status rs;
+            if (n > cap) {
+                double *nk = (double *)wr_realloc_array(Ke, (size_t)9 * (size_t)n * (size_t)n, sizeof(double));
+                if (!nk) {
+                    wr_free(Ke);
+                    return wr_fail(diag, WR_ERR_NOMEM, st, "shell Hessian: out of memory");
+                }
+                Ke = nk;
+                cap = n;
+            }
+            memset(Ke, 0, sizeof(double) * 9 * (size_t)n * (size_t)n);
+            for (a = 0; a < n; ++a)
+                for (b = 0; b < n; ++b)
+                    for (i = 0; i < 3; ++i)
+                        Ke[(3 * a + i) * 3 * n + 3 * b + i] = s->qb_coef[st] * s->qb_w[j0 + a] * s->qb_w[j0 + b];
+            rs = sink->add(sink->user, n, s->qb_vert + j0, Ke);
+            if (rs != WR_OK) {
+                wr_free(Ke);
+                return wr_fail(diag, rs, st, "shell Hessian: sink rejected bending stencil %d", (int)st);
+            }
+        }
+        wr_free(Ke);
+    }
+    return WR_OK;
+}
+
+WRDEF void wr_shell_vertex_masses(const wr_shell *s, double *mass) {
+    int32_t f, k;
+    memset(mass, 0, sizeof(double) * (size_t)s->nv);
+    for (f = 0; f < s->nf; ++f)
+        for (k = 0; k < 3; ++k) mass[s->faces[3 * f + k]] += s->density * s->thickness * s->area[f] / 3.0;
+}
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* WRINKLE_SHELL_IMPLEMENTATION_DONE */
+#endif /* WRINKLE_IMPLEMENTATION */
