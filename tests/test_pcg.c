@@ -7,8 +7,9 @@
 #include "wrinkle/pcg.h"
 #include "membrane_fixture.h"
 
+/* CHOLMOD last: it is the reference the others are compared with. */
 static const wr_solver_method all_methods[] = {WR_SOLVER_PCG_JACOBI, WR_SOLVER_PCG_BLOCK3, WR_SOLVER_PCG_IC0,
-                                               WR_SOLVER_CHOLMOD};
+                                               WR_SOLVER_PCG_AMG, WR_SOLVER_CHOLMOD};
 #define N_METHODS ((int)(sizeof all_methods / sizeof all_methods[0]))
 
 /* 5-point Laplacian on an m×m interior grid (Dirichlet boundary folded in), scaled by 1/h^2. */
@@ -398,6 +399,69 @@ Test(pcg, max_iter_not_converged_reports_residual) {
         cr_assert_float_eq(st.rel_residual, true_rel_residual(&A, b, x, NULL), 1e-14);
     }
     wr_csr_free(&A);
+}
+
+/* AMG is meant to keep the iteration count nearly flat as the grid is refined: multi-level
+ * hierarchies (scalar nodes for n % 3 != 0, 3-DOF nodes for the membrane with clamped DOFs). */
+Test(pcg, amg_multilevel_iteration_counts) {
+    wr_csr A;
+    wr_spd_desc sd;
+    wr_spd_stats st, st_ic;
+    wr_diag d;
+    double *b, *x;
+    int32_t i;
+    membrane_params P;
+    uint8_t *fixed;
+    int32_t grids[2] = {20, 40}, its[2];
+    int g;
+    laplacian(&A, 50); /* n = 2500: bs = 1 */
+    b = (double *)wr_alloc_array(2500, sizeof(double));
+    x = (double *)wr_calloc_array(2500, sizeof(double));
+    for (i = 0; i < 2500; ++i) b[i] = sin(0.37 * i);
+    memset(&sd, 0, sizeof sd);
+    sd.method = WR_SOLVER_PCG_AMG;
+    cr_assert_eq(wr_spd_solve(&A, b, x, &sd, &st, &d), WR_OK, "%s", d.message);
+    cr_assert_leq(st.rel_residual, 1e-10);
+    memset(x, 0, 2500 * sizeof(double));
+    sd.method = WR_SOLVER_PCG_IC0;
+    cr_assert_eq(wr_spd_solve(&A, b, x, &sd, &st_ic, &d), WR_OK);
+    cr_assert_lt(2 * st.iterations, st_ic.iterations, "amg %d vs ic0 %d", st.iterations, st_ic.iterations);
+    wr_free(b);
+    wr_free(x);
+    wr_csr_free(&A);
+    for (g = 0; g < 2; ++g) {
+        int32_t nv, v, k;
+        memset(&P, 0, sizeof P);
+        P.nx = P.ny = grids[g];
+        P.w = P.h = 1.0;
+        P.Y = 1e4;
+        P.nu = 0.3;
+        P.rho = 0.2;
+        P.dt = 1.0 / 30.0;
+        nv = (P.nx + 1) * (P.ny + 1);
+        cr_assert_eq(membrane_matrix(&P, &A, NULL, NULL), WR_OK);
+        b = (double *)wr_alloc_array((size_t)A.n, sizeof(double));
+        x = (double *)wr_calloc_array((size_t)A.n, sizeof(double));
+        fixed = (uint8_t *)wr_calloc_array((size_t)A.n, 1);
+        for (v = 0; v < nv; ++v)
+            for (k = 0; k < 3; ++k) {
+                b[3 * v + k] = k == 1 ? -1.0 : 0.1 * cos((double)v);
+                fixed[3 * v + k] = v / (P.nx + 1) == P.ny || (v == 0 && k == 0); /* a lone fixed DOF too */
+            }
+        sd.method = WR_SOLVER_PCG_AMG;
+        sd.fixed = fixed;
+        cr_assert_eq(wr_spd_solve(&A, b, x, &sd, &st, &d), WR_OK, "%s", d.message);
+        cr_assert_leq(st.rel_residual, 1e-10);
+        cr_assert_eq(x[0], 0.0);
+        its[g] = st.iterations;
+        wr_free(b);
+        wr_free(x);
+        wr_free(fixed);
+        wr_csr_free(&A);
+    }
+    /* 4x the unknowns: CG with a level-independent preconditioner needs about as many steps
+     * (IC(0)/Jacobi would need about 2x). Measured 23 -> 24 when written; Laplacian: amg 11, ic0 60. */
+    cr_assert_leq(its[1], its[0] + its[0] / 2, "iterations %d -> %d", its[0], its[1]);
 }
 
 Test(pcg, argument_errors) {

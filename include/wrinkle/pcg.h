@@ -1,7 +1,16 @@
 /* wrinkle/pcg.h — one entry point for symmetric positive definite sparse systems A x = b:
- * preconditioned conjugate gradients (Jacobi, 3×3 block-Jacobi, incomplete Cholesky) or CHOLMOD's
- * supernodal Cholesky, with Dirichlet (fixed) DOFs, for the shell statics Newton solver and the TFW
- * SQP (TFW Sec. 5) and the Style3D Sec. 5 "PCG with 3×3 block diagonal preconditioning".
+ * preconditioned conjugate gradients (Jacobi, 3×3 block-Jacobi, incomplete Cholesky IC(0),
+ * smoothed-aggregation algebraic multigrid) or CHOLMOD's supernodal Cholesky, with Dirichlet
+ * (fixed) DOFs, for the shell statics Newton solver and the TFW SQP (TFW Sec. 5) and the Style3D
+ * Sec. 5 "PCG with 3×3 block diagonal preconditioning".
+ *
+ * WHICH METHOD
+ *   Measured on this kit's bench (bench/bench_pcg.c, clamped membrane K + M/dt², 3 DOF/vertex,
+ *   tol 1e-8, 2-core box, CHOLMOD on OpenBLAS): PCG-AMG needs ~25–35 iterations independent of the
+ *   mesh size and beats CHOLMOD from ~1e5 vertices on (0.35× CHOLMOD's time at 1e5); below ~1e4
+ *   vertices CHOLMOD is as fast or faster. Jacobi / block-Jacobi / IC(0) need O(sqrt(n)) iterations
+ *   and lose to CHOLMOD by 3–6× on such stiff membranes; they are there for small or well-conditioned
+ *   systems (mass-dominated dynamics) and as references. See bench/RESULTS.md for the numbers.
  * wrinkle v0.1.0 — MIT licence (see LICENSE).
  *
  * DEPENDENCIES
@@ -19,7 +28,8 @@
  *   wr_spd_solver_factor(S, A, diag)                 numeric setup with A's current values
  *   wr_spd_solver_solve(S, A, b, x, stats, diag)     solve with the last factored values
  *   wr_spd_solver_free(S)
- *   wr_solver_method_name(m)                         "pcg-ic0", "cholmod", ...
+ *   wr_solver_method_name(m)                         "pcg-ic0", "pcg-amg", "cholmod", ...
+ *   (the AMG hierarchy is value dependent, so for WR_SOLVER_PCG_AMG all setup happens in factor)
  *
  * EXAMPLE (Newton loop reusing the symbolic analysis)
  *     wr_spd_desc sd; wr_spd_solver S; wr_spd_stats st;
@@ -38,7 +48,8 @@
  *   equations is dropped; the coupling A(free, fixed) x(fixed) moves to the right-hand side. The
  *   matrix is never rebuilt by the caller. PCG works on a masked copy of the values (rows and
  *   columns of fixed DOFs replaced by the identity; residual and search direction are zero on fixed
- *   DOFs), so the preconditioners see the reduced matrix A_ff exactly. CHOLMOD factors the reduced
+ *   DOFs), so the preconditioners see the reduced matrix A_ff exactly (AMG also leaves fixed DOFs
+ *   out of its coarse spaces). CHOLMOD factors the reduced
  *   system A_ff (eliminated, no penalty): its pattern is extracted once in create.
  *
  * ON ACCURACY AND STOPPING
@@ -72,6 +83,7 @@ typedef enum wr_solver_method {
     WR_SOLVER_PCG_BLOCK3,  /* PCG, 3×3 block-Jacobi (Style3D Sec. 5); n must be a multiple of 3 */
     WR_SOLVER_PCG_IC0,     /* PCG, incomplete Cholesky IC(0) with Manteuffel diagonal-shift retries */
     WR_SOLVER_CHOLMOD,     /* CHOLMOD supernodal Cholesky of the reduced system */
+    WR_SOLVER_PCG_AMG,     /* PCG, smoothed-aggregation algebraic multigrid V(1,1) cycle (3-DOF nodes) */
     WR_SOLVER_METHOD_COUNT
 } wr_solver_method;
 
@@ -110,6 +122,7 @@ typedef struct wr_spd_stats {
 } wr_spd_stats;
 
 struct wr__spd_backend;
+struct wr__spd_amg;
 typedef struct wr_spd_solver {
     int32_t n, nnz;             /* pattern the solver was created for */
     wr_solver_method method;    /* resolved */
@@ -125,6 +138,7 @@ typedef struct wr_spd_solver {
     double *lval;
     double ic_shift;
     struct wr__spd_backend *backend; /* CHOLMOD state, NULL otherwise */
+    struct wr__spd_amg *amg;         /* AMG hierarchy, NULL otherwise */
 } wr_spd_solver;
 
 WRDEF const char *wr_solver_method_name(wr_solver_method m);
@@ -177,6 +191,7 @@ WRDEF const char *wr_solver_method_name(wr_solver_method m) {
     case WR_SOLVER_PCG_BLOCK3: return "pcg-block3";
     case WR_SOLVER_PCG_IC0: return "pcg-ic0";
     case WR_SOLVER_CHOLMOD: return "cholmod";
+    case WR_SOLVER_PCG_AMG: return "pcg-amg";
     default: return "unknown";
     }
 }
@@ -373,6 +388,7 @@ static wr_status wr__check_matrix(const wr_csr *A, const char *who, wr_diag *dia
 }
 
 /* ---------------------------------------------------------------- solver object ------------ */
+static void wr__amg_clear(struct wr__spd_amg *M);
 WRDEF void wr_spd_solver_free(wr_spd_solver *S) {
     if (!S) return;
     wr_free(S->fixed);
@@ -383,6 +399,10 @@ WRDEF void wr_spd_solver_free(wr_spd_solver *S) {
     wr_free(S->lsrc);
     wr_free(S->lval);
     if (S->backend) wr__chol_free(S->backend);
+    if (S->amg) {
+        wr__amg_clear(S->amg);
+        wr_free(S->amg);
+    }
     memset(S, 0, sizeof *S);
 }
 
@@ -487,6 +507,490 @@ static void wr__ic_apply(const wr_spd_solver *S, const double *r, double *z) {
     }
 }
 
+/* ---------------------------------------------------------------- smoothed aggregation AMG - */
+/* Smoothed-aggregation algebraic multigrid (Vanek, Mandel & Brezina 1996) used as a PCG
+ * preconditioner: one symmetric V(1,1) cycle (forward Gauss-Seidel before, backward after, so the
+ * preconditioner is symmetric positive definite) per PCG iteration. Nodes are groups of WR_AMG_BS
+ * DOFs when n is a multiple of 3 (the 3 displacement components of a vertex; coarse DOFs keep that
+ * grouping), else single DOFs. Near-null space = the per-component constants (translations) only:
+ * the matrix carries no geometry, so rotations are not available. Everything is rebuilt by
+ * wr_spd_solver_factor because aggregation depends on the values. */
+#define WR_AMG_MAX_LEVELS 12
+#define WR_AMG_COARSE_MAX 600  /* DOFs: below this the level is solved by dense Cholesky */
+#define WR_AMG_THETA 0.08      /* strength threshold on the finest level (Vanek et al. use 0.08, halved per level) */
+#define WR_AMG_POWER_ITERS 12  /* power iterations for rho(D^-1 A) in the prolongator smoother */
+
+typedef struct wr__amg_level {
+    int32_t n, nc, own;
+    int32_t *rp, *ci; /* level matrix (level 0: A's pattern, not owned) */
+    double *v;
+    double *dinv;
+    int32_t *prp, *pci; /* prolongator P: n x nc */
+    double *pv;
+    double *x, *b, *r;
+} wr__amg_level;
+
+struct wr__spd_amg {
+    int32_t nlev, bs;
+    wr__amg_level lev[WR_AMG_MAX_LEVELS];
+    double *dense; /* coarsest level: Cholesky factor, row-major lower */
+    int32_t nd;
+};
+
+static void wr__amg_clear(struct wr__spd_amg *M) {
+    int32_t l;
+    if (!M) return;
+    for (l = 0; l < M->nlev; ++l) {
+        wr__amg_level *L = &M->lev[l];
+        if (L->own) {
+            wr_free(L->rp);
+            wr_free(L->ci);
+            wr_free(L->v);
+        }
+        wr_free(L->dinv);
+        wr_free(L->prp);
+        wr_free(L->pci);
+        wr_free(L->pv);
+        wr_free(L->x);
+        wr_free(L->b);
+        wr_free(L->r);
+    }
+    wr_free(M->dense);
+    memset(M->lev, 0, sizeof M->lev);
+    M->dense = NULL;
+    M->nlev = 0;
+    M->nd = 0;
+}
+
+/* C = A B for CSR A (n x m) and B (m x k); columns of C unsorted. Two passes with a marker. */
+static int wr__spgemm(int32_t n, int32_t k, const int32_t *arp, const int32_t *aci, const double *av,
+                      const int32_t *brp, const int32_t *bci, const double *bv, int32_t **crp, int32_t **cci,
+                      double **cv) {
+    int32_t *mark = (int32_t *)wr_alloc_array((size_t)k, sizeof(int32_t));
+    int32_t *rp = (int32_t *)wr_alloc_array((size_t)n + 1, sizeof(int32_t)), *ci = NULL;
+    double *v = NULL;
+    int64_t nz = 0;
+    int32_t i, p, q;
+    if (!mark || !rp) goto fail;
+    for (i = 0; i < k; ++i) mark[i] = -1;
+    for (i = 0; i < n; ++i) {
+        rp[i] = (int32_t)nz;
+        for (p = arp[i]; p < arp[i + 1]; ++p)
+            for (q = brp[aci[p]]; q < brp[aci[p] + 1]; ++q)
+                if (mark[bci[q]] != i) {
+                    mark[bci[q]] = i;
+                    nz++;
+                }
+        if (nz > INT32_MAX) goto fail;
+    }
+    rp[n] = (int32_t)nz;
+    ci = (int32_t *)wr_alloc_array((size_t)nz, sizeof(int32_t));
+    v = (double *)wr_alloc_array((size_t)nz, sizeof(double));
+    if (!ci || !v) goto fail;
+    for (i = 0; i < k; ++i) mark[i] = -1;
+    for (i = 0; i < n; ++i) {
+        int32_t start = rp[i], end = rp[i];
+        for (p = arp[i]; p < arp[i + 1]; ++p)
+            for (q = brp[aci[p]]; q < brp[aci[p] + 1]; ++q) {
+                int32_t c = bci[q];
+                if (mark[c] < start) {
+                    mark[c] = end;
+                    ci[end] = c;
+                    v[end] = av[p] * bv[q];
+                    end++;
+                } else {
+                    v[mark[c]] += av[p] * bv[q];
+                }
+            }
+    }
+    wr_free(mark);
+    *crp = rp;
+    *cci = ci;
+    *cv = v;
+    return 1;
+fail:
+    wr_free(mark);
+    wr_free(rp);
+    wr_free(ci);
+    wr_free(v);
+    return 0;
+}
+
+/* Transpose of a CSR n x k matrix. */
+static int wr__transpose(int32_t n, int32_t k, const int32_t *rp, const int32_t *ci, const double *v, int32_t **trp,
+                         int32_t **tci, double **tv) {
+    int32_t *r = (int32_t *)wr_calloc_array((size_t)k + 2, sizeof(int32_t));
+    int32_t *c = (int32_t *)wr_alloc_array((size_t)rp[n], sizeof(int32_t));
+    double *w = (double *)wr_alloc_array((size_t)rp[n], sizeof(double));
+    int32_t i, p;
+    if (!r || !c || !w) {
+        wr_free(r);
+        wr_free(c);
+        wr_free(w);
+        return 0;
+    }
+    for (p = 0; p < rp[n]; ++p) r[ci[p] + 2]++;
+    for (i = 0; i < k; ++i) r[i + 2] += r[i + 1];
+    for (i = 0; i < n; ++i)
+        for (p = rp[i]; p < rp[i + 1]; ++p) {
+            int32_t q = r[ci[p] + 1]++;
+            c[q] = i;
+            w[q] = v[p];
+        }
+    *trp = r;
+    *tci = c;
+    *tv = w;
+    return 1;
+}
+
+/* Aggregate the nodes of level L; fills agg[node] (-1: left out of the coarse space). Returns the
+ * number of aggregates, or -1 on allocation failure. */
+static int32_t wr__amg_aggregate(const wr__amg_level *L, int32_t bs, double theta, int32_t *agg) {
+    int32_t nn = L->n / bs, I, J, a, na = 0, p, q;
+    double *acc = (double *)wr_calloc_array((size_t)nn, sizeof(double));
+    double *dn = (double *)wr_alloc_array((size_t)nn, sizeof(double));
+    int32_t *list = (int32_t *)wr_alloc_array((size_t)nn, sizeof(int32_t));
+    int32_t *srp = (int32_t *)wr_alloc_array((size_t)nn + 1, sizeof(int32_t));
+    int32_t *sci = NULL, *snap = NULL;
+    int64_t cap = (int64_t)L->rp[L->n] + 1, ns = 0; /* distinct neighbours <= stored entries */
+    if (!acc || !dn || !list || !srp) goto fail;
+    sci = (int32_t *)wr_alloc_array((size_t)cap, sizeof(int32_t));
+    snap = (int32_t *)wr_alloc_array((size_t)nn, sizeof(int32_t));
+    if (!sci || !snap) goto fail;
+    /* Frobenius norms of the node blocks: diagonal first, then strong neighbours
+     * ||A_IJ|| >= theta sqrt(||A_II|| ||A_JJ||). */
+    for (I = 0; I < nn; ++I) {
+        double s = 0.0;
+        int32_t r;
+        for (r = bs * I; r < bs * I + bs; ++r)
+            for (p = L->rp[r]; p < L->rp[r + 1]; ++p)
+                if (L->ci[p] / bs == I) s += L->v[p] * L->v[p];
+        dn[I] = sqrt(s);
+    }
+    for (I = 0; I < nn; ++I) {
+        int32_t r, cnt = 0;
+        srp[I] = (int32_t)ns;
+        for (r = bs * I; r < bs * I + bs; ++r)
+            for (p = L->rp[r]; p < L->rp[r + 1]; ++p) {
+                J = L->ci[p] / bs;
+                if (J == I) continue;
+                if (acc[J] == 0.0) list[cnt++] = J;
+                acc[J] += L->v[p] * L->v[p] + 1e-300; /* the tiny term marks J as listed */
+            }
+        for (q = 0; q < cnt; ++q) {
+            J = list[q];
+            if (sqrt(acc[J]) >= theta * sqrt(dn[I] * dn[J])) sci[ns++] = J;
+            acc[J] = 0.0;
+        }
+    }
+    srp[nn] = (int32_t)ns;
+    for (I = 0; I < nn; ++I) agg[I] = srp[I + 1] > srp[I] ? -1 : -2; /* -2: isolated, stays out */
+    /* phase 1: a node whose strong neighbours are all free seeds an aggregate with them */
+    for (I = 0; I < nn; ++I) {
+        int ok = agg[I] == -1;
+        for (p = srp[I]; p < srp[I + 1] && ok; ++p) ok = agg[sci[p]] == -1;
+        if (!ok) continue;
+        agg[I] = na;
+        for (p = srp[I]; p < srp[I + 1]; ++p) agg[sci[p]] = na;
+        na++;
+    }
+    /* phase 2: join a neighbouring phase-1 aggregate (snapshot so aggregates do not creep) */
+    memcpy(snap, agg, sizeof(int32_t) * (size_t)nn);
+    for (I = 0; I < nn; ++I) {
+        if (snap[I] != -1) continue;
+        for (p = srp[I]; p < srp[I + 1]; ++p)
+            if (snap[sci[p]] >= 0) {
+                agg[I] = snap[sci[p]];
+                break;
+            }
+    }
+    /* phase 3: leftovers group with their still-free strong neighbours */
+    for (I = 0; I < nn; ++I) {
+        if (agg[I] != -1) continue;
+        agg[I] = na;
+        for (p = srp[I]; p < srp[I + 1]; ++p)
+            if (agg[sci[p]] == -1) agg[sci[p]] = na;
+        na++;
+    }
+    for (I = 0; I < nn; ++I)
+        if (agg[I] < -1) agg[I] = -1;
+    a = na;
+    wr_free(acc);
+    wr_free(dn);
+    wr_free(list);
+    wr_free(srp);
+    wr_free(sci);
+    wr_free(snap);
+    return a;
+fail:
+    wr_free(acc);
+    wr_free(dn);
+    wr_free(list);
+    wr_free(srp);
+    wr_free(sci);
+    wr_free(snap);
+    return -1;
+}
+
+/* rho(D^-1 A) by power iteration from a fixed deterministic start (no RNG state needed). */
+static double wr__amg_rho(const wr__amg_level *L, double *u, double *w) {
+    int32_t i, it, p;
+    double lam = 1.0, nrm;
+    uint64_t h = 0x9E3779B97F4A7C15ULL;
+    for (i = 0; i < L->n; ++i) {
+        h ^= h >> 33;
+        h *= 0xFF51AFD7ED558CCDULL;
+        h ^= h >> 29;
+        u[i] = (double)(h >> 11) * (1.0 / 9007199254740992.0) - 0.5;
+    }
+    for (it = 0; it < WR_AMG_POWER_ITERS; ++it) {
+        nrm = 0.0;
+        for (i = 0; i < L->n; ++i) {
+            double s = 0.0;
+            for (p = L->rp[i]; p < L->rp[i + 1]; ++p) s += L->v[p] * u[L->ci[p]];
+            w[i] = s * L->dinv[i];
+            nrm += w[i] * w[i];
+        }
+        nrm = sqrt(nrm);
+        if (!(nrm > 0.0)) return 1.0;
+        lam = 0.0;
+        for (i = 0; i < L->n; ++i) lam += u[i] * w[i];
+        {
+            double un = 0.0;
+            for (i = 0; i < L->n; ++i) un += u[i] * u[i];
+            lam /= un;
+        }
+        for (i = 0; i < L->n; ++i) u[i] = w[i] / nrm;
+    }
+    return lam > 0.0 ? lam : 1.0;
+}
+
+static wr_status wr__amg_setup(wr_spd_solver *S, const wr_csr *A, const double *val, wr_diag *diag) {
+    struct wr__spd_amg *M = S->amg;
+    int32_t l, i, p;
+    double theta = WR_AMG_THETA;
+    wr__amg_clear(M);
+    M->bs = (A->n % 3 == 0) ? 3 : 1;
+    M->lev[0].n = A->n;
+    M->lev[0].rp = A->rowptr;
+    M->lev[0].ci = A->col;
+    M->lev[0].v = (double *)val;
+    M->lev[0].own = 0;
+    M->nlev = 1;
+    for (l = 0;; ++l) {
+        wr__amg_level *L = &M->lev[l];
+        int32_t *agg, na, nn, bs = M->bs;
+        int32_t *trp = NULL, *tci = NULL, *prp, *pci, *aprp, *apci;
+        double *tv = NULL, *pv, *apv, omega;
+        L->dinv = (double *)wr_alloc_array((size_t)L->n, sizeof(double));
+        L->x = (double *)wr_alloc_array((size_t)L->n, sizeof(double));
+        L->b = (double *)wr_alloc_array((size_t)L->n, sizeof(double));
+        L->r = (double *)wr_alloc_array((size_t)L->n, sizeof(double));
+        if (!L->dinv || !L->x || !L->b || !L->r) return wr_fail(diag, WR_ERR_NOMEM, -1, "pcg-amg: out of memory");
+        for (i = 0; i < L->n; ++i) {
+            double d = 0.0;
+            for (p = L->rp[i]; p < L->rp[i + 1]; ++p)
+                if (L->ci[p] == i) d += L->v[p];
+            if (!(d > 0.0))
+                return wr_fail(diag, WR_ERR_NOT_SPD, l == 0 ? i : -1, "pcg-amg: level %d diagonal %d = %g <= 0", (int)l,
+                               (int)i, d);
+            L->dinv[i] = 1.0 / d;
+        }
+        if (L->n <= WR_AMG_COARSE_MAX || l + 1 >= WR_AMG_MAX_LEVELS) break;
+        nn = L->n / bs;
+        agg = (int32_t *)wr_alloc_array((size_t)nn, sizeof(int32_t));
+        if (!agg) return wr_fail(diag, WR_ERR_NOMEM, -1, "pcg-amg: out of memory");
+        na = wr__amg_aggregate(L, bs, theta, agg);
+        if (na < 0) {
+            wr_free(agg);
+            return wr_fail(diag, WR_ERR_NOMEM, -1, "pcg-amg: out of memory");
+        }
+        if (na == 0 || (int64_t)na * bs * 10 > (int64_t)L->n * 9) { /* coarsening stalled */
+            wr_free(agg);
+            break;
+        }
+        L->nc = na * bs;
+        /* smoothed prolongator P = (I - omega D^-1 A) P_tent, P_tent(bs*I+c, bs*agg(I)+c) = 1 */
+        omega = 4.0 / (3.0 * 1.05 * wr__amg_rho(L, L->x, L->r));
+        {
+            int32_t *map = (int32_t *)wr_alloc_array((size_t)L->n, sizeof(int32_t));
+            int32_t *mark = (int32_t *)wr_alloc_array((size_t)L->nc, sizeof(int32_t));
+            int64_t nz = 0;
+            if (!map || !mark) {
+                wr_free(map);
+                wr_free(mark);
+                wr_free(agg);
+                return wr_fail(diag, WR_ERR_NOMEM, -1, "pcg-amg: out of memory");
+            }
+            for (i = 0; i < L->n; ++i) {
+                int32_t I = i / bs;
+                map[i] = (agg[I] >= 0 && !(l == 0 && S->fixed && S->fixed[i])) ? bs * agg[I] + i % bs : -1;
+            }
+            wr_free(agg);
+            for (i = 0; i < L->nc; ++i) mark[i] = -1;
+            for (i = 0; i < L->n; ++i) {
+                if (map[i] >= 0 && mark[map[i]] != i) {
+                    mark[map[i]] = i;
+                    nz++;
+                }
+                for (p = L->rp[i]; p < L->rp[i + 1]; ++p) {
+                    int32_t c = map[L->ci[p]];
+                    if (c >= 0 && mark[c] != i) {
+                        mark[c] = i;
+                        nz++;
+                    }
+                }
+            }
+            L->prp = (int32_t *)wr_alloc_array((size_t)L->n + 1, sizeof(int32_t));
+            L->pci = (int32_t *)wr_alloc_array((size_t)nz, sizeof(int32_t));
+            L->pv = (double *)wr_alloc_array((size_t)nz, sizeof(double));
+            if (nz > INT32_MAX || !L->prp || !L->pci || !L->pv) {
+                wr_free(map);
+                wr_free(mark);
+                return wr_fail(diag, WR_ERR_NOMEM, -1, "pcg-amg: out of memory");
+            }
+            for (i = 0; i < L->nc; ++i) mark[i] = -1;
+            nz = 0;
+            for (i = 0; i < L->n; ++i) {
+                int32_t start = (int32_t)nz;
+                double s = -omega * L->dinv[i];
+                L->prp[i] = start;
+                if (map[i] >= 0) {
+                    mark[map[i]] = (int32_t)nz;
+                    L->pci[nz] = map[i];
+                    L->pv[nz] = 1.0;
+                    nz++;
+                }
+                for (p = L->rp[i]; p < L->rp[i + 1]; ++p) {
+                    int32_t c = map[L->ci[p]];
+                    if (c < 0) continue;
+                    if (mark[c] < start) {
+                        mark[c] = (int32_t)nz;
+                        L->pci[nz] = c;
+                        L->pv[nz] = s * L->v[p];
+                        nz++;
+                    } else {
+                        L->pv[mark[c]] += s * L->v[p];
+                    }
+                }
+            }
+            L->prp[L->n] = (int32_t)nz;
+            wr_free(map);
+            wr_free(mark);
+        }
+        prp = L->prp;
+        pci = L->pci;
+        pv = L->pv;
+        /* Galerkin coarse operator A_c = P^T (A P) */
+        if (!wr__spgemm(L->n, L->nc, L->rp, L->ci, L->v, prp, pci, pv, &aprp, &apci, &apv))
+            return wr_fail(diag, WR_ERR_NOMEM, -1, "pcg-amg: out of memory (A P)");
+        if (!wr__transpose(L->n, L->nc, prp, pci, pv, &trp, &tci, &tv)) {
+            wr_free(aprp);
+            wr_free(apci);
+            wr_free(apv);
+            return wr_fail(diag, WR_ERR_NOMEM, -1, "pcg-amg: out of memory (P^T)");
+        }
+        {
+            wr__amg_level *C = &M->lev[l + 1];
+            int okc = wr__spgemm(L->nc, L->nc, trp, tci, tv, aprp, apci, apv, &C->rp, &C->ci, &C->v);
+            wr_free(trp);
+            wr_free(tci);
+            wr_free(tv);
+            wr_free(aprp);
+            wr_free(apci);
+            wr_free(apv);
+            C->own = 1;
+            C->n = L->nc;
+            M->nlev = l + 2;
+            if (!okc) return wr_fail(diag, WR_ERR_NOMEM, -1, "pcg-amg: out of memory (P^T A P)");
+        }
+        theta *= 0.5;
+    }
+    /* coarsest level: dense Cholesky */
+    {
+        wr__amg_level *L = &M->lev[M->nlev - 1];
+        int32_t nd = L->n, j, k;
+        double *D;
+        if ((int64_t)nd * nd > 4000000) /* 2000^2: only when coarsening stalled on a huge level */
+            return wr_fail(diag, WR_ERR_UNSUPPORTED, -1, "pcg-amg: coarsening stalled at %d DOFs", (int)nd);
+        D = M->dense = (double *)wr_calloc_array((size_t)nd * (size_t)nd, sizeof(double));
+        if (!D) return wr_fail(diag, WR_ERR_NOMEM, -1, "pcg-amg: out of memory");
+        M->nd = nd;
+        for (i = 0; i < nd; ++i)
+            for (p = L->rp[i]; p < L->rp[i + 1]; ++p) D[(size_t)i * nd + L->ci[p]] += L->v[p];
+        for (j = 0; j < nd; ++j) {
+            double d = D[(size_t)j * nd + j];
+            for (k = 0; k < j; ++k) d -= D[(size_t)j * nd + k] * D[(size_t)j * nd + k];
+            if (!(d > 0.0))
+                return wr_fail(diag, WR_ERR_NOT_SPD, -1, "pcg-amg: coarsest matrix not positive definite (pivot %d)", (int)j);
+            d = sqrt(d);
+            D[(size_t)j * nd + j] = d;
+            for (i = j + 1; i < nd; ++i) {
+                double s = D[(size_t)i * nd + j];
+                for (k = 0; k < j; ++k) s -= D[(size_t)i * nd + k] * D[(size_t)j * nd + k];
+                D[(size_t)i * nd + j] = s / d;
+            }
+        }
+    }
+    return WR_OK;
+}
+
+/* One symmetric V(1,1) cycle for A_l x = b_l from x = 0 (x, b in the level's work vectors). */
+static void wr__amg_vcycle(struct wr__spd_amg *M, int32_t l) {
+    wr__amg_level *L = &M->lev[l];
+    int32_t i, p, n = L->n;
+    if (l == M->nlev - 1) {
+        const double *D = M->dense;
+        int32_t nd = M->nd, k;
+        for (i = 0; i < nd; ++i) {
+            double s = L->b[i];
+            for (k = 0; k < i; ++k) s -= D[(size_t)i * nd + k] * L->x[k];
+            L->x[i] = s / D[(size_t)i * nd + i];
+        }
+        for (i = nd - 1; i >= 0; --i) {
+            double s = L->x[i];
+            for (k = i + 1; k < nd; ++k) s -= D[(size_t)k * nd + i] * L->x[k];
+            L->x[i] = s / D[(size_t)i * nd + i];
+        }
+        return;
+    }
+    /* forward Gauss-Seidel from x = 0 */
+    for (i = 0; i < n; ++i) {
+        double s = L->b[i];
+        for (p = L->rp[i]; p < L->rp[i + 1]; ++p)
+            if (L->ci[p] < i) s -= L->v[p] * L->x[L->ci[p]];
+        L->x[i] = s * L->dinv[i];
+    }
+    {
+        wr__amg_level *C = &M->lev[l + 1];
+        for (i = 0; i < C->n; ++i) C->b[i] = 0.0;
+        for (i = 0; i < n; ++i) {
+            double s = L->b[i];
+            for (p = L->rp[i]; p < L->rp[i + 1]; ++p) s -= L->v[p] * L->x[L->ci[p]];
+            for (p = L->prp[i]; p < L->prp[i + 1]; ++p) C->b[L->pci[p]] += L->pv[p] * s; /* b_c = P^T r */
+        }
+        wr__amg_vcycle(M, l + 1);
+        for (i = 0; i < n; ++i) {
+            double s = 0.0;
+            for (p = L->prp[i]; p < L->prp[i + 1]; ++p) s += L->pv[p] * C->x[L->pci[p]];
+            L->x[i] += s;
+        }
+    }
+    /* backward Gauss-Seidel */
+    for (i = n - 1; i >= 0; --i) {
+        double s = L->b[i];
+        for (p = L->rp[i]; p < L->rp[i + 1]; ++p) s -= L->v[p] * L->x[L->ci[p]];
+        L->x[i] += s * L->dinv[i];
+    }
+}
+
+static void wr__amg_apply(struct wr__spd_amg *M, const double *r, double *z) {
+    wr__amg_level *L = &M->lev[0];
+    memcpy(L->b, r, sizeof(double) * (size_t)L->n);
+    wr__amg_vcycle(M, 0);
+    memcpy(z, L->x, sizeof(double) * (size_t)L->n);
+}
+
 WRDEF wr_status wr_spd_solver_create(wr_spd_solver *S, const wr_csr *A, const wr_spd_desc *desc, wr_diag *diag) {
     wr_status st;
     double t0 = wr_time_seconds();
@@ -534,6 +1038,10 @@ WRDEF wr_status wr_spd_solver_create(wr_spd_solver *S, const wr_csr *A, const wr
 #if defined(WR_USE_CHOLMOD) && WR_USE_CHOLMOD
         st = wr__chol_create(S, A, diag);
 #endif
+        break;
+    case WR_SOLVER_PCG_AMG:
+        S->amg = (struct wr__spd_amg *)wr_calloc_array(1, sizeof(struct wr__spd_amg));
+        if (!S->amg) st = wr_fail(diag, WR_ERR_NOMEM, -1, "pcg-amg: out of memory");
         break;
     default:
         st = wr_fail(diag, WR_ERR_INVALID_ARG, -1, "spd_solver_create: bad method");
@@ -584,7 +1092,7 @@ WRDEF wr_status wr_spd_solver_factor(wr_spd_solver *S, const wr_csr *A, wr_diag 
     const double *val;
     double t0 = wr_time_seconds();
     int32_t i, p;
-    if (!S || (!S->prec && !S->lval && !S->backend))
+    if (!S || (!S->prec && !S->lval && !S->backend && !S->amg))
         return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "spd_solver_factor: solver not created");
     if ((st = wr__check_matrix(A, "spd_solver_factor", diag)) != WR_OK) return st;
     if (A->n != S->n || A->nnz != S->nnz)
@@ -643,6 +1151,9 @@ WRDEF wr_status wr_spd_solver_factor(wr_spd_solver *S, const wr_csr *A, wr_diag 
         if ((st = wr__chol_factor(S, A, diag)) != WR_OK) return st;
 #endif
         break;
+    case WR_SOLVER_PCG_AMG:
+        if ((st = wr__amg_setup(S, A, val, diag)) != WR_OK) return st;
+        break;
     default:
         return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "spd_solver_factor: bad method");
     }
@@ -651,7 +1162,7 @@ WRDEF wr_status wr_spd_solver_factor(wr_spd_solver *S, const wr_csr *A, wr_diag 
     return WR_OK;
 }
 
-static void wr__prec_apply(const wr_spd_solver *S, const double *r, double *z) {
+static void wr__prec_apply(wr_spd_solver *S, const double *r, double *z) {
     int32_t i, n = S->n;
     switch (S->method) {
     case WR_SOLVER_PCG_JACOBI:
@@ -668,6 +1179,9 @@ static void wr__prec_apply(const wr_spd_solver *S, const double *r, double *z) {
         break;
     case WR_SOLVER_PCG_IC0:
         wr__ic_apply(S, r, z);
+        break;
+    case WR_SOLVER_PCG_AMG:
+        wr__amg_apply(S->amg, r, z);
         break;
     default:
         for (i = 0; i < n; ++i) z[i] = r[i];
@@ -711,7 +1225,7 @@ WRDEF wr_status wr_spd_solver_solve(wr_spd_solver *S, const wr_csr *A, const dou
             return wr_fail(diag, WR_ERR_DOMAIN, i, "spd_solver_solve: b[%d] = %g, x[%d] = %g", (int)i, b[i], (int)i, x[i]);
     r = (double *)wr_alloc_array((size_t)n, sizeof(double));
     z = (double *)wr_alloc_array((size_t)n, sizeof(double));
-    pv = (double *)wr_alloc_array((size_t)n, sizeof(double));
+    pv = (double *)wr_calloc_array((size_t)n, sizeof(double));
     q = (double *)wr_alloc_array((size_t)n, sizeof(double));
     if (!r || !z || !pv || !q) {
         st = wr_fail(diag, WR_ERR_NOMEM, -1, "spd_solver_solve: out of memory (n = %d)", (int)n);
