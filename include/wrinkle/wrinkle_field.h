@@ -1,0 +1,1880 @@
+/* wrinkle/wrinkle_field.h — TFW wrinkle fields on a coarse base surface: the wrinkle-field energy,
+ * the wrinkle-free face set, initialisation, an SQP solver for amplitude and frequency, phase
+ * extraction and Loop upsampling to a wrinkled surface.
+ * wrinkle v0.1.0 — MIT licence (see LICENSE). Needs libc and libm; linear solves go through
+ * pcg.h (CHOLMOD when built with -DWR_USE_CHOLMOD=1, else PCG with IC(0)).
+ *
+ * Paper: Chen, Chen, Kaufman, Skouras, Vouga, "Fine Wrinkling on Coarsely Meshed Thin Shells"
+ * (TFW, TOG 2021): Sec. 3 (Eq. 19–27), Sec. 4.2 (Eq. 29, 30), Sec. 5 (W set, Sec. 5.1),
+ * App. A (discrete fundamental forms), App. E.2–E.5.
+ *
+ * HOW TO USE
+ *   #define WRINKLE_IMPLEMENTATION in exactly one .c/.cpp file before including this header.
+ *
+ * API (create/free pairs: wr_wf_create → wr_wf_free; wr_wf_upsample → wr_mesh_free + wr_free)
+ *   wr_wf_create(wf, mesh, base_pos, material, diag)   per-face I_u, I_b, II_b, Eq. 29 eigen-data
+ *   wr_wf_free(wf)
+ *   wr_wf_classify(wf, desc)                          W by the rule of Sec. 5.1; returns |W|
+ *   wr_wf_set_wrinkle_free(wf, flags)                 set W explicitly (NULL = empty)
+ *   wr_wf_energy(wf, a, omega, E, grad, face_hess, terms, diag)   E_wf (Eq. 20–27, 37), ∇, per-face ∇²
+ *   wr_wf_face_dofs(wf, f, idx[6], sign[6])           global indices of a face's local DOFs
+ *   wr_wf_curl(mesh, omega, curl)                     dω per face (mesh.h sign convention)
+ *   wr_wf_project_closed(wf, omega, diag)             least-squares nearest ω with dω = 0 off W
+ *   wr_wf_init(wf, desc, a, omega, diag)              App. E.2 initial guess (projected to dω = 0)
+ *   wr_wf_solve(wf, desc, a, omega, stats, diag)      App. E.3 SQP: a >= 0, dω = 0 off W
+ *   wr_wf_phase(wf, omega, phi, stats, diag)          App. E.4: per-corner φ, 2π-integer jumps
+ *   wr_wf_loop_step(m, ncomp, vals, desc, fine_faces, fine_vals, diag)  one Loop step, any fields
+ *   wr_wf_upsample(wf, a, phi, desc, out, out_a, diag)  App. E.5: Loop n levels + Eq. 19 (v2 term)
+ *
+ * EXAMPLE
+ *     wr_wf wf; wr_wf_material mat = {1e6, 0.5, 1e-4};      // E [Pa], ν, h [m]
+ *     wr_wf_create(&wf, &mesh, base_pos, &mat, &d);         // base_pos: nv*3 from the TFT solve
+ *     wr_wf_classify(&wf, NULL);                            // W (Sec. 5.1)
+ *     double *a = ..nv.., *omega = ..ne.., *phi = ..3*nf..;
+ *     wr_wf_init(&wf, NULL, a, omega, &d);                  // App. E.2
+ *     wr_wf_solve(&wf, NULL, a, omega, &stats, &d);         // App. E.3
+ *     wr_wf_phase(&wf, omega, phi, NULL, &d);               // App. E.4
+ *     wr_mesh fine; wr_wf_upsample_desc ud = {0}; ud.levels = 3;
+ *     wr_wf_upsample(&wf, a, phi, &ud, &fine, NULL, &d);    // App. E.5, Eq. 19
+ *     ... write fine ..., wr_mesh_free(&fine); wr_wf_free(&wf);
+ *
+ * ON CHARTS AND UNITS
+ *   Every face works in its own barycentric chart (s, t): r = r0 + s (r1 - r0) + t (r2 - r0), as in
+ *   TFW App. A. I_u is built from the rest corners (wr_mesh_face_rest), I_b from base_pos [m].
+ *   a [m] lives on vertices (piecewise linear); omega [rad] on edges: omega[e] is the phase change
+ *   from edges[2e] to edges[2e+1] (docs/CONVENTIONS.md). In a chart, dφ = (ω_01, ω_02) and
+ *   da = (a1 - a0, a2 - a0). The global unknown vector of wr_wf_energy is x = (a[0..nv), ω[0..ne)).
+ *   Material: young E [Pa], poisson ν, thickness h [m]; Lamé α = Eν/(1-ν²), β = E/(2(1+ν)) (Eq. 33).
+ *
+ * ON READINGS OF THE PAPER (the text extraction is garbled in places)
+ *   - Prefactors: Eq. 20 and 26 (h/4 and h³/12 without the 1/2 of Eq. 1 and 37). With
+ *     ||M||²_SV = α/2 tr²M + β tr M² and M = I_u⁻¹I - id = 2ε this is the usual StVK plate energy
+ *     h(α/2 tr²ε + β tr ε²); the extra 1/2 would halve E_wf and not move its minimiser.
+ *   - W_s^2 (Eq. 22) = 4 a² κ⊥² β(α+β)/(α+2β) ((w⊥ᵀI_b w⊥)/(w⊥ᵀI_u w⊥))², κ⊥ = w⊥ᵀII_b w⊥ / w⊥ᵀI_b w⊥;
+ *     w from Eq. 29 (most negative generalised eigenvalue), w⊥ its I_u-orthogonal partner (= the
+ *     other generalised eigenvector). W_s^2 = 0 where neither eigenvalue is negative (Sec. 4.2).
+ *     κ⊥ uses the App. A mid-edge-normal II_b, constant per face, instead of the paper's quadratic
+ *     fitting (Panozzo et al. 2010); it is fixed during the solve as in App. E.3.
+ *   - W_b^1 = ||I_u⁻¹ II_b||²_SV (rest-flat: II_u = 0) is a constant of the base; it is included in
+ *     E and in terms[] but has no gradient.
+ *   - dφ per face: the face average of the Whitney interpolant of ω, dφ = Σ_ij ω_ij (dλ_j - dλ_i)/3.
+ *     It is symmetric in the three edges, linear in ω and equals the exact dφ when dω_f = 0 (where
+ *     the paper uses "the first two equations"); so the energy stays well defined off the
+ *     constraint set (W faces are excluded from E anyway, Eq. 37).
+ *   - Quadrature: the symmetric three-point rule with barycentric points (2/3,1/6,1/6) and
+ *     permutations, weights area/3 (exact for quadratics); a is linear, dφ and da constant per face.
+ *   - Faces in W contribute nothing (Eq. 37). Their vertices have a = 0 ("force a = 0 on W", Sec.
+ *     5.1), and edges touching no face outside W carry no energy and are left untouched.
+ *
+ * ON THREADS
+ *   No global state; a wr_wf is read-only after classify/set, so concurrent energy calls are fine.
+ */
+#ifndef WRINKLE_WRINKLE_FIELD_H
+#define WRINKLE_WRINKLE_FIELD_H
+
+#include "core.h"
+#include "mesh.h"
+#include "sparse.h"
+#include "pcg.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct wr_wf_material {
+    double young;     /* E [Pa] > 0 */
+    double poisson;   /* ν in [0, 0.5] for the plane-stress Lamé formulas of Eq. 33 (< 1 required) */
+    double thickness; /* h [m] > 0 */
+} wr_wf_material;
+
+/* Indices into the terms[] breakdown of wr_wf_energy (each already multiplied by its h/4 or h³/12
+ * prefactor and integrated). */
+enum { WR_WF_TERM_S1 = 0, WR_WF_TERM_S2, WR_WF_TERM_S3, WR_WF_TERM_S4, WR_WF_TERM_B1, WR_WF_TERM_B2, WR_WF_NTERMS };
+
+typedef struct wr_wf {
+    const wr_mesh *mesh;     /* borrowed; must outlive the wr_wf */
+    int32_t nv, ne, nf;
+    double alpha, beta, h;   /* Lamé parameters [Pa] (Eq. 33), thickness [m] */
+    double *base;            /* nv*3 copy of the base positions [m] */
+    double *iu, *iu_inv;     /* nf*3: (00, 01, 11) of I_u and I_u⁻¹ in the face chart */
+    double *ib, *iib;        /* nf*3: I_b and II_b (App. A, mid-edge normals) in the face chart */
+    double *area;            /* nf rest areas [m²] */
+    double *lambda;          /* nf*2 ascending eigenvalues of (I_b - I_u) w = λ I_u w (Eq. 29) */
+    double *wdir;            /* nf*2 chart vector w of lambda[0], ||w||_{I_u} = 1 */
+    double *wperp;           /* nf*2 chart vector w⊥ of lambda[1], ||w⊥||_{I_u} = 1 */
+    double *kperp;           /* nf κ⊥ [1/m] */
+    double *c2;              /* nf: W_s^2 = c2 a² (0 where lambda[0] >= 0) [1/m²] */
+    double *wb1;             /* nf: W_b^1 density ||I_u⁻¹ II_b||²_SV [Pa/m²] */
+    uint8_t *wfree;          /* nf: 1 = face in the wrinkle-free set W */
+} wr_wf;
+
+WRDEF wr_status wr_wf_create(wr_wf *wf, const wr_mesh *m, const double *base_pos, const wr_wf_material *mat,
+                             wr_diag *diag);
+WRDEF void wr_wf_free(wr_wf *wf);
+
+/* Defaults: compress_tol = 1e-10 (strain; a face counts as compressed when its smoothed most
+ * negative Eq. 29 eigenvalue is < -compress_tol, so round-off on an unstrained sheet is "tension"). */
+typedef struct wr_wf_classify_desc {
+    double compress_tol;
+    int no_outlier_filter; /* nonzero: skip the Sec. 5.1 outlier filter (for tests) */
+} wr_wf_classify_desc;
+/* Sec. 5.1: average each face's most negative eigenvalue with its (up to three) edge neighbours;
+ * non-negative average -> W. Then one simultaneous filter pass: a W face none of whose neighbours is
+ * in W leaves W; a non-W face all of whose neighbours (at least one) are in W joins W.
+ * Sets wf->wfree and returns |W|. desc may be NULL. */
+WRDEF int32_t wr_wf_classify(wr_wf *wf, const wr_wf_classify_desc *desc);
+WRDEF void wr_wf_set_wrinkle_free(wr_wf *wf, const uint8_t *flags /* nf or NULL */);
+
+/* E_wf of Eq. 20, 22–24, 26 summed over faces outside W (Eq. 37). a: nv [m], omega: ne [rad].
+ * grad (nv+ne, or NULL): dE/dx for x = (a, ω). face_hess (nf*36, or NULL): per face the 6×6 Hessian
+ * in the local order of wr_wf_face_dofs (zero for W faces). terms (WR_WF_NTERMS, or NULL).
+ * WR_ERR_DOMAIN if a value is non-finite. */
+WRDEF wr_status wr_wf_energy(const wr_wf *wf, const double *a, const double *omega, double *energy, double *grad,
+                             double *face_hess, double *terms, wr_diag *diag);
+/* Local DOFs of face f: (a at corners 0,1,2, ω of face edges 0,1,2) -> global index in x and sign
+ * (+1 for a; face_edge_sign for ω, the local unknown is sign·ω = phase change along the face). */
+WRDEF void wr_wf_face_dofs(const wr_wf *wf, int32_t f, int32_t idx[6], double sign[6]);
+WRDEF void wr_wf_curl(const wr_mesh *m, const double *omega, double *curl /* nf */);
+
+/* Replace omega by the nearest (least squares over edges of faces outside W) one-form with dω = 0 on
+ * every face outside W; edges touching only W faces are unchanged. */
+WRDEF wr_status wr_wf_project_closed(const wr_wf *wf, double *omega, wr_diag *diag);
+
+/* App. E.2. Defaults: k = min(0.01 m, 0.1 · base bounding-box diagonal) (the paper's constant).
+ * a_v = mean over incident faces of k·sqrt(2 ε_w) with ε_w = -lambda[0] (0 where lambda[0] >= 0, and
+ * 0 on W vertices); per face outside W with ε_w > 0 the target dφ has direction I_u w and
+ * ||dφ||_{I_u⁻¹} = 1/k (Eq. 8 with a = k sqrt(2ε)); the edge target is the mean of its faces' targets
+ * (w oriented consistently by a breadth-first sweep over the dual graph), then projected to dω = 0. */
+typedef struct wr_wf_init_desc {
+    double k; /* [m] */
+} wr_wf_init_desc;
+WRDEF wr_status wr_wf_init(const wr_wf *wf, const wr_wf_init_desc *desc, double *a, double *omega, wr_diag *diag);
+
+
+typedef struct wr_wf_phase_stats {
+    int32_t n_cut_edges;      /* interior edges (outside W) across which the corner phases jump */
+    int32_t n_nonzero_jumps;  /* of those, jumps by a nonzero multiple of 2π */
+    int32_t n_conflicts;      /* rounded jumps inconsistent around a loop (left open: singular) */
+    double max_residual;      /* max over face edges |φ_end - φ_start - ω| after the solve [rad] */
+} wr_wf_phase_stats;
+/* App. E.4. phi: nf*3 per-face-corner phase [rad] (W faces get 0). Algorithm: integrate ω along a
+ * spanning tree of the dual graph outside W (cut to a disk per component), round every jump across
+ * the remaining interior edges to a multiple of 2π, glue corners with those jumps (weighted
+ * union-find), and solve min Σ (φ_end - φ_start - ω)² over the glued corner classes. stats may be NULL. */
+WRDEF wr_status wr_wf_phase(const wr_wf *wf, const double *omega, double *phi, wr_wf_phase_stats *stats,
+                            wr_diag *diag);
+
+/* Loop subdivision. Default boundary: WR_WF_LOOP_BOUNDARY_FIXED keeps the boundary polygon (even
+ * boundary vertices stay, odd ones at edge midpoints), so clamped outlines do not shrink;
+ * WR_WF_LOOP_BOUNDARY_SPLINE uses Loop's cubic B-spline boundary rule (1/8, 3/4, 1/8). */
+enum { WR_WF_LOOP_BOUNDARY_FIXED = 0, WR_WF_LOOP_BOUNDARY_SPLINE = 1 };
+typedef struct wr_wf_loop_desc {
+    int boundary;
+} wr_wf_loop_desc;
+/* One Loop step of ncomp per-vertex fields vals (nv*ncomp). Fine vertex v < nv is coarse vertex v
+ * (even), nv + e the point on coarse edge e (odd); fine face 4f+c (c < 3) is the corner-c child of f,
+ * 4f+3 the middle child. *fine_faces (4nf*3) and *fine_vals ((nv+ne)*ncomp) are allocated here; free
+ * with wr_free. Interior even weight β = (1/n)(5/8 - (3/8 + cos(2π/n)/4)²) (Loop 1987). */
+WRDEF wr_status wr_wf_loop_step(const wr_mesh *m, int32_t ncomp, const double *vals, const wr_wf_loop_desc *desc,
+                                int32_t **fine_faces, double **fine_vals, wr_diag *diag);
+
+/* Defaults: levels = 2, boundary FIXED, no_inplane = 0 (the v2 term of Eq. 19 is on). */
+typedef struct wr_wf_upsample_desc {
+    int32_t levels;
+    int boundary;
+    int no_inplane; /* nonzero: normal displacement only (TFW Fig. 5 ablation) */
+} wr_wf_upsample_desc;
+/* App. E.5: Loop-subdivide the base mesh, a and the per-corner phase (differences taken inside one
+ * sheet, so 2π jumps never enter a stencil; faces in W keep a = 0 at vertices touching only W), then
+ * displace by Eq. 19 without the v1 term: r = r_b + a cos φ n̂_b + (a²/8) sin 2φ ∇_b φ. out: the
+ * wrinkled mesh (rest = subdivided rest when the input has rest coordinates; corner_rest is not
+ * subdivided). out_a (or NULL): *out_a = fine amplitudes (out->nv), free with wr_free. */
+WRDEF wr_status wr_wf_upsample(const wr_wf *wf, const double *a, const double *phi, const wr_wf_upsample_desc *desc,
+                               wr_mesh *out, double **out_a, wr_diag *diag);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* WRINKLE_WRINKLE_FIELD_H */
+
+/* ============================================================================================ */
+#ifdef WRINKLE_IMPLEMENTATION
+#ifndef WRINKLE_WRINKLE_FIELD_IMPLEMENTATION_DONE
+#define WRINKLE_WRINKLE_FIELD_IMPLEMENTATION_DONE
+
+#include <math.h>
+#include <string.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define WR__WF_PI 3.14159265358979323846
+/* Default tolerances (see the desc comments for their source). */
+#define WR__WF_COMPRESS_TOL 1e-10
+#define WR__WF_K_MAX 0.01         /* [m] App. E.2: k = min(0.01, 0.1 bbox) */
+#define WR__WF_MAX_ITER 1000      /* App. E.3 rule 4 */
+#define WR__WF_TOL_ENERGY 1e-10   /* App. E.3 rule 1 */
+#define WR__WF_TOL_KKT 1e-6       /* App. E.3 rule 2 */
+#define WR__WF_TOL_STEP 1e-10     /* App. E.3 rule 3 */
+#define WR__WF_ARMIJO 1e-4        /* sufficient-decrease constant of the line search */
+#define WR__WF_MAX_BACKTRACK 50   /* halvings before the line search gives up */
+#define WR__WF_SHIFT0 1e-10       /* initial diagonal shift, relative to the block's mean diagonal */
+#define WR__WF_SHIFT_MAX 1e6      /* largest relative shift tried before giving up */
+
+/* Barycentric quadrature points (λ0, λ1, λ2), weight 1/3 each: symmetric degree-2 rule. */
+static const double wr__wf_qp[3][3] = {
+    {2.0 / 3.0, 1.0 / 6.0, 1.0 / 6.0}, {1.0 / 6.0, 2.0 / 3.0, 1.0 / 6.0}, {1.0 / 6.0, 1.0 / 6.0, 2.0 / 3.0}};
+
+/* ---- small symmetric 2×2 helpers: s = (s00, s01, s11) ---- */
+static void wr__wf_sym_to_m2(const double s[3], double M[2][2]) {
+    M[0][0] = s[0];
+    M[0][1] = M[1][0] = s[1];
+    M[1][1] = s[2];
+}
+
+/* Q (3×3, row-major) such that ||I_u⁻¹ S||²_SV = sᵀ Q s for S = sym(s), Eq. 4:
+ * ||M||²_SV = α/2 tr²(M) + β tr(M²). Built by polarisation on the basis E00, E01 + E10, E11. */
+static void wr__wf_qform(const double binv[3], double alpha, double beta, double Q[9]) {
+    double E[3][2][2], BE[3][2][2], B[2][2], tr[3];
+    int a, b, i, j, k;
+    wr__wf_sym_to_m2(binv, B);
+    memset(E, 0, sizeof E);
+    E[0][0][0] = 1.0;
+    E[1][0][1] = E[1][1][0] = 1.0;
+    E[2][1][1] = 1.0;
+    for (a = 0; a < 3; ++a) {
+        for (i = 0; i < 2; ++i)
+            for (j = 0; j < 2; ++j) {
+                double s = 0.0;
+                for (k = 0; k < 2; ++k) s += B[i][k] * E[a][k][j];
+                BE[a][i][j] = s;
+            }
+        tr[a] = BE[a][0][0] + BE[a][1][1];
+    }
+    for (a = 0; a < 3; ++a)
+        for (b = 0; b < 3; ++b) {
+            double t2 = 0.0;
+            for (i = 0; i < 2; ++i)
+                for (k = 0; k < 2; ++k) t2 += BE[a][i][k] * BE[b][k][i];
+            Q[3 * a + b] = 0.5 * alpha * tr[a] * tr[b] + beta * t2;
+        }
+}
+
+/* Monomial coef·Π y[ix[k]] (n <= 4 factors, repeats allowed): adds value, gradient (5) and Hessian
+ * (5×5) by the product rule. */
+static void wr__wf_mono(double coef, int n, const int *ix, const double *y, double *v, double *g, double *H) {
+    int k, l, m;
+    double p = coef;
+    for (k = 0; k < n; ++k) p *= y[ix[k]];
+    *v += p;
+    for (k = 0; k < n; ++k) {
+        double q = coef;
+        for (m = 0; m < n; ++m)
+            if (m != k) q *= y[ix[m]];
+        g[ix[k]] += q;
+        for (l = 0; l < n; ++l) {
+            double r = coef;
+            if (l == k) continue;
+            for (m = 0; m < n; ++m)
+                if (m != k && m != l) r *= y[ix[m]];
+            H[5 * ix[k] + ix[l]] += r;
+        }
+    }
+}
+
+/* y = (a, g0, g1, p0, p1): amplitude at the point, da and dφ in the chart. */
+enum { WR__Y_A = 0, WR__Y_G0, WR__Y_G1, WR__Y_P0, WR__Y_P1 };
+
+/* Accumulate w·N(s(y)) with N(s) = sᵀQs where each component of s is given by up to `nm` monomials.
+ * s value/gradient/Hessian are built first, then the chain rule. */
+typedef struct wr__wf_sfun {
+    double v[3], g[3][5], H[3][25];
+} wr__wf_sfun;
+
+static void wr__wf_sfun_zero(wr__wf_sfun *s) { memset(s, 0, sizeof *s); }
+
+static void wr__wf_norm_acc(const wr__wf_sfun *s, const double Q[9], double w, double *val, double *g,
+                            double *H) {
+    double Qs[3], QJ[3][5];
+    int c, d, i, j;
+    for (c = 0; c < 3; ++c) {
+        Qs[c] = 0.0;
+        for (d = 0; d < 3; ++d) Qs[c] += Q[3 * c + d] * s->v[d];
+    }
+    *val += w * (s->v[0] * Qs[0] + s->v[1] * Qs[1] + s->v[2] * Qs[2]);
+    if (!g) return;
+    for (i = 0; i < 5; ++i) {
+        double t = 0.0;
+        for (c = 0; c < 3; ++c) t += s->g[c][i] * Qs[c];
+        g[i] += 2.0 * w * t;
+    }
+    if (!H) return;
+    for (c = 0; c < 3; ++c)
+        for (i = 0; i < 5; ++i) {
+            QJ[c][i] = 0.0;
+            for (d = 0; d < 3; ++d) QJ[c][i] += Q[3 * c + d] * s->g[d][i];
+        }
+    for (i = 0; i < 5; ++i)
+        for (j = 0; j < 5; ++j) {
+            double t = 0.0;
+            for (c = 0; c < 3; ++c) t += s->g[c][i] * QJ[c][j] + Qs[c] * s->H[c][5 * i + j];
+            H[5 * i + j] += 2.0 * w * t;
+        }
+}
+
+static void wr__wf_sfun_mono(wr__wf_sfun *s, int comp, double coef, int n, const int *ix, const double *y) {
+    wr__wf_mono(coef, n, ix, y, &s->v[comp], s->g[comp], s->H[comp]);
+}
+
+/* Face energy in local DOFs xl = (a0, a1, a2, ω̃0, ω̃1, ω̃2), ω̃k = phase change along face edge k in the
+ * face's traversal (corner (k+1)%3 -> (k+2)%3). Adds into e, g[6], H[36], terms[6] (each may be NULL
+ * except e). */
+static void wr__wf_face_eval(const wr_wf *wf, int32_t f, const double xl[6], double *e, double *g6, double *H36,
+                             double *terms) {
+    /* dφ (Whitney face average, see ON READINGS): p = (2ω̃2 - ω̃0 - ω̃1, ω̃2 + ω̃0 - 2ω̃1)/3. */
+    static const double JP[2][3] = {{-1.0 / 3.0, -1.0 / 3.0, 2.0 / 3.0}, {1.0 / 3.0, -2.0 / 3.0, 1.0 / 3.0}};
+    static const int ix_g00[2] = {WR__Y_G0, WR__Y_G0}, ix_g01[2] = {WR__Y_G0, WR__Y_G1},
+                     ix_g11[2] = {WR__Y_G1, WR__Y_G1};
+    static const int ix_aapp00[4] = {WR__Y_A, WR__Y_A, WR__Y_P0, WR__Y_P0},
+                     ix_aapp01[4] = {WR__Y_A, WR__Y_A, WR__Y_P0, WR__Y_P1},
+                     ix_aapp11[4] = {WR__Y_A, WR__Y_A, WR__Y_P1, WR__Y_P1};
+    static const int ix_apg00[3] = {WR__Y_A, WR__Y_P0, WR__Y_G0}, ix_apg01a[3] = {WR__Y_A, WR__Y_P0, WR__Y_G1},
+                     ix_apg01b[3] = {WR__Y_A, WR__Y_P1, WR__Y_G0}, ix_apg11[3] = {WR__Y_A, WR__Y_P1, WR__Y_G1};
+    static const int ix_app00[3] = {WR__Y_A, WR__Y_P0, WR__Y_P0}, ix_app01[3] = {WR__Y_A, WR__Y_P0, WR__Y_P1},
+                     ix_app11[3] = {WR__Y_A, WR__Y_P1, WR__Y_P1};
+    static const int ix_aa[2] = {WR__Y_A, WR__Y_A};
+    double Q[9], y[5], J[5][6], gy[5], Hy[25];
+    double ws, wb, c[3];
+    double inv32 = 1.0 / sqrt(32.0), inv8 = 1.0 / sqrt(8.0), inv2 = 1.0 / sqrt(2.0);
+    int q, i, j, k, t;
+    wr__wf_qform(wf->iu_inv + 3 * f, wf->alpha, wf->beta, Q);
+    ws = wf->h / 4.0 * wf->area[f] / 3.0;                /* Eq. 20 prefactor × quadrature weight */
+    wb = wf->h * wf->h * wf->h / 12.0 * wf->area[f] / 3.0; /* Eq. 26 */
+    for (k = 0; k < 3; ++k) c[k] = wf->ib[3 * f + k] - wf->iu[3 * f + k];
+    y[WR__Y_G0] = xl[1] - xl[0];
+    y[WR__Y_G1] = xl[2] - xl[0];
+    y[WR__Y_P0] = JP[0][0] * xl[3] + JP[0][1] * xl[4] + JP[0][2] * xl[5];
+    y[WR__Y_P1] = JP[1][0] * xl[3] + JP[1][1] * xl[4] + JP[1][2] * xl[5];
+    memset(J, 0, sizeof J);
+    J[WR__Y_G0][0] = -1.0;
+    J[WR__Y_G0][1] = 1.0;
+    J[WR__Y_G1][0] = -1.0;
+    J[WR__Y_G1][2] = 1.0;
+    for (k = 0; k < 3; ++k) {
+        J[WR__Y_P0][3 + k] = JP[0][k];
+        J[WR__Y_P1][3 + k] = JP[1][k];
+    }
+    /* W_b^1: constant of the base (no a, ω dependence). */
+    *e += 3.0 * wb * wf->wb1[f];
+    if (terms) terms[WR_WF_TERM_B1] += 3.0 * wb * wf->wb1[f];
+    for (q = 0; q < 3; ++q) {
+        wr__wf_sfun s;
+        double vt;
+        y[WR__Y_A] = wr__wf_qp[q][0] * xl[0] + wr__wf_qp[q][1] * xl[1] + wr__wf_qp[q][2] * xl[2];
+        for (k = 0; k < 3; ++k) J[WR__Y_A][k] = wr__wf_qp[q][k];
+        memset(gy, 0, sizeof gy);
+        memset(Hy, 0, sizeof Hy);
+        for (t = 0; t < 5; ++t) {
+            vt = 0.0;
+            wr__wf_sfun_zero(&s);
+            switch (t) {
+            case 0: /* W_s^1, Eq. 21: I_u⁻¹(I_b - I_u + ½ daᵀda + ½ a² dφᵀdφ) */
+                s.v[0] = c[0];
+                s.v[1] = c[1];
+                s.v[2] = c[2];
+                wr__wf_sfun_mono(&s, 0, 0.5, 2, ix_g00, y);
+                wr__wf_sfun_mono(&s, 1, 0.5, 2, ix_g01, y);
+                wr__wf_sfun_mono(&s, 2, 0.5, 2, ix_g11, y);
+                wr__wf_sfun_mono(&s, 0, 0.5, 4, ix_aapp00, y);
+                wr__wf_sfun_mono(&s, 1, 0.5, 4, ix_aapp01, y);
+                wr__wf_sfun_mono(&s, 2, 0.5, 4, ix_aapp11, y);
+                wr__wf_norm_acc(&s, Q, ws, &vt, g6 ? gy : NULL, H36 ? Hy : NULL);
+                break;
+            case 1: /* W_s^3, Eq. 23: (a²/32)||I_u⁻¹(dφᵀda + daᵀdφ)||² = N((a/√32)(pᵀg + gᵀp)) */
+                wr__wf_sfun_mono(&s, 0, 2.0 * inv32, 3, ix_apg00, y);
+                wr__wf_sfun_mono(&s, 1, inv32, 3, ix_apg01a, y);
+                wr__wf_sfun_mono(&s, 1, inv32, 3, ix_apg01b, y);
+                wr__wf_sfun_mono(&s, 2, 2.0 * inv32, 3, ix_apg11, y);
+                wr__wf_norm_acc(&s, Q, ws, &vt, g6 ? gy : NULL, H36 ? Hy : NULL);
+                break;
+            case 2: /* W_s^4, Eq. 24: (1/8)||I_u⁻¹ daᵀda||² */
+                wr__wf_sfun_mono(&s, 0, inv8, 2, ix_g00, y);
+                wr__wf_sfun_mono(&s, 1, inv8, 2, ix_g01, y);
+                wr__wf_sfun_mono(&s, 2, inv8, 2, ix_g11, y);
+                wr__wf_norm_acc(&s, Q, ws, &vt, g6 ? gy : NULL, H36 ? Hy : NULL);
+                break;
+            case 3: /* W_b^2, Eq. 26: (a²/2)||I_u⁻¹ dφᵀdφ||² */
+                wr__wf_sfun_mono(&s, 0, inv2, 3, ix_app00, y);
+                wr__wf_sfun_mono(&s, 1, inv2, 3, ix_app01, y);
+                wr__wf_sfun_mono(&s, 2, inv2, 3, ix_app11, y);
+                wr__wf_norm_acc(&s, Q, wb, &vt, g6 ? gy : NULL, H36 ? Hy : NULL);
+                break;
+            default: { /* W_s^2, Eq. 22: c2 a² */
+                double dummy[5], dH[25];
+                double v2 = 0.0;
+                memset(dummy, 0, sizeof dummy);
+                memset(dH, 0, sizeof dH);
+                wr__wf_mono(ws * wf->c2[f], 2, ix_aa, y, &v2, dummy, dH);
+                vt = v2;
+                for (i = 0; i < 5; ++i) gy[i] += dummy[i];
+                for (i = 0; i < 25; ++i) Hy[i] += dH[i];
+            } break;
+            }
+            *e += vt;
+            if (terms) {
+                static const int slot[5] = {WR_WF_TERM_S1, WR_WF_TERM_S3, WR_WF_TERM_S4, WR_WF_TERM_B2, WR_WF_TERM_S2};
+                terms[slot[t]] += vt;
+            }
+        }
+        if (g6)
+            for (i = 0; i < 6; ++i) {
+                double s2 = 0.0;
+                for (k = 0; k < 5; ++k) s2 += J[k][i] * gy[k];
+                g6[i] += s2;
+            }
+        if (H36)
+            for (i = 0; i < 6; ++i)
+                for (j = 0; j < 6; ++j) {
+                    double s2 = 0.0;
+                    int l;
+                    for (k = 0; k < 5; ++k) {
+                        if (J[k][i] == 0.0) continue;
+                        for (l = 0; l < 5; ++l) s2 += J[k][i] * Hy[5 * k + l] * J[l][j];
+                    }
+                    H36[6 * i + j] += s2;
+                }
+    }
+}
+
+WRDEF void wr_wf_free(wr_wf *wf) {
+    if (!wf) return;
+    wr_free(wf->base);
+    wr_free(wf->iu);
+    wr_free(wf->iu_inv);
+    wr_free(wf->ib);
+    wr_free(wf->iib);
+    wr_free(wf->area);
+    wr_free(wf->lambda);
+    wr_free(wf->wdir);
+    wr_free(wf->wperp);
+    wr_free(wf->kperp);
+    wr_free(wf->c2);
+    wr_free(wf->wb1);
+    wr_free(wf->wfree);
+    memset(wf, 0, sizeof *wf);
+}
+
+static wr_vec3 wr__wf_face_normal(const double *P, const int32_t *fv) {
+    wr_vec3 p0 = wr_v3_load(P + 3 * fv[0]), p1 = wr_v3_load(P + 3 * fv[1]), p2 = wr_v3_load(P + 3 * fv[2]);
+    return wr_v3_cross(wr_v3_sub(p1, p0), wr_v3_sub(p2, p0));
+}
+
+WRDEF wr_status wr_wf_create(wr_wf *wf, const wr_mesh *m, const double *base_pos, const wr_wf_material *mat,
+                             wr_diag *diag) {
+    int32_t f, v, nf;
+    double E, nu, h;
+    if (!wf) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "wrinkle field: NULL output");
+    memset(wf, 0, sizeof *wf);
+    if (!m || !mat || !m->faces || m->nf < 1 || m->nv < 1)
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "wrinkle field: NULL or empty mesh/material");
+    E = mat->young;
+    nu = mat->poisson;
+    h = mat->thickness;
+    if (!(E > 0.0) || !isfinite(E))
+        return wr_fail(diag, WR_ERR_DOMAIN, -1, "wrinkle field: Young's modulus %g Pa must be > 0", E);
+    if (!(nu > -1.0 && nu < 1.0))
+        return wr_fail(diag, WR_ERR_DOMAIN, -1, "wrinkle field: Poisson ratio %g outside (-1, 1)", nu);
+    if (!(h > 0.0) || !isfinite(h))
+        return wr_fail(diag, WR_ERR_DOMAIN, -1, "wrinkle field: thickness %g m must be > 0", h);
+    if (!base_pos) base_pos = m->pos;
+    nf = m->nf;
+    wf->mesh = m;
+    wf->nv = m->nv;
+    wf->ne = m->ne;
+    wf->nf = nf;
+    wf->alpha = E * nu / (1.0 - nu * nu); /* Eq. 33 */
+    wf->beta = E / (2.0 * (1.0 + nu));
+    wf->h = h;
+    wf->base = (double *)wr_alloc_array((size_t)m->nv * 3, sizeof(double));
+    wf->iu = (double *)wr_alloc_array((size_t)nf * 3, sizeof(double));
+    wf->iu_inv = (double *)wr_alloc_array((size_t)nf * 3, sizeof(double));
+    wf->ib = (double *)wr_alloc_array((size_t)nf * 3, sizeof(double));
+    wf->iib = (double *)wr_alloc_array((size_t)nf * 3, sizeof(double));
+    wf->area = (double *)wr_alloc_array((size_t)nf, sizeof(double));
+    wf->lambda = (double *)wr_alloc_array((size_t)nf * 2, sizeof(double));
+    wf->wdir = (double *)wr_alloc_array((size_t)nf * 2, sizeof(double));
+    wf->wperp = (double *)wr_alloc_array((size_t)nf * 2, sizeof(double));
+    wf->kperp = (double *)wr_alloc_array((size_t)nf, sizeof(double));
+    wf->c2 = (double *)wr_alloc_array((size_t)nf, sizeof(double));
+    wf->wb1 = (double *)wr_alloc_array((size_t)nf, sizeof(double));
+    wf->wfree = (uint8_t *)wr_calloc_array((size_t)nf, sizeof(uint8_t));
+    if (!wf->base || !wf->iu || !wf->iu_inv || !wf->ib || !wf->iib || !wf->area || !wf->lambda || !wf->wdir ||
+        !wf->wperp || !wf->kperp || !wf->c2 || !wf->wb1 || !wf->wfree) {
+        wr_wf_free(wf);
+        return wr_fail(diag, WR_ERR_NOMEM, -1, "wrinkle field: out of memory for %d faces", (int)nf);
+    }
+    for (v = 0; v < 3 * m->nv; ++v) {
+        if (!isfinite(base_pos[v])) {
+            wr_wf_free(wf);
+            return wr_fail(diag, WR_ERR_DOMAIN, v / 3, "wrinkle field: non-finite base position at vertex %d",
+                           (int)(v / 3));
+        }
+        wf->base[v] = base_pos[v];
+    }
+    for (f = 0; f < nf; ++f) {
+        const int32_t *fv = m->faces + 3 * f;
+        double uv[6], e1[2], e2[2], det, l00, l10, l11, Iu[3], Ib[3], II[3], Qm[9];
+        wr_vec3 P[3], E1, E2, nf0, nhat[3];
+        wr_mat2 M;
+        double lam[2];
+        wr_vec2 evec[2];
+        int k;
+        wr_mesh_face_rest(m, f, uv);
+        e1[0] = uv[2] - uv[0];
+        e1[1] = uv[3] - uv[1];
+        e2[0] = uv[4] - uv[0];
+        e2[1] = uv[5] - uv[1];
+        Iu[0] = e1[0] * e1[0] + e1[1] * e1[1];
+        Iu[1] = e1[0] * e2[0] + e1[1] * e2[1];
+        Iu[2] = e2[0] * e2[0] + e2[1] * e2[1];
+        det = Iu[0] * Iu[2] - Iu[1] * Iu[1];
+        if (!(det > 1e-24 * Iu[0] * Iu[2]) || !(Iu[0] > 0.0)) {
+            wr_wf_free(wf);
+            return wr_fail(diag, WR_ERR_GEOMETRY, f, "wrinkle field: face %d has a degenerate rest triangle", (int)f);
+        }
+        wf->area[f] = 0.5 * sqrt(det);
+        memcpy(wf->iu + 3 * f, Iu, sizeof Iu);
+        wf->iu_inv[3 * f + 0] = Iu[2] / det;
+        wf->iu_inv[3 * f + 1] = -Iu[1] / det;
+        wf->iu_inv[3 * f + 2] = Iu[0] / det;
+        for (k = 0; k < 3; ++k) P[k] = wr_v3_load(wf->base + 3 * fv[k]);
+        E1 = wr_v3_sub(P[1], P[0]);
+        E2 = wr_v3_sub(P[2], P[0]);
+        Ib[0] = wr_v3_dot(E1, E1);
+        Ib[1] = wr_v3_dot(E1, E2);
+        Ib[2] = wr_v3_dot(E2, E2);
+        memcpy(wf->ib + 3 * f, Ib, sizeof Ib);
+        nf0 = wr__wf_face_normal(wf->base, fv);
+        if (!(wr_v3_norm(nf0) > 1e-12 * (Ib[0] + Ib[2]))) {
+            wr_wf_free(wf);
+            return wr_fail(diag, WR_ERR_GEOMETRY, f, "wrinkle field: face %d is degenerate on the base surface",
+                           (int)f);
+        }
+        nf0 = wr_v3_normalized(nf0);
+        /* App. A: mid-edge normal n̂_k on the edge opposite corner k: the face normal on boundary edges,
+         * the normalised average of the two face normals otherwise. */
+        for (k = 0; k < 3; ++k) {
+            int32_t e = m->face_edges[3 * f + k];
+            int32_t g = m->edge_faces[2 * e] == f ? m->edge_faces[2 * e + 1] : m->edge_faces[2 * e];
+            nhat[k] = nf0;
+            if (g >= 0) {
+                wr_vec3 ng = wr_v3_normalized(wr__wf_face_normal(wf->base, m->faces + 3 * g));
+                wr_vec3 avg = wr_v3_add(nf0, ng);
+                if (wr_v3_norm(avg) > 1e-12) nhat[k] = wr_v3_normalized(avg);
+            }
+        }
+        /* App. A: II_b = 2 [(v1-v0)·(n1-n0), (v2-v0)·(n1-n0); ·, (v2-v0)·(n2-n0)] (off-diagonal
+         * symmetrised). Its sign convention only enters squared (W_s^2, W_b^1). */
+        II[0] = 2.0 * wr_v3_dot(E1, wr_v3_sub(nhat[1], nhat[0]));
+        II[1] = wr_v3_dot(E2, wr_v3_sub(nhat[1], nhat[0])) + wr_v3_dot(E1, wr_v3_sub(nhat[2], nhat[0]));
+        II[2] = 2.0 * wr_v3_dot(E2, wr_v3_sub(nhat[2], nhat[0]));
+        memcpy(wf->iib + 3 * f, II, sizeof II);
+        /* Eq. 29 via I_u = L Lᵀ: L⁻¹(I_b - I_u)L⁻ᵀ y = λ y, w = L⁻ᵀ y (so ||w||_{I_u} = ||y|| = 1). */
+        l00 = sqrt(Iu[0]);
+        l10 = Iu[1] / l00;
+        l11 = sqrt(Iu[2] - l10 * l10);
+        {
+            double C00 = Ib[0] - Iu[0], C01 = Ib[1] - Iu[1], C11 = Ib[2] - Iu[2];
+            /* A = L⁻¹ C L⁻ᵀ with L⁻¹ = [1/l00, 0; -l10/(l00 l11), 1/l11] */
+            double i00 = 1.0 / l00, i10 = -l10 / (l00 * l11), i11 = 1.0 / l11;
+            double t00 = i00 * C00, t01 = i00 * C01;                         /* (L⁻¹C) row 0 */
+            double t10 = i10 * C00 + i11 * C01, t11 = i10 * C01 + i11 * C11; /* row 1 */
+            double a00 = t00 * i00, a01 = t00 * i10 + t01 * i11, a11 = t10 * i10 + t11 * i11;
+            M = wr_m2(a00, a01, a01, a11);
+        }
+        wr_m2_sym_eig(M, lam, evec);
+        wf->lambda[2 * f] = lam[0];
+        wf->lambda[2 * f + 1] = lam[1];
+        /* w = L⁻ᵀ y: L⁻ᵀ = [1/l00, -l10/(l00 l11); 0, 1/l11] */
+        wf->wdir[2 * f] = evec[0].x / l00 - l10 / (l00 * l11) * evec[0].y;
+        wf->wdir[2 * f + 1] = evec[0].y / l11;
+        wf->wperp[2 * f] = evec[1].x / l00 - l10 / (l00 * l11) * evec[1].y;
+        wf->wperp[2 * f + 1] = evec[1].y / l11;
+        {
+            double px = wf->wperp[2 * f], py = wf->wperp[2 * f + 1];
+            double wIIw = II[0] * px * px + 2.0 * II[1] * px * py + II[2] * py * py;
+            double wIbw = Ib[0] * px * px + 2.0 * Ib[1] * px * py + Ib[2] * py * py; /* = 1 + λ1 */
+            double wIuw = Iu[0] * px * px + 2.0 * Iu[1] * px * py + Iu[2] * py * py; /* = 1 */
+            double ratio = wIbw / wIuw;
+            wf->kperp[f] = wIbw > 0.0 ? wIIw / wIbw : 0.0;
+            /* Eq. 22 coefficient; W_s^2 ignored in pure tension (Sec. 4.2). */
+            wf->c2[f] = lam[0] < 0.0 ? 4.0 * wf->kperp[f] * wf->kperp[f] * wf->beta * (wf->alpha + wf->beta) /
+                                           (wf->alpha + 2.0 * wf->beta) * ratio * ratio
+                                     : 0.0;
+        }
+        wr__wf_qform(wf->iu_inv + 3 * f, wf->alpha, wf->beta, Qm);
+        {
+            int c, d;
+            double s = 0.0;
+            for (c = 0; c < 3; ++c)
+                for (d = 0; d < 3; ++d) s += II[c] * Qm[3 * c + d] * II[d];
+            wf->wb1[f] = s; /* W_b^1 = ||I_u⁻¹ II_b||²_SV (II_u = 0, rest-flat) */
+        }
+    }
+    return WR_OK;
+}
+
+WRDEF void wr_wf_set_wrinkle_free(wr_wf *wf, const uint8_t *flags) {
+    int32_t f;
+    for (f = 0; f < wf->nf; ++f) wf->wfree[f] = (uint8_t)(flags && flags[f] ? 1 : 0);
+}
+
+static int32_t wr__wf_face_neighbor(const wr_mesh *m, int32_t f, int k) {
+    int32_t e = m->face_edges[3 * f + k];
+    return m->edge_faces[2 * e] == f ? m->edge_faces[2 * e + 1] : m->edge_faces[2 * e];
+}
+
+WRDEF int32_t wr_wf_classify(wr_wf *wf, const wr_wf_classify_desc *desc) {
+    const wr_mesh *m = wf->mesh;
+    double tol = desc && desc->compress_tol > 0.0 ? desc->compress_tol : WR__WF_COMPRESS_TOL;
+    int filter = !(desc && desc->no_outlier_filter);
+    int32_t f, count = 0;
+    uint8_t *w0 = (uint8_t *)wr_alloc_array((size_t)wf->nf, sizeof(uint8_t));
+    if (!w0) { /* fall back to the unfiltered rule written straight into wfree */
+        filter = 0;
+    }
+    for (f = 0; f < wf->nf; ++f) {
+        /* Sec. 5.1: average of the face's most negative eigenvalue with its neighbours'. */
+        double s = wf->lambda[2 * f];
+        int n = 1, k;
+        for (k = 0; k < 3; ++k) {
+            int32_t g = wr__wf_face_neighbor(m, f, k);
+            if (g >= 0) {
+                s += wf->lambda[2 * g];
+                ++n;
+            }
+        }
+        wf->wfree[f] = (uint8_t)(s / n >= -tol ? 1 : 0);
+    }
+    if (filter) {
+        memcpy(w0, wf->wfree, (size_t)wf->nf);
+        for (f = 0; f < wf->nf; ++f) {
+            int nn = 0, nin = 0, k;
+            for (k = 0; k < 3; ++k) {
+                int32_t g = wr__wf_face_neighbor(m, f, k);
+                if (g >= 0) {
+                    ++nn;
+                    nin += w0[g];
+                }
+            }
+            if (w0[f] && nn > 0 && nin == 0) wf->wfree[f] = 0;
+            if (!w0[f] && nn > 0 && nin == nn) wf->wfree[f] = 1;
+        }
+    }
+    wr_free(w0);
+    for (f = 0; f < wf->nf; ++f) count += wf->wfree[f];
+    return count;
+}
+
+WRDEF void wr_wf_face_dofs(const wr_wf *wf, int32_t f, int32_t idx[6], double sign[6]) {
+    const wr_mesh *m = wf->mesh;
+    int k;
+    for (k = 0; k < 3; ++k) {
+        idx[k] = m->faces[3 * f + k];
+        sign[k] = 1.0;
+        idx[3 + k] = wf->nv + m->face_edges[3 * f + k];
+        sign[3 + k] = (double)m->face_edge_sign[3 * f + k];
+    }
+}
+
+WRDEF void wr_wf_curl(const wr_mesh *m, const double *omega, double *curl) {
+    int32_t f;
+    for (f = 0; f < m->nf; ++f) {
+        double s = 0.0;
+        int k;
+        for (k = 0; k < 3; ++k) s += m->face_edge_sign[3 * f + k] * omega[m->face_edges[3 * f + k]];
+        curl[f] = s;
+    }
+}
+
+WRDEF wr_status wr_wf_energy(const wr_wf *wf, const double *a, const double *omega, double *energy, double *grad,
+                             double *face_hess, double *terms, wr_diag *diag) {
+    int32_t f, i;
+    double E = 0.0;
+    if (!wf || !a || !omega || !energy) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "wf energy: NULL argument");
+    for (i = 0; i < wf->nv; ++i)
+        if (!isfinite(a[i])) return wr_fail(diag, WR_ERR_DOMAIN, i, "wf energy: non-finite a at vertex %d", (int)i);
+    for (i = 0; i < wf->ne; ++i)
+        if (!isfinite(omega[i]))
+            return wr_fail(diag, WR_ERR_DOMAIN, i, "wf energy: non-finite omega at edge %d", (int)i);
+    if (grad) memset(grad, 0, sizeof(double) * (size_t)(wf->nv + wf->ne));
+    if (face_hess) memset(face_hess, 0, sizeof(double) * 36 * (size_t)wf->nf);
+    if (terms) memset(terms, 0, sizeof(double) * WR_WF_NTERMS);
+    for (f = 0; f < wf->nf; ++f) {
+        int32_t idx[6];
+        double sg[6], xl[6], g6[6];
+        int k;
+        if (wf->wfree[f]) continue; /* Eq. 37: sum over faces not in W */
+        wr_wf_face_dofs(wf, f, idx, sg);
+        for (k = 0; k < 3; ++k) {
+            xl[k] = a[idx[k]];
+            xl[3 + k] = sg[3 + k] * omega[idx[3 + k] - wf->nv];
+        }
+        memset(g6, 0, sizeof g6);
+        wr__wf_face_eval(wf, f, xl, &E, grad ? g6 : NULL, face_hess ? face_hess + 36 * (size_t)f : NULL, terms);
+        if (grad)
+            for (k = 0; k < 6; ++k) grad[idx[k]] += sg[k] * g6[k];
+        if (face_hess) {
+            double *H = face_hess + 36 * (size_t)f;
+            int r, c;
+            for (r = 0; r < 6; ++r)
+                for (c = 0; c < 6; ++c) H[6 * r + c] *= sg[r] * sg[c];
+        }
+    }
+    *energy = E;
+    return WR_OK;
+}
+
+/* ---- null-space basis of {ω : dω_f = 0 for every face f outside W} (tree–cotree) ----
+ * ω = d0 ψ + Σ_g c_g h_g on the "active" edges (edges of at least one face outside W). ψ lives on
+ * active vertices minus one root per primal component; h_g is 1 on generator edge g, 0 on the other
+ * generators and on primal-tree edges, and fixed on dual-tree (cotree) edges by peeling the dual tree
+ * from its leaves (each face's curl equation solved for its parent edge). The dual tree is rooted at a
+ * virtual "outside" node reached through boundary edges of the complex, so the root needs no
+ * equation; closed components get a real root face whose equation follows from the others.
+ * Z is stored row-wise per edge (CSR over edges). */
+typedef struct wr__wf_basis {
+    int32_t ne, ncol, npsi, ngen;
+    int32_t *zstart; /* ne+1 */
+    int32_t *zcol;
+    double *zval;
+    int32_t *vcol;   /* nv: ψ column of vertex, or -1 (root or inactive) */
+    uint8_t *eact;   /* ne: edge of some face outside W */
+} wr__wf_basis;
+
+static void wr__wf_basis_free(wr__wf_basis *B) {
+    wr_free(B->zstart);
+    wr_free(B->zcol);
+    wr_free(B->zval);
+    wr_free(B->vcol);
+    wr_free(B->eact);
+    memset(B, 0, sizeof *B);
+}
+
+static wr_status wr__wf_basis_build(const wr_wf *wf, wr__wf_basis *B, wr_diag *diag) {
+    const wr_mesh *m = wf->mesh;
+    int32_t nv = m->nv, ne = m->ne, nf = m->nf;
+    int32_t *vpar = NULL, *queue = NULL, *fpar = NULL, *order = NULL, *vadj_s = NULL, *vadj = NULL, *gcol = NULL;
+    int32_t *hstart = NULL, *hcol = NULL, *mark = NULL, *touched = NULL;
+    double *hval = NULL, *acc = NULL;
+    uint8_t *intree = NULL, *cotree = NULL, *vvis = NULL, *fvis = NULL;
+    int32_t i, f, e, v, qh, qt, nord = 0, nnz, cap;
+    wr_status st = WR_OK;
+    memset(B, 0, sizeof *B);
+    B->ne = ne;
+    B->zstart = (int32_t *)wr_calloc_array((size_t)ne + 1, sizeof(int32_t));
+    B->vcol = (int32_t *)wr_alloc_array((size_t)nv, sizeof(int32_t));
+    B->eact = (uint8_t *)wr_calloc_array((size_t)ne, sizeof(uint8_t));
+    vpar = (int32_t *)wr_alloc_array((size_t)nv, sizeof(int32_t));
+    queue = (int32_t *)wr_alloc_array((size_t)(nv > nf ? nv : nf) + 1, sizeof(int32_t));
+    fpar = (int32_t *)wr_alloc_array((size_t)nf, sizeof(int32_t));
+    order = (int32_t *)wr_alloc_array((size_t)nf, sizeof(int32_t));
+    vadj_s = (int32_t *)wr_calloc_array((size_t)nv + 1, sizeof(int32_t));
+    vadj = (int32_t *)wr_alloc_array((size_t)ne * 2, sizeof(int32_t));
+    gcol = (int32_t *)wr_alloc_array((size_t)ne, sizeof(int32_t));
+    intree = (uint8_t *)wr_calloc_array((size_t)ne, sizeof(uint8_t));
+    cotree = (uint8_t *)wr_calloc_array((size_t)ne, sizeof(uint8_t));
+    vvis = (uint8_t *)wr_calloc_array((size_t)nv, sizeof(uint8_t));
+    fvis = (uint8_t *)wr_calloc_array((size_t)nf, sizeof(uint8_t));
+    if (!B->zstart || !B->vcol || !B->eact || !vpar || !queue || !fpar || !order || !vadj_s || !vadj || !gcol ||
+        !intree || !cotree || !vvis || !fvis) {
+        st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf basis: out of memory");
+        goto done;
+    }
+    for (f = 0; f < nf; ++f)
+        if (!wf->wfree[f])
+            for (i = 0; i < 3; ++i) B->eact[m->face_edges[3 * f + i]] = 1;
+    /* vertex -> active edges adjacency */
+    for (e = 0; e < ne; ++e)
+        if (B->eact[e]) {
+            vadj_s[m->edges[2 * e] + 1]++;
+            vadj_s[m->edges[2 * e + 1] + 1]++;
+        }
+    for (v = 0; v < nv; ++v) vadj_s[v + 1] += vadj_s[v];
+    {
+        int32_t *fill = vpar; /* reuse as a cursor */
+        for (v = 0; v < nv; ++v) fill[v] = vadj_s[v];
+        for (e = 0; e < ne; ++e)
+            if (B->eact[e]) {
+                vadj[fill[m->edges[2 * e]]++] = e;
+                vadj[fill[m->edges[2 * e + 1]]++] = e;
+            }
+    }
+    /* primal BFS forest over active edges */
+    for (v = 0; v < nv; ++v) B->vcol[v] = -1;
+    B->npsi = 0;
+    for (v = 0; v < nv; ++v) {
+        int32_t r = v;
+        if (vvis[r] || vadj_s[r] == vadj_s[r + 1]) continue;
+        vvis[r] = 1; /* root: no ψ column (gauge) */
+        qh = qt = 0;
+        queue[qt++] = r;
+        while (qh < qt) {
+            int32_t u = queue[qh++], k;
+            for (k = vadj_s[u]; k < vadj_s[u + 1]; ++k) {
+                int32_t ee = vadj[k], w = m->edges[2 * ee] == u ? m->edges[2 * ee + 1] : m->edges[2 * ee];
+                if (vvis[w]) continue;
+                vvis[w] = 1;
+                intree[ee] = 1;
+                B->vcol[w] = B->npsi++;
+                queue[qt++] = w;
+            }
+        }
+    }
+    /* dual BFS: from the virtual outside node through boundary edges of the complex (not in the
+     * primal tree), then through interior edges not in the primal tree. */
+    for (f = 0; f < nf; ++f) fpar[f] = -1;
+    qh = qt = 0;
+    for (e = 0; e < ne; ++e) {
+        int32_t f0 = m->edge_faces[2 * e], f1 = m->edge_faces[2 * e + 1], fin;
+        int n_in = (f0 >= 0 && !wf->wfree[f0]) + (f1 >= 0 && !wf->wfree[f1]);
+        if (!B->eact[e] || n_in != 1 || intree[e]) continue;
+        fin = (f0 >= 0 && !wf->wfree[f0]) ? f0 : f1;
+        if (fvis[fin]) continue;
+        fvis[fin] = 1;
+        fpar[fin] = e;
+        cotree[e] = 1;
+        queue[qt++] = fin;
+    }
+    for (f = -1; f < nf; ++f) {
+        if (f >= 0) {
+            if (fvis[f] || wf->wfree[f]) continue;
+            fvis[f] = 1; /* closed component: a real root face */
+            queue[qt++] = f;
+        }
+        while (qh < qt) {
+            int32_t g = queue[qh++], k;
+            order[nord++] = g;
+            for (k = 0; k < 3; ++k) {
+                int32_t ee = m->face_edges[3 * g + k], h2 = wr__wf_face_neighbor(m, g, k);
+                if (h2 < 0 || wf->wfree[h2] || fvis[h2] || intree[ee]) continue;
+                fvis[h2] = 1;
+                fpar[h2] = ee;
+                cotree[ee] = 1;
+                queue[qt++] = h2;
+            }
+        }
+    }
+    /* generators: active edges in neither tree */
+    B->ngen = 0;
+    for (e = 0; e < ne; ++e) {
+        gcol[e] = -1;
+        if (B->eact[e] && !intree[e] && !cotree[e]) gcol[e] = B->npsi + B->ngen++;
+    }
+    B->ncol = B->npsi + B->ngen;
+    /* h rows (generator part) for every edge, sparse: hstart/hcol/hval built by peeling leaves first. */
+    hstart = (int32_t *)wr_alloc_array((size_t)ne, sizeof(int32_t)); /* offset into hcol, -1 = empty */
+    mark = (int32_t *)wr_alloc_array((size_t)(B->ngen > 0 ? B->ngen : 1), sizeof(int32_t));
+    touched = (int32_t *)wr_alloc_array((size_t)(B->ngen > 0 ? B->ngen : 1), sizeof(int32_t));
+    acc = (double *)wr_calloc_array((size_t)(B->ngen > 0 ? B->ngen : 1), sizeof(double));
+    {
+        int32_t *hlen = fpar == NULL ? NULL : (int32_t *)wr_calloc_array((size_t)ne, sizeof(int32_t));
+        int32_t hcount = 0;
+        cap = ne + 16;
+        hcol = (int32_t *)wr_alloc_array((size_t)cap, sizeof(int32_t));
+        hval = (double *)wr_alloc_array((size_t)cap, sizeof(double));
+        if (!hstart || !mark || !touched || !acc || !hlen || !hcol || !hval) {
+            wr_free(hlen);
+            st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf basis: out of memory");
+            goto done;
+        }
+        for (i = 0; i < B->ngen; ++i) mark[i] = 0;
+        for (e = 0; e < ne; ++e) {
+            hstart[e] = -1;
+            if (gcol[e] >= 0) {
+                hstart[e] = hcount;
+                hlen[e] = 1;
+                hcol[hcount] = gcol[e] - B->npsi;
+                hval[hcount++] = 1.0;
+            }
+        }
+        for (i = nord - 1; i >= 0; --i) {
+            int32_t g = order[i], pe = fpar[g], k, nt = 0, ps = 0;
+            if (pe < 0) { /* real root (closed component): its equation must already hold */
+                for (k = 0; k < 3; ++k) {
+                    int32_t ee = m->face_edges[3 * g + k], t;
+                    for (t = 0; hstart[ee] >= 0 && t < hlen[ee]; ++t) acc[hcol[hstart[ee] + t]] += m->face_edge_sign[3 * g + k] * hval[hstart[ee] + t];
+                }
+                for (k = 0; k < B->ngen; ++k) {
+                    if (fabs(acc[k]) > 1e-9) {
+                        wr_free(hlen);
+                        st = wr_fail(diag, WR_ERR_TOPOLOGY, g,
+                                     "wf basis: dual tree root face %d cannot close its curl equation", (int)g);
+                        goto done;
+                    }
+                    acc[k] = 0.0;
+                }
+                continue;
+            }
+            for (k = 0; k < 3; ++k) {
+                int32_t ee = m->face_edges[3 * g + k], t;
+                if (ee == pe) {
+                    ps = m->face_edge_sign[3 * g + k];
+                    continue;
+                }
+                for (t = 0; hstart[ee] >= 0 && t < hlen[ee]; ++t) {
+                    int32_t c = hcol[hstart[ee] + t];
+                    if (!mark[c]) {
+                        mark[c] = 1;
+                        touched[nt++] = c;
+                    }
+                    acc[c] += m->face_edge_sign[3 * g + k] * hval[hstart[ee] + t];
+                }
+            }
+            /* ps·h(pe) + Σ_other s·h = 0 */
+            if (hcount + nt > cap) {
+                int32_t ncap = 2 * (hcount + nt) + 16;
+                int32_t *nc = (int32_t *)wr_realloc_array(hcol, (size_t)ncap, sizeof(int32_t));
+                double *nvv;
+                if (!nc) {
+                    wr_free(hlen);
+                    st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf basis: out of memory");
+                    goto done;
+                }
+                hcol = nc;
+                nvv = (double *)wr_realloc_array(hval, (size_t)ncap, sizeof(double));
+                if (!nvv) {
+                    wr_free(hlen);
+                    st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf basis: out of memory");
+                    goto done;
+                }
+                hval = nvv;
+                cap = ncap;
+            }
+            hstart[pe] = hcount;
+            hlen[pe] = 0;
+            for (k = 0; k < nt; ++k) {
+                int32_t c = touched[k];
+                if (acc[c] != 0.0) {
+                    hcol[hcount] = c;
+                    hval[hcount++] = -ps * acc[c];
+                    hlen[pe]++;
+                }
+                acc[c] = 0.0;
+                mark[c] = 0;
+            }
+        }
+        /* assemble Z rows: d0 part (ψ_hi - ψ_lo) + generator part */
+        nnz = 0;
+        for (e = 0; e < ne; ++e) nnz += B->eact[e] ? 2 + (hstart[e] >= 0 ? hlen[e] : 0) : 0;
+        B->zcol = (int32_t *)wr_alloc_array((size_t)nnz + 1, sizeof(int32_t));
+        B->zval = (double *)wr_alloc_array((size_t)nnz + 1, sizeof(double));
+        if (!B->zcol || !B->zval) {
+            wr_free(hlen);
+            st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf basis: out of memory");
+            goto done;
+        }
+        nnz = 0;
+        for (e = 0; e < ne; ++e) {
+            B->zstart[e] = nnz;
+            if (B->eact[e]) {
+                int32_t lo = B->vcol[m->edges[2 * e]], hi = B->vcol[m->edges[2 * e + 1]], t;
+                if (hi >= 0) {
+                    B->zcol[nnz] = hi;
+                    B->zval[nnz++] = 1.0;
+                }
+                if (lo >= 0) {
+                    B->zcol[nnz] = lo;
+                    B->zval[nnz++] = -1.0;
+                }
+                for (t = 0; hstart[e] >= 0 && t < hlen[e]; ++t) {
+                    B->zcol[nnz] = B->npsi + hcol[hstart[e] + t];
+                    B->zval[nnz++] = hval[hstart[e] + t];
+                }
+            }
+        }
+        B->zstart[ne] = nnz;
+        wr_free(hlen);
+    }
+done:
+    wr_free(vpar);
+    wr_free(queue);
+    wr_free(fpar);
+    wr_free(order);
+    wr_free(vadj_s);
+    wr_free(vadj);
+    wr_free(gcol);
+    wr_free(hstart);
+    wr_free(hcol);
+    wr_free(hval);
+    wr_free(mark);
+    wr_free(touched);
+    wr_free(acc);
+    wr_free(intree);
+    wr_free(cotree);
+    wr_free(vvis);
+    wr_free(fvis);
+    if (st != WR_OK) wr__wf_basis_free(B);
+    return st;
+}
+
+/* ω_e = (Z z)_e on active edges; other edges untouched. */
+static void wr__wf_z_apply(const wr__wf_basis *B, const double *z, double *omega) {
+    int32_t e, t;
+    for (e = 0; e < B->ne; ++e) {
+        double s = 0.0;
+        if (!B->eact[e]) continue;
+        for (t = B->zstart[e]; t < B->zstart[e + 1]; ++t) s += B->zval[t] * z[B->zcol[t]];
+        omega[e] = s;
+    }
+}
+
+/* gz = Zᵀ gω (gz has ncol entries, overwritten). */
+static void wr__wf_z_applyT(const wr__wf_basis *B, const double *gomega, double *gz) {
+    int32_t e, t;
+    memset(gz, 0, sizeof(double) * (size_t)(B->ncol > 0 ? B->ncol : 0));
+    for (e = 0; e < B->ne; ++e)
+        if (B->eact[e])
+            for (t = B->zstart[e]; t < B->zstart[e + 1]; ++t) gz[B->zcol[t]] += B->zval[t] * gomega[e];
+}
+
+/* Solve the least-squares problem min ||Z z - t||² over active edges: (ZᵀZ) z = Zᵀ t. */
+static wr_status wr__wf_lsq_closed(const wr__wf_basis *B, const double *target, double *z, wr_solver_method method,
+                                   wr_diag *diag) {
+    wr_triplets T;
+    wr_csr A;
+    wr_spd_desc sd;
+    wr_spd_stats ss;
+    double *rhs = NULL;
+    int32_t e;
+    wr_status st;
+    memset(&A, 0, sizeof A);
+    if (B->ncol == 0) return WR_OK;
+    st = wr_triplets_create(&T, B->ncol, (int64_t)B->zstart[B->ne] * 4 + 16, diag);
+    if (st) return st;
+    for (e = 0; e < B->ne && !st; ++e) {
+        int32_t s0 = B->zstart[e], n = B->zstart[e + 1] - s0, r, c;
+        if (!B->eact[e]) continue;
+        for (r = 0; r < n && !st; ++r)
+            for (c = 0; c < n && !st; ++c)
+                st = wr_triplets_add(&T, B->zcol[s0 + r], B->zcol[s0 + c], B->zval[s0 + r] * B->zval[s0 + c], diag);
+    }
+    if (!st) st = wr_csr_from_triplets(&A, &T, diag);
+    wr_triplets_free(&T);
+    rhs = (double *)wr_alloc_array((size_t)B->ncol, sizeof(double));
+    if (!st && !rhs) st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf lsq: out of memory");
+    if (!st) {
+        int32_t i;
+        wr__wf_z_applyT(B, target, rhs);
+        for (i = 0; i < B->ncol; ++i) z[i] = 0.0;
+        memset(&sd, 0, sizeof sd);
+        sd.method = method;
+        st = wr_spd_solve(&A, rhs, z, &sd, &ss, diag);
+    }
+    wr_free(rhs);
+    wr_csr_free(&A);
+    return st;
+}
+
+WRDEF wr_status wr_wf_project_closed(const wr_wf *wf, double *omega, wr_diag *diag) {
+    wr__wf_basis B;
+    double *z;
+    wr_status st;
+    if (!wf || !omega) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "wf project: NULL argument");
+    st = wr__wf_basis_build(wf, &B, diag);
+    if (st) return st;
+    z = (double *)wr_calloc_array((size_t)(B.ncol > 0 ? B.ncol : 1), sizeof(double));
+    if (!z) {
+        wr__wf_basis_free(&B);
+        return wr_fail(diag, WR_ERR_NOMEM, -1, "wf project: out of memory");
+    }
+    st = wr__wf_lsq_closed(&B, omega, z, WR_SOLVER_AUTO, diag);
+    if (!st) wr__wf_z_apply(&B, z, omega);
+    wr_free(z);
+    wr__wf_basis_free(&B);
+    return st;
+}
+
+/* Vertices with a forced to 0: every vertex of a W face, and vertices in no face outside W. */
+static void wr__wf_zero_vertices(const wr_wf *wf, uint8_t *zero) {
+    const wr_mesh *m = wf->mesh;
+    int32_t f, v;
+    for (v = 0; v < wf->nv; ++v) zero[v] = 1;
+    for (f = 0; f < wf->nf; ++f)
+        if (!wf->wfree[f])
+            for (v = 0; v < 3; ++v) zero[m->faces[3 * f + v]] = 0;
+    for (f = 0; f < wf->nf; ++f)
+        if (wf->wfree[f])
+            for (v = 0; v < 3; ++v) zero[m->faces[3 * f + v]] = 1;
+}
+
+WRDEF wr_status wr_wf_init(const wr_wf *wf, const wr_wf_init_desc *desc, double *a, double *omega, wr_diag *diag) {
+    const wr_mesh *m;
+    double k, lo[3], hi[3], diam;
+    int32_t f, v, e, i;
+    double *cnt = NULL, *tsum = NULL, *tcnt = NULL, *wd = NULL;
+    uint8_t *zero = NULL, *vis = NULL;
+    int32_t *queue = NULL;
+    wr_status st = WR_OK;
+    if (!wf || !a || !omega) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "wf init: NULL argument");
+    m = wf->mesh;
+    for (i = 0; i < 3; ++i) lo[i] = hi[i] = wf->base[i];
+    for (v = 0; v < wf->nv; ++v)
+        for (i = 0; i < 3; ++i) {
+            lo[i] = fmin(lo[i], wf->base[3 * v + i]);
+            hi[i] = fmax(hi[i], wf->base[3 * v + i]);
+        }
+    diam = sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) + (hi[2] - lo[2]) * (hi[2] - lo[2]));
+    k = desc && desc->k > 0.0 ? desc->k : fmin(WR__WF_K_MAX, 0.1 * diam);
+    if (!(k > 0.0)) return wr_fail(diag, WR_ERR_GEOMETRY, -1, "wf init: base surface has zero extent");
+    cnt = (double *)wr_calloc_array((size_t)wf->nv, sizeof(double));
+    tsum = (double *)wr_calloc_array((size_t)wf->ne, sizeof(double));
+    tcnt = (double *)wr_calloc_array((size_t)wf->ne, sizeof(double));
+    wd = (double *)wr_alloc_array((size_t)wf->nf * 2, sizeof(double));
+    zero = (uint8_t *)wr_alloc_array((size_t)wf->nv, sizeof(uint8_t));
+    vis = (uint8_t *)wr_calloc_array((size_t)wf->nf, sizeof(uint8_t));
+    queue = (int32_t *)wr_alloc_array((size_t)wf->nf, sizeof(int32_t));
+    if (!cnt || !tsum || !tcnt || !wd || !zero || !vis || !queue) {
+        st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf init: out of memory");
+        goto done;
+    }
+    /* Orient the line field w consistently: BFS over compressed faces outside W, flipping w of a new
+     * face when its pushforward dr_b w points against its parent's. */
+    memcpy(wd, wf->wdir, sizeof(double) * 2 * (size_t)wf->nf);
+    for (f = 0; f < wf->nf; ++f) {
+        int32_t qh = 0, qt = 0;
+        if (vis[f] || wf->wfree[f] || !(wf->lambda[2 * f] < 0.0)) continue;
+        vis[f] = 1;
+        queue[qt++] = f;
+        while (qh < qt) {
+            int32_t g = queue[qh++], c;
+            const int32_t *gv = m->faces + 3 * g;
+            wr_vec3 pg = wr_v3_add(wr_v3_scale(wr_v3_sub(wr_v3_load(wf->base + 3 * gv[1]), wr_v3_load(wf->base + 3 * gv[0])), wd[2 * g]),
+                                   wr_v3_scale(wr_v3_sub(wr_v3_load(wf->base + 3 * gv[2]), wr_v3_load(wf->base + 3 * gv[0])), wd[2 * g + 1]));
+            for (c = 0; c < 3; ++c) {
+                int32_t h2 = wr__wf_face_neighbor(m, g, c);
+                const int32_t *hv;
+                wr_vec3 ph;
+                if (h2 < 0 || vis[h2] || wf->wfree[h2] || !(wf->lambda[2 * h2] < 0.0)) continue;
+                hv = m->faces + 3 * h2;
+                ph = wr_v3_add(wr_v3_scale(wr_v3_sub(wr_v3_load(wf->base + 3 * hv[1]), wr_v3_load(wf->base + 3 * hv[0])), wd[2 * h2]),
+                               wr_v3_scale(wr_v3_sub(wr_v3_load(wf->base + 3 * hv[2]), wr_v3_load(wf->base + 3 * hv[0])), wd[2 * h2 + 1]));
+                if (wr_v3_dot(pg, ph) < 0.0) {
+                    wd[2 * h2] = -wd[2 * h2];
+                    wd[2 * h2 + 1] = -wd[2 * h2 + 1];
+                }
+                vis[h2] = 1;
+                queue[qt++] = h2;
+            }
+        }
+    }
+    for (v = 0; v < wf->nv; ++v) a[v] = 0.0;
+    for (f = 0; f < wf->nf; ++f) {
+        double eps = -wf->lambda[2 * f], amp = 0.0;
+        const double *iu = wf->iu + 3 * f;
+        double p[2] = {0.0, 0.0};
+        int c;
+        if (!wf->wfree[f] && eps > 0.0) {
+            /* App. E.2: a = k sqrt(2 ε_w); dφ ∝ (I_u w)ᵀ with ||dφ||_{I_u⁻¹} = 1/k (||w||_{I_u} = 1). */
+            amp = k * sqrt(2.0 * eps);
+            p[0] = (iu[0] * wd[2 * f] + iu[1] * wd[2 * f + 1]) / k;
+            p[1] = (iu[1] * wd[2 * f] + iu[2] * wd[2 * f + 1]) / k;
+        }
+        for (c = 0; c < 3; ++c) {
+            int32_t vv = m->faces[3 * f + c];
+            a[vv] += amp;
+            cnt[vv] += 1.0;
+        }
+        if (wf->wfree[f]) continue;
+        /* edge targets in the face traversal: edge k goes corner (k+1)%3 -> (k+2)%3; chart vectors of
+         * the three traversals: 1->2 = (-1, 1), 2->0 = (0, -1), 0->1 = (1, 0). */
+        {
+            static const double ev[3][2] = {{-1.0, 1.0}, {0.0, -1.0}, {1.0, 0.0}};
+            for (c = 0; c < 3; ++c) {
+                int32_t ee = m->face_edges[3 * f + c];
+                double tloc = p[0] * ev[c][0] + p[1] * ev[c][1];
+                tsum[ee] += m->face_edge_sign[3 * f + c] * tloc;
+                tcnt[ee] += 1.0;
+            }
+        }
+    }
+    wr__wf_zero_vertices(wf, zero);
+    for (v = 0; v < wf->nv; ++v) a[v] = (cnt[v] > 0.0 && !zero[v]) ? a[v] / cnt[v] : 0.0;
+    for (e = 0; e < wf->ne; ++e) omega[e] = tcnt[e] > 0.0 ? tsum[e] / tcnt[e] : 0.0;
+    st = wr_wf_project_closed(wf, omega, diag); /* App. E.2: least-squares curl-free projection */
+done:
+    wr_free(cnt);
+    wr_free(tsum);
+    wr_free(tcnt);
+    wr_free(wd);
+    wr_free(zero);
+    wr_free(vis);
+    wr_free(queue);
+    return st;
+}
+
+/* ---- phase extraction (App. E.4) ---- */
+
+/* Weighted union-find over face corners: off[x] = φ_x - φ_parent(x). */
+static int32_t wr__wf_uf_find(int32_t *par, double *off, int32_t x) {
+    int32_t r = x, y;
+    double acc = 0.0, t;
+    while (par[r] != r) r = par[r];
+    /* path compression with offsets: walk again, making every node point to r */
+    y = x;
+    acc = 0.0;
+    {
+        int32_t z = x;
+        while (par[z] != z) {
+            acc += off[z];
+            z = par[z];
+        }
+    }
+    while (par[y] != y) {
+        int32_t nxt = par[y];
+        t = off[y];
+        off[y] = acc;
+        par[y] = r;
+        acc -= t;
+        y = nxt;
+    }
+    return r;
+}
+
+WRDEF wr_status wr_wf_phase(const wr_wf *wf, const double *omega, double *phi, wr_wf_phase_stats *stats,
+                            wr_diag *diag) {
+    const wr_mesh *m;
+    int32_t nf, f, e, i, qh, qt, ncls = 0;
+    int32_t *fpar = NULL, *queue = NULL, *par = NULL, *cls = NULL, *croot = NULL;
+    uint8_t *vis = NULL, *fixed = NULL;
+    double *off = NULL, *phi0 = NULL, *rhs = NULL, *sol = NULL;
+    wr_triplets T;
+    wr_csr A;
+    wr_status st = WR_OK;
+    wr_wf_phase_stats ps;
+    memset(&ps, 0, sizeof ps);
+    memset(&A, 0, sizeof A);
+    memset(&T, 0, sizeof T);
+    if (!wf || !omega || !phi) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "wf phase: NULL argument");
+    m = wf->mesh;
+    nf = m->nf;
+    fpar = (int32_t *)wr_alloc_array((size_t)nf, sizeof(int32_t));
+    queue = (int32_t *)wr_alloc_array((size_t)nf, sizeof(int32_t));
+    par = (int32_t *)wr_alloc_array((size_t)nf * 3, sizeof(int32_t));
+    cls = (int32_t *)wr_alloc_array((size_t)nf * 3, sizeof(int32_t));
+    croot = (int32_t *)wr_alloc_array((size_t)nf * 3, sizeof(int32_t));
+    vis = (uint8_t *)wr_calloc_array((size_t)nf, sizeof(uint8_t));
+    off = (double *)wr_calloc_array((size_t)nf * 3, sizeof(double));
+    phi0 = (double *)wr_calloc_array((size_t)nf * 3, sizeof(double));
+    if (!fpar || !queue || !par || !cls || !croot || !vis || !off || !phi0) {
+        st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf phase: out of memory");
+        goto done;
+    }
+    for (i = 0; i < nf * 3; ++i) phi[i] = 0.0;
+    /* 1. Integrate ω along a BFS tree of the dual graph outside W (one disk per component). */
+    for (f = 0; f < nf; ++f) {
+        if (vis[f] || wf->wfree[f]) continue;
+        vis[f] = 1;
+        qh = qt = 0;
+        queue[qt++] = f;
+        /* root: φ(corner 0) = 0, then along edge 2 (0->1) and edge 1 (2->0) */
+        phi0[3 * f] = 0.0;
+        phi0[3 * f + 1] = m->face_edge_sign[3 * f + 2] * omega[m->face_edges[3 * f + 2]];
+        phi0[3 * f + 2] = -m->face_edge_sign[3 * f + 1] * omega[m->face_edges[3 * f + 1]];
+        while (qh < qt) {
+            int32_t g = queue[qh++], k;
+            for (k = 0; k < 3; ++k) {
+                int32_t h2 = wr__wf_face_neighbor(m, g, k), c, d, shared = 0, third = -1;
+                if (h2 < 0 || vis[h2] || wf->wfree[h2]) continue;
+                vis[h2] = 1;
+                queue[qt++] = h2;
+                /* copy the two shared corners, integrate to the third along an edge of h2 */
+                for (c = 0; c < 3; ++c) {
+                    int32_t vh = m->faces[3 * h2 + c], found = 0;
+                    for (d = 0; d < 3; ++d)
+                        if (m->faces[3 * g + d] == vh) {
+                            phi0[3 * h2 + c] = phi0[3 * g + d];
+                            found = 1;
+                        }
+                    if (found)
+                        ++shared;
+                    else
+                        third = c;
+                }
+                if (shared == 2 && third >= 0) {
+                    /* edge (third+2)%3 runs corner third -> (third+1)%3... use edge opposite (third+1)%3,
+                     * which runs from corner (third+2)%3 to corner third. */
+                    int32_t kk = (third + 1) % 3, from = (third + 2) % 3;
+                    phi0[3 * h2 + third] =
+                        phi0[3 * h2 + from] + m->face_edge_sign[3 * h2 + kk] * omega[m->face_edges[3 * h2 + kk]];
+                }
+            }
+        }
+    }
+    /* 2. Glue corners across every interior edge outside W with the rounded jump. */
+    for (i = 0; i < nf * 3; ++i) par[i] = i;
+    for (e = 0; e < m->ne; ++e) {
+        int32_t f0 = m->edge_faces[2 * e], f1 = m->edge_faces[2 * e + 1], end;
+        double J = 0.0, n;
+        int32_t c0[2], c1[2];
+        if (f0 < 0 || f1 < 0 || wf->wfree[f0] || wf->wfree[f1]) continue;
+        for (end = 0; end < 2; ++end) {
+            int32_t vtx = m->edges[2 * e + end], c;
+            for (c = 0; c < 3; ++c) {
+                if (m->faces[3 * f0 + c] == vtx) c0[end] = 3 * f0 + c;
+                if (m->faces[3 * f1 + c] == vtx) c1[end] = 3 * f1 + c;
+            }
+            J += 0.5 * (phi0[c1[end]] - phi0[c0[end]]);
+        }
+        n = floor(J / (2.0 * WR__WF_PI) + 0.5);
+        if (fabs(J) > 1e-9 * (1.0 + fabs(phi0[c0[0]]))) ps.n_cut_edges++;
+        if (n != 0.0) ps.n_nonzero_jumps++;
+        for (end = 0; end < 2; ++end) {
+            int32_t ra = wr__wf_uf_find(par, off, c0[end]), rb = wr__wf_uf_find(par, off, c1[end]);
+            double d = 2.0 * WR__WF_PI * n; /* φ(c1) - φ(c0) */
+            if (ra == rb) {
+                if (fabs(off[c1[end]] - off[c0[end]] - d) > 1e-6) ps.n_conflicts++;
+                continue;
+            }
+            /* φ_rb = φ_c1 - off_c1 = φ_c0 + d - off_c1 = φ_ra + off_c0 + d - off_c1 */
+            par[rb] = ra;
+            off[rb] = off[c0[end]] + d - off[c1[end]];
+        }
+    }
+    /* 3. Least squares over the corner classes: Σ_faces Σ_edges (φ_to - φ_from - ω̃)². */
+    for (i = 0; i < nf * 3; ++i) cls[i] = -1;
+    for (f = 0; f < nf; ++f) {
+        int c;
+        if (wf->wfree[f]) continue;
+        for (c = 0; c < 3; ++c) {
+            int32_t r = wr__wf_uf_find(par, off, 3 * f + c);
+            if (cls[r] < 0) {
+                cls[r] = ncls;
+                croot[ncls++] = r;
+            }
+        }
+    }
+    if (ncls == 0) goto done;
+    rhs = (double *)wr_calloc_array((size_t)ncls, sizeof(double));
+    sol = (double *)wr_calloc_array((size_t)ncls, sizeof(double));
+    fixed = (uint8_t *)wr_calloc_array((size_t)ncls, sizeof(uint8_t));
+    if (!rhs || !sol || !fixed) {
+        st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf phase: out of memory");
+        goto done;
+    }
+    st = wr_triplets_create(&T, ncls, (int64_t)nf * 12, diag);
+    if (st) goto done;
+    for (f = 0; f < nf && !st; ++f) {
+        int k;
+        if (wf->wfree[f]) continue;
+        for (k = 0; k < 3 && !st; ++k) {
+            int32_t ca = 3 * f + (k + 1) % 3, cb = 3 * f + (k + 2) % 3;
+            int32_t ra = wr__wf_uf_find(par, off, ca), rb = wr__wf_uf_find(par, off, cb);
+            int32_t ia = cls[ra], ib = cls[rb];
+            /* residual: (x_b + off_b) - (x_a + off_a) - ω̃ */
+            double r0 = off[cb] - off[ca] - m->face_edge_sign[3 * f + k] * omega[m->face_edges[3 * f + k]];
+            if (ia == ib) continue; /* constant residual (a conflict or a degenerate loop) */
+            st = wr_triplets_add(&T, ia, ia, 1.0, diag);
+            if (!st) st = wr_triplets_add(&T, ib, ib, 1.0, diag);
+            if (!st) st = wr_triplets_add(&T, ia, ib, -1.0, diag);
+            if (!st) st = wr_triplets_add(&T, ib, ia, -1.0, diag);
+            rhs[ia] += r0;
+            rhs[ib] -= r0;
+        }
+    }
+    if (!st) st = wr_csr_from_triplets(&A, &T, diag);
+    if (st) goto done;
+    /* gauge: one fixed class per connected component of the class graph, at its tree-integrated value */
+    {
+        int32_t *q2 = (int32_t *)wr_alloc_array((size_t)ncls, sizeof(int32_t));
+        uint8_t *seen = (uint8_t *)wr_calloc_array((size_t)ncls, sizeof(uint8_t));
+        int32_t s;
+        if (!q2 || !seen) {
+            wr_free(q2);
+            wr_free(seen);
+            st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf phase: out of memory");
+            goto done;
+        }
+        for (s = 0; s < ncls; ++s) {
+            int32_t h0 = 0, t0 = 0;
+            if (seen[s]) continue;
+            seen[s] = 1;
+            fixed[s] = 1;
+            sol[s] = phi0[croot[s]];
+            q2[t0++] = s;
+            while (h0 < t0) {
+                int32_t u = q2[h0++], t;
+                for (t = A.rowptr[u]; t < A.rowptr[u + 1]; ++t)
+                    if (A.col[t] != u && A.val[t] != 0.0 && !seen[A.col[t]]) {
+                        seen[A.col[t]] = 1;
+                        q2[t0++] = A.col[t];
+                    }
+            }
+        }
+        wr_free(q2);
+        wr_free(seen);
+    }
+    {
+        wr_spd_desc sd;
+        wr_spd_stats ss;
+        int32_t s;
+        memset(&sd, 0, sizeof sd);
+        sd.fixed = fixed;
+        /* the Laplacian rows of isolated classes are empty: give them a unit diagonal */
+        for (s = 0; s < ncls; ++s) {
+            int32_t p = wr_csr_find(&A, s, s);
+            if (p >= 0 && A.val[p] == 0.0) A.val[p] = 1.0;
+        }
+        st = wr_spd_solve(&A, rhs, sol, &sd, &ss, diag);
+        if (st) goto done;
+    }
+    for (f = 0; f < nf; ++f) {
+        int c;
+        if (wf->wfree[f]) continue;
+        for (c = 0; c < 3; ++c) {
+            int32_t r = wr__wf_uf_find(par, off, 3 * f + c);
+            phi[3 * f + c] = sol[cls[r]] + off[3 * f + c];
+        }
+    }
+    for (f = 0; f < nf; ++f) {
+        int k;
+        if (wf->wfree[f]) continue;
+        for (k = 0; k < 3; ++k) {
+            double r = phi[3 * f + (k + 2) % 3] - phi[3 * f + (k + 1) % 3] -
+                       m->face_edge_sign[3 * f + k] * omega[m->face_edges[3 * f + k]];
+            ps.max_residual = fmax(ps.max_residual, fabs(r));
+        }
+    }
+done:
+    if (stats) *stats = ps;
+    wr_triplets_free(&T);
+    wr_csr_free(&A);
+    wr_free(fpar);
+    wr_free(queue);
+    wr_free(par);
+    wr_free(cls);
+    wr_free(croot);
+    wr_free(vis);
+    wr_free(off);
+    wr_free(phi0);
+    wr_free(rhs);
+    wr_free(sol);
+    wr_free(fixed);
+    return st;
+}
+
+/* ---- Loop subdivision and upsampling (App. E.5) ---- */
+
+/* Loop's interior even weight β(n) (Loop 1987). */
+static double wr__wf_loop_beta(int32_t n) {
+    double c = 0.375 + 0.25 * cos(2.0 * WR__WF_PI / (double)n);
+    return (0.625 - c * c) / (double)n;
+}
+
+static int32_t wr__wf_opposite(const wr_mesh *m, int32_t f, int32_t e) {
+    int k;
+    for (k = 0; k < 3; ++k)
+        if (m->face_edges[3 * f + k] == e) return m->faces[3 * f + k];
+    return -1;
+}
+
+/* Per-vertex Loop stencil data: nb = valence, nbnd = boundary edges, bnb = the two boundary neighbours. */
+typedef struct wr__wf_vstencil {
+    int32_t *n, *nbnd, *bnb;
+} wr__wf_vstencil;
+
+static wr_status wr__wf_vstencil_build(const wr_mesh *m, wr__wf_vstencil *S, wr_diag *diag) {
+    int32_t e, v;
+    S->n = (int32_t *)wr_calloc_array((size_t)m->nv, sizeof(int32_t));
+    S->nbnd = (int32_t *)wr_calloc_array((size_t)m->nv, sizeof(int32_t));
+    S->bnb = (int32_t *)wr_alloc_array((size_t)m->nv * 2, sizeof(int32_t));
+    if (!S->n || !S->nbnd || !S->bnb) {
+        wr_free(S->n);
+        wr_free(S->nbnd);
+        wr_free(S->bnb);
+        return wr_fail(diag, WR_ERR_NOMEM, -1, "loop: out of memory");
+    }
+    for (v = 0; v < 2 * m->nv; ++v) S->bnb[v] = -1;
+    for (e = 0; e < m->ne; ++e) {
+        int32_t i = m->edges[2 * e], j = m->edges[2 * e + 1];
+        int bnd = m->edge_faces[2 * e] < 0 || m->edge_faces[2 * e + 1] < 0;
+        S->n[i]++;
+        S->n[j]++;
+        if (bnd) {
+            if (S->nbnd[i] < 2) S->bnb[2 * i + S->nbnd[i]] = j;
+            if (S->nbnd[j] < 2) S->bnb[2 * j + S->nbnd[j]] = i;
+            S->nbnd[i]++;
+            S->nbnd[j]++;
+        }
+    }
+    return WR_OK;
+}
+
+static void wr__wf_vstencil_free(wr__wf_vstencil *S) {
+    wr_free(S->n);
+    wr_free(S->nbnd);
+    wr_free(S->bnb);
+}
+
+/* Weight of neighbour u in the even rule of v: kind 0 = interior (β), 1 = boundary neighbour, -1 =
+ * not in the stencil. Returns the weight applied to (x_u - x_v). */
+static double wr__wf_even_weight(const wr__wf_vstencil *S, int32_t v, int32_t u, int bnd_edge, int mode) {
+    if (S->nbnd[v] == 0) return wr__wf_loop_beta(S->n[v]);
+    if (S->nbnd[v] == 2 && mode == WR_WF_LOOP_BOUNDARY_SPLINE && bnd_edge) return 0.125;
+    (void)u;
+    return 0.0; /* FIXED boundary, corner or non-manifold: the vertex stays */
+}
+
+WRDEF wr_status wr_wf_loop_step(const wr_mesh *m, int32_t ncomp, const double *vals, const wr_wf_loop_desc *desc,
+                                int32_t **fine_faces, double **fine_vals, wr_diag *diag) {
+    int mode = desc ? desc->boundary : WR_WF_LOOP_BOUNDARY_FIXED;
+    int32_t nv, ne, nf, e, f, v, c;
+    double *out;
+    int32_t *ff;
+    wr__wf_vstencil S;
+    wr_status st;
+    if (!m || !vals || !fine_faces || !fine_vals || ncomp < 1)
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "loop: NULL argument or ncomp < 1");
+    if (mode != WR_WF_LOOP_BOUNDARY_FIXED && mode != WR_WF_LOOP_BOUNDARY_SPLINE)
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "loop: unknown boundary mode %d", mode);
+    *fine_faces = NULL;
+    *fine_vals = NULL;
+    nv = m->nv;
+    ne = m->ne;
+    nf = m->nf;
+    if ((int64_t)nv + ne > INT32_MAX / 2 || (int64_t)nf * 4 > INT32_MAX / 4)
+        return wr_fail(diag, WR_ERR_OVERFLOW, -1, "loop: subdivided mesh too large");
+    st = wr__wf_vstencil_build(m, &S, diag);
+    if (st) return st;
+    out = (double *)wr_alloc_array((size_t)(nv + ne) * (size_t)ncomp, sizeof(double));
+    ff = (int32_t *)wr_alloc_array((size_t)nf * 12, sizeof(int32_t));
+    if (!out || !ff) {
+        wr_free(out);
+        wr_free(ff);
+        wr__wf_vstencil_free(&S);
+        return wr_fail(diag, WR_ERR_NOMEM, -1, "loop: out of memory");
+    }
+    /* even vertices: x_v + Σ w (x_u - x_v) (the affine form of the Loop masks) */
+    for (v = 0; v < nv; ++v)
+        for (c = 0; c < ncomp; ++c) out[(size_t)v * ncomp + c] = vals[(size_t)v * ncomp + c];
+    for (e = 0; e < ne; ++e) {
+        int32_t i = m->edges[2 * e], j = m->edges[2 * e + 1];
+        int bnd = m->edge_faces[2 * e] < 0 || m->edge_faces[2 * e + 1] < 0;
+        double wi = wr__wf_even_weight(&S, i, j, bnd, mode), wj = wr__wf_even_weight(&S, j, i, bnd, mode);
+        for (c = 0; c < ncomp; ++c) {
+            double d = vals[(size_t)j * ncomp + c] - vals[(size_t)i * ncomp + c];
+            out[(size_t)i * ncomp + c] += wi * d;
+            out[(size_t)j * ncomp + c] -= wj * d;
+        }
+    }
+    /* odd vertices */
+    for (e = 0; e < ne; ++e) {
+        int32_t i = m->edges[2 * e], j = m->edges[2 * e + 1], f0 = m->edge_faces[2 * e], f1 = m->edge_faces[2 * e + 1];
+        double *o = out + (size_t)(nv + e) * ncomp;
+        if (f0 >= 0 && f1 >= 0) {
+            int32_t p = wr__wf_opposite(m, f0, e), q = wr__wf_opposite(m, f1, e);
+            for (c = 0; c < ncomp; ++c)
+                o[c] = 0.375 * (vals[(size_t)i * ncomp + c] + vals[(size_t)j * ncomp + c]) +
+                       0.125 * (vals[(size_t)p * ncomp + c] + vals[(size_t)q * ncomp + c]);
+        } else {
+            for (c = 0; c < ncomp; ++c) o[c] = 0.5 * (vals[(size_t)i * ncomp + c] + vals[(size_t)j * ncomp + c]);
+        }
+    }
+    for (f = 0; f < nf; ++f) {
+        const int32_t *fv = m->faces + 3 * f;
+        int32_t m0 = nv + m->face_edges[3 * f], m1 = nv + m->face_edges[3 * f + 1], m2 = nv + m->face_edges[3 * f + 2];
+        int32_t *o = ff + 12 * (size_t)f;
+        o[0] = fv[0], o[1] = m2, o[2] = m1;
+        o[3] = fv[1], o[4] = m0, o[5] = m2;
+        o[6] = fv[2], o[7] = m1, o[8] = m0;
+        o[9] = m0, o[10] = m1, o[11] = m2;
+    }
+    wr__wf_vstencil_free(&S);
+    *fine_faces = ff;
+    *fine_vals = out;
+    return WR_OK;
+}
+
+/* One Loop step of the per-corner phase (nf*3) outside W: every stencil is written as the corner's
+ * own value plus weighted differences along edges, and a difference along an edge is taken inside a
+ * face outside W containing it (0 when there is none), so 2π jumps between sheets never mix. */
+static wr_status wr__wf_loop_phase(const wr_mesh *m, const uint8_t *wfree, const double *phi, int mode,
+                                   double *fine_phi /* 4nf*3 */, wr_diag *diag) {
+    int32_t e, f, k;
+    double *ed = NULL, *delta = NULL;
+    wr__wf_vstencil S;
+    wr_status st = wr__wf_vstencil_build(m, &S, diag);
+    if (st) return st;
+    ed = (double *)wr_calloc_array((size_t)m->ne, sizeof(double));
+    delta = (double *)wr_calloc_array((size_t)m->nv, sizeof(double));
+    if (!ed || !delta) {
+        wr_free(ed);
+        wr_free(delta);
+        wr__wf_vstencil_free(&S);
+        return wr_fail(diag, WR_ERR_NOMEM, -1, "loop phase: out of memory");
+    }
+    /* ed[e] = φ(hi) - φ(lo) inside some face outside W */
+    for (f = 0; f < m->nf; ++f) {
+        if (wfree[f]) continue;
+        for (k = 0; k < 3; ++k) {
+            int32_t ee = m->face_edges[3 * f + k];
+            double d = phi[3 * f + (k + 2) % 3] - phi[3 * f + (k + 1) % 3];
+            ed[ee] = m->face_edge_sign[3 * f + k] * d;
+        }
+    }
+    for (e = 0; e < m->ne; ++e) {
+        int32_t i = m->edges[2 * e], j = m->edges[2 * e + 1];
+        int bnd = m->edge_faces[2 * e] < 0 || m->edge_faces[2 * e + 1] < 0;
+        delta[i] += wr__wf_even_weight(&S, i, j, bnd, mode) * ed[e];
+        delta[j] -= wr__wf_even_weight(&S, j, i, bnd, mode) * ed[e];
+    }
+    for (f = 0; f < m->nf; ++f) {
+        double val[6]; /* corners 0..2, then odd points on edges 0..2 */
+        int c;
+        if (wfree[f]) {
+            for (c = 0; c < 12; ++c) fine_phi[12 * (size_t)f + c] = 0.0;
+            continue;
+        }
+        for (c = 0; c < 3; ++c) val[c] = phi[3 * f + c] + delta[m->faces[3 * f + c]];
+        for (k = 0; k < 3; ++k) {
+            int32_t ee = m->face_edges[3 * f + k], p = (k + 1) % 3, q = (k + 2) % 3;
+            int32_t f0 = m->edge_faces[2 * ee], f1 = m->edge_faces[2 * ee + 1];
+            double base = phi[3 * f + p], dq = phi[3 * f + q] - base, dr = phi[3 * f + k] - base;
+            if (f0 >= 0 && f1 >= 0) {
+                int32_t g = f0 == f ? f1 : f0, s = wr__wf_opposite(m, g, ee), vp = m->faces[3 * f + p], t;
+                double ds = 0.0;
+                /* difference p -> s along edge (p, s) of g */
+                for (t = 0; t < 3; ++t) {
+                    int32_t e2 = m->face_edges[3 * g + t];
+                    if ((m->edges[2 * e2] == vp && m->edges[2 * e2 + 1] == s) ||
+                        (m->edges[2 * e2] == s && m->edges[2 * e2 + 1] == vp))
+                        ds = m->edges[2 * e2] == vp ? ed[e2] : -ed[e2];
+                }
+                val[3 + k] = base + 0.375 * dq + 0.125 * dr + 0.125 * ds;
+            } else {
+                val[3 + k] = base + 0.5 * dq;
+            }
+        }
+        /* children as in wr_wf_loop_step: (c0, m2, m1), (c1, m0, m2), (c2, m1, m0), (m0, m1, m2) */
+        {
+            double *o = fine_phi + 12 * (size_t)f;
+            o[0] = val[0], o[1] = val[5], o[2] = val[4];
+            o[3] = val[1], o[4] = val[3], o[5] = val[5];
+            o[6] = val[2], o[7] = val[4], o[8] = val[3];
+            o[9] = val[3], o[10] = val[4], o[11] = val[5];
+        }
+    }
+    wr_free(ed);
+    wr_free(delta);
+    wr__wf_vstencil_free(&S);
+    return WR_OK;
+}
+
+WRDEF wr_status wr_wf_upsample(const wr_wf *wf, const double *a, const double *phi, const wr_wf_upsample_desc *desc,
+                               wr_mesh *out, double **out_a, wr_diag *diag) {
+    int32_t levels = desc && desc->levels > 0 ? desc->levels : 2;
+    int mode = desc ? desc->boundary : WR_WF_LOOP_BOUNDARY_FIXED;
+    int inplane = !(desc && desc->no_inplane);
+    const wr_mesh *src;
+    wr_mesh cur;
+    double *ca = NULL, *cphi = NULL, *fvals = NULL, *vals = NULL, *fphi = NULL, *grad = NULL, *wsum = NULL,
+           *nrm = NULL, *disp = NULL, *vphi = NULL;
+    uint8_t *cw = NULL, *fw = NULL, *vwr = NULL;
+    int32_t *ffaces = NULL;
+    int32_t lvl, v, f, c, ncomp;
+    int has_rest;
+    wr_status st = WR_OK;
+    if (out) memset(out, 0, sizeof *out);
+    if (out_a) *out_a = NULL;
+    if (!wf || !a || !phi || !out) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "wf upsample: NULL argument");
+    if (levels > 8) return wr_fail(diag, WR_ERR_BUDGET, -1, "wf upsample: %d levels (> 8) would need 4^%d faces", (int)levels, (int)levels);
+    if (mode != WR_WF_LOOP_BOUNDARY_FIXED && mode != WR_WF_LOOP_BOUNDARY_SPLINE)
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "wf upsample: unknown boundary mode %d", mode);
+    src = wf->mesh;
+    has_rest = src->rest != NULL;
+    ncomp = 3 + (has_rest ? 2 : 0) + 1;
+    /* level 0: the coarse mesh with the base positions */
+    memset(&cur, 0, sizeof cur);
+    st = wr_mesh_create(&cur, src->nv, wf->base, src->rest, src->nf, src->faces, diag);
+    if (st) return st;
+    ca = (double *)wr_alloc_array((size_t)src->nv, sizeof(double));
+    cphi = (double *)wr_alloc_array((size_t)src->nf * 3, sizeof(double));
+    cw = (uint8_t *)wr_alloc_array((size_t)src->nf, sizeof(uint8_t));
+    if (!ca || !cphi || !cw) {
+        st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf upsample: out of memory");
+        goto done;
+    }
+    memcpy(ca, a, sizeof(double) * (size_t)src->nv);
+    memcpy(cphi, phi, sizeof(double) * 3 * (size_t)src->nf);
+    memcpy(cw, wf->wfree, (size_t)src->nf);
+    for (lvl = 0; lvl < levels; ++lvl) {
+        wr_mesh fine;
+        wr_wf_loop_desc ld;
+        int32_t nvf;
+        ld.boundary = mode;
+        vals = (double *)wr_alloc_array((size_t)cur.nv * (size_t)ncomp, sizeof(double));
+        if (!vals) {
+            st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf upsample: out of memory");
+            goto done;
+        }
+        for (v = 0; v < cur.nv; ++v) {
+            double *o = vals + (size_t)v * ncomp;
+            o[0] = cur.pos[3 * v];
+            o[1] = cur.pos[3 * v + 1];
+            o[2] = cur.pos[3 * v + 2];
+            if (has_rest) {
+                o[3] = cur.rest[2 * v];
+                o[4] = cur.rest[2 * v + 1];
+            }
+            o[ncomp - 1] = ca[v];
+        }
+        st = wr_wf_loop_step(&cur, ncomp, vals, &ld, &ffaces, &fvals, diag);
+        wr_free(vals);
+        vals = NULL;
+        if (st) goto done;
+        fphi = (double *)wr_alloc_array((size_t)cur.nf * 12, sizeof(double));
+        fw = (uint8_t *)wr_alloc_array((size_t)cur.nf * 4, sizeof(uint8_t));
+        if (!fphi || !fw) {
+            st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf upsample: out of memory");
+            goto done;
+        }
+        st = wr__wf_loop_phase(&cur, cw, cphi, mode, fphi, diag);
+        if (st) goto done;
+        for (f = 0; f < cur.nf; ++f)
+            for (c = 0; c < 4; ++c) fw[4 * f + c] = cw[f];
+        nvf = cur.nv + cur.ne;
+        {
+            double *p3 = (double *)wr_alloc_array((size_t)nvf * 3, sizeof(double));
+            double *r2 = has_rest ? (double *)wr_alloc_array((size_t)nvf * 2, sizeof(double)) : NULL;
+            double *na = (double *)wr_alloc_array((size_t)nvf, sizeof(double));
+            if (!p3 || (has_rest && !r2) || !na) {
+                wr_free(p3);
+                wr_free(r2);
+                wr_free(na);
+                st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf upsample: out of memory");
+                goto done;
+            }
+            for (v = 0; v < nvf; ++v) {
+                const double *iv = fvals + (size_t)v * ncomp;
+                p3[3 * v] = iv[0];
+                p3[3 * v + 1] = iv[1];
+                p3[3 * v + 2] = iv[2];
+                if (has_rest) {
+                    r2[2 * v] = iv[3];
+                    r2[2 * v + 1] = iv[4];
+                }
+                na[v] = iv[ncomp - 1];
+            }
+            st = wr_mesh_create(&fine, nvf, p3, r2, 4 * cur.nf, ffaces, diag);
+            wr_free(p3);
+            wr_free(r2);
+            if (st) {
+                wr_free(na);
+                goto done;
+            }
+            /* vertices touching only W faces stay wrinkle-free (a = 0) */
+            for (v = 0; v < nvf; ++v) {
+                int32_t t, anyk = 0;
+                for (t = fine.vf_start[v]; t < fine.vf_start[v + 1]; ++t) anyk |= !fw[fine.vf[t]];
+                if (!anyk) na[v] = 0.0;
+            }
+            wr_free(ca);
+            ca = na;
+        }
+        wr_free(fvals);
+        fvals = NULL;
+        wr_free(ffaces);
+        ffaces = NULL;
+        wr_free(cphi);
+        cphi = fphi;
+        fphi = NULL;
+        wr_free(cw);
+        cw = fw;
+        fw = NULL;
+        wr_mesh_free(&cur);
+        cur = fine;
+    }
+    /* Eq. 19 without v1 (App. E.5): r = r_b + a cos φ n̂_b + (a²/8) sin 2φ ∇_b φ */
+    grad = (double *)wr_calloc_array((size_t)cur.nv * 3, sizeof(double));
+    wsum = (double *)wr_calloc_array((size_t)cur.nv, sizeof(double));
+    nrm = (double *)wr_calloc_array((size_t)cur.nv * 3, sizeof(double));
+    disp = (double *)wr_alloc_array((size_t)cur.nv * 3, sizeof(double));
+    vphi = (double *)wr_calloc_array((size_t)cur.nv, sizeof(double));
+    vwr = (uint8_t *)wr_calloc_array((size_t)cur.nv, sizeof(uint8_t));
+    if (!grad || !wsum || !nrm || !disp || !vphi || !vwr) {
+        st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf upsample: out of memory");
+        goto done;
+    }
+    for (f = 0; f < cur.nf; ++f) {
+        const int32_t *fv = cur.faces + 3 * f;
+        wr_vec3 P0 = wr_v3_load(cur.pos + 3 * fv[0]), P1 = wr_v3_load(cur.pos + 3 * fv[1]),
+                P2 = wr_v3_load(cur.pos + 3 * fv[2]);
+        wr_vec3 N = wr_v3_cross(wr_v3_sub(P1, P0), wr_v3_sub(P2, P0));
+        double N2 = wr_v3_dot(N, N), A = 0.5 * sqrt(N2);
+        for (c = 0; c < 3; ++c) {
+            nrm[3 * fv[c]] += N.x;
+            nrm[3 * fv[c] + 1] += N.y;
+            nrm[3 * fv[c] + 2] += N.z;
+        }
+        if (cw[f] || !(N2 > 0.0)) continue;
+        {
+            /* ∇λ_i = N × e_i / |N|², e_i the edge opposite corner i (CCW) */
+            wr_vec3 g0 = wr_v3_scale(wr_v3_cross(N, wr_v3_sub(P2, P1)), 1.0 / N2);
+            wr_vec3 g1 = wr_v3_scale(wr_v3_cross(N, wr_v3_sub(P0, P2)), 1.0 / N2);
+            wr_vec3 g2 = wr_v3_scale(wr_v3_cross(N, wr_v3_sub(P1, P0)), 1.0 / N2);
+            wr_vec3 gp = wr_v3_add(wr_v3_add(wr_v3_scale(g0, cphi[3 * f]), wr_v3_scale(g1, cphi[3 * f + 1])),
+                                   wr_v3_scale(g2, cphi[3 * f + 2]));
+            for (c = 0; c < 3; ++c) {
+                grad[3 * fv[c]] += A * gp.x;
+                grad[3 * fv[c] + 1] += A * gp.y;
+                grad[3 * fv[c] + 2] += A * gp.z;
+                wsum[fv[c]] += A;
+                if (!vwr[fv[c]]) {
+                    vwr[fv[c]] = 1;
+                    vphi[fv[c]] = cphi[3 * f + c]; /* any sheet: only cos φ, sin 2φ are used */
+                }
+            }
+        }
+    }
+    for (v = 0; v < cur.nv; ++v) {
+        wr_vec3 n = wr_v3_normalized(wr_v3_load(nrm + 3 * v)), g = wr_v3(0.0, 0.0, 0.0);
+        double av = ca[v], ph = vphi[v];
+        wr_vec3 d;
+        if (wsum[v] > 0.0) g = wr_v3_scale(wr_v3_load(grad + 3 * v), 1.0 / wsum[v]);
+        if (!vwr[v]) av = 0.0;
+        d = wr_v3_scale(n, av * cos(ph));
+        if (inplane) d = wr_v3_add(d, wr_v3_scale(g, av * av / 8.0 * sin(2.0 * ph)));
+        disp[3 * v] = cur.pos[3 * v] + d.x;
+        disp[3 * v + 1] = cur.pos[3 * v + 1] + d.y;
+        disp[3 * v + 2] = cur.pos[3 * v + 2] + d.z;
+    }
+    st = wr_mesh_create(out, cur.nv, disp, cur.rest, cur.nf, cur.faces, diag);
+    if (!st && out_a) {
+        *out_a = ca;
+        ca = NULL;
+    }
+done:
+    wr_mesh_free(&cur);
+    wr_free(ca);
+    wr_free(cphi);
+    wr_free(cw);
+    wr_free(fvals);
+    wr_free(vals);
+    wr_free(fphi);
+    wr_free(fw);
+    wr_free(ffaces);
+    wr_free(grad);
+    wr_free(wsum);
+    wr_free(nrm);
+    wr_free(disp);
+    wr_free(vphi);
+    wr_free(vwr);
+    return st;
+}
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* WRINKLE_WRINKLE_FIELD_IMPLEMENTATION_DONE */
+#endif /* WRINKLE_IMPLEMENTATION */

@@ -1,0 +1,301 @@
+/* Tests for wrinkle/wrinkle_field.h (TFW wrinkle-field energy, W set, init, SQP, phase, upsampling). */
+#include <criterion/criterion.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "wrinkle/wrinkle_field.h"
+
+#define PI 3.14159265358979323846
+
+/* A rectangle whose base surface is compressed along x by `cx`, stretched along y by `sy` and lifted
+ * by a bump of height `bump` (so II_b and κ⊥ are nonzero). */
+static void make_base(const wr_mesh *m, double w, double h, double cx, double sy, double bump, double *base) {
+    int32_t v;
+    for (v = 0; v < m->nv; ++v) {
+        double x = m->pos[3 * v], y = m->pos[3 * v + 1];
+        base[3 * v] = (1.0 - cx) * x;
+        base[3 * v + 1] = (1.0 + sy) * y;
+        base[3 * v + 2] = bump * sin(PI * x / w) * sin(PI * y / h) + 0.3 * bump * x * y / (w * h);
+    }
+}
+
+static wr_wf_material material(void) {
+    wr_wf_material mat;
+    mat.young = 1e6;
+    mat.poisson = 0.3;
+    mat.thickness = 1e-3;
+    return mat;
+}
+
+static double total_energy(const wr_wf *wf, const double *x) {
+    double E = 0.0;
+    cr_assert_eq(wr_wf_energy(wf, x, x + wf->nv, &E, NULL, NULL, NULL, NULL), WR_OK);
+    return E;
+}
+
+Test(wrinkle_field, energy_gradient_and_hessian_match_finite_differences) {
+    wr_mesh m;
+    wr_wf wf;
+    wr_rng rng;
+    wr_wf_material mat = material();
+    double *base, *x, *g, *gp, *gm, *H, *Hd, E;
+    int32_t n, i, j, f;
+    double gmax = 0.0, gerr = 0.0, hmax = 0.0, herr = 0.0;
+    cr_assert_eq(wr_mesh_rectangle(&m, 0.1, 0.05, 4, 3, NULL), WR_OK);
+    base = (double *)malloc(sizeof(double) * 3 * m.nv);
+    make_base(&m, 0.1, 0.05, 0.1, 0.02, 0.01, base);
+    cr_assert_eq(wr_wf_create(&wf, &m, base, &mat, NULL), WR_OK);
+    n = m.nv + m.ne;
+    x = (double *)malloc(sizeof(double) * n);
+    g = (double *)malloc(sizeof(double) * n);
+    gp = (double *)malloc(sizeof(double) * n);
+    gm = (double *)malloc(sizeof(double) * n);
+    H = (double *)malloc(sizeof(double) * 36 * m.nf);
+    Hd = (double *)calloc((size_t)n * n, sizeof(double));
+    wr_rng_seed(&rng, 7);
+    for (i = 0; i < m.nv; ++i) x[i] = 1e-3 * (0.5 + wr_rng_uniform(&rng));
+    for (i = 0; i < m.ne; ++i) x[m.nv + i] = 2.0 * wr_rng_uniform(&rng) - 1.0;
+    /* W_s^2 must be active somewhere for the test to cover it. */
+    {
+        int any = 0;
+        for (f = 0; f < m.nf; ++f) any |= wf.c2[f] > 0.0;
+        cr_assert(any, "no face with a nonzero crest-curvature term");
+    }
+    cr_assert_eq(wr_wf_energy(&wf, x, x + m.nv, &E, g, H, NULL, NULL), WR_OK);
+    for (f = 0; f < m.nf; ++f) {
+        int32_t idx[6];
+        double sg[6];
+        int r, c;
+        wr_wf_face_dofs(&wf, f, idx, sg);
+        for (r = 0; r < 6; ++r)
+            for (c = 0; c < 6; ++c) Hd[(size_t)idx[r] * n + idx[c]] += H[36 * f + 6 * r + c];
+    }
+    for (i = 0; i < n; ++i) {
+        double hstep = i < m.nv ? 1e-7 : 1e-5, xi = x[i], Ep, Em;
+        x[i] = xi + hstep;
+        Ep = total_energy(&wf, x);
+        cr_assert_eq(wr_wf_energy(&wf, x, x + m.nv, &Ep, gp, NULL, NULL, NULL), WR_OK);
+        x[i] = xi - hstep;
+        cr_assert_eq(wr_wf_energy(&wf, x, x + m.nv, &Em, gm, NULL, NULL, NULL), WR_OK);
+        x[i] = xi;
+        gmax = fmax(gmax, fabs(g[i]) * (i < m.nv ? 1e-3 : 1.0));
+        gerr = fmax(gerr, fabs((Ep - Em) / (2 * hstep) - g[i]) * (i < m.nv ? 1e-3 : 1.0));
+        for (j = 0; j < n; ++j) {
+            double sj = j < m.nv ? 1e-3 : 1.0, si = i < m.nv ? 1e-3 : 1.0;
+            double fd = (gp[j] - gm[j]) / (2 * hstep);
+            hmax = fmax(hmax, fabs(Hd[(size_t)j * n + i]) * si * sj);
+            herr = fmax(herr, fabs(fd - Hd[(size_t)j * n + i]) * si * sj);
+        }
+    }
+    cr_assert(gmax > 0.0 && hmax > 0.0);
+    cr_log_info("FD: grad err %g / %g, Hessian err %g / %g", gerr, gmax, herr, hmax);
+    cr_expect(gerr <= 1e-6 * gmax, "gradient FD error %g vs scale %g", gerr, gmax);
+    cr_expect(herr <= 1e-5 * hmax, "Hessian FD error %g vs scale %g", herr, hmax);
+    free(base); free(x); free(g); free(gp); free(gm); free(H); free(Hd);
+    wr_wf_free(&wf);
+    wr_mesh_free(&m);
+}
+
+static void fill_scaled(const wr_mesh *m, double sx, double sy, double *base) {
+    int32_t v;
+    for (v = 0; v < m->nv; ++v) {
+        base[3 * v] = sx * m->pos[3 * v];
+        base[3 * v + 1] = sy * m->pos[3 * v + 1];
+        base[3 * v + 2] = 0.0;
+    }
+}
+
+Test(wrinkle_field, eq29_eigenvalues_and_wrinkle_free_set) {
+    wr_mesh m;
+    wr_wf wf;
+    wr_wf_material mat = material();
+    double *base;
+    int32_t f;
+    cr_assert_eq(wr_mesh_rectangle(&m, 0.2, 0.1, 8, 4, NULL), WR_OK);
+    base = (double *)malloc(sizeof(double) * 3 * m.nv);
+    /* pure tension: both eigenvalues of I_u⁻¹(I_b - I_u) are 1.1² - 1 and 1.05² - 1 */
+    fill_scaled(&m, 1.1, 1.05, base);
+    cr_assert_eq(wr_wf_create(&wf, &m, base, &mat, NULL), WR_OK);
+    for (f = 0; f < m.nf; ++f) {
+        cr_assert_float_eq(wf.lambda[2 * f], 1.05 * 1.05 - 1.0, 1e-12);
+        cr_assert_float_eq(wf.lambda[2 * f + 1], 1.1 * 1.1 - 1.0, 1e-12);
+    }
+    cr_assert_eq(wr_wf_classify(&wf, NULL), m.nf, "tension everywhere -> W is every face");
+    {
+        double *a = (double *)calloc(m.nv, sizeof(double)), *om = (double *)calloc(m.ne, sizeof(double)), E = 1.0;
+        cr_assert_eq(wr_wf_init(&wf, NULL, a, om, NULL), WR_OK);
+        for (f = 0; f < m.nv; ++f) cr_assert_eq(a[f], 0.0);
+        for (f = 0; f < m.ne; ++f) cr_assert_eq(om[f], 0.0);
+        cr_assert_eq(wr_wf_energy(&wf, a, om, &E, NULL, NULL, NULL, NULL), WR_OK);
+        cr_assert_eq(E, 0.0, "all faces in W contribute nothing (Eq. 37)");
+        free(a);
+        free(om);
+    }
+    wr_wf_free(&wf);
+    /* compression along x: λ0 = 0.9² - 1 with w along x */
+    fill_scaled(&m, 0.9, 1.0, base);
+    cr_assert_eq(wr_wf_create(&wf, &m, base, &mat, NULL), WR_OK);
+    for (f = 0; f < m.nf; ++f) {
+        const double *iu = wf.iu + 3 * f, *w = wf.wdir + 2 * f;
+        /* chart vector w pushed to the rest plane must be ±x̂ */
+        double uv[6], X, Y;
+        wr_mesh_face_rest(&m, f, uv);
+        X = (uv[2] - uv[0]) * w[0] + (uv[4] - uv[0]) * w[1];
+        Y = (uv[3] - uv[1]) * w[0] + (uv[5] - uv[1]) * w[1];
+        cr_assert_float_eq(wf.lambda[2 * f], 0.81 - 1.0, 1e-12);
+        cr_assert_float_eq(fabs(X), 1.0, 1e-12);
+        cr_assert_float_eq(Y, 0.0, 1e-12);
+        cr_assert_float_eq(iu[0] * w[0] * w[0] + 2 * iu[1] * w[0] * w[1] + iu[2] * w[1] * w[1], 1.0, 1e-12);
+        cr_assert_eq(wf.c2[f], 0.0, "flat base: κ⊥ = 0");
+    }
+    cr_assert_eq(wr_wf_classify(&wf, NULL), 0);
+    wr_wf_free(&wf);
+    /* the Sec. 5.1 rule: a single compressed face among tension faces averages to tension, and an
+     * isolated tension face inside compression is filtered out of W */
+    fill_scaled(&m, 1.0, 1.0, base);
+    {
+        wr_wf_classify_desc cd;
+        int32_t mid = 2 * (2 * 8 + 4);
+        memset(&cd, 0, sizeof cd);
+        cr_assert_eq(wr_wf_create(&wf, &m, base, &mat, NULL), WR_OK);
+        for (f = 0; f < m.nf; ++f) wf.lambda[2 * f] = f == mid ? -0.2 : 0.1;
+        cr_assert_eq(wr_wf_classify(&wf, &cd), m.nf);
+        for (f = 0; f < m.nf; ++f) wf.lambda[2 * f] = f == mid ? 0.9 : -0.5;
+        for (f = 0; f < 3; ++f) {
+            int32_t e = m.face_edges[3 * mid + f], g = m.edge_faces[2 * e] == mid ? m.edge_faces[2 * e + 1] : m.edge_faces[2 * e];
+            wf.lambda[2 * g] = -0.1;
+        }
+        cd.no_outlier_filter = 1;
+        cr_assert_eq(wr_wf_classify(&wf, &cd), 1, "unfiltered: the isolated face averages to tension");
+        cd.no_outlier_filter = 0;
+        cr_assert_eq(wr_wf_classify(&wf, &cd), 0, "filter removes the isolated W face");
+        wr_wf_free(&wf);
+    }
+    free(base);
+    wr_mesh_free(&m);
+}
+
+Test(wrinkle_field, zero_energy_at_rest_and_error_paths) {
+    wr_mesh m;
+    wr_wf wf;
+    wr_wf_material mat = material();
+    double *a, *om, *g, E = 1.0, terms[WR_WF_NTERMS];
+    int32_t i;
+    wr_diag d;
+    cr_assert_eq(wr_mesh_rectangle(&m, 0.1, 0.1, 3, 3, NULL), WR_OK);
+    cr_assert_eq(wr_wf_create(&wf, &m, NULL, &mat, NULL), WR_OK); /* base = rest */
+    a = (double *)calloc(m.nv, sizeof(double));
+    om = (double *)calloc(m.ne, sizeof(double));
+    g = (double *)malloc(sizeof(double) * (m.nv + m.ne));
+    cr_assert_eq(wr_wf_energy(&wf, a, om, &E, g, NULL, terms, NULL), WR_OK);
+    cr_assert_eq(E, 0.0);
+    for (i = 0; i < m.nv + m.ne; ++i) cr_assert_eq(g[i], 0.0);
+    /* tension base with W forced empty: a = 0 is stationary and E = the base stretching term only */
+    wr_wf_free(&wf);
+    {
+        double *base = (double *)malloc(sizeof(double) * 3 * m.nv);
+        fill_scaled(&m, 1.1, 1.0, base);
+        cr_assert_eq(wr_wf_create(&wf, &m, base, &mat, NULL), WR_OK);
+        free(base);
+    }
+    cr_assert_eq(wr_wf_energy(&wf, a, om, &E, g, NULL, terms, NULL), WR_OK);
+    for (i = 0; i < m.nv + m.ne; ++i) cr_assert_eq(g[i], 0.0);
+    /* uniaxial 2ε = 0.21 along x: h/4 (α/2 + β) 0.21² per unit area, area 0.01 m² */
+    {
+        double nu = 0.3, al = 1e6 * nu / (1 - nu * nu), be = 1e6 / (2 * (1 + nu));
+        cr_assert_float_eq(terms[WR_WF_TERM_S1], 1e-3 / 4 * (al / 2 + be) * 0.21 * 0.21 * 0.01, 1e-12);
+        cr_assert_float_eq(E, terms[WR_WF_TERM_S1], 1e-15);
+    }
+    a[0] = NAN;
+    cr_assert_eq(wr_wf_energy(&wf, a, om, &E, NULL, NULL, NULL, &d), WR_ERR_DOMAIN);
+    cr_assert_eq(d.item, 0);
+    cr_assert_eq(wr_wf_energy(&wf, NULL, om, &E, NULL, NULL, NULL, NULL), WR_ERR_INVALID_ARG);
+    wr_wf_free(&wf);
+    mat.young = -1.0;
+    cr_assert_eq(wr_wf_create(&wf, &m, NULL, &mat, &d), WR_ERR_DOMAIN);
+    mat = material();
+    mat.poisson = 1.0;
+    cr_assert_eq(wr_wf_create(&wf, &m, NULL, &mat, NULL), WR_ERR_DOMAIN);
+    mat = material();
+    mat.thickness = 0.0;
+    cr_assert_eq(wr_wf_create(&wf, &m, NULL, &mat, NULL), WR_ERR_DOMAIN);
+    mat = material();
+    cr_assert_eq(wr_wf_create(&wf, NULL, NULL, &mat, NULL), WR_ERR_INVALID_ARG);
+    {
+        double *base = (double *)calloc(3 * m.nv, sizeof(double)); /* collapsed base */
+        cr_assert_eq(wr_wf_create(&wf, &m, base, &mat, &d), WR_ERR_GEOMETRY);
+        base[0] = INFINITY;
+        cr_assert_eq(wr_wf_create(&wf, &m, base, &mat, &d), WR_ERR_DOMAIN);
+        free(base);
+    }
+    free(a);
+    free(om);
+    free(g);
+    wr_mesh_free(&m);
+}
+
+Test(wrinkle_field, curl_free_projection) {
+    wr_mesh m;
+    wr_wf wf;
+    wr_rng rng;
+    wr_wf_material mat = material();
+    double *om, *om0, *curl;
+    uint8_t *wfl;
+    int32_t f, e, hole = 0;
+    cr_assert_eq(wr_mesh_rectangle(&m, 0.2, 0.1, 10, 5, NULL), WR_OK);
+    cr_assert_eq(wr_wf_create(&wf, &m, NULL, &mat, NULL), WR_OK);
+    /* W = a block of faces in the middle: a hole, so ω may circulate around it */
+    wfl = (uint8_t *)calloc(m.nf, 1);
+    for (f = 0; f < m.nf; ++f) {
+        int32_t cell = f / 2, i = cell % 10, j = cell / 10;
+        if (i >= 4 && i <= 5 && j >= 2 && j <= 2) {
+            wfl[f] = 1;
+            ++hole;
+        }
+    }
+    wr_wf_set_wrinkle_free(&wf, wfl);
+    om = (double *)malloc(sizeof(double) * m.ne);
+    om0 = (double *)malloc(sizeof(double) * m.ne);
+    curl = (double *)malloc(sizeof(double) * m.nf);
+    wr_rng_seed(&rng, 3);
+    for (e = 0; e < m.ne; ++e) om0[e] = om[e] = wr_rng_normal(&rng);
+    cr_assert_eq(wr_wf_project_closed(&wf, om, NULL), WR_OK);
+    wr_wf_curl(&m, om, curl);
+    for (f = 0; f < m.nf; ++f)
+        if (!wfl[f]) cr_assert(fabs(curl[f]) < 1e-10, "face %d curl %g", f, curl[f]);
+    /* least squares: the residual is orthogonal to closed forms, e.g. to d0 of a hat function */
+    {
+        int32_t v;
+        for (v = 0; v < m.nv; ++v) {
+            double s = 0.0;
+            for (e = 0; e < m.ne; ++e) {
+                if (m.edges[2 * e] == v) s -= (om[e] - om0[e]);
+                if (m.edges[2 * e + 1] == v) s += (om[e] - om0[e]);
+            }
+            cr_assert(fabs(s) < 1e-9, "residual not orthogonal to d0 at vertex %d: %g", v, s);
+        }
+    }
+    /* a closed form is left unchanged, including its circulation around the hole */
+    {
+        double circ0 = 0.0;
+        for (e = 0; e < m.ne; ++e) {
+            int32_t i = m.edges[2 * e], j = m.edges[2 * e + 1];
+            double xi = m.pos[3 * i] - 0.1, yi = m.pos[3 * i + 1] - 0.05, xj = m.pos[3 * j] - 0.1, yj = m.pos[3 * j + 1] - 0.05;
+            double dth = atan2(yj, xj) - atan2(yi, xi);
+            if (dth > PI) dth -= 2 * PI;
+            if (dth < -PI) dth += 2 * PI;
+            om0[e] = om[e] = 2.5 * dth + 3.0 * (m.pos[3 * j] - m.pos[3 * i]);
+        }
+        (void)circ0;
+        cr_assert_eq(wr_wf_project_closed(&wf, om, NULL), WR_OK);
+        for (e = 0; e < m.ne; ++e) cr_assert(fabs(om[e] - om0[e]) < 1e-9);
+    }
+    cr_assert(hole > 0);
+    free(om);
+    free(om0);
+    free(curl);
+    free(wfl);
+    wr_wf_free(&wf);
+    wr_mesh_free(&m);
+}
