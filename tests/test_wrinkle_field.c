@@ -299,3 +299,177 @@ Test(wrinkle_field, curl_free_projection) {
     wr_wf_free(&wf);
     wr_mesh_free(&m);
 }
+
+/* ω = dφ for φ = k x on a rectangle (W empty). */
+static void omega_linear(const wr_mesh *m, double k, double *om) {
+    int32_t e;
+    for (e = 0; e < m->ne; ++e) om[e] = k * (m->pos[3 * m->edges[2 * e + 1]] - m->pos[3 * m->edges[2 * e]]);
+}
+
+Test(wrinkle_field, phase_recovers_period_count_on_rectangle) {
+    wr_mesh m;
+    wr_wf wf;
+    wr_wf_material mat = material();
+    wr_wf_phase_stats ps;
+    double L = 0.25, *om, *phi, k = 2 * PI * 5 / L;
+    int32_t f, c;
+    cr_assert_eq(wr_mesh_rectangle(&m, L, 0.1, 12, 5, NULL), WR_OK);
+    cr_assert_eq(wr_wf_create(&wf, &m, NULL, &mat, NULL), WR_OK);
+    om = (double *)malloc(sizeof(double) * m.ne);
+    phi = (double *)malloc(sizeof(double) * 3 * m.nf);
+    omega_linear(&m, k, om);
+    cr_assert_eq(wr_wf_phase(&wf, om, phi, &ps, NULL), WR_OK);
+    cr_assert(ps.max_residual < 1e-9, "residual %g", ps.max_residual);
+    cr_assert_eq(ps.n_conflicts, 0);
+    /* φ - k x is one constant over every corner: 5 whole periods across the 0.25 m sheet */
+    {
+        double c0 = phi[0] - k * m.pos[3 * m.faces[0]];
+        for (f = 0; f < m.nf; ++f)
+            for (c = 0; c < 3; ++c) cr_assert(fabs(phi[3 * f + c] - k * m.pos[3 * m.faces[3 * f + c]] - c0) < 1e-9);
+    }
+    free(om);
+    free(phi);
+    wr_wf_free(&wf);
+    wr_mesh_free(&m);
+}
+
+Test(wrinkle_field, phase_rounds_fractional_circulation_on_cylinder) {
+    wr_mesh m;
+    wr_wf wf;
+    wr_wf_material mat = material();
+    wr_wf_phase_stats ps;
+    double *om, *phi, N = 5.3, total = 0.0;
+    int32_t nu = 24, e, i;
+    cr_assert_eq(wr_mesh_cylinder_flat(&m, 0.1, 0.1, nu, 3, NULL), WR_OK);
+    cr_assert_eq(wr_wf_create(&wf, &m, NULL, &mat, NULL), WR_OK);
+    om = (double *)malloc(sizeof(double) * m.ne);
+    phi = (double *)malloc(sizeof(double) * 3 * m.nf);
+    for (e = 0; e < m.ne; ++e) {
+        int32_t a = m.edges[2 * e], b = m.edges[2 * e + 1];
+        double dth = atan2(m.pos[3 * b + 1], m.pos[3 * b]) - atan2(m.pos[3 * a + 1], m.pos[3 * a]);
+        if (dth > PI) dth -= 2 * PI;
+        if (dth < -PI) dth += 2 * PI;
+        om[e] = N * dth; /* closed, but 5.3 periods around the tube */
+    }
+    cr_assert_eq(wr_wf_phase(&wf, om, phi, &ps, NULL), WR_OK);
+    cr_assert_eq(ps.n_conflicts, 0);
+    cr_assert(ps.n_nonzero_jumps > 0);
+    /* walk the bottom ring, differences taken inside faces: the winding must be exactly 5 periods */
+    for (i = 0; i < nu; ++i) {
+        int32_t a = i, b = (i + 1) % nu, f, c, ca = -1, cb = -1, found = 0;
+        for (f = 0; f < m.nf && !found; ++f) {
+            ca = cb = -1;
+            for (c = 0; c < 3; ++c) {
+                if (m.faces[3 * f + c] == a) ca = 3 * f + c;
+                if (m.faces[3 * f + c] == b) cb = 3 * f + c;
+            }
+            found = ca >= 0 && cb >= 0;
+        }
+        cr_assert(found);
+        total += phi[cb] - phi[ca];
+    }
+    cr_assert(fabs(total - 2 * PI * 5) < 1e-8, "winding %g periods", total / (2 * PI));
+    free(om);
+    free(phi);
+    wr_wf_free(&wf);
+    wr_mesh_free(&m);
+}
+
+Test(wrinkle_field, loop_counts_and_linear_reproduction) {
+    wr_mesh m, fine;
+    int32_t *ff = NULL, v, mode;
+    double *vals, *out = NULL;
+    cr_assert_eq(wr_mesh_disk(&m, 1.0, 3, NULL), WR_OK);
+    vals = (double *)malloc(sizeof(double) * 4 * m.nv);
+    for (v = 0; v < m.nv; ++v) {
+        /* perturb positions so the mesh is irregular in the plane; f is affine in the positions */
+        double x = m.pos[3 * v] + 0.05 * sin(7.0 * v), y = m.pos[3 * v + 1] + 0.05 * cos(5.0 * v);
+        vals[4 * v] = x;
+        vals[4 * v + 1] = y;
+        vals[4 * v + 2] = 0.3 * x - 0.2 * y;
+        vals[4 * v + 3] = 2.0 * x + 3.0 * y + 1.0;
+    }
+    for (mode = 0; mode < 2; ++mode) {
+        wr_wf_loop_desc ld;
+        ld.boundary = (int)mode;
+        cr_assert_eq(wr_wf_loop_step(&m, 4, vals, &ld, &ff, &out, NULL), WR_OK);
+        for (v = 0; v < m.nv + m.ne; ++v) {
+            double x = out[4 * v], y = out[4 * v + 1];
+            cr_assert(fabs(out[4 * v + 3] - (2.0 * x + 3.0 * y + 1.0)) < 1e-12);
+            cr_assert(fabs(out[4 * v + 2] - (0.3 * x - 0.2 * y)) < 1e-12);
+        }
+        cr_assert_eq(wr_mesh_create(&fine, m.nv + m.ne, NULL, out, 4 * m.nf, ff, NULL), WR_OK);
+        cr_assert_eq(fine.nv, m.nv + m.ne);
+        cr_assert_eq(fine.nf, 4 * m.nf);
+        cr_assert_eq(fine.ne, 2 * m.ne + 3 * m.nf);
+        cr_assert_eq(fine.n_loops, 1);
+        wr_mesh_free(&fine);
+        free(ff);
+        free(out);
+    }
+    /* a regular interior vertex of valence 6: β = 1/16 */
+    {
+        wr_wf_loop_desc ld;
+        double *one = (double *)calloc(m.nv, sizeof(double));
+        one[0] = 1.0; /* the disk centre (valence 6) */
+        ld.boundary = WR_WF_LOOP_BOUNDARY_FIXED;
+        cr_assert_eq(wr_wf_loop_step(&m, 1, one, &ld, &ff, &out, NULL), WR_OK);
+        cr_assert_float_eq(out[0], 1.0 - 6.0 / 16.0, 1e-15);
+        free(ff);
+        free(out);
+        free(one);
+    }
+    cr_assert_eq(wr_wf_loop_step(&m, 0, vals, NULL, &ff, &out, NULL), WR_ERR_INVALID_ARG);
+    free(vals);
+    wr_mesh_free(&m);
+}
+
+Test(wrinkle_field, flat_sheet_eq19_displacement) {
+    wr_mesh m, fine;
+    wr_wf wf;
+    wr_wf_material mat = material();
+    wr_wf_upsample_desc ud;
+    double L = 0.25, A = 4e-4, k = 2 * PI * 5 / L, *a, *om, *phi, *fa = NULL, zmax = 0.0, x0, c0;
+    int32_t v;
+    cr_assert_eq(wr_mesh_rectangle(&m, L, 0.1, 12, 5, NULL), WR_OK);
+    cr_assert_eq(wr_wf_create(&wf, &m, NULL, &mat, NULL), WR_OK);
+    a = (double *)malloc(sizeof(double) * m.nv);
+    om = (double *)malloc(sizeof(double) * m.ne);
+    phi = (double *)malloc(sizeof(double) * 3 * m.nf);
+    for (v = 0; v < m.nv; ++v) a[v] = A;
+    omega_linear(&m, k, om);
+    cr_assert_eq(wr_wf_phase(&wf, om, phi, NULL, NULL), WR_OK);
+    c0 = phi[0] - k * m.pos[3 * m.faces[0]];
+    memset(&ud, 0, sizeof ud);
+    ud.levels = 3;
+    cr_assert_eq(wr_wf_upsample(&wf, a, phi, &ud, &fine, &fa, NULL), WR_OK);
+    cr_assert_eq(fine.nf, 64 * m.nf);
+    x0 = 0.0;
+    for (v = 0; v < fine.nv; ++v) {
+        /* rest x of the fine vertex; φ = k x + c0 is reproduced exactly by the Loop stencils */
+        double x = fine.rest[2 * v], ph = k * x + c0;
+        double z = fine.pos[3 * v + 2], dx = fine.pos[3 * v] - x;
+        cr_assert(fabs(fa[v] - A) < 1e-15);
+        cr_assert(fabs(z - A * cos(ph)) < 1e-12, "z %g vs %g", z, A * cos(ph));
+        cr_assert(fabs(dx - A * A / 8.0 * k * sin(2 * ph)) < 1e-12, "in-plane %g vs %g", dx, A * A / 8 * k * sin(2 * ph));
+        cr_assert(fabs(fine.pos[3 * v + 1] - fine.rest[2 * v + 1]) < 1e-15);
+        zmax = fmax(zmax, z);
+    }
+    (void)x0;
+    /* the vertex where φ ≡ 0 (mod 2π) is on the fine grid: peak displacement = a */
+    cr_assert_float_eq(zmax, A, 1e-15 + 1e-12 * A);
+    wr_mesh_free(&fine);
+    free(fa);
+    ud.no_inplane = 1;
+    ud.levels = 1;
+    cr_assert_eq(wr_wf_upsample(&wf, a, phi, &ud, &fine, NULL, NULL), WR_OK);
+    for (v = 0; v < fine.nv; ++v) cr_assert(fabs(fine.pos[3 * v] - fine.rest[2 * v]) < 1e-15);
+    wr_mesh_free(&fine);
+    ud.levels = 9;
+    cr_assert_eq(wr_wf_upsample(&wf, a, phi, &ud, &fine, NULL, NULL), WR_ERR_BUDGET);
+    free(a);
+    free(om);
+    free(phi);
+    wr_wf_free(&wf);
+    wr_mesh_free(&m);
+}
