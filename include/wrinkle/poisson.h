@@ -79,10 +79,14 @@
  * ON OUTPUT ORDER AND OWNERS
  *   Fixed points: outer loop, then holes in order, then polylines in order; each curve starts at its
  *   input vertex 0 and follows the input direction (any orientation is accepted and kept). Input
- *   vertices whose turning angle exceeds desc.corner_angle are kept exactly, and so are vertex 0 and
- *   open-polyline endpoints; between them points follow ∫ ds/h with the segment count
+ *   vertices whose turning angle exceeds desc.corner_angle are kept exactly ("corners"), unless they
+ *   lie closer than h/2 (arc length) to the previous kept vertex or to the curve's end; vertex 0
+ *   and open-polyline endpoints are always kept. Between kept vertices points follow ∫ ds/h with the segment count
  *   N = max(1, round(∫ ds/h)) and the points redistributed so every piece has ∫ ds/h = total/N
- *   (so endpoints are hit exactly and no last step is tiny). Closed curves get >= 3 segments.
+ *   (so endpoints are hit exactly and no last step is tiny). Hence every constraint segment has
+ *   ∫ ds/h in [0.5, 1.5] measured along the input curve (up to the trapezoid error of the walk;
+ *   the chord is shorter where the input curves), except where a closed curve needs more segments
+ *   to reach its minimum of 3.
  *   segment_owner: 0 = outer loop, 1 + i = hole i, 1 + n_holes + j = polyline j.
  *   The inside test (crossing number, boundary points count as outside) uses the DISCRETISED loops,
  *   i.e. exactly the polygon the triangulator receives.
@@ -110,13 +114,13 @@ typedef double (*wr_poisson_sizing_fn)(void *user, double x, double y);
 /* r = radius_factor · h. Calibrated by test_poisson.c "calibration" (own Bowyer–Watson Delaunay of
  * the output, mean length of edges not touching the boundary, divided by the mean of the two end
  * points' sizing): see the report line printed by that test. */
-#define WR_POISSON_DEFAULT_RADIUS_FACTOR 0.75
+#define WR_POISSON_DEFAULT_RADIUS_FACTOR 0.705
 #define WR_POISSON_DEFAULT_K 30
 #define WR_POISSON_DEFAULT_MAX_POINTS 50000000
 #define WR_POISSON_DEFAULT_CORNER_ANGLE 0.5235987755982988 /* 30° [rad] */
 /* Samples per r² of area for this sampler (mean rule, k = 30): N ≈ κ ∫ dA / r². Measured in
  * test_poisson.c "density" (constant and graded sizing); used only for the budget estimate. */
-#define WR_POISSON_DENSITY 0.67
+#define WR_POISSON_DENSITY 0.61
 /* Relative tolerance (× bbox size) for "on a boundary segment" and (× bbox size²) for zero area. */
 #define WR_POISSON_REL_TOL 1e-12
 /* Arc-length walking step along curves, as a fraction of the local sizing (trapezoid rule on 1/h). */
@@ -685,17 +689,34 @@ static wr_status wr__pz_discretise(wr__pz *z, const wr__pz_curves *in, double co
     for (c = 0; c < in->nc; ++c) {
         const double *v = in->xy + 2 * in->off[c];
         int32_t n = in->cnt[c], closed = in->closed[c], nb = 0, i, k, min_seg;
+        double since = 0.0, total = 0.0, cum = 0.0; /* arc length since the last kept break; curve length */
+        for (i = 0; i < (closed ? n : n - 1); ++i)
+            total += hypot(v[2 * ((i + 1) % n)] - v[2 * i], v[2 * ((i + 1) % n) + 1] - v[2 * i + 1]);
         outc->off[c] = pts.n;
         outc->closed[c] = closed;
         for (i = 0; i < n; ++i) {
             int keep = i == 0 || (!closed && i == n - 1);
-            if (!keep && (closed || (i > 0 && i < n - 1))) {
-                const double *a = v + 2 * ((i + n - 1) % n), *b = v + 2 * i, *d = v + 2 * ((i + 1) % n);
-                double ux = b[0] - a[0], uy = b[1] - a[1], wx = d[0] - b[0], wy = d[1] - b[1];
-                double ang = atan2(fabs(ux * wy - uy * wx), ux * wx + uy * wy);
-                keep = ang > corner;
+            if (i > 0) {
+                double l = hypot(v[2 * i] - v[2 * i - 2], v[2 * i + 1] - v[2 * i - 1]);
+                since += l;
+                cum += l;
             }
-            if (keep) brk[nb++] = i;
+            if (!keep) {
+                const double *a = v + 2 * (i - 1), *b = v + 2 * i, *d = v + 2 * ((i + 1) % n);
+                double ux = b[0] - a[0], uy = b[1] - a[1], wx = d[0] - b[0], wy = d[1] - b[1];
+                double ang = atan2(fabs(ux * wy - uy * wx), ux * wx + uy * wy), hb;
+                if (ang > corner) {
+                    /* a corner closer (in arc length) than half the local sizing to the previous
+                     * break or to the curve's end (vertex 0 again when closed) is dropped: it would
+                     * force a segment with ∫ds/h < 0.5 (finely sampled wiggles below the sizing) */
+                    if ((st = wr__pz_size(z, b[0], b[1], &hb)) != WR_OK) goto done;
+                    keep = since >= 0.5 * hb && total - cum >= 0.5 * hb;
+                }
+            }
+            if (keep) {
+                brk[nb++] = i;
+                since = 0.0;
+            }
         }
         /* closed curves: >= 3 segments in total */
         min_seg = closed && nb < 3 ? (3 + nb - 1) / nb : 1;
@@ -997,7 +1018,6 @@ WRDEF wr_status wr_poisson_sample(const wr_poisson_domain *dom, wr_poisson_sizin
     for (c = 0; c < in.nc; ++c) {
         const double *v = in.xy + 2 * in.off[c];
         int32_t n = in.cnt[c];
-        double area2 = 0.0;
         wr__pz_curve_name(&in, c, name, sizeof name);
         for (i = 0; i < wr__pz_nseg(&in, c); ++i) {
             const double *a = v + 2 * i, *b = v + 2 * ((i + 1) % n);
@@ -1006,14 +1026,25 @@ WRDEF wr_status wr_poisson_sample(const wr_poisson_domain *dom, wr_poisson_sizin
                              (int)i, (int)i, (int)((i + 1) % n));
                 goto done;
             }
+        }
+    }
+    /* crossings before areas: a self-intersecting loop can have any signed area (a symmetric bow-tie
+     * has 0), and the crossing is the more useful message */
+    if ((st = wr__pz_check_crossings(&in, "input", diag)) != WR_OK) goto done;
+    for (c = 0; c <= in.n_holes; ++c) {
+        const double *v = in.xy + 2 * in.off[c];
+        int32_t n = in.cnt[c];
+        double area2 = 0.0;
+        wr__pz_curve_name(&in, c, name, sizeof name);
+        for (i = 0; i < n; ++i) {
+            const double *a = v + 2 * i, *b = v + 2 * ((i + 1) % n);
             area2 += a[0] * b[1] - a[1] * b[0];
         }
-        if (c <= in.n_holes && !(fabs(0.5 * area2) > WR_POISSON_REL_TOL * maxdim * maxdim)) {
+        if (!(fabs(0.5 * area2) > WR_POISSON_REL_TOL * maxdim * maxdim)) {
             st = wr_fail(diag, WR_ERR_GEOMETRY, c, "%s has zero area (%g m^2)", name, 0.5 * area2);
             goto done;
         }
     }
-    if ((st = wr__pz_check_crossings(&in, "input", diag)) != WR_OK) goto done;
     /* no crossings: one vertex decides each containment relation */
     for (c = 1; c < in.nc; ++c) {
         const double *p = in.xy + 2 * in.off[c];
