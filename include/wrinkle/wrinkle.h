@@ -19,3 +19,4 @@
 #include "transition.h"
 #include "tft.h"
 #include "shell.h"
+#include "poisson.h"
