@@ -1,0 +1,2319 @@
+/* wrinkle/triangulate.h — exact geometric predicates and a constrained Delaunay triangulator with
+ * optional Ruppert/Chew quality refinement, plus a reader for Shewchuk Triangle's .node/.poly files.
+ * wrinkle v0.1.0 — MIT licence (see LICENSE). Needs only libc and libm.
+ *
+ * Style3D Sec. 4.3: "the resulting point cloud [Poisson samples of the sizing map], along with
+ * boundary constraints, is then input into triangulation tools such as the Triangle library to
+ * produce a triangular cloth mesh adhering to Delaunay triangulation rules." This header is that
+ * step, written from the published ideas (Shewchuk 1997 expansion arithmetic and error bounds,
+ * Lawson flips, Sloan's flip-based edge recovery, BRIO/Hilbert insertion order, Ruppert 1995 and
+ * Shewchuk 2002 Delaunay refinement with concentric-shell segment splitting, Üngör off-centers).
+ *
+ * API
+ *   wr_orient2d(a, b, c)          exact sign: > 0 when a, b, c are counter-clockwise
+ *   wr_incircle(a, b, c, d)       exact sign: > 0 when d is inside the circle through CCW a, b, c
+ *   wr_orient2d_fast / wr_incircle_fast   plain floating-point (non-robust) versions
+ *   wr_cdt_triangulate(in, desc, out, diag)   CDT (+ carving, + refinement) -> wr_cdt_result
+ *   wr_cdt_free(out)              release a result (also after a failed call)
+ *   wr_cdt_check(res, expected_holes, info, diag)  exact verification of a result
+ *   wr_cdt_poly_parse(poly_text, node_text, name, out, diag)   Triangle .poly/.node from memory
+ *   wr_cdt_poly_read(path, out, diag)                          ... from a file (name.poly / name.node)
+ *   wr_cdt_poly_free(p)
+ *
+ * EXAMPLE
+ *     double pts[] = {0,0, 1,0, 1,1, 0,1, 0.5,0.5};
+ *     int32_t seg[] = {0,1, 1,2, 2,3, 3,0};
+ *     wr_cdt_input in; wr_cdt_desc d; wr_cdt_result r; wr_diag dg;
+ *     memset(&in, 0, sizeof in); memset(&d, 0, sizeof d);
+ *     in.points = pts; in.n_points = 5; in.segments = seg; in.n_segments = 4;
+ *     d.quality = 1; d.min_angle_deg = 30.0;            // Ruppert refinement, 30° minimum angle
+ *     if (wr_cdt_triangulate(&in, &d, &r, &dg) != WR_OK) puts(dg.message);
+ *     // r.points (r.n_points×2), r.triangles (r.n_triangles×3, CCW), r.neighbors, r.edge_segment
+ *     wr_cdt_check(&r, 0, NULL, &dg);                   // verifies CCW, CDT property, segments, Euler
+ *     wr_cdt_free(&r);
+ *
+ * ON PREDICATES (the flags they need)
+ *   wr_orient2d(a,b,c) = det[[ax-cx, ay-cy],[bx-cx, by-cy]], twice the signed area of abc: > 0 for
+ *   counter-clockwise, < 0 clockwise, exactly 0 iff collinear. wr_incircle(a,b,c,d) = the 3×3 lifted
+ *   determinant with rows (x-dx, y-dy, (x-dx)²+(y-dy)²) for x = a,b,c: for CCW a,b,c it is > 0 iff d is
+ *   strictly inside their circumcircle, 0 iff cocircular. Each first evaluates in double precision
+ *   and accepts the result when it exceeds Shewchuk's forward error bound ((3+16ε)ε and (10+96ε)ε
+ *   times the permanent, ε = 2^-53); otherwise it re-evaluates exactly with floating-point expansion
+ *   arithmetic (two-sum, Dekker's split two-product; no FMA, no long double). The sign is exact for
+ *   all finite inputs provided no intermediate overflows or underflows: keep |coordinates| within
+ *   about [1e-70, 1e70] or exactly 0 (cloth panels in metres are far inside). Needs strict IEEE-754
+ *   binary64 round-to-nearest: compile WITHOUT -ffast-math / -Ofast / -funsafe-math-optimizations,
+ *   WITH -ffp-contract=off (FMA contraction would break two-product and the error bounds), and on
+ *   32-bit x86 with -msse2 -mfpmath=sse (no x87 extended precision). The returned magnitude is an
+ *   approximation of the determinant; only the sign is guaranteed.
+ *
+ * ON THE TRIANGULATION
+ *   Input: points (n×2), segments (m×2 point indices, 0-based), hole seeds (h×2). Exact duplicate
+ *   points are merged (or points closer than desc.merge_tolerance [same unit as coordinates]);
+ *   result.point_map[i] gives the output vertex of input point i. Output vertices: the distinct input
+ *   points first, in input order (so without duplicates output vertex i == input point i), then
+ *   Steiner points. Triangles are counter-clockwise; neighbors[3t+k] is the triangle across the edge
+ *   opposite corner k (joining corners (k+1)%3 -> (k+2)%3), or -1 on the boundary; edge_segment[3t+k]
+ *   is the input segment that edge is part of, or -1. Segments crossing each other are rejected with
+ *   WR_ERR_GEOMETRY naming both (a garment panel boundary must not self-intersect) unless
+ *   desc.split_intersections is set, in which case they are split at a computed Steiner point.
+ *   Points lying exactly on a segment split it. With segments given and keep_convex_hull unset,
+ *   triangles reachable from the convex hull without crossing a segment are removed (when that
+ *   would remove everything, i.e. the segments enclose nothing, the hull is kept), and so are those
+ *   reachable from each hole seed. Refinement (desc.quality or desc.max_area > 0) then inserts
+ *   circumcenters (or off-centers) of bad triangles and splits encroached subsegments, treating the
+ *   convex hull as segments when it is kept; triangles whose small angle is forced by a small input
+ *   angle (shortest edge joining two segments that share an apex) are left alone, and a vertex budget
+ *   stops everything else: WR_ERR_BUDGET is returned with the valid mesh reached so far in *out.
+ *   Always call wr_cdt_free on the result, also after an error.
+ *
+ * ON THREADS
+ *   No global state; distinct calls may run concurrently.
+ */
+#ifndef WRINKLE_TRIANGULATE_H
+#define WRINKLE_TRIANGULATE_H
+
+#include "core.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ---- predicates (points are double[2]) ---- */
+WRDEF double wr_orient2d(const double *a, const double *b, const double *c);
+WRDEF double wr_incircle(const double *a, const double *b, const double *c, const double *d);
+WRDEF double wr_orient2d_fast(const double *a, const double *b, const double *c);
+WRDEF double wr_incircle_fast(const double *a, const double *b, const double *c, const double *d);
+
+/* ---- constrained Delaunay triangulation ---- */
+typedef struct wr_cdt_input {
+    const double *points;    /* n_points × 2 coordinates, row-major */
+    int32_t n_points;
+    const int32_t *segments; /* n_segments × 2 indices into points (0-based), may be NULL */
+    int32_t n_segments;
+    const double *holes;     /* n_holes × 2 seed points inside holes, may be NULL */
+    int32_t n_holes;
+} wr_cdt_input;
+
+/* Options; zero means default:
+ *   quality            0: no angle refinement; nonzero: refine to min_angle_deg
+ *   min_angle_deg      20° when quality is set; accepted range (0, 34] (Ruppert/Shewchuk's analysis
+ *                      guarantees termination up to 20.7°; up to ~33.8° works in practice)
+ *   max_area           0: none; > 0: triangles larger than this [coordinate unit²] are split
+ *   max_vertices       0: 16·(n_points + n_segments) + 65536 once refinement is on, else unlimited;
+ *                      otherwise the total number of output vertices allowed (WR_ERR_BUDGET beyond)
+ *   merge_tolerance    0: only exactly equal points are merged; > 0: points closer than this are
+ *   keep_convex_hull   0: carve exterior and holes when segments enclose something; 1: keep hull
+ *   split_intersections 0: crossing segments -> WR_ERR_GEOMETRY; 1: split them at a Steiner point
+ *   off_center         0: circumcenters; 1: Üngör off-centers (fewer Steiner points)
+ *   seed               BRIO shuffle seed (0 -> fixed constant); results are deterministic per seed */
+typedef struct wr_cdt_desc {
+    int quality;
+    double min_angle_deg;
+    double max_area;
+    int32_t max_vertices;
+    double merge_tolerance;
+    int keep_convex_hull;
+    int split_intersections;
+    int off_center;
+    uint64_t seed;
+} wr_cdt_desc;
+
+typedef struct wr_cdt_result {
+    double *points;          /* n_points × 2: distinct input points (input order), then Steiner points */
+    int32_t n_points;
+    int32_t n_input_points;  /* distinct input points (a prefix of points) */
+    int32_t *point_map;      /* n_map entries: input point i -> output vertex */
+    int32_t n_map;
+    int32_t *point_segment;  /* n_points: input segment a Steiner point lies on, else -1 */
+    int32_t *triangles;      /* n_triangles × 3, counter-clockwise */
+    int32_t n_triangles;
+    int32_t *neighbors;      /* n_triangles × 3: triangle across edge opposite corner k, or -1 */
+    int32_t *edge_segment;   /* n_triangles × 3: input segment containing that edge, or -1 */
+    int32_t *segments;       /* n_segments × 2: output edges lying on input segments (subsegments) */
+    int32_t *segment_id;     /* n_segments: which input segment each subsegment belongs to */
+    int32_t n_segments;
+    int32_t *input_segments; /* n_input_segments × 2: the input segments in output vertex numbers */
+    int32_t n_input_segments;
+    int exterior_carved;     /* 1 when triangles outside the segments were removed */
+    int32_t n_steiner;       /* Steiner points inserted (intersections + refinement) */
+    int32_t n_duplicates;    /* input points merged into an earlier one */
+    double min_angle_deg;    /* smallest angle over the output triangles */
+    double seconds;          /* wall time of wr_cdt_triangulate */
+} wr_cdt_result;
+
+WRDEF wr_status wr_cdt_triangulate(const wr_cdt_input *in, const wr_cdt_desc *desc, wr_cdt_result *out,
+                                   wr_diag *diag);
+WRDEF void wr_cdt_free(wr_cdt_result *r);
+
+/* What wr_cdt_check measured. */
+typedef struct wr_cdt_check_info {
+    int32_t n_vertices_used; /* vertices referenced by triangles */
+    int32_t n_edges;
+    int32_t n_components;     /* edge-connected components of triangles */
+    int32_t n_boundary_loops; /* boundary cycles (holes = loops - components) */
+    int32_t n_pinched;        /* vertices with more than one boundary fan (Euler test skipped then) */
+    int32_t euler;            /* V - E + F */
+    double min_angle_deg;
+} wr_cdt_check_info;
+
+/* Verifies with exact predicates: indices in range, every triangle strictly CCW, neighbor symmetry
+ * (and equal edge_segment on both sides), every unconstrained interior edge locally Delaunay
+ * (incircle <= 0), every input segment present as a chain of output edges, Euler characteristic
+ * V - E + F == 2·components - boundary_loops, and, when expected_holes >= 0, that the number of
+ * holes (boundary_loops - components) equals it. info may be NULL. WR_ERR_TOPOLOGY /
+ * WR_ERR_GEOMETRY name the first failing triangle or segment. */
+WRDEF wr_status wr_cdt_check(const wr_cdt_result *r, int32_t expected_holes, wr_cdt_check_info *info,
+                             wr_diag *diag);
+
+/* ---- Triangle's .node / .poly files ---- */
+typedef struct wr_cdt_poly {
+    double *points;           /* n_points × 2 */
+    int32_t n_points;
+    int32_t *point_markers;   /* n_points boundary markers (0 when the file has none) */
+    int32_t *segments;        /* n_segments × 2, converted to 0-based */
+    int32_t n_segments;
+    int32_t *segment_markers; /* n_segments (0 when the file has none) */
+    double *holes;            /* n_holes × 2 */
+    int32_t n_holes;
+    int first_index;          /* 0 or 1: numbering the file used (from its first vertex) */
+    int has_point_markers, has_segment_markers;
+} wr_cdt_poly;
+
+/* poly_text: contents of a .poly file (NULL: read only node_text as a .node file). node_text: the
+ * .node file, needed when the .poly node section is empty ("0 2 0 1"), else may be NULL. name:
+ * file name used in messages "name:line: reason". Attributes are read and ignored. */
+WRDEF wr_status wr_cdt_poly_parse(const char *poly_text, const char *node_text, const char *name,
+                                  wr_cdt_poly *out, wr_diag *diag);
+/* path ending in .poly (reads the sibling .node if needed) or .node. */
+WRDEF wr_status wr_cdt_poly_read(const char *path, wr_cdt_poly *out, wr_diag *diag);
+WRDEF void wr_cdt_poly_free(wr_cdt_poly *p);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* WRINKLE_TRIANGULATE_H */
+
+/* ============================================================================================ */
+#ifdef WRINKLE_IMPLEMENTATION
+#ifndef WRINKLE_TRIANGULATE_IMPLEMENTATION_DONE
+#define WRINKLE_TRIANGULATE_IMPLEMENTATION_DONE
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ---- expansion arithmetic (Shewchuk 1997, "Adaptive precision floating-point arithmetic") ----
+ * An expansion is an array of doubles, increasing magnitude, nonoverlapping, whose exact sum is the
+ * value; its sign is the sign of its last (largest) component. */
+#define WR__EPS 1.1102230246251565e-16         /* 2^-53, half an ulp of 1 */
+#define WR__SPLITTER 134217729.0               /* 2^27 + 1: Dekker's split into 26+26 bits */
+#define WR__CCW_BOUND ((3.0 + 16.0 * WR__EPS) * WR__EPS)  /* Shewchuk's ccwerrboundA */
+#define WR__ICC_BOUND ((10.0 + 96.0 * WR__EPS) * WR__EPS) /* Shewchuk's iccerrboundA */
+
+static void wr__two_sum(double a, double b, double *x, double *y) {
+    double s = a + b, bv = s - a, av = s - bv;
+    *x = s;
+    *y = (a - av) + (b - bv);
+}
+static void wr__fast_two_sum(double a, double b, double *x, double *y) { /* needs |a| >= |b| */
+    double s = a + b;
+    *x = s;
+    *y = b - (s - a);
+}
+static void wr__two_diff(double a, double b, double *x, double *y) {
+    double s = a - b, bv = a - s, av = s + bv;
+    *x = s;
+    *y = (a - av) + (bv - b);
+}
+static void wr__split(double a, double *hi, double *lo) {
+    double c = WR__SPLITTER * a, big = c - a;
+    *hi = c - big;
+    *lo = a - *hi;
+}
+static void wr__two_prod(double a, double b, double *x, double *y) {
+    double p = a * b, ah, al, bh, bl, e1, e2, e3;
+    wr__split(a, &ah, &al);
+    wr__split(b, &bh, &bl);
+    e1 = p - ah * bh;
+    e2 = e1 - al * bh;
+    e3 = e2 - ah * bl;
+    *x = p;
+    *y = al * bl - e3;
+}
+/* h = e + f; merge by magnitude then one running two-sum (FAST-EXPANSION-SUM), zeros dropped. */
+static int wr__exp_sum(int ne, const double *e, int nf, const double *f, double *h) {
+    double q, qn, hh, g;
+    int i = 0, j = 0, k = 0;
+    if (ne == 0 && nf == 0) return 0;
+    if (j >= nf || (i < ne && fabs(e[i]) < fabs(f[j])))
+        q = e[i++];
+    else
+        q = f[j++];
+    while (i < ne || j < nf) {
+        if (j >= nf || (i < ne && fabs(e[i]) < fabs(f[j])))
+            g = e[i++];
+        else
+            g = f[j++];
+        wr__two_sum(q, g, &qn, &hh);
+        q = qn;
+        if (hh != 0.0) h[k++] = hh;
+    }
+    if (q != 0.0 || k == 0) h[k++] = q;
+    return k;
+}
+/* h = e * b (SCALE-EXPANSION), zeros dropped. h has room for 2·ne. */
+static int wr__exp_scale(int ne, const double *e, double b, double *h) {
+    double q, hh, p1, p0, s, t;
+    int i, k = 0;
+    if (ne == 0) return 0;
+    wr__two_prod(e[0], b, &q, &hh);
+    if (hh != 0.0) h[k++] = hh;
+    for (i = 1; i < ne; ++i) {
+        wr__two_prod(e[i], b, &p1, &p0);
+        wr__two_sum(q, p0, &s, &hh);
+        if (hh != 0.0) h[k++] = hh;
+        wr__fast_two_sum(p1, s, &q, &t);
+        if (t != 0.0) h[k++] = t;
+    }
+    if (q != 0.0 || k == 0) h[k++] = q;
+    return k;
+}
+/* h = e * f with e, f short; h has room for 2·ne·nf (<= 512 here). */
+#define WR__EXP_MAX 512
+static int wr__exp_mul(int ne, const double *e, int nf, const double *f, double *h) {
+    double sc[64], acc[WR__EXP_MAX];
+    int j, ns, nh = 0;
+    for (j = 0; j < nf; ++j) {
+        ns = wr__exp_scale(ne, e, f[j], sc);
+        nh = wr__exp_sum(nh, h, ns, sc, acc);
+        memcpy(h, acc, sizeof(double) * (size_t)nh);
+    }
+    if (nh == 0) h[nh++] = 0.0;
+    return nh;
+}
+static void wr__exp_neg(int n, double *e) {
+    int i;
+    for (i = 0; i < n; ++i) e[i] = -e[i];
+}
+
+static double wr__orient_exact(const double *a, const double *b, const double *c) {
+    double acx[2], acy[2], bcx[2], bcy[2], l[8], r[8], s[16];
+    int nl, nr, ns;
+    wr__two_diff(a[0], c[0], &acx[1], &acx[0]);
+    wr__two_diff(a[1], c[1], &acy[1], &acy[0]);
+    wr__two_diff(b[0], c[0], &bcx[1], &bcx[0]);
+    wr__two_diff(b[1], c[1], &bcy[1], &bcy[0]);
+    nl = wr__exp_mul(2, acx, 2, bcy, l);
+    nr = wr__exp_mul(2, acy, 2, bcx, r);
+    wr__exp_neg(nr, r);
+    ns = wr__exp_sum(nl, l, nr, r, s);
+    return s[ns - 1];
+}
+
+static double wr__incircle_exact(const double *a, const double *b, const double *c, const double *d) {
+    double dx[3][2], dy[3][2], t1[8], t2[8], lift[16], c1[16], c2[16], cr[32], term[3][WR__EXP_MAX],
+        s01[2 * WR__EXP_MAX], tot[3 * WR__EXP_MAX];
+    const double *p[3];
+    int nterm[3], i, n1, n2, nl, ncr, n01, ntot;
+    p[0] = a;
+    p[1] = b;
+    p[2] = c;
+    for (i = 0; i < 3; ++i) {
+        wr__two_diff(p[i][0], d[0], &dx[i][1], &dx[i][0]);
+        wr__two_diff(p[i][1], d[1], &dy[i][1], &dy[i][0]);
+    }
+    for (i = 0; i < 3; ++i) {
+        int j = (i + 1) % 3, k = (i + 2) % 3;
+        /* lift_i · (dx_j dy_k - dy_j dx_k): cofactor expansion along the lifted column */
+        n1 = wr__exp_mul(2, dx[i], 2, dx[i], t1);
+        n2 = wr__exp_mul(2, dy[i], 2, dy[i], t2);
+        nl = wr__exp_sum(n1, t1, n2, t2, lift);
+        n1 = wr__exp_mul(2, dx[j], 2, dy[k], c1);
+        n2 = wr__exp_mul(2, dy[j], 2, dx[k], c2);
+        wr__exp_neg(n2, c2);
+        ncr = wr__exp_sum(n1, c1, n2, c2, cr);
+        nterm[i] = wr__exp_mul(nl, lift, ncr, cr, term[i]);
+    }
+    n01 = wr__exp_sum(nterm[0], term[0], nterm[1], term[1], s01);
+    ntot = wr__exp_sum(n01, s01, nterm[2], term[2], tot);
+    return tot[ntot - 1];
+}
+
+static double wr__orient(const double *a, const double *b, const double *c) {
+    double l = (a[0] - c[0]) * (b[1] - c[1]), r = (a[1] - c[1]) * (b[0] - c[0]), det = l - r, sum;
+    if (l > 0.0) {
+        if (r <= 0.0) return det;
+        sum = l + r;
+    } else if (l < 0.0) {
+        if (r >= 0.0) return det;
+        sum = -l - r;
+    } else {
+        return det;
+    }
+    if (det >= WR__CCW_BOUND * sum || -det >= WR__CCW_BOUND * sum) return det;
+    return wr__orient_exact(a, b, c);
+}
+
+static double wr__incircle(const double *a, const double *b, const double *c, const double *d) {
+    double adx = a[0] - d[0], ady = a[1] - d[1], bdx = b[0] - d[0], bdy = b[1] - d[1];
+    double cdx = c[0] - d[0], cdy = c[1] - d[1];
+    double bc1 = bdx * cdy, bc2 = cdx * bdy, ca1 = cdx * ady, ca2 = adx * cdy, ab1 = adx * bdy, ab2 = bdx * ady;
+    double al = adx * adx + ady * ady, bl = bdx * bdx + bdy * bdy, cl = cdx * cdx + cdy * cdy;
+    double det = al * (bc1 - bc2) + bl * (ca1 - ca2) + cl * (ab1 - ab2);
+    double perm = (fabs(bc1) + fabs(bc2)) * al + (fabs(ca1) + fabs(ca2)) * bl + (fabs(ab1) + fabs(ab2)) * cl;
+    double eb = WR__ICC_BOUND * perm;
+    if (det > eb || -det > eb) return det;
+    return wr__incircle_exact(a, b, c, d);
+}
+
+WRDEF double wr_orient2d(const double *a, const double *b, const double *c) { return wr__orient(a, b, c); }
+WRDEF double wr_incircle(const double *a, const double *b, const double *c, const double *d) {
+    return wr__incircle(a, b, c, d);
+}
+WRDEF double wr_orient2d_fast(const double *a, const double *b, const double *c) {
+    return (a[0] - c[0]) * (b[1] - c[1]) - (a[1] - c[1]) * (b[0] - c[0]);
+}
+WRDEF double wr_incircle_fast(const double *a, const double *b, const double *c, const double *d) {
+    double adx = a[0] - d[0], ady = a[1] - d[1], bdx = b[0] - d[0], bdy = b[1] - d[1];
+    double cdx = c[0] - d[0], cdy = c[1] - d[1];
+    return (adx * adx + ady * ady) * (bdx * cdy - cdx * bdy) + (bdx * bdx + bdy * bdy) * (cdx * ady - adx * cdy) +
+           (cdx * cdx + cdy * cdy) * (adx * bdy - bdx * ady);
+}
+
+/* ---- triangulation data structure ----
+ * Triangles are vertex triples tv[3t..3t+2] in CCW order; tn[3t+k] is the half-edge (3u+j) of the
+ * neighbor across the edge opposite corner k (that edge runs tv[3t+(k+1)%3] -> tv[3t+(k+2)%3]).
+ * The convex hull is closed by "ghost" triangles holding the vertex at infinity (index -1), so every
+ * half-edge has a twin and every vertex star is a full cycle. cm[3t+k] is the segment id of a
+ * constrained edge (-1 none, -2 convex-hull edge treated as a segment during refinement). */
+#define WR__INF (-1)
+#define WR__HULLSEG (-2)
+#define WR__F_OUT 1 /* triangle removed by carving (outside or in a hole) */
+
+static const int wr__n1[3] = {1, 2, 0};
+static const int wr__n2[3] = {2, 0, 1};
+
+typedef struct wr__cdt {
+    double *xy;     /* 2·capv */
+    int32_t *vtri;  /* capv: some triangle incident to each vertex, -1 if not inserted */
+    int32_t *vseg;  /* capv: segment a Steiner point lies on (-1 none) */
+    int32_t nv, capv, n_input;
+    int32_t *tv, *tn, *cm; /* 3·capt each (cm NULL until constraints exist) */
+    unsigned char *tf;     /* capt flags */
+    int32_t nt, capt;
+    int32_t *stk; /* scratch stack of ints */
+    int32_t nstk, capstk;
+    int32_t last;  /* triangle to start the next walk from */
+    uint32_t walk_rng;
+    int32_t max_vertices;
+    int track_vtri; /* vtri is kept current only after bulk insertion (rebuilt once, saves stores) */
+} wr__cdt;
+
+static int wr__push(wr__cdt *S, int32_t x) {
+    if (S->nstk == S->capstk) {
+        int32_t nc = S->capstk ? 2 * S->capstk : 256;
+        int32_t *p = (int32_t *)wr_realloc_array(S->stk, (size_t)nc, sizeof(int32_t));
+        if (!p) return 0;
+        S->stk = p;
+        S->capstk = nc;
+    }
+    S->stk[S->nstk++] = x;
+    return 1;
+}
+
+/* growable int32 vector used for queues and lists */
+typedef struct wr__ivec {
+    int32_t *a;
+    int32_t n, cap;
+} wr__ivec;
+static int wr__ivec_push(wr__ivec *v, int32_t x) {
+    if (v->n == v->cap) {
+        int32_t nc = v->cap ? 2 * v->cap : 64;
+        int32_t *p = (int32_t *)wr_realloc_array(v->a, (size_t)nc, sizeof(int32_t));
+        if (!p) return 0;
+        v->a = p;
+        v->cap = nc;
+    }
+    v->a[v->n++] = x;
+    return 1;
+}
+
+static int wr__reserve_tris(wr__cdt *S, int32_t extra) {
+    if (S->nt + extra > S->capt) {
+        int64_t want = (int64_t)S->capt + S->capt / 2 + extra + 64;
+        int32_t nc;
+        int32_t *tv, *tn;
+        unsigned char *tf;
+        if (want > INT32_MAX / 3) want = INT32_MAX / 3;
+        if (S->nt + (int64_t)extra > want) return 0;
+        nc = (int32_t)want;
+        tv = (int32_t *)wr_realloc_array(S->tv, (size_t)nc * 3, sizeof(int32_t));
+        if (!tv) return 0;
+        S->tv = tv;
+        tn = (int32_t *)wr_realloc_array(S->tn, (size_t)nc * 3, sizeof(int32_t));
+        if (!tn) return 0;
+        S->tn = tn;
+        tf = (unsigned char *)wr_realloc_array(S->tf, (size_t)nc, 1);
+        if (!tf) return 0;
+        S->tf = tf;
+        if (S->cm) {
+            int32_t *cm = (int32_t *)wr_realloc_array(S->cm, (size_t)nc * 3, sizeof(int32_t));
+            if (!cm) return 0;
+            S->cm = cm;
+        }
+        S->capt = nc;
+    }
+    return 1;
+}
+
+static int wr__ensure_cm(wr__cdt *S) {
+    int32_t i;
+    if (S->cm) return 1;
+    S->cm = (int32_t *)wr_alloc_array((size_t)S->capt * 3, sizeof(int32_t));
+    if (!S->cm) return 0;
+    for (i = 0; i < 3 * S->capt; ++i) S->cm[i] = -1;
+    return 1;
+}
+
+static int wr__reserve_verts(wr__cdt *S, int32_t extra) {
+    if (S->nv + extra > S->capv) {
+        int64_t want = (int64_t)S->capv + S->capv / 2 + extra + 16;
+        int32_t nc;
+        double *xy;
+        int32_t *a;
+        if (want > INT32_MAX / 4) want = INT32_MAX / 4;
+        if (S->nv + (int64_t)extra > want) return 0;
+        nc = (int32_t)want;
+        xy = (double *)wr_realloc_array(S->xy, (size_t)nc * 2, sizeof(double));
+        if (!xy) return 0;
+        S->xy = xy;
+        a = (int32_t *)wr_realloc_array(S->vtri, (size_t)nc, sizeof(int32_t));
+        if (!a) return 0;
+        S->vtri = a;
+        a = (int32_t *)wr_realloc_array(S->vseg, (size_t)nc, sizeof(int32_t));
+        if (!a) return 0;
+        S->vseg = a;
+        S->capv = nc;
+    }
+    return 1;
+}
+
+#define WR__P(S, v) ((S)->xy + 2 * (size_t)(v))
+#define WR__GHOSTLY(S, t) ((S)->tv[3 * (t)] < 0 || (S)->tv[3 * (t) + 1] < 0 || (S)->tv[3 * (t) + 2] < 0)
+
+static void wr__link(wr__cdt *S, int32_t h1, int32_t h2) {
+    S->tn[h1] = h2;
+    S->tn[h2] = h1;
+}
+static int32_t wr__cmark(const wr__cdt *S, int32_t h) { return S->cm ? S->cm[h] : -1; }
+static void wr__setv(wr__cdt *S, int32_t t, int32_t a, int32_t b, int32_t c) {
+    S->tv[3 * t] = a;
+    S->tv[3 * t + 1] = b;
+    S->tv[3 * t + 2] = c;
+    if (!S->track_vtri) return;
+    if (a >= 0) S->vtri[a] = t;
+    if (b >= 0) S->vtri[b] = t;
+    if (c >= 0) S->vtri[c] = t;
+}
+
+/* Is point p in conflict with triangle u: strictly inside its circumcircle, or for a ghost strictly
+ * beyond its hull edge (the circle through a hull edge and infinity is that half-plane). */
+static int wr__conflict(const wr__cdt *S, int32_t u, const double *p) {
+    const int32_t *v = S->tv + 3 * u;
+    int g;
+    if (v[0] >= 0 && v[1] >= 0 && v[2] >= 0) return wr__incircle(WR__P(S, v[0]), WR__P(S, v[1]), WR__P(S, v[2]), p) > 0.0;
+    g = v[0] < 0 ? 0 : v[1] < 0 ? 1 : 2;
+    return wr__orient(WR__P(S, v[wr__n1[g]]), WR__P(S, v[wr__n2[g]]), p) > 0.0;
+}
+
+/* Flip the edge half-edge he = (t, k) across to its twin: (a,b,c)+(d,c,b) -> (a,b,d)+(d,c,a). a ends
+ * at corner 0 of t and corner 2 of u. */
+static void wr__flip(wr__cdt *S, int32_t he, int32_t *to, int32_t *uo) {
+    int32_t t = he / 3, k = he % 3, tw = S->tn[he], u = tw / 3, j = tw % 3;
+    int32_t a = S->tv[he], b = S->tv[3 * t + wr__n1[k]], c = S->tv[3 * t + wr__n2[k]], d = S->tv[tw];
+    int32_t Nca = S->tn[3 * t + wr__n1[k]], Nab = S->tn[3 * t + wr__n2[k]];
+    int32_t Nbd = S->tn[3 * u + wr__n1[j]], Ndc = S->tn[3 * u + wr__n2[j]];
+    wr__setv(S, t, a, b, d);
+    wr__setv(S, u, d, c, a);
+    if (S->cm) {
+        int32_t Mca = S->cm[3 * t + wr__n1[k]], Mab = S->cm[3 * t + wr__n2[k]];
+        int32_t Mbd = S->cm[3 * u + wr__n1[j]], Mdc = S->cm[3 * u + wr__n2[j]];
+        S->cm[3 * t] = Mbd;
+        S->cm[3 * t + 1] = -1;
+        S->cm[3 * t + 2] = Mab;
+        S->cm[3 * u] = Mca;
+        S->cm[3 * u + 1] = -1;
+        S->cm[3 * u + 2] = Mdc;
+    }
+    wr__link(S, 3 * t, Nbd);
+    wr__link(S, 3 * t + 1, 3 * u + 1);
+    wr__link(S, 3 * t + 2, Nab);
+    wr__link(S, 3 * u, Nca);
+    wr__link(S, 3 * u + 2, Ndc);
+    *to = t;
+    *uo = u;
+}
+
+/* Lawson: the stack holds half-edges whose corner is the new vertex p; flip while p is in conflict
+ * with the triangle across (never across a constrained edge). */
+static void wr__legalize(wr__cdt *S, int32_t p) {
+    const double *pp = WR__P(S, p);
+    while (S->nstk) {
+        int32_t he = S->stk[--S->nstk], t, u;
+        if (S->cm && S->cm[he] != -1) continue;
+        if (!wr__conflict(S, S->tn[he] / 3, pp)) continue;
+        wr__flip(S, he, &t, &u);
+        S->stk[S->nstk++] = 3 * t; /* room: two pushes replace one pop, reserved by callers */
+        S->stk[S->nstk++] = 3 * u + 2;
+        if (S->nstk + 4 > S->capstk) {
+            int32_t nc = 2 * S->capstk;
+            int32_t *q = (int32_t *)wr_realloc_array(S->stk, (size_t)nc, sizeof(int32_t));
+            if (!q) { /* out of memory mid-legalization: the mesh stays valid, only less Delaunay */
+                S->nstk = 0;
+                return;
+            }
+            S->stk = q;
+            S->capstk = nc;
+        }
+    }
+}
+
+/* Split triangle t at new vertex p (strictly inside t, or strictly beyond a ghost's hull edge). */
+static int wr__split_tri(wr__cdt *S, int32_t t, int32_t p) {
+    int32_t a, b, c, Na, Nb, Nc, Ma, Mb, Mc, t1, t2;
+    if (!wr__reserve_tris(S, 2)) return 0;
+    a = S->tv[3 * t];
+    b = S->tv[3 * t + 1];
+    c = S->tv[3 * t + 2];
+    Na = S->tn[3 * t];
+    Nb = S->tn[3 * t + 1];
+    Nc = S->tn[3 * t + 2];
+    Ma = wr__cmark(S, 3 * t);
+    Mb = wr__cmark(S, 3 * t + 1);
+    Mc = wr__cmark(S, 3 * t + 2);
+    t1 = S->nt++;
+    t2 = S->nt++;
+    S->tf[t1] = S->tf[t2] = S->tf[t];
+    wr__setv(S, t1, p, c, a);
+    wr__setv(S, t2, p, a, b);
+    wr__setv(S, t, p, b, c);
+    wr__link(S, 3 * t, Na);
+    wr__link(S, 3 * t1, Nb);
+    wr__link(S, 3 * t2, Nc);
+    wr__link(S, 3 * t + 1, 3 * t1 + 2);
+    wr__link(S, 3 * t + 2, 3 * t2 + 1);
+    wr__link(S, 3 * t1 + 1, 3 * t2 + 2);
+    if (S->cm) {
+        S->cm[3 * t] = Ma;
+        S->cm[3 * t1] = Mb;
+        S->cm[3 * t2] = Mc;
+        S->cm[3 * t + 1] = S->cm[3 * t + 2] = S->cm[3 * t1 + 1] = S->cm[3 * t1 + 2] = -1;
+        S->cm[3 * t2 + 1] = S->cm[3 * t2 + 2] = -1;
+    }
+    S->nstk = 0;
+    if (S->capstk < 64 && !wr__push(S, 0)) return 0;
+    S->nstk = 0;
+    S->stk[S->nstk++] = 3 * t;
+    S->stk[S->nstk++] = 3 * t1;
+    S->stk[S->nstk++] = 3 * t2;
+    wr__legalize(S, p);
+    S->last = t;
+    return 1;
+}
+
+/* Split the edge of half-edge he at new vertex p lying on it; a constrained edge stays constrained
+ * in both halves. */
+static int wr__split_edge(wr__cdt *S, int32_t he, int32_t p) {
+    int32_t t, k, tw, u, j, a, b, c, d, Nab, Nca, Nbd, Ndc, Mab, Mca, Mbd, Mdc, M, T2, U2;
+    if (!wr__reserve_tris(S, 2)) return 0;
+    t = he / 3;
+    k = he % 3;
+    tw = S->tn[he];
+    u = tw / 3;
+    j = tw % 3;
+    a = S->tv[he];
+    b = S->tv[3 * t + wr__n1[k]];
+    c = S->tv[3 * t + wr__n2[k]];
+    d = S->tv[tw];
+    Nab = S->tn[3 * t + wr__n2[k]];
+    Nca = S->tn[3 * t + wr__n1[k]];
+    Nbd = S->tn[3 * u + wr__n1[j]];
+    Ndc = S->tn[3 * u + wr__n2[j]];
+    Mab = wr__cmark(S, 3 * t + wr__n2[k]);
+    Mca = wr__cmark(S, 3 * t + wr__n1[k]);
+    Mbd = wr__cmark(S, 3 * u + wr__n1[j]);
+    Mdc = wr__cmark(S, 3 * u + wr__n2[j]);
+    M = wr__cmark(S, he);
+    T2 = S->nt++;
+    U2 = S->nt++;
+    S->tf[T2] = S->tf[t];
+    S->tf[U2] = S->tf[u];
+    wr__setv(S, T2, a, p, c);
+    wr__setv(S, U2, d, p, b);
+    wr__setv(S, u, d, c, p);
+    wr__setv(S, t, a, b, p);
+    wr__link(S, 3 * t, 3 * U2);
+    wr__link(S, 3 * t + 1, 3 * T2 + 2);
+    wr__link(S, 3 * t + 2, Nab);
+    wr__link(S, 3 * T2, 3 * u);
+    wr__link(S, 3 * T2 + 1, Nca);
+    wr__link(S, 3 * u + 1, 3 * U2 + 2);
+    wr__link(S, 3 * u + 2, Ndc);
+    wr__link(S, 3 * U2 + 1, Nbd);
+    if (S->cm) {
+        S->cm[3 * t] = S->cm[3 * U2] = M;
+        S->cm[3 * T2] = S->cm[3 * u] = M;
+        S->cm[3 * t + 1] = S->cm[3 * T2 + 2] = -1;
+        S->cm[3 * u + 1] = S->cm[3 * U2 + 2] = -1;
+        S->cm[3 * t + 2] = Mab;
+        S->cm[3 * T2 + 1] = Mca;
+        S->cm[3 * u + 2] = Mdc;
+        S->cm[3 * U2 + 1] = Mbd;
+    }
+    if (M != -1) S->vseg[p] = M >= 0 ? M : S->vseg[p];
+    S->nstk = 0;
+    if (S->capstk < 64 && !wr__push(S, 0)) return 0;
+    S->nstk = 0;
+    S->stk[S->nstk++] = 3 * t + 2;
+    S->stk[S->nstk++] = 3 * T2 + 1;
+    S->stk[S->nstk++] = 3 * u + 2;
+    S->stk[S->nstk++] = 3 * U2 + 1;
+    wr__legalize(S, p);
+    S->last = t;
+    return 1;
+}
+
+#define WR__LOC_TRI 0
+#define WR__LOC_EDGE 1
+#define WR__LOC_VERT 2
+#define WR__LOC_BLOCKED 3
+#define WR__LOC_LOST 4
+
+/* Visibility walk from triangle `start` to point p. Returns WR__LOC_TRI (*res = triangle containing
+ * p strictly, or a ghost whose hull edge p lies strictly beyond), WR__LOC_EDGE (*res = half-edge whose
+ * open edge contains p), WR__LOC_VERT (*res = vertex equal to p). With `blocking`, crossing a
+ * constrained edge returns WR__LOC_BLOCKED (*res = that half-edge, seen from the near side). The
+ * starting edge is chosen pseudo-randomly (stochastic walk), so walking cannot cycle forever;
+ * WR__LOC_LOST after max_steps is a safety net only. */
+static int wr__locate(wr__cdt *S, const double *p, int32_t start, int blocking, int64_t max_steps, int32_t *res) {
+    int32_t t = start, came = -1;
+    int64_t steps;
+    for (steps = 0; steps < max_steps; ++steps) {
+        const int32_t *v = S->tv + 3 * t;
+        if (v[0] < 0 || v[1] < 0 || v[2] < 0) {
+            int g = v[0] < 0 ? 0 : v[1] < 0 ? 1 : 2;
+            int32_t x = v[wr__n1[g]], y = v[wr__n2[g]];
+            const double *px = WR__P(S, x), *py = WR__P(S, y);
+            double o = wr__orient(px, py, p);
+            if (o > 0.0) {
+                *res = t;
+                return WR__LOC_TRI;
+            }
+            if (o < 0.0) {
+                if (blocking && wr__cmark(S, 3 * t + g) != -1) {
+                    *res = S->tn[3 * t + g];
+                    return WR__LOC_BLOCKED;
+                }
+                came = S->tn[3 * t + g];
+                t = came / 3;
+                continue;
+            }
+            if (p[0] == px[0] && p[1] == px[1]) {
+                *res = x;
+                return WR__LOC_VERT;
+            }
+            if (p[0] == py[0] && p[1] == py[1]) {
+                *res = y;
+                return WR__LOC_VERT;
+            }
+            {
+                double dx = py[0] - px[0], dy = py[1] - px[1];
+                double sx = (p[0] - px[0]) * dx + (p[1] - px[1]) * dy; /* > 0: past x toward y */
+                double sy = (p[0] - py[0]) * dx + (p[1] - py[1]) * dy; /* > 0: past y */
+                if (sx > 0.0 && sy < 0.0) {
+                    *res = 3 * t + g;
+                    return WR__LOC_EDGE;
+                }
+                came = -1;
+                t = S->tn[3 * t + (sy >= 0.0 ? wr__n1[g] : wr__n2[g])] / 3;
+            }
+            continue;
+        } else {
+            double o[3];
+            int i, k0, nz = 0, zk = -1, moved = 0;
+            S->walk_rng = S->walk_rng * 1664525u + 1013904223u;
+            k0 = (int)((S->walk_rng >> 16) % 3u);
+            for (i = 0; i < 3; ++i) {
+                int k = (k0 + i) % 3;
+                int32_t he = 3 * t + k;
+                if (S->tn[he] == came) {
+                    o[k] = 1.0;
+                    continue;
+                }
+                o[k] = wr__orient(WR__P(S, v[wr__n1[k]]), WR__P(S, v[wr__n2[k]]), p);
+                if (o[k] < 0.0) {
+                    if (blocking && wr__cmark(S, he) != -1) {
+                        *res = he;
+                        return WR__LOC_BLOCKED;
+                    }
+                    came = he;
+                    t = S->tn[he] / 3;
+                    moved = 1;
+                    break;
+                }
+            }
+            if (moved) continue;
+            for (i = 0; i < 3; ++i)
+                if (o[i] == 0.0) {
+                    ++nz;
+                    zk = i;
+                }
+            if (nz == 0) {
+                *res = t;
+                return WR__LOC_TRI;
+            }
+            if (nz == 1) {
+                *res = 3 * t + zk;
+                return WR__LOC_EDGE;
+            }
+            for (i = 0; i < 3; ++i)
+                if (o[i] != 0.0) {
+                    *res = v[i];
+                    return WR__LOC_VERT;
+                }
+            *res = t; /* three zeros: impossible for a CCW triangle */
+            return WR__LOC_LOST;
+        }
+    }
+    *res = t;
+    return WR__LOC_LOST;
+}
+
+/* Insert vertex p (coordinates already in xy) starting the walk at `start`. *vout = p, or the
+ * existing vertex p coincides with. Returns 0 on out-of-memory or a lost walk. */
+static int wr__insert(wr__cdt *S, int32_t p, int32_t start, int32_t *vout) {
+    int32_t r;
+    int loc = wr__locate(S, WR__P(S, p), start, 0, (int64_t)4 * S->nt + 64, &r);
+    if (loc == WR__LOC_VERT) {
+        *vout = r;
+        return 1;
+    }
+    *vout = p;
+    if (loc == WR__LOC_TRI) return wr__split_tri(S, r, p);
+    if (loc == WR__LOC_EDGE) return wr__split_edge(S, r, p);
+    return 0;
+}
+
+/* The half-edge u -> v, or -1. Rotates around u through its full star. */
+static int32_t wr__find_edge(const wr__cdt *S, int32_t u, int32_t v) {
+    int32_t t0 = S->vtri[u], t = t0, guard = 0;
+    if (t0 < 0) return -1;
+    do {
+        const int32_t *tv = S->tv + 3 * t;
+        int i = tv[0] == u ? 0 : tv[1] == u ? 1 : 2;
+        if (tv[wr__n1[i]] == v) return 3 * t + wr__n2[i];
+        t = S->tn[3 * t + wr__n1[i]] / 3;
+    } while (t != t0 && ++guard < 1 << 24);
+    return -1;
+}
+
+/* ---- insertion order: BRIO rounds (Amenta–Choi–Rote), each round in Hilbert-curve order ---- */
+static uint32_t wr__hilbert_key(uint32_t x, uint32_t y) { /* 16-bit x, y -> 32-bit curve index */
+    uint32_t d = 0, s, rx, ry, t, n = 65536u;
+    for (s = n / 2; s > 0; s /= 2) {
+        rx = (x & s) ? 1u : 0u;
+        ry = (y & s) ? 1u : 0u;
+        d += s * s * ((3u * rx) ^ ry);
+        if (ry == 0) {
+            if (rx == 1) {
+                x = n - 1 - x;
+                y = n - 1 - y;
+            }
+            t = x;
+            x = y;
+            y = t;
+        }
+    }
+    return d;
+}
+
+/* Stable LSD radix sort of idx[0..n) by key[idx[i]] (4 passes of 8 bits). */
+static void wr__radix_sort(const uint32_t *key, int32_t *idx, int32_t *tmp, int32_t n) {
+    int pass;
+    for (pass = 0; pass < 4; ++pass) {
+        int32_t cnt[257], i;
+        int sh = 8 * pass;
+        memset(cnt, 0, sizeof cnt);
+        for (i = 0; i < n; ++i) ++cnt[((key[idx[i]] >> sh) & 255u) + 1];
+        for (i = 0; i < 256; ++i) cnt[i + 1] += cnt[i];
+        for (i = 0; i < n; ++i) tmp[cnt[(key[idx[i]] >> sh) & 255u]++] = idx[i];
+        memcpy(idx, tmp, sizeof(int32_t) * (size_t)n);
+    }
+}
+
+/* order[0..n) := BRIO order of the points listed in ids. */
+static int wr__brio(const double *xy, const int32_t *ids, int32_t n, wr_rng *rng, int32_t *order) {
+    uint32_t *key;
+    int32_t *tmp, i, b;
+    double lo[2] = {HUGE_VAL, HUGE_VAL}, hi[2] = {-HUGE_VAL, -HUGE_VAL}, sc[2];
+    if (n <= 0) return 1;
+    key = (uint32_t *)wr_alloc_array((size_t)n, sizeof(uint32_t));
+    tmp = (int32_t *)wr_alloc_array((size_t)n, sizeof(int32_t));
+    if (!key || !tmp) {
+        wr_free(key);
+        wr_free(tmp);
+        return 0;
+    }
+    for (i = 0; i < n; ++i) {
+        const double *p = xy + 2 * (size_t)ids[i];
+        lo[0] = fmin(lo[0], p[0]);
+        lo[1] = fmin(lo[1], p[1]);
+        hi[0] = fmax(hi[0], p[0]);
+        hi[1] = fmax(hi[1], p[1]);
+    }
+    for (i = 0; i < 2; ++i) sc[i] = hi[i] > lo[i] ? 65535.0 / (hi[i] - lo[i]) : 0.0;
+    /* keys indexed by position in ids; order holds positions while sorting */
+    for (i = 0; i < n; ++i) {
+        const double *p = xy + 2 * (size_t)ids[i];
+        double fx = (p[0] - lo[0]) * sc[0], fy = (p[1] - lo[1]) * sc[1];
+        uint32_t qx = (uint32_t)(fx < 0.0 ? 0.0 : fx > 65535.0 ? 65535.0 : fx);
+        uint32_t qy = (uint32_t)(fy < 0.0 ? 0.0 : fy > 65535.0 ? 65535.0 : fy);
+        key[i] = wr__hilbert_key(qx, qy);
+        order[i] = i;
+    }
+    for (i = n - 1; i > 0; --i) { /* Fisher–Yates shuffle: the randomized part of BRIO */
+        int32_t j = (int32_t)wr_rng_below(rng, (uint32_t)(i + 1)), t = order[i];
+        order[i] = order[j];
+        order[j] = t;
+    }
+    b = n; /* rounds [b/2, b), each half the size of the next: the last round holds half the points */
+    while (b > 4096) {
+        int32_t a = b / 2;
+        wr__radix_sort(key, order + a, tmp, b - a);
+        b = a;
+    }
+    wr__radix_sort(key, order, tmp, b);
+    for (i = 0; i < n; ++i) order[i] = ids[order[i]];
+    wr_free(key);
+    wr_free(tmp);
+    return 1;
+}
+
+/* merge points closer than tol (greedy, input order) with a hash grid of cell size tol. */
+static int wr__merge_close(const double *xy, int32_t n, double tol, int32_t *rep) {
+    int32_t *head, *next, i, nb = 1;
+    size_t hb;
+    while (nb < 2 * n && nb < (1 << 28)) nb *= 2;
+    hb = (size_t)nb;
+    head = (int32_t *)wr_alloc_array(hb, sizeof(int32_t));
+    next = (int32_t *)wr_alloc_array((size_t)n, sizeof(int32_t));
+    if (!head || !next) {
+        wr_free(head);
+        wr_free(next);
+        return 0;
+    }
+    for (i = 0; i < nb; ++i) head[i] = -1;
+    for (i = 0; i < n; ++i) {
+        /* clamped so the integer conversion below stays defined for any finite ratio */
+        double cx = fmax(-4e18, fmin(4e18, floor(xy[2 * i] / tol)));
+        double cy = fmax(-4e18, fmin(4e18, floor(xy[2 * i + 1] / tol)));
+        int dx, dy, found = -1;
+        rep[i] = i;
+        for (dx = -1; dx <= 1 && found < 0; ++dx)
+            for (dy = -1; dy <= 1 && found < 0; ++dy) {
+                uint64_t h = ((uint64_t)(int64_t)(cx + dx) * 73856093u) ^ ((uint64_t)(int64_t)(cy + dy) * 19349663u);
+                int32_t j;
+                for (j = head[h & (hb - 1)]; j >= 0; j = next[j]) {
+                    double ex = xy[2 * j] - xy[2 * i], ey = xy[2 * j + 1] - xy[2 * i + 1];
+                    if (ex * ex + ey * ey < tol * tol) {
+                        found = j;
+                        break;
+                    }
+                }
+            }
+        if (found >= 0) {
+            rep[i] = found;
+            next[i] = -1;
+        } else {
+            uint64_t h = ((uint64_t)(int64_t)cx * 73856093u) ^ ((uint64_t)(int64_t)cy * 19349663u);
+            next[i] = head[h & (hb - 1)];
+            head[h & (hb - 1)] = i;
+        }
+    }
+    wr_free(head);
+    wr_free(next);
+    return 1;
+}
+
+/* The first triangle (i0, i1, i2 CCW) and its three ghosts. */
+static void wr__init_tri(wr__cdt *S, int32_t i0, int32_t i1, int32_t i2) {
+    int32_t v[3], k;
+    v[0] = i0;
+    v[1] = i1;
+    v[2] = i2;
+    S->nt = 4;
+    memset(S->tf, 0, 4);
+    wr__setv(S, 0, v[0], v[1], v[2]);
+    for (k = 0; k < 3; ++k) {
+        int32_t g = 1 + k;
+        wr__setv(S, g, v[wr__n2[k]], v[wr__n1[k]], WR__INF);
+        wr__link(S, 3 * 0 + k, 3 * g + 2);
+    }
+    for (k = 0; k < 3; ++k) wr__link(S, 3 * (1 + k) + 0, 3 * (1 + wr__n2[k]) + 1);
+    S->last = 0;
+}
+
+/* ---- constraint recovery ---- */
+typedef struct wr__segctx {
+    wr__ivec pieces; /* triples (a, b, segment) still to recover */
+    wr__ivec cross;  /* queue of vertex pairs: edges crossing the current piece */
+    wr__ivec fresh;  /* vertex pairs: edges made by flips, to re-check for the CDT property */
+    int split;       /* desc.split_intersections */
+    int32_t n_steiner;
+} wr__segctx;
+
+static void wr__mark_both(wr__cdt *S, int32_t he, int32_t s) {
+    if (S->cm[he] == -1) S->cm[he] = s; /* overlapping collinear segments keep the first id */
+    if (S->cm[S->tn[he]] == -1) S->cm[S->tn[he]] = s;
+}
+
+static double wr__dot3(const double *a, const double *b, const double *c) { /* (b-a)·(c-a) */
+    return (b[0] - a[0]) * (c[0] - a[0]) + (b[1] - a[1]) * (c[1] - a[1]);
+}
+
+/* Lawson flips over the vertex pairs in C->fresh until every unconstrained one is locally Delaunay. */
+static int wr__restore_delaunay(wr__cdt *S, wr__ivec *fresh) {
+    while (fresh->n >= 2) {
+        int32_t y = fresh->a[--fresh->n], x = fresh->a[--fresh->n], he, t, u, p, d;
+        const int32_t *v;
+        he = wr__find_edge(S, x, y);
+        if (he < 0 || S->cm[he] != -1) continue;
+        t = he / 3;
+        u = S->tn[he] / 3;
+        if (WR__GHOSTLY(S, t) || WR__GHOSTLY(S, u)) continue;
+        v = S->tv + 3 * t;
+        p = S->tv[he];
+        d = S->tv[S->tn[he]];
+        if (wr__incircle(WR__P(S, v[0]), WR__P(S, v[1]), WR__P(S, v[2]), WR__P(S, d)) <= 0.0) continue;
+        wr__flip(S, he, &t, &u);
+        if (!wr__ivec_push(fresh, x) || !wr__ivec_push(fresh, d) || !wr__ivec_push(fresh, d) ||
+            !wr__ivec_push(fresh, y) || !wr__ivec_push(fresh, y) || !wr__ivec_push(fresh, p) ||
+            !wr__ivec_push(fresh, p) || !wr__ivec_push(fresh, x))
+            return 0;
+    }
+    return 1;
+}
+
+static int wr__push3(wr__ivec *v, int32_t a, int32_t b, int32_t c) {
+    return wr__ivec_push(v, a) && wr__ivec_push(v, b) && wr__ivec_push(v, c);
+}
+
+/* Make segment (a0, b0) a chain of constrained edges: split it at vertices lying exactly on it,
+ * collect the edges it crosses, flip them away (Sloan 1993: a convex quad's diagonal can always be
+ * flipped, and some crossing edge always has a convex quad), then restore the CDT by Lawson flips. */
+static wr_status wr__recover(wr__cdt *S, wr__segctx *C, int32_t a0, int32_t b0, int32_t sid, wr_diag *diag) {
+    C->pieces.n = 0;
+    if (!wr__push3(&C->pieces, a0, b0, sid)) return wr_fail(diag, WR_ERR_NOMEM, sid, "out of memory");
+    while (C->pieces.n >= 3) {
+        int32_t s = C->pieces.a[--C->pieces.n], b = C->pieces.a[--C->pieces.n], a = C->pieces.a[--C->pieces.n];
+        int32_t he, t0, t, i = 0, x = -1, y = -1, xr, yl, bend, head, found = 0;
+        int64_t iter, cap;
+        const double *pa, *pb;
+        if (a == b) continue;
+        he = wr__find_edge(S, a, b);
+        if (he >= 0) {
+            wr__mark_both(S, he, s);
+            continue;
+        }
+        pa = WR__P(S, a);
+        pb = WR__P(S, b);
+        t0 = t = S->vtri[a];
+        do { /* the wedge of a's star that the segment leaves through, or a vertex on it */
+            const int32_t *v = S->tv + 3 * t;
+            i = v[0] == a ? 0 : v[1] == a ? 1 : 2;
+            x = v[wr__n1[i]];
+            y = v[wr__n2[i]];
+            if (x >= 0 && y >= 0) {
+                double ox = wr__orient(pa, pb, WR__P(S, x)), oy = wr__orient(pa, pb, WR__P(S, y));
+                if (ox == 0.0 && wr__dot3(pa, WR__P(S, x), pb) > 0.0) {
+                    wr__mark_both(S, 3 * t + wr__n2[i], s);
+                    if (!wr__push3(&C->pieces, x, b, s)) return wr_fail(diag, WR_ERR_NOMEM, sid, "out of memory");
+                    found = 2;
+                    break;
+                }
+                if (oy == 0.0 && wr__dot3(pa, WR__P(S, y), pb) > 0.0) {
+                    wr__mark_both(S, 3 * t + wr__n1[i], s);
+                    if (!wr__push3(&C->pieces, y, b, s)) return wr_fail(diag, WR_ERR_NOMEM, sid, "out of memory");
+                    found = 2;
+                    break;
+                }
+                if (ox < 0.0 && oy > 0.0) {
+                    found = 1;
+                    break;
+                }
+            }
+            t = S->tn[3 * t + wr__n1[i]] / 3;
+        } while (t != t0);
+        if (found == 2) continue;
+        if (found == 0)
+            return wr_fail(diag, WR_ERR_GEOMETRY, sid, "segment %d: no triangle around vertex %d faces vertex %d",
+                           sid, a, b);
+        /* walk along the segment collecting crossed edges as (right, left) vertex pairs */
+        he = 3 * t + i;
+        xr = x;
+        yl = y;
+        bend = b;
+        C->cross.n = 0;
+        for (;;) {
+            int32_t m = S->cm[he], tw, u, j, d;
+            double o;
+            if (m != -1) { /* the segment crosses a constrained edge */
+                double oa, ob, tt, px, py;
+                int32_t q, vq, s2 = m;
+                if (!C->split)
+                    return wr_fail(diag, WR_ERR_GEOMETRY, sid,
+                                   "segments %d and %d cross (self-intersecting boundary); set split_intersections "
+                                   "to split them",
+                                   sid, s2);
+                oa = wr__orient(WR__P(S, xr), WR__P(S, yl), pa);
+                ob = wr__orient(WR__P(S, xr), WR__P(S, yl), pb);
+                tt = oa / (oa - ob); /* oa, ob have strictly opposite signs here */
+                px = pa[0] + tt * (pb[0] - pa[0]);
+                py = pa[1] + tt * (pb[1] - pa[1]);
+                if (S->nv >= S->max_vertices)
+                    return wr_fail(diag, WR_ERR_BUDGET, sid, "vertex budget %d reached while splitting crossing segments",
+                                   S->max_vertices);
+                if (!wr__reserve_verts(S, 1)) return wr_fail(diag, WR_ERR_NOMEM, sid, "out of memory");
+                pa = WR__P(S, a); /* xy may have moved */
+                pb = WR__P(S, b);
+                q = S->nv++;
+                S->xy[2 * q] = px;
+                S->xy[2 * q + 1] = py;
+                S->vtri[q] = -1;
+                S->vseg[q] = sid;
+                S->cm[he] = S->cm[S->tn[he]] = -1;
+                if (!wr__insert(S, q, he / 3, &vq)) return wr_fail(diag, WR_ERR_NOMEM, sid, "out of memory");
+                if (vq != q)
+                    S->nv--;
+                else
+                    C->n_steiner++;
+                if (!wr__push3(&C->pieces, xr, vq, s2) || !wr__push3(&C->pieces, vq, yl, s2) ||
+                    !wr__push3(&C->pieces, a, vq, s) || !wr__push3(&C->pieces, vq, b, s))
+                    return wr_fail(diag, WR_ERR_NOMEM, sid, "out of memory");
+                bend = -1;
+                break;
+            }
+            if (!wr__ivec_push(&C->cross, xr) || !wr__ivec_push(&C->cross, yl))
+                return wr_fail(diag, WR_ERR_NOMEM, sid, "out of memory");
+            tw = S->tn[he];
+            u = tw / 3;
+            j = tw % 3;
+            d = S->tv[tw];
+            if (d == b) break;
+            o = wr__orient(pa, pb, WR__P(S, d));
+            if (o == 0.0) { /* d lies on the segment: recover a-d now, d-b later */
+                bend = d;
+                if (!wr__push3(&C->pieces, d, b, s)) return wr_fail(diag, WR_ERR_NOMEM, sid, "out of memory");
+                break;
+            }
+            if (o < 0.0) {
+                he = 3 * u + wr__n2[j];
+                xr = d;
+            } else {
+                he = 3 * u + wr__n1[j];
+                yl = d;
+            }
+        }
+        if (bend < 0) continue;
+        pb = WR__P(S, bend);
+        C->fresh.n = 0;
+        head = 0;
+        cap = (int64_t)64 * (C->cross.n + 2) * (C->cross.n + 2) + 4096;
+        for (iter = 0; head < C->cross.n; ++iter) {
+            int32_t ex = C->cross.a[head], ey = C->cross.a[head + 1], p, q;
+            double o1, o2;
+            head += 2;
+            if (iter > cap)
+                return wr_fail(diag, WR_ERR_GEOMETRY, sid, "segment %d: edge recovery did not finish", sid);
+            if (head > 4096 && head > C->cross.n / 2) {
+                memmove(C->cross.a, C->cross.a + head, sizeof(int32_t) * (size_t)(C->cross.n - head));
+                C->cross.n -= head;
+                head = 0;
+            }
+            he = wr__find_edge(S, ex, ey);
+            if (he < 0) return wr_fail(diag, WR_ERR_GEOMETRY, sid, "segment %d: lost a crossing edge", sid);
+            p = S->tv[he];
+            q = S->tv[S->tn[he]];
+            o1 = wr__orient(WR__P(S, p), WR__P(S, q), WR__P(S, ex));
+            o2 = wr__orient(WR__P(S, p), WR__P(S, q), WR__P(S, ey));
+            if ((o1 > 0.0 && o2 < 0.0) || (o1 < 0.0 && o2 > 0.0)) {
+                int32_t t1, t2;
+                double op, oq;
+                wr__flip(S, he, &t1, &t2);
+                op = wr__orient(pa, pb, WR__P(S, p));
+                oq = wr__orient(pa, pb, WR__P(S, q));
+                if ((op > 0.0 && oq < 0.0) || (op < 0.0 && oq > 0.0)) {
+                    if (!wr__ivec_push(&C->cross, p) || !wr__ivec_push(&C->cross, q))
+                        return wr_fail(diag, WR_ERR_NOMEM, sid, "out of memory");
+                } else if (!wr__ivec_push(&C->fresh, p) || !wr__ivec_push(&C->fresh, q)) {
+                    return wr_fail(diag, WR_ERR_NOMEM, sid, "out of memory");
+                }
+            } else if (!wr__ivec_push(&C->cross, ex) || !wr__ivec_push(&C->cross, ey)) {
+                return wr_fail(diag, WR_ERR_NOMEM, sid, "out of memory");
+            }
+        }
+        he = wr__find_edge(S, a, bend);
+        if (he < 0) return wr_fail(diag, WR_ERR_GEOMETRY, sid, "segment %d: recovery failed", sid);
+        wr__mark_both(S, he, s);
+        if (!wr__restore_delaunay(S, &C->fresh)) return wr_fail(diag, WR_ERR_NOMEM, sid, "out of memory");
+    }
+    return WR_OK;
+}
+
+/* ---- carving: flood fill across unconstrained edges ---- */
+static int wr__flood(wr__cdt *S, int32_t seed) {
+    S->nstk = 0;
+    if (S->tf[seed] & WR__F_OUT) return 1;
+    S->tf[seed] |= WR__F_OUT;
+    if (!wr__push(S, seed)) return 0;
+    while (S->nstk) {
+        int32_t t = S->stk[--S->nstk], k;
+        for (k = 0; k < 3; ++k) {
+            int32_t he = 3 * t + k, u = S->tn[he] / 3;
+            if (wr__cmark(S, he) != -1 || (S->tf[u] & WR__F_OUT) || WR__GHOSTLY(S, u)) continue;
+            S->tf[u] |= WR__F_OUT;
+            if (!wr__push(S, u)) return 0;
+        }
+    }
+    return 1;
+}
+
+/* ---- Delaunay refinement (Ruppert 1995; Shewchuk 2002) ---- */
+typedef struct wr__ref {
+    double sin2;      /* sin²(min angle); a triangle is bad when sin² of its smallest angle is below */
+    double max_area;  /* 0: none */
+    double cot_theta; /* off-center distance factor (0: circumcenters) */
+    const int32_t *seg; /* input segments in internal vertex ids (for the small-angle rule) */
+    wr__ivec segq;      /* vertex pairs of possibly encroached subsegments */
+    wr__ivec badq;      /* (t, a, b, c) of possibly bad triangles */
+    wr__ivec cav;       /* cavity scratch */
+    int32_t n_steiner;
+} wr__ref;
+
+static int wr__is_live(const wr__cdt *S, int32_t t) { return !WR__GHOSTLY(S, t) && !(S->tf[t] & WR__F_OUT); }
+
+/* Bad: larger than max_area, or smallest angle below the bound — except when the shortest edge joins
+ * two Steiner points on different segments sharing an endpoint (the small angle is the input's
+ * own and splitting there would never end). */
+static int wr__is_bad(const wr__cdt *S, const wr__ref *R, int32_t t) {
+    const int32_t *v = S->tv + 3 * t;
+    const double *p0 = WR__P(S, v[0]), *p1 = WR__P(S, v[1]), *p2 = WR__P(S, v[2]);
+    double e[3], a2, l1, l2;
+    int k, m = 0;
+    e[0] = (p1[0] - p2[0]) * (p1[0] - p2[0]) + (p1[1] - p2[1]) * (p1[1] - p2[1]);
+    e[1] = (p2[0] - p0[0]) * (p2[0] - p0[0]) + (p2[1] - p0[1]) * (p2[1] - p0[1]);
+    e[2] = (p0[0] - p1[0]) * (p0[0] - p1[0]) + (p0[1] - p1[1]) * (p0[1] - p1[1]);
+    a2 = wr_orient2d_fast(p0, p1, p2); /* twice the area */
+    if (R->max_area > 0.0 && 0.5 * a2 > R->max_area) return 1;
+    if (R->sin2 <= 0.0) return 0;
+    for (k = 1; k < 3; ++k)
+        if (e[k] < e[m]) m = k;
+    l1 = e[wr__n1[m]];
+    l2 = e[wr__n2[m]];
+    if (!(a2 * a2 < R->sin2 * l1 * l2)) return 0;
+    {
+        int32_t u = v[wr__n1[m]], w = v[wr__n2[m]], su = S->vseg[u], sw = S->vseg[w];
+        if (su >= 0 && sw >= 0 && su != sw && R->seg) {
+            const int32_t *A = R->seg + 2 * su, *B = R->seg + 2 * sw;
+            if (A[0] == B[0] || A[0] == B[1] || A[1] == B[0] || A[1] == B[1]) return 0;
+        }
+    }
+    return 1;
+}
+
+/* does vertex w lie strictly inside the diametral circle of edge x-y */
+static int wr__encroaches(const wr__cdt *S, int32_t x, int32_t y, const double *w) {
+    const double *px = WR__P(S, x), *py = WR__P(S, y);
+    return (px[0] - w[0]) * (py[0] - w[0]) + (px[1] - w[1]) * (py[1] - w[1]) < 0.0;
+}
+
+/* After inserting vertex p: queue the bad triangles around it and the subsegments its star
+ * encroaches (apex test on both sides of each constrained edge). */
+static int wr__scan_star(wr__cdt *S, wr__ref *R, int32_t p) {
+    int32_t t0 = S->vtri[p], t = t0, guard = 0;
+    do {
+        const int32_t *v = S->tv + 3 * t;
+        int i = v[0] == p ? 0 : v[1] == p ? 1 : 2, k;
+        if (wr__is_live(S, t)) {
+            if (wr__is_bad(S, R, t) && !(wr__ivec_push(&R->badq, t) && wr__push3(&R->badq, v[0], v[1], v[2])))
+                return 0;
+            for (k = 0; k < 3; ++k) {
+                int32_t x = v[wr__n1[k]], y = v[wr__n2[k]];
+                if (S->cm[3 * t + k] != -1 && wr__encroaches(S, x, y, WR__P(S, v[k])))
+                    if (!wr__ivec_push(&R->segq, x) || !wr__ivec_push(&R->segq, y)) return 0;
+            }
+        }
+        t = S->tn[3 * t + wr__n1[i]] / 3;
+        (void)i;
+    } while (t != t0 && ++guard < 1 << 20);
+    return 1;
+}
+
+/* Split the constrained edge he: at its midpoint, or — when exactly one end is an input vertex —
+ * at a power-of-two distance from that end (concentric shells, Ruppert/Shewchuk), so segments
+ * meeting at a small angle are split at matching radii and stop encroaching each other.
+ * Returns 1 split, 0 not splittable (result would invert a triangle: ulp-short edge), -1 budget,
+ * -2 out of memory. */
+static int wr__split_segment(wr__cdt *S, wr__ref *R, int32_t he) {
+    int32_t t = he / 3, k = he % 3, tw = S->tn[he], x = S->tv[3 * t + wr__n1[k]], y = S->tv[3 * t + wr__n2[k]];
+    int32_t a = S->tv[he], d = S->tv[tw], q, m = S->cm[he];
+    const double *px = WR__P(S, x), *py = WR__P(S, y);
+    double len = hypot(py[0] - px[0], py[1] - px[1]), f = 0.5, p[2];
+    int xin = x < S->n_input, yin = y < S->n_input;
+    if (xin != yin && len > 0.0) {
+        double dd = ldexp(1.0, (int)floor(log2(0.5 * len) + 0.5)); /* nearest power of two to len/2 */
+        f = xin ? dd / len : 1.0 - dd / len;
+    }
+    p[0] = px[0] + f * (py[0] - px[0]);
+    p[1] = px[1] + f * (py[1] - px[1]);
+    if (f == 0.5) {
+        p[0] = 0.5 * (px[0] + py[0]);
+        p[1] = 0.5 * (px[1] + py[1]);
+    }
+    if (a >= 0 && !(wr__orient(WR__P(S, a), px, p) > 0.0 && wr__orient(WR__P(S, a), p, py) > 0.0)) return 0;
+    if (d >= 0 && !(wr__orient(WR__P(S, d), py, p) > 0.0 && wr__orient(WR__P(S, d), p, px) > 0.0)) return 0;
+    if (S->nv >= S->max_vertices) return -1;
+    if (!wr__reserve_verts(S, 1)) return -2;
+    q = S->nv++;
+    S->xy[2 * q] = p[0];
+    S->xy[2 * q + 1] = p[1];
+    S->vtri[q] = -1;
+    S->vseg[q] = m >= 0 ? m : -1;
+    if (!wr__split_edge(S, he, q)) return -2;
+    R->n_steiner++;
+    if (!wr__scan_star(S, R, q)) return -2;
+    return 1;
+}
+
+static int wr__seg_encroached(const wr__cdt *S, int32_t he) {
+    int32_t t = he / 3, k = he % 3, tw = S->tn[he], x = S->tv[3 * t + wr__n1[k]], y = S->tv[3 * t + wr__n2[k]];
+    if (wr__is_live(S, t) && wr__encroaches(S, x, y, WR__P(S, S->tv[he]))) return 1;
+    if (wr__is_live(S, tw / 3) && wr__encroaches(S, x, y, WR__P(S, S->tv[tw]))) return 1;
+    return 0;
+}
+
+/* circumcenter (or off-center) of live triangle t */
+static void wr__steiner_point(const wr__cdt *S, const wr__ref *R, int32_t t, double *c) {
+    const int32_t *v = S->tv + 3 * t;
+    const double *a = WR__P(S, v[0]), *b = WR__P(S, v[1]), *cc = WR__P(S, v[2]);
+    double bx = b[0] - a[0], by = b[1] - a[1], cx = cc[0] - a[0], cy = cc[1] - a[1];
+    double bb = bx * bx + by * by, c2 = cx * cx + cy * cy, D = 2.0 * (bx * cy - by * cx);
+    double ux = (cy * bb - by * c2) / D, uy = (bx * c2 - cx * bb) / D;
+    c[0] = a[0] + ux;
+    c[1] = a[1] + uy;
+    if (R->cot_theta > 0.0) { /* Üngör: on the shortest edge's bisector, no farther than needed */
+        double e[3], mx, my, dx, dy, dc, h;
+        int k, m = 0;
+        const double *P[3];
+        P[0] = a;
+        P[1] = b;
+        P[2] = cc;
+        for (k = 0; k < 3; ++k) {
+            const double *p = P[wr__n1[k]], *q = P[wr__n2[k]];
+            e[k] = (p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]);
+        }
+        for (k = 1; k < 3; ++k)
+            if (e[k] < e[m]) m = k;
+        mx = 0.5 * (P[wr__n1[m]][0] + P[wr__n2[m]][0]);
+        my = 0.5 * (P[wr__n1[m]][1] + P[wr__n2[m]][1]);
+        dx = c[0] - mx;
+        dy = c[1] - my;
+        dc = hypot(dx, dy);
+        h = 0.5 * sqrt(e[m]) * R->cot_theta;
+        if (dc > h && dc > 0.0) {
+            c[0] = mx + dx * (h / dc);
+            c[1] = my + dy * (h / dc);
+        }
+    }
+}
+
+static wr_status wr__refine(wr__cdt *S, wr__ref *R, wr_diag *diag) {
+    int32_t t, k;
+    for (t = 0; t < S->nt; ++t) {
+        const int32_t *v = S->tv + 3 * t;
+        if (!wr__is_live(S, t)) continue;
+        if (wr__is_bad(S, R, t) && !(wr__ivec_push(&R->badq, t) && wr__push3(&R->badq, v[0], v[1], v[2])))
+            return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
+        for (k = 0; k < 3; ++k)
+            if (S->cm[3 * t + k] != -1 && wr__encroaches(S, v[wr__n1[k]], v[wr__n2[k]], WR__P(S, v[k])))
+                if (!wr__ivec_push(&R->segq, v[wr__n1[k]]) || !wr__ivec_push(&R->segq, v[wr__n2[k]]))
+                    return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
+    }
+    for (;;) {
+        int32_t a, b, c, r, he, tt, q, vq, i;
+        int loc, blocked = 0;
+        double cp[2];
+        while (R->segq.n >= 2) {
+            int32_t y = R->segq.a[--R->segq.n], x = R->segq.a[--R->segq.n], rc;
+            he = wr__find_edge(S, x, y);
+            if (he < 0 || S->cm[he] == -1 || !wr__seg_encroached(S, he)) continue;
+            rc = wr__split_segment(S, R, he);
+            if (rc == -1) goto budget;
+            if (rc == -2) return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
+        }
+        if (R->badq.n < 4) break;
+        c = R->badq.a[--R->badq.n];
+        b = R->badq.a[--R->badq.n];
+        a = R->badq.a[--R->badq.n];
+        t = R->badq.a[--R->badq.n];
+        if (t >= S->nt || S->tv[3 * t] != a || S->tv[3 * t + 1] != b || S->tv[3 * t + 2] != c) continue;
+        if (!wr__is_live(S, t) || !wr__is_bad(S, R, t)) continue;
+        wr__steiner_point(S, R, t, cp);
+        if (!isfinite(cp[0]) || !isfinite(cp[1])) continue;
+        loc = wr__locate(S, cp, t, 1, (int64_t)4 * S->nt + 64, &r);
+        if (loc == WR__LOC_VERT || loc == WR__LOC_LOST) continue;
+        if (loc == WR__LOC_BLOCKED) { /* the point lies beyond a segment: split that segment instead */
+            int rc = wr__split_segment(S, R, r);
+            if (rc == -1) goto budget;
+            if (rc == -2) return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
+            if (rc == 1 && !(wr__ivec_push(&R->badq, t) && wr__push3(&R->badq, a, b, c)))
+                return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
+            continue;
+        }
+        tt = loc == WR__LOC_EDGE ? r / 3 : r;
+        if (!wr__is_live(S, tt)) continue;
+        /* Ruppert: a new vertex that would encroach a subsegment is rejected, and the subsegments
+         * it would encroach are split instead. Look at the constrained edges of its cavity. */
+        R->cav.n = 0;
+        if (!wr__ivec_push(&R->cav, tt)) return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
+        if (loc == WR__LOC_EDGE && S->cm[r] == -1 && wr__is_live(S, S->tn[r] / 3))
+            if (!wr__ivec_push(&R->cav, S->tn[r] / 3)) return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
+        S->nstk = 0;
+        for (i = 0; i < R->cav.n; ++i) {
+            int32_t ct = R->cav.a[i];
+            for (k = 0; k < 3; ++k) {
+                int32_t ch = 3 * ct + k, u = S->tn[ch] / 3, x = S->tv[3 * ct + wr__n1[k]], y = S->tv[3 * ct + wr__n2[k]];
+                int j, seen = 0;
+                if (S->cm[ch] != -1) {
+                    if (!(loc == WR__LOC_EDGE && (ch == r || ch == S->tn[r])) && wr__encroaches(S, x, y, cp)) {
+                        if (!wr__push(S, x) || !wr__push(S, y)) return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
+                        blocked = 1;
+                    }
+                    continue;
+                }
+                if (!wr__is_live(S, u)) continue;
+                for (j = 0; j < R->cav.n && !seen; ++j) seen = R->cav.a[j] == u;
+                if (seen || !wr__conflict(S, u, cp)) continue;
+                if (!wr__ivec_push(&R->cav, u)) return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
+            }
+            if (R->cav.n > 4096) break; /* pathological cavity: the checks above are a heuristic anyway */
+        }
+        if (blocked) {
+            int any = 0;
+            int32_t *pairs = (int32_t *)wr_alloc_array((size_t)S->nstk, sizeof(int32_t)), np = S->nstk, j;
+            if (!pairs) return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
+            memcpy(pairs, S->stk, sizeof(int32_t) * (size_t)np);
+            for (j = 0; j + 1 < np; j += 2) {
+                int rc;
+                he = wr__find_edge(S, pairs[j], pairs[j + 1]);
+                if (he < 0 || S->cm[he] == -1) continue;
+                rc = wr__split_segment(S, R, he);
+                if (rc == -1) {
+                    wr_free(pairs);
+                    goto budget;
+                }
+                if (rc == -2) {
+                    wr_free(pairs);
+                    return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
+                }
+                any |= rc == 1;
+            }
+            wr_free(pairs);
+            if (any && !(wr__ivec_push(&R->badq, t) && wr__push3(&R->badq, a, b, c)))
+                return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
+            continue;
+        }
+        if (S->nv >= S->max_vertices) goto budget;
+        if (!wr__reserve_verts(S, 1)) return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
+        q = S->nv++;
+        S->xy[2 * q] = cp[0];
+        S->xy[2 * q + 1] = cp[1];
+        S->vtri[q] = -1;
+        S->vseg[q] = -1;
+        if (loc == WR__LOC_TRI) {
+            if (!wr__split_tri(S, tt, q)) return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
+        } else if (!wr__split_edge(S, r, q)) {
+            return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
+        }
+        vq = q;
+        R->n_steiner++;
+        if (!wr__scan_star(S, R, vq)) return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
+    }
+    return WR_OK;
+budget:
+    return wr_fail(diag, WR_ERR_BUDGET, -1,
+                   "refinement stopped at the vertex budget of %d vertices (%d Steiner points inserted); the mesh "
+                   "reached is returned; raise max_vertices or lower min_angle_deg",
+                   S->max_vertices, R->n_steiner);
+}
+
+/* ---- public entry ---- */
+#define WR__DEFAULT_MIN_ANGLE 20.0 /* degrees; Triangle's -q default, inside Ruppert's proven 20.7° */
+#define WR__MAX_MIN_ANGLE 34.0     /* degrees; beyond ~33.8° Delaunay refinement is known not to end */
+#define WR__DEFAULT_SEED 0x5EEDC0DEull
+
+static void wr__cdt_defaults(const wr_cdt_desc *in, wr_cdt_desc *d) {
+    if (in)
+        *d = *in;
+    else
+        memset(d, 0, sizeof *d);
+    if (d->quality && d->min_angle_deg == 0.0) d->min_angle_deg = WR__DEFAULT_MIN_ANGLE;
+    if (!d->quality) d->min_angle_deg = 0.0;
+    if (d->seed == 0) d->seed = WR__DEFAULT_SEED;
+}
+
+static void wr__cdt_release(wr__cdt *S) {
+    wr_free(S->xy);
+    wr_free(S->vtri);
+    wr_free(S->vseg);
+    wr_free(S->tv);
+    wr_free(S->tn);
+    wr_free(S->cm);
+    wr_free(S->tf);
+    wr_free(S->stk);
+    memset(S, 0, sizeof *S);
+}
+
+WRDEF void wr_cdt_free(wr_cdt_result *r) {
+    if (!r) return;
+    wr_free(r->points);
+    wr_free(r->point_map);
+    wr_free(r->point_segment);
+    wr_free(r->triangles);
+    wr_free(r->neighbors);
+    wr_free(r->edge_segment);
+    wr_free(r->segments);
+    wr_free(r->segment_id);
+    wr_free(r->input_segments);
+    memset(r, 0, sizeof *r);
+}
+
+/* sin² of a triangle's smallest angle (opposite its shortest edge): (2·area)² / (L1²·L2²) with L1, L2
+ * the two longer edges. Monotone in the angle on [0°, 60°], so minima can be taken on it and
+ * converted to degrees once. */
+static double wr__tri_sin2_min(const double *a, const double *b, const double *c) {
+    double e0 = (b[0] - c[0]) * (b[0] - c[0]) + (b[1] - c[1]) * (b[1] - c[1]);
+    double e1 = (c[0] - a[0]) * (c[0] - a[0]) + (c[1] - a[1]) * (c[1] - a[1]);
+    double e2 = (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]);
+    double a2 = wr_orient2d_fast(a, b, c), l1l2;
+    if (e0 <= e1 && e0 <= e2)
+        l1l2 = e1 * e2;
+    else if (e1 <= e2)
+        l1l2 = e0 * e2;
+    else
+        l1l2 = e0 * e1;
+    return l1l2 > 0.0 ? fmin(1.0, a2 * a2 / l1l2) : 0.0;
+}
+static double wr__sin2_to_deg(double s2) { return asin(sqrt(fmax(0.0, fmin(1.0, s2)))) * (180.0 / 3.14159265358979323846); }
+
+static wr_status wr__cdt_output(wr__cdt *S, const int32_t *rep, const wr_cdt_input *in, wr_cdt_result *out,
+                                wr_diag *diag) {
+    int32_t *outv = NULL, *outt = NULL, i, t, k, nvo = 0, nto = 0, nso = 0, n = in->n_points;
+    double minang = 1.0; /* sin² of the smallest angle seen */
+    outv = (int32_t *)wr_alloc_array((size_t)S->nv, sizeof(int32_t));
+    outt = (int32_t *)wr_alloc_array((size_t)S->nt, sizeof(int32_t));
+    if (!outv || !outt) goto nomem;
+    for (i = 0; i < S->nv; ++i) outv[i] = (i >= n || rep[i] == i) ? nvo++ : -1;
+    for (i = 0; i < n; ++i) out->n_input_points += rep[i] == i;
+    for (t = 0; t < S->nt; ++t) outt[t] = wr__is_live(S, t) ? nto++ : -1;
+    out->points = (double *)wr_alloc_array((size_t)nvo * 2, sizeof(double));
+    out->point_segment = (int32_t *)wr_alloc_array((size_t)nvo, sizeof(int32_t));
+    out->point_map = (int32_t *)wr_alloc_array((size_t)n, sizeof(int32_t));
+    out->triangles = (int32_t *)wr_alloc_array((size_t)nto * 3, sizeof(int32_t));
+    out->neighbors = (int32_t *)wr_alloc_array((size_t)nto * 3, sizeof(int32_t));
+    out->edge_segment = (int32_t *)wr_alloc_array((size_t)nto * 3, sizeof(int32_t));
+    out->input_segments = (int32_t *)wr_alloc_array((size_t)in->n_segments * 2, sizeof(int32_t));
+    if (!out->points || !out->point_segment || !out->point_map || !out->triangles || !out->neighbors ||
+        !out->edge_segment || !out->input_segments)
+        goto nomem;
+    out->n_points = nvo;
+    out->n_map = n;
+    out->n_triangles = nto;
+    out->n_input_segments = in->n_segments;
+    for (i = 0; i < S->nv; ++i)
+        if (outv[i] >= 0) {
+            out->points[2 * outv[i]] = S->xy[2 * i];
+            out->points[2 * outv[i] + 1] = S->xy[2 * i + 1];
+            out->point_segment[outv[i]] = i >= n ? S->vseg[i] : -1;
+        }
+    for (i = 0; i < n; ++i) out->point_map[i] = outv[rep[i]];
+    for (i = 0; i < in->n_segments; ++i) {
+        out->input_segments[2 * i] = outv[rep[in->segments[2 * i]]];
+        out->input_segments[2 * i + 1] = outv[rep[in->segments[2 * i + 1]]];
+    }
+    for (t = 0; t < S->nt; ++t) {
+        int32_t o = outt[t];
+        if (o < 0) continue;
+        for (k = 0; k < 3; ++k) {
+            int32_t m = wr__cmark(S, 3 * t + k), nb = outt[S->tn[3 * t + k] / 3];
+            out->triangles[3 * o + k] = outv[S->tv[3 * t + k]];
+            out->neighbors[3 * o + k] = nb;
+            out->edge_segment[3 * o + k] = m >= 0 ? m : -1;
+            if (m >= 0 && (nb < 0 || o < nb)) ++nso;
+        }
+        {
+            double s2 = wr__tri_sin2_min(WR__P(S, S->tv[3 * t]), WR__P(S, S->tv[3 * t + 1]), WR__P(S, S->tv[3 * t + 2]));
+            if (s2 < minang) minang = s2;
+        }
+    }
+    out->min_angle_deg = nto ? wr__sin2_to_deg(minang) : 0.0;
+    out->segments = (int32_t *)wr_alloc_array((size_t)nso * 2, sizeof(int32_t));
+    out->segment_id = (int32_t *)wr_alloc_array((size_t)nso, sizeof(int32_t));
+    if (!out->segments || !out->segment_id) goto nomem;
+    for (t = 0; t < S->nt; ++t) {
+        int32_t o = outt[t];
+        if (o < 0) continue;
+        for (k = 0; k < 3; ++k) {
+            int32_t m = wr__cmark(S, 3 * t + k), nb = outt[S->tn[3 * t + k] / 3];
+            if (m >= 0 && (nb < 0 || o < nb)) {
+                out->segments[2 * out->n_segments] = outv[S->tv[3 * t + wr__n1[k]]];
+                out->segments[2 * out->n_segments + 1] = outv[S->tv[3 * t + wr__n2[k]]];
+                out->segment_id[out->n_segments++] = m;
+            }
+        }
+    }
+    wr_free(outv);
+    wr_free(outt);
+    return WR_OK;
+nomem:
+    wr_free(outv);
+    wr_free(outt);
+    return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory while writing the result");
+}
+
+WRDEF wr_status wr_cdt_triangulate(const wr_cdt_input *in, const wr_cdt_desc *desc_in, wr_cdt_result *out,
+                                   wr_diag *diag) {
+    wr_cdt_desc d;
+    wr__cdt S;
+    wr__segctx C;
+    wr__ref R;
+    wr_rng rng;
+    int32_t *rep = NULL, *ids = NULL, *order = NULL, n, m, i, nid = 0, i0, i1 = -1, i2 = -1;
+    wr_status st = WR_OK, st_late = WR_OK;
+    double t_start = wr_time_seconds();
+    int refine, carved = 0;
+    int64_t budget;
+    memset(&S, 0, sizeof S);
+    memset(&C, 0, sizeof C);
+    memset(&R, 0, sizeof R);
+    if (!out) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "out is NULL");
+    memset(out, 0, sizeof *out);
+    if (!in) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "input is NULL");
+    wr__cdt_defaults(desc_in, &d);
+    n = in->n_points;
+    m = in->n_segments;
+    if (n < 0 || m < 0 || in->n_holes < 0)
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "negative count (points %d, segments %d, holes %d)", n, m,
+                       in->n_holes);
+    if ((n > 0 && !in->points) || (m > 0 && !in->segments) || (in->n_holes > 0 && !in->holes))
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "a non-empty input array is NULL");
+    if (n > INT32_MAX / 8) return wr_fail(diag, WR_ERR_OVERFLOW, -1, "%d points is too many", n);
+    if (d.min_angle_deg < 0.0 || !(d.min_angle_deg <= WR__MAX_MIN_ANGLE))
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "min_angle_deg %g outside (0, %g]", d.min_angle_deg,
+                       WR__MAX_MIN_ANGLE);
+    if (!(d.max_area >= 0.0) || !isfinite(d.max_area))
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "max_area %g must be finite and >= 0", d.max_area);
+    if (!(d.merge_tolerance >= 0.0) || !isfinite(d.merge_tolerance))
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "merge_tolerance %g must be finite and >= 0", d.merge_tolerance);
+    if (d.max_vertices < 0) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "max_vertices %d < 0", d.max_vertices);
+    for (i = 0; i < n; ++i)
+        if (!isfinite(in->points[2 * i]) || !isfinite(in->points[2 * i + 1]))
+            return wr_fail(diag, WR_ERR_INVALID_ARG, i, "point %d has a non-finite coordinate (%g, %g)", i,
+                           in->points[2 * i], in->points[2 * i + 1]);
+    for (i = 0; i < m; ++i) {
+        int32_t a = in->segments[2 * i], b = in->segments[2 * i + 1];
+        if (a < 0 || a >= n || b < 0 || b >= n)
+            return wr_fail(diag, WR_ERR_INVALID_ARG, i, "segment %d references point %d, outside [0, %d)", i,
+                           (a < 0 || a >= n) ? a : b, n);
+        if (a == b) return wr_fail(diag, WR_ERR_GEOMETRY, i, "segment %d has zero length (both ends are point %d)", i, a);
+    }
+    for (i = 0; i < in->n_holes; ++i)
+        if (!isfinite(in->holes[2 * i]) || !isfinite(in->holes[2 * i + 1]))
+            return wr_fail(diag, WR_ERR_INVALID_ARG, i, "hole %d has a non-finite coordinate", i);
+    refine = d.quality || d.max_area > 0.0;
+    budget = d.max_vertices > 0 ? (int64_t)d.max_vertices
+                                : refine ? 16 * ((int64_t)n + m) + 65536 : (int64_t)INT32_MAX / 4;
+    if (budget > INT32_MAX / 4) budget = INT32_MAX / 4;
+    S.max_vertices = (int32_t)budget;
+    if (S.max_vertices < n) S.max_vertices = n;
+    S.n_input = n;
+    S.walk_rng = 12345u;
+    wr_rng_seed(&rng, d.seed);
+
+    if (!wr__reserve_verts(&S, n + 16)) goto nomem;
+    S.nv = n;
+    if (n) memcpy(S.xy, in->points, sizeof(double) * 2 * (size_t)n);
+    for (i = 0; i < S.capv; ++i) {
+        S.vtri[i] = -1;
+        S.vseg[i] = -1;
+    }
+    rep = (int32_t *)wr_alloc_array((size_t)n, sizeof(int32_t));
+    ids = (int32_t *)wr_alloc_array((size_t)n, sizeof(int32_t));
+    order = (int32_t *)wr_alloc_array((size_t)n, sizeof(int32_t));
+    if (!rep || !ids || !order) goto nomem;
+    if (d.merge_tolerance > 0.0) {
+        if (!wr__merge_close(S.xy, n, d.merge_tolerance, rep)) goto nomem;
+    } else {
+        for (i = 0; i < n; ++i) rep[i] = i;
+    }
+    for (i = 0; i < n; ++i)
+        if (rep[i] == i) ids[nid++] = i;
+    if (!wr__brio(S.xy, ids, nid, &rng, order)) goto nomem;
+    if (nid == 0) {
+        st = wr_fail(diag, WR_ERR_GEOMETRY, -1, "no points to triangulate");
+        goto done;
+    }
+    i0 = order[0];
+    for (i = 1; i < nid && i1 < 0; ++i) {
+        const double *p = S.xy + 2 * (size_t)order[i];
+        if (p[0] != S.xy[2 * i0] || p[1] != S.xy[2 * i0 + 1]) i1 = order[i];
+    }
+    for (i = 1; i < nid && i1 >= 0 && i2 < 0; ++i)
+        if (wr__orient(WR__P(&S, i0), WR__P(&S, i1), WR__P(&S, order[i])) != 0.0) i2 = order[i];
+    if (i1 < 0) {
+        st = wr_fail(diag, WR_ERR_GEOMETRY, -1, "fewer than 3 distinct points (%d given, all coincide)", n);
+        goto done;
+    }
+    if (i2 < 0) {
+        st = wr_fail(diag, WR_ERR_GEOMETRY, -1, "all %d distinct points are collinear: no triangle exists", nid);
+        goto done;
+    }
+    if (!wr__reserve_tris(&S, 2 * nid + 16)) goto nomem;
+    if (wr__orient(WR__P(&S, i0), WR__P(&S, i1), WR__P(&S, i2)) > 0.0)
+        wr__init_tri(&S, i0, i1, i2);
+    else
+        wr__init_tri(&S, i0, i2, i1);
+    for (i = 0; i < nid; ++i) {
+        int32_t p = order[i], vq;
+        if (p == i0 || p == i1 || p == i2) continue;
+        if (!wr__insert(&S, p, S.last, &vq)) goto nomem;
+        if (vq != p) rep[p] = vq; /* exact duplicate of an inserted vertex */
+    }
+    for (i = 0; i < S.nt; ++i) {
+        int k;
+        for (k = 0; k < 3; ++k)
+            if (S.tv[3 * i + k] >= 0) S.vtri[S.tv[3 * i + k]] = i;
+    }
+    S.track_vtri = 1;
+    for (i = 0; i < n; ++i) {
+        if (rep[i] != i && rep[rep[i]] != rep[i]) rep[i] = rep[rep[i]];
+        out->n_duplicates += rep[i] != i;
+    }
+    /* constraints */
+    if (m > 0) {
+        if (!wr__ensure_cm(&S)) goto nomem;
+        C.split = d.split_intersections;
+        for (i = 0; i < m; ++i) {
+            int32_t a = rep[in->segments[2 * i]], b = rep[in->segments[2 * i + 1]];
+            if (a == b) {
+                st = wr_fail(diag, WR_ERR_GEOMETRY, i,
+                             "segment %d has zero length: its end points %d and %d were merged as duplicates", i,
+                             in->segments[2 * i], in->segments[2 * i + 1]);
+                goto done;
+            }
+            st = wr__recover(&S, &C, a, b, i, diag);
+            if (st != WR_OK) goto done;
+        }
+        if (!d.keep_convex_hull) {
+            int32_t t, live = 0;
+            for (t = 0; t < S.nt; ++t)
+                if (WR__GHOSTLY(&S, t)) {
+                    const int32_t *v = S.tv + 3 * t;
+                    int g = v[0] < 0 ? 0 : v[1] < 0 ? 1 : 2;
+                    if (S.cm[3 * t + g] == -1 && !wr__flood(&S, S.tn[3 * t + g] / 3)) goto nomem;
+                }
+            for (t = 0; t < S.nt; ++t) live += wr__is_live(&S, t);
+            if (live == 0) /* the segments enclose nothing: keep the hull */
+                memset(S.tf, 0, (size_t)S.nt);
+            else
+                carved = 1;
+        }
+    }
+    for (i = 0; i < in->n_holes; ++i) {
+        int32_t r, t;
+        int loc = wr__locate(&S, in->holes + 2 * i, S.last, 0, (int64_t)4 * S.nt + 64, &r);
+        if (loc == WR__LOC_LOST) continue;
+        t = loc == WR__LOC_TRI ? r : loc == WR__LOC_EDGE ? r / 3 : S.vtri[r];
+        if (WR__GHOSTLY(&S, t)) continue; /* seed outside the convex hull */
+        if (!wr__flood(&S, t)) goto nomem;
+    }
+    if (refine) {
+        int32_t t;
+        if (!wr__ensure_cm(&S)) goto nomem;
+        if (!carved)
+            for (t = 0; t < S.nt; ++t)
+                if (WR__GHOSTLY(&S, t)) {
+                    const int32_t *v = S.tv + 3 * t;
+                    int g = v[0] < 0 ? 0 : v[1] < 0 ? 1 : 2;
+                    if (S.cm[3 * t + g] == -1) S.cm[3 * t + g] = S.cm[S.tn[3 * t + g]] = WR__HULLSEG;
+                }
+        if (d.quality) {
+            double s = sin(d.min_angle_deg * (3.14159265358979323846 / 180.0));
+            R.sin2 = s * s;
+            if (d.off_center) R.cot_theta = cos(d.min_angle_deg * (3.14159265358979323846 / 180.0)) / s;
+        }
+        R.max_area = d.max_area;
+        R.seg = NULL;
+        if (m > 0) {
+            int32_t *sg = (int32_t *)wr_alloc_array((size_t)m * 2, sizeof(int32_t));
+            if (!sg) goto nomem;
+            for (i = 0; i < 2 * m; ++i) sg[i] = rep[in->segments[i]];
+            R.seg = sg;
+        }
+        st_late = wr__refine(&S, &R, diag);
+        wr_free((void *)R.seg);
+        if (st_late != WR_OK && st_late != WR_ERR_BUDGET) {
+            st = st_late;
+            goto done;
+        }
+    }
+    st = wr__cdt_output(&S, rep, in, out, diag);
+    if (st != WR_OK) goto done;
+    out->exterior_carved = carved;
+    out->n_steiner = C.n_steiner + R.n_steiner;
+    st = st_late;
+    goto done;
+nomem:
+    st = wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory (%d points)", n);
+done:
+    if (st != WR_OK && st != WR_ERR_BUDGET) wr_cdt_free(out);
+    if (out) out->seconds = wr_time_seconds() - t_start;
+    wr__cdt_release(&S);
+    wr_free(C.pieces.a);
+    wr_free(C.cross.a);
+    wr_free(C.fresh.a);
+    wr_free(R.segq.a);
+    wr_free(R.badq.a);
+    wr_free(R.cav.a);
+    wr_free(rep);
+    wr_free(ids);
+    wr_free(order);
+    return st;
+}
+
+/* ---- verification ---- */
+static int32_t wr__uf_find(int32_t *p, int32_t x) {
+    while (p[x] != x) {
+        p[x] = p[p[x]];
+        x = p[x];
+    }
+    return x;
+}
+
+WRDEF wr_status wr_cdt_check(const wr_cdt_result *r, int32_t expected_holes, wr_cdt_check_info *info, wr_diag *diag) {
+    int32_t nT, nP, t, k, *bout = NULL, *bnext = NULL, *uf = NULL, *used = NULL, *cstart = NULL, *cadj = NULL,
+                              *cmk = NULL, *stamp = NULL, *dfs = NULL;
+    int32_t E = 0, V = 0, C = 0, B = 0, pinched = 0, ncon = 0, s;
+    double minang = 1.0; /* sin² of the smallest angle seen */
+    wr_status st = WR_OK;
+    wr_cdt_check_info loc;
+    if (!info) info = &loc;
+    memset(info, 0, sizeof *info);
+    if (!r) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "result is NULL");
+    nT = r->n_triangles;
+    nP = r->n_points;
+    if (nT < 0 || nP < 0 || (nT > 0 && (!r->triangles || !r->neighbors || !r->edge_segment)) || (nP > 0 && !r->points))
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "result arrays missing");
+    bout = (int32_t *)wr_calloc_array((size_t)nP, sizeof(int32_t));
+    bnext = (int32_t *)wr_alloc_array((size_t)nP, sizeof(int32_t));
+    used = (int32_t *)wr_calloc_array((size_t)nP, sizeof(int32_t));
+    uf = (int32_t *)wr_alloc_array((size_t)nT, sizeof(int32_t));
+    cstart = (int32_t *)wr_calloc_array((size_t)nP + 1, sizeof(int32_t));
+    stamp = (int32_t *)wr_calloc_array((size_t)nP, sizeof(int32_t));
+    if (!bout || !bnext || !used || !uf || !cstart || !stamp) goto nomem;
+    for (t = 0; t < nT; ++t) {
+        const int32_t *v = r->triangles + 3 * t;
+        double a;
+        uf[t] = t;
+        for (k = 0; k < 3; ++k)
+            if (v[k] < 0 || v[k] >= nP) {
+                st = wr_fail(diag, WR_ERR_TOPOLOGY, t, "triangle %d: vertex %d out of range [0, %d)", t, v[k], nP);
+                goto done;
+            }
+        a = wr__orient(r->points + 2 * v[0], r->points + 2 * v[1], r->points + 2 * v[2]);
+        if (!(a > 0.0)) {
+            st = wr_fail(diag, WR_ERR_GEOMETRY, t, "triangle %d (%d, %d, %d) is %s", t, v[0], v[1], v[2],
+                         a == 0.0 ? "degenerate (zero area)" : "clockwise (inverted)");
+            goto done;
+        }
+        {
+            double s2 = wr__tri_sin2_min(r->points + 2 * v[0], r->points + 2 * v[1], r->points + 2 * v[2]);
+            if (s2 < minang) minang = s2;
+        }
+        for (k = 0; k < 3; ++k) used[v[k]] = 1;
+    }
+    for (t = 0; t < nT; ++t) {
+        const int32_t *v = r->triangles + 3 * t;
+        for (k = 0; k < 3; ++k) {
+            int32_t nb = r->neighbors[3 * t + k], a = v[wr__n1[k]], b = v[wr__n2[k]], k2, m = r->edge_segment[3 * t + k];
+            if (nb < -1 || nb >= nT) {
+                st = wr_fail(diag, WR_ERR_TOPOLOGY, t, "triangle %d: neighbor %d out of range", t, nb);
+                goto done;
+            }
+            if (nb < 0) {
+                ++E;
+                if (m >= 0) ++ncon;
+                if (bout[a]++) ++pinched;
+                bnext[a] = b;
+                continue;
+            }
+            {
+                const int32_t *w = r->triangles + 3 * nb;
+                for (k2 = 0; k2 < 3; ++k2)
+                    if (w[wr__n1[k2]] == b && w[wr__n2[k2]] == a) break;
+                if (k2 == 3 || r->neighbors[3 * nb + k2] != t || r->edge_segment[3 * nb + k2] != m) {
+                    st = wr_fail(diag, WR_ERR_TOPOLOGY, t,
+                                 "triangles %d and %d are not mutual neighbors across edge (%d, %d)", t, nb, a, b);
+                    goto done;
+                }
+                if (t < nb) {
+                    ++E;
+                    if (m >= 0) ++ncon;
+                    uf[wr__uf_find(uf, t)] = wr__uf_find(uf, nb);
+                    if (m < 0 && wr__incircle(r->points + 2 * v[0], r->points + 2 * v[1], r->points + 2 * v[2],
+                                              r->points + 2 * w[k2]) > 0.0) {
+                        st = wr_fail(diag, WR_ERR_GEOMETRY, t,
+                                     "edge (%d, %d) between triangles %d and %d is not locally Delaunay", a, b, t, nb);
+                        goto done;
+                    }
+                }
+            }
+        }
+    }
+    for (t = 0; t < nT; ++t) C += wr__uf_find(uf, t) == t;
+    for (s = 0; s < nP; ++s) V += used[s];
+    if (!pinched) { /* count boundary cycles; each vertex has one outgoing boundary edge at most */
+        for (s = 0; s < nP; ++s) stamp[s] = 0;
+        for (s = 0; s < nP; ++s) {
+            int32_t x = s, len = 0;
+            if (!bout[s] || stamp[s]) continue;
+            do {
+                stamp[x] = 1;
+                if (!bout[x]) {
+                    st = wr_fail(diag, WR_ERR_TOPOLOGY, x, "boundary is not closed at vertex %d", x);
+                    goto done;
+                }
+                x = bnext[x];
+            } while (!stamp[x] && ++len <= nP);
+            if (x != s) {
+                st = wr_fail(diag, WR_ERR_TOPOLOGY, s, "boundary through vertex %d is not a simple cycle", s);
+                goto done;
+            }
+            ++B;
+        }
+        if (V - E + nT != 2 * C - B) {
+            st = wr_fail(diag, WR_ERR_TOPOLOGY, -1, "Euler characteristic V-E+F = %d, expected 2*components-loops = %d",
+                         V - E + nT, 2 * C - B);
+            goto done;
+        }
+        if (expected_holes >= 0 && B - C != expected_holes) {
+            st = wr_fail(diag, WR_ERR_TOPOLOGY, -1, "%d holes found (boundary loops %d, components %d), expected %d",
+                         B - C, B, C, expected_holes);
+            goto done;
+        }
+    }
+    /* input segments as chains: adjacency of constrained edges, then a DFS per segment */
+    cadj = (int32_t *)wr_alloc_array((size_t)ncon * 2, sizeof(int32_t));
+    cmk = (int32_t *)wr_alloc_array((size_t)ncon * 2, sizeof(int32_t));
+    dfs = (int32_t *)wr_alloc_array((size_t)nP, sizeof(int32_t));
+    if (!cadj || !cmk || !dfs) goto nomem;
+    for (t = 0; t < nT; ++t)
+        for (k = 0; k < 3; ++k) {
+            int32_t nb = r->neighbors[3 * t + k];
+            if (r->edge_segment[3 * t + k] >= 0 && (nb < 0 || t < nb)) {
+                cstart[r->triangles[3 * t + wr__n1[k]] + 1]++;
+                cstart[r->triangles[3 * t + wr__n2[k]] + 1]++;
+            }
+        }
+    for (s = 0; s < nP; ++s) cstart[s + 1] += cstart[s];
+    for (s = 0; s < nP; ++s) stamp[s] = cstart[s];
+    for (t = 0; t < nT; ++t)
+        for (k = 0; k < 3; ++k) {
+            int32_t nb = r->neighbors[3 * t + k], m = r->edge_segment[3 * t + k];
+            if (m >= 0 && (nb < 0 || t < nb)) {
+                int32_t a = r->triangles[3 * t + wr__n1[k]], b = r->triangles[3 * t + wr__n2[k]];
+                cadj[stamp[a]] = b;
+                cmk[stamp[a]++] = m;
+                cadj[stamp[b]] = a;
+                cmk[stamp[b]++] = m;
+            }
+        }
+    for (s = 0; s < nP; ++s) stamp[s] = -1;
+    for (s = 0; s < r->n_input_segments; ++s) {
+        int32_t a = r->input_segments[2 * s], b = r->input_segments[2 * s + 1], nd = 0, ok = 0;
+        if (a < 0 || a >= nP || b < 0 || b >= nP) {
+            st = wr_fail(diag, WR_ERR_TOPOLOGY, s, "input segment %d has an out-of-range end", s);
+            goto done;
+        }
+        if (!used[a] && !used[b]) continue; /* lies wholly in a removed region */
+        dfs[nd++] = a;
+        stamp[a] = s;
+        while (nd && !ok) {
+            int32_t x = dfs[--nd], j;
+            for (j = cstart[x]; j < cstart[x + 1]; ++j) {
+                int32_t y = cadj[j];
+                if (stamp[y] == s) continue;
+                if (cmk[j] != s && !(wr__orient(r->points + 2 * a, r->points + 2 * b, r->points + 2 * x) == 0.0 &&
+                                     wr__orient(r->points + 2 * a, r->points + 2 * b, r->points + 2 * y) == 0.0))
+                    continue;
+                if (y == b) {
+                    ok = 1;
+                    break;
+                }
+                stamp[y] = s;
+                dfs[nd++] = y;
+            }
+        }
+        if (!ok) {
+            st = wr_fail(diag, WR_ERR_GEOMETRY, s, "input segment %d (%d-%d) is not a chain of constrained output edges",
+                         s, a, b);
+            goto done;
+        }
+    }
+    goto done;
+nomem:
+    st = wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
+done:
+    info->n_vertices_used = V;
+    info->n_edges = E;
+    info->n_components = C;
+    info->n_boundary_loops = B;
+    info->n_pinched = pinched;
+    info->euler = V - E + nT;
+    info->min_angle_deg = nT ? wr__sin2_to_deg(minang) : 0.0;
+    wr_free(bout);
+    wr_free(bnext);
+    wr_free(uf);
+    wr_free(used);
+    wr_free(cstart);
+    wr_free(cadj);
+    wr_free(cmk);
+    wr_free(stamp);
+    wr_free(dfs);
+    return st;
+}
+
+/* ---- Triangle .node / .poly reader ---- */
+#define WR__PL_MAXTOK 64 /* tokens looked at per line: index, x, y, up to 60 attributes, marker */
+typedef struct wr__pl {
+    const char *p;    /* next unread character */
+    const char *name; /* for messages */
+    int line;         /* current line number (1-based) */
+    int ntok;
+    const char *tok[WR__PL_MAXTOK];
+    int tlen[WR__PL_MAXTOK];
+} wr__pl;
+
+/* Advance to the next line holding tokens ('#' starts a comment). 0 at end of text. */
+static int wr__pl_next(wr__pl *L) {
+    while (*L->p) {
+        const char *s = L->p;
+        int in_comment = 0;
+        L->line++;
+        L->ntok = 0;
+        while (*s && *s != '\n' && *s != '\r') {
+            if (*s == '#') in_comment = 1;
+            if (!in_comment && !(*s == ' ' || *s == '\t' || *s == ',')) {
+                const char *b = s;
+                while (*s && *s != '\n' && *s != '\r' && *s != ' ' && *s != '\t' && *s != ',' && *s != '#') ++s;
+                if (L->ntok < WR__PL_MAXTOK) {
+                    L->tok[L->ntok] = b;
+                    L->tlen[L->ntok] = (int)(s - b);
+                }
+                L->ntok++;
+                continue;
+            }
+            ++s;
+        }
+        if (*s == '\r' && s[1] == '\n') ++s;
+        if (*s) ++s;
+        L->p = s;
+        if (L->ntok > 0) return 1;
+    }
+    return 0;
+}
+
+static int wr__pl_num(const wr__pl *L, int i, double *x) {
+    char buf[128], *end;
+    if (i >= L->ntok || i >= WR__PL_MAXTOK || L->tlen[i] >= (int)sizeof buf) return 0;
+    memcpy(buf, L->tok[i], (size_t)L->tlen[i]);
+    buf[L->tlen[i]] = 0;
+    *x = strtod(buf, &end);
+    return end != buf && *end == 0 && isfinite(*x);
+}
+static int wr__pl_int(const wr__pl *L, int i, int32_t *v) {
+    double x;
+    if (!wr__pl_num(L, i, &x) || x != floor(x) || x < -2147483647.0 || x > 2147483647.0) return 0;
+    *v = (int32_t)x;
+    return 1;
+}
+
+/* node section (header already on the current line) */
+static wr_status wr__pl_nodes(wr__pl *L, wr_cdt_poly *out, wr_diag *diag) {
+    int32_t n, dim, nattr = 0, nmark = 0, i;
+    if (!wr__pl_int(L, 0, &n) || n < 0)
+        return wr_fail(diag, WR_ERR_PARSE, -1, "%s:%d: bad vertex count", L->name, L->line);
+    if (L->ntok > 1 && (!wr__pl_int(L, 1, &dim) || dim != 2))
+        return wr_fail(diag, WR_ERR_PARSE, -1, "%s:%d: dimension must be 2", L->name, L->line);
+    if (L->ntok > 2 && (!wr__pl_int(L, 2, &nattr) || nattr < 0 || nattr > WR__PL_MAXTOK - 4))
+        return wr_fail(diag, WR_ERR_PARSE, -1, "%s:%d: bad attribute count (0..%d)", L->name, L->line,
+                       WR__PL_MAXTOK - 4);
+    if (L->ntok > 3 && (!wr__pl_int(L, 3, &nmark) || nmark < 0 || nmark > 1))
+        return wr_fail(diag, WR_ERR_PARSE, -1, "%s:%d: boundary-marker count must be 0 or 1", L->name, L->line);
+    if (n > INT32_MAX / 8) return wr_fail(diag, WR_ERR_PARSE, -1, "%s:%d: too many vertices", L->name, L->line);
+    out->points = (double *)wr_alloc_array((size_t)n * 2, sizeof(double));
+    out->point_markers = (int32_t *)wr_calloc_array((size_t)n, sizeof(int32_t));
+    if (!out->points || !out->point_markers) return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
+    out->has_point_markers = nmark;
+    for (i = 0; i < n; ++i) {
+        int32_t idx;
+        if (!wr__pl_next(L))
+            return wr_fail(diag, WR_ERR_PARSE, -1, "%s:%d: file ends after %d of %d vertices", L->name, L->line, i, n);
+        if (L->ntok < 3 + nattr + nmark || !wr__pl_int(L, 0, &idx) || !wr__pl_num(L, 1, &out->points[2 * i]) ||
+            !wr__pl_num(L, 2, &out->points[2 * i + 1]))
+            return wr_fail(diag, WR_ERR_PARSE, -1, "%s:%d: expected '<index> <x> <y>%s%s' with finite numbers",
+                           L->name, L->line, nattr ? " <attributes>" : "", nmark ? " <marker>" : "");
+        if (i == 0) out->first_index = idx == 0 ? 0 : 1; /* Triangle's rule: numbering follows vertex 1 */
+        if (idx != out->first_index + i)
+            return wr_fail(diag, WR_ERR_PARSE, -1, "%s:%d: vertex number %d, expected %d", L->name, L->line, idx,
+                           out->first_index + i);
+        if (nmark && !wr__pl_int(L, 3 + nattr, &out->point_markers[i]))
+            return wr_fail(diag, WR_ERR_PARSE, -1, "%s:%d: bad boundary marker", L->name, L->line);
+        out->n_points = i + 1;
+    }
+    return WR_OK;
+}
+
+WRDEF void wr_cdt_poly_free(wr_cdt_poly *p) {
+    if (!p) return;
+    wr_free(p->points);
+    wr_free(p->point_markers);
+    wr_free(p->segments);
+    wr_free(p->segment_markers);
+    wr_free(p->holes);
+    memset(p, 0, sizeof *p);
+}
+
+WRDEF wr_status wr_cdt_poly_parse(const char *poly_text, const char *node_text, const char *name, wr_cdt_poly *out,
+                                  wr_diag *diag) {
+    wr__pl L;
+    wr_status st;
+    int32_t n_nodes, m, nmark = 0, i, nh;
+    char nodename[WR_PATH_MAX];
+    if (!out) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "out is NULL");
+    memset(out, 0, sizeof *out);
+    if (!name) name = "<input>";
+    {
+        size_t ln = strlen(name);
+        if (ln > 5 && strcmp(name + ln - 5, ".poly") == 0 && ln < sizeof nodename) {
+            memcpy(nodename, name, ln - 5);
+            memcpy(nodename + ln - 5, ".node", 6);
+        } else {
+            snprintf(nodename, sizeof nodename, "%s", name);
+        }
+    }
+    if (!poly_text && !node_text) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "no text to parse");
+    memset(&L, 0, sizeof L);
+    if (!poly_text) { /* a lone .node file */
+        L.p = node_text;
+        L.name = name;
+        if (!wr__pl_next(&L)) return wr_fail(diag, WR_ERR_PARSE, -1, "%s:%d: empty file", name, L.line);
+        st = wr__pl_nodes(&L, out, diag);
+        if (st != WR_OK) wr_cdt_poly_free(out);
+        return st;
+    }
+    L.p = poly_text;
+    L.name = name;
+    if (!wr__pl_next(&L)) return wr_fail(diag, WR_ERR_PARSE, -1, "%s:%d: empty file", name, L.line);
+    if (!wr__pl_int(&L, 0, &n_nodes) || n_nodes < 0)
+        return wr_fail(diag, WR_ERR_PARSE, -1, "%s:%d: bad vertex count", name, L.line);
+    if (n_nodes > 0) {
+        st = wr__pl_nodes(&L, out, diag);
+        if (st != WR_OK) goto fail;
+    } else { /* "0 2 0 1": the vertices are in the .node file */
+        wr__pl N;
+        if (!node_text) {
+            st = wr_fail(diag, WR_ERR_PARSE, -1, "%s:%d: the node section is empty and no .node file was read", name,
+                         L.line);
+            goto fail;
+        }
+        memset(&N, 0, sizeof N);
+        N.p = node_text;
+        N.name = nodename;
+        if (!wr__pl_next(&N)) {
+            st = wr_fail(diag, WR_ERR_PARSE, -1, "%s:%d: empty file", nodename, N.line);
+            goto fail;
+        }
+        st = wr__pl_nodes(&N, out, diag);
+        if (st != WR_OK) goto fail;
+    }
+    if (!wr__pl_next(&L)) {
+        st = wr_fail(diag, WR_ERR_PARSE, -1, "%s:%d: missing segment section", name, L.line);
+        goto fail;
+    }
+    if (!wr__pl_int(&L, 0, &m) || m < 0 || m > INT32_MAX / 8 ||
+        (L.ntok > 1 && (!wr__pl_int(&L, 1, &nmark) || nmark < 0 || nmark > 1))) {
+        st = wr_fail(diag, WR_ERR_PARSE, -1, "%s:%d: expected '<#segments> <#markers 0|1>'", name, L.line);
+        goto fail;
+    }
+    out->segments = (int32_t *)wr_alloc_array((size_t)m * 2, sizeof(int32_t));
+    out->segment_markers = (int32_t *)wr_calloc_array((size_t)m, sizeof(int32_t));
+    if (!out->segments || !out->segment_markers) {
+        st = wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
+        goto fail;
+    }
+    out->has_segment_markers = nmark;
+    for (i = 0; i < m; ++i) {
+        int32_t idx, a, b;
+        if (!wr__pl_next(&L)) {
+            st = wr_fail(diag, WR_ERR_PARSE, -1, "%s:%d: file ends after %d of %d segments", name, L.line, i, m);
+            goto fail;
+        }
+        if (L.ntok < 3 + nmark || !wr__pl_int(&L, 0, &idx) || !wr__pl_int(&L, 1, &a) || !wr__pl_int(&L, 2, &b) ||
+            (nmark && !wr__pl_int(&L, 3, &out->segment_markers[i]))) {
+            st = wr_fail(diag, WR_ERR_PARSE, -1, "%s:%d: expected '<index> <end> <end>%s' (integers)", name, L.line,
+                         nmark ? " <marker>" : "");
+            goto fail;
+        }
+        a -= out->first_index;
+        b -= out->first_index;
+        if (a < 0 || a >= out->n_points || b < 0 || b >= out->n_points) {
+            st = wr_fail(diag, WR_ERR_PARSE, i, "%s:%d: segment %d references vertex %d, outside [%d, %d]", name, L.line,
+                         idx, (a < 0 || a >= out->n_points ? a : b) + out->first_index, out->first_index,
+                         out->n_points - 1 + out->first_index);
+            goto fail;
+        }
+        out->segments[2 * i] = a;
+        out->segments[2 * i + 1] = b;
+        out->n_segments = i + 1;
+    }
+    if (!wr__pl_next(&L)) return WR_OK; /* Triangle tolerates a missing hole section */
+    if (!wr__pl_int(&L, 0, &nh) || nh < 0 || nh > INT32_MAX / 8) {
+        st = wr_fail(diag, WR_ERR_PARSE, -1, "%s:%d: bad hole count", name, L.line);
+        goto fail;
+    }
+    out->holes = (double *)wr_alloc_array((size_t)nh * 2, sizeof(double));
+    if (!out->holes) {
+        st = wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
+        goto fail;
+    }
+    for (i = 0; i < nh; ++i) {
+        int32_t idx;
+        if (!wr__pl_next(&L) || L.ntok < 3 || !wr__pl_int(&L, 0, &idx) || !wr__pl_num(&L, 1, &out->holes[2 * i]) ||
+            !wr__pl_num(&L, 2, &out->holes[2 * i + 1])) {
+            st = wr_fail(diag, WR_ERR_PARSE, -1, "%s:%d: expected '<index> <x> <y>' for hole %d of %d", name, L.line,
+                         i + out->first_index, nh);
+            goto fail;
+        }
+        out->n_holes = i + 1;
+    }
+    return WR_OK; /* a regional-attribute section may follow; it is ignored */
+fail:
+    wr_cdt_poly_free(out);
+    return st;
+}
+
+static char *wr__slurp(const char *path, wr_diag *diag, wr_status *st) {
+    FILE *f = fopen(path, "rb");
+    char *buf = NULL;
+    size_t cap = 0, len = 0;
+    if (!f) {
+        *st = wr_fail(diag, WR_ERR_IO, -1, "%s: cannot open", path);
+        return NULL;
+    }
+    for (;;) {
+        size_t got;
+        if (len + 65536 + 1 > cap) {
+            size_t nc = cap ? 2 * cap : 131072;
+            char *nb = (char *)wr_realloc_array(buf, nc, 1);
+            if (!nb) {
+                wr_free(buf);
+                fclose(f);
+                *st = wr_fail(diag, WR_ERR_NOMEM, -1, "%s: out of memory", path);
+                return NULL;
+            }
+            buf = nb;
+            cap = nc;
+        }
+        got = fread(buf + len, 1, cap - len - 1, f);
+        len += got;
+        if (got == 0) break;
+    }
+    if (ferror(f)) {
+        wr_free(buf);
+        fclose(f);
+        *st = wr_fail(diag, WR_ERR_IO, -1, "%s: read error", path);
+        return NULL;
+    }
+    fclose(f);
+    buf[len] = 0;
+    if (strlen(buf) != len) {
+        wr_free(buf);
+        *st = wr_fail(diag, WR_ERR_PARSE, -1, "%s: contains a NUL byte (not a text file)", path);
+        return NULL;
+    }
+    *st = WR_OK;
+    return buf;
+}
+
+WRDEF wr_status wr_cdt_poly_read(const char *path, wr_cdt_poly *out, wr_diag *diag) {
+    size_t ln;
+    char *poly = NULL, *node = NULL;
+    wr_status st;
+    if (!out) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "out is NULL");
+    memset(out, 0, sizeof *out);
+    if (!path) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "path is NULL");
+    ln = strlen(path);
+    if (ln > 5 && strcmp(path + ln - 5, ".poly") == 0) {
+        wr__pl L;
+        int32_t nn = -1;
+        poly = wr__slurp(path, diag, &st);
+        if (!poly) return st;
+        memset(&L, 0, sizeof L);
+        L.p = poly;
+        L.name = path;
+        if (wr__pl_next(&L) && wr__pl_int(&L, 0, &nn) && nn == 0) {
+            char np[WR_PATH_MAX];
+            if (ln >= sizeof np) {
+                wr_free(poly);
+                return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "path too long");
+            }
+            memcpy(np, path, ln - 5);
+            memcpy(np + ln - 5, ".node", 6);
+            node = wr__slurp(np, diag, &st);
+            if (!node) {
+                wr_free(poly);
+                return st;
+            }
+        }
+        st = wr_cdt_poly_parse(poly, node, path, out, diag);
+    } else {
+        node = wr__slurp(path, diag, &st);
+        if (!node) return st;
+        st = wr_cdt_poly_parse(NULL, node, path, out, diag);
+    }
+    wr_free(poly);
+    wr_free(node);
+    return st;
+}
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* WRINKLE_TRIANGULATE_IMPLEMENTATION_DONE */
+#endif /* WRINKLE_IMPLEMENTATION */
