@@ -20,3 +20,4 @@
 #include "tft.h"
 #include "shell.h"
 #include "poisson.h"
+#include "triangulate.h"
