@@ -21,3 +21,4 @@
 #include "shell.h"
 #include "poisson.h"
 #include "triangulate.h"
+#include "statics.h"
