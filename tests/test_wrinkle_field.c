@@ -473,3 +473,86 @@ Test(wrinkle_field, flat_sheet_eq19_displacement) {
     wr_wf_free(&wf);
     wr_mesh_free(&m);
 }
+
+static int g_progress_calls;
+static void count_progress(const wr_wf_iter_info *info, void *user) {
+    (void)user;
+    cr_assert(isfinite(info->energy) && info->kkt >= 0.0);
+    ++g_progress_calls;
+}
+
+Test(wrinkle_field, sqp_on_compressed_sheet_is_feasible_and_stationary) {
+    wr_mesh m;
+    wr_wf wf;
+    wr_wf_material mat;
+    wr_wf_solve_desc sd;
+    wr_wf_solve_stats ss;
+    double *base, *a, *om, *curl;
+    int32_t v, f;
+    wr_status st;
+    mat.young = 1e6;
+    mat.poisson = 0.5;
+    mat.thickness = 1e-4;
+    cr_assert_eq(wr_mesh_rectangle(&m, 0.25, 0.1, 12, 5, NULL), WR_OK);
+    base = (double *)malloc(sizeof(double) * 3 * m.nv);
+    fill_scaled(&m, 0.97, 1.0, base);
+    cr_assert_eq(wr_wf_create(&wf, &m, base, &mat, NULL), WR_OK);
+    cr_assert_eq(wr_wf_classify(&wf, NULL), 0);
+    a = (double *)malloc(sizeof(double) * m.nv);
+    om = (double *)malloc(sizeof(double) * m.ne);
+    curl = (double *)malloc(sizeof(double) * m.nf);
+    cr_assert_eq(wr_wf_init(&wf, NULL, a, om, NULL), WR_OK);
+    memset(&sd, 0, sizeof sd);
+    sd.progress = count_progress;
+    sd.max_iter = 20; /* convergence on this case is slow (see the report); feasibility is what is checked */
+    g_progress_calls = 0;
+    st = wr_wf_solve(&wf, &sd, a, om, &ss, NULL);
+    cr_log_info("SQP: %d iters, E %g -> %g, KKT %g -> %g, stop %d, %.3f s (assembly %.3f, solve %.3f), n %d",
+                ss.iterations, ss.energy0, ss.energy, ss.kkt0, ss.kkt, (int)ss.stop, ss.seconds, ss.seconds_assembly,
+                ss.seconds_solve, ss.n_vars);
+    cr_assert(st == WR_OK || (st == WR_ERR_NOT_CONVERGED && ss.stop == WR_WF_STOP_MAX_ITER), "status %d stop %d",
+              (int)st, (int)ss.stop);
+    cr_assert(ss.energy < ss.energy0);
+    cr_assert(ss.kkt <= 1e-6 * ss.kkt0 || ss.stop != WR_WF_STOP_KKT);
+    cr_assert_eq(g_progress_calls, ss.iterations);
+    for (v = 0; v < m.nv; ++v) cr_assert(a[v] >= 0.0);
+    wr_wf_curl(&m, om, curl);
+    for (f = 0; f < m.nf; ++f) cr_assert(fabs(curl[f]) < 1e-9, "curl %g", curl[f]);
+    free(base);
+    free(a);
+    free(om);
+    free(curl);
+    wr_wf_free(&wf);
+    wr_mesh_free(&m);
+}
+
+Test(wrinkle_field, sqp_in_tension_drives_amplitude_to_zero) {
+    wr_mesh m;
+    wr_wf wf;
+    wr_wf_material mat = material();
+    wr_wf_solve_stats ss;
+    double *base, *a, *om, E;
+    int32_t v;
+    cr_assert_eq(wr_mesh_rectangle(&m, 0.1, 0.05, 6, 3, NULL), WR_OK);
+    base = (double *)malloc(sizeof(double) * 3 * m.nv);
+    fill_scaled(&m, 1.05, 1.02, base);
+    cr_assert_eq(wr_wf_create(&wf, &m, base, &mat, NULL), WR_OK); /* W left empty on purpose */
+    a = (double *)malloc(sizeof(double) * m.nv);
+    om = (double *)malloc(sizeof(double) * m.ne);
+    for (v = 0; v < m.nv; ++v) a[v] = 1e-3;
+    omega_linear(&m, 100.0, om);
+    cr_assert_eq(wr_wf_solve(&wf, NULL, a, om, &ss, NULL), WR_OK);
+    for (v = 0; v < m.nv; ++v) cr_assert(a[v] >= 0.0 && a[v] < 1e-9, "a[%d] = %g", v, a[v]);
+    /* the minimum is the plain base stretching energy */
+    {
+        double *z = (double *)calloc(m.nv, sizeof(double)), terms[WR_WF_NTERMS];
+        cr_assert_eq(wr_wf_energy(&wf, z, om, &E, NULL, NULL, terms, NULL), WR_OK);
+        cr_assert(fabs(ss.energy - E) <= 1e-10 * E, "%g vs %g", ss.energy, E);
+        free(z);
+    }
+    free(base);
+    free(a);
+    free(om);
+    wr_wf_free(&wf);
+    wr_mesh_free(&m);
+}

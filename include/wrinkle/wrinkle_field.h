@@ -150,6 +150,50 @@ typedef struct wr_wf_init_desc {
 } wr_wf_init_desc;
 WRDEF wr_status wr_wf_init(const wr_wf *wf, const wr_wf_init_desc *desc, double *a, double *omega, wr_diag *diag);
 
+typedef enum wr_wf_stop {
+    WR_WF_STOP_NONE = 0,
+    WR_WF_STOP_ENERGY,     /* rule 1: |ΔE| <= tol_energy · |E| */
+    WR_WF_STOP_KKT,        /* rule 2: stationarity residual <= tol_kkt · initial residual */
+    WR_WF_STOP_STEP,       /* rule 3: step <= tol_step · |x| (per block: a and ω) */
+    WR_WF_STOP_MAX_ITER,   /* rule 4 (WR_ERR_NOT_CONVERGED) */
+    WR_WF_STOP_LINE_SEARCH /* no decrease along the projected Newton path (WR_ERR_NOT_CONVERGED) */
+} wr_wf_stop;
+
+typedef struct wr_wf_iter_info {
+    int32_t iteration;
+    double energy, kkt, step, alpha_ls, shift;
+    int32_t n_active;      /* amplitudes held at the bound a = 0 */
+} wr_wf_iter_info;
+
+/* Defaults (App. E.3, applied relative where the paper's absolute numbers have no units):
+ *   max_iter 1000, tol_energy 1e-10, tol_kkt 1e-6, tol_step 1e-10,
+ *   solver: WR_SOLVER_AUTO (pcg.h), progress: none. */
+typedef struct wr_wf_solve_desc {
+    int32_t max_iter;
+    double tol_energy, tol_kkt, tol_step;
+    wr_solver_method solver;
+    void (*progress)(const wr_wf_iter_info *info, void *user); /* called once per iteration */
+    void *user;
+} wr_wf_solve_desc;
+
+typedef struct wr_wf_solve_stats {
+    int32_t iterations;
+    int32_t n_vars;         /* reduced unknowns: free amplitudes + closed-form coordinates */
+    int32_t n_generators;   /* cohomology generators of the complex outside W */
+    double energy0, energy;
+    double kkt0, kkt;       /* ||y - P(y - ∇E)||_∞ of the reduced problem (stationarity of Eq. 39) */
+    double seconds, seconds_assembly, seconds_solve;
+    wr_wf_stop stop;
+} wr_wf_solve_stats;
+
+/* App. E.3: min E_wf s.t. a >= 0, dω = 0 on faces outside W. omega is first projected to dω = 0 and a
+ * clipped to >= 0 (a = 0 on W vertices). The curl constraints are eliminated exactly by a null-space
+ * parametrisation ω = d0 ψ + Σ c_g h_g (tree–cotree over the complex outside W), the bounds by a
+ * projected-Newton active set; each step solves one sparse SPD system (per-element SPD projection of
+ * the Hessian, plus a diagonal shift that grows until the factorisation succeeds) and is followed by
+ * a projected Armijo backtracking line search, so every iterate is feasible. */
+WRDEF wr_status wr_wf_solve(const wr_wf *wf, const wr_wf_solve_desc *desc, double *a, double *omega,
+                            wr_wf_solve_stats *stats, wr_diag *diag);
 
 typedef struct wr_wf_phase_stats {
     int32_t n_cut_edges;      /* interior edges (outside W) across which the corner phases jump */
@@ -1870,6 +1914,341 @@ done:
     wr_free(disp);
     wr_free(vphi);
     wr_free(vwr);
+    return st;
+}
+
+/* ---- SQP (App. E.3) ---- */
+
+static void wr__wf_sqp_tox(const wr_wf *wf, const wr__wf_basis *B, const int32_t *avar, const double *y, int32_t na,
+                           double *a, double *omega) {
+    int32_t v;
+    for (v = 0; v < wf->nv; ++v) a[v] = avar[v] >= 0 ? y[avar[v]] : 0.0;
+    wr__wf_z_apply(B, y + na, omega);
+}
+
+WRDEF wr_status wr_wf_solve(const wr_wf *wf, const wr_wf_solve_desc *desc, double *a, double *omega,
+                            wr_wf_solve_stats *stats, wr_diag *diag) {
+    wr_wf_solve_desc D;
+    wr_wf_solve_stats S;
+    wr__wf_basis B;
+    wr_triplets T;
+    wr_csr K;
+    wr_spd_solver SV;
+    wr_spd_desc sd;
+    int32_t *avar = NULL, *fstart = NULL, *fcols = NULL, na = 0, n = 0, v, f, i, it;
+    double *Pm = NULL, *y = NULL, *yt = NULL, *d = NULL, *g = NULL, *gx = NULL, *H = NULL, *xa = NULL, *xo = NULL,
+           *rhs = NULL;
+    uint8_t *zero = NULL, *active = NULL;
+    double t0 = wr_time_seconds(), E = 0.0;
+    wr_status st = WR_OK;
+    int have_solver = 0;
+    memset(&S, 0, sizeof S);
+    memset(&B, 0, sizeof B);
+    memset(&T, 0, sizeof T);
+    memset(&K, 0, sizeof K);
+    memset(&SV, 0, sizeof SV);
+    if (stats) memset(stats, 0, sizeof *stats);
+    if (!wf || !a || !omega) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "wf solve: NULL argument");
+    if (desc)
+        D = *desc;
+    else
+        memset(&D, 0, sizeof D);
+    if (D.max_iter <= 0) D.max_iter = WR__WF_MAX_ITER;
+    if (!(D.tol_energy > 0.0)) D.tol_energy = WR__WF_TOL_ENERGY;
+    if (!(D.tol_kkt > 0.0)) D.tol_kkt = WR__WF_TOL_KKT;
+    if (!(D.tol_step > 0.0)) D.tol_step = WR__WF_TOL_STEP;
+    st = wr__wf_basis_build(wf, &B, diag);
+    if (st) return st;
+    avar = (int32_t *)wr_alloc_array((size_t)wf->nv, sizeof(int32_t));
+    zero = (uint8_t *)wr_alloc_array((size_t)wf->nv, sizeof(uint8_t));
+    fstart = (int32_t *)wr_calloc_array((size_t)wf->nf + 1, sizeof(int32_t));
+    xa = (double *)wr_alloc_array((size_t)wf->nv, sizeof(double));
+    xo = (double *)wr_alloc_array((size_t)wf->ne, sizeof(double));
+    gx = (double *)wr_alloc_array((size_t)(wf->nv + wf->ne), sizeof(double));
+    H = (double *)wr_alloc_array((size_t)wf->nf * 36, sizeof(double));
+    if (!avar || !zero || !fstart || !xa || !xo || !gx || !H) {
+        st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf solve: out of memory");
+        goto done;
+    }
+    wr__wf_zero_vertices(wf, zero);
+    for (v = 0; v < wf->nv; ++v) avar[v] = zero[v] ? -1 : na++;
+    n = na + B.ncol;
+    S.n_vars = n;
+    S.n_generators = B.ngen;
+    y = (double *)wr_calloc_array((size_t)n + 1, sizeof(double));
+    yt = (double *)wr_calloc_array((size_t)n + 1, sizeof(double));
+    d = (double *)wr_calloc_array((size_t)n + 1, sizeof(double));
+    g = (double *)wr_calloc_array((size_t)n + 1, sizeof(double));
+    rhs = (double *)wr_calloc_array((size_t)n + 1, sizeof(double));
+    active = (uint8_t *)wr_calloc_array((size_t)n + 1, sizeof(uint8_t));
+    if (!y || !yt || !d || !g || !rhs || !active) {
+        st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf solve: out of memory");
+        goto done;
+    }
+    /* feasible start: a clipped to >= 0 (0 on W vertices), ω projected to dω = 0 */
+    for (v = 0; v < wf->nv; ++v)
+        if (avar[v] >= 0) y[avar[v]] = a[v] > 0.0 && isfinite(a[v]) ? a[v] : 0.0;
+    for (i = 0; i < wf->ne; ++i) xo[i] = omega[i];
+    st = wr__wf_lsq_closed(&B, omega, y + na, D.solver, diag);
+    if (st) goto done;
+    /* per-face maps from the 6 local DOFs to reduced unknowns: P (6 × m_f) */
+    {
+        int32_t total = 0, cap = 0;
+        for (f = 0; f < wf->nf; ++f) {
+            int k;
+            fstart[f] = total;
+            if (wf->wfree[f]) continue;
+            for (k = 0; k < 3; ++k) {
+                int32_t e = wf->mesh->face_edges[3 * f + k];
+                total += 1 + (B.zstart[e + 1] - B.zstart[e]);
+            }
+        }
+        fstart[wf->nf] = total;
+        cap = total > 0 ? total : 1;
+        fcols = (int32_t *)wr_alloc_array((size_t)cap, sizeof(int32_t));
+        Pm = (double *)wr_calloc_array((size_t)cap * 6, sizeof(double));
+        if (!fcols || !Pm) {
+            st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf solve: out of memory");
+            goto done;
+        }
+        for (f = 0; f < wf->nf; ++f) {
+            int32_t idx[6], mcount = 0, s0 = fstart[f], t;
+            double sg[6];
+            int k;
+            if (wf->wfree[f]) {
+                fstart[f + 1] = fstart[f] > fstart[f + 1] ? fstart[f] : fstart[f + 1];
+                continue;
+            }
+            wr_wf_face_dofs(wf, f, idx, sg);
+            /* unique columns: linear search is fine, m_f is small */
+            for (k = 0; k < 6; ++k) {
+                int32_t cstart = k < 3 ? 0 : B.zstart[idx[k] - wf->nv], cend = k < 3 ? 1 : B.zstart[idx[k] - wf->nv + 1];
+                for (t = cstart; t < cend; ++t) {
+                    int32_t col = k < 3 ? avar[idx[k]] : na + B.zcol[t], q;
+                    double val = k < 3 ? 1.0 : sg[k] * B.zval[t];
+                    if (col < 0) continue;
+                    for (q = 0; q < mcount; ++q)
+                        if (fcols[s0 + q] == col) break;
+                    if (q == mcount) fcols[s0 + mcount++] = col;
+                    Pm[6 * (size_t)s0 + 6 * (size_t)q + k] += val; /* column-major per face: P[q][k] */
+                }
+            }
+            /* shrink this face's range to the columns used */
+            if (f + 1 <= wf->nf) {
+                /* keep fstart monotone: record the used count by marking the rest with -1 */
+                for (t = mcount; t < fstart[f + 1] - s0; ++t) fcols[s0 + t] = -1;
+            }
+        }
+    }
+    /* sparsity pattern once: all face blocks + the diagonal */
+    st = wr_triplets_create(&T, n, (int64_t)n + 16, diag);
+    for (f = 0; f < wf->nf && !st; ++f) {
+        int32_t s0 = fstart[f], m = fstart[f + 1] - s0, r, c;
+        if (wf->wfree[f]) continue;
+        for (r = 0; r < m && !st; ++r)
+            for (c = 0; c < m && !st; ++c)
+                if (fcols[s0 + r] >= 0 && fcols[s0 + c] >= 0) st = wr_triplets_add(&T, fcols[s0 + r], fcols[s0 + c], 0.0, diag);
+    }
+    if (!st) st = wr_csr_from_triplets(&K, &T, diag);
+    wr_triplets_free(&T);
+    if (st) goto done;
+    memset(&sd, 0, sizeof sd);
+    sd.method = D.solver;
+    st = wr_spd_solver_create(&SV, &K, &sd, diag);
+    if (st) goto done;
+    have_solver = 1;
+    for (it = 0;; ++it) {
+        double t1 = wr_time_seconds(), kkt = 0.0, shift = WR__WF_SHIFT0, dscale[2] = {0.0, 0.0}, dcount[2] = {0.0, 0.0};
+        double gd = 0.0, Et = 0.0, alpha = 1.0, stepa = 0.0, stepz = 0.0, norma = 0.0, normz = 0.0;
+        int32_t nact = 0, bt;
+        wr_wf_iter_info info;
+        wr__wf_sqp_tox(wf, &B, avar, y, na, xa, xo);
+        st = wr_wf_energy(wf, xa, xo, &E, gx, H, NULL, diag);
+        if (st) goto done;
+        for (v = 0; v < wf->nv; ++v)
+            if (avar[v] >= 0) g[avar[v]] = gx[v];
+        wr__wf_z_applyT(&B, gx + wf->nv, g + na);
+        for (i = 0; i < n; ++i) {
+            double r = i < na ? y[i] - fmax(0.0, y[i] - g[i]) : g[i]; /* projected gradient */
+            kkt = fmax(kkt, fabs(r));
+        }
+        if (it == 0) {
+            S.energy0 = E;
+            S.kkt0 = kkt;
+        }
+        S.energy = E;
+        S.kkt = kkt;
+        S.iterations = it;
+        if (kkt <= D.tol_kkt * S.kkt0 || kkt == 0.0) {
+            S.stop = WR_WF_STOP_KKT;
+            break;
+        }
+        if (it >= D.max_iter) {
+            S.stop = WR_WF_STOP_MAX_ITER;
+            break;
+        }
+        /* Hessian: per-face SPD projection (App. E.3, first method), reduced by P */
+        wr_csr_zero_values(&K);
+        for (f = 0; f < wf->nf; ++f) {
+            int32_t s0 = fstart[f], m = fstart[f + 1] - s0, r, c, k, l;
+            double *He = H + 36 * (size_t)f, Ke[WR_DENSE_MAX * WR_DENSE_MAX];
+            if (wf->wfree[f]) continue;
+            wr_dense_project_spd(6, He, 0.0);
+            if (m > WR_DENSE_MAX) {
+                st = wr_fail(diag, WR_ERR_BUDGET, f, "wf solve: face %d couples %d unknowns (> %d)", (int)f, (int)m, WR_DENSE_MAX);
+                goto done;
+            }
+            for (r = 0; r < m; ++r)
+                for (c = 0; c < m; ++c) {
+                    double s = 0.0;
+                    const double *pr = Pm + 6 * (size_t)(s0 + r), *pc = Pm + 6 * (size_t)(s0 + c);
+                    for (k = 0; k < 6; ++k) {
+                        if (pr[k] == 0.0) continue;
+                        for (l = 0; l < 6; ++l) s += pr[k] * He[6 * k + l] * pc[l];
+                    }
+                    Ke[r * m + c] = s;
+                }
+            st = wr_csr_add_element(&K, m, fcols + s0, Ke, diag);
+            if (st) goto done;
+        }
+        /* active bounds (projected Newton, Bertsekas 1982): a at 0 with the gradient pushing down */
+        for (i = 0; i < n; ++i) {
+            active[i] = (uint8_t)(i < na && y[i] <= 0.0 && g[i] > 0.0);
+            nact += active[i];
+        }
+        for (i = 0; i < n; ++i) {
+            int32_t p = wr_csr_find(&K, i, i);
+            if (!active[i] && p >= 0) {
+                dscale[i < na ? 0 : 1] += K.val[p];
+                dcount[i < na ? 0 : 1] += 1.0;
+            }
+        }
+        for (i = 0; i < 2; ++i) dscale[i] = dcount[i] > 0.0 && dscale[i] > 0.0 ? dscale[i] / dcount[i] : 1.0;
+        for (i = 0; i < n; ++i) {
+            int32_t t;
+            if (!active[i]) continue;
+            for (t = K.rowptr[i]; t < K.rowptr[i + 1]; ++t) K.val[t] = K.col[t] == i ? 1.0 : 0.0;
+        }
+        for (i = 0; i < n; ++i) {
+            int32_t t;
+            for (t = K.rowptr[i]; t < K.rowptr[i + 1]; ++t)
+                if (active[K.col[t]] && K.col[t] != i) K.val[t] = 0.0;
+            rhs[i] = active[i] ? 0.0 : -g[i];
+        }
+        S.seconds_assembly += wr_time_seconds() - t1;
+        t1 = wr_time_seconds();
+        /* diagonal shift that grows until the factorisation succeeds (App. E.3, second method) */
+        for (;;) {
+            wr_spd_stats ss;
+            wr_status fs;
+            for (i = 0; i < n; ++i)
+                if (!active[i]) wr_csr_add(&K, i, i, shift * dscale[i < na ? 0 : 1], NULL);
+            for (i = 0; i < n; ++i) d[i] = 0.0;
+            fs = wr_spd_solver_factor(&SV, &K, NULL);
+            if (!fs) fs = wr_spd_solver_solve(&SV, &K, rhs, d, &ss, NULL);
+            for (i = 0; i < n; ++i)
+                if (!active[i]) wr_csr_add(&K, i, i, -shift * dscale[i < na ? 0 : 1], NULL);
+            if (!fs) break;
+            if (fs != WR_ERR_NOT_SPD && fs != WR_ERR_NOT_CONVERGED) {
+                st = wr_fail(diag, fs, -1, "wf solve: linear solve failed (%s)", wr_status_string(fs));
+                goto done;
+            }
+            shift *= 100.0;
+            if (shift > WR__WF_SHIFT_MAX) {
+                st = wr_fail(diag, WR_ERR_NOT_SPD, -1, "wf solve: Hessian not SPD even with shift %g", shift);
+                goto done;
+            }
+        }
+        for (i = 0; i < n; ++i)
+            if (active[i]) d[i] = -y[i]; /* stay on the bound */
+        S.seconds_solve += wr_time_seconds() - t1;
+        /* projected Armijo backtracking: every trial point is feasible */
+        for (bt = 0; bt < WR__WF_MAX_BACKTRACK; ++bt) {
+            gd = 0.0;
+            for (i = 0; i < n; ++i) {
+                yt[i] = y[i] + alpha * d[i];
+                if (i < na && yt[i] < 0.0) yt[i] = 0.0;
+                gd += g[i] * (yt[i] - y[i]);
+            }
+            wr__wf_sqp_tox(wf, &B, avar, yt, na, xa, xo);
+            st = wr_wf_energy(wf, xa, xo, &Et, NULL, NULL, NULL, NULL);
+            if (st == WR_OK && Et <= E + WR__WF_ARMIJO * gd && gd <= 0.0) break;
+            st = WR_OK;
+            alpha *= 0.5;
+        }
+        if (bt == WR__WF_MAX_BACKTRACK) {
+            S.stop = WR_WF_STOP_LINE_SEARCH;
+            break;
+        }
+        for (i = 0; i < n; ++i) {
+            double dy = fabs(yt[i] - y[i]);
+            if (i < na) {
+                stepa = fmax(stepa, dy);
+                norma = fmax(norma, fabs(yt[i]));
+            } else {
+                stepz = fmax(stepz, dy);
+                normz = fmax(normz, fabs(yt[i]));
+            }
+            y[i] = yt[i];
+        }
+        info.iteration = it + 1;
+        info.energy = Et;
+        info.kkt = kkt;
+        info.step = fmax(stepa, stepz);
+        info.alpha_ls = alpha;
+        info.shift = shift;
+        info.n_active = nact;
+        if (D.progress) D.progress(&info, D.user);
+        S.iterations = it + 1;
+        S.energy = Et;
+        if (fabs(E - Et) <= D.tol_energy * fabs(E)) {
+            S.stop = WR_WF_STOP_ENERGY;
+            break;
+        }
+        if (stepa <= D.tol_step * norma && stepz <= D.tol_step * normz) {
+            S.stop = WR_WF_STOP_STEP;
+            break;
+        }
+    }
+    /* final residual at the returned iterate */
+    wr__wf_sqp_tox(wf, &B, avar, y, na, xa, xo);
+    st = wr_wf_energy(wf, xa, xo, &E, gx, NULL, NULL, diag);
+    if (st) goto done;
+    {
+        double kkt = 0.0;
+        for (v = 0; v < wf->nv; ++v)
+            if (avar[v] >= 0) g[avar[v]] = gx[v];
+        wr__wf_z_applyT(&B, gx + wf->nv, g + na);
+        for (i = 0; i < n; ++i) kkt = fmax(kkt, fabs(i < na ? y[i] - fmax(0.0, y[i] - g[i]) : g[i]));
+        S.kkt = kkt;
+        S.energy = E;
+    }
+    for (v = 0; v < wf->nv; ++v) a[v] = xa[v];
+    for (i = 0; i < wf->ne; ++i) omega[i] = xo[i];
+    if (S.stop == WR_WF_STOP_MAX_ITER || S.stop == WR_WF_STOP_LINE_SEARCH)
+        st = wr_fail(diag, WR_ERR_NOT_CONVERGED, -1, "wf solve: stopped (%s) after %d iterations, KKT %g (initial %g)",
+                     S.stop == WR_WF_STOP_MAX_ITER ? "max iterations" : "line search", (int)S.iterations, S.kkt, S.kkt0);
+done:
+    S.seconds = wr_time_seconds() - t0;
+    if (stats) *stats = S;
+    if (have_solver) wr_spd_solver_free(&SV);
+    wr_csr_free(&K);
+    wr__wf_basis_free(&B);
+    wr_free(avar);
+    wr_free(zero);
+    wr_free(fstart);
+    wr_free(fcols);
+    wr_free(Pm);
+    wr_free(y);
+    wr_free(yt);
+    wr_free(d);
+    wr_free(g);
+    wr_free(gx);
+    wr_free(H);
+    wr_free(xa);
+    wr_free(xo);
+    wr_free(rhs);
+    wr_free(active);
     return st;
 }
 
