@@ -22,3 +22,4 @@
 #include "poisson.h"
 #include "triangulate.h"
 #include "statics.h"
+#include "wrinkle_field.h"
