@@ -60,7 +60,10 @@
  *   8. Amplitude three ways: (max − min)/2 of the refitted-detrended signal; the spectral estimate
  *      2·|X(f*)|/Σw evaluated at f* by a direct DFT sum (no scalloping loss; Σw = the window's
  *      coherent gain); the least-squares amplitude of the tone from step 7.
- *   9. Cross-check: hysteresis (Schmitt-trigger) zero crossings of the refitted-detrended signal after
+ *   9. A least-squares wavelength (wavelength_ls): the frequency of the step-7 model that explains
+ *      the most signal, found by golden section within ±½ bin of the FFT estimate. Window-free, so it
+ *      stays accurate on probes holding only 2–3 waves, where the FFT peak is biased by its mirror.
+ *  10. Cross-check: hysteresis (Schmitt-trigger) zero crossings of the refitted-detrended signal after
  *      a short centred moving average; waves = crossings / 2; a second wavelength from the spacing of
  *      the first and last crossings.
  *
@@ -191,6 +194,9 @@ typedef struct wr_spectrum_result {
     double wavenumber;         /* (peak_bin + δ)/(nfft·ds) [cycles/m] */
     double wavelength;         /* 1/wavenumber [m] */
     double count;              /* length / wavelength (wrinkles along the probe or around the curve) */
+    double wavelength_ls;      /* least-squares tone wavelength (trend + tone model, frequency refined
+                                  near the FFT peak) [m]; preferable on probes with < 4 waves */
+    double count_ls;           /* length / wavelength_ls */
     int32_t count_rounded;     /* nearest integer (for closed curves: the integer harmonic, = peak_bin) */
     double amplitude_p2p;      /* (max − min)/2 of the signal minus the jointly refitted trend [field units] */
     double amplitude_spectral; /* 2·|DFT(f*)|/Σw of the detrended, windowed signal [field units] */
@@ -700,16 +706,16 @@ static int wr__small_solve(int m, double *A, double *b) {
     return 1;
 }
 
-/* Least-squares fit of x by {polynomial of degree deg in t ∈ [−1,1]} ∪ {cos, sin at fr cycles/sample}.
- * On success y = x − fitted polynomial and *amp = hypot of the tone coefficients; otherwise y is left
- * as it was (the plain detrended signal) and *amp = 0. */
-static void wr__trend_refit(const double *x, int32_t n, int deg, double fr, double *y, double *amp) {
-    double A[25], b[5], phi[5];
+/* Least-squares fit of x by {polynomial of degree deg in t ∈ [−1,1]} ∪ {cos, sin at fr cycles/sample}
+ * (deg = −1: tone only). coef[0..m) receives the coefficients (polynomial first, then cos, sin),
+ * *proj the explained sum of squares coefᵀΦᵀx (= Σx² − residual), so maximising *proj over fr is the
+ * least-squares frequency. Returns m, or 0 when the normal equations are numerically singular. */
+static int wr__ls_tone(const double *x, int32_t n, int deg, double fr, double coef[5], double *proj) {
+    double A[25], rhs[5], phi[5];
     int m = deg + 1 + 2, j, k;
     int32_t i;
-    *amp = 0.0;
     memset(A, 0, sizeof A);
-    memset(b, 0, sizeof b);
+    memset(coef, 0, 5 * sizeof(double));
     for (i = 0; i < n; ++i) {
         double t = 2.0 * (double)i / (double)(n - 1) - 1.0, ph = 2.0 * WR__SP_PI * fr * (double)i;
         int q = 0;
@@ -720,18 +726,60 @@ static void wr__trend_refit(const double *x, int32_t n, int deg, double fr, doub
         phi[q++] = sin(ph);
         for (j = 0; j < m; ++j) {
             for (k = 0; k < m; ++k) A[j * m + k] += phi[j] * phi[k];
-            b[j] += phi[j] * x[i];
+            coef[j] += phi[j] * x[i];
         }
     }
-    if (!wr__small_solve(m, A, b)) return;
+    memcpy(rhs, coef, sizeof rhs);
+    if (!wr__small_solve(m, A, coef)) return 0;
+    *proj = 0.0;
+    for (j = 0; j < m; ++j) *proj += coef[j] * rhs[j];
+    return m;
+}
+
+/* Golden-section search for the least-squares tone frequency in [f_lo, f_hi] (cycles/sample), where
+ * the explained sum of squares is unimodal for a clean peak (the interval is ±half an unpadded bin
+ * around the FFT estimate). WR__SP_GOLDEN_ITERS shrinks the interval by 0.618^60 ≈ 3e-13. */
+#define WR__SP_GOLDEN_ITERS 60
+static double wr__ls_frequency(const double *x, int32_t n, int deg, double f_lo, double f_hi) {
+    const double g = 0.6180339887498949;
+    double a = f_lo, b = f_hi, c = b - g * (b - a), d = a + g * (b - a), pc = -HUGE_VAL, pd = -HUGE_VAL, coef[5];
+    int it;
+    if (!wr__ls_tone(x, n, deg, c, coef, &pc)) pc = -HUGE_VAL;
+    if (!wr__ls_tone(x, n, deg, d, coef, &pd)) pd = -HUGE_VAL;
+    for (it = 0; it < WR__SP_GOLDEN_ITERS; ++it) {
+        if (pc >= pd) {
+            b = d;
+            d = c;
+            pd = pc;
+            c = b - g * (b - a);
+            if (!wr__ls_tone(x, n, deg, c, coef, &pc)) pc = -HUGE_VAL;
+        } else {
+            a = c;
+            c = d;
+            pc = pd;
+            d = a + g * (b - a);
+            if (!wr__ls_tone(x, n, deg, d, coef, &pd)) pd = -HUGE_VAL;
+        }
+    }
+    return 0.5 * (a + b);
+}
+
+/* y = x − (polynomial part of the joint fit at fr); *amp = the tone's amplitude. On a singular
+ * system y is left as it was (the plain detrended signal) and *amp = 0. */
+static void wr__trend_refit(const double *x, int32_t n, int deg, double fr, double *y, double *amp) {
+    double coef[5], proj;
+    int m = wr__ls_tone(x, n, deg, fr, coef, &proj);
+    int32_t i;
+    *amp = 0.0;
+    if (!m) return;
     for (i = 0; i < n; ++i) {
         double t = 2.0 * (double)i / (double)(n - 1) - 1.0, trend = 0.0;
-        if (deg >= 0) trend += b[0];
-        if (deg >= 1) trend += b[1] * t;
-        if (deg >= 2) trend += b[2] * t * t;
+        if (deg >= 0) trend += coef[0];
+        if (deg >= 1) trend += coef[1] * t;
+        if (deg >= 2) trend += coef[2] * t * t;
         y[i] = x[i] - trend;
     }
-    *amp = hypot(b[m - 2], b[m - 1]);
+    *amp = hypot(coef[m - 2], coef[m - 1]);
 }
 
 /* FFTW r2c of buf[0..nfft) into |X_k|², k = 0..nfft/2. buf may be modified. */
@@ -979,12 +1027,21 @@ WRDEF wr_status wr_spectrum_analyze(const double *x, int32_t n, double ds, int p
             r.amplitude_spectral = 2.0 * sqrt(re * re + im * im) / sumw;
         }
     }
-    /* Joint refit: trend polynomial + the dominant tone at f*, by least squares. Detrending alone
-     * removes the part of a sine with a non-integer number of periods that correlates with the
-     * line / parabola, which biases (max−min)/2 by up to ~16 % at 3 periods (measured); fitting the
-     * trend together with the tone removes only the true trend. The tone's LS amplitude is reported
-     * as amplitude_fit. Falls back to the plain detrended signal if the 5×5 system is singular. */
-    wr__trend_refit(x, n, deg, ((double)r.peak_bin + r.peak_offset) / (double)nfft, y, &r.amplitude_fit);
+    /* Least-squares frequency of the joint model {trend polynomial, cos, sin}, searched within ±half
+     * an unpadded bin of the FFT estimate f*: window-free, so it stays accurate on probes holding only
+     * 2–3 waves, where the FFT peak is pulled by its own negative-frequency image (measured: 8 % at
+     * 2 periods). Then the joint refit at that frequency: plain detrending removes the part of a sine
+     * with a non-integer number of periods that correlates with the line / parabola, which biased
+     * (max−min)/2 by up to ~16 % at 3 periods (measured); fitting the trend together with the tone
+     * removes only the true trend. The tone's LS amplitude is amplitude_fit. If the small system is
+     * singular, y stays the plain detrended signal. Cost: ~62 fits of O(25 N) each. */
+    {
+        double f0 = ((double)r.peak_bin + r.peak_offset) / (double)nfft, half = 0.5 / (double)n;
+        double fls = wr__ls_frequency(x, n, deg, fmax(f0 - half, 0.25 / (double)n), fmin(f0 + half, 0.5));
+        r.wavelength_ls = ds / fls;
+        r.count_ls = r.length / r.wavelength_ls;
+        wr__trend_refit(x, n, deg, fls, y, &r.amplitude_fit);
+    }
     ymin = ymax = y[0];
     for (i = 1; i < n; ++i) {
         ymin = fmin(ymin, y[i]);
