@@ -1008,8 +1008,9 @@ WRDEF wr_status wr_shell_hessian_elements(const wr_shell *s, const double *x, in
                 for (a = 0; a < 9; ++a)
                     for (b = 0; b < 9; ++b) H18[a * 18 + b] += H9[a * 9 + b];
             }
+            /* without mid-edge bending the face block only couples its own 3 corners */
             for (a = 0; a < 6; ++a)
-                if (verts[a] >= 0) idx[n++] = a;
+                if (verts[a] >= 0 && (a < 3 || s->bending == WR_BENDING_MIDEDGE)) idx[n++] = a;
             for (a = 0; a < n; ++a)
                 for (b = 0; b < n; ++b)
                     for (i = 0; i < 3; ++i)
