@@ -436,3 +436,40 @@ Test(sizing, ring_search_reaches_far_sources) {
     }
     wr_sizing_free(s);
 }
+
+Test(transition, technique_sources) {
+    wr_resolution_model m = wr_resolution_model_paper();
+    double r, r0, rho;
+    wr_diag d;
+    /* E_sh = 0, rho = 1: the fabric's own resolution */
+    cr_assert_eq(wr_resolution_from_BE(&m, 2e-6, 3e5, NULL, &r0, NULL), WR_OK);
+    cr_assert_eq(wr_source_shirring(&m, 2e-6, 3e5, 0.0, 1.0, 1.0, NULL, &r, NULL), WR_OK);
+    cr_expect_eq(r, r0);
+    /* shirring stiffness lowers y and the resolution; the shrinkage ratio scales it (n = 1) */
+    cr_assert_eq(wr_source_shirring(&m, 2e-6, 3e5, 3e5, 0.5, 1.0, NULL, &r, NULL), WR_OK);
+    cr_assert_eq(wr_resolution_from_y(&m, 2e-6 / 6e5, NULL, &r0, NULL), WR_OK);
+    cr_expect(rel(r, 0.5 * r0) < 1e-15);
+    cr_assert_eq(wr_source_shirring(&m, 2e-6, 3e5, 3e5, 0.5, 2.0, NULL, &r, NULL), WR_OK);
+    cr_expect(rel(r, 0.25 * r0) < 1e-15);
+    cr_expect_eq(wr_source_shirring(&m, 2e-6, 3e5, -1.0, 0.5, 1.0, NULL, &r, NULL), WR_ERR_INVALID_ARG);
+    cr_expect_eq(wr_source_shirring(&m, 2e-6, 3e5, 0.0, 1.5, 1.0, NULL, &r, &d), WR_ERR_INVALID_ARG);
+    cr_expect(strstr(d.message, "rho") != NULL, "%s", d.message);
+    cr_expect_eq(wr_source_shirring(&m, 2e-6, 3e5, 0.0, 0.0, 1.0, NULL, &r, NULL), WR_ERR_INVALID_ARG);
+    cr_expect_eq(wr_source_shirring(&m, 2e-6, 3e5, 0.0, 0.5, -1.0, NULL, &r, NULL), WR_ERR_INVALID_ARG);
+    cr_expect_eq(wr_source_shirring(&m, 0.0, 3e5, 0.0, 0.5, 1.0, NULL, &r, NULL), WR_ERR_INVALID_ARG);
+    cr_expect_eq(wr_source_shirring(&m, 2e-6, NAN, 0.0, 0.5, 1.0, NULL, &r, NULL), WR_ERR_INVALID_ARG);
+    cr_expect_eq(wr_source_shirring(&m, 2e-6, 3e5, 0.0, 0.5, 1.0, NULL, NULL, NULL), WR_ERR_INVALID_ARG);
+    /* folding: a 90° fold is a quarter of the neighbourhood resolution */
+    cr_assert_eq(wr_source_folding(0.5 * 3.14159265358979323846, 8e-3, &r, NULL), WR_OK);
+    cr_expect(rel(r, 2e-3) < 1e-15);
+    cr_expect_eq(wr_source_folding(0.0, 8e-3, &r, NULL), WR_ERR_INVALID_ARG);
+    cr_expect_eq(wr_source_folding(7.0, 8e-3, &r, NULL), WR_ERR_INVALID_ARG);
+    cr_expect_eq(wr_source_folding(1.0, -8e-3, &r, NULL), WR_ERR_INVALID_ARG);
+    cr_expect_eq(wr_source_folding(1.0, 8e-3, NULL, NULL), WR_ERR_INVALID_ARG);
+    /* stitching ratio */
+    cr_assert_eq(wr_source_stitch_ratio(0.3, 0.4, &rho, NULL), WR_OK);
+    cr_expect(rel(rho, 0.75) < 1e-15);
+    cr_expect_eq(wr_source_stitch_ratio(0.5, 0.4, &rho, NULL), WR_ERR_INVALID_ARG);
+    cr_expect_eq(wr_source_stitch_ratio(0.0, 0.4, &rho, NULL), WR_ERR_INVALID_ARG);
+    cr_expect_eq(wr_source_stitch_ratio(0.3, 0.4, NULL, NULL), WR_ERR_INVALID_ARG);
+}

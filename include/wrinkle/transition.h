@@ -23,6 +23,9 @@
  *   wr_transition_slope(&t,x)                 dr/dx [m/m]
  *   wr_transition_paper_eval(r,m,x)           the literal paper form r + x^m, mm inside, m outside
  *   wr_transition_downfill(&t,p,&out,diag)    m' = 2^p m, L_w' = L_w^{2^{-p}} (mm)
+ *   wr_source_shirring(&model,B,E,E_sh,rho,n,desc,&r,diag)  r_sh = ρ^n r(B/(E+E_sh))   (Sec. 4.2.2)
+ *   wr_source_folding(dtheta,r_ng,&r,diag)    r_fd = (Δθ/2π) r_ng   (Sec. 4.2.3, Δθ in radians)
+ *   wr_source_stitch_ratio(l_short,l_long,&rho,diag)  ρ_s = l_s/l_l   (Sec. 4.2.4)
  *   wr_sizing_create(r_f,desc,&s,diag) / wr_sizing_free(s)     the sizing map object
  *   wr_sizing_add_point(s,x,y,&t,diag)        point source
  *   wr_sizing_add_point_directional(s,x,y,dx,dy,&t,diag)   forward half-space only (Sec. 4.2.3)
@@ -128,6 +131,19 @@ WRDEF double wr_transition_slope(const wr_transition *t, double x);
 WRDEF double wr_transition_paper_eval(double r, double m, double x);
 /* Sec. 4.2.5: down-filling pressure p ≥ 0: m' = 2^p m, L_w' = (L_w in mm)^{2^{-p}} mm. Keeps r. */
 WRDEF wr_status wr_transition_downfill(const wr_transition *t, double p, wr_transition *out, wr_diag *diag);
+
+/* ---- source resolutions of garment-making techniques (Sec. 4.2.2-4.2.4) -------------------- */
+/* Shirring (Sec. 4.2.2): y_sh = B / (E + E_sh), r_sh = ρ_sh^n r(y_sh) with Eq. 4 (model, desc as in
+ * resolution.h). E_sh ≥ 0 [N/m²] extra shirring stiffness, ρ_sh ∈ (0, 1] shrinkage ratio, n ≥ 0
+ * (the paper uses n = 1). Stitching with a compressive ratio (Sec. 4.2.4) is the same call with
+ * ρ = wr_source_stitch_ratio(...). */
+WRDEF wr_status wr_source_shirring(const wr_resolution_model *model, double B, double E, double E_sh, double rho,
+                                   double n, const wr_resolution_desc *desc, double *r, wr_diag *diag);
+/* Folding endpoints / high-curvature points (Sec. 4.2.3): ρ_fd = Δθ/360° — here Δθ in radians, so
+ * ρ_fd = Δθ / 2π, Δθ ∈ (0, 2π] — and r_fd = ρ_fd r_ng, r_ng [m] > 0 the neighbourhood resolution. */
+WRDEF wr_status wr_source_folding(double dtheta, double r_ng, double *r, wr_diag *diag);
+/* Long-short stitching (Sec. 4.2.4): ρ_s = l_short / l_long ∈ (0, 1]; lengths [m] > 0. */
+WRDEF wr_status wr_source_stitch_ratio(double l_short, double l_long, double *rho, wr_diag *diag);
 
 /* ---- sizing map ------------------------------------------------------------------------- */
 typedef struct wr_sizing wr_sizing;
@@ -322,6 +338,51 @@ WRDEF wr_status wr_transition_downfill(const wr_transition *t, double p, wr_tran
     out->m = s * t->m;
     out->L_w = L_mm / wr__tr_mm(1.0);
     out->scale_free = t->scale_free;
+    return WR_OK;
+}
+
+WRDEF wr_status wr_source_shirring(const wr_resolution_model *model, double B, double E, double E_sh, double rho,
+                                   double n, const wr_resolution_desc *desc, double *r, wr_diag *diag) {
+    double rr;
+    wr_status st;
+    if (!r) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "shirring: NULL output");
+    if (!isfinite(E_sh) || !(E_sh >= 0.0))
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "shirring: E_sh=%g N/m^2 must be finite and >= 0", E_sh);
+    if (!isfinite(rho) || !(rho > 0.0) || !(rho <= 1.0))
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "shirring: shrinkage ratio rho=%g must lie in (0, 1]", rho);
+    if (!isfinite(n) || !(n >= 0.0))
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "shirring: exponent n=%g must be finite and >= 0", n);
+    if (!wr__tr_pos(B)) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "shirring: B=%g N*m must be > 0", B);
+    if (!wr__tr_pos(E)) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "shirring: E=%g N/m^2 must be > 0", E);
+    /* Sec. 4.2.2: y_sh = B / (E + E_sh), r_sh = ρ^n r(y_sh). */
+    st = wr_resolution_from_y(model, B / (E + E_sh), desc, &rr, diag);
+    if (st != WR_OK) return st;
+    *r = pow(rho, n) * rr;
+    return WR_OK;
+}
+
+WRDEF wr_status wr_source_folding(double dtheta, double r_ng, double *r, wr_diag *diag) {
+    const double two_pi = 6.283185307179586;
+    if (!r) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "folding: NULL output");
+    if (!isfinite(dtheta) || !(dtheta > 0.0) || !(dtheta <= two_pi))
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "folding: angle %g rad must lie in (0, 2*pi]", dtheta);
+    if (!wr__tr_pos(r_ng))
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "folding: neighbourhood resolution %g m must be > 0", r_ng);
+    /* Sec. 4.2.3: ρ_fd = Δθ/360 (degrees) = Δθ/2π (radians); r_fd = ρ_fd r_ng. */
+    *r = dtheta / two_pi * r_ng;
+    return WR_OK;
+}
+
+WRDEF wr_status wr_source_stitch_ratio(double l_short, double l_long, double *rho, wr_diag *diag) {
+    if (!rho) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "stitching: NULL output");
+    if (!wr__tr_pos(l_short) || !wr__tr_pos(l_long))
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "stitching: lengths %g, %g m must be finite and > 0", l_short,
+                       l_long);
+    if (l_short > l_long)
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "stitching: short line %g m is longer than the long line %g m",
+                       l_short, l_long);
+    /* Sec. 4.2.4: ρ_s = l_s / l_l sets the source resolution of the longer line. */
+    *rho = l_short / l_long;
     return WR_OK;
 }
 
