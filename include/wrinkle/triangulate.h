@@ -105,7 +105,9 @@ typedef struct wr_cdt_input {
  *   merge_tolerance    0: only exactly equal points are merged; > 0: points closer than this are
  *   keep_convex_hull   0: carve exterior and holes when segments enclose something; 1: keep hull
  *   split_intersections 0: crossing segments -> WR_ERR_GEOMETRY; 1: split them at a Steiner point
- *   off_center         0: circumcenters; 1: Üngör off-centers (fewer Steiner points)
+ *   off_center         0: circumcenters; 1: Üngör off-centers (the point on the shortest edge's
+ *                      bisector seeing that edge under the angle bound, when nearer than the
+ *                      circumcenter)
  *   seed               BRIO shuffle seed (0 -> fixed constant); results are deterministic per seed */
 typedef struct wr_cdt_desc {
     int quality;
@@ -1197,7 +1199,7 @@ static int wr__flood(wr__cdt *S, int32_t seed) {
 typedef struct wr__ref {
     double sin2;      /* sin²(min angle); a triangle is bad when sin² of its smallest angle is below */
     double max_area;  /* 0: none */
-    double cot_theta; /* off-center distance factor (0: circumcenters) */
+    double cot_theta; /* off-center distance factor cot(θ/2) (0: circumcenters) */
     const int32_t *seg; /* input segments in internal vertex ids (for the small-angle rule) */
     wr__ivec segq;      /* vertex pairs of possibly encroached subsegments */
     wr__ivec badq;      /* (t, a, b, c) of possibly bad triangles */
@@ -1765,7 +1767,9 @@ WRDEF wr_status wr_cdt_triangulate(const wr_cdt_input *in, const wr_cdt_desc *de
         if (d.quality) {
             double s = sin(d.min_angle_deg * (3.14159265358979323846 / 180.0));
             R.sin2 = s * s;
-            if (d.off_center) R.cot_theta = cos(d.min_angle_deg * (3.14159265358979323846 / 180.0)) / s;
+            /* Üngör's off-center: apex of the isosceles triangle on the shortest edge whose apex angle is
+             * the bound θ, i.e. at (|pq|/2)·cot(θ/2) from the edge midpoint */
+            if (d.off_center) R.cot_theta = 1.0 / tan(0.5 * d.min_angle_deg * (3.14159265358979323846 / 180.0));
         }
         R.max_area = d.max_area;
         R.seg = NULL;

@@ -1,0 +1,740 @@
+/* tests for triangulate.h: exact predicates against independent integer arithmetic, CDT properties
+ * verified by wr_cdt_check (CCW, constrained Delaunay, segments present, Euler), carving, holes,
+ * refinement, every error path, and the Triangle .poly reader. */
+#include <criterion/criterion.h>
+#include <math.h>
+#include <stdint.h>
+#include <string.h>
+
+#include "wrinkle/triangulate.h"
+
+/* GCC/Clang 128-bit integers (an extension: marked so -pedantic stays quiet) */
+__extension__ typedef __int128 i128;
+__extension__ typedef unsigned __int128 u128;
+
+/* ---- independent exact arithmetic: 256-bit two's-complement integers from 64-bit limbs ---- */
+typedef struct {
+    uint64_t w[4]; /* little-endian limbs */
+} i256;
+
+static i256 i256_add(i256 a, i256 b) {
+    i256 r;
+    u128 c = 0;
+    int i;
+    for (i = 0; i < 4; ++i) {
+        c += (u128)a.w[i] + b.w[i];
+        r.w[i] = (uint64_t)c;
+        c >>= 64;
+    }
+    return r;
+}
+static i256 i256_neg(i256 a) {
+    i256 r, one;
+    int i;
+    for (i = 0; i < 4; ++i) r.w[i] = ~a.w[i];
+    memset(&one, 0, sizeof one);
+    one.w[0] = 1;
+    return i256_add(r, one);
+}
+/* product of two signed values |x|, |y| < 2^126 */
+static i256 i256_mul(i128 x, i128 y) {
+    int neg = (x < 0) != (y < 0);
+    u128 ux = x < 0 ? (u128)(-x) : (u128)x;
+    u128 uy = y < 0 ? (u128)(-y) : (u128)y;
+    uint64_t a[2], b[2];
+    i256 r;
+    int i, j;
+    a[0] = (uint64_t)ux;
+    a[1] = (uint64_t)(ux >> 64);
+    b[0] = (uint64_t)uy;
+    b[1] = (uint64_t)(uy >> 64);
+    memset(&r, 0, sizeof r);
+    for (i = 0; i < 2; ++i) {
+        u128 carry = 0;
+        for (j = 0; j < 2; ++j) {
+            u128 t = (u128)a[i] * b[j] + r.w[i + j] + carry;
+            r.w[i + j] = (uint64_t)t;
+            carry = t >> 64;
+        }
+        r.w[i + 2] += (uint64_t)carry;
+    }
+    return neg ? i256_neg(r) : r;
+}
+static int i256_sign(i256 a) {
+    if (a.w[3] >> 63) return -1;
+    return (a.w[0] | a.w[1] | a.w[2] | a.w[3]) ? 1 : 0;
+}
+static int sgn(double x) { return (x > 0) - (x < 0); }
+
+/* All coordinates used below are integer multiples of 2^-52 with magnitude < 32, so Q = x·2^52 is an
+ * exact int64 (< 2^57); orient fits i128 and incircle fits 256 bits: exact reference values. */
+static int64_t Q(double x) {
+    double s = ldexp(x, 52);
+    cr_assert(s == floor(s) && fabs(s) < 9.0e18, "coordinate %.17g is not on the 2^-52 lattice", x);
+    return (int64_t)s;
+}
+static int orient_ref(const double *a, const double *b, const double *c) {
+    i128 acx = Q(a[0]) - Q(c[0]), acy = Q(a[1]) - Q(c[1]), bcx = Q(b[0]) - Q(c[0]), bcy = Q(b[1]) - Q(c[1]);
+    i128 det = acx * bcy - acy * bcx;
+    return (det > 0) - (det < 0);
+}
+static int incircle_ref(const double *a, const double *b, const double *c, const double *d) {
+    const double *p[3];
+    i128 dx[3], dy[3];
+    i256 sum;
+    int i;
+    p[0] = a;
+    p[1] = b;
+    p[2] = c;
+    for (i = 0; i < 3; ++i) {
+        dx[i] = (i128)(Q(p[i][0]) - Q(d[0]));
+        dy[i] = (i128)(Q(p[i][1]) - Q(d[1]));
+    }
+    memset(&sum, 0, sizeof sum);
+    for (i = 0; i < 3; ++i) {
+        int j = (i + 1) % 3, k = (i + 2) % 3;
+        i128 lift = dx[i] * dx[i] + dy[i] * dy[i]; /* < 2^117 */
+        i128 cr = dx[j] * dy[k] - dy[j] * dx[k];   /* < 2^117 */
+        /* lift·cr can reach 2^234: split lift = hi·2^64 + lo to keep each product < 2^181 */
+        i128 lo = (i128)(uint64_t)lift, hi = lift >> 64;
+        i256 plo = i256_mul(lo, cr), phi = i256_mul(hi, cr);
+        i256 sh;
+        sh.w[0] = 0;
+        sh.w[1] = phi.w[0];
+        sh.w[2] = phi.w[1];
+        sh.w[3] = phi.w[2];
+        sum = i256_add(sum, i256_add(plo, sh));
+    }
+    return i256_sign(sum);
+}
+
+Test(triangulate, sign_conventions) {
+    double a[2] = {0, 0}, b[2] = {1, 0}, c[2] = {0, 1}, in[2] = {0.2, 0.2}, out[2] = {2, 2}, co[2] = {1, 1};
+    cr_assert_gt(wr_orient2d(a, b, c), 0.0);
+    cr_assert_lt(wr_orient2d(a, c, b), 0.0);
+    cr_assert_eq(wr_orient2d(a, b, b), 0.0);
+    cr_assert_gt(wr_incircle(a, b, c, in), 0.0);
+    cr_assert_lt(wr_incircle(a, b, c, out), 0.0);
+    cr_assert_eq(wr_incircle(a, b, c, co), 0.0); /* (1,1) is on the circle through the others */
+    cr_assert_gt(wr_orient2d_fast(a, b, c), 0.0);
+    cr_assert_gt(wr_incircle_fast(a, b, c, in), 0.0);
+}
+
+/* Kettner et al.'s classic failure image: p = (0.5 + i·2^-53... ) near the line through (12,12),
+ * (24,24); here the 256×256 lattice around (0.5, 0.5) with spacing 2^-52. */
+Test(triangulate, orient2d_near_collinear_exact) {
+    double q[2] = {12, 12}, r[2] = {24, 24}, p[2];
+    int i, j, wrong_fast = 0, zeros = 0;
+    for (i = 0; i < 256; ++i)
+        for (j = 0; j < 256; ++j) {
+            int ref;
+            p[0] = 0.5 + ldexp((double)i, -52);
+            p[1] = 0.5 + ldexp((double)j, -52);
+            ref = orient_ref(p, q, r);
+            cr_assert_eq(sgn(wr_orient2d(p, q, r)), ref, "orient2d wrong at (%d,%d)", i, j);
+            cr_assert_eq(sgn(wr_orient2d(q, r, p)), ref);
+            cr_assert_eq(sgn(wr_orient2d(r, p, q)), ref);
+            wrong_fast += sgn(wr_orient2d_fast(p, q, r)) != ref;
+            zeros += ref == 0;
+        }
+    cr_assert_gt(wrong_fast, 1000, "inputs are not hard enough: fast variant wrong only %d times", wrong_fast);
+    cr_assert_eq(zeros, 256); /* the diagonal i == j is exactly collinear */
+}
+
+Test(triangulate, orient2d_random_perturbed_lines_exact) {
+    wr_rng rng;
+    int it, wrong_fast = 0;
+    wr_rng_seed(&rng, 11);
+    for (it = 0; it < 20000; ++it) {
+        /* a, b on the lattice in [1,2); c = a + t(b-a) rounded to the lattice, then nudged by 0..2 ulps */
+        double a[2], b[2], c[2], t = wr_rng_uniform(&rng) * 3.0 - 1.0;
+        int ref;
+        a[0] = 1.0 + ldexp((double)(wr_rng_u64(&rng) >> 12), -52);
+        a[1] = 1.0 + ldexp((double)(wr_rng_u64(&rng) >> 12), -52);
+        b[0] = 1.0 + ldexp((double)(wr_rng_u64(&rng) >> 12), -52);
+        b[1] = 1.0 + ldexp((double)(wr_rng_u64(&rng) >> 12), -52);
+        c[0] = ldexp(nearbyint(ldexp(a[0] + t * (b[0] - a[0]), 52)), -52);
+        c[1] = ldexp(nearbyint(ldexp(a[1] + t * (b[1] - a[1]), 52)) + (double)((int)wr_rng_below(&rng, 5) - 2), -52);
+        ref = orient_ref(a, b, c);
+        cr_assert_eq(sgn(wr_orient2d(a, b, c)), ref, "iteration %d", it);
+        wrong_fast += sgn(wr_orient2d_fast(a, b, c)) != ref;
+    }
+    cr_assert_gt(wrong_fast, 0);
+}
+
+Test(triangulate, incircle_near_cocircular_exact) {
+    wr_rng rng;
+    int it, wrong_fast = 0, zeros = 0;
+    wr_rng_seed(&rng, 12);
+    for (it = 0; it < 20000; ++it) {
+        /* four lattice points near a circle: angles random, radius 2^-k, d nudged by -2..2 ulps */
+        double cx = 1.5, cy = 1.5, rad = ldexp(1.0, -(int)wr_rng_below(&rng, 20)), P[4][2];
+        int k, ref;
+        for (k = 0; k < 4; ++k) {
+            double th = 6.283185307179586 * wr_rng_uniform(&rng);
+            P[k][0] = ldexp(nearbyint(ldexp(cx + rad * cos(th), 52)), -52);
+            P[k][1] = ldexp(nearbyint(ldexp(cy + rad * sin(th), 52)), -52);
+        }
+        P[3][0] += ldexp((double)((int)wr_rng_below(&rng, 5) - 2), -52);
+        ref = incircle_ref(P[0], P[1], P[2], P[3]);
+        cr_assert_eq(sgn(wr_incircle(P[0], P[1], P[2], P[3])), ref, "iteration %d", it);
+        cr_assert_eq(sgn(wr_incircle(P[1], P[2], P[0], P[3])), ref);
+        wrong_fast += sgn(wr_incircle_fast(P[0], P[1], P[2], P[3])) != ref;
+        zeros += ref == 0;
+    }
+    cr_assert_gt(wrong_fast, 0);
+    (void)zeros;
+}
+
+Test(triangulate, incircle_cocircular_grid_exact) {
+    /* Pythagorean points on the circle of radius 5·2^-30 about (1.25, 1.75): exactly cocircular */
+    static const int pyth[12][2] = {{5, 0}, {4, 3}, {3, 4}, {0, 5}, {-3, 4}, {-4, 3}, {-5, 0}, {-4, -3}, {-3, -4}, {0, -5}, {3, -4}, {4, -3}};
+    double P[12][2], d[2];
+    int i, j, k, l, s;
+    for (i = 0; i < 12; ++i) {
+        P[i][0] = 1.25 + ldexp((double)pyth[i][0], -30);
+        P[i][1] = 1.75 + ldexp((double)pyth[i][1], -30);
+    }
+    for (i = 0; i < 12; ++i)
+        for (j = i + 1; j < 12; ++j)
+            for (k = j + 1; k < 12; ++k)
+                for (l = 0; l < 12; ++l) {
+                    if (l == i || l == j || l == k) continue;
+                    cr_assert_eq(incircle_ref(P[i], P[j], P[k], P[l]), 0);
+                    cr_assert_eq(wr_incircle(P[i], P[j], P[k], P[l]), 0.0);
+                    for (s = -1; s <= 1; s += 2) { /* one ulp in or out along x */
+                        d[0] = P[l][0] + s * ldexp(1.0, -52);
+                        d[1] = P[l][1];
+                        cr_assert_eq(sgn(wr_incircle(P[i], P[j], P[k], d)), incircle_ref(P[i], P[j], P[k], d));
+                    }
+                }
+}
+
+/* ---- triangulation helpers ---- */
+static wr_status tri(const double *pts, int32_t n, const int32_t *seg, int32_t m, const double *holes, int32_t nh,
+                     const wr_cdt_desc *d, wr_cdt_result *r, wr_diag *dg) {
+    wr_cdt_input in;
+    memset(&in, 0, sizeof in);
+    in.points = pts;
+    in.n_points = n;
+    in.segments = seg;
+    in.n_segments = m;
+    in.holes = holes;
+    in.n_holes = nh;
+    return wr_cdt_triangulate(&in, d, r, dg);
+}
+static double total_area(const wr_cdt_result *r) {
+    double s = 0.0;
+    int32_t t;
+    for (t = 0; t < r->n_triangles; ++t) {
+        const int32_t *v = r->triangles + 3 * t;
+        s += 0.5 * wr_orient2d_fast(r->points + 2 * v[0], r->points + 2 * v[1], r->points + 2 * v[2]);
+    }
+    return s;
+}
+static void check_ok(const wr_cdt_result *r, int32_t holes, wr_cdt_check_info *info) {
+    wr_diag dg;
+    wr_status s = wr_cdt_check(r, holes, info, &dg);
+    cr_assert_eq(s, WR_OK, "wr_cdt_check: %s", dg.message);
+}
+
+Test(triangulate, random_points_delaunay) {
+    int seed;
+    for (seed = 1; seed <= 3; ++seed) {
+        int32_t n = 3000, i, hull = 0;
+        double *p = (double *)malloc(sizeof(double) * 2 * (size_t)n);
+        wr_rng rng;
+        wr_cdt_result r;
+        wr_diag dg;
+        wr_cdt_check_info info;
+        wr_rng_seed(&rng, (uint64_t)seed);
+        for (i = 0; i < 2 * n; ++i) p[i] = wr_rng_uniform(&rng);
+        cr_assert_eq(tri(p, n, NULL, 0, NULL, 0, NULL, &r, &dg), WR_OK, "%s", dg.message);
+        check_ok(&r, 0, &info);
+        cr_assert_eq(info.n_components, 1);
+        cr_assert_eq(info.n_boundary_loops, 1);
+        for (i = 0; i < 3 * r.n_triangles; ++i) hull += r.neighbors[i] < 0;
+        cr_assert_eq(r.n_triangles, 2 * n - 2 - hull); /* Euler for a triangulated point set */
+        cr_assert_eq(r.n_points, n);
+        for (i = 0; i < n; ++i) cr_assert_eq(r.point_map[i], i);
+        wr_cdt_free(&r);
+        free(p);
+    }
+}
+
+Test(triangulate, grid_cocircular) {
+    int32_t g = 40, n = g * g, i;
+    double *p = (double *)malloc(sizeof(double) * 2 * (size_t)n);
+    wr_cdt_result r;
+    wr_diag dg;
+    for (i = 0; i < n; ++i) {
+        p[2 * i] = 0.1 * (i % g); /* 0.1 is inexact: differences round, the filter must not be trusted */
+        p[2 * i + 1] = 0.1 * (i / g);
+    }
+    cr_assert_eq(tri(p, n, NULL, 0, NULL, 0, NULL, &r, &dg), WR_OK, "%s", dg.message);
+    check_ok(&r, 0, NULL);
+    cr_assert_eq(r.n_triangles, 2 * (g - 1) * (g - 1));
+    cr_assert_float_eq(total_area(&r), 0.1 * (g - 1) * 0.1 * (g - 1), 1e-12);
+    wr_cdt_free(&r);
+    free(p);
+}
+
+Test(triangulate, collinear_runs_and_duplicates) {
+    int32_t n = 0, i, j;
+    double p[2 * 700];
+    wr_cdt_result r;
+    wr_diag dg;
+    wr_rng rng;
+    wr_rng_seed(&rng, 5);
+    for (j = 0; j < 3; ++j) /* three exactly collinear runs of 100 points, one of them vertical */
+        for (i = 0; i < 100; ++i, ++n) {
+            p[2 * n] = j == 2 ? 0.5 : 0.01 * i;
+            p[2 * n + 1] = j == 0 ? 0.3 : j == 1 ? 0.01 * i : 0.01 * i;
+        }
+    for (i = 0; i < 300; ++i, ++n) {
+        p[2 * n] = wr_rng_uniform(&rng);
+        p[2 * n + 1] = wr_rng_uniform(&rng);
+    }
+    for (i = 0; i < 100; ++i, ++n) { /* 100 exact duplicates of earlier points */
+        p[2 * n] = p[2 * (3 * i)];
+        p[2 * n + 1] = p[2 * (3 * i) + 1];
+    }
+    cr_assert_eq(tri(p, n, NULL, 0, NULL, 0, NULL, &r, &dg), WR_OK, "%s", dg.message);
+    check_ok(&r, 0, NULL);
+    /* the two runs cross at (0.3,0.3) and the vertical meets them at 0.5: those coincide */
+    cr_assert_geq(r.n_duplicates, 100);
+    cr_assert_eq(r.n_points, n - r.n_duplicates);
+    for (i = 0; i < 100; ++i) cr_assert_eq(r.point_map[600 + i], r.point_map[3 * i]);
+    for (i = 0; i < n; ++i) {
+        int32_t o = r.point_map[i];
+        cr_assert(r.points[2 * o] == p[2 * i] && r.points[2 * o + 1] == p[2 * i + 1]);
+    }
+    wr_cdt_free(&r);
+}
+
+Test(triangulate, merge_tolerance) {
+    double p[] = {0, 0, 1, 0, 0, 1, 1, 1, 1 + 1e-9, 1, 0.5, 0.5, 0.5 + 2e-9, 0.5};
+    wr_cdt_desc d;
+    wr_cdt_result r;
+    wr_diag dg;
+    memset(&d, 0, sizeof d);
+    d.merge_tolerance = 1e-8;
+    cr_assert_eq(tri(p, 7, NULL, 0, NULL, 0, &d, &r, &dg), WR_OK, "%s", dg.message);
+    cr_assert_eq(r.n_duplicates, 2);
+    cr_assert_eq(r.n_points, 5);
+    cr_assert_eq(r.point_map[4], r.point_map[3]);
+    cr_assert_eq(r.point_map[6], r.point_map[5]);
+    check_ok(&r, 0, NULL);
+    wr_cdt_free(&r);
+    d.merge_tolerance = 0.0; /* default: near points stay distinct */
+    cr_assert_eq(tri(p, 7, NULL, 0, NULL, 0, &d, &r, &dg), WR_OK, "%s", dg.message);
+    cr_assert_eq(r.n_points, 7);
+    check_ok(&r, 0, NULL);
+    wr_cdt_free(&r);
+}
+
+/* unit square boundary with points exactly on its sides, a diagonal through lattice points, and a
+ * random interior */
+Test(triangulate, constrained_square_points_on_segments) {
+    double p[2 * 400];
+    int32_t seg[] = {0, 1, 1, 2, 2, 3, 3, 0, 0, 2};
+    int32_t n = 4, i, k, nsub0 = 0;
+    wr_cdt_result r;
+    wr_diag dg;
+    wr_cdt_check_info info;
+    wr_rng rng;
+    wr_rng_seed(&rng, 9);
+    p[0] = 0; p[1] = 0; p[2] = 1; p[3] = 0; p[4] = 1; p[5] = 1; p[6] = 0; p[7] = 1;
+    for (i = 1; i < 8; ++i, ++n) { p[2 * n] = i / 8.0; p[2 * n + 1] = 0.0; }       /* on segment 0 */
+    for (i = 1; i < 8; ++i, ++n) { p[2 * n] = i / 8.0; p[2 * n + 1] = i / 8.0; }   /* on the diagonal */
+    for (; n < 300; ++n) { p[2 * n] = wr_rng_uniform(&rng); p[2 * n + 1] = wr_rng_uniform(&rng); }
+    cr_assert_eq(tri(p, n, seg, 5, NULL, 0, NULL, &r, &dg), WR_OK, "%s", dg.message);
+    check_ok(&r, 0, &info);
+    cr_assert_eq(info.n_components, 1);
+    cr_assert_float_eq(total_area(&r), 1.0, 1e-14);
+    for (k = 0; k < r.n_segments; ++k) nsub0 += r.segment_id[k] == 0;
+    cr_assert_eq(nsub0, 8);         /* split by the 7 points lying on it */
+    for (k = 0, i = 0; k < r.n_segments; ++k) i += r.segment_id[k] == 4;
+    cr_assert_eq(i, 8);             /* the diagonal through 7 lattice points */
+    cr_assert_eq(r.n_steiner, 0);
+    wr_cdt_free(&r);
+}
+
+Test(triangulate, carve_exterior_and_hole) {
+    /* outer square 4×4, inner square hole [1,3]², an interior segment, points everywhere (also
+     * outside the outer square and inside the hole) */
+    double p[2 * 600], holes[] = {2.0, 2.0};
+    int32_t seg[] = {0, 1, 1, 2, 2, 3, 3, 0, 4, 5, 5, 6, 6, 7, 7, 4};
+    int32_t n = 8, t;
+    wr_cdt_result r;
+    wr_diag dg;
+    wr_cdt_check_info info;
+    wr_rng rng;
+    wr_rng_seed(&rng, 21);
+    p[0] = 0; p[1] = 0; p[2] = 4; p[3] = 0; p[4] = 4; p[5] = 4; p[6] = 0; p[7] = 4;
+    p[8] = 1; p[9] = 1; p[10] = 3; p[11] = 1; p[12] = 3; p[13] = 3; p[14] = 1; p[15] = 3;
+    for (; n < 600; ++n) { p[2 * n] = -1 + 6 * wr_rng_uniform(&rng); p[2 * n + 1] = -1 + 6 * wr_rng_uniform(&rng); }
+    cr_assert_eq(tri(p, n, seg, 8, holes, 1, NULL, &r, &dg), WR_OK, "%s", dg.message);
+    cr_assert_eq(r.exterior_carved, 1);
+    check_ok(&r, 1, &info);
+    cr_assert_eq(info.n_boundary_loops, 2);
+    cr_assert_float_eq(total_area(&r), 16.0 - 4.0, 1e-12);
+    for (t = 0; t < r.n_triangles; ++t) { /* centroids inside the annulus */
+        const int32_t *v = r.triangles + 3 * t;
+        double cx = (r.points[2 * v[0]] + r.points[2 * v[1]] + r.points[2 * v[2]]) / 3;
+        double cy = (r.points[2 * v[0] + 1] + r.points[2 * v[1] + 1] + r.points[2 * v[2] + 1]) / 3;
+        cr_assert(cx > 0 && cx < 4 && cy > 0 && cy < 4 && !(cx > 1 && cx < 3 && cy > 1 && cy < 3));
+    }
+    wr_cdt_free(&r);
+    {   /* keep_convex_hull: no carving, the hole seed still removes the hole */
+        wr_cdt_desc d;
+        memset(&d, 0, sizeof d);
+        d.keep_convex_hull = 1;
+        cr_assert_eq(tri(p, n, seg, 8, holes, 1, &d, &r, &dg), WR_OK, "%s", dg.message);
+        cr_assert_eq(r.exterior_carved, 0);
+        check_ok(&r, 1, NULL);
+        wr_cdt_free(&r);
+    }
+}
+
+Test(triangulate, open_polyline_keeps_hull) {
+    double p[] = {0, 0, 1, 0, 1, 1, 0, 1, 0.2, 0.5, 0.8, 0.5};
+    int32_t seg[] = {4, 5};
+    wr_cdt_result r;
+    wr_diag dg;
+    cr_assert_eq(tri(p, 6, seg, 1, NULL, 0, NULL, &r, &dg), WR_OK, "%s", dg.message);
+    cr_assert_eq(r.exterior_carved, 0);
+    cr_assert_float_eq(total_area(&r), 1.0, 1e-15);
+    check_ok(&r, 0, NULL);
+    wr_cdt_free(&r);
+}
+
+Test(triangulate, crossing_segments_rejected_or_split) {
+    double p[] = {0, 0, 1, 0, 1, 1, 0, 1, 0.1, 0.3, 0.9, 0.7, 0.1, 0.7, 0.9, 0.2};
+    int32_t seg[] = {0, 1, 1, 2, 2, 3, 3, 0, 4, 5, 6, 7};
+    wr_cdt_desc d;
+    wr_cdt_result r;
+    wr_diag dg;
+    cr_assert_eq(tri(p, 8, seg, 6, NULL, 0, NULL, &r, &dg), WR_ERR_GEOMETRY);
+    cr_assert(strstr(dg.message, "segments 5 and 4 cross") != NULL, "message: %s", dg.message);
+    cr_assert_eq(dg.item, 5);
+    cr_assert_eq(r.n_triangles, 0);
+    wr_cdt_free(&r);
+    memset(&d, 0, sizeof d);
+    d.split_intersections = 1;
+    cr_assert_eq(tri(p, 8, seg, 6, NULL, 0, &d, &r, &dg), WR_OK, "%s", dg.message);
+    cr_assert_eq(r.n_steiner, 1);
+    cr_assert_eq(r.n_points, 9);
+    check_ok(&r, 0, NULL);
+    cr_assert_float_eq(total_area(&r), 1.0, 1e-15);
+    wr_cdt_free(&r);
+}
+
+Test(triangulate, many_crossings_split) {
+    /* a 10×10 grid of long crossing segments inside a box */
+    double p[2 * 44];
+    int32_t seg[2 * 24], n = 0, m = 0, i;
+    wr_cdt_desc d;
+    wr_cdt_result r;
+    wr_diag dg;
+    p[0] = -1; p[1] = -1; p[2] = 2; p[3] = -1; p[4] = 2; p[5] = 2; p[6] = -1; p[7] = 2;
+    n = 4;
+    for (i = 0; i < 4; ++i) { seg[2 * m] = i; seg[2 * m + 1] = (i + 1) % 4; ++m; }
+    for (i = 0; i < 10; ++i) {
+        double c = 0.05 + 0.1 * i + 0.003 * i * i;
+        p[2 * n] = c; p[2 * n + 1] = -0.5; p[2 * n + 2] = c + 0.01; p[2 * n + 3] = 1.5;
+        seg[2 * m] = n; seg[2 * m + 1] = n + 1; ++m; n += 2;
+        p[2 * n] = -0.5; p[2 * n + 1] = c; p[2 * n + 2] = 1.5; p[2 * n + 3] = c - 0.02;
+        seg[2 * m] = n; seg[2 * m + 1] = n + 1; ++m; n += 2;
+    }
+    memset(&d, 0, sizeof d);
+    d.split_intersections = 1;
+    cr_assert_eq(tri(p, n, seg, m, NULL, 0, &d, &r, &dg), WR_OK, "%s", dg.message);
+    cr_assert_eq(r.n_steiner, 100);
+    check_ok(&r, 0, NULL);
+    wr_cdt_free(&r);
+}
+
+Test(triangulate, quality_min_angle_reached) {
+    static const double angles[] = {20.0, 28.0, 33.0};
+    int a, oc;
+    double p[] = {0, 0, 3, 0, 3, 1, 1, 1, 1, 2, 0, 2, 0.5, 0.25, 2.9, 0.05};
+    int32_t seg[] = {0, 1, 1, 2, 2, 3, 3, 4, 4, 5, 5, 0};
+    for (oc = 0; oc < 2; ++oc)
+        for (a = 0; a < 3; ++a) {
+            wr_cdt_desc d;
+            wr_cdt_result r;
+            wr_diag dg;
+            wr_cdt_check_info info;
+            memset(&d, 0, sizeof d);
+            d.quality = 1;
+            d.min_angle_deg = angles[a];
+            d.off_center = oc;
+            cr_assert_eq(tri(p, 8, seg, 6, NULL, 0, &d, &r, &dg), WR_OK, "%s", dg.message);
+            check_ok(&r, 0, &info);
+            cr_assert_geq(r.min_angle_deg, angles[a], "min angle %g < %g (off_center %d)", r.min_angle_deg,
+                          angles[a], oc);
+            cr_assert_float_eq(total_area(&r), 4.0, 1e-12);
+            cr_assert_gt(r.n_steiner, 0);
+            wr_cdt_free(&r);
+        }
+}
+
+Test(triangulate, max_area_refinement) {
+    double p[] = {0, 0, 2, 0, 2, 1, 0, 1};
+    int32_t seg[] = {0, 1, 1, 2, 2, 3, 3, 0}, t;
+    wr_cdt_desc d;
+    wr_cdt_result r;
+    wr_diag dg;
+    memset(&d, 0, sizeof d);
+    d.max_area = 0.01;
+    cr_assert_eq(tri(p, 4, seg, 4, NULL, 0, &d, &r, &dg), WR_OK, "%s", dg.message);
+    check_ok(&r, 0, NULL);
+    for (t = 0; t < r.n_triangles; ++t) {
+        const int32_t *v = r.triangles + 3 * t;
+        cr_assert_leq(0.5 * wr_orient2d_fast(r.points + 2 * v[0], r.points + 2 * v[1], r.points + 2 * v[2]), 0.01);
+    }
+    cr_assert_geq(r.n_triangles, 200);
+    cr_assert_float_eq(total_area(&r), 2.0, 1e-12);
+    wr_cdt_free(&r);
+}
+
+Test(triangulate, small_input_angle_terminates) {
+    /* a 5° spike plus a 1° sliver corner: refinement must stop (small-angle rule), mesh stays valid */
+    double p[] = {0, 0, 10, 0, 10, 10 * 0.08748866352592401 /* tan 5° */, 5, 5, -5, 5, -5, -0.0872753};
+    int32_t seg[] = {0, 1, 1, 2, 2, 3, 3, 4, 4, 5, 5, 0};
+    wr_cdt_desc d;
+    wr_cdt_result r;
+    wr_diag dg;
+    wr_status s;
+    memset(&d, 0, sizeof d);
+    d.quality = 1;
+    d.min_angle_deg = 25.0;
+    s = tri(p, 6, seg, 6, NULL, 0, &d, &r, &dg);
+    cr_assert_eq(s, WR_OK, "%s", dg.message);
+    check_ok(&r, 0, NULL);
+    cr_assert_lt(r.n_points, 5000);
+    wr_cdt_free(&r);
+}
+
+Test(triangulate, budget_error_returns_valid_mesh) {
+    double p[] = {0, 0, 1, 0, 1, 1, 0, 1};
+    int32_t seg[] = {0, 1, 1, 2, 2, 3, 3, 0};
+    wr_cdt_desc d;
+    wr_cdt_result r;
+    wr_diag dg;
+    memset(&d, 0, sizeof d);
+    d.max_area = 1e-6;
+    d.max_vertices = 500;
+    cr_assert_eq(tri(p, 4, seg, 4, NULL, 0, &d, &r, &dg), WR_ERR_BUDGET);
+    cr_assert(strstr(dg.message, "500") != NULL, "%s", dg.message);
+    cr_assert_eq(r.n_points, 500);
+    check_ok(&r, 0, NULL);
+    cr_assert_float_eq(total_area(&r), 1.0, 1e-12);
+    wr_cdt_free(&r);
+}
+
+Test(triangulate, error_paths) {
+    double good[] = {0, 0, 1, 0, 0, 1, 1, 1};
+    double nanp[] = {0, 0, 1, 0, NAN, 1, 1, 1};
+    double infp[] = {0, 0, 1, 0, 0, 1, 1, INFINITY};
+    double line[] = {0, 0, 1, 1, 2, 2, 3, 3, 1.5, 1.5};
+    double same[] = {1, 2, 1, 2, 1, 2};
+    int32_t seg_oob[] = {0, 4}, seg_zero[] = {2, 2}, seg_neg[] = {-1, 0};
+    double dupl[] = {0, 0, 1, 0, 0, 1, 1, 0};
+    int32_t seg_dup[] = {1, 3};
+    wr_cdt_result r;
+    wr_diag dg;
+    wr_cdt_desc d;
+    cr_assert_eq(tri(nanp, 4, NULL, 0, NULL, 0, NULL, &r, &dg), WR_ERR_INVALID_ARG);
+    cr_assert_eq(dg.item, 2);
+    cr_assert(strstr(dg.message, "point 2") != NULL, "%s", dg.message);
+    cr_assert_eq(tri(infp, 4, NULL, 0, NULL, 0, NULL, &r, &dg), WR_ERR_INVALID_ARG);
+    cr_assert_eq(dg.item, 3);
+    cr_assert_eq(tri(line, 5, NULL, 0, NULL, 0, NULL, &r, &dg), WR_ERR_GEOMETRY);
+    cr_assert(strstr(dg.message, "collinear") != NULL, "%s", dg.message);
+    cr_assert_eq(tri(same, 3, NULL, 0, NULL, 0, NULL, &r, &dg), WR_ERR_GEOMETRY);
+    cr_assert(strstr(dg.message, "fewer than 3 distinct") != NULL, "%s", dg.message);
+    cr_assert_eq(tri(good, 0, NULL, 0, NULL, 0, NULL, &r, &dg), WR_ERR_GEOMETRY);
+    cr_assert_eq(tri(good, 4, seg_oob, 1, NULL, 0, NULL, &r, &dg), WR_ERR_INVALID_ARG);
+    cr_assert(strstr(dg.message, "segment 0 references point 4") != NULL, "%s", dg.message);
+    cr_assert_eq(tri(good, 4, seg_neg, 1, NULL, 0, NULL, &r, &dg), WR_ERR_INVALID_ARG);
+    cr_assert_eq(tri(good, 4, seg_zero, 1, NULL, 0, NULL, &r, &dg), WR_ERR_GEOMETRY);
+    cr_assert(strstr(dg.message, "zero length") != NULL, "%s", dg.message);
+    cr_assert_eq(tri(dupl, 4, seg_dup, 1, NULL, 0, NULL, &r, &dg), WR_ERR_GEOMETRY);
+    cr_assert(strstr(dg.message, "merged as duplicates") != NULL, "%s", dg.message);
+    cr_assert_eq(tri(good, -1, NULL, 0, NULL, 0, NULL, &r, &dg), WR_ERR_INVALID_ARG);
+    cr_assert_eq(tri(NULL, 4, NULL, 0, NULL, 0, NULL, &r, &dg), WR_ERR_INVALID_ARG);
+    {
+        double hole_nan[] = {NAN, 0};
+        cr_assert_eq(tri(good, 4, NULL, 0, hole_nan, 1, NULL, &r, &dg), WR_ERR_INVALID_ARG);
+    }
+    memset(&d, 0, sizeof d);
+    d.quality = 1;
+    d.min_angle_deg = 40.0;
+    cr_assert_eq(tri(good, 4, NULL, 0, NULL, 0, &d, &r, &dg), WR_ERR_INVALID_ARG);
+    memset(&d, 0, sizeof d);
+    d.max_area = -1.0;
+    cr_assert_eq(tri(good, 4, NULL, 0, NULL, 0, &d, &r, &dg), WR_ERR_INVALID_ARG);
+    memset(&d, 0, sizeof d);
+    d.merge_tolerance = NAN;
+    cr_assert_eq(tri(good, 4, NULL, 0, NULL, 0, &d, &r, &dg), WR_ERR_INVALID_ARG);
+    cr_assert_eq(r.n_triangles, 0);
+    wr_cdt_free(&r); /* freeable after errors */
+    cr_assert_eq(wr_cdt_triangulate(NULL, NULL, &r, &dg), WR_ERR_INVALID_ARG);
+}
+
+Test(triangulate, check_detects_corruption) {
+    double p[] = {0, 0, 1, 0, 1, 1, 0, 1, 0.4, 0.6};
+    int32_t seg[] = {0, 1, 1, 2, 2, 3, 3, 0}, t, k, tmp;
+    wr_cdt_result r;
+    wr_diag dg;
+    cr_assert_eq(tri(p, 5, seg, 4, NULL, 0, NULL, &r, &dg), WR_OK, "%s", dg.message);
+    check_ok(&r, 0, NULL);
+    /* inverted triangle */
+    tmp = r.triangles[0];
+    r.triangles[0] = r.triangles[1];
+    r.triangles[1] = tmp;
+    cr_assert_neq(wr_cdt_check(&r, 0, NULL, &dg), WR_OK);
+    r.triangles[1] = r.triangles[0];
+    r.triangles[0] = tmp;
+    check_ok(&r, 0, NULL);
+    /* wrong hole count */
+    cr_assert_eq(wr_cdt_check(&r, 1, NULL, &dg), WR_ERR_TOPOLOGY);
+    /* broken neighbor symmetry */
+    for (t = 0, k = -1; t < r.n_triangles && k < 0; ++t)
+        for (k = 0; k < 3 && r.neighbors[3 * t + k] < 0; ++k) {
+        }
+    tmp = r.neighbors[0];
+    r.neighbors[0] = -1 - (tmp < 0);
+    cr_assert_neq(wr_cdt_check(&r, 0, NULL, &dg), WR_OK);
+    r.neighbors[0] = tmp;
+    /* a missing segment: drop every constrained mark of segment 1 */
+    for (t = 0; t < 3 * r.n_triangles; ++t)
+        if (r.edge_segment[t] == 1) r.edge_segment[t] = -1;
+    cr_assert_eq(wr_cdt_check(&r, 0, NULL, &dg), WR_ERR_GEOMETRY);
+    cr_assert(strstr(dg.message, "input segment 1") != NULL, "%s", dg.message);
+    wr_cdt_free(&r);
+}
+
+Test(triangulate, non_delaunay_detected_by_check) {
+    /* hand-made 2-triangle square with the "wrong" diagonal for a non-cocircular quad */
+    double pts[] = {0, 0, 1, 0, 1.2, 1, 0, 1};
+    int32_t tris[] = {0, 1, 2, 0, 2, 3}, nb[] = {-1, 1, -1, -1, -1, 0}, es[] = {-1, -1, -1, -1, -1, -1};
+    wr_cdt_result r;
+    wr_diag dg;
+    memset(&r, 0, sizeof r);
+    r.points = pts;
+    r.n_points = 4;
+    r.triangles = tris;
+    r.neighbors = nb;
+    r.edge_segment = es;
+    r.n_triangles = 2;
+    /* tri 0 = (0,1,2): edge opposite corner 1 is 2->0, neighbor 1; tri 1 = (0,2,3): edge opposite 2 is 3->0?
+     * fix up: tri 1's edge 0->2 is opposite corner 2 (3) */
+    nb[0] = -1; nb[1] = 1; nb[2] = -1;
+    nb[3] = -1; nb[4] = -1; nb[5] = 0;
+    {
+        wr_status s = wr_cdt_check(&r, -1, NULL, &dg);
+        int inc = wr_incircle(pts, pts + 2, pts + 4, pts + 6) > 0;
+        cr_assert_eq(s, inc ? WR_ERR_GEOMETRY : WR_OK, "%s", dg.message);
+        es[1] = es[5] = 3; /* constrained: then it is allowed */
+        cr_assert_eq(wr_cdt_check(&r, -1, NULL, &dg), WR_OK, "%s", dg.message);
+    }
+}
+
+/* ---- .poly / .node reader ---- */
+Test(triangulate, poly_parse_and_triangulate) {
+    const char *poly =
+        "# a square with a square hole, 1-based\n"
+        "8 2 1 1\n"
+        "1 0 0 0.5 1\n2 4 0 0.5 1\n3 4 4 0.5 1\n4 0 4 0.5 1\n"
+        "5 1 1 0 2\n6 3 1 0 2\n7 3 3 0 2\n8 1 3 0 2  # trailing comment\n"
+        "\n"
+        "8 1\n"
+        "1 1 2 1\n2 2 3 1\n3 3 4 1\n4 4 1 1\n5 5 6 2\n6 6 7 2\n7 7 8 2\n8 8 5 2\n"
+        "1\n1 2 2\n";
+    wr_cdt_poly P;
+    wr_diag dg;
+    wr_cdt_input in;
+    wr_cdt_result r;
+    cr_assert_eq(wr_cdt_poly_parse(poly, NULL, "sq.poly", &P, &dg), WR_OK, "%s", dg.message);
+    cr_assert_eq(P.first_index, 1);
+    cr_assert_eq(P.n_points, 8);
+    cr_assert_eq(P.n_segments, 8);
+    cr_assert_eq(P.n_holes, 1);
+    cr_assert_eq(P.segments[0], 0);
+    cr_assert_eq(P.segments[15], 4);
+    cr_assert_eq(P.point_markers[5], 2);
+    cr_assert_eq(P.segment_markers[7], 2);
+    memset(&in, 0, sizeof in);
+    in.points = P.points;
+    in.n_points = P.n_points;
+    in.segments = P.segments;
+    in.n_segments = P.n_segments;
+    in.holes = P.holes;
+    in.n_holes = P.n_holes;
+    cr_assert_eq(wr_cdt_triangulate(&in, NULL, &r, &dg), WR_OK, "%s", dg.message);
+    check_ok(&r, 1, NULL);
+    cr_assert_float_eq(total_area(&r), 12.0, 1e-12);
+    wr_cdt_free(&r);
+    wr_cdt_poly_free(&P);
+}
+
+Test(triangulate, poly_nodes_from_node_file_zero_based) {
+    const char *node = "4 2 0 0\n0 0 0\n1 1 0\n2 1 1\n3 0 1\n";
+    const char *poly = "0 2 0 1\n4 0\n0 0 1\n1 1 2\n2 2 3\n3 3 0\n0\n";
+    wr_cdt_poly P;
+    wr_diag dg;
+    cr_assert_eq(wr_cdt_poly_parse(poly, node, "b.poly", &P, &dg), WR_OK, "%s", dg.message);
+    cr_assert_eq(P.first_index, 0);
+    cr_assert_eq(P.n_points, 4);
+    cr_assert_eq(P.segments[7], 0);
+    wr_cdt_poly_free(&P);
+    cr_assert_eq(wr_cdt_poly_parse(poly, NULL, "b.poly", &P, &dg), WR_ERR_PARSE);
+    cr_assert(strstr(dg.message, "b.poly:1:") != NULL, "%s", dg.message);
+    cr_assert_eq(wr_cdt_poly_parse(NULL, node, "b.node", &P, &dg), WR_OK, "%s", dg.message);
+    cr_assert_eq(P.n_segments, 0);
+    wr_cdt_poly_free(&P);
+}
+
+Test(triangulate, poly_parse_errors_name_the_line) {
+    static const struct {
+        const char *text, *needle;
+    } bad[] = {
+        {"3 2 0 0\n1 0 0\n2 1 0\n", "x.poly:3: file ends after 2 of 3 vertices"},
+        {"3 2 0 0\n1 0 0\n2 1 zero\n3 0 1\n", "x.poly:3:"},
+        {"3 3 0 0\n", "x.poly:1: dimension must be 2"},
+        {"3 2 0 0\n1 0 0\n2 1 0\n3 0 1\n1 0\n1 1 4\n", "x.poly:6: segment 1 references vertex 4"},
+        {"3 2 0 0\n1 0 0\n2 1 0\n3 0 1\n", "x.poly:4: missing segment section"},
+        {"3 2 0 0\n1 0 0\n2 1 0\n3 0 1\n1 0\n1 1 2\n1\n1 nan 0\n", "x.poly:8:"},
+        {"3 2 0 0\n1 0 0\n3 1 0\n3 0 1\n", "x.poly:3: vertex number 3, expected 2"},
+        {"-3 2 0 0\n", "x.poly:1: bad vertex count"},
+        {"3 2 0 0\n1 0 0\n2 1 0\n3 0 1\n2 0\n1 1 2\n", "x.poly:6: file ends after 1 of 2 segments"},
+        {"# only a comment\n", "x.poly:1: empty file"},
+    };
+    size_t i;
+    for (i = 0; i < sizeof bad / sizeof bad[0]; ++i) {
+        wr_cdt_poly P;
+        wr_diag dg;
+        cr_assert_eq(wr_cdt_poly_parse(bad[i].text, NULL, "x.poly", &P, &dg), WR_ERR_PARSE, "case %zu", i);
+        cr_assert(strstr(dg.message, bad[i].needle) != NULL, "case %zu: '%s' lacks '%s'", i, dg.message, bad[i].needle);
+        cr_assert_null(P.points);
+        wr_cdt_poly_free(&P);
+    }
+}
+
+Test(triangulate, poly_read_file) {
+    const char *path = "/tmp/wr_test_triangulate_box.poly";
+    FILE *f = fopen(path, "w");
+    wr_cdt_poly P;
+    wr_diag dg;
+    cr_assert_not_null(f);
+    fputs("4 2 0 0\n1 0 0\n2 1 0\n3 1 1\n4 0 1\n4 0\n1 1 2\n2 2 3\n3 3 4\n4 4 1\n0\n", f);
+    fclose(f);
+    cr_assert_eq(wr_cdt_poly_read(path, &P, &dg), WR_OK, "%s", dg.message);
+    cr_assert_eq(P.n_segments, 4);
+    wr_cdt_poly_free(&P);
+    remove(path);
+    cr_assert_eq(wr_cdt_poly_read("/nonexistent/x.poly", &P, &dg), WR_ERR_IO);
+}
