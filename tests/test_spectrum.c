@@ -407,6 +407,15 @@ Test(spectrum, outside_points_are_nan_and_counted) {
     cr_assert_eq(nnan, nout);
     cr_assert_eq(wr_spectrum_analyze(z, 40, ds, 0, NULL, &r, NULL, 0, &d), WR_ERR_INVALID_ARG);
     cr_assert_eq(d.item, first_nan);
+    {
+        int32_t start = -1, len = wr_probe_longest_run(z, 40, &start);
+        double hole[6] = {1.0, NAN, 2.0, 3.0, INFINITY, 4.0};
+        cr_assert_eq(len, 32);
+        cr_assert_eq(start, 8);
+        cr_assert_eq(wr_probe_longest_run(hole, 6, &start), 2);
+        cr_assert_eq(start, 2);
+        cr_assert_eq(wr_probe_longest_run(hole + 1, 1, &start), 0);
+    }
     /* all outside */
     a[0] = 2.0;
     b[0] = 3.0;
