@@ -1,4 +1,4 @@
-/* wrinkle-report — collect validation/results/*.json into validation/REPORT.md.
+/* wrinkle-report — collect the validation result files (validation/results/NAME.json) into REPORT.md.
  *
  * One job: read every result file written by a validation driver (schema in drivers/lib/vresult.h)
  * and write a Markdown report with a summary table, then per case its quantities (paper vs ours,
