@@ -37,6 +37,7 @@ BENCH_CXX   = $(wildcard bench/*.cpp)
 BENCHES     = $(patsubst bench/%.c,bin/%,$(BENCH_SRC)) $(patsubst bench/%.cpp,bin/%,$(BENCH_CXX))
 EXTRA_HDR   = $(wildcard drivers/lib/*.h)
 
+.SECONDARY: $(LIB_OBJ)
 .PHONY: all deps deps-bench demo test validate bench install uninstall clean check-headers
 
 all: $(DRIVERS) $(VALIDATORS)
