@@ -63,7 +63,7 @@
  *   coefficient, which vanishes at ν = 0, so we read it as the bending modulus B). Its Hessian is
  *   constant. Boundary vertices carry no term: the cotangent Laplacian of a boundary vertex does not
  *   vanish on the flat rest mesh (it sees the boundary flux), so including it would put energy into
- *   the rest state; Wang et al. 2015's boundary correction is not implemented. A free boundary thus
+ *   the rest state; this kit does not add Wang et al. 2015's boundary correction. A free boundary thus
  *   only resists bending through its interior neighbours' stencils.
  *
  * ON ORTHOTROPY
