@@ -160,6 +160,75 @@ Test(elastica_ref, heavy_large_deflection_matches_independent_solver) {
     }
 }
 
+Test(elastica_ref, clamp_and_free_end_shooting_agree) {
+    /* within the clamp shooting's range (κ/2 + β <= 50); tip load P = ratio·qL */
+    static const double kappas[4] = {1e-3, 1.0, 8.0, 100.0}, ratio[4] = {0.3, 0.3, 0.3, 0.0};
+    int i;
+    for (i = 0; i < 4; ++i) {
+        double L = 0.2, D = 1e-7, q = kappas[i] * D / (L * L * L), P = ratio[i] * q * L;
+        elastica_ref_result a, b;
+        char err[256];
+        cr_assert_eq(elastica_ref_solve_method(L, D, q, P, 0, NULL, NULL, NULL, &a, err, sizeof err, 1), 0, "%s", err);
+        cr_assert_eq(elastica_ref_solve_method(L, D, q, P, 0, NULL, NULL, NULL, &b, err, sizeof err, 2), 0, "%s", err);
+        cr_assert_float_eq(a.tip_deflection / L, b.tip_deflection / L, 1e-9, "kappa=%g: %.12f vs %.12f", kappas[i],
+                           a.tip_deflection / L, b.tip_deflection / L);
+        cr_assert_float_eq(a.tip_x / L, b.tip_x / L, 1e-9);
+        cr_assert_float_eq(a.clamp_curvature * L, b.clamp_curvature * L, 1e-7 * (1.0 + a.clamp_curvature * L));
+    }
+}
+
+/* Heavy strips (the fabric regime) hang almost vertically below a clamp boundary layer. There the
+ * tension is T ≈ qL, and D φ'' = −T cos φ integrates once to (D/2) φ'² = T (1 − sin φ). So the
+ * layer's horizontal reach is ∫cos φ ds = √(2D/T), and its "lost" height is
+ * ∫(1 − sin φ) ds = (2√2 − 2)·√(D/2T). In units of L:
+ *     x_tip/L → √(2/κ),   1 − δ/L → (2√2 − 2)/√(2κ),   relative corrections O(κ^−½)
+ * (the tension is not constant across the layer). The test checks both limits to within 1/√κ. */
+Test(elastica_ref, heavy_strip_boundary_layer_asymptotics) {
+    static const double kappas[3] = {1e3, 1e4, 1e5};
+    double prev_dev = 0.0;
+    int i;
+    for (i = 0; i < 3; ++i) {
+        double L = 0.15, D = 2e-6 * 0.05, q = kappas[i] * D / (L * L * L), k = kappas[i];
+        double reach, drop;
+        char err[256];
+        elastica_ref_result r;
+        cr_assert_eq(elastica_ref_solve(L, D, q, 0.0, 0, NULL, NULL, NULL, &r, err, sizeof err), 0, "%s", err);
+        reach = r.tip_x / L / sqrt(2.0 / k) - 1.0;
+        drop = (1.0 - r.tip_deflection / L) / ((2.0 * sqrt(2.0) - 2.0) / sqrt(2.0 * k)) - 1.0;
+        cr_assert(reach > 0.0 && reach < 1.0 / sqrt(k), "kappa=%g: reach deviation %g", k, reach);
+        cr_assert(fabs(drop) < 1.0 / sqrt(k), "kappa=%g: drop deviation %g", k, drop);
+        /* the deviation shrinks like κ^−½: a factor ≈ √10 per decade */
+        if (i > 0) cr_assert(prev_dev / reach > 2.5 && prev_dev / reach < 4.0, "ratio %g", prev_dev / reach);
+        prev_dev = reach;
+        cr_log_info("kappa=%g: x_tip/L = %.8f (sqrt(2/kappa) x (1%+.5f)), delta/L = %.8f (drop ratio 1%+.5f)", k,
+                    r.tip_x / L, reach, r.tip_deflection / L, drop);
+    }
+}
+
+Test(elastica_ref, fabric_cantilever_stays_on_the_physical_branch) {
+    /* Style3D Fig. 18 fabric: B = 2e-6 N·m; with ρ_A = 0.2 kg/m², g = 9.81 m/s², L = 0.15 m, b = 0.05 m:
+     * κ = ρ_A g L³ / B ≈ 3311. Clamp shooting alone converges to a looping equilibrium there. */
+    enum { N = 4001 };
+    static double x[N], y[N], phi[N];
+    double L = 0.15, bw = 0.05, B = 2e-6, D = B * bw, q = 0.2 * 9.81 * bw, integral = 0.0, h = L / (N - 1);
+    char err[256];
+    elastica_ref_result r;
+    int i;
+    cr_assert_eq(elastica_ref_solve(L, D, q, 0.0, N, x, y, phi, &r, err, sizeof err), 0, "%s", err);
+    cr_assert_float_eq(r.kappa, 0.2 * 9.81 * L * L * L / B, 1e-9 * r.kappa);
+    for (i = 1; i < N; ++i) {
+        cr_assert_geq(phi[i], phi[i - 1] - 1e-12);
+        cr_assert_leq(phi[i], 0.5 * ELASTICA_PI + 1e-9);
+        integral += 0.5 * h * (x[i - 1] + x[i]);
+    }
+    /* the moment check's own trapezoid error on the ~L/√κ clamp layer dominates: 1e-5 */
+    cr_assert_float_eq(D * r.clamp_curvature, q * integral, 1e-5 * D * r.clamp_curvature);
+    cr_assert_neq(elastica_ref_solve_method(L, D, q, 0.0, 0, NULL, NULL, NULL, &r, err, sizeof err, 1), 0,
+                  "clamp shooting is expected to lose the branch at kappa ~ 3300");
+    cr_log_info("fabric strip (kappa=%.0f): tip deflection %.3f mm of L = %.0f mm, tip x %.3f mm", r.kappa,
+                1e3 * r.tip_deflection, 1e3 * L, 1e3 * r.tip_x);
+}
+
 Test(elastica_ref, clamp_moment_balance) {
     /* D φ'(0) = q ∫_0^L x ds + P x(L): the clamp carries the moment of all the loads. */
     enum { N = 2001 };
@@ -185,4 +254,5 @@ Test(elastica_ref, error_paths) {
     cr_assert_eq(elastica_ref_solve(1.0, 1.0, 0.0, 0.0, 0, NULL, NULL, NULL, &r, err, sizeof err), -1);
     cr_assert_eq(elastica_ref_solve(1.0, 1.0, NAN, 0.0, 0, NULL, NULL, NULL, &r, err, sizeof err), -1);
     cr_assert_eq(elastica_ref_solve(1.0, 1.0, 1.0, 0.0, 1, NULL, NULL, NULL, &r, err, sizeof err), -1);
+    cr_assert_eq(elastica_ref_solve_method(1.0, 1.0, 1.0, 0.0, 0, NULL, NULL, NULL, &r, err, sizeof err, 7), -1);
 }
