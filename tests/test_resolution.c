@@ -310,3 +310,22 @@ Test(resolution, cerda_mahadevan) {
     cr_assert_eq(wr_cm_amplitude(0.01, 0.0, &A, NULL), WR_OK);
     cr_expect_eq(A, 0.0);
 }
+
+/* Regression: tiny y on a peaked model used to need > 200 Newton steps (Newton only halves toward a
+ * root at u ~ 1e-150 from the [0, u_peak] bracket); extreme y on the paper's model stays finite. */
+Test(resolution, extreme_y) {
+    wr_resolution_model m = wr_resolution_model_paper();
+    double r, y;
+    cr_assert_eq(wr_resolution_from_y(&m, 1e-300, NULL, &r, NULL), WR_OK);
+    cr_expect(r > 2.41e-3 && r < 2.43e-3);
+    cr_assert_eq(wr_resolution_from_y(&m, 1e300, NULL, &r, NULL), WR_OK);
+    cr_expect(rel(r, pow(1e300 / m.c1, 1.0 / 6.0)) < 1e-12, "%g", r);
+    m.c1 = -1.0;
+    m.c2 = 3e-4;
+    for (y = 1e-300; y < 1e-9; y *= 1e7) {
+        double y2;
+        cr_assert_eq(wr_resolution_from_y(&m, y, NULL, &r, NULL), WR_OK, "y=%g", y);
+        cr_assert_eq(wr_resolution_y(&m, r, &y2, NULL), WR_OK);
+        cr_expect(rel(y2, y) < 1e-12, "y=%g y2=%g", y, y2);
+    }
+}

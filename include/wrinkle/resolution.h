@@ -332,8 +332,13 @@ WRDEF wr_status wr_resolution_from_y(const wr_resolution_model *m, double y, con
             hi = cbrt(y / c1);
             if (c2 > 0.0) hi = fmin(hi, sqrt(y / c2));
         } else {
-            lo = 0.0;
-            hi = dom.r_hi * dom.r_hi;
+            /* c1 < 0 < c2, u < u_peak: y = u²(c2 + c1 u) lies between u² c2/3 (c1 u > c1 u_peak = -2c2/3)
+             * and u² c2, so sqrt(y/c2) <= u <= sqrt(3y/c2): a bracket of ratio √3 at every scale (from
+             * [0, u_peak] Newton would only halve per step toward a tiny root). */
+            lo = sqrt(y / c2);
+            hi = fmin(dom.r_hi * dom.r_hi, sqrt(3.0 * y / c2));
+            if (lo > hi) lo = hi;
+            while (wr__res_f(c1, c2, lo) - y > 0.0 && lo > 0.0) lo *= 0.5; /* rounding guard */
         }
         /* The bracket bound can be tight to the last ulp; widen until it truly brackets. */
         while (!(wr__res_f(c1, c2, hi) - y >= 0.0) && isfinite(hi)) hi = hi * (1.0 + 1e-12) + 1e-300;
