@@ -1,0 +1,1053 @@
+/* scene.c — see scene.h and docs/scene-format.md. Uses cJSON (Debian libcjson-dev). */
+#define _POSIX_C_SOURCE 200809L
+#include "scene.h"
+
+#include <cjson/cJSON.h>
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#define SC_PI 3.14159265358979323846
+/* Largest mesh a scene may request from a generator: keeps a typo ("resolution": 1e-6) from
+ * allocating gigabytes before anything is solved. 2e6 vertices is ~20× the benchmark's top size. */
+#define SC_MAX_VERTICES 2000000
+/* Regularisation of the affine warm-start fit, relative to the prescribed set's spread: pulls the
+ * fitted linear part towards the identity when the prescribed vertices are collinear (one clamp). */
+#define SC_AFFINE_REG 1e-6
+/* Hybrid Newton: relative gradient (statics.h ON STOPPING) at which the projected phase hands over to
+ * the exact Hessian. 1e-3: past the saddle-escape phase, far from the final tolerance. */
+#define SC_HYBRID_SWITCH 1e-3
+
+/* ---------------------------------------------------------------------------------------------- */
+/* parsing helpers: every error names the JSON path                                               */
+
+typedef struct sc_ctx {
+    wr_diag *diag;
+} sc_ctx;
+
+static wr_status sc_err(sc_ctx *c, const char *path, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+static wr_status sc_err(sc_ctx *c, const char *path, const char *fmt, ...) {
+    char msg[400];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    return wr_fail(c->diag, WR_ERR_PARSE, -1, "%s: %s", path, msg);
+}
+
+static void sc_path(char *out, size_t n, const char *base, const char *key) { snprintf(out, n, "%s.%s", base, key); }
+
+/* Reject keys not in the list (a typo must not silently fall back to a default). */
+static wr_status sc_keys(sc_ctx *c, const cJSON *obj, const char *path, const char *const *allowed) {
+    const cJSON *it;
+    if (!cJSON_IsObject(obj)) return sc_err(c, path, "must be an object");
+    for (it = obj->child; it; it = it->next) {
+        const char *const *a;
+        int ok = 0;
+        for (a = allowed; *a; ++a)
+            if (strcmp(*a, it->string) == 0) ok = 1;
+        if (!ok) {
+            char p[512];
+            sc_path(p, sizeof p, path, it->string);
+            return sc_err(c, p, "unknown key");
+        }
+    }
+    return WR_OK;
+}
+
+enum { SC_ANY = 0, SC_POS = 1, SC_NONNEG = 2 };
+
+/* Optional number: *found = 0 when absent. rule: SC_ANY finite, SC_POS > 0, SC_NONNEG >= 0. */
+static wr_status sc_num(sc_ctx *c, const cJSON *obj, const char *key, const char *path, int rule, double *out,
+                        int *found) {
+    const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
+    char p[512];
+    if (found) *found = 0;
+    if (!v) return WR_OK;
+    sc_path(p, sizeof p, path, key);
+    if (!cJSON_IsNumber(v) || !isfinite(v->valuedouble)) return sc_err(c, p, "must be a finite number");
+    if (rule == SC_POS && !(v->valuedouble > 0.0)) return sc_err(c, p, "must be > 0 (got %g)", v->valuedouble);
+    if (rule == SC_NONNEG && !(v->valuedouble >= 0.0)) return sc_err(c, p, "must be >= 0 (got %g)", v->valuedouble);
+    *out = v->valuedouble;
+    if (found) *found = 1;
+    return WR_OK;
+}
+
+static wr_status sc_int(sc_ctx *c, const cJSON *obj, const char *key, const char *path, long lo, long hi,
+                        int32_t *out, int *found) {
+    const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
+    char p[512];
+    if (found) *found = 0;
+    if (!v) return WR_OK;
+    sc_path(p, sizeof p, path, key);
+    if (!cJSON_IsNumber(v) || v->valuedouble != floor(v->valuedouble) || v->valuedouble < (double)lo ||
+        v->valuedouble > (double)hi)
+        return sc_err(c, p, "must be an integer in [%ld, %ld]", lo, hi);
+    *out = (int32_t)v->valuedouble;
+    if (found) *found = 1;
+    return WR_OK;
+}
+
+static wr_status sc_vec(sc_ctx *c, const cJSON *obj, const char *key, const char *path, int n, double *out,
+                        int *found) {
+    const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key), *e;
+    char p[512];
+    int i = 0;
+    if (found) *found = 0;
+    if (!v) return WR_OK;
+    sc_path(p, sizeof p, path, key);
+    if (!cJSON_IsArray(v) || cJSON_GetArraySize(v) != n) return sc_err(c, p, "must be an array of %d numbers", n);
+    for (e = v->child; e; e = e->next, ++i) {
+        if (!cJSON_IsNumber(e) || !isfinite(e->valuedouble)) {
+            char q[540];
+            snprintf(q, sizeof q, "%s[%d]", p, i);
+            return sc_err(c, q, "must be a finite number");
+        }
+        out[i] = e->valuedouble;
+    }
+    if (found) *found = 1;
+    return WR_OK;
+}
+
+static wr_status sc_bool(sc_ctx *c, const cJSON *obj, const char *key, const char *path, int *out) {
+    const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
+    char p[512];
+    if (!v) return WR_OK;
+    sc_path(p, sizeof p, path, key);
+    if (!cJSON_IsBool(v)) return sc_err(c, p, "must be true or false");
+    *out = cJSON_IsTrue(v) ? 1 : 0;
+    return WR_OK;
+}
+
+/* String choice: index into names (NULL-terminated), *out unchanged when absent. */
+static wr_status sc_enum(sc_ctx *c, const cJSON *obj, const char *key, const char *path, const char *const *names,
+                         int *out, int required) {
+    const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
+    char p[512], list[256];
+    int i;
+    sc_path(p, sizeof p, path, key);
+    if (!v) return required ? sc_err(c, p, "is required") : WR_OK;
+    list[0] = 0;
+    for (i = 0; names[i]; ++i) {
+        if (cJSON_IsString(v) && strcmp(v->valuestring, names[i]) == 0) {
+            *out = i;
+            return WR_OK;
+        }
+        strncat(list, i ? ", " : "", sizeof list - strlen(list) - 1);
+        strncat(list, names[i], sizeof list - strlen(list) - 1);
+    }
+    return sc_err(c, p, "must be one of: %s", list);
+}
+
+static wr_status sc_str(sc_ctx *c, const cJSON *obj, const char *key, const char *path, char *out, size_t cap,
+                        int required) {
+    const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
+    char p[512];
+    sc_path(p, sizeof p, path, key);
+    if (!v) return required ? sc_err(c, p, "is required") : WR_OK;
+    if (!cJSON_IsString(v) || v->valuestring[0] == 0) return sc_err(c, p, "must be a non-empty string");
+    if (strlen(v->valuestring) >= cap) return sc_err(c, p, "longer than %d characters", (int)cap - 1);
+    strcpy(out, v->valuestring);
+    return WR_OK;
+}
+
+static const char *const SC_MESH_TYPES[] = {"obj", "rectangle", "disk", "cylinder", "delaunay_rectangle", NULL};
+static const char *const SC_MEMBRANES[] = {"stvk", "tft", "none", NULL};
+static const char *const SC_BENDINGS[] = {"midedge", "quadratic", "none", NULL};
+static const char *const SC_LINEAR[] = {"auto", "pcg-jacobi", "pcg-block3", "pcg-ic0", "cholmod", "pcg-amg", NULL};
+static const char *const SC_HESSIAN[] = {"exact", "projected", "hybrid", NULL};
+
+const char *wr_scene_mesh_kind_name(wr_scene_mesh_kind k) {
+    return (k >= WR_SCENE_MESH_OBJ && k <= WR_SCENE_MESH_DELAUNAY_RECTANGLE) ? SC_MESH_TYPES[k] : "?";
+}
+
+void wr_scene_defaults(wr_scene *sc) {
+    int i;
+    memset(sc, 0, sizeof *sc);
+    strcpy(sc->name, "scene");
+    sc->ramp_gravity = 1;
+    sc->linear = WR_SOLVER_AUTO;
+    sc->load_steps = 1;
+    sc->hessian = WR_SCENE_HESSIAN_EXACT;
+    for (i = 0; i < WR_SCENE_MAX_BC; ++i) sc->bc[i].stretch[0] = sc->bc[i].stretch[1] = sc->bc[i].stretch[2] = 1.0;
+}
+
+void wr_scene_free(wr_scene *sc) {
+    int32_t i;
+    if (!sc) return;
+    for (i = 0; i < WR_SCENE_MAX_BC; ++i) {
+        free(sc->bc[i].indices);
+        sc->bc[i].indices = NULL;
+        sc->bc[i].n_indices = 0;
+    }
+}
+
+static wr_status sc_parse_mesh(sc_ctx *c, const cJSON *o, const char *base_dir, wr_scene_mesh *m) {
+    static const char *const keys[] = {"type", "path", "width", "height", "radius", "resolution", "nx", "ny",
+                                       "seed", NULL};
+    const char *P = "$.mesh";
+    wr_status st;
+    int kind = 0, fw = 0, fh = 0, fr = 0, fres = 0, fnx = 0, fny = 0, fs = 0;
+    int32_t seed = 0;
+    if ((st = sc_keys(c, o, P, keys)) != WR_OK) return st;
+    if ((st = sc_enum(c, o, "type", P, SC_MESH_TYPES, &kind, 1)) != WR_OK) return st;
+    m->kind = (wr_scene_mesh_kind)kind;
+    if ((st = sc_num(c, o, "width", P, SC_POS, &m->width, &fw)) != WR_OK) return st;
+    if ((st = sc_num(c, o, "height", P, SC_POS, &m->height, &fh)) != WR_OK) return st;
+    if ((st = sc_num(c, o, "radius", P, SC_POS, &m->radius, &fr)) != WR_OK) return st;
+    if ((st = sc_num(c, o, "resolution", P, SC_POS, &m->resolution, &fres)) != WR_OK) return st;
+    if ((st = sc_int(c, o, "nx", P, 1, 100000, &m->nx, &fnx)) != WR_OK) return st;
+    if ((st = sc_int(c, o, "ny", P, 1, 100000, &m->ny, &fny)) != WR_OK) return st;
+    if ((st = sc_int(c, o, "seed", P, 0, 2147483647L, &seed, &fs)) != WR_OK) return st;
+    m->seed = (uint64_t)seed;
+    switch (m->kind) {
+    case WR_SCENE_MESH_OBJ: {
+        char rel[WR_SCENE_PATH_LEN];
+        rel[0] = 0;
+        if ((st = sc_str(c, o, "path", P, rel, sizeof rel, 1)) != WR_OK) return st;
+        if (rel[0] == '/' || !base_dir || !base_dir[0])
+            snprintf(m->path, sizeof m->path, "%s", rel);
+        else {
+            size_t lb = strlen(base_dir), lr = strlen(rel);
+            if (lb + lr + 2 > sizeof m->path) return sc_err(c, "$.mesh.path", "resolved path too long");
+            memcpy(m->path, base_dir, lb);
+            m->path[lb] = '/';
+            memcpy(m->path + lb + 1, rel, lr + 1);
+        }
+        return WR_OK;
+    }
+    case WR_SCENE_MESH_RECTANGLE:
+    case WR_SCENE_MESH_DELAUNAY_RECTANGLE:
+        if (!fw) return sc_err(c, "$.mesh.width", "is required for type %s", SC_MESH_TYPES[kind]);
+        if (!fh) return sc_err(c, "$.mesh.height", "is required for type %s", SC_MESH_TYPES[kind]);
+        if (m->kind == WR_SCENE_MESH_RECTANGLE && (fnx || fny)) {
+            if (!(fnx && fny)) return sc_err(c, fnx ? "$.mesh.ny" : "$.mesh.nx", "nx and ny go together");
+            return WR_OK;
+        }
+        break;
+    case WR_SCENE_MESH_DISK:
+        if (!fr) return sc_err(c, "$.mesh.radius", "is required for type disk");
+        break;
+    case WR_SCENE_MESH_CYLINDER:
+        if (!fr) return sc_err(c, "$.mesh.radius", "is required for type cylinder");
+        if (!fh) return sc_err(c, "$.mesh.height", "is required for type cylinder");
+        break;
+    }
+    if (!fres) return sc_err(c, "$.mesh.resolution", "is required for type %s", SC_MESH_TYPES[kind]);
+    return WR_OK;
+}
+
+static wr_status sc_parse_material(sc_ctx *c, const cJSON *o, wr_scene *sc) {
+    static const char *const keys[] = {"young", "poisson", "thickness", "bending_stiffness", "density",
+                                       "areal_density", "orthotropic", NULL};
+    static const char *const okeys[] = {"young_warp", "young_weft", "shear_modulus", "poisson_warp", NULL};
+    const char *P = "$.material";
+    wr_shell_desc *d = &sc->shell;
+    wr_status st;
+    int fE = 0, fh = 0, fB = 0, fd = 0, fa = 0, fnu = 0;
+    const cJSON *orth;
+    if ((st = sc_keys(c, o, P, keys)) != WR_OK) return st;
+    if ((st = sc_num(c, o, "young", P, SC_POS, &d->young, &fE)) != WR_OK) return st;
+    if ((st = sc_num(c, o, "poisson", P, SC_ANY, &d->poisson, &fnu)) != WR_OK) return st;
+    if (fnu && !(d->poisson > -1.0 && d->poisson <= 0.5))
+        return sc_err(c, "$.material.poisson", "must be in (-1, 0.5] (got %g)", d->poisson);
+    if ((st = sc_num(c, o, "thickness", P, SC_POS, &d->thickness, &fh)) != WR_OK) return st;
+    if ((st = sc_num(c, o, "bending_stiffness", P, SC_POS, &d->bending_stiffness, &fB)) != WR_OK) return st;
+    if ((st = sc_num(c, o, "density", P, SC_NONNEG, &d->density, &fd)) != WR_OK) return st;
+    if ((st = sc_num(c, o, "areal_density", P, SC_NONNEG, &sc->areal_density, &fa)) != WR_OK) return st;
+    if (!fE) return sc_err(c, "$.material.young", "is required");
+    if (!fh && !fB) return sc_err(c, "$.material", "needs thickness or bending_stiffness");
+    if (fd && fa) return sc_err(c, "$.material.areal_density", "give density or areal_density, not both");
+    if (!fh) /* Kirchhoff–Love (Style3D Sec. 4.1.1): B = E h³/(12(1−ν²)) solved for h */
+        d->thickness = cbrt(12.0 * (1.0 - d->poisson * d->poisson) * d->bending_stiffness / d->young);
+    if (fa) d->density = sc->areal_density / d->thickness;
+    orth = cJSON_GetObjectItemCaseSensitive(o, "orthotropic");
+    if (orth) {
+        const char *Q = "$.material.orthotropic";
+        int f1 = 0, f2 = 0, f3 = 0;
+        if ((st = sc_keys(c, orth, Q, okeys)) != WR_OK) return st;
+        if ((st = sc_num(c, orth, "young_warp", Q, SC_POS, &d->young_warp, &f1)) != WR_OK) return st;
+        if ((st = sc_num(c, orth, "young_weft", Q, SC_POS, &d->young_weft, &f2)) != WR_OK) return st;
+        if ((st = sc_num(c, orth, "shear_modulus", Q, SC_POS, &d->shear_modulus, &f3)) != WR_OK) return st;
+        if ((st = sc_num(c, orth, "poisson_warp", Q, SC_ANY, &d->poisson_warp, NULL)) != WR_OK) return st;
+        if (!f1 || !f2 || !f3)
+            return sc_err(c, Q, "needs young_warp, young_weft and shear_modulus");
+        d->orthotropic = 1;
+    }
+    return WR_OK;
+}
+
+static wr_status sc_parse_bc(sc_ctx *c, const cJSON *o, const char *P, wr_scene_bc *b) {
+    static const char *const keys[] = {"name", "box", "indices", "center", "translate", "stretch", "shear", "twist",
+                                       "wave", NULL};
+    static const char *const bkeys[] = {"min", "max", NULL};
+    static const char *const tkeys[] = {"axis", "angle", NULL};
+    static const char *const wkeys[] = {"amplitude", "wavelength", "phase", "along", "dir", NULL};
+    const cJSON *box, *idx, *tw, *wv;
+    char p[512];
+    wr_status st;
+    int f = 0, i;
+    if ((st = sc_keys(c, o, P, keys)) != WR_OK) return st;
+    if ((st = sc_str(c, o, "name", P, b->name, sizeof b->name, 0)) != WR_OK) return st;
+    box = cJSON_GetObjectItemCaseSensitive(o, "box");
+    idx = cJSON_GetObjectItemCaseSensitive(o, "indices");
+    if (!!box == !!idx) return sc_err(c, P, "needs exactly one of box or indices");
+    if (box) {
+        int f1 = 0, f2 = 0;
+        sc_path(p, sizeof p, P, "box");
+        if ((st = sc_keys(c, box, p, bkeys)) != WR_OK) return st;
+        if ((st = sc_vec(c, box, "min", p, 3, b->box_lo, &f1)) != WR_OK) return st;
+        if ((st = sc_vec(c, box, "max", p, 3, b->box_hi, &f2)) != WR_OK) return st;
+        if (!f1 || !f2) return sc_err(c, p, "needs min and max");
+        for (i = 0; i < 3; ++i)
+            if (b->box_lo[i] > b->box_hi[i]) return sc_err(c, p, "min[%d] > max[%d]", i, i);
+        b->select = WR_SCENE_SELECT_BOX;
+    } else {
+        const cJSON *e;
+        int n = cJSON_GetArraySize(idx);
+        sc_path(p, sizeof p, P, "indices");
+        if (!cJSON_IsArray(idx) || n < 1) return sc_err(c, p, "must be a non-empty array of vertex indices");
+        b->indices = (int32_t *)malloc(sizeof(int32_t) * (size_t)n);
+        if (!b->indices) return wr_fail(c->diag, WR_ERR_NOMEM, -1, "%s: out of memory", p);
+        b->n_indices = n;
+        i = 0;
+        for (e = idx->child; e; e = e->next, ++i) {
+            if (!cJSON_IsNumber(e) || e->valuedouble != floor(e->valuedouble) || e->valuedouble < 0 ||
+                e->valuedouble > 2147483647.0) {
+                char q[540];
+                snprintf(q, sizeof q, "%s[%d]", p, i);
+                return sc_err(c, q, "must be a vertex index (integer >= 0)");
+            }
+            b->indices[i] = (int32_t)e->valuedouble;
+        }
+        b->select = WR_SCENE_SELECT_INDICES;
+    }
+    if ((st = sc_vec(c, o, "center", P, 3, b->center, NULL)) != WR_OK) return st;
+    if ((st = sc_vec(c, o, "translate", P, 3, b->translate, NULL)) != WR_OK) return st;
+    if ((st = sc_vec(c, o, "stretch", P, 3, b->stretch, &f)) != WR_OK) return st;
+    if (f)
+        for (i = 0; i < 3; ++i)
+            if (!(b->stretch[i] > 0.0)) {
+                sc_path(p, sizeof p, P, "stretch");
+                return sc_err(c, p, "scale factors must be > 0");
+            }
+    if ((st = sc_vec(c, o, "shear", P, 3, b->shear, NULL)) != WR_OK) return st;
+    tw = cJSON_GetObjectItemCaseSensitive(o, "twist");
+    if (tw) {
+        int fa = 0, fg = 0;
+        sc_path(p, sizeof p, P, "twist");
+        if ((st = sc_keys(c, tw, p, tkeys)) != WR_OK) return st;
+        if ((st = sc_vec(c, tw, "axis", p, 3, b->twist_axis, &fa)) != WR_OK) return st;
+        if ((st = sc_num(c, tw, "angle", p, SC_ANY, &b->twist_angle, &fg)) != WR_OK) return st;
+        if (!fa || !fg) return sc_err(c, p, "needs axis and angle");
+        if (!(fabs(b->twist_axis[0]) + fabs(b->twist_axis[1]) + fabs(b->twist_axis[2]) > 0.0))
+            return sc_err(c, p, "axis must be nonzero");
+    }
+    wv = cJSON_GetObjectItemCaseSensitive(o, "wave");
+    if (wv) {
+        int fa = 0, fl = 0, f1 = 0, f2 = 0;
+        sc_path(p, sizeof p, P, "wave");
+        if ((st = sc_keys(c, wv, p, wkeys)) != WR_OK) return st;
+        if ((st = sc_num(c, wv, "amplitude", p, SC_ANY, &b->wave_amplitude, &fa)) != WR_OK) return st;
+        if ((st = sc_num(c, wv, "wavelength", p, SC_POS, &b->wave_length, &fl)) != WR_OK) return st;
+        if ((st = sc_num(c, wv, "phase", p, SC_ANY, &b->wave_phase, NULL)) != WR_OK) return st;
+        if ((st = sc_vec(c, wv, "along", p, 3, b->wave_along, &f1)) != WR_OK) return st;
+        if ((st = sc_vec(c, wv, "dir", p, 3, b->wave_dir, &f2)) != WR_OK) return st;
+        if (!fa || !fl || !f1 || !f2) return sc_err(c, p, "needs amplitude, wavelength, along and dir");
+    }
+    return WR_OK;
+}
+
+static wr_status sc_parse_solver(sc_ctx *c, const cJSON *o, wr_scene *sc) {
+    static const char *const keys[] = {"linear", "linear_tol", "grad_tol", "max_iter", "load_steps", "perturb",
+                                       "seed", "hessian", NULL};
+    const char *P = "$.solver";
+    wr_status st;
+    int lin = (int)sc->linear, hes = (int)sc->hessian;
+    int32_t seed = 0;
+    int fs = 0;
+    if ((st = sc_keys(c, o, P, keys)) != WR_OK) return st;
+    if ((st = sc_enum(c, o, "linear", P, SC_LINEAR, &lin, 0)) != WR_OK) return st;
+    sc->linear = (wr_solver_method)lin;
+    if ((st = sc_enum(c, o, "hessian", P, SC_HESSIAN, &hes, 0)) != WR_OK) return st;
+    sc->hessian = (wr_scene_hessian)hes;
+    if ((st = sc_num(c, o, "linear_tol", P, SC_POS, &sc->linear_tol, NULL)) != WR_OK) return st;
+    if ((st = sc_num(c, o, "grad_tol", P, SC_POS, &sc->grad_tol, NULL)) != WR_OK) return st;
+    if ((st = sc_int(c, o, "max_iter", P, 1, 1000000, &sc->max_iter, NULL)) != WR_OK) return st;
+    if ((st = sc_int(c, o, "load_steps", P, 1, 100000, &sc->load_steps, NULL)) != WR_OK) return st;
+    if ((st = sc_num(c, o, "perturb", P, SC_NONNEG, &sc->perturb, NULL)) != WR_OK) return st;
+    if ((st = sc_int(c, o, "seed", P, 0, 2147483647L, &seed, &fs)) != WR_OK) return st;
+    if (fs) sc->seed = (uint64_t)seed;
+    return WR_OK;
+}
+
+static wr_status sc_parse_probe(sc_ctx *c, const cJSON *o, const char *P, wr_scene_probe *pr) {
+    static const char *const keys[] = {"name", "from", "to", "samples", "dir", "closed", NULL};
+    wr_status st;
+    int f1 = 0, f2 = 0, fd = 0;
+    if ((st = sc_keys(c, o, P, keys)) != WR_OK) return st;
+    if ((st = sc_str(c, o, "name", P, pr->name, sizeof pr->name, 0)) != WR_OK) return st;
+    if ((st = sc_vec(c, o, "from", P, 2, pr->from, &f1)) != WR_OK) return st;
+    if ((st = sc_vec(c, o, "to", P, 2, pr->to, &f2)) != WR_OK) return st;
+    if (!f1 || !f2) return sc_err(c, P, "needs from and to");
+    if (pr->from[0] == pr->to[0] && pr->from[1] == pr->to[1]) return sc_err(c, P, "from and to coincide");
+    pr->samples = 512;
+    if ((st = sc_int(c, o, "samples", P, WR_SPECTRUM_MIN_SAMPLES, 1 << 22, &pr->samples, NULL)) != WR_OK) return st;
+    pr->dir[2] = 1.0;
+    if ((st = sc_vec(c, o, "dir", P, 3, pr->dir, &fd)) != WR_OK) return st;
+    if (fd && !(fabs(pr->dir[0]) + fabs(pr->dir[1]) + fabs(pr->dir[2]) > 0.0)) {
+        char p[512];
+        sc_path(p, sizeof p, P, "dir");
+        return sc_err(c, p, "must be nonzero");
+    }
+    return sc_bool(c, o, "closed", P, &pr->closed);
+}
+
+wr_status wr_scene_parse(wr_scene *sc, const char *text, size_t len, const char *base_dir, wr_diag *diag) {
+    static const char *const keys[] = {"name", "mesh", "material", "energy", "gravity", "ramp_gravity", "boundary",
+                                       "solver", "probes", NULL};
+    static const char *const ekeys[] = {"membrane", "bending", NULL};
+    sc_ctx c;
+    cJSON *root;
+    const cJSON *o, *e;
+    wr_status st = WR_OK;
+    int i;
+    c.diag = diag;
+    wr_scene_defaults(sc);
+    if (!text) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "$: no text");
+    root = cJSON_ParseWithLength(text, len);
+    if (!root) {
+        const char *ep = cJSON_GetErrorPtr();
+        long off = (ep && ep >= text && ep <= text + len) ? (long)(ep - text) : -1;
+        return wr_fail(diag, WR_ERR_PARSE, -1, "$: malformed JSON near byte %ld", off);
+    }
+    if ((st = sc_keys(&c, root, "$", keys)) != WR_OK) goto done;
+    if ((st = sc_str(&c, root, "name", "$", sc->name, sizeof sc->name, 0)) != WR_OK) goto done;
+    o = cJSON_GetObjectItemCaseSensitive(root, "mesh");
+    if (!o) {
+        st = sc_err(&c, "$.mesh", "is required");
+        goto done;
+    }
+    if ((st = sc_parse_mesh(&c, o, base_dir, &sc->mesh)) != WR_OK) goto done;
+    o = cJSON_GetObjectItemCaseSensitive(root, "material");
+    if (!o) {
+        st = sc_err(&c, "$.material", "is required");
+        goto done;
+    }
+    if ((st = sc_parse_material(&c, o, sc)) != WR_OK) goto done;
+    o = cJSON_GetObjectItemCaseSensitive(root, "energy");
+    if (o) {
+        int mem = 0, ben = 0;
+        if ((st = sc_keys(&c, o, "$.energy", ekeys)) != WR_OK) goto done;
+        if ((st = sc_enum(&c, o, "membrane", "$.energy", SC_MEMBRANES, &mem, 0)) != WR_OK) goto done;
+        if ((st = sc_enum(&c, o, "bending", "$.energy", SC_BENDINGS, &ben, 0)) != WR_OK) goto done;
+        sc->shell.membrane = (wr_membrane_model)mem;
+        sc->shell.bending = (wr_bending_model)ben;
+    }
+    if (sc->shell.orthotropic && (sc->shell.membrane == WR_MEMBRANE_TFT || sc->shell.bending == WR_BENDING_QUADRATIC)) {
+        st = sc_err(&c, "$.material.orthotropic", "needs membrane stvk and bending midedge (shell.h)");
+        goto done;
+    }
+    if ((st = sc_vec(&c, root, "gravity", "$", 3, sc->gravity, NULL)) != WR_OK) goto done;
+    if ((st = sc_bool(&c, root, "ramp_gravity", "$", &sc->ramp_gravity)) != WR_OK) goto done;
+    o = cJSON_GetObjectItemCaseSensitive(root, "boundary");
+    if (o) {
+        if (!cJSON_IsArray(o)) {
+            st = sc_err(&c, "$.boundary", "must be an array");
+            goto done;
+        }
+        if (cJSON_GetArraySize(o) > WR_SCENE_MAX_BC) {
+            st = sc_err(&c, "$.boundary", "more than %d sets", WR_SCENE_MAX_BC);
+            goto done;
+        }
+        for (e = o->child, i = 0; e; e = e->next, ++i) {
+            char p[64];
+            snprintf(p, sizeof p, "$.boundary[%d]", i);
+            snprintf(sc->bc[i].name, sizeof sc->bc[i].name, "set%d", i);
+            sc->n_bc = i + 1;
+            if ((st = sc_parse_bc(&c, e, p, &sc->bc[i])) != WR_OK) goto done;
+        }
+    }
+    o = cJSON_GetObjectItemCaseSensitive(root, "solver");
+    if (o && (st = sc_parse_solver(&c, o, sc)) != WR_OK) goto done;
+    o = cJSON_GetObjectItemCaseSensitive(root, "probes");
+    if (o) {
+        if (!cJSON_IsArray(o)) {
+            st = sc_err(&c, "$.probes", "must be an array");
+            goto done;
+        }
+        if (cJSON_GetArraySize(o) > WR_SCENE_MAX_PROBES) {
+            st = sc_err(&c, "$.probes", "more than %d probes", WR_SCENE_MAX_PROBES);
+            goto done;
+        }
+        for (e = o->child, i = 0; e; e = e->next, ++i) {
+            char p[64];
+            snprintf(p, sizeof p, "$.probes[%d]", i);
+            snprintf(sc->probe[i].name, sizeof sc->probe[i].name, "probe%d", i);
+            sc->n_probes = i + 1;
+            if ((st = sc_parse_probe(&c, e, p, &sc->probe[i])) != WR_OK) goto done;
+        }
+    }
+done:
+    cJSON_Delete(root);
+    if (st != WR_OK) wr_scene_free(sc);
+    return st;
+}
+
+wr_status wr_scene_load(wr_scene *sc, const char *path, wr_diag *diag) {
+    FILE *f = fopen(path, "rb");
+    char *buf = NULL, dir[WR_SCENE_PATH_LEN];
+    long n;
+    const char *slash;
+    wr_status st;
+    wr_scene_defaults(sc);
+    if (!f) return wr_fail(diag, WR_ERR_IO, -1, "%s: cannot open (%s)", path, strerror(errno));
+    if (fseek(f, 0, SEEK_END) != 0 || (n = ftell(f)) < 0 || fseek(f, 0, SEEK_SET) != 0) {
+        fclose(f);
+        return wr_fail(diag, WR_ERR_IO, -1, "%s: cannot read", path);
+    }
+    buf = (char *)malloc((size_t)n + 1);
+    if (!buf || fread(buf, 1, (size_t)n, f) != (size_t)n) {
+        free(buf);
+        fclose(f);
+        return wr_fail(diag, WR_ERR_IO, -1, "%s: cannot read", path);
+    }
+    fclose(f);
+    buf[n] = 0;
+    slash = strrchr(path, '/');
+    if (slash && (size_t)(slash - path) < sizeof dir) {
+        memcpy(dir, path, (size_t)(slash - path));
+        dir[slash - path] = 0;
+    } else
+        strcpy(dir, ".");
+    st = wr_scene_parse(sc, buf, (size_t)n, dir, diag);
+    free(buf);
+    return st;
+}
+
+/* ---------------------------------------------------------------------------------------------- */
+/* building                                                                                        */
+
+static double sc_const_sizing(void *user, double x, double y) {
+    (void)x;
+    (void)y;
+    return *(const double *)user;
+}
+
+static wr_status sc_mesh_delaunay(wr_mesh *m, double w, double h, double r, uint64_t seed, wr_diag *diag) {
+    double box[8];
+    wr_poisson_domain dom;
+    wr_poisson_desc pd;
+    wr_poisson_result pr;
+    wr_cdt_input in;
+    wr_cdt_desc cd;
+    wr_cdt_result cr;
+    wr_status st;
+    box[0] = 0.0, box[1] = 0.0, box[2] = w, box[3] = 0.0, box[4] = w, box[5] = h, box[6] = 0.0, box[7] = h;
+    memset(&dom, 0, sizeof dom);
+    memset(&pd, 0, sizeof pd);
+    memset(&in, 0, sizeof in);
+    memset(&cd, 0, sizeof cd);
+    memset(&cr, 0, sizeof cr);
+    dom.outer.xy = box;
+    dom.outer.n = 4;
+    dom.outer.closed = 1;
+    pd.seed = seed;
+    pd.max_points = SC_MAX_VERTICES;
+    st = wr_poisson_sample(&dom, sc_const_sizing, &r, &pd, &pr, diag);
+    if (st != WR_OK) return st;
+    in.points = pr.points;
+    in.n_points = pr.n_points;
+    in.segments = pr.segments;
+    in.n_segments = pr.n_segments;
+    cd.seed = seed;
+    st = wr_cdt_triangulate(&in, &cd, &cr, diag);
+    if (st == WR_OK) st = wr_mesh_create(m, cr.n_points, NULL, cr.points, cr.n_triangles, cr.triangles, diag);
+    wr_cdt_free(&cr);
+    wr_poisson_free(&pr);
+    return st;
+}
+
+static wr_status sc_build_mesh(const wr_scene_mesh *g, wr_mesh *m, wr_diag *diag) {
+    double r = g->resolution;
+    double est = 0.0;
+    switch (g->kind) {
+    case WR_SCENE_MESH_OBJ:
+        return wr_mesh_read_obj(m, g->path, diag);
+    case WR_SCENE_MESH_RECTANGLE: {
+        int32_t nx = g->nx, ny = g->ny;
+        if (nx <= 0) {
+            est = (g->width / r + 1.0) * (g->height / r + 1.0);
+            if (est > SC_MAX_VERTICES) break;
+            nx = (int32_t)fmax(1.0, floor(g->width / r + 0.5));
+            ny = (int32_t)fmax(1.0, floor(g->height / r + 0.5));
+        }
+        return wr_mesh_rectangle(m, g->width, g->height, nx, ny, diag);
+    }
+    case WR_SCENE_MESH_DISK: {
+        est = 3.0 * (g->radius / r) * (g->radius / r + 1.0);
+        if (est > SC_MAX_VERTICES) break;
+        return wr_mesh_disk(m, g->radius, (int32_t)fmax(1.0, floor(g->radius / r + 0.5)), diag);
+    }
+    case WR_SCENE_MESH_CYLINDER: {
+        double nu = fmax(3.0, floor(2.0 * SC_PI * g->radius / r + 0.5)), nh = fmax(1.0, floor(g->height / r + 0.5));
+        est = nu * (nh + 1.0);
+        if (est > SC_MAX_VERTICES) break;
+        return wr_mesh_cylinder_flat(m, g->radius, g->height, (int32_t)nu, (int32_t)nh, diag);
+    }
+    case WR_SCENE_MESH_DELAUNAY_RECTANGLE:
+        est = 1.2 * g->width * g->height / (r * r);
+        if (est > SC_MAX_VERTICES) break;
+        return sc_mesh_delaunay(m, g->width, g->height, r, g->seed, diag);
+    }
+    return wr_fail(diag, WR_ERR_BUDGET, -1, "$.mesh.resolution: %g m would need ~%.3g vertices (limit %d)", r, est,
+                   SC_MAX_VERTICES);
+}
+
+void wr_scene_run_free(wr_scene_run *run) {
+    if (!run) return;
+    wr_shell_free(&run->shell);
+    wr_mesh_free(&run->mesh);
+    free(run->fixed);
+    free(run->bc_of);
+    free(run->x);
+    free(run->target);
+    free(run->steps);
+    memset(run, 0, sizeof *run);
+}
+
+wr_status wr_scene_run_create(wr_scene_run *run, const wr_scene *sc, wr_diag *diag) {
+    wr_status st;
+    int32_t i, b, nv;
+    double t0 = wr_time_seconds();
+    memset(run, 0, sizeof *run);
+    run->sc = sc;
+    if ((st = sc_build_mesh(&sc->mesh, &run->mesh, diag)) != WR_OK) return st;
+    run->t_mesh = wr_time_seconds() - t0;
+    t0 = wr_time_seconds();
+    if ((st = wr_shell_create(&run->shell, &run->mesh, &sc->shell, diag)) != WR_OK) goto fail;
+    nv = run->mesh.nv;
+    run->fixed = (uint8_t *)calloc((size_t)nv, 1);
+    run->bc_of = (int32_t *)malloc(sizeof(int32_t) * (size_t)nv);
+    run->x = (double *)malloc(sizeof(double) * 3 * (size_t)nv);
+    run->target = (double *)malloc(sizeof(double) * 3 * (size_t)nv);
+    run->steps = (wr_scene_step_stats *)calloc((size_t)sc->load_steps, sizeof(wr_scene_step_stats));
+    if (!run->fixed || !run->bc_of || !run->x || !run->target || !run->steps) {
+        st = wr_fail(diag, WR_ERR_NOMEM, -1, "scene: out of memory (%d vertices)", (int)nv);
+        goto fail;
+    }
+    memcpy(run->x, run->mesh.pos, sizeof(double) * 3 * (size_t)nv);
+    for (i = 0; i < nv; ++i) run->bc_of[i] = -1;
+    /* later sets win where they overlap (stated in docs/scene-format.md) */
+    for (b = 0; b < sc->n_bc; ++b) {
+        const wr_scene_bc *B = &sc->bc[b];
+        int32_t hits = 0;
+        if (B->select == WR_SCENE_SELECT_BOX) {
+            for (i = 0; i < nv; ++i) {
+                const double *p = run->mesh.pos + 3 * i;
+                if (p[0] >= B->box_lo[0] && p[0] <= B->box_hi[0] && p[1] >= B->box_lo[1] && p[1] <= B->box_hi[1] &&
+                    p[2] >= B->box_lo[2] && p[2] <= B->box_hi[2]) {
+                    run->bc_of[i] = b;
+                    ++hits;
+                }
+            }
+        } else {
+            for (i = 0; i < B->n_indices; ++i) {
+                if (B->indices[i] >= nv) {
+                    st = wr_fail(diag, WR_ERR_INVALID_ARG, i, "$.boundary[%d].indices[%d]: vertex %d >= %d vertices",
+                                 (int)b, (int)i, (int)B->indices[i], (int)nv);
+                    goto fail;
+                }
+                run->bc_of[B->indices[i]] = b;
+                ++hits;
+            }
+        }
+        if (hits == 0) {
+            st = wr_fail(diag, WR_ERR_INVALID_ARG, b, "$.boundary[%d].box: selects no vertex", (int)b);
+            goto fail;
+        }
+    }
+    for (i = 0; i < nv; ++i)
+        if (run->bc_of[i] >= 0) {
+            run->fixed[i] = 1;
+            run->n_fixed++;
+        }
+    run->t_setup = wr_time_seconds() - t0;
+    return WR_OK;
+fail:
+    wr_scene_run_free(run);
+    return st;
+}
+
+/* Prescribed position of vertex i (set B) at load fraction s (scene.h formula). */
+static void sc_motion(const wr_scene_bc *B, const double *X, double s, double *out) {
+    double d[3], q[3], F[9];
+    int k;
+    F[0] = 1.0 + s * (B->stretch[0] - 1.0), F[1] = s * B->shear[0], F[2] = s * B->shear[1];
+    F[3] = 0.0, F[4] = 1.0 + s * (B->stretch[1] - 1.0), F[5] = s * B->shear[2];
+    F[6] = 0.0, F[7] = 0.0, F[8] = 1.0 + s * (B->stretch[2] - 1.0);
+    for (k = 0; k < 3; ++k) d[k] = X[k] - B->center[k];
+    for (k = 0; k < 3; ++k) q[k] = F[3 * k] * d[0] + F[3 * k + 1] * d[1] + F[3 * k + 2] * d[2];
+    if (B->twist_angle != 0.0) { /* Rodrigues rotation by s·angle about the unit axis */
+        wr_vec3 a = wr_v3_normalized(wr_v3_load(B->twist_axis)), v = wr_v3_load(q);
+        double th = s * B->twist_angle, c = cos(th), sn = sin(th);
+        wr_vec3 r = wr_v3_add(wr_v3_add(wr_v3_scale(v, c), wr_v3_scale(wr_v3_cross(a, v), sn)),
+                              wr_v3_scale(a, wr_v3_dot(a, v) * (1.0 - c)));
+        wr_v3_store(r, q);
+    }
+    for (k = 0; k < 3; ++k) out[k] = B->center[k] + q[k] + s * B->translate[k];
+    if (B->wave_amplitude != 0.0) {
+        double ph = 2.0 * SC_PI * (X[0] * B->wave_along[0] + X[1] * B->wave_along[1] + X[2] * B->wave_along[2]) /
+                        B->wave_length + B->wave_phase;
+        wr_vec3 dir = wr_v3_normalized(wr_v3_load(B->wave_dir));
+        double a = s * B->wave_amplitude * sin(ph);
+        out[0] += a * dir.x, out[1] += a * dir.y, out[2] += a * dir.z;
+    }
+}
+
+/* Solve a small dense system in place (Gaussian elimination, partial pivoting); 0 when singular. */
+static int sc_solve4(double M[16], double r[4]) {
+    int i, j, k;
+    for (k = 0; k < 4; ++k) {
+        int p = k;
+        for (i = k + 1; i < 4; ++i)
+            if (fabs(M[4 * i + k]) > fabs(M[4 * p + k])) p = i;
+        if (!(fabs(M[4 * p + k]) > 0.0)) return 0;
+        if (p != k) {
+            double t;
+            for (j = 0; j < 4; ++j) t = M[4 * k + j], M[4 * k + j] = M[4 * p + j], M[4 * p + j] = t;
+            t = r[k], r[k] = r[p], r[p] = t;
+        }
+        for (i = k + 1; i < 4; ++i) {
+            double f = M[4 * i + k] / M[4 * k + k];
+            for (j = k; j < 4; ++j) M[4 * i + j] -= f * M[4 * k + j];
+            r[i] -= f * r[k];
+        }
+    }
+    for (k = 3; k >= 0; --k) {
+        for (j = k + 1; j < 4; ++j) r[k] -= M[4 * k + j] * r[j];
+        r[k] /= M[4 * k + k];
+    }
+    return 1;
+}
+
+/* Warm start for the next load step: the least-squares affine map taking the prescribed vertices'
+ * current positions to their new targets (regularised towards the identity, SC_AFFINE_REG), applied to
+ * the free vertices. A uniform stretch is then exact for the free interior, so Newton starts close
+ * instead of having to propagate a boundary jump through the whole mesh. */
+static void sc_warm_start(wr_scene_run *run) {
+    int32_t i, nv = run->mesh.nv, k;
+    double M[16], rhs[3][4], spread = 0.0, mean[3] = {0, 0, 0}, cnt = 0.0;
+    for (i = 0; i < nv; ++i)
+        if (run->fixed[i]) {
+            for (k = 0; k < 3; ++k) mean[k] += run->x[3 * i + k];
+            cnt += 1.0;
+        }
+    if (cnt < 1.0) return;
+    for (k = 0; k < 3; ++k) mean[k] /= cnt;
+    for (i = 0; i < nv; ++i)
+        if (run->fixed[i])
+            for (k = 0; k < 3; ++k) spread += (run->x[3 * i + k] - mean[k]) * (run->x[3 * i + k] - mean[k]);
+    spread = fmax(spread, 1e-300);
+    for (k = 0; k < 3; ++k) {
+        int a, b;
+        memset(M, 0, sizeof M);
+        memset(rhs[k], 0, sizeof rhs[k]);
+        for (i = 0; i < nv; ++i)
+            if (run->fixed[i]) {
+                double z[4];
+                z[0] = run->x[3 * i] - mean[0], z[1] = run->x[3 * i + 1] - mean[1], z[2] = run->x[3 * i + 2] - mean[2];
+                z[3] = 1.0;
+                for (a = 0; a < 4; ++a) {
+                    for (b = 0; b < 4; ++b) M[4 * a + b] += z[a] * z[b];
+                    rhs[k][a] += z[a] * (run->target[3 * i + k] - mean[k]);
+                }
+            }
+        for (a = 0; a < 3; ++a) {
+            M[4 * a + a] += SC_AFFINE_REG * spread;
+            rhs[k][a] += SC_AFFINE_REG * spread * (a == k ? 1.0 : 0.0);
+        }
+        if (!sc_solve4(M, rhs[k])) return;
+    }
+    for (i = 0; i < nv; ++i)
+        if (!run->fixed[i]) {
+            double z[3], y[3];
+            for (k = 0; k < 3; ++k) z[k] = run->x[3 * i + k] - mean[k];
+            for (k = 0; k < 3; ++k) y[k] = mean[k] + rhs[k][0] * z[0] + rhs[k][1] * z[1] + rhs[k][2] * z[2] + rhs[k][3];
+            for (k = 0; k < 3; ++k) run->x[3 * i + k] = y[k];
+        }
+}
+
+typedef struct sc_prog {
+    wr_scene_progress_fn fn;
+    void *user;
+    int32_t step, n;
+} sc_prog;
+
+static void sc_progress(void *user, const wr_statics_stats *st) {
+    sc_prog *p = (sc_prog *)user;
+    p->fn(p->user, p->step, p->n, st);
+}
+
+wr_status wr_scene_run_solve(wr_scene_run *run, wr_scene_progress_fn progress, void *user, wr_diag *diag) {
+    const wr_scene *sc = run->sc;
+    int32_t k, i, nv = run->mesh.nv, N = sc->load_steps;
+    wr_status worst = WR_OK;
+    sc_prog pg;
+    double t0 = wr_time_seconds();
+    for (k = 1; k <= N; ++k) {
+        double s = (double)k / N;
+        wr_statics_desc d;
+        wr_scene_step_stats *ss = &run->steps[k - 1];
+        wr_diag dd;
+        memcpy(run->target, run->x, sizeof(double) * 3 * (size_t)nv);
+        for (i = 0; i < nv; ++i)
+            if (run->fixed[i]) sc_motion(&sc->bc[run->bc_of[i]], run->mesh.pos + 3 * i, s, run->target + 3 * i);
+        sc_warm_start(run);
+        memset(&d, 0, sizeof d);
+        d.max_iter = sc->max_iter;
+        d.grad_tol = sc->grad_tol;
+        for (i = 0; i < 3; ++i) d.gravity[i] = sc->gravity[i] * (sc->ramp_gravity ? s : 1.0);
+        d.fixed = run->fixed;
+        d.target = run->target;
+        d.perturb = k == 1 ? sc->perturb : 0.0;
+        d.seed = sc->seed;
+        d.no_projection = sc->hessian == WR_SCENE_HESSIAN_EXACT;
+        d.linear.method = sc->linear;
+        d.linear.rel_tol = sc->linear_tol;
+        if (progress) {
+            pg.fn = progress, pg.user = user, pg.step = k, pg.n = N;
+            d.progress = sc_progress;
+            d.progress_user = &pg;
+        }
+        ss->fraction = s;
+        if (sc->hessian == WR_SCENE_HESSIAN_HYBRID) {
+            /* projected Newton (robust descent away from the flat saddle) to a loose tolerance, then the
+             * exact Hessian (quadratic convergence near the minimum, no per-element eigen-solves) */
+            wr_statics_desc d1 = d;
+            wr_statics_stats s1;
+            d1.no_projection = 0;
+            d1.grad_tol = fmax(SC_HYBRID_SWITCH, d.grad_tol);
+            ss->status = wr_statics_solve(&run->shell, run->x, &d1, &s1, &dd);
+            d.perturb = 0.0;
+            d.no_projection = 1;
+            ss->status = wr_statics_solve(&run->shell, run->x, &d, &ss->st, &dd);
+            ss->st.iterations += s1.iterations;
+            ss->st.linear_iterations += s1.linear_iterations;
+            ss->st.line_search_evals += s1.line_search_evals;
+            ss->st.t_assembly += s1.t_assembly, ss->st.t_projection += s1.t_projection;
+            ss->st.t_linear += s1.t_linear, ss->st.t_line_search += s1.t_line_search, ss->st.t_total += s1.t_total;
+        } else
+            ss->status = wr_statics_solve(&run->shell, run->x, &d, &ss->st, &dd);
+        run->n_steps_done = k;
+        run->newton_iterations += ss->st.iterations;
+        run->linear_iterations += ss->st.linear_iterations;
+        run->t_assembly += ss->st.t_assembly;
+        run->t_projection += ss->st.t_projection;
+        run->t_linear += ss->st.t_linear;
+        run->t_line_search += ss->st.t_line_search;
+        if (ss->status == WR_ERR_NOT_CONVERGED) {
+            /* keep going: later steps often recover; the run reports the status */
+            if (worst == WR_OK) {
+                worst = ss->status;
+                if (diag) *diag = dd;
+            }
+        } else if (ss->status != WR_OK) {
+            if (diag) *diag = dd;
+            run->t_solve = wr_time_seconds() - t0;
+            run->solve_status = ss->status;
+            return ss->status;
+        }
+    }
+    run->t_solve = wr_time_seconds() - t0;
+    run->solve_status = worst;
+    return worst;
+}
+
+wr_status wr_scene_run_probe_samples(const wr_scene_run *run, int32_t i, double *pts, double *vals, double *ds,
+                                     wr_diag *diag) {
+    const wr_scene_probe *P = &run->sc->probe[i];
+    wr_probe pr;
+    double *u;
+    int32_t v, nout = 0, n = P->samples;
+    wr_status st;
+    if ((st = wr_path_segment(P->from, P->to, n, P->closed, pts, ds, diag)) != WR_OK) return st;
+    u = (double *)malloc(sizeof(double) * 3 * (size_t)run->mesh.nv);
+    if (!u) return wr_fail(diag, WR_ERR_NOMEM, -1, "probe: out of memory");
+    for (v = 0; v < 3 * run->mesh.nv; ++v) u[v] = run->x[v] - run->mesh.pos[v];
+    st = wr_probe_create(&pr, &run->mesh, NULL, diag);
+    if (st == WR_OK) {
+        st = wr_probe_sample_dir(&pr, u, P->dir, pts, n, vals, &nout, diag);
+        if (st == WR_OK && nout > 0)
+            st = wr_fail(diag, WR_ERR_GEOMETRY, i, "$.probes[%d]: %d of %d samples fall outside the rest mesh", (int)i,
+                         (int)nout, (int)n);
+        wr_probe_free(&pr);
+    }
+    free(u);
+    return st;
+}
+
+wr_status wr_scene_run_probe(const wr_scene_run *run, int32_t i, wr_spectrum_result *res, wr_diag *diag) {
+    int32_t n = run->sc->probe[i].samples;
+    double *pts = (double *)malloc(sizeof(double) * 2 * (size_t)n), *vals = (double *)malloc(sizeof(double) * (size_t)n);
+    double ds;
+    wr_status st;
+    if (!pts || !vals) {
+        free(pts);
+        free(vals);
+        return wr_fail(diag, WR_ERR_NOMEM, -1, "probe: out of memory");
+    }
+    st = wr_scene_run_probe_samples(run, i, pts, vals, &ds, diag);
+    if (st == WR_OK) st = wr_spectrum_analyze(vals, n, ds, run->sc->probe[i].closed, NULL, res, NULL, 0, diag);
+    free(pts);
+    free(vals);
+    return st;
+}
+
+/* ---------------------------------------------------------------------------------------------- */
+/* output                                                                                          */
+
+static wr_status sc_write_summary(const wr_scene_run *run, const char *path, wr_diag *diag) {
+    const wr_scene *sc = run->sc;
+    cJSON *root = cJSON_CreateObject(), *a, *o;
+    char *txt;
+    wr_afile f;
+    wr_status st;
+    double Em = 0.0, Eb = 0.0, E = 0.0, maxu = 0.0;
+    int32_t i;
+    if (!root) return wr_fail(diag, WR_ERR_NOMEM, -1, "summary: out of memory");
+    wr_shell_energy_parts(&run->shell, run->x, &Em, &Eb, NULL);
+    wr_shell_energy(&run->shell, run->x, &E, NULL, NULL);
+    for (i = 0; i < run->mesh.nv; ++i) {
+        double dx = run->x[3 * i] - run->mesh.pos[3 * i], dy = run->x[3 * i + 1] - run->mesh.pos[3 * i + 1],
+               dz = run->x[3 * i + 2] - run->mesh.pos[3 * i + 2];
+        maxu = fmax(maxu, sqrt(dx * dx + dy * dy + dz * dz));
+    }
+    cJSON_AddStringToObject(root, "scene", sc->name);
+    cJSON_AddStringToObject(root, "mesh_type", wr_scene_mesh_kind_name(sc->mesh.kind));
+    cJSON_AddNumberToObject(root, "vertices", run->mesh.nv);
+    cJSON_AddNumberToObject(root, "faces", run->mesh.nf);
+    cJSON_AddNumberToObject(root, "prescribed_vertices", run->n_fixed);
+    cJSON_AddNumberToObject(root, "thickness_m", run->shell.thickness);
+    cJSON_AddNumberToObject(root, "bending_stiffness_Nm", run->shell.bending_stiffness);
+    cJSON_AddNumberToObject(root, "density_kg_m3", run->shell.density);
+    cJSON_AddStringToObject(root, "status", wr_status_string(run->solve_status));
+    o = cJSON_AddObjectToObject(root, "energy_J");
+    cJSON_AddNumberToObject(o, "shell", E);
+    cJSON_AddNumberToObject(o, "membrane", Em);
+    cJSON_AddNumberToObject(o, "bending", Eb);
+    if (run->n_steps_done > 0) {
+        const wr_statics_stats *last = &run->steps[run->n_steps_done - 1].st;
+        cJSON_AddNumberToObject(o, "total_potential", last->energy);
+        cJSON_AddNumberToObject(root, "final_grad_norm_N", last->grad_norm);
+        cJSON_AddNumberToObject(root, "final_grad_ref_N", last->grad_ref);
+    }
+    cJSON_AddNumberToObject(root, "max_displacement_m", maxu);
+    cJSON_AddNumberToObject(root, "newton_iterations", run->newton_iterations);
+    cJSON_AddNumberToObject(root, "linear_iterations", run->linear_iterations);
+    o = cJSON_AddObjectToObject(root, "timings_s");
+    cJSON_AddNumberToObject(o, "mesh", run->t_mesh);
+    cJSON_AddNumberToObject(o, "setup", run->t_setup);
+    cJSON_AddNumberToObject(o, "solve", run->t_solve);
+    cJSON_AddNumberToObject(o, "assembly", run->t_assembly);
+    cJSON_AddNumberToObject(o, "projection", run->t_projection);
+    cJSON_AddNumberToObject(o, "linear_solve", run->t_linear);
+    cJSON_AddNumberToObject(o, "line_search", run->t_line_search);
+    a = cJSON_AddArrayToObject(root, "load_steps");
+    for (i = 0; i < run->n_steps_done; ++i) {
+        const wr_scene_step_stats *s = &run->steps[i];
+        cJSON *e = cJSON_CreateObject();
+        cJSON_AddNumberToObject(e, "fraction", s->fraction);
+        cJSON_AddStringToObject(e, "status", wr_status_string(s->status));
+        cJSON_AddNumberToObject(e, "iterations", s->st.iterations);
+        cJSON_AddNumberToObject(e, "grad_norm", s->st.grad_norm);
+        cJSON_AddNumberToObject(e, "grad_ref", s->st.grad_ref);
+        cJSON_AddNumberToObject(e, "seconds", s->st.t_total);
+        cJSON_AddItemToArray(a, e);
+    }
+    a = cJSON_AddArrayToObject(root, "probes");
+    for (i = 0; i < sc->n_probes; ++i) {
+        cJSON *e = cJSON_CreateObject();
+        wr_spectrum_result r;
+        wr_diag pd;
+        cJSON_AddStringToObject(e, "name", sc->probe[i].name);
+        if (wr_scene_run_probe(run, i, &r, &pd) == WR_OK) {
+            cJSON_AddNumberToObject(e, "wavelength_m", r.wavelength);
+            cJSON_AddNumberToObject(e, "count", r.count);
+            cJSON_AddNumberToObject(e, "count_rounded", r.count_rounded);
+            cJSON_AddNumberToObject(e, "wavelength_ls_m", r.wavelength_ls);
+            cJSON_AddNumberToObject(e, "zero_crossing_waves", r.zc_waves);
+            cJSON_AddNumberToObject(e, "amplitude_m", r.amplitude_p2p);
+            cJSON_AddNumberToObject(e, "peak_power_fraction", r.peak_power_fraction);
+        } else
+            cJSON_AddStringToObject(e, "error", pd.message);
+        cJSON_AddItemToArray(a, e);
+    }
+    txt = cJSON_Print(root);
+    cJSON_Delete(root);
+    if (!txt) return wr_fail(diag, WR_ERR_NOMEM, -1, "summary: out of memory");
+    st = wr_afile_open(&f, path, diag);
+    if (st == WR_OK) {
+        fputs(txt, f.fp);
+        fputc('\n', f.fp);
+        st = wr_afile_commit(&f, diag);
+    }
+    free(txt);
+    return st;
+}
+
+wr_status wr_scene_run_write(const wr_scene_run *run, const char *dir, wr_diag *diag) {
+    char path[WR_PATH_MAX];
+    wr_mesh m = run->mesh; /* shallow view with pos = deformed */
+    int32_t nv = run->mesh.nv, i, f, k;
+    double *pv[8], *acc, *w;
+    const char *names[8] = {"ux", "uy", "uz", "u_mag", "strain_11", "strain_22", "strain_12", "prescribed"};
+    wr_status st;
+    wr_obj_desc od;
+    if (strlen(dir) + 20 > sizeof path) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "%s: path too long", dir);
+    mkdir(dir, 0777); /* may exist; a real failure shows up when the files are opened */
+    m.pos = run->x;
+    memset(&od, 0, sizeof od);
+    od.comment = run->sc->name;
+    snprintf(path, sizeof path, "%s/deformed.obj", dir);
+    if ((st = wr_mesh_write_obj(&m, path, &od, diag)) != WR_OK) return st;
+    acc = (double *)calloc((size_t)nv * 9, sizeof(double));
+    if (!acc) return wr_fail(diag, WR_ERR_NOMEM, -1, "fields: out of memory");
+    for (k = 0; k < 8; ++k) pv[k] = acc + (size_t)k * nv;
+    w = acc + (size_t)8 * nv;
+    for (i = 0; i < nv; ++i) {
+        double s2 = 0.0;
+        for (k = 0; k < 3; ++k) {
+            pv[k][i] = run->x[3 * i + k] - run->mesh.pos[3 * i + k];
+            s2 += pv[k][i] * pv[k][i];
+        }
+        pv[3][i] = sqrt(s2);
+        pv[7][i] = run->fixed[i] ? 1.0 : 0.0;
+    }
+    /* Green strain per face (rest frame), area-weighted onto vertices */
+    for (f = 0; f < run->mesh.nf; ++f) {
+        double eps[3], A = run->shell.area[f];
+        wr_shell_face_strain(&run->shell, f, run->x, eps);
+        for (k = 0; k < 3; ++k) {
+            int32_t v = run->mesh.faces[3 * f + k];
+            pv[4][v] += A * eps[0], pv[5][v] += A * eps[1], pv[6][v] += A * eps[2];
+            w[v] += A;
+        }
+    }
+    for (i = 0; i < nv; ++i)
+        if (w[i] > 0.0) pv[4][i] /= w[i], pv[5][i] /= w[i], pv[6][i] /= w[i];
+    snprintf(path, sizeof path, "%s/fields.ply", dir);
+    st = wr_mesh_write_ply(&m, path, 8, names, (const double *const *)pv, diag);
+    free(acc);
+    if (st != WR_OK) return st;
+    snprintf(path, sizeof path, "%s/summary.json", dir);
+    return sc_write_summary(run, path, diag);
+}

@@ -1,0 +1,155 @@
+/* scene.h — the JSON scene format of the wrinkle statics drivers (driver-side helper, not a public
+ * wrinkle header; compiled once as drivers/lib/scene.c, linked into every program, needs cJSON).
+ * The format is documented in docs/scene-format.md; examples in examples/scenes/.
+ *
+ * Pipeline (each step fallible, errors as wr_status + wr_diag like the library):
+ *   wr_scene_parse(sc, text, len, base_dir, diag)  JSON text → wr_scene (pure, no file access; the
+ *                                                  fuzz entry point). Errors are WR_ERR_PARSE with a
+ *                                                  one-line message that names the JSON path, e.g.
+ *                                                  "$.material.young: must be a number > 0".
+ *   wr_scene_load(sc, path, diag)                  read a file, then parse (base_dir = its directory)
+ *   wr_scene_run_create(run, sc, diag)             rest mesh, shell, prescribed vertex sets
+ *   wr_scene_run_solve(run, progress, user, diag)  load stepping: step k of N applies fraction k/N of
+ *                                                  every prescribed motion (and of gravity unless
+ *                                                  ramp_gravity is false), Newton to equilibrium
+ *   wr_scene_run_probe(run, i, res, diag)          spectrum of probe i on the current state
+ *   wr_scene_run_write(run, dir, diag)             deformed.obj, fields.ply, summary.json (atomic)
+ *   wr_scene_run_free(run) / wr_scene_free(sc)
+ *
+ * Memory: wr_scene owns its index lists and strings (wr_scene_free); wr_scene_run owns mesh, shell,
+ * state (wr_scene_run_free). Both are safe to free when zeroed or after a failed create/parse.
+ */
+#ifndef WRINKLE_SCENE_H
+#define WRINKLE_SCENE_H
+
+#include "wrinkle/wrinkle.h"
+
+#define WR_SCENE_NAME_LEN 64
+#define WR_SCENE_PATH_LEN 1024
+#define WR_SCENE_MAX_BC 16
+#define WR_SCENE_MAX_PROBES 32
+
+typedef enum wr_scene_mesh_kind {
+    WR_SCENE_MESH_OBJ = 0,
+    WR_SCENE_MESH_RECTANGLE,          /* regular union-jack grid (wr_mesh_rectangle) */
+    WR_SCENE_MESH_DISK,               /* hexagonal rings (wr_mesh_disk) */
+    WR_SCENE_MESH_CYLINDER,           /* closed tube (wr_mesh_cylinder_flat) */
+    WR_SCENE_MESH_DELAUNAY_RECTANGLE  /* Poisson samples (poisson.h) + Delaunay (triangulate.h) */
+} wr_scene_mesh_kind;
+
+typedef struct wr_scene_mesh {
+    wr_scene_mesh_kind kind;
+    char path[WR_SCENE_PATH_LEN]; /* OBJ, resolved against the scene file's directory */
+    double width, height;         /* rectangle / delaunay_rectangle [m]; cylinder height */
+    double radius;                /* disk / cylinder [m] */
+    double resolution;            /* target edge length [m] (generators) */
+    int32_t nx, ny;               /* rectangle: explicit cell counts (override resolution when > 0) */
+    uint64_t seed;                /* delaunay_rectangle sampling seed */
+} wr_scene_mesh;
+
+typedef enum wr_scene_select { WR_SCENE_SELECT_BOX = 0, WR_SCENE_SELECT_INDICES } wr_scene_select;
+
+/* One prescribed vertex set. At load fraction s ∈ [0, 1] a selected vertex with rest position X
+ * (3D, = the mesh's initial positions) is placed at
+ *     p(s) = c + R(s·twist_angle about twist_axis through c) · F(s) · (X − c) + s·translate,
+ *     F(s) = I + s·(F − I),  F = [[sx, γxy, γxz], [0, sy, γyz], [0, 0, sz]]
+ * (stretch = (sx, sy, sz) scale factors, shear = (γxy, γxz, γyz)), c = center. A set with every
+ * motion at its default is a clamp. */
+typedef struct wr_scene_bc {
+    char name[WR_SCENE_NAME_LEN];
+    wr_scene_select select;
+    double box_lo[3], box_hi[3]; /* inclusive box on the initial 3D positions [m] */
+    int32_t *indices;            /* owned */
+    int32_t n_indices;
+    double center[3];
+    double translate[3];
+    double stretch[3];
+    double shear[3];
+    double twist_axis[3];
+    double twist_angle; /* [rad] */
+    /* sinusoidal gather (curtain top edges): adds s·amplitude·sin(2π (X·along)/wavelength + phase)
+     * along `wave_dir` to the prescribed position; amplitude 0 = off */
+    double wave_amplitude, wave_length, wave_phase;
+    double wave_along[3], wave_dir[3];
+} wr_scene_bc;
+
+typedef struct wr_scene_probe {
+    char name[WR_SCENE_NAME_LEN];
+    double from[2], to[2]; /* rest-domain endpoints [m] */
+    int32_t samples;       /* default 512 */
+    double dir[3];         /* displacement component sampled (default (0,0,1)) */
+    int closed;
+} wr_scene_probe;
+
+/* exact: statics.h no_projection (shifted until SPD); projected: per-element PSD projection;
+ * hybrid: projected to a loose tolerance, then exact */
+typedef enum wr_scene_hessian {
+    WR_SCENE_HESSIAN_EXACT = 0,
+    WR_SCENE_HESSIAN_PROJECTED,
+    WR_SCENE_HESSIAN_HYBRID
+} wr_scene_hessian;
+
+typedef struct wr_scene {
+    char name[WR_SCENE_NAME_LEN];
+    wr_scene_mesh mesh;
+    wr_shell_desc shell; /* grain_angle / rest_pos3 unused (NULL) */
+    double areal_density; /* kg/m² as given (0 = not given) */
+    double gravity[3];
+    int ramp_gravity;     /* 1 (default): gravity ramps with the load steps */
+    wr_scene_bc bc[WR_SCENE_MAX_BC];
+    int32_t n_bc;
+    wr_scene_probe probe[WR_SCENE_MAX_PROBES];
+    int32_t n_probes;
+    /* solver */
+    wr_solver_method linear;
+    double linear_tol;
+    double grad_tol;
+    int32_t max_iter; /* Newton steps per load step */
+    int32_t load_steps;
+    double perturb;   /* [m], applied at the first load step */
+    uint64_t seed;
+    wr_scene_hessian hessian;
+} wr_scene;
+
+/* Everything one solve needs and produces. */
+typedef struct wr_scene_step_stats {
+    double fraction;
+    wr_statics_stats st;
+    wr_status status;
+} wr_scene_step_stats;
+
+typedef struct wr_scene_run {
+    const wr_scene *sc;   /* borrowed */
+    wr_mesh mesh;         /* rest mesh; pos = initial (rest) 3D positions */
+    wr_shell shell;
+    uint8_t *fixed;       /* nv */
+    int32_t *bc_of;       /* nv: prescribed set of each vertex, -1 = free */
+    double *x;            /* nv*3 current positions */
+    double *target;       /* nv*3 scratch */
+    int32_t n_fixed;
+    wr_scene_step_stats *steps; /* load_steps */
+    int32_t n_steps_done;
+    double t_mesh, t_setup, t_solve, t_assembly, t_projection, t_linear, t_line_search; /* [s] */
+    int32_t newton_iterations, linear_iterations;
+    wr_status solve_status;
+} wr_scene_run;
+
+typedef void (*wr_scene_progress_fn)(void *user, int32_t step, int32_t n_steps, const wr_statics_stats *st);
+
+void wr_scene_defaults(wr_scene *sc);
+wr_status wr_scene_parse(wr_scene *sc, const char *text, size_t len, const char *base_dir, wr_diag *diag);
+wr_status wr_scene_load(wr_scene *sc, const char *path, wr_diag *diag);
+void wr_scene_free(wr_scene *sc);
+
+wr_status wr_scene_run_create(wr_scene_run *run, const wr_scene *sc, wr_diag *diag);
+wr_status wr_scene_run_solve(wr_scene_run *run, wr_scene_progress_fn progress, void *user, wr_diag *diag);
+wr_status wr_scene_run_probe(const wr_scene_run *run, int32_t i, wr_spectrum_result *res, wr_diag *diag);
+/* Probe samples (n = probe samples) of the displacement component, for plots. */
+wr_status wr_scene_run_probe_samples(const wr_scene_run *run, int32_t i, double *pts, double *vals, double *ds,
+                                     wr_diag *diag);
+wr_status wr_scene_run_write(const wr_scene_run *run, const char *dir, wr_diag *diag);
+void wr_scene_run_free(wr_scene_run *run);
+
+const char *wr_scene_mesh_kind_name(wr_scene_mesh_kind k);
+
+#endif
