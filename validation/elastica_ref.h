@@ -63,6 +63,12 @@
 /* Sub-intervals used to scan for the lower end of the bracket. */
 #define ELASTICA_SCAN 32
 #define ELASTICA_PI 3.14159265358979323846
+/* Drivers usually call only one of the two entry points; keep -Wunused-function quiet. */
+#if defined(__GNUC__) || defined(__clang__)
+#define ELASTICA_MAYBE_UNUSED __attribute__((unused))
+#else
+#define ELASTICA_MAYBE_UNUSED
+#endif
 /* Slack [rad] on the physical-branch check 0 <= φ <= π/2: the clamp angle of a tip-shot solution is
  * off by the shooting residual (~1e-12); loops violate the check by O(1e-3) or more. */
 #define ELASTICA_BRANCH_TOL 1e-9
@@ -439,7 +445,7 @@ static int elastica__solve_tip(double L, double D, double q, double P, int n, do
 #define ELASTICA_CLAMP_MAX_LOAD 50.0
 
 /* method: 0 = automatic, 1 = shoot from the clamp, 2 = shoot from the free end. */
-static int elastica_ref_solve_method(double L, double D, double q, double P, int n, double *x, double *y, double *phi,
+ELASTICA_MAYBE_UNUSED static int elastica_ref_solve_method(double L, double D, double q, double P, int n, double *x, double *y, double *phi,
                                      elastica_ref_result *res, char *err, size_t errlen, int method) {
     gsl_set_error_handler_off();
     if (!(L > 0.0) || !(D > 0.0) || !(q >= 0.0) || !(P >= 0.0) || !isfinite(L) || !isfinite(D) || !isfinite(q) ||
@@ -466,7 +472,7 @@ static int elastica_ref_solve_method(double L, double D, double q, double P, int
     return -1;
 }
 
-static int elastica_ref_solve(double L, double D, double q, double P, int n, double *x, double *y, double *phi,
+ELASTICA_MAYBE_UNUSED static int elastica_ref_solve(double L, double D, double q, double P, int n, double *x, double *y, double *phi,
                               elastica_ref_result *res, char *err, size_t errlen) {
     return elastica_ref_solve_method(L, D, q, P, n, x, y, phi, res, err, errlen, 0);
 }
