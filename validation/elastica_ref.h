@@ -41,6 +41,8 @@
  *   elastica_ref_solve(L, D, q, P, n, x, y, phi, &res, err, errlen)
  *       x, y, phi: n >= 2 samples at s_i = L·i/(n−1) (each may be NULL). Returns 0 on success, −1 on
  *       bad input or non-convergence with a message in err.
+ *   elastica_ref_solve_method(..., method): same, method 0 = automatic, 1 = shoot from the clamp,
+ *       2 = shoot from the free end (tests use it to compare the two).
  *   elastica_ref_result: tip x/y, tip deflection δ, tip angle, clamp curvature φ'(0) [1/m],
  *       κ, β, shooting iterations, final residual.
  */
