@@ -23,3 +23,4 @@
 #include "triangulate.h"
 #include "statics.h"
 #include "wrinkle_field.h"
+#include "mesher.h"
