@@ -174,7 +174,7 @@ wr_status wr_meshout_render_png(const wr_mesher_result *res, const char *png_pat
         gp_quote(fp, title ? title : "sizing map");
         fprintf(fp, "\nset size ratio -1\nset xlabel 'x [mm]'\nset ylabel 'y [mm]'\nset cblabel 'sizing [mm]'\n"
                     "set palette rgbformulae 33,13,10\nset cbrange [%g:%g]\nset xrange [%g:%g]\nset yrange [%g:%g]\n"
-                    "set key off\nset datafile missing 'NaN'\n",
+                    "set key off\n",
                 vmin, vmax, 1e3 * x0 - 1e3 * cell, 1e3 * x1 + 1e3 * cell, 1e3 * y0 - 1e3 * cell,
                 1e3 * y1 + 1e3 * cell);
         fprintf(fp, "plot ");
