@@ -481,14 +481,17 @@ static void count_progress(const wr_wf_iter_info *info, void *user) {
     ++g_progress_calls;
 }
 
-Test(wrinkle_field, sqp_on_compressed_sheet_is_feasible_and_stationary) {
+/* A uniformly compressed flat sheet with a free everywhere has no minimiser: along (s·a, ω/s) the
+ * relief a²|dφ|² is fixed and the bending term a²|dφ|⁴ ∝ 1/s² decays to 0 (this is why the first SQP
+ * test on this case "stalled"). The solver must still keep every iterate feasible and decrease E. */
+Test(wrinkle_field, sqp_on_unbounded_compressed_sheet_stays_feasible) {
     wr_mesh m;
     wr_wf wf;
     wr_wf_material mat;
     wr_wf_solve_desc sd;
     wr_wf_solve_stats ss;
-    double *base, *a, *om, *curl;
-    int32_t v, f;
+    double *base, *a, *om, *curl, *a2, *o2, Eprev = INFINITY, s;
+    int32_t v, f, e;
     wr_status st;
     mat.young = 1e6;
     mat.poisson = 0.5;
@@ -500,20 +503,25 @@ Test(wrinkle_field, sqp_on_compressed_sheet_is_feasible_and_stationary) {
     cr_assert_eq(wr_wf_classify(&wf, NULL), 0);
     a = (double *)malloc(sizeof(double) * m.nv);
     om = (double *)malloc(sizeof(double) * m.ne);
+    a2 = (double *)malloc(sizeof(double) * m.nv);
+    o2 = (double *)malloc(sizeof(double) * m.ne);
     curl = (double *)malloc(sizeof(double) * m.nf);
     cr_assert_eq(wr_wf_init(&wf, NULL, a, om, NULL), WR_OK);
+    for (s = 1.0; s <= 64.0; s *= 2.0) {
+        double E;
+        for (v = 0; v < m.nv; ++v) a2[v] = s * a[v];
+        for (e = 0; e < m.ne; ++e) o2[e] = om[e] / s;
+        cr_assert_eq(wr_wf_energy(&wf, a2, o2, &E, NULL, NULL, NULL, NULL), WR_OK);
+        cr_assert(E < 0.3 * Eprev, "E(s = %g) = %g not < 0.3 E(s/2) = %g", s, E, 0.3 * Eprev);
+        Eprev = E;
+    }
     memset(&sd, 0, sizeof sd);
     sd.progress = count_progress;
-    sd.max_iter = 20; /* convergence on this case is slow (see the report); feasibility is what is checked */
+    sd.max_iter = 20;
     g_progress_calls = 0;
     st = wr_wf_solve(&wf, &sd, a, om, &ss, NULL);
-    cr_log_info("SQP: %d iters, E %g -> %g, KKT %g -> %g, stop %d, %.3f s (assembly %.3f, solve %.3f), n %d",
-                ss.iterations, ss.energy0, ss.energy, ss.kkt0, ss.kkt, (int)ss.stop, ss.seconds, ss.seconds_assembly,
-                ss.seconds_solve, ss.n_vars);
-    cr_assert(st == WR_OK || (st == WR_ERR_NOT_CONVERGED && ss.stop == WR_WF_STOP_MAX_ITER), "status %d stop %d",
-              (int)st, (int)ss.stop);
+    cr_assert(st == WR_ERR_NOT_CONVERGED && ss.stop == WR_WF_STOP_MAX_ITER, "status %d stop %d", (int)st, (int)ss.stop);
     cr_assert(ss.energy < ss.energy0);
-    cr_assert(ss.kkt <= 1e-6 * ss.kkt0 || ss.stop != WR_WF_STOP_KKT);
     cr_assert_eq(g_progress_calls, ss.iterations);
     for (v = 0; v < m.nv; ++v) cr_assert(a[v] >= 0.0);
     wr_wf_curl(&m, om, curl);
@@ -521,7 +529,114 @@ Test(wrinkle_field, sqp_on_compressed_sheet_is_feasible_and_stationary) {
     free(base);
     free(a);
     free(om);
+    free(a2);
+    free(o2);
     free(curl);
+    wr_wf_free(&wf);
+    wr_mesh_free(&m);
+}
+
+/* Regression for the stalled SQP (KKT 1.06e-5 -> 9.0e-6 in 200 iterations): the reduced Hessian
+ * PᵀHP applied face_edge_sign twice (face_hess is already in global ω orientation), so Newton used a
+ * wrong Hessian (19% off in a finite-difference check) and converged linearly at best.
+ * Case: a stretched-sheet-like base (x stretched 10%, width contracted by up to 10% in the middle,
+ * more than the Poisson contraction, so the middle wrinkles), ends clamped (W = end columns). */
+static void stretched_base(const wr_mesh *m, double L, double H, double *base) {
+    int32_t v;
+    for (v = 0; v < m->nv; ++v) {
+        double x = m->pos[3 * v], y = m->pos[3 * v + 1];
+        base[3 * v] = 1.1 * x;
+        base[3 * v + 1] = (y - 0.5 * H) * (1.0 - 0.1 * sin(PI * x / L)) + 0.5 * H;
+        base[3 * v + 2] = 0.0;
+    }
+}
+
+Test(wrinkle_field, sqp_converges_to_kkt_1e8_on_clamped_stretched_sheet) {
+    const double L = 0.25, Hh = 0.1;
+    wr_mesh m;
+    wr_wf wf;
+    wr_wf_material mat;
+    double *base, *a0, *o0, *a, *om, *curl, Eref = 0.0;
+    uint8_t *wfl;
+    int32_t v, f, k, h;
+    static const wr_wf_hessian strat[3] = {WR_WF_HESSIAN_AUTO, WR_WF_HESSIAN_TRUE, WR_WF_HESSIAN_PROJECTED};
+    static const int32_t max_it[3] = {40, 40, 80}; /* measured 24, 26, 62 */
+    mat.young = 1e6;
+    mat.poisson = 0.5;
+    mat.thickness = 1e-4;
+    cr_assert_eq(wr_mesh_rectangle(&m, L, Hh, 12, 5, NULL), WR_OK);
+    base = (double *)malloc(sizeof(double) * 3 * m.nv);
+    stretched_base(&m, L, Hh, base);
+    cr_assert_eq(wr_wf_create(&wf, &m, base, &mat, NULL), WR_OK);
+    wfl = (uint8_t *)calloc((size_t)m.nf, 1);
+    for (f = 0; f < m.nf; ++f) {
+        double cx = 0.0;
+        for (k = 0; k < 3; ++k) cx += m.pos[3 * m.faces[3 * f + k]] / 3.0;
+        wfl[f] = (uint8_t)(cx < 0.02 || cx > L - 0.02);
+    }
+    wr_wf_set_wrinkle_free(&wf, wfl);
+    a0 = (double *)malloc(sizeof(double) * m.nv);
+    o0 = (double *)malloc(sizeof(double) * m.ne);
+    a = (double *)malloc(sizeof(double) * m.nv);
+    om = (double *)malloc(sizeof(double) * m.ne);
+    curl = (double *)malloc(sizeof(double) * m.nf);
+    cr_assert_eq(wr_wf_init(&wf, NULL, a0, o0, NULL), WR_OK);
+    for (h = 0; h < 3; ++h) {
+        wr_wf_solve_desc sd;
+        wr_wf_solve_stats ss;
+        wr_status st;
+        memcpy(a, a0, sizeof(double) * m.nv);
+        memcpy(om, o0, sizeof(double) * m.ne);
+        memset(&sd, 0, sizeof sd);
+        sd.hessian = strat[h];
+        sd.tol_energy = 1e-300; /* only the KKT rule may stop */
+        sd.tol_step = 1e-300;
+        sd.max_iter = 200;
+        sd.progress = count_progress;
+        g_progress_calls = 0;
+        st = wr_wf_solve(&wf, &sd, a, om, &ss, NULL);
+        cr_log_info("SQP strategy %d: %d iters (%d rejected, %d factorisations, true Hessian from %d), E %.10g -> "
+                    "%.10g, KKT %g -> %g, %.3f s",
+                    (int)strat[h], ss.iterations, ss.n_rejected, ss.n_factorizations, ss.switch_iteration, ss.energy0,
+                    ss.energy, ss.kkt0, ss.kkt, ss.seconds);
+        cr_assert_eq(st, WR_OK, "strategy %d: status %d stop %d KKT %g/%g", (int)strat[h], (int)st, (int)ss.stop,
+                     ss.kkt, ss.kkt0);
+        cr_assert_eq(ss.stop, WR_WF_STOP_KKT);
+        cr_assert(ss.kkt <= 1e-8 * ss.kkt0);
+        cr_assert(ss.iterations <= max_it[h], "strategy %d: %d iterations", (int)strat[h], ss.iterations);
+        cr_assert_eq(g_progress_calls, ss.iterations);
+        cr_assert(ss.energy < 0.75 * ss.energy0); /* wrinkling relieves a quarter of the stretching energy */
+        if (h == 0)
+            Eref = ss.energy;
+        else
+            cr_assert(fabs(ss.energy - Eref) <= 1e-9 * Eref, "%.12g vs %.12g", ss.energy, Eref);
+        for (v = 0; v < m.nv; ++v) cr_assert(a[v] >= 0.0);
+        for (f = 0; f < m.nf; ++f)
+            if (wfl[f])
+                for (k = 0; k < 3; ++k) cr_assert_eq(a[m.faces[3 * f + k]], 0.0);
+        wr_wf_curl(&m, om, curl);
+        for (f = 0; f < m.nf; ++f)
+            if (!wfl[f]) cr_assert(fabs(curl[f]) < 1e-9, "curl %g", curl[f]);
+        /* interior amplitude ~1 mm (measured 0.98 mm), zero at the clamps */
+        {
+            double amax = 0.0;
+            for (v = 0; v < m.nv; ++v) amax = fmax(amax, a[v]);
+            cr_assert(amax > 5e-4 && amax < 2e-3, "amax %g", amax);
+        }
+    }
+    {
+        wr_wf_solve_desc sd;
+        memset(&sd, 0, sizeof sd);
+        sd.hessian = (wr_wf_hessian)7;
+        cr_assert_eq(wr_wf_solve(&wf, &sd, a, om, NULL, NULL), WR_ERR_INVALID_ARG);
+    }
+    free(base);
+    free(a0);
+    free(o0);
+    free(a);
+    free(om);
+    free(curl);
+    free(wfl);
     wr_wf_free(&wf);
     wr_mesh_free(&m);
 }
@@ -531,6 +646,7 @@ Test(wrinkle_field, sqp_in_tension_drives_amplitude_to_zero) {
     wr_wf wf;
     wr_wf_material mat = material();
     wr_wf_solve_stats ss;
+    wr_wf_solve_desc sd;
     double *base, *a, *om, E;
     int32_t v;
     cr_assert_eq(wr_mesh_rectangle(&m, 0.1, 0.05, 6, 3, NULL), WR_OK);
@@ -541,7 +657,9 @@ Test(wrinkle_field, sqp_in_tension_drives_amplitude_to_zero) {
     om = (double *)malloc(sizeof(double) * m.ne);
     for (v = 0; v < m.nv; ++v) a[v] = 1e-3;
     omega_linear(&m, 100.0, om);
-    cr_assert_eq(wr_wf_solve(&wf, NULL, a, om, &ss, NULL), WR_OK);
+    memset(&sd, 0, sizeof sd);
+    sd.tol_energy = 1e-300; /* not |ΔE| ∝ a²: the bound must be identified (or E at round-off) */
+    cr_assert_eq(wr_wf_solve(&wf, &sd, a, om, &ss, NULL), WR_OK);
     for (v = 0; v < m.nv; ++v) cr_assert(a[v] >= 0.0 && a[v] < 1e-9, "a[%d] = %g", v, a[v]);
     /* the minimum is the plain base stretching energy */
     {

@@ -66,6 +66,21 @@
  *   - Faces in W contribute nothing (Eq. 37). Their vertices have a = 0 ("force a = 0 on W", Sec.
  *     5.1), and edges touching no face outside W carry no energy and are left untouched.
  *
+ * ON THE SQP SOLVER (App. E.3)
+ *   Unknowns after eliminating dω = 0: y = (free a, z), ω = Z z. Per iteration one sparse Cholesky of
+ *   (PᵀH P + μ M) restricted to the free set, H the per-face Hessians (SPD-projected or true, see
+ *   wr_wf_hessian; AUTO = the paper's switch, at a relative KKT of 1e-2 instead of its ΔE < 1e-8),
+ *   M = max(|diag|, 1e-6 · block mean), μ adapted from ρ = actual/predicted decrease (Nielsen's rule)
+ *   instead of a Moré–Thuente line search; bounds by a projected-Newton ε-active set (ε = 1e-3 a_ref).
+ *   KKT residual: see wr__wf_kkt — nondimensional (a / a_ref, E / E_ref), so its relative tolerance
+ *   means the same on every case. Measured on a 12×5 clamped stretched sheet (tests): 24 (AUTO),
+ *   26 (TRUE), 62 (PROJECTED) accepted steps to KKT < 1e-8 · KKT0. The earlier stall (KKT 1.06e-5 →
+ *   9.0e-6 in 200 iterations) had two causes: the reduced Hessian applied face_edge_sign twice (a
+ *   19% wrong Hessian in a finite-difference check) and the test case itself — a uniformly compressed
+ *   sheet with a free everywhere has no minimiser (E → 0 along (s a, ω/s), s → ∞).
+ *   omega_reg (default 0 = the paper's energy) adds a tiny Tikhonov term on ω; it is not needed for
+ *   convergence and changes the solution, so it is off unless asked for.
+ *
  * ON THREADS
  *   No global state; a wr_wf is read-only after classify/set, so concurrent energy calls are fine.
  */
@@ -152,36 +167,60 @@ WRDEF wr_status wr_wf_init(const wr_wf *wf, const wr_wf_init_desc *desc, double 
 
 typedef enum wr_wf_stop {
     WR_WF_STOP_NONE = 0,
-    WR_WF_STOP_ENERGY,     /* rule 1: |ΔE| <= tol_energy · |E| */
-    WR_WF_STOP_KKT,        /* rule 2: stationarity residual <= tol_kkt · initial residual */
-    WR_WF_STOP_STEP,       /* rule 3: step <= tol_step · |x| (per block: a and ω) */
+    WR_WF_STOP_ENERGY,     /* rule 1: |ΔE| <= tol_energy · |E| on a well-modelled step (ρ > 1/2) */
+    WR_WF_STOP_KKT,        /* rule 2: scaled stationarity residual <= tol_kkt · initial residual */
+    WR_WF_STOP_STEP,       /* rule 3: step <= tol_step · |x| (per block: a and ω), ρ > 1/2 */
     WR_WF_STOP_MAX_ITER,   /* rule 4 (WR_ERR_NOT_CONVERGED) */
-    WR_WF_STOP_LINE_SEARCH /* no decrease along the projected Newton path (WR_ERR_NOT_CONVERGED) */
+    WR_WF_STOP_LINE_SEARCH /* no acceptable step even with damping μ > 1e12 (WR_ERR_NOT_CONVERGED) */
 } wr_wf_stop;
+
+/* App. E.3 Hessian strategy. PROJECTED: per-face SPD projection throughout (robust far from the
+ * solution, but only linearly convergent where the true Hessian has negative face blocks that the
+ * global Hessian does not); TRUE: exact Hessian throughout, indefiniteness handled by the damping;
+ * AUTO: projected until the relative KKT residual drops below hessian_switch, then true. */
+typedef enum wr_wf_hessian {
+    WR_WF_HESSIAN_AUTO = 0,
+    WR_WF_HESSIAN_PROJECTED,
+    WR_WF_HESSIAN_TRUE
+} wr_wf_hessian;
 
 typedef struct wr_wf_iter_info {
     int32_t iteration;
-    double energy, kkt, step, alpha_ls, shift;
-    int32_t n_active;      /* amplitudes held at the bound a = 0 */
+    double energy;   /* after the step [J] */
+    double kkt;      /* scaled stationarity residual before the step (see wr_wf_solve_stats) */
+    double step;     /* max |Δa|/a_ref, |Δz| [rad] */
+    double alpha_ls; /* ρ = actual / predicted decrease of the accepted step */
+    double shift;    /* Marquardt damping μ after the step (relative to |diag K|) */
+    int32_t n_active;   /* amplitudes held at the bound a = 0 */
+    int32_t n_rejected; /* trial steps rejected in this iteration */
+    int32_t true_hessian;
 } wr_wf_iter_info;
 
 /* Defaults (App. E.3, applied relative where the paper's absolute numbers have no units):
- *   max_iter 1000, tol_energy 1e-10, tol_kkt 1e-6, tol_step 1e-10,
- *   solver: WR_SOLVER_AUTO (pcg.h), progress: none. */
+ *   max_iter 1000, tol_energy 1e-10, tol_kkt 1e-8, tol_step 1e-10, hessian AUTO with
+ *   hessian_switch 1e-2, solver: WR_SOLVER_AUTO (pcg.h), progress: none. */
 typedef struct wr_wf_solve_desc {
     int32_t max_iter;
     double tol_energy, tol_kkt, tol_step;
     wr_solver_method solver;
-    void (*progress)(const wr_wf_iter_info *info, void *user); /* called once per iteration */
+    wr_wf_hessian hessian;
+    double hessian_switch; /* relative KKT below which AUTO switches to the true Hessian */
+    double omega_reg;      /* ≥ 0: adds (γ/2) Σ ω_e², γ = omega_reg · E_ref / #edges (see ON THE SQP SOLVER) */
+    void (*progress)(const wr_wf_iter_info *info, void *user); /* called once per accepted step */
     void *user;
 } wr_wf_solve_desc;
 
 typedef struct wr_wf_solve_stats {
-    int32_t iterations;
+    int32_t iterations;     /* accepted steps */
+    int32_t n_rejected;     /* rejected trial steps (each cost one factorisation + one energy) */
+    int32_t n_factorizations;
+    int32_t switch_iteration; /* first iteration with the true Hessian, -1 if never */
     int32_t n_vars;         /* reduced unknowns: free amplitudes + closed-form coordinates */
     int32_t n_generators;   /* cohomology generators of the complex outside W */
-    double energy0, energy;
-    double kkt0, kkt;       /* ||y - P(y - ∇E)||_∞ of the reduced problem (stationarity of Eq. 39) */
+    double energy0, energy; /* objective (E_wf + regulariser) at the start and at the end [J] */
+    double energy_reg;      /* the regulariser's share of energy at the end [J] (0 without omega_reg) */
+    double kkt0, kkt;       /* ||ŷ - P(ŷ - ĝ)||_∞, ŷ = y/s, ĝ = s ∇E / E_ref (stationarity of Eq. 39) */
+    double a_ref, e_ref;    /* scales used: a_ref = max a at the start [m], E_ref = |E| at the start [J] */
     double seconds, seconds_assembly, seconds_solve;
     wr_wf_stop stop;
 } wr_wf_solve_stats;
@@ -189,9 +228,11 @@ typedef struct wr_wf_solve_stats {
 /* App. E.3: min E_wf s.t. a >= 0, dω = 0 on faces outside W. omega is first projected to dω = 0 and a
  * clipped to >= 0 (a = 0 on W vertices). The curl constraints are eliminated exactly by a null-space
  * parametrisation ω = d0 ψ + Σ c_g h_g (tree–cotree over the complex outside W), the bounds by a
- * projected-Newton active set; each step solves one sparse SPD system (per-element SPD projection of
- * the Hessian, plus a diagonal shift that grows until the factorisation succeeds) and is followed by
- * a projected Armijo backtracking line search, so every iterate is feasible. */
+ * projected-Newton ε-active set; each iteration solves (K + μ M) d = -g (one sparse Cholesky), with
+ * K the reduced Hessian (per-face SPD projection or true, see wr_wf_hessian), M = max(|diag K|,
+ * floor) and μ adapted from the ratio of actual to predicted decrease (Levenberg–Marquardt trust
+ * region), so every iterate is feasible and the step turns into full Newton near the solution.
+ * See ON THE SQP SOLVER. */
 WRDEF wr_status wr_wf_solve(const wr_wf *wf, const wr_wf_solve_desc *desc, double *a, double *omega,
                             wr_wf_solve_stats *stats, wr_diag *diag);
 
@@ -259,12 +300,18 @@ extern "C" {
 #define WR__WF_K_MAX 0.01         /* [m] App. E.2: k = min(0.01, 0.1 bbox) */
 #define WR__WF_MAX_ITER 1000      /* App. E.3 rule 4 */
 #define WR__WF_TOL_ENERGY 1e-10   /* App. E.3 rule 1 */
-#define WR__WF_TOL_KKT 1e-6       /* App. E.3 rule 2 */
+#define WR__WF_TOL_KKT 1e-8       /* App. E.3 rule 2 (relative to the initial residual) */
 #define WR__WF_TOL_STEP 1e-10     /* App. E.3 rule 3 */
-#define WR__WF_ARMIJO 1e-4        /* sufficient-decrease constant of the line search */
-#define WR__WF_MAX_BACKTRACK 50   /* halvings before the line search gives up */
-#define WR__WF_SHIFT0 1e-10       /* initial diagonal shift, relative to the block's mean diagonal */
-#define WR__WF_SHIFT_MAX 1e6      /* largest relative shift tried before giving up */
+#define WR__WF_HESSIAN_SWITCH 1e-2 /* AUTO: true Hessian once KKT <= 1e-2 · KKT0 (App. E.3 "near convergence") */
+#define WR__WF_MU0 1e-4           /* initial Marquardt damping μ (relative to |diag K|) */
+#define WR__WF_MU_MIN 1e-12       /* μ floor: keeps K + μM nonsingular in directions E does not see */
+#define WR__WF_MU_MAX 1e12        /* μ beyond which the step is negligible: stop (line-search rule) */
+#define WR__WF_MU_UP 10.0         /* μ growth after a failed (non-SPD) factorisation */
+#define WR__WF_RHO_ACCEPT 1e-4    /* accept a step when actual/predicted decrease > this */
+#define WR__WF_DAMP_FLOOR 1e-6    /* damping diagonal floor, relative to the block's mean |diag K| */
+#define WR__WF_EPS_ACTIVE 1e-3    /* ε of the ε-active set, in units of a_ref: a <= ε a_ref with ∂E/∂a > 0 is put on the bound */
+#define WR__WF_ROUNDOFF 1e-14     /* predicted decrease below this × |E| is below double round-off of E */
+#define WR__WF_AREF_FALLBACK 1e-3 /* a_ref = 1e-3 × bbox diagonal when the start has a = 0 everywhere */
 
 /* Barycentric quadrature points (λ0, λ1, λ2), weight 1/3 each: symmetric degree-2 rule. */
 static const double wr__wf_qp[3][3] = {
@@ -1926,6 +1973,39 @@ static void wr__wf_sqp_tox(const wr_wf *wf, const wr__wf_basis *B, const int32_t
     wr__wf_z_apply(B, y + na, omega);
 }
 
+/* Stationarity of Eq. 39 in nondimensional variables ŷ = y / s (s = a_ref for amplitudes, 1 rad for
+ * the closed-form coordinates) and ĝ = s g / E_ref: ||ŷ - P(ŷ - ĝ)||_∞, P = projection onto a >= 0.
+ * For a free amplitude and for every z coordinate this is |ĝ| (reduced gradient in the null space of
+ * dω = 0); at the bound it is min(ŷ, ĝ) (complementarity). */
+/* Frequency regulariser (γ/2) Σ_active ω_e² (see wr_wf_solve_desc.omega_reg); adds γω to gomega. */
+static double wr__wf_reg(const wr__wf_basis *B, double gamma, const double *omega, double *gomega) {
+    double r = 0.0;
+    int32_t e;
+    if (!(gamma > 0.0)) return 0.0;
+    for (e = 0; e < B->ne; ++e)
+        if (B->eact[e]) {
+            r += 0.5 * gamma * omega[e] * omega[e];
+            if (gomega) gomega[e] += gamma * omega[e];
+        }
+    return r;
+}
+
+static double wr__wf_kkt(const double *y, const double *g, int32_t n, int32_t na, double aref, double eref) {
+    double kkt = 0.0;
+    int32_t i;
+    for (i = 0; i < n; ++i) {
+        double r;
+        if (i < na) {
+            double yh = y[i] / aref, gh = g[i] * aref / eref;
+            r = yh - fmax(0.0, yh - gh);
+        } else {
+            r = g[i] / eref;
+        }
+        kkt = fmax(kkt, fabs(r));
+    }
+    return kkt;
+}
+
 WRDEF wr_status wr_wf_solve(const wr_wf *wf, const wr_wf_solve_desc *desc, double *a, double *omega,
                             wr_wf_solve_stats *stats, wr_diag *diag) {
     wr_wf_solve_desc D;
@@ -1937,12 +2017,15 @@ WRDEF wr_status wr_wf_solve(const wr_wf *wf, const wr_wf_solve_desc *desc, doubl
     wr_spd_desc sd;
     int32_t *avar = NULL, *fstart = NULL, *fcols = NULL, na = 0, n = 0, v, f, i, it;
     double *Pm = NULL, *y = NULL, *yt = NULL, *d = NULL, *g = NULL, *gx = NULL, *H = NULL, *xa = NULL, *xo = NULL,
-           *rhs = NULL;
+           *rhs = NULL, *kmodel = NULL, *mdiag = NULL, *ks = NULL;
+    double aref = 1.0, eref = 1.0, mu, nu_up = 2.0, greg = 0.0;
+    int have_grad = 0, fresh_hess = 0, hess_true = 0;
     uint8_t *zero = NULL, *active = NULL;
     double t0 = wr_time_seconds(), E = 0.0;
     wr_status st = WR_OK;
     int have_solver = 0;
     memset(&S, 0, sizeof S);
+    S.switch_iteration = -1;
     memset(&B, 0, sizeof B);
     memset(&T, 0, sizeof T);
     memset(&K, 0, sizeof K);
@@ -1957,6 +2040,9 @@ WRDEF wr_status wr_wf_solve(const wr_wf *wf, const wr_wf_solve_desc *desc, doubl
     if (!(D.tol_energy > 0.0)) D.tol_energy = WR__WF_TOL_ENERGY;
     if (!(D.tol_kkt > 0.0)) D.tol_kkt = WR__WF_TOL_KKT;
     if (!(D.tol_step > 0.0)) D.tol_step = WR__WF_TOL_STEP;
+    if (!(D.hessian_switch > 0.0)) D.hessian_switch = WR__WF_HESSIAN_SWITCH;
+    if ((int)D.hessian < 0 || (int)D.hessian > (int)WR_WF_HESSIAN_TRUE)
+        return wr_fail(diag, WR_ERR_INVALID_ARG, (int32_t)D.hessian, "wf solve: unknown Hessian strategy %d", (int)D.hessian);
     st = wr__wf_basis_build(wf, &B, diag);
     if (st) return st;
     avar = (int32_t *)wr_alloc_array((size_t)wf->nv, sizeof(int32_t));
@@ -2025,7 +2111,9 @@ WRDEF wr_status wr_wf_solve(const wr_wf *wf, const wr_wf_solve_desc *desc, doubl
                 int32_t cstart = k < 3 ? 0 : B.zstart[idx[k] - wf->nv], cend = k < 3 ? 1 : B.zstart[idx[k] - wf->nv + 1];
                 for (t = cstart; t < cend; ++t) {
                     int32_t col = k < 3 ? avar[idx[k]] : na + B.zcol[t], q;
-                    double val = k < 3 ? 1.0 : sg[k] * B.zval[t];
+                    /* face_hess is already in global ω orientation (wr_wf_energy applies the
+                     * face_edge_sign), so P maps straight to global ω: no sign here. */
+                    double val = k < 3 ? 1.0 : B.zval[t];
                     if (col < 0) continue;
                     for (q = 0; q < mcount; ++q)
                         if (fcols[s0 + q] == col) break;
@@ -2057,21 +2145,52 @@ WRDEF wr_status wr_wf_solve(const wr_wf *wf, const wr_wf_solve_desc *desc, doubl
     st = wr_spd_solver_create(&SV, &K, &sd, diag);
     if (st) goto done;
     have_solver = 1;
-    for (it = 0;; ++it) {
-        double t1 = wr_time_seconds(), kkt = 0.0, shift = WR__WF_SHIFT0, dscale[2] = {0.0, 0.0}, dcount[2] = {0.0, 0.0};
-        double gd = 0.0, Et = 0.0, alpha = 1.0, stepa = 0.0, stepz = 0.0, norma = 0.0, normz = 0.0;
-        int32_t nact = 0, bt;
-        wr_wf_iter_info info;
-        wr__wf_sqp_tox(wf, &B, avar, y, na, xa, xo);
-        st = wr_wf_energy(wf, xa, xo, &E, gx, H, NULL, diag);
-        if (st) goto done;
+    kmodel = (double *)wr_alloc_array((size_t)(K.nnz > 0 ? K.nnz : 1), sizeof(double));
+    mdiag = (double *)wr_alloc_array((size_t)n + 1, sizeof(double));
+    ks = (double *)wr_alloc_array((size_t)n + 1, sizeof(double));
+    if (!kmodel || !mdiag || !ks) {
+        st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf solve: out of memory");
+        goto done;
+    }
+    /* Nondimensionalisation (see ON THE SQP SOLVER): amplitudes in units of a_ref, energy in units
+     * of E_ref; closed-form coordinates are already in radians. */
+    {
+        double amax = 0.0, lo[3], hi[3], diam2 = 0.0;
+        for (i = 0; i < na; ++i) amax = fmax(amax, y[i]);
+        for (i = 0; i < 3; ++i) lo[i] = hi[i] = wf->base[i];
         for (v = 0; v < wf->nv; ++v)
-            if (avar[v] >= 0) g[avar[v]] = gx[v];
-        wr__wf_z_applyT(&B, gx + wf->nv, g + na);
-        for (i = 0; i < n; ++i) {
-            double r = i < na ? y[i] - fmax(0.0, y[i] - g[i]) : g[i]; /* projected gradient */
-            kkt = fmax(kkt, fabs(r));
+            for (i = 0; i < 3; ++i) {
+                lo[i] = fmin(lo[i], wf->base[3 * v + i]);
+                hi[i] = fmax(hi[i], wf->base[3 * v + i]);
+            }
+        for (i = 0; i < 3; ++i) diam2 += (hi[i] - lo[i]) * (hi[i] - lo[i]);
+        aref = amax > 0.0 ? amax : WR__WF_AREF_FALLBACK * sqrt(diam2);
+    }
+    mu = WR__WF_MU0;
+    hess_true = D.hessian == WR_WF_HESSIAN_TRUE;
+    for (it = 0;; ++it) {
+        double t1 = wr_time_seconds(), kkt = 0.0, Et = 0.0, stepa = 0.0, stepz = 0.0, norma = 0.0, normz = 0.0;
+        double pred = 0.0, rho = 0.0, mblock[2] = {0.0, 0.0}, mcount[2] = {0.0, 0.0}, epsact;
+        int32_t nact = 0, nfail = 0, accepted, roundoff = 0;
+        wr_wf_iter_info info;
+        if (!have_grad) {
+            wr__wf_sqp_tox(wf, &B, avar, y, na, xa, xo);
+            st = wr_wf_energy(wf, xa, xo, &E, gx, H, NULL, diag);
+            if (st) goto done;
+            for (v = 0; v < wf->nv; ++v)
+                if (avar[v] >= 0) g[avar[v]] = gx[v];
+            if (it == 0) {
+                int32_t nact_e = 0;
+                eref = fabs(E) > 0.0 ? fabs(E) : 1.0;
+                for (i = 0; i < wf->ne; ++i) nact_e += B.eact[i];
+                greg = D.omega_reg > 0.0 && nact_e > 0 ? D.omega_reg * eref / nact_e : 0.0;
+            }
+            E += wr__wf_reg(&B, greg, xo, gx + wf->nv);
+            wr__wf_z_applyT(&B, gx + wf->nv, g + na);
+            have_grad = 1;
+            fresh_hess = 1;
         }
+        kkt = wr__wf_kkt(y, g, n, na, aref, eref);
         if (it == 0) {
             S.energy0 = E;
             S.kkt0 = kkt;
@@ -2087,96 +2206,145 @@ WRDEF wr_status wr_wf_solve(const wr_wf *wf, const wr_wf_solve_desc *desc, doubl
             S.stop = WR_WF_STOP_MAX_ITER;
             break;
         }
-        /* Hessian: per-face SPD projection (App. E.3, first method), reduced by P */
-        wr_csr_zero_values(&K);
-        for (f = 0; f < wf->nf; ++f) {
-            int32_t s0 = fstart[f], m = fstart[f + 1] - s0, r, c, k, l;
-            double *He = H + 36 * (size_t)f, Ke[WR_DENSE_MAX * WR_DENSE_MAX];
-            if (wf->wfree[f]) continue;
-            wr_dense_project_spd(6, He, 0.0);
-            if (m > WR_DENSE_MAX) {
-                st = wr_fail(diag, WR_ERR_BUDGET, f, "wf solve: face %d couples %d unknowns (> %d)", (int)f, (int)m, WR_DENSE_MAX);
-                goto done;
-            }
-            for (r = 0; r < m; ++r)
-                for (c = 0; c < m; ++c) {
-                    double s = 0.0;
-                    const double *pr = Pm + 6 * (size_t)(s0 + r), *pc = Pm + 6 * (size_t)(s0 + c);
-                    for (k = 0; k < 6; ++k) {
-                        if (pr[k] == 0.0) continue;
-                        for (l = 0; l < 6; ++l) s += pr[k] * He[6 * k + l] * pc[l];
-                    }
-                    Ke[r * m + c] = s;
+        /* App. E.3 Hessian strategy: per-face SPD projection far from the solution, the true Hessian
+         * once the relative KKT residual is below hessian_switch (AUTO), or one of them throughout. */
+        if (D.hessian == WR_WF_HESSIAN_AUTO && !hess_true && kkt <= D.hessian_switch * S.kkt0) hess_true = 1;
+        if (fresh_hess) {
+            wr_csr_zero_values(&K);
+            for (f = 0; f < wf->nf; ++f) {
+                int32_t s0 = fstart[f], m = fstart[f + 1] - s0, r, c, k, l;
+                double He[36], Ke[WR_DENSE_MAX * WR_DENSE_MAX];
+                if (wf->wfree[f]) continue;
+                memcpy(He, H + 36 * (size_t)f, sizeof He);
+                if (!hess_true) wr_dense_project_spd(6, He, 0.0);
+                if (m > WR_DENSE_MAX) {
+                    st = wr_fail(diag, WR_ERR_BUDGET, f, "wf solve: face %d couples %d unknowns (> %d)", (int)f, (int)m,
+                                 WR_DENSE_MAX);
+                    goto done;
                 }
-            st = wr_csr_add_element(&K, m, fcols + s0, Ke, diag);
-            if (st) goto done;
+                for (r = 0; r < m; ++r)
+                    for (c = 0; c < m; ++c) {
+                        double s = 0.0;
+                        const double *pr = Pm + 6 * (size_t)(s0 + r), *pc = Pm + 6 * (size_t)(s0 + c);
+                        for (k = 0; k < 6; ++k) {
+                            if (pr[k] == 0.0) continue;
+                            for (l = 0; l < 6; ++l) s += pr[k] * He[6 * k + l] * pc[l];
+                        }
+                        Ke[r * m + c] = s;
+                    }
+                st = wr_csr_add_element(&K, m, fcols + s0, Ke, diag);
+                if (st) goto done;
+            }
+            if (greg > 0.0) {
+                int32_t e;
+                for (e = 0; e < wf->ne; ++e) {
+                    int32_t s0 = B.zstart[e], nz = B.zstart[e + 1] - s0, r, c;
+                    if (!B.eact[e]) continue;
+                    for (r = 0; r < nz; ++r)
+                        for (c = 0; c < nz; ++c) {
+                            st = wr_csr_add(&K, na + B.zcol[s0 + r], na + B.zcol[s0 + c],
+                                            greg * B.zval[s0 + r] * B.zval[s0 + c], diag);
+                            if (st) goto done;
+                        }
+                }
+            }
+            memcpy(kmodel, K.val, sizeof(double) * (size_t)K.nnz);
+            fresh_hess = 0;
         }
-        /* active bounds (projected Newton, Bertsekas 1982): a at 0 with the gradient pushing down */
+        /* ε-active set (Bertsekas 1982 projected Newton): amplitudes within eps of the bound whose
+         * scaled gradient pushes them down are held and moved to the bound. */
+        epsact = WR__WF_EPS_ACTIVE;
         for (i = 0; i < n; ++i) {
-            active[i] = (uint8_t)(i < na && y[i] <= 0.0 && g[i] > 0.0);
+            active[i] = (uint8_t)(i < na && y[i] / aref <= epsact && g[i] > 0.0);
             nact += active[i];
         }
+        /* Marquardt damping matrix: |diag| of the model Hessian, floored per block (a, z) so that
+         * directions the energy does not see (ω where a = 0) still get a finite, tiny step. */
         for (i = 0; i < n; ++i) {
             int32_t p = wr_csr_find(&K, i, i);
-            if (!active[i] && p >= 0) {
-                dscale[i < na ? 0 : 1] += K.val[p];
-                dcount[i < na ? 0 : 1] += 1.0;
-            }
+            mdiag[i] = p >= 0 ? fabs(kmodel[p]) : 0.0;
+            mblock[i < na ? 0 : 1] += mdiag[i];
+            mcount[i < na ? 0 : 1] += 1.0;
         }
-        for (i = 0; i < 2; ++i) dscale[i] = dcount[i] > 0.0 && dscale[i] > 0.0 ? dscale[i] / dcount[i] : 1.0;
-        for (i = 0; i < n; ++i) {
-            int32_t t;
-            if (!active[i]) continue;
-            for (t = K.rowptr[i]; t < K.rowptr[i + 1]; ++t) K.val[t] = K.col[t] == i ? 1.0 : 0.0;
-        }
-        for (i = 0; i < n; ++i) {
-            int32_t t;
-            for (t = K.rowptr[i]; t < K.rowptr[i + 1]; ++t)
-                if (active[K.col[t]] && K.col[t] != i) K.val[t] = 0.0;
-            rhs[i] = active[i] ? 0.0 : -g[i];
-        }
+        for (i = 0; i < 2; ++i) mblock[i] = mcount[i] > 0.0 && mblock[i] > 0.0 ? mblock[i] / mcount[i] : 1.0;
+        for (i = 0; i < n; ++i) mdiag[i] = fmax(mdiag[i], WR__WF_DAMP_FLOOR * mblock[i < na ? 0 : 1]);
         S.seconds_assembly += wr_time_seconds() - t1;
-        t1 = wr_time_seconds();
-        /* diagonal shift that grows until the factorisation succeeds (App. E.3, second method) */
+        /* Levenberg–Marquardt trust region: solve (K + μ M) d = -g on the free set, try the projected
+         * point, accept on sufficient actual/predicted decrease, adapt μ (Nielsen 1999). */
+        accepted = 0;
         for (;;) {
             wr_spd_stats ss;
             wr_status fs;
-            for (i = 0; i < n; ++i)
-                if (!active[i]) wr_csr_add(&K, i, i, shift * dscale[i < na ? 0 : 1], NULL);
-            for (i = 0; i < n; ++i) d[i] = 0.0;
+            t1 = wr_time_seconds();
+            memcpy(K.val, kmodel, sizeof(double) * (size_t)K.nnz);
+            for (i = 0; i < n; ++i) {
+                int32_t t;
+                for (t = K.rowptr[i]; t < K.rowptr[i + 1]; ++t) {
+                    if (active[i] || active[K.col[t]])
+                        K.val[t] = (K.col[t] == i) ? 1.0 : 0.0;
+                    else if (K.col[t] == i)
+                        K.val[t] += mu * mdiag[i];
+                }
+                rhs[i] = active[i] ? 0.0 : -g[i];
+                d[i] = 0.0;
+            }
             fs = wr_spd_solver_factor(&SV, &K, NULL);
             if (!fs) fs = wr_spd_solver_solve(&SV, &K, rhs, d, &ss, NULL);
-            for (i = 0; i < n; ++i)
-                if (!active[i]) wr_csr_add(&K, i, i, -shift * dscale[i < na ? 0 : 1], NULL);
-            if (!fs) break;
-            if (fs != WR_ERR_NOT_SPD && fs != WR_ERR_NOT_CONVERGED) {
-                st = wr_fail(diag, fs, -1, "wf solve: linear solve failed (%s)", wr_status_string(fs));
-                goto done;
+            S.n_factorizations++;
+            S.seconds_solve += wr_time_seconds() - t1;
+            if (fs) {
+                if (fs != WR_ERR_NOT_SPD && fs != WR_ERR_NOT_CONVERGED) {
+                    st = wr_fail(diag, fs, -1, "wf solve: linear solve failed (%s)", wr_status_string(fs));
+                    goto done;
+                }
+                mu = fmax(WR__WF_MU_MIN, mu) * WR__WF_MU_UP;
+                if (mu > WR__WF_MU_MAX) break;
+                continue;
             }
-            shift *= 100.0;
-            if (shift > WR__WF_SHIFT_MAX) {
-                st = wr_fail(diag, WR_ERR_NOT_SPD, -1, "wf solve: Hessian not SPD even with shift %g", shift);
-                goto done;
-            }
-        }
-        for (i = 0; i < n; ++i)
-            if (active[i]) d[i] = -y[i]; /* stay on the bound */
-        S.seconds_solve += wr_time_seconds() - t1;
-        /* projected Armijo backtracking: every trial point is feasible */
-        for (bt = 0; bt < WR__WF_MAX_BACKTRACK; ++bt) {
-            gd = 0.0;
             for (i = 0; i < n; ++i) {
-                yt[i] = y[i] + alpha * d[i];
+                if (active[i]) d[i] = -y[i]; /* onto the bound */
+                yt[i] = y[i] + d[i];
                 if (i < na && yt[i] < 0.0) yt[i] = 0.0;
-                gd += g[i] * (yt[i] - y[i]);
+                d[i] = yt[i] - y[i]; /* the projected step s */
+            }
+            /* model decrease of the projected step: -(gᵀs + ½ sᵀ K s) with the undamped model K */
+            pred = 0.0;
+            for (i = 0; i < n; ++i) {
+                int32_t t;
+                double r = 0.0;
+                for (t = K.rowptr[i]; t < K.rowptr[i + 1]; ++t) r += kmodel[t] * d[K.col[t]];
+                ks[i] = r;
+                pred -= d[i] * (g[i] + 0.5 * r);
             }
             wr__wf_sqp_tox(wf, &B, avar, yt, na, xa, xo);
-            st = wr_wf_energy(wf, xa, xo, &Et, NULL, NULL, NULL, NULL);
-            if (st == WR_OK && Et <= E + WR__WF_ARMIJO * gd && gd <= 0.0) break;
-            st = WR_OK;
-            alpha *= 0.5;
+            fs = wr_wf_energy(wf, xa, xo, &Et, NULL, NULL, NULL, NULL);
+            Et += wr__wf_reg(&B, greg, xo, NULL);
+            rho = (fs == WR_OK && pred > 0.0) ? (E - Et) / pred : -1.0;
+            if (fs == WR_OK && pred > 0.0 && rho > WR__WF_RHO_ACCEPT) {
+                double c3 = 2.0 * rho - 1.0;
+                mu *= fmax(1.0 / 3.0, 1.0 - c3 * c3 * c3);
+                if (mu < WR__WF_MU_MIN) mu = WR__WF_MU_MIN;
+                nu_up = 2.0;
+                accepted = 1;
+                break;
+            }
+            /* the model promises less than the energy's round-off: no evaluation can confirm a
+             * decrease any more, so rule 1 (energy change below resolution) holds */
+            if (fs == WR_OK && pred >= 0.0 && pred <= WR__WF_ROUNDOFF * fabs(E)) {
+                roundoff = 1;
+                break;
+            }
+            ++S.n_rejected;
+            ++nfail;
+            mu = fmax(WR__WF_MU_MIN, mu) * nu_up;
+            nu_up *= 2.0;
+            if (mu > WR__WF_MU_MAX) break;
         }
-        if (bt == WR__WF_MAX_BACKTRACK) {
+        if (roundoff) {
+            S.stop = WR_WF_STOP_ENERGY;
+            break;
+        }
+        if (!accepted) {
             S.stop = WR_WF_STOP_LINE_SEARCH;
             break;
         }
@@ -2194,35 +2362,45 @@ WRDEF wr_status wr_wf_solve(const wr_wf *wf, const wr_wf_solve_desc *desc, doubl
         info.iteration = it + 1;
         info.energy = Et;
         info.kkt = kkt;
-        info.step = fmax(stepa, stepz);
-        info.alpha_ls = alpha;
-        info.shift = shift;
+        info.step = fmax(stepa / aref, stepz);
+        info.alpha_ls = rho;
+        info.shift = mu;
         info.n_active = nact;
+        info.n_rejected = nfail;
+        info.true_hessian = hess_true;
         if (D.progress) D.progress(&info, D.user);
         S.iterations = it + 1;
-        S.energy = Et;
-        if (fabs(E - Et) <= D.tol_energy * fabs(E)) {
+        if (hess_true && S.switch_iteration < 0) S.switch_iteration = it;
+        have_grad = 0;
+        /* rules 1 and 3 only count a step the quadratic model predicted well (ρ > 1/2): a heavily
+         * damped step is short and changes E little without the iterate being stationary. */
+        if (rho > 0.5 && fabs(E - Et) <= D.tol_energy * fabs(E)) {
+            E = Et;
+            S.energy = Et;
             S.stop = WR_WF_STOP_ENERGY;
             break;
         }
-        if (stepa <= D.tol_step * norma && stepz <= D.tol_step * normz) {
+        if (rho > 0.5 && stepa <= D.tol_step * norma && stepz <= D.tol_step * normz) {
+            S.energy = Et;
             S.stop = WR_WF_STOP_STEP;
             break;
         }
+        E = Et;
+        S.energy = Et;
     }
     /* final residual at the returned iterate */
     wr__wf_sqp_tox(wf, &B, avar, y, na, xa, xo);
     st = wr_wf_energy(wf, xa, xo, &E, gx, NULL, NULL, diag);
     if (st) goto done;
-    {
-        double kkt = 0.0;
-        for (v = 0; v < wf->nv; ++v)
-            if (avar[v] >= 0) g[avar[v]] = gx[v];
-        wr__wf_z_applyT(&B, gx + wf->nv, g + na);
-        for (i = 0; i < n; ++i) kkt = fmax(kkt, fabs(i < na ? y[i] - fmax(0.0, y[i] - g[i]) : g[i]));
-        S.kkt = kkt;
-        S.energy = E;
-    }
+    S.energy_reg = wr__wf_reg(&B, greg, xo, gx + wf->nv);
+    E += S.energy_reg;
+    for (v = 0; v < wf->nv; ++v)
+        if (avar[v] >= 0) g[avar[v]] = gx[v];
+    wr__wf_z_applyT(&B, gx + wf->nv, g + na);
+    S.kkt = wr__wf_kkt(y, g, n, na, aref, eref);
+    S.energy = E;
+    S.a_ref = aref;
+    S.e_ref = eref;
     for (v = 0; v < wf->nv; ++v) a[v] = xa[v];
     for (i = 0; i < wf->ne; ++i) omega[i] = xo[i];
     if (S.stop == WR_WF_STOP_MAX_ITER || S.stop == WR_WF_STOP_LINE_SEARCH)
@@ -2249,6 +2427,9 @@ done:
     wr_free(xo);
     wr_free(rhs);
     wr_free(active);
+    wr_free(kmodel);
+    wr_free(mdiag);
+    wr_free(ks);
     return st;
 }
 
