@@ -609,9 +609,19 @@ Test(triangulate, check_detects_corruption) {
     r.neighbors[0] = -1 - (tmp < 0);
     cr_assert_neq(wr_cdt_check(&r, 0, NULL, &dg), WR_OK);
     r.neighbors[0] = tmp;
-    /* a missing segment: drop every constrained mark of segment 1 */
+    /* a mesh edge that lost its constraint mark */
     for (t = 0; t < 3 * r.n_triangles; ++t)
         if (r.edge_segment[t] == 1) r.edge_segment[t] = -1;
+    cr_assert_eq(wr_cdt_check(&r, 0, NULL, &dg), WR_ERR_GEOMETRY);
+    cr_assert(strstr(dg.message, "segment 1") != NULL, "%s", dg.message);
+    /* a missing segment: neither the mesh nor the subsegment list has segment 1 any more */
+    for (t = 0, k = 0; t < r.n_segments; ++t)
+        if (r.segment_id[t] != 1) {
+            r.segments[2 * k] = r.segments[2 * t];
+            r.segments[2 * k + 1] = r.segments[2 * t + 1];
+            r.segment_id[k++] = r.segment_id[t];
+        }
+    r.n_segments = k;
     cr_assert_eq(wr_cdt_check(&r, 0, NULL, &dg), WR_ERR_GEOMETRY);
     cr_assert(strstr(dg.message, "input segment 1") != NULL, "%s", dg.message);
     wr_cdt_free(&r);
@@ -638,7 +648,11 @@ Test(triangulate, non_delaunay_detected_by_check) {
         wr_status s = wr_cdt_check(&r, -1, NULL, &dg);
         int inc = wr_incircle(pts, pts + 2, pts + 4, pts + 6) > 0;
         cr_assert_eq(s, inc ? WR_ERR_GEOMETRY : WR_OK, "%s", dg.message);
-        es[1] = es[5] = 3; /* constrained: then it is allowed */
+        int32_t sub[2] = {0, 2}, sid = 3;
+        es[1] = es[5] = 3; /* constrained (and listed as a subsegment): then it is allowed */
+        r.segments = sub;
+        r.segment_id = &sid;
+        r.n_segments = 1;
         cr_assert_eq(wr_cdt_check(&r, -1, NULL, &dg), WR_OK, "%s", dg.message);
     }
 }
@@ -737,4 +751,71 @@ Test(triangulate, poly_read_file) {
     wr_cdt_poly_free(&P);
     remove(path);
     cr_assert_eq(wr_cdt_poly_read("/nonexistent/x.poly", &P, &dg), WR_ERR_IO);
+}
+
+/* stress: random crossing segments split at their intersections, on top of random points */
+Test(triangulate, random_segments_split_stress) {
+    int seed;
+    for (seed = 1; seed <= 4; ++seed) {
+        int32_t n = 300, m = 40, i;
+        double *p = (double *)malloc(sizeof(double) * 2 * (size_t)n);
+        int32_t *seg = (int32_t *)malloc(sizeof(int32_t) * 2 * (size_t)m);
+        wr_rng rng;
+        wr_cdt_desc d;
+        wr_cdt_result r;
+        wr_diag dg;
+        wr_rng_seed(&rng, (uint64_t)(100 + seed));
+        for (i = 0; i < 2 * n; ++i) p[i] = wr_rng_uniform(&rng);
+        for (i = 0; i < m; ++i) {
+            seg[2 * i] = (int32_t)wr_rng_below(&rng, (uint32_t)n);
+            do
+                seg[2 * i + 1] = (int32_t)wr_rng_below(&rng, (uint32_t)n);
+            while (seg[2 * i + 1] == seg[2 * i]);
+        }
+        memset(&d, 0, sizeof d);
+        d.split_intersections = 1;
+        cr_assert_eq(tri(p, n, seg, m, NULL, 0, &d, &r, &dg), WR_OK, "seed %d: %s", seed, dg.message);
+        check_ok(&r, -1, NULL);
+        cr_assert_gt(r.n_steiner, 20);
+        wr_cdt_free(&r);
+        d.quality = 1; /* and refined on top: many tiny angles at the crossings */
+        d.min_angle_deg = 20.0;
+        {
+            wr_status s = tri(p, n, seg, m, NULL, 0, &d, &r, &dg);
+            cr_assert(s == WR_OK || s == WR_ERR_BUDGET, "seed %d: %s", seed, dg.message);
+            check_ok(&r, -1, NULL);
+            wr_cdt_free(&r);
+        }
+        free(p);
+        free(seg);
+    }
+}
+
+/* grid points with segments along rows, columns and diagonals: every segment runs through many
+ * vertices exactly, and the diagonals cross rows at vertices (not a geometric crossing) */
+Test(triangulate, grid_segments_through_vertices) {
+    int32_t g = 21, n = g * g, i, m = 0;
+    double *p = (double *)malloc(sizeof(double) * 2 * (size_t)n);
+    int32_t seg[2 * 8];
+    wr_cdt_result r;
+    wr_diag dg;
+    wr_cdt_check_info info;
+    for (i = 0; i < n; ++i) { /* binary fractions: the anti-diagonal x + y = 1.25 is exact */
+        p[2 * i] = 0.0625 * (i % g);
+        p[2 * i + 1] = 0.0625 * (i / g);
+    }
+    seg[2 * m] = 0; seg[2 * m + 1] = g - 1; ++m;                 /* bottom row */
+    seg[2 * m] = g - 1; seg[2 * m + 1] = n - 1; ++m;             /* right column */
+    seg[2 * m] = n - 1; seg[2 * m + 1] = n - g; ++m;             /* top row */
+    seg[2 * m] = n - g; seg[2 * m + 1] = 0; ++m;                 /* left column */
+    seg[2 * m] = 0; seg[2 * m + 1] = n - 1; ++m;                 /* main diagonal */
+    seg[2 * m] = g - 1; seg[2 * m + 1] = n - g; ++m;             /* anti-diagonal, crosses at the centre vertex */
+    seg[2 * m] = 10 * g; seg[2 * m + 1] = 10 * g + g - 1; ++m;   /* middle row through the centre */
+    cr_assert_eq(tri(p, n, seg, m, NULL, 0, NULL, &r, &dg), WR_OK, "%s", dg.message);
+    check_ok(&r, 0, &info);
+    cr_assert_eq(r.n_steiner, 0);
+    cr_assert_eq(r.n_segments, 4 * (g - 1) + 3 * (g - 1), "%d subsegments", r.n_segments);
+    cr_assert_eq(r.n_triangles, 2 * (g - 1) * (g - 1));
+    free(p);
+    wr_cdt_free(&r);
 }

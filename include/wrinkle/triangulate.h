@@ -132,7 +132,8 @@ typedef struct wr_cdt_result {
     int32_t n_triangles;
     int32_t *neighbors;      /* n_triangles × 3: triangle across edge opposite corner k, or -1 */
     int32_t *edge_segment;   /* n_triangles × 3: input segment containing that edge, or -1 */
-    int32_t *segments;       /* n_segments × 2: output edges lying on input segments (subsegments) */
+    int32_t *segments;       /* n_segments × 2: subsegments (pieces of input segments), including
+                              * pieces that only bounded removed triangles (exterior or holes) */
     int32_t *segment_id;     /* n_segments: which input segment each subsegment belongs to */
     int32_t n_segments;
     int32_t *input_segments; /* n_input_segments × 2: the input segments in output vertex numbers */
@@ -161,7 +162,9 @@ typedef struct wr_cdt_check_info {
 
 /* Verifies with exact predicates: indices in range, every triangle strictly CCW, neighbor symmetry
  * (and equal edge_segment on both sides), every unconstrained interior edge locally Delaunay
- * (incircle <= 0), every input segment present as a chain of output edges, Euler characteristic
+ * (incircle <= 0), every input segment present as a chain of subsegments, every constrained mesh
+ * edge listed as a subsegment and — unless the exterior was carved — every subsegment between used
+ * vertices present as a constrained mesh edge, Euler characteristic
  * V - E + F == 2·components - boundary_loops, and, when expected_holes >= 0, that the number of
  * holes (boundary_loops - components) equals it. info may be NULL. WR_ERR_TOPOLOGY /
  * WR_ERR_GEOMETRY name the first failing triangle or segment. */
@@ -824,17 +827,20 @@ static int32_t wr__find_edge(const wr__cdt *S, int32_t u, int32_t v) {
     return -1;
 }
 
-/* ---- insertion order: BRIO rounds (Amenta–Choi–Rote), each round in Hilbert-curve order ---- */
-static uint32_t wr__hilbert_key(uint32_t x, uint32_t y) { /* 16-bit x, y -> 32-bit curve index */
-    uint32_t d = 0, s, rx, ry, t, n = 65536u;
-    for (s = n / 2; s > 0; s /= 2) {
+/* ---- insertion order: BRIO rounds (Amenta–Choi–Rote), each round in Hilbert-curve order ----
+ * A point joins the last round with probability 1/2, the one before with 1/4, ... (the randomness
+ * that bounds the expected work); within a round points follow a Hilbert curve on a grid of about
+ * 4n..16n cells (short walks). One radix sort on (round, curve index) does both. */
+static uint32_t wr__hilbert_key(uint32_t x, uint32_t y, uint32_t side) { /* x, y < side = 2^levels */
+    uint32_t d = 0, s, rx, ry, t;
+    for (s = side / 2; s > 0; s /= 2) {
         rx = (x & s) ? 1u : 0u;
         ry = (y & s) ? 1u : 0u;
         d += s * s * ((3u * rx) ^ ry);
         if (ry == 0) {
             if (rx == 1) {
-                x = n - 1 - x;
-                y = n - 1 - y;
+                x = side - 1 - x;
+                y = side - 1 - y;
             }
             t = x;
             x = y;
@@ -844,33 +850,53 @@ static uint32_t wr__hilbert_key(uint32_t x, uint32_t y) { /* 16-bit x, y -> 32-b
     return d;
 }
 
-/* Stable LSD radix sort of idx[0..n) by key[idx[i]] (4 passes of 8 bits). */
-static void wr__radix_sort(const uint32_t *key, int32_t *idx, int32_t *tmp, int32_t n) {
-    int pass;
-    for (pass = 0; pass < 4; ++pass) {
+/* Stable LSD radix sort of idx[0..n) by key[i] (parallel arrays), `bits` significant bits. */
+static void wr__radix_sort(uint32_t *key, int32_t *idx, uint32_t *tkey, int32_t *tidx, int32_t n, int bits) {
+    int sh;
+    for (sh = 0; sh < bits; sh += 8) {
         int32_t cnt[257], i;
-        int sh = 8 * pass;
+        uint32_t *sk;
+        int32_t *si;
         memset(cnt, 0, sizeof cnt);
-        for (i = 0; i < n; ++i) ++cnt[((key[idx[i]] >> sh) & 255u) + 1];
+        for (i = 0; i < n; ++i) ++cnt[((key[i] >> sh) & 255u) + 1];
         for (i = 0; i < 256; ++i) cnt[i + 1] += cnt[i];
-        for (i = 0; i < n; ++i) tmp[cnt[(key[idx[i]] >> sh) & 255u]++] = idx[i];
-        memcpy(idx, tmp, sizeof(int32_t) * (size_t)n);
+        for (i = 0; i < n; ++i) {
+            int32_t at = cnt[(key[i] >> sh) & 255u]++;
+            tkey[at] = key[i];
+            tidx[at] = idx[i];
+        }
+        sk = key; /* swap buffers */
+        key = tkey;
+        tkey = sk;
+        si = idx;
+        idx = tidx;
+        tidx = si;
+    }
+    if (((bits + 7) / 8) % 2 == 1) { /* odd pass count: result sits in the scratch arrays */
+        memcpy(tkey, key, sizeof(uint32_t) * (size_t)n);
+        memcpy(tidx, idx, sizeof(int32_t) * (size_t)n);
     }
 }
 
 /* order[0..n) := BRIO order of the points listed in ids. */
 static int wr__brio(const double *xy, const int32_t *ids, int32_t n, wr_rng *rng, int32_t *order) {
-    uint32_t *key;
-    int32_t *tmp, i, b;
+    uint32_t *key, *tkey, side;
+    int32_t *tidx, i, nr = 0;
+    int levels = 4;
     double lo[2] = {HUGE_VAL, HUGE_VAL}, hi[2] = {-HUGE_VAL, -HUGE_VAL}, sc[2];
     if (n <= 0) return 1;
     key = (uint32_t *)wr_alloc_array((size_t)n, sizeof(uint32_t));
-    tmp = (int32_t *)wr_alloc_array((size_t)n, sizeof(int32_t));
-    if (!key || !tmp) {
+    tkey = (uint32_t *)wr_alloc_array((size_t)n, sizeof(uint32_t));
+    tidx = (int32_t *)wr_alloc_array((size_t)n, sizeof(int32_t));
+    if (!key || !tkey || !tidx) {
         wr_free(key);
-        wr_free(tmp);
+        wr_free(tkey);
+        wr_free(tidx);
         return 0;
     }
+    while (levels < 14 && ((int64_t)1 << (2 * levels)) < 4 * (int64_t)n) ++levels;
+    side = 1u << levels;
+    while (nr < 15 && (n >> (nr + 1)) >= 4096) ++nr; /* rounds 0..nr; the first holds >= ~4096 */
     for (i = 0; i < n; ++i) {
         const double *p = xy + 2 * (size_t)ids[i];
         lo[0] = fmin(lo[0], p[0]);
@@ -878,31 +904,26 @@ static int wr__brio(const double *xy, const int32_t *ids, int32_t n, wr_rng *rng
         hi[0] = fmax(hi[0], p[0]);
         hi[1] = fmax(hi[1], p[1]);
     }
-    for (i = 0; i < 2; ++i) sc[i] = hi[i] > lo[i] ? 65535.0 / (hi[i] - lo[i]) : 0.0;
-    /* keys indexed by position in ids; order holds positions while sorting */
+    for (i = 0; i < 2; ++i) sc[i] = hi[i] > lo[i] ? (double)(side - 1) / (hi[i] - lo[i]) : 0.0;
     for (i = 0; i < n; ++i) {
         const double *p = xy + 2 * (size_t)ids[i];
-        double fx = (p[0] - lo[0]) * sc[0], fy = (p[1] - lo[1]) * sc[1];
-        uint32_t qx = (uint32_t)(fx < 0.0 ? 0.0 : fx > 65535.0 ? 65535.0 : fx);
-        uint32_t qy = (uint32_t)(fy < 0.0 ? 0.0 : fy > 65535.0 ? 65535.0 : fy);
-        key[i] = wr__hilbert_key(qx, qy);
-        order[i] = i;
+        double fx = (p[0] - lo[0]) * sc[0], fy = (p[1] - lo[1]) * sc[1], lim = (double)(side - 1);
+        uint32_t qx = (uint32_t)(fx < 0.0 ? 0.0 : fx > lim ? lim : fx);
+        uint32_t qy = (uint32_t)(fy < 0.0 ? 0.0 : fy > lim ? lim : fy);
+        uint64_t u = wr_rng_u64(rng);
+        int32_t tz = 0, round;
+        while (tz < nr && !(u & 1u)) { /* geometric: P(tz = j) = 2^-(j+1) */
+            u >>= 1;
+            ++tz;
+        }
+        round = nr - tz;
+        key[i] = ((uint32_t)round << (2 * levels)) | wr__hilbert_key(qx, qy, side);
+        order[i] = ids[i];
     }
-    for (i = n - 1; i > 0; --i) { /* Fisher–Yates shuffle: the randomized part of BRIO */
-        int32_t j = (int32_t)wr_rng_below(rng, (uint32_t)(i + 1)), t = order[i];
-        order[i] = order[j];
-        order[j] = t;
-    }
-    b = n; /* rounds [b/2, b), each half the size of the next: the last round holds half the points */
-    while (b > 4096) {
-        int32_t a = b / 2;
-        wr__radix_sort(key, order + a, tmp, b - a);
-        b = a;
-    }
-    wr__radix_sort(key, order, tmp, b);
-    for (i = 0; i < n; ++i) order[i] = ids[order[i]];
+    wr__radix_sort(key, order, tkey, tidx, n, 2 * levels + 4);
     wr_free(key);
-    wr_free(tmp);
+    wr_free(tkey);
+    wr_free(tidx);
     return 1;
 }
 
@@ -1097,7 +1118,7 @@ static wr_status wr__recover(wr__cdt *S, wr__segctx *C, int32_t a0, int32_t b0, 
                 S->xy[2 * q] = px;
                 S->xy[2 * q + 1] = py;
                 S->vtri[q] = -1;
-                S->vseg[q] = sid;
+                S->vseg[q] = -3 - sid; /* a junction of two segments: an apex for concentric shells */
                 S->cm[he] = S->cm[S->tn[he]] = -1;
                 if (!wr__insert(S, q, he / 3, &vq)) return wr_fail(diag, WR_ERR_NOMEM, sid, "out of memory");
                 if (vq != q)
@@ -1209,6 +1230,35 @@ typedef struct wr__ref {
 
 static int wr__is_live(const wr__cdt *S, int32_t t) { return !WR__GHOSTLY(S, t) && !(S->tf[t] & WR__F_OUT); }
 
+/* input segment a Steiner vertex lies on (junctions of crossing segments are stored as -3 - id) */
+static int32_t wr__seg_of(const wr__cdt *S, int32_t v) {
+    int32_t s = S->vseg[v];
+    return s >= 0 ? s : s <= -3 ? -3 - s : -1;
+}
+static int wr__on_seg(const wr__cdt *S, const wr__ref *R, int32_t v, int32_t s) {
+    return wr__seg_of(S, v) == s || R->seg[2 * s] == v || R->seg[2 * s + 1] == v;
+}
+
+/* Do input segments s1, s2 meet (shared end point or crossing) at an angle below 60°? Then a
+ * skinny triangle between them is the input's own small angle and is left alone. */
+static int wr__segs_meet_sharply(const wr__cdt *S, const wr__ref *R, int32_t s1, int32_t s2) {
+    const int32_t *A = R->seg + 2 * s1, *B = R->seg + 2 * s2;
+    const double *a0 = WR__P(S, A[0]), *a1 = WR__P(S, A[1]), *b0 = WR__P(S, B[0]), *b1 = WR__P(S, B[1]);
+    double ux = a1[0] - a0[0], uy = a1[1] - a0[1], vx = b1[0] - b0[0], vy = b1[1] - b0[1];
+    double c = ux * vx + uy * vy, nn = (ux * ux + uy * uy) * (vx * vx + vy * vy);
+    int meet = A[0] == B[0] || A[0] == B[1] || A[1] == B[0] || A[1] == B[1];
+    if (!meet) {
+        double o1 = wr__orient(a0, a1, b0), o2 = wr__orient(a0, a1, b1), o3 = wr__orient(b0, b1, a0),
+               o4 = wr__orient(b0, b1, a1);
+        meet = ((o1 > 0 && o2 < 0) || (o1 < 0 && o2 > 0)) && ((o3 > 0 && o4 < 0) || (o3 < 0 && o4 > 0));
+        if (!meet) return 0;
+        return c * c > 0.25 * nn; /* crossing lines: the acute angle between them */
+    }
+    /* shared end point z: angle between the directions away from z */
+    if (A[0] == B[1] || A[1] == B[0]) c = -c;
+    return c > 0.0 && c * c > 0.25 * nn;
+}
+
 /* Bad: larger than max_area, or smallest angle below the bound — except when the shortest edge joins
  * two Steiner points on different segments sharing an endpoint (the small angle is the input's
  * own and splitting there would never end). */
@@ -1228,12 +1278,13 @@ static int wr__is_bad(const wr__cdt *S, const wr__ref *R, int32_t t) {
     l1 = e[wr__n1[m]];
     l2 = e[wr__n2[m]];
     if (!(a2 * a2 < R->sin2 * l1 * l2)) return 0;
-    {
-        int32_t u = v[wr__n1[m]], w = v[wr__n2[m]], su = S->vseg[u], sw = S->vseg[w];
-        if (su >= 0 && sw >= 0 && su != sw && R->seg) {
-            const int32_t *A = R->seg + 2 * su, *B = R->seg + 2 * sw;
-            if (A[0] == B[0] || A[0] == B[1] || A[1] == B[0] || A[1] == B[1]) return 0;
-        }
+    if (R->seg) {
+        int32_t u = v[wr__n1[m]], w = v[wr__n2[m]], su = wr__seg_of(S, u), sw = wr__seg_of(S, w);
+        if (su >= 0 && sw >= 0 && su != sw && wr__segs_meet_sharply(S, R, su, sw)) return 0;
+        /* a sliver whose three corners lie on one segment comes from split points rounded off the
+         * segment's line: no interior point can improve it */
+        if (su >= 0 && wr__on_seg(S, R, v[0], su) && wr__on_seg(S, R, v[1], su) && wr__on_seg(S, R, v[2], su))
+            return 0;
     }
     return 1;
 }
@@ -1276,7 +1327,7 @@ static int wr__split_segment(wr__cdt *S, wr__ref *R, int32_t he) {
     int32_t a = S->tv[he], d = S->tv[tw], q, m = S->cm[he];
     const double *px = WR__P(S, x), *py = WR__P(S, y);
     double len = hypot(py[0] - px[0], py[1] - px[1]), f = 0.5, p[2];
-    int xin = x < S->n_input, yin = y < S->n_input;
+    int xin = x < S->n_input || S->vseg[x] <= -3, yin = y < S->n_input || S->vseg[y] <= -3;
     if (xin != yin && len > 0.0) {
         double dd = ldexp(1.0, (int)floor(log2(0.5 * len) + 0.5)); /* nearest power of two to len/2 */
         f = xin ? dd / len : 1.0 - dd / len;
@@ -1298,7 +1349,26 @@ static int wr__split_segment(wr__cdt *S, wr__ref *R, int32_t he) {
     S->vseg[q] = m >= 0 ? m : -1;
     if (!wr__split_edge(S, he, q)) return -2;
     R->n_steiner++;
-    if (!wr__scan_star(S, R, q)) return -2;
+    /* The split point is the rounded midpoint, a few ulps off the segment's line; the edges at q
+     * may then violate the (exact) CDT property, which Lawson's test around q alone does not see:
+     * re-check the whole star of q with general flips. */
+    {
+        int32_t t0 = S->vtri[q], tt = t0, guard = 0;
+        R->cav.n = 0;
+        do {
+            const int32_t *vv = S->tv + 3 * tt;
+            int i = vv[0] == q ? 0 : vv[1] == q ? 1 : 2;
+            if (vv[wr__n1[i]] >= 0 && vv[wr__n2[i]] >= 0)
+                if (!wr__ivec_push(&R->cav, q) || !wr__ivec_push(&R->cav, vv[wr__n1[i]]) ||
+                    !wr__ivec_push(&R->cav, vv[wr__n1[i]]) || !wr__ivec_push(&R->cav, vv[wr__n2[i]]))
+                    return -2;
+            tt = S->tn[3 * tt + wr__n1[i]] / 3;
+        } while (tt != t0 && ++guard < 1 << 20);
+        if (!wr__restore_delaunay(S, &R->cav)) return -2;
+    }
+    /* flips may have reshaped the stars of the four vertices around q too */
+    if (!wr__scan_star(S, R, q) || !wr__scan_star(S, R, x) || !wr__scan_star(S, R, y)) return -2;
+    if ((a >= 0 && !wr__scan_star(S, R, a)) || (d >= 0 && !wr__scan_star(S, R, d))) return -2;
     return 1;
 }
 
@@ -1523,15 +1593,21 @@ static double wr__tri_sin2_min(const double *a, const double *b, const double *c
 }
 static double wr__sin2_to_deg(double s2) { return asin(sqrt(fmax(0.0, fmin(1.0, s2)))) * (180.0 / 3.14159265358979323846); }
 
-static wr_status wr__cdt_output(wr__cdt *S, const int32_t *rep, const wr_cdt_input *in, wr_cdt_result *out,
+/* Output numbering: distinct input points in input order, then Steiner points. Internal vertex k < nid
+ * is input point pos^-1(k) (BRIO order); in2int maps every input point to its internal vertex. */
+static wr_status wr__cdt_output(wr__cdt *S, const int32_t *rep, const int32_t *pos, const int32_t *dupof,
+                                const int32_t *in2int, int32_t nid, const wr_cdt_input *in, wr_cdt_result *out,
                                 wr_diag *diag) {
     int32_t *outv = NULL, *outt = NULL, i, t, k, nvo = 0, nto = 0, nso = 0, n = in->n_points;
     double minang = 1.0; /* sin² of the smallest angle seen */
     outv = (int32_t *)wr_alloc_array((size_t)S->nv, sizeof(int32_t));
     outt = (int32_t *)wr_alloc_array((size_t)S->nt, sizeof(int32_t));
     if (!outv || !outt) goto nomem;
-    for (i = 0; i < S->nv; ++i) outv[i] = (i >= n || rep[i] == i) ? nvo++ : -1;
-    for (i = 0; i < n; ++i) out->n_input_points += rep[i] == i;
+    for (i = 0; i < S->nv; ++i) outv[i] = -1;
+    for (i = 0; i < n; ++i)
+        if (rep[i] == i && dupof[pos[i]] == pos[i]) outv[pos[i]] = nvo++;
+    out->n_input_points = nvo;
+    for (i = nid; i < S->nv; ++i) outv[i] = nvo++;
     for (t = 0; t < S->nt; ++t) outt[t] = wr__is_live(S, t) ? nto++ : -1;
     out->points = (double *)wr_alloc_array((size_t)nvo * 2, sizeof(double));
     out->point_segment = (int32_t *)wr_alloc_array((size_t)nvo, sizeof(int32_t));
@@ -1551,12 +1627,12 @@ static wr_status wr__cdt_output(wr__cdt *S, const int32_t *rep, const wr_cdt_inp
         if (outv[i] >= 0) {
             out->points[2 * outv[i]] = S->xy[2 * i];
             out->points[2 * outv[i] + 1] = S->xy[2 * i + 1];
-            out->point_segment[outv[i]] = i >= n ? S->vseg[i] : -1;
+            out->point_segment[outv[i]] = i >= nid ? wr__seg_of(S, i) : -1;
         }
-    for (i = 0; i < n; ++i) out->point_map[i] = outv[rep[i]];
+    for (i = 0; i < n; ++i) out->point_map[i] = outv[in2int[i]];
     for (i = 0; i < in->n_segments; ++i) {
-        out->input_segments[2 * i] = outv[rep[in->segments[2 * i]]];
-        out->input_segments[2 * i + 1] = outv[rep[in->segments[2 * i + 1]]];
+        out->input_segments[2 * i] = outv[in2int[in->segments[2 * i]]];
+        out->input_segments[2 * i + 1] = outv[in2int[in->segments[2 * i + 1]]];
     }
     for (t = 0; t < S->nt; ++t) {
         int32_t o = outt[t];
@@ -1566,7 +1642,6 @@ static wr_status wr__cdt_output(wr__cdt *S, const int32_t *rep, const wr_cdt_inp
             out->triangles[3 * o + k] = outv[S->tv[3 * t + k]];
             out->neighbors[3 * o + k] = nb;
             out->edge_segment[3 * o + k] = m >= 0 ? m : -1;
-            if (m >= 0 && (nb < 0 || o < nb)) ++nso;
         }
         {
             double s2 = wr__tri_sin2_min(WR__P(S, S->tv[3 * t]), WR__P(S, S->tv[3 * t + 1]), WR__P(S, S->tv[3 * t + 2]));
@@ -1574,19 +1649,25 @@ static wr_status wr__cdt_output(wr__cdt *S, const int32_t *rep, const wr_cdt_inp
         }
     }
     out->min_angle_deg = nto ? wr__sin2_to_deg(minang) : 0.0;
-    out->segments = (int32_t *)wr_alloc_array((size_t)nso * 2, sizeof(int32_t));
-    out->segment_id = (int32_t *)wr_alloc_array((size_t)nso, sizeof(int32_t));
-    if (!out->segments || !out->segment_id) goto nomem;
-    for (t = 0; t < S->nt; ++t) {
-        int32_t o = outt[t];
-        if (o < 0) continue;
-        for (k = 0; k < 3; ++k) {
-            int32_t m = wr__cmark(S, 3 * t + k), nb = outt[S->tn[3 * t + k] / 3];
-            if (m >= 0 && (nb < 0 || o < nb)) {
-                out->segments[2 * out->n_segments] = outv[S->tv[3 * t + wr__n1[k]]];
-                out->segments[2 * out->n_segments + 1] = outv[S->tv[3 * t + wr__n2[k]]];
+    /* every subsegment, also those bounding only removed triangles (so input segments stay complete
+     * chains in this list); each edge once, from the lower-numbered internal triangle */
+    for (i = 0; i < 2; ++i) {
+        for (t = 0; t < S->nt; ++t)
+            for (k = 0; k < 3; ++k) {
+                int32_t m = wr__cmark(S, 3 * t + k), a = S->tv[3 * t + wr__n1[k]], b = S->tv[3 * t + wr__n2[k]];
+                if (m < 0 || a < 0 || b < 0 || S->tn[3 * t + k] / 3 < t) continue;
+                if (i == 0) {
+                    ++nso;
+                    continue;
+                }
+                out->segments[2 * out->n_segments] = outv[a];
+                out->segments[2 * out->n_segments + 1] = outv[b];
                 out->segment_id[out->n_segments++] = m;
             }
+        if (i == 0) {
+            out->segments = (int32_t *)wr_alloc_array((size_t)nso * 2, sizeof(int32_t));
+            out->segment_id = (int32_t *)wr_alloc_array((size_t)nso, sizeof(int32_t));
+            if (!out->segments || !out->segment_id) goto nomem;
         }
     }
     wr_free(outv);
@@ -1605,7 +1686,8 @@ WRDEF wr_status wr_cdt_triangulate(const wr_cdt_input *in, const wr_cdt_desc *de
     wr__segctx C;
     wr__ref R;
     wr_rng rng;
-    int32_t *rep = NULL, *ids = NULL, *order = NULL, n, m, i, nid = 0, i0, i1 = -1, i2 = -1;
+    int32_t *rep = NULL, *ids = NULL, *order = NULL, *in2int = NULL, *pos = NULL, *dupof = NULL, n, m, i, nid = 0,
+            i0, i1 = -1, i2 = -1;
     wr_status st = WR_OK, st_late = WR_OK;
     double t_start = wr_time_seconds();
     int refine, carved = 0;
@@ -1680,13 +1762,31 @@ WRDEF wr_status wr_cdt_triangulate(const wr_cdt_input *in, const wr_cdt_desc *de
         st = wr_fail(diag, WR_ERR_GEOMETRY, -1, "no points to triangulate");
         goto done;
     }
-    i0 = order[0];
-    for (i = 1; i < nid && i1 < 0; ++i) {
-        const double *p = S.xy + 2 * (size_t)order[i];
-        if (p[0] != S.xy[2 * i0] || p[1] != S.xy[2 * i0 + 1]) i1 = order[i];
+    /* Renumber: internal vertex k is input point order[k]. Consecutive insertions then touch nearby
+     * memory (the walk and the predicates read coordinates of spatial neighbours). */
+    {
+        double *xy2 = (double *)wr_alloc_array((size_t)S.capv * 2, sizeof(double));
+        if (!xy2) goto nomem;
+        for (i = 0; i < nid; ++i) {
+            xy2[2 * i] = in->points[2 * (size_t)order[i]];
+            xy2[2 * i + 1] = in->points[2 * (size_t)order[i] + 1];
+        }
+        wr_free(S.xy);
+        S.xy = xy2;
+        S.nv = nid;
+        S.n_input = nid;
     }
+    pos = ids; /* reuse: pos[input] = internal slot of a representative */
+    for (i = 0; i < nid; ++i) pos[order[i]] = i;
+    in2int = (int32_t *)wr_alloc_array((size_t)n, sizeof(int32_t));
+    dupof = order; /* reuse: dupof[k] = k, or the earlier vertex k coincides with */
+    if (!in2int) goto nomem;
+    for (i = 0; i < nid; ++i) dupof[i] = i;
+    i0 = 0;
+    for (i = 1; i < nid && i1 < 0; ++i)
+        if (S.xy[2 * i] != S.xy[0] || S.xy[2 * i + 1] != S.xy[1]) i1 = i;
     for (i = 1; i < nid && i1 >= 0 && i2 < 0; ++i)
-        if (wr__orient(WR__P(&S, i0), WR__P(&S, i1), WR__P(&S, order[i])) != 0.0) i2 = order[i];
+        if (wr__orient(WR__P(&S, i0), WR__P(&S, i1), WR__P(&S, i)) != 0.0) i2 = i;
     if (i1 < 0) {
         st = wr_fail(diag, WR_ERR_GEOMETRY, -1, "fewer than 3 distinct points (%d given, all coincide)", n);
         goto done;
@@ -1701,10 +1801,10 @@ WRDEF wr_status wr_cdt_triangulate(const wr_cdt_input *in, const wr_cdt_desc *de
     else
         wr__init_tri(&S, i0, i2, i1);
     for (i = 0; i < nid; ++i) {
-        int32_t p = order[i], vq;
-        if (p == i0 || p == i1 || p == i2) continue;
-        if (!wr__insert(&S, p, S.last, &vq)) goto nomem;
-        if (vq != p) rep[p] = vq; /* exact duplicate of an inserted vertex */
+        int32_t vq;
+        if (i == i0 || i == i1 || i == i2) continue;
+        if (!wr__insert(&S, i, S.last, &vq)) goto nomem;
+        dupof[i] = vq; /* vq != i: exact duplicate of an inserted vertex */
     }
     for (i = 0; i < S.nt; ++i) {
         int k;
@@ -1713,15 +1813,15 @@ WRDEF wr_status wr_cdt_triangulate(const wr_cdt_input *in, const wr_cdt_desc *de
     }
     S.track_vtri = 1;
     for (i = 0; i < n; ++i) {
-        if (rep[i] != i && rep[rep[i]] != rep[i]) rep[i] = rep[rep[i]];
-        out->n_duplicates += rep[i] != i;
+        in2int[i] = dupof[pos[rep[i]]];
+        out->n_duplicates += rep[i] != i || in2int[i] != pos[i];
     }
     /* constraints */
     if (m > 0) {
         if (!wr__ensure_cm(&S)) goto nomem;
         C.split = d.split_intersections;
         for (i = 0; i < m; ++i) {
-            int32_t a = rep[in->segments[2 * i]], b = rep[in->segments[2 * i + 1]];
+            int32_t a = in2int[in->segments[2 * i]], b = in2int[in->segments[2 * i + 1]];
             if (a == b) {
                 st = wr_fail(diag, WR_ERR_GEOMETRY, i,
                              "segment %d has zero length: its end points %d and %d were merged as duplicates", i,
@@ -1776,7 +1876,7 @@ WRDEF wr_status wr_cdt_triangulate(const wr_cdt_input *in, const wr_cdt_desc *de
         if (m > 0) {
             int32_t *sg = (int32_t *)wr_alloc_array((size_t)m * 2, sizeof(int32_t));
             if (!sg) goto nomem;
-            for (i = 0; i < 2 * m; ++i) sg[i] = rep[in->segments[i]];
+            for (i = 0; i < 2 * m; ++i) sg[i] = in2int[in->segments[i]];
             R.seg = sg;
         }
         st_late = wr__refine(&S, &R, diag);
@@ -1786,7 +1886,7 @@ WRDEF wr_status wr_cdt_triangulate(const wr_cdt_input *in, const wr_cdt_desc *de
             goto done;
         }
     }
-    st = wr__cdt_output(&S, rep, in, out, diag);
+    st = wr__cdt_output(&S, rep, pos, dupof, in2int, nid, in, out, diag);
     if (st != WR_OK) goto done;
     out->exterior_carved = carved;
     out->n_steiner = C.n_steiner + R.n_steiner;
@@ -1807,6 +1907,7 @@ done:
     wr_free(rep);
     wr_free(ids);
     wr_free(order);
+    wr_free(in2int);
     return st;
 }
 
@@ -1821,7 +1922,7 @@ static int32_t wr__uf_find(int32_t *p, int32_t x) {
 
 WRDEF wr_status wr_cdt_check(const wr_cdt_result *r, int32_t expected_holes, wr_cdt_check_info *info, wr_diag *diag) {
     int32_t nT, nP, t, k, *bout = NULL, *bnext = NULL, *uf = NULL, *used = NULL, *cstart = NULL, *cadj = NULL,
-                              *cmk = NULL, *stamp = NULL, *dfs = NULL;
+                              *cmk = NULL, *stamp = NULL, *dfs = NULL, *sstart = NULL;
     int32_t E = 0, V = 0, C = 0, B = 0, pinched = 0, ncon = 0, s;
     double minang = 1.0; /* sin² of the smallest angle seen */
     wr_status st = WR_OK;
@@ -1931,47 +2032,91 @@ WRDEF wr_status wr_cdt_check(const wr_cdt_result *r, int32_t expected_holes, wr_
             goto done;
         }
     }
-    /* input segments as chains: adjacency of constrained edges, then a DFS per segment */
-    cadj = (int32_t *)wr_alloc_array((size_t)ncon * 2, sizeof(int32_t));
-    cmk = (int32_t *)wr_alloc_array((size_t)ncon * 2, sizeof(int32_t));
-    dfs = (int32_t *)wr_alloc_array((size_t)nP, sizeof(int32_t));
-    if (!cadj || !cmk || !dfs) goto nomem;
-    for (t = 0; t < nT; ++t)
-        for (k = 0; k < 3; ++k) {
-            int32_t nb = r->neighbors[3 * t + k];
-            if (r->edge_segment[3 * t + k] >= 0 && (nb < 0 || t < nb)) {
-                cstart[r->triangles[3 * t + wr__n1[k]] + 1]++;
-                cstart[r->triangles[3 * t + wr__n2[k]] + 1]++;
-            }
+    /* (1) constrained triangle edges and subsegments list each other, with the same segment id;
+     * (2) every input segment is a chain of subsegments (DFS). */
+    if (r->n_segments < 0 || (r->n_segments > 0 && (!r->segments || !r->segment_id))) {
+        st = wr_fail(diag, WR_ERR_INVALID_ARG, -1, "subsegment arrays missing");
+        goto done;
+    }
+    for (s = 0; s < 2 * r->n_segments; ++s)
+        if (r->segments[s] < 0 || r->segments[s] >= nP) {
+            st = wr_fail(diag, WR_ERR_TOPOLOGY, s / 2, "subsegment %d has an out-of-range end", s / 2);
+            goto done;
         }
-    for (s = 0; s < nP; ++s) cstart[s + 1] += cstart[s];
+    /* CSR 1 (cstart, cadj[0..3nT)): every mesh half-edge a -> b with its mark; CSR 2 (sstart,
+     * cadj[3nT..)): subsegments, both directions */
+    ncon = 3 * nT;
+    cadj = (int32_t *)wr_alloc_array((size_t)ncon + 2 * (size_t)r->n_segments, sizeof(int32_t));
+    cmk = (int32_t *)wr_alloc_array((size_t)ncon + 2 * (size_t)r->n_segments, sizeof(int32_t));
+    dfs = (int32_t *)wr_alloc_array((size_t)nP, sizeof(int32_t));
+    sstart = (int32_t *)wr_calloc_array((size_t)nP + 1, sizeof(int32_t));
+    if (!cadj || !cmk || !dfs || !sstart) goto nomem;
+    for (t = 0; t < nT; ++t)
+        for (k = 0; k < 3; ++k) cstart[r->triangles[3 * t + wr__n1[k]] + 1]++;
+    for (s = 0; s < r->n_segments; ++s) {
+        sstart[r->segments[2 * s] + 1]++;
+        sstart[r->segments[2 * s + 1] + 1]++;
+    }
+    for (s = 0; s < nP; ++s) {
+        cstart[s + 1] += cstart[s];
+        sstart[s + 1] += sstart[s];
+    }
     for (s = 0; s < nP; ++s) stamp[s] = cstart[s];
     for (t = 0; t < nT; ++t)
         for (k = 0; k < 3; ++k) {
-            int32_t nb = r->neighbors[3 * t + k], m = r->edge_segment[3 * t + k];
-            if (m >= 0 && (nb < 0 || t < nb)) {
-                int32_t a = r->triangles[3 * t + wr__n1[k]], b = r->triangles[3 * t + wr__n2[k]];
-                cadj[stamp[a]] = b;
-                cmk[stamp[a]++] = m;
-                cadj[stamp[b]] = a;
-                cmk[stamp[b]++] = m;
+            int32_t a = r->triangles[3 * t + wr__n1[k]], b = r->triangles[3 * t + wr__n2[k]];
+            cadj[stamp[a]] = b;
+            cmk[stamp[a]++] = r->edge_segment[3 * t + k];
+        }
+    for (s = 0; s < nP; ++s) stamp[s] = ncon + sstart[s];
+    for (s = 0; s < r->n_segments; ++s) {
+        int32_t a = r->segments[2 * s], b = r->segments[2 * s + 1], m = r->segment_id[s];
+        cadj[stamp[a]] = b;
+        cmk[stamp[a]++] = m;
+        cadj[stamp[b]] = a;
+        cmk[stamp[b]++] = m;
+    }
+    for (s = 0; s < nP; ++s) { /* (1) */
+        int32_t j, j2;
+        for (j = cstart[s]; j < cstart[s + 1]; ++j) { /* constrained mesh edge -> listed subsegment */
+            if (cmk[j] < 0) continue;
+            for (j2 = ncon + sstart[s]; j2 < ncon + sstart[s + 1]; ++j2)
+                if (cadj[j2] == cadj[j] && cmk[j2] == cmk[j]) break;
+            if (j2 == ncon + sstart[s + 1]) {
+                st = wr_fail(diag, WR_ERR_TOPOLOGY, cmk[j], "constrained edge (%d, %d) of segment %d is not in the subsegment list",
+                             s, cadj[j], cmk[j]);
+                goto done;
             }
         }
+        for (j2 = ncon + sstart[s]; j2 < ncon + sstart[s + 1]; ++j2) { /* subsegment -> constrained edge */
+            int32_t y = cadj[j2], found = 0;
+            for (j = cstart[s]; j < cstart[s + 1] && !found; ++j)
+                if (cadj[j] == y) found = cmk[j] == cmk[j2] ? 1 : -1;
+            for (j = cstart[y]; j < cstart[y + 1] && !found; ++j)
+                if (cadj[j] == s) found = cmk[j] == cmk[j2] ? 1 : -1;
+            /* not a mesh edge at all: only allowed where triangles were removed */
+            if (found < 0 || (found == 0 && !r->exterior_carved && used[s] && used[y])) {
+                st = wr_fail(diag, WR_ERR_GEOMETRY, cmk[j2], "subsegment (%d, %d) of segment %d is not a constrained mesh edge",
+                             s, y, cmk[j2]);
+                goto done;
+            }
+        }
+    }
     for (s = 0; s < nP; ++s) stamp[s] = -1;
-    for (s = 0; s < r->n_input_segments; ++s) {
+    for (s = 0; s < r->n_input_segments; ++s) { /* (2) */
         int32_t a = r->input_segments[2 * s], b = r->input_segments[2 * s + 1], nd = 0, ok = 0;
         if (a < 0 || a >= nP || b < 0 || b >= nP) {
             st = wr_fail(diag, WR_ERR_TOPOLOGY, s, "input segment %d has an out-of-range end", s);
             goto done;
         }
-        if (!used[a] && !used[b]) continue; /* lies wholly in a removed region */
         dfs[nd++] = a;
         stamp[a] = s;
         while (nd && !ok) {
             int32_t x = dfs[--nd], j;
-            for (j = cstart[x]; j < cstart[x + 1]; ++j) {
+            for (j = ncon + sstart[x]; j < ncon + sstart[x + 1]; ++j) {
                 int32_t y = cadj[j];
                 if (stamp[y] == s) continue;
+                /* a piece shared by two overlapping collinear segments carries the first one's id */
                 if (cmk[j] != s && !(wr__orient(r->points + 2 * a, r->points + 2 * b, r->points + 2 * x) == 0.0 &&
                                      wr__orient(r->points + 2 * a, r->points + 2 * b, r->points + 2 * y) == 0.0))
                     continue;
@@ -1984,8 +2129,7 @@ WRDEF wr_status wr_cdt_check(const wr_cdt_result *r, int32_t expected_holes, wr_
             }
         }
         if (!ok) {
-            st = wr_fail(diag, WR_ERR_GEOMETRY, s, "input segment %d (%d-%d) is not a chain of constrained output edges",
-                         s, a, b);
+            st = wr_fail(diag, WR_ERR_GEOMETRY, s, "input segment %d (%d-%d) is not a chain of subsegments", s, a, b);
             goto done;
         }
     }
@@ -2009,6 +2153,7 @@ done:
     wr_free(cmk);
     wr_free(stamp);
     wr_free(dfs);
+    wr_free(sstart);
     return st;
 }
 
