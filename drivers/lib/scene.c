@@ -18,8 +18,9 @@
 /* Regularisation of the affine warm-start fit, relative to the prescribed set's spread: pulls the
  * fitted linear part towards the identity when the prescribed vertices are collinear (one clamp). */
 #define SC_AFFINE_REG 1e-6
-/* Hybrid Newton: relative gradient (statics.h ON STOPPING) at which the projected phase hands over to
- * the exact Hessian. 1e-3: past the saddle-escape phase, far from the final tolerance. */
+/* Hybrid Newton: gradient, relative to the scene's force scale G (see wr_scene_run_solve), at which the
+ * projected phase hands over to the exact Hessian. 1e-3: past the saddle-escape phase, far from the
+ * final tolerance. */
 #define SC_HYBRID_SWITCH 1e-3
 
 /* ---------------------------------------------------------------------------------------------- */
@@ -797,12 +798,42 @@ static void sc_progress(void *user, const wr_statics_stats *st) {
     p->fn(p->user, p->step, p->n, st);
 }
 
+/* ‖∇Π_free‖ at x with gravity gs [N] (NaN when the energy is undefined) and ‖f_ext,free‖ in *fe. */
+static double sc_free_grad(const wr_scene_run *run, const double *x, const double gs[3], double *g, double *mass,
+                           double *fe) {
+    double E, s = 0.0, f2 = 0.0;
+    int32_t i, nv = run->mesh.nv;
+    if (wr_shell_energy(&run->shell, x, &E, g, NULL) != WR_OK) return NAN;
+    wr_shell_vertex_masses(&run->shell, mass);
+    for (i = 0; i < 3 * nv; ++i)
+        if (!run->fixed[i / 3]) {
+            double f = mass[i / 3] * gs[i % 3];
+            s += (g[i] - f) * (g[i] - f);
+            f2 += f * f;
+        }
+    *fe = sqrt(f2);
+    return sqrt(s);
+}
+
 wr_status wr_scene_run_solve(wr_scene_run *run, wr_scene_progress_fn progress, void *user, wr_diag *diag) {
     const wr_scene *sc = run->sc;
     int32_t k, i, nv = run->mesh.nv, N = sc->load_steps;
     wr_status worst = WR_OK;
     sc_prog pg;
-    double t0 = wr_time_seconds();
+    double t0 = wr_time_seconds(), G = 0.0, *gbuf, *mbuf;
+    double gtol = sc->grad_tol > 0.0 ? sc->grad_tol : 1e-8;
+    /* One absolute force scale G for every load step: statics.h's reference (ON STOPPING) at the start
+     * of the FIRST step. statics.h measures its tolerance relative to each call's own start, which after
+     * a good warm start of a later step is tiny and would ask for a gradient below round-off (measured:
+     * the 2.5 mm stretch test hit max_iter at |g| 7e-9 N against a target of 7e-14 N); we rescale
+     * grad_tol per step so that every step stops at ‖∇Π_free‖ <= grad_tol · G. */
+    gbuf = (double *)malloc(sizeof(double) * 3 * (size_t)nv);
+    mbuf = (double *)malloc(sizeof(double) * (size_t)nv);
+    if (!gbuf || !mbuf) {
+        free(gbuf);
+        free(mbuf);
+        return wr_fail(diag, WR_ERR_NOMEM, -1, "scene: out of memory");
+    }
     for (k = 1; k <= N; ++k) {
         double s = (double)k / N;
         wr_statics_desc d;
@@ -814,8 +845,26 @@ wr_status wr_scene_run_solve(wr_scene_run *run, wr_scene_progress_fn progress, v
         sc_warm_start(run);
         memset(&d, 0, sizeof d);
         d.max_iter = sc->max_iter;
-        d.grad_tol = sc->grad_tol;
         for (i = 0; i < 3; ++i) d.gravity[i] = sc->gravity[i] * (sc->ramp_gravity ? s : 1.0);
+        {
+            double fs = 0.0, g0, ref;
+            /* the start state statics.h will see (prescribed rows moved to their targets) */
+            memcpy(gbuf, run->x, sizeof(double) * 3 * (size_t)nv);
+            for (i = 0; i < nv; ++i)
+                if (run->fixed[i]) memcpy(gbuf + 3 * i, run->target + 3 * i, sizeof(double) * 3);
+            {
+                double *xs = (double *)malloc(sizeof(double) * 3 * (size_t)nv);
+                g0 = NAN;
+                if (xs) {
+                    memcpy(xs, gbuf, sizeof(double) * 3 * (size_t)nv);
+                    g0 = sc_free_grad(run, xs, d.gravity, gbuf, mbuf, &fs);
+                    free(xs);
+                }
+            }
+            ref = (g0 == g0) ? fmax(g0, fs) : 0.0;
+            if (k == 1) G = ref;
+            d.grad_tol = (ref > 0.0 && G > 0.0) ? fmin(1.0, gtol * G / ref) : gtol;
+        }
         d.fixed = run->fixed;
         d.target = run->target;
         d.perturb = k == 1 ? sc->perturb : 0.0;
@@ -835,7 +884,7 @@ wr_status wr_scene_run_solve(wr_scene_run *run, wr_scene_progress_fn progress, v
             wr_statics_desc d1 = d;
             wr_statics_stats s1;
             d1.no_projection = 0;
-            d1.grad_tol = fmax(SC_HYBRID_SWITCH, d.grad_tol);
+            d1.grad_tol = fmin(1.0, fmax(d.grad_tol, d.grad_tol * SC_HYBRID_SWITCH / gtol));
             ss->status = wr_statics_solve(&run->shell, run->x, &d1, &s1, &dd);
             d.perturb = 0.0;
             d.no_projection = 1;
@@ -864,11 +913,15 @@ wr_status wr_scene_run_solve(wr_scene_run *run, wr_scene_progress_fn progress, v
             if (diag) *diag = dd;
             run->t_solve = wr_time_seconds() - t0;
             run->solve_status = ss->status;
+            free(gbuf);
+            free(mbuf);
             return ss->status;
         }
     }
     run->t_solve = wr_time_seconds() - t0;
     run->solve_status = worst;
+    free(gbuf);
+    free(mbuf);
     return worst;
 }
 
