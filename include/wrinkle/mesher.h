@@ -37,7 +37,9 @@
  *   the paper's m is undefined (r or L_w ≤ 1 mm) transition.h's scale-free fallback is used.
  *
  * ON THE TECHNIQUES (each refers to a panel by index)
- *   shirring  (4.2.2): r_sh = ρ_sh^n r(B/(E+E_sh)); source = the polyline; it is also a mesh
+ *   shirring  (4.2.2): r_sh = ρ_sh^n r(B/(E+E_sh)) · r_f / r(B/E) (the last factor is 1 unless the
+ *             panel overrides its base resolution r_f; B, E of the fine direction for anisotropic
+ *             fabrics); source = the polyline; it is also a mesh
  *             constraint. Endpoints may lie on the panel boundary: the constraint copy is then
  *             trimmed by WR_MESHER_TRIM_FACTOR × local sizing at that end (the sampler needs
  *             constraint lines strictly inside), the sizing source keeps the full line.
@@ -527,6 +529,19 @@ static double wr__msh_thickness(const wr_pattern_fabric *f, double r0) {
     }
     if (!(y < HUGE_VAL) || !isfinite(y)) return r0 / 10.0;
     return cbrt(12.0 * (1.0 - WR_MESHER_KL_POISSON * WR_MESHER_KL_POISSON) * y);
+}
+
+/* The (B, E) pair of the fabric's fine direction (smallest y = B/E); zeros when not given. */
+static void wr__msh_fine_pair(const wr_pattern_fabric *f, double *B, double *E) {
+    *B = *E = 0.0;
+    if (!f->anisotropic) {
+        *B = f->B;
+        *E = f->E;
+    } else if (f->B_warp > 0.0 && f->E_warp > 0.0 && f->B_weft > 0.0 && f->E_weft > 0.0) {
+        int warp_fine = f->B_warp / f->E_warp <= f->B_weft / f->E_weft;
+        *B = warp_fine ? f->B_warp : f->B_weft;
+        *E = warp_fine ? f->E_warp : f->E_weft;
+    }
 }
 
 /* Transition for a source of resolution r with resolution factor rho (δ = 1 − ρ) or explicit L_w. */
@@ -1026,12 +1041,15 @@ WRDEF wr_status wr_mesher_run(const wr_pattern *pat, const wr_mesher_desc *desc_
                 goto fail;
             memset(&rd, 0, sizeof rd);
             rd.clamp = 1;
-            B = fb->anisotropic ? fmin(fb->B_warp, fb->B_weft) : fb->B;
-            E = fb->anisotropic ? fmax(fb->E_warp, fb->E_weft) : fb->E;
+            wr__msh_fine_pair(fb, &B, &E);
             if (B > 0.0 && E > 0.0) {
-                /* Sec. 4.2.2: y_sh = B/(E+E_sh), r_sh = ρ^n r(y_sh) */
+                /* Sec. 4.2.2: y_sh = B/(E+E_sh), r_sh = ρ^n r(y_sh); scaled by r_f / r(B/E), which is 1
+                 * unless the panel overrides its base resolution (the override then carries over) */
+                double r_b;
                 if ((st = wr_source_shirring(&desc.model, B, E, sh->E_sh, sh->rho, n_exp, &rd, &r_y, diag)) != WR_OK)
                     goto fail;
+                if ((st = wr_resolution_from_BE(&desc.model, B, E, &rd, &r_b, diag)) != WR_OK) goto fail;
+                r_y *= m->r0 / r_b;
             } else {
                 r_y = pow(sh->rho, n_exp) * m->r0; /* resolution override without stiffness: E_sh unweighable */
             }
@@ -1050,12 +1068,14 @@ WRDEF wr_status wr_mesher_run(const wr_pattern *pat, const wr_mesher_desc *desc_
             double r_y, B, E;
             memset(&rd, 0, sizeof rd);
             rd.clamp = 1;
-            B = fb->anisotropic ? fmin(fb->B_warp, fb->B_weft) : fb->B;
-            E = fb->anisotropic ? fmax(fb->E_warp, fb->E_weft) : fb->E;
-            /* Sec. 4.2.5: stitch lines as shirring lines (n = 1) */
+            wr__msh_fine_pair(fb, &B, &E);
+            /* Sec. 4.2.5: stitch lines as shirring lines (n = 1), scaled as for shirring */
             if (B > 0.0 && E > 0.0) {
+                double r_b;
                 if ((st = wr_source_shirring(&desc.model, B, E, q->E_sh, q->rho, 1.0, &rd, &r_y, diag)) != WR_OK)
                     goto fail;
+                if ((st = wr_resolution_from_BE(&desc.model, B, E, &rd, &r_b, diag)) != WR_OK) goto fail;
+                r_y *= m->r0 / r_b;
             } else {
                 r_y = q->rho * m->r0;
             }
