@@ -1,5 +1,6 @@
 /* tests for drivers/lib/scene.c: the JSON scene parser (happy path, every error path names the JSON
  * path), BC selection and motions, a small end-to-end solve with output files. */
+#define _POSIX_C_SOURCE 200809L /* mkdtemp */
 #include <criterion/criterion.h>
 #include <math.h>
 #include <stdio.h>
