@@ -6,11 +6,12 @@
  *
  * WHICH METHOD
  *   Measured on this kit's bench (bench/bench_pcg.c, clamped membrane K + M/dt², 3 DOF/vertex,
- *   tol 1e-8, 2-core box, CHOLMOD on OpenBLAS): PCG-AMG needs ~25–35 iterations independent of the
- *   mesh size and beats CHOLMOD from ~1e5 vertices on (0.35× CHOLMOD's time at 1e5); below ~1e4
- *   vertices CHOLMOD is as fast or faster. Jacobi / block-Jacobi / IC(0) need O(sqrt(n)) iterations
- *   and lose to CHOLMOD by 3–6× on such stiff membranes; they are there for small or well-conditioned
- *   systems (mass-dominated dynamics) and as references. See bench/RESULTS.md for the numbers.
+ *   tol 1e-8, shared 2-core box, CHOLMOD on OpenBLAS): PCG-AMG needs 27–34 iterations from 1e4 to
+ *   4e5 vertices and took 0.35–0.67× CHOLMOD's time at 1e5 vertices and 0.38× at 4e5 (analysis +
+ *   factor + solve each); at 1e4 vertices the two are about equal. Jacobi / block-Jacobi / IC(0)
+ *   need O(sqrt(n)) iterations and lost to CHOLMOD by 3–8× at 1e5 on this stiff membrane; they suit
+ *   small or mass-dominated (well-conditioned) systems and serve as references.
+ *   See bench/RESULTS.md for the latest run.
  * wrinkle v0.1.0 — MIT licence (see LICENSE).
  *
  * DEPENDENCIES
@@ -220,7 +221,10 @@ static void wr__chol_free(struct wr__spd_backend *B) {
 }
 
 static wr_status wr__chol_fail(wr_diag *diag, struct wr__spd_backend *B, const char *what) {
-    wr_status s = wr_fail(diag, WR_ERR_BACKEND, -1, "CHOLMOD %s failed (status %d)", what, B ? B->cc.status : 0);
+    /* CHOLMOD reports exhaustion of its own (malloc'd) workspace as a status, not a NULL we see */
+    int oom = B && B->started && B->cc.status == CHOLMOD_OUT_OF_MEMORY;
+    wr_status s = wr_fail(diag, oom ? WR_ERR_NOMEM : WR_ERR_BACKEND, -1, "CHOLMOD %s failed (status %d)", what,
+                          B ? B->cc.status : 0);
     if (diag && B) diag->backend_code = B->cc.status;
     return s;
 }
