@@ -2,7 +2,9 @@
  * (Exact_predicates_inexact_constructions_kernel), same inputs, same process, interleaved runs.
  *   cases: 1e5 and 1e6 uniform random points in the unit square; a 1000-gon (1000 boundary
  *          segments on the unit circle) plus 1e5 uniform random points inside it.
- *   prints the median of RUNS wall-clock timings per case, points/second and ours/CGAL speed ratio.
+ *   prints the median of RUNS timings per case, points/second and the ours/CGAL speed ratio, for wall
+ *   clock and for process CPU time (both are single-threaded; CPU time is the steadier figure on a
+ *   shared, loaded machine).
  * Both sides insert the same points; CGAL uses its range insert (spatially sorted) followed by
  * insert_constraint per segment; ours includes building the compact output arrays (CGAL's timing
  * ends with its internal data structure). Usage: bench_cdt [runs (default 5)] */
@@ -13,6 +15,7 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 
 #include <algorithm>
+#include <ctime>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -34,6 +37,8 @@ static double median(std::vector<double> v) {
     return v[v.size() / 2];
 }
 
+static double g_cpu; /* CPU seconds of the last run */
+
 static double run_ours(const Case &c, int32_t *ntri) {
     wr_cdt_input in;
     wr_cdt_desc d;
@@ -46,9 +51,11 @@ static double run_ours(const Case &c, int32_t *ntri) {
     in.segments = c.seg.empty() ? NULL : c.seg.data();
     in.n_segments = (int32_t)(c.seg.size() / 2);
     d.keep_convex_hull = 1; /* like CGAL: triangulate the hull, carve nothing */
+    std::clock_t c0 = std::clock();
     double t0 = wr_time_seconds();
     wr_status s = wr_cdt_triangulate(&in, &d, &r, &dg);
     double t1 = wr_time_seconds();
+    g_cpu = (double)(std::clock() - c0) / CLOCKS_PER_SEC;
     if (s != WR_OK) {
         std::fprintf(stderr, "bench_cdt: ours failed on %s: %s\n", c.name, dg.message);
         std::exit(1);
@@ -63,6 +70,7 @@ static double run_cgal(const Case &c, int32_t *ntri) {
     size_t n = c.xy.size() / 2;
     pts.reserve(n);
     for (size_t i = 0; i < n; ++i) pts.push_back(Point(c.xy[2 * i], c.xy[2 * i + 1]));
+    std::clock_t c0 = std::clock();
     double t0 = wr_time_seconds();
     CDT cdt;
     std::vector<CDT::Vertex_handle> vh;
@@ -79,6 +87,7 @@ static double run_cgal(const Case &c, int32_t *ntri) {
             cdt.insert_constraint(vh[(size_t)c.seg[s]], vh[(size_t)c.seg[s + 1]]);
     }
     double t1 = wr_time_seconds();
+    g_cpu = (double)(std::clock() - c0) / CLOCKS_PER_SEC;
     *ntri = (int32_t)cdt.number_of_faces();
     return t1 - t0;
 }
@@ -114,19 +123,23 @@ int main(int argc, char **argv) {
         cases[2].xy.push_back(y);
         ++i;
     }
-    std::printf("bench_cdt: median of %d runs, wall clock, this machine\n", runs);
-    std::printf("%-16s %10s %12s %12s %12s %12s %8s\n", "case", "points", "ours [s]", "CGAL [s]", "ours [pt/s]",
-                "CGAL [pt/s]", "ours/CGAL");
+    std::printf("bench_cdt: median of %d interleaved runs per case, this machine\n", runs);
+    std::printf("%-16s %8s | %9s %9s %10s %10s %6s | %9s %9s %10s %10s %6s\n", "case", "points", "wall ours",
+                "wall CGAL", "ours pt/s", "CGAL pt/s", "ratio", "cpu ours", "cpu CGAL", "ours pt/s", "CGAL pt/s",
+                "ratio");
     for (size_t k = 0; k < cases.size(); ++k) {
-        std::vector<double> to, tc;
+        std::vector<double> to, tc, co, cc;
         int32_t nto = 0, ntc = 0;
         for (int r = 0; r < runs; ++r) { /* interleaved so machine-load drift hits both */
             to.push_back(run_ours(cases[k], &nto));
+            co.push_back(g_cpu);
             tc.push_back(run_cgal(cases[k], &ntc));
+            cc.push_back(g_cpu);
         }
-        double mo = median(to), mc = median(tc), n = (double)(cases[k].xy.size() / 2);
-        std::printf("%-16s %10.0f %12.4f %12.4f %12.3e %12.3e %8.2f   (triangles: ours %d, CGAL %d)\n", cases[k].name, n,
-                    mo, mc, n / mo, n / mc, mc / mo, nto, ntc);
+        double mo = median(to), mc = median(tc), po = median(co), pc = median(cc), n = (double)(cases[k].xy.size() / 2);
+        std::printf("%-16s %8.0f | %9.4f %9.4f %10.3e %10.3e %6.2f | %9.4f %9.4f %10.3e %10.3e %6.2f   (triangles %d / %d)\n",
+                    cases[k].name, n, mo, mc, n / mo, n / mc, mc / mo, po, pc, n / po, n / pc, pc / po, nto, ntc);
     }
+    std::printf("ratio = CGAL time / ours (> 1: ours faster). Ours includes building the output arrays.\n");
     return 0;
 }

@@ -62,10 +62,16 @@
  *   would remove everything, i.e. the segments enclose nothing, the hull is kept), and so are those
  *   reachable from each hole seed. Refinement (desc.quality or desc.max_area > 0) then inserts
  *   circumcenters (or off-centers) of bad triangles and splits encroached subsegments, treating the
- *   convex hull as segments when it is kept; triangles whose small angle is forced by a small input
- *   angle (shortest edge joining two segments that share an apex) are left alone, and a vertex budget
- *   stops everything else: WR_ERR_BUDGET is returned with the valid mesh reached so far in *out.
+ *   convex hull as segments when it is kept. Subsegments are split at their midpoint, or at a power
+ *   of two from an input vertex or a segment junction (concentric shells). Left alone: triangles
+ *   whose shortest edge joins points on two segments meeting at less than 60° (the input's own small
+ *   angle), and slivers with all corners on one segment (split points are rounded a few ulps off the
+ *   segment's line; the output stays an exact CDT of the vertices produced). A vertex budget stops
+ *   everything else: WR_ERR_BUDGET is returned with the valid mesh reached so far in *out.
  *   Always call wr_cdt_free on the result, also after an error.
+ *   Cost: O(n log n) expected for the Delaunay part (BRIO order, walks of O(1) expected length);
+ *   1e6 uniform points: about 0.7 s of CPU on the 2-core reference box, 1.26x faster than CGAL 5 CDT
+ *   (EPICK) in CPU time there; 1e5 points 1.5x (bench/bench_cdt, numbers in its header).
  *
  * ON THREADS
  *   No global state; distinct calls may run concurrently.
@@ -1740,8 +1746,7 @@ WRDEF wr_status wr_cdt_triangulate(const wr_cdt_input *in, const wr_cdt_desc *de
     wr_rng_seed(&rng, d.seed);
 
     if (!wr__reserve_verts(&S, n + 16)) goto nomem;
-    S.nv = n;
-    if (n) memcpy(S.xy, in->points, sizeof(double) * 2 * (size_t)n);
+    /* S.xy is filled below, in insertion order; the input stays where it is until then */
     for (i = 0; i < S.capv; ++i) {
         S.vtri[i] = -1;
         S.vseg[i] = -1;
@@ -1751,31 +1756,25 @@ WRDEF wr_status wr_cdt_triangulate(const wr_cdt_input *in, const wr_cdt_desc *de
     order = (int32_t *)wr_alloc_array((size_t)n, sizeof(int32_t));
     if (!rep || !ids || !order) goto nomem;
     if (d.merge_tolerance > 0.0) {
-        if (!wr__merge_close(S.xy, n, d.merge_tolerance, rep)) goto nomem;
+        if (!wr__merge_close(in->points, n, d.merge_tolerance, rep)) goto nomem;
     } else {
         for (i = 0; i < n; ++i) rep[i] = i;
     }
     for (i = 0; i < n; ++i)
         if (rep[i] == i) ids[nid++] = i;
-    if (!wr__brio(S.xy, ids, nid, &rng, order)) goto nomem;
+    if (!wr__brio(in->points, ids, nid, &rng, order)) goto nomem;
     if (nid == 0) {
         st = wr_fail(diag, WR_ERR_GEOMETRY, -1, "no points to triangulate");
         goto done;
     }
     /* Renumber: internal vertex k is input point order[k]. Consecutive insertions then touch nearby
      * memory (the walk and the predicates read coordinates of spatial neighbours). */
-    {
-        double *xy2 = (double *)wr_alloc_array((size_t)S.capv * 2, sizeof(double));
-        if (!xy2) goto nomem;
-        for (i = 0; i < nid; ++i) {
-            xy2[2 * i] = in->points[2 * (size_t)order[i]];
-            xy2[2 * i + 1] = in->points[2 * (size_t)order[i] + 1];
-        }
-        wr_free(S.xy);
-        S.xy = xy2;
-        S.nv = nid;
-        S.n_input = nid;
+    for (i = 0; i < nid; ++i) {
+        S.xy[2 * i] = in->points[2 * (size_t)order[i]];
+        S.xy[2 * i + 1] = in->points[2 * (size_t)order[i] + 1];
     }
+    S.nv = nid;
+    S.n_input = nid;
     pos = ids; /* reuse: pos[input] = internal slot of a representative */
     for (i = 0; i < nid; ++i) pos[order[i]] = i;
     in2int = (int32_t *)wr_alloc_array((size_t)n, sizeof(int32_t));
