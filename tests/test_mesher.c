@@ -504,6 +504,19 @@ Test(mesher_errors, techniques) {
     sh.E_sh = 0.0;
     sh.xy = leave;
     run_expect(&pat, NULL, WR_ERR_GEOMETRY, "shirrings[0]");
+    {
+        /* two crossing shirring lines: the sampler's complaint is mapped back to the techniques */
+        wr_pattern_shirring two[2];
+        double cross1[4] = {0.05, 0.05, 0.2, 0.2}, cross2[4] = {0.05, 0.2, 0.2, 0.05};
+        two[0] = sh;
+        two[1] = sh;
+        two[0].xy = cross1;
+        two[1].xy = cross2;
+        pat.shirrings = two;
+        pat.n_shirrings = 2;
+        run_expect(&pat, NULL, WR_ERR_GEOMETRY, "= shirrings[1]");
+        pat.shirrings = &sh;
+    }
     pat.n_shirrings = 0;
     memset(&fd, 0, sizeof fd);
     fd.xy = leave;

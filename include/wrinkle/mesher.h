@@ -1404,7 +1404,7 @@ WRDEF wr_status wr_mesher_run(const wr_pattern *pat, const wr_mesher_desc *desc_
         wr__msh_panel_work *w = &work[p];
         wr__msh_map *m = (wr__msh_map *)pi->map_;
         wr__msh_dbuf outer, holes, lines;
-        wr__msh_ibuf hole_n, line_n;
+        wr__msh_ibuf hole_n, line_n, line_lab; /* line_lab: 2 per line (kind 0/1/2, technique index) */
         int32_t *idx_of = NULL, nL = w->n_loop, vbase = V.n / 2;
         wr__msh_dbuf cpts;
         wr__msh_ibuf csegs;
@@ -1419,6 +1419,7 @@ WRDEF wr_status wr_mesher_run(const wr_pattern *pat, const wr_mesher_desc *desc_
         memset(&lines, 0, sizeof lines);
         memset(&hole_n, 0, sizeof hole_n);
         memset(&line_n, 0, sizeof line_n);
+        memset(&line_lab, 0, sizeof line_lab);
         memset(&cpts, 0, sizeof cpts);
         memset(&csegs, 0, sizeof csegs);
         t0 = wr_time_seconds();
@@ -1595,7 +1596,9 @@ WRDEF wr_status wr_mesher_run(const wr_pattern *pat, const wr_mesher_desc *desc_
                             }
                         }
                         wr_free(poly);
-                        if (!wr__msh_ipush(&line_n, (lines.n - before) / 2)) goto panel_nomem;
+                        if (!wr__msh_ipush(&line_n, (lines.n - before) / 2) || !wr__msh_ipush(&line_lab, t2) ||
+                            !wr__msh_ipush(&line_lab, i))
+                            goto panel_nomem;
                     }
                 }
             }
@@ -1641,8 +1644,27 @@ WRDEF wr_status wr_mesher_run(const wr_pattern *pat, const wr_mesher_desc *desc_
             if (st == WR_ERR_BUDGET)
                 st = wr_fail(diag, st, p, "vertex budget of %d exceeded at panels[%d] '%s' (%s)", (int)max_v, (int)p,
                              wr__msh_pname(pat, p), msg);
-            else
-                st = wr_fail(diag, st, p, "panels[%d] '%s': %s", (int)p, wr__msh_pname(pat, p), msg);
+            else {
+                /* name the techniques behind the sampler's "polyline j" (its constraint-line numbering) */
+                char legend[160];
+                const char *q = msg;
+                size_t ll = 0;
+                int seen = 0;
+                static const char *const kinds[3] = {"shirrings", "quilts", "folds"};
+                legend[0] = 0;
+                while ((q = strstr(q, "polyline ")) != NULL && seen < 3) {
+                    int lj = atoi(q + 9);
+                    if (lj >= 0 && lj < line_n.n && ll < sizeof legend - 40) {
+                        ll += (size_t)snprintf(legend + ll, sizeof legend - ll, "%s polyline %d = %s[%d]",
+                                               seen ? ";" : " [", lj, kinds[line_lab.v[2 * lj]],
+                                               (int)line_lab.v[2 * lj + 1]);
+                        ++seen;
+                    }
+                    q += 9;
+                }
+                if (seen && ll < sizeof legend - 2) snprintf(legend + ll, sizeof legend - ll, "]");
+                st = wr_fail(diag, st, p, "panels[%d] '%s': %.300s%s", (int)p, wr__msh_pname(pat, p), msg, legend);
+            }
             goto panel_fail;
         }
         res->report.t_poisson += wr_time_seconds() - t0;
@@ -1844,6 +1866,7 @@ WRDEF wr_status wr_mesher_run(const wr_pattern *pat, const wr_mesher_desc *desc_
         wr_free(lines.v);
         wr_free(hole_n.v);
         wr_free(line_n.v);
+        wr_free(line_lab.v);
         continue;
     panel_nomem:
         st = wr_fail(diag, WR_ERR_NOMEM, p, "out of memory meshing panels[%d]", (int)p);
@@ -1858,6 +1881,7 @@ WRDEF wr_status wr_mesher_run(const wr_pattern *pat, const wr_mesher_desc *desc_
         wr_free(lines.v);
         wr_free(hole_n.v);
         wr_free(line_n.v);
+        wr_free(line_lab.v);
         goto fail;
     }
 
