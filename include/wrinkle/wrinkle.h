@@ -24,3 +24,4 @@
 #include "statics.h"
 #include "wrinkle_field.h"
 #include "mesher.h"
+#include "tfw.h"

@@ -78,6 +78,10 @@
  *   9.0e-6 in 200 iterations) had two causes: the reduced Hessian applied face_edge_sign twice (a
  *   19% wrong Hessian in a finite-difference check) and the test case itself — a uniformly compressed
  *   sheet with a free everywhere has no minimiser (E → 0 along (s a, ω/s), s → ∞).
+ *   a = 0 is a KKT point wherever it holds (E is even in a): before stopping on KKT the solver tries
+ *   a second-order escape along the amplitudes whose faces see compression (wr__wf_escape); on the
+ *   12.78%-stretched sheet this is what lets wrinkles reappear after the E.2 guess collapses to 0,
+ *   as the paper's video notes describe.
  *   omega_reg (default 0 = the paper's energy) adds a tiny Tikhonov term on ω; it is not needed for
  *   convergence and changes the solution, so it is off unless asked for.
  *
@@ -214,6 +218,7 @@ typedef struct wr_wf_solve_stats {
     int32_t iterations;     /* accepted steps */
     int32_t n_rejected;     /* rejected trial steps (each cost one factorisation + one energy) */
     int32_t n_factorizations;
+    int32_t n_escapes;      /* second-order escapes from stationary a = 0 (see wr__wf_escape) */
     int32_t switch_iteration; /* first iteration with the true Hessian, -1 if never */
     int32_t n_vars;         /* reduced unknowns: free amplitudes + closed-form coordinates */
     int32_t n_generators;   /* cohomology generators of the complex outside W */
@@ -311,6 +316,7 @@ extern "C" {
 #define WR__WF_DAMP_FLOOR 1e-6    /* damping diagonal floor, relative to the block's mean |diag K| */
 #define WR__WF_EPS_ACTIVE 1e-3    /* ε of the ε-active set, in units of a_ref: a <= ε a_ref with ∂E/∂a > 0 is put on the bound */
 #define WR__WF_ROUNDOFF 1e-14     /* predicted decrease below this × |E| is below double round-off of E */
+#define WR__WF_MAX_ESCAPES 50     /* second-order escapes from a = 0 per solve */
 #define WR__WF_AREF_FALLBACK 1e-3 /* a_ref = 1e-3 × bbox diagonal when the start has a = 0 everywhere */
 
 /* Barycentric quadrature points (λ0, λ1, λ2), weight 1/3 each: symmetric degree-2 rule. */
@@ -1973,6 +1979,55 @@ static void wr__wf_sqp_tox(const wr_wf *wf, const wr__wf_basis *B, const int32_t
     wr__wf_z_apply(B, y + na, omega);
 }
 
+/* Second-order escape from amplitudes stuck at the bound with zero gradient (TFW App. F notes for
+ * the stretched sheet: "amplitude first vanishes globally over the sheet, and then wrinkles emerge at
+ * the center"). E is even in a, so a = 0 with any ω is a KKT point; whether it is a minimum is a
+ * second-order question about SMOOTH amplitude modes: a single vertex's curvature is dominated by
+ * its own |da|² term. Per face, 1ᵀ H_aa 1 (true Hessian, a uniform on the face so da = 0) is the
+ * curvature of the a²|dφ|² terms alone: negative where the base stress is compressive along dφ
+ * (Eq. 21). Vertices at 0 whose incident faces average a negative value form the escape profile
+ * p_v = -avg / max(-avg); trial points a = s·a_ref·p_v for s = 0.1, 0.01, ..., 1e-6 (ω unchanged),
+ * the first that lowers E is taken. hd: scratch of na. Returns 1 with the point in yt, E in *Enew. */
+static int wr__wf_escape(const wr_wf *wf, const wr__wf_basis *B, const int32_t *avar, int32_t na, const double *y,
+                         const double *H, double aref, double E, double *yt, double *xa, double *xo, double *hd,
+                         double *cnt, double *Enew) {
+    int32_t f, i, v, n = na + B->ncol;
+    double pmax = 0.0, s;
+    for (i = 0; i < na; ++i) hd[i] = cnt[i] = 0.0;
+    for (f = 0; f < wf->nf; ++f) {
+        const double *He = H + 36 * (size_t)f;
+        double c = 0.0;
+        int k, l;
+        if (wf->wfree[f]) continue;
+        for (k = 0; k < 3; ++k)
+            for (l = 0; l < 3; ++l) c += He[6 * k + l];
+        for (k = 0; k < 3; ++k) {
+            int32_t col = avar[wf->mesh->faces[3 * f + k]];
+            if (col < 0) continue;
+            hd[col] += c;
+            cnt[col] += 1.0;
+        }
+    }
+    for (i = 0; i < na; ++i) {
+        hd[i] = (y[i] == 0.0 && cnt[i] > 0.0 && hd[i] < 0.0) ? -hd[i] / cnt[i] : 0.0;
+        pmax = fmax(pmax, hd[i]);
+    }
+    if (!(pmax > 0.0)) return 0;
+    for (s = 1e-1; s >= 1e-6; s *= 0.1) {
+        double Et = 0.0;
+        for (i = 0; i < n; ++i) yt[i] = y[i];
+        for (i = 0; i < na; ++i)
+            if (hd[i] > 0.0) yt[i] = s * aref * hd[i] / pmax;
+        for (v = 0; v < wf->nv; ++v) xa[v] = avar[v] >= 0 ? yt[avar[v]] : 0.0;
+        wr__wf_z_apply(B, yt + na, xo);
+        if (wr_wf_energy(wf, xa, xo, &Et, NULL, NULL, NULL, NULL) == WR_OK && Et < E - WR__WF_ROUNDOFF * fabs(E)) {
+            *Enew = Et;
+            return 1;
+        }
+    }
+    return 0;
+}
+
 /* Stationarity of Eq. 39 in nondimensional variables ŷ = y / s (s = a_ref for amplitudes, 1 rad for
  * the closed-form coordinates) and ĝ = s g / E_ref: ||ŷ - P(ŷ - ĝ)||_∞, P = projection onto a >= 0.
  * For a free amplitude and for every z coordinate this is |ĝ| (reduced gradient in the null space of
@@ -2017,9 +2072,10 @@ WRDEF wr_status wr_wf_solve(const wr_wf *wf, const wr_wf_solve_desc *desc, doubl
     wr_spd_desc sd;
     int32_t *avar = NULL, *fstart = NULL, *fcols = NULL, na = 0, n = 0, v, f, i, it;
     double *Pm = NULL, *y = NULL, *yt = NULL, *d = NULL, *g = NULL, *gx = NULL, *H = NULL, *xa = NULL, *xo = NULL,
-           *rhs = NULL, *kmodel = NULL, *mdiag = NULL, *ks = NULL;
+           *rhs = NULL, *kmodel = NULL, *mdiag = NULL, *ks = NULL, *ainit = NULL;
     double aref = 1.0, eref = 1.0, mu, nu_up = 2.0, greg = 0.0;
     int have_grad = 0, fresh_hess = 0, hess_true = 0;
+    double Et0 = 0.0;
     uint8_t *zero = NULL, *active = NULL;
     double t0 = wr_time_seconds(), E = 0.0;
     wr_status st = WR_OK;
@@ -2166,6 +2222,11 @@ WRDEF wr_status wr_wf_solve(const wr_wf *wf, const wr_wf_solve_desc *desc, doubl
         for (i = 0; i < 3; ++i) diam2 += (hi[i] - lo[i]) * (hi[i] - lo[i]);
         aref = amax > 0.0 ? amax : WR__WF_AREF_FALLBACK * sqrt(diam2);
     }
+    ainit = (double *)wr_alloc_array((size_t)na + 1, sizeof(double));
+    if (!ainit) {
+        st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf solve: out of memory");
+        goto done;
+    }
     mu = WR__WF_MU0;
     hess_true = D.hessian == WR_WF_HESSIAN_TRUE;
     for (it = 0;; ++it) {
@@ -2199,6 +2260,16 @@ WRDEF wr_status wr_wf_solve(const wr_wf *wf, const wr_wf_solve_desc *desc, doubl
         S.kkt = kkt;
         S.iterations = it;
         if (kkt <= D.tol_kkt * S.kkt0 || kkt == 0.0) {
+            /* a = 0 is a KKT point wherever it holds (E is even in a): leave it along negative
+             * curvature of E in the amplitudes at the bound before accepting it (second order) */
+            if (S.n_escapes < WR__WF_MAX_ESCAPES &&
+                wr__wf_escape(wf, &B, avar, na, y, H, aref, E, yt, xa, xo, ainit, mdiag, &Et0)) {
+                ++S.n_escapes;
+                for (i = 0; i < n; ++i) y[i] = yt[i];
+                E = Et0;
+                have_grad = 0;
+                continue;
+            }
             S.stop = WR_WF_STOP_KKT;
             break;
         }
@@ -2254,10 +2325,6 @@ WRDEF wr_status wr_wf_solve(const wr_wf *wf, const wr_wf_solve_desc *desc, doubl
         /* ε-active set (Bertsekas 1982 projected Newton): amplitudes within eps of the bound whose
          * scaled gradient pushes them down are held and moved to the bound. */
         epsact = WR__WF_EPS_ACTIVE;
-        for (i = 0; i < n; ++i) {
-            active[i] = (uint8_t)(i < na && y[i] / aref <= epsact && g[i] > 0.0);
-            nact += active[i];
-        }
         /* Marquardt damping matrix: |diag| of the model Hessian, floored per block (a, z) so that
          * directions the energy does not see (ω where a = 0) still get a finite, tiny step. */
         for (i = 0; i < n; ++i) {
@@ -2276,6 +2343,13 @@ WRDEF wr_status wr_wf_solve(const wr_wf *wf, const wr_wf_solve_desc *desc, doubl
             wr_spd_stats ss;
             wr_status fs;
             t1 = wr_time_seconds();
+            /* the ε-active set is rebuilt per trial: after a rejection ε shrinks ×0.1, because
+             * snapping a near-bound amplitude to 0 is the one part of the step μ does not shorten */
+            nact = 0;
+            for (i = 0; i < n; ++i) {
+                active[i] = (uint8_t)(i < na && (y[i] <= 0.0 || y[i] / aref <= epsact) && g[i] > 0.0);
+                nact += active[i];
+            }
             memcpy(K.val, kmodel, sizeof(double) * (size_t)K.nnz);
             for (i = 0; i < n; ++i) {
                 int32_t t;
@@ -2336,6 +2410,7 @@ WRDEF wr_status wr_wf_solve(const wr_wf *wf, const wr_wf_solve_desc *desc, doubl
             }
             ++S.n_rejected;
             ++nfail;
+            epsact *= 0.1;
             mu = fmax(WR__WF_MU_MIN, mu) * nu_up;
             nu_up *= 2.0;
             if (mu > WR__WF_MU_MAX) break;
@@ -2430,6 +2505,7 @@ done:
     wr_free(kmodel);
     wr_free(mdiag);
     wr_free(ks);
+    wr_free(ainit);
     return st;
 }
 

@@ -1,0 +1,185 @@
+/* wrinkle/tfw.h — the TFW pipeline on a given base surface: wrinkle-free set, initial guess, SQP for
+ * amplitude and frequency, phase, Loop upsampling to the wrinkled surface — one call, with timings.
+ * wrinkle v0.1.0 — MIT licence (see LICENSE). Needs core.h, mesh.h, sparse.h, pcg.h,
+ * wrinkle_field.h (CHOLMOD through pcg.h when built with -DWR_USE_CHOLMOD=1); otherwise libc/libm.
+ *
+ * Paper: Chen et al., "Fine Wrinkling on Coarsely Meshed Thin Shells" (TFW, TOG 2021), Sec. 5 and
+ * App. E.2–E.5. The base surface (Sec. 4.1: TFT membrane + quadratic bending) is computed by the
+ * caller with statics.h (shell desc membrane = WR_MEMBRANE_TFT, bending = WR_BENDING_QUADRATIC);
+ * wr_tfw_base_shell_desc fills that desc so drivers and validations use the same model.
+ *
+ * API (create/free pair: wr_tfw_fields → wr_tfw_result_free)
+ *   wr_tfw_base_shell_desc(young, poisson, thickness, density, out)   Sec. 4.1 shell model
+ *   wr_tfw_fields(mesh, base_pos, material, desc, result, diag)       W, E.2, E.3, E.4, E.5
+ *   wr_tfw_result_free(result)
+ *
+ * EXAMPLE
+ *     wr_shell_desc sd; wr_tfw_base_shell_desc(1e6, 0.5, 1e-4, 0.0, &sd);
+ *     ... wr_shell_create(&shell, &mesh, &sd, &d); wr_statics_solve_incremental(&shell, x, ...);
+ *     wr_wf_material mat = {1e6, 0.5, 1e-4}; wr_tfw_result r;
+ *     if (wr_tfw_fields(&mesh, x, &mat, NULL, &r, &d) == WR_OK) wr_mesh_write_obj(&r.wrinkled, ...);
+ *     wr_tfw_result_free(&r);
+ *
+ * ON RESULTS
+ *   a (nv) [m], omega (ne) [rad per edge], phi (3 nf) per-corner phase [rad], wfree (nf), the wrinkled
+ *   mesh (Loop level `upsample.levels`, default 2) and its amplitudes. An SQP that stops without
+ *   converging (WR_ERR_NOT_CONVERGED) still yields fields, phase and the wrinkled mesh; the status is
+ *   returned after everything is filled, and result->sqp tells why.
+ *
+ * ON THREADS
+ *   No global state.
+ */
+#ifndef WRINKLE_TFW_H
+#define WRINKLE_TFW_H
+
+#include "core.h"
+#include "mesh.h"
+#include "wrinkle_field.h"
+#include "shell.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Defaults: everything zero = the defaults of each stage; W from the Sec. 5.1 rule unless
+ * wfree_override is given (nf flags). */
+typedef struct wr_tfw_desc {
+    wr_wf_classify_desc classify;
+    wr_wf_init_desc init;
+    wr_wf_solve_desc solve;
+    wr_wf_upsample_desc upsample;
+    const uint8_t *wfree_override;
+    int no_upsample; /* nonzero: skip E.5 (result->wrinkled stays empty) */
+} wr_tfw_desc;
+
+typedef struct wr_tfw_result {
+    int32_t nv, ne, nf;
+    double *a, *omega, *phi;
+    uint8_t *wfree;
+    int32_t n_wrinkle_free;
+    wr_mesh wrinkled;
+    double *wrinkled_a;
+    wr_wf_solve_stats sqp;
+    wr_wf_phase_stats phase;
+    double seconds_setup, seconds_init, seconds_sqp, seconds_phase, seconds_upsample, seconds_total;
+} wr_tfw_result;
+
+WRDEF void wr_tfw_base_shell_desc(double young, double poisson, double thickness, double density, wr_shell_desc *out);
+WRDEF wr_status wr_tfw_fields(const wr_mesh *m, const double *base_pos, const wr_wf_material *mat,
+                              const wr_tfw_desc *desc, wr_tfw_result *res, wr_diag *diag);
+WRDEF void wr_tfw_result_free(wr_tfw_result *res);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* WRINKLE_TFW_H */
+
+#ifdef WRINKLE_IMPLEMENTATION
+#ifndef WRINKLE_TFW_IMPLEMENTATION_DONE
+#define WRINKLE_TFW_IMPLEMENTATION_DONE
+
+#include <string.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+WRDEF void wr_tfw_base_shell_desc(double young, double poisson, double thickness, double density, wr_shell_desc *out) {
+    memset(out, 0, sizeof *out);
+    out->membrane = WR_MEMBRANE_TFT;      /* TFW Sec. 4.1, App. B */
+    out->bending = WR_BENDING_QUADRATIC;  /* TFW Eq. 28 */
+    out->young = young;
+    out->poisson = poisson;
+    out->thickness = thickness;
+    out->density = density;
+}
+
+WRDEF void wr_tfw_result_free(wr_tfw_result *res) {
+    if (!res) return;
+    wr_free(res->a);
+    wr_free(res->omega);
+    wr_free(res->phi);
+    wr_free(res->wfree);
+    wr_free(res->wrinkled_a);
+    wr_mesh_free(&res->wrinkled);
+    memset(res, 0, sizeof *res);
+}
+
+WRDEF wr_status wr_tfw_fields(const wr_mesh *m, const double *base_pos, const wr_wf_material *mat,
+                              const wr_tfw_desc *desc, wr_tfw_result *res, wr_diag *diag) {
+    wr_wf wf;
+    wr_tfw_desc D;
+    wr_status st, sqp_st;
+    double t0 = wr_time_seconds(), t1;
+    int32_t f;
+    if (!res) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "tfw: NULL result");
+    memset(res, 0, sizeof *res);
+    if (!m || !mat) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "tfw: NULL mesh or material");
+    if (desc)
+        D = *desc;
+    else
+        memset(&D, 0, sizeof D);
+    st = wr_wf_create(&wf, m, base_pos, mat, diag);
+    if (st) return st;
+    res->nv = m->nv;
+    res->ne = m->ne;
+    res->nf = m->nf;
+    res->a = (double *)wr_alloc_array((size_t)m->nv, sizeof(double));
+    res->omega = (double *)wr_alloc_array((size_t)m->ne, sizeof(double));
+    res->phi = (double *)wr_calloc_array((size_t)m->nf * 3, sizeof(double));
+    res->wfree = (uint8_t *)wr_alloc_array((size_t)m->nf, sizeof(uint8_t));
+    if (!res->a || !res->omega || !res->phi || !res->wfree) {
+        st = wr_fail(diag, WR_ERR_NOMEM, -1, "tfw: out of memory for %d vertices", (int)m->nv);
+        goto fail;
+    }
+    if (D.wfree_override)
+        wr_wf_set_wrinkle_free(&wf, D.wfree_override);
+    else
+        wr_wf_classify(&wf, &D.classify); /* Sec. 5.1 */
+    for (f = 0; f < m->nf; ++f) {
+        res->wfree[f] = wf.wfree[f];
+        res->n_wrinkle_free += wf.wfree[f];
+    }
+    t1 = wr_time_seconds();
+    res->seconds_setup = t1 - t0;
+    st = wr_wf_init(&wf, &D.init, res->a, res->omega, diag); /* App. E.2 */
+    if (st) goto fail;
+    res->seconds_init = wr_time_seconds() - t1;
+    t1 = wr_time_seconds();
+    sqp_st = wr_wf_solve(&wf, &D.solve, res->a, res->omega, &res->sqp, diag); /* App. E.3 */
+    res->seconds_sqp = wr_time_seconds() - t1;
+    if (sqp_st && sqp_st != WR_ERR_NOT_CONVERGED) {
+        st = sqp_st;
+        goto fail;
+    }
+    t1 = wr_time_seconds();
+    st = wr_wf_phase(&wf, res->omega, res->phi, &res->phase, diag); /* App. E.4 */
+    res->seconds_phase = wr_time_seconds() - t1;
+    if (st) goto fail;
+    if (!D.no_upsample) {
+        t1 = wr_time_seconds();
+        st = wr_wf_upsample(&wf, res->a, res->phi, &D.upsample, &res->wrinkled, &res->wrinkled_a, diag); /* E.5 */
+        res->seconds_upsample = wr_time_seconds() - t1;
+        if (st) goto fail;
+    }
+    wr_wf_free(&wf);
+    res->seconds_total = wr_time_seconds() - t0;
+    if (sqp_st) /* keep the SQP's message for the caller */
+        return wr_fail(diag, WR_ERR_NOT_CONVERGED, -1, "tfw: SQP stopped (stop rule %d) after %d iterations, KKT %g of %g",
+                       (int)res->sqp.stop, (int)res->sqp.iterations, res->sqp.kkt, res->sqp.kkt0);
+    return WR_OK;
+fail:
+    wr_wf_free(&wf);
+    {
+        wr_wf_solve_stats keep = res->sqp;
+        wr_tfw_result_free(res);
+        res->sqp = keep;
+    }
+    return st;
+}
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* WRINKLE_TFW_IMPLEMENTATION_DONE */
+#endif /* WRINKLE_IMPLEMENTATION */
