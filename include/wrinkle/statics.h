@@ -1,31 +1,112 @@
-/* wrinkle/statics.h — static equilibrium of a shell (shell.h) under gravity and prescribed vertices:
- * projected Newton with backtracking line search, linear solves through pcg.h.
+/* wrinkle/statics.h — static equilibrium of a shell (shell.h): gravity, prescribed vertices and
+ * prescribed motions (stretch, shear, twist) with load increments, uniform pressure on closed or
+ * sewn surfaces, frictionless contact with analytic obstacles (plane, sphere, capsule); projected
+ * Newton with backtracking line search, linear solves through pcg.h.
  * wrinkle v0.1.0 — MIT licence (see LICENSE). Needs core.h, sparse.h, pcg.h (CHOLMOD when built
- * with WR_USE_CHOLMOD=1, see pcg.h), mesh.h, tft.h, shell.h.
+ * with WR_USE_CHOLMOD=1, see pcg.h), mesh.h, tft.h, shell.h; otherwise only libc and libm.
  *
- * Minimises Π(x) = E_shell(x) − Σ_v m_v g·x_v over the free vertices (TFW Sec. 4.1 base surface with
- * the TFT membrane; the StVK reference statics with the mid-edge membrane+bending). Each Newton step
- * assembles the element Hessians, projects each to its nearest PSD matrix (wr_dense_project_spd, as
- * TFW App. E does for its SQP), adds a diagonal shift μ·I (μ = shift_rel · mean diagonal, raised ×100
- * while the linear solve reports a non-SPD matrix), solves K Δx = −∇Π with the prescribed DOFs held,
- * and backtracks (Armijo, c = 1e-4, halving) on Π. A trial state where the energy is undefined
- * (degenerate face) counts as +∞.
+ * Minimises Π(x) = E_shell(x) − Σ_v m_v g·x_v − p·V(x) + Σ_{free v, obstacles o} κ·b(d_o(x_v))
+ * over the free vertices: the TFW Sec. 4.1 base surface (TFT membrane + quadratic bending), and the
+ * StVK reference statics (StVK membrane + mid-edge bending) that both papers compare against. Each
+ * Newton step assembles the element Hessians, projects each to PSD (as TFW App. E does for its SQP),
+ * adds a diagonal shift μ·I (μ = shift_rel · mean diagonal, raised ×100 while the linear solve
+ * reports a non-SPD matrix), solves K Δx = −∇Π with the prescribed DOFs held, limits the step so no
+ * vertex can reach an obstacle (CCD), and backtracks (Armijo, c = 1e-4, halving) on Π. A trial state
+ * where Π is undefined (degenerate face, vertex on or through an obstacle) counts as +∞.
  *
  * API
- *   wr_statics_solve(shell, x, desc, stats, diag)   x: nv*3 initial guess in, equilibrium out
+ *   wr_statics_solve(shell, x, desc, stats, diag)    x: nv*3 initial guess in, equilibrium out
+ *   wr_statics_solve_incremental(shell, x, desc, motions, n_motions, n_inc, stats, diag)
+ *                                                    prescribed motions applied in n_inc increments
+ *   wr_motion_apply(motion, x_ref, t, target, fixed, diag)   targets of a motion at fraction t
+ *   wr_statics_volume(shell, x, origin, grad)        enclosed volume (1/6)Σ_f (x_a−o)·((x_b−o)×(x_c−o))
+ *   wr_statics_pressure_element(x9, origin, p, g, H) one face's −p·V_f, gradient and Hessian
+ *   wr_obstacle_distance(obstacle, x, grad)          signed distance [m] and its gradient
+ *   wr_statics_barrier(d, dhat, kappa, b1, b2)       contact barrier κ·b(d) and its d-derivatives
+ *   wr_statics_project_spd(n, A, floor)              fast per-element PSD projection (see ON PROJECTION)
+ *   wr_mesh_weld(out, in, n_pairs, pairs, vmap, diag)   sew: merge vertex pairs, keep each face's rest
+ *   wr_mesh_pillow(out, panel, lift, diag)           two copies of a flat panel sewn along the boundary
  *
  * EXAMPLE
- *     wr_statics_desc sd; wr_statics_stats st;
- *     memset(&sd, 0, sizeof sd);
- *     sd.gravity[2] = -9.81; sd.fixed = pinned; sd.perturb = 1e-4; // seeded out-of-plane kick
+ *     wr_statics_desc sd; wr_statics_stats st; wr_obstacle ball;
+ *     memset(&sd, 0, sizeof sd); memset(&ball, 0, sizeof ball);
+ *     ball.kind = WR_OBSTACLE_SPHERE; ball.radius = 0.2;            // centred at the origin
+ *     sd.gravity[2] = -9.81; sd.perturb = 1e-4; sd.seed = 7;        // seeded out-of-plane kick
+ *     sd.obstacles = &ball; sd.n_obstacles = 1;                      // default d̂ and κ
  *     if (wr_statics_solve(&shell, x, &sd, &st, &d) != WR_OK) puts(d.message);
- *     printf("%d Newton steps, |g| %.2e\n", st.iterations, st.grad_norm);
+ *     printf("%d Newton steps, |g| %.2e, gap %.2e m\n", st.iterations, st.grad_norm, st.min_distance);
  *
- * ON STOPPING
+ * ON STOPPING ("solve to tolerance")
  *   Converged when ‖∇Π_free‖ <= grad_tol · max(‖∇Π_free(x0)‖, ‖f_ext,free‖) (stop GRADIENT), or when
- *   the accepted step max|αΔx| <= step_tol · (bounding-box diagonal) (stop STEP). max_iter reached,
- *   or a line search that cannot decrease Π in 40 halvings, returns WR_ERR_NOT_CONVERGED with the best
- *   (lowest-Π) iterate in x.
+ *   the accepted step max|αΔx| <= step_tol · (bounding-box diagonal of x0) (stop STEP). max_iter
+ *   reached, or a line search that cannot decrease Π in 40 halvings, returns WR_ERR_NOT_CONVERGED
+ *   with the best (lowest-Π) iterate in x. ∇Π includes pressure and contact forces, so a converged
+ *   state is an equilibrium of all of them. The perturbation is applied before x0 is measured.
+ *
+ * ON PRESSURE (Skouras et al. 2014; TFW Sec. 6 inflatables)
+ *   desc.pressure p [Pa] (> 0 inflates) adds −p·V with V = (1/6) Σ_f (x_a−o)·((x_b−o)×(x_c−o)) over
+ *   faces (a, b, c), o = the centroid of the initial x (held fixed during the solve). V > 0 when the
+ *   faces are oriented with outward normals ((x_b−x_a)×(x_c−x_a) pointing out); an inward-oriented
+ *   closed mesh has V < 0 and pressure then deflates it. On a closed surface V does not depend on o.
+ *   On an open surface it does, through the boundary only, so pressure needs a closed (sewn) surface
+ *   or an open one whose boundary vertices are all prescribed; otherwise WR_ERR_UNSUPPORTED (item =
+ *   a free boundary vertex). Hessian: ∂²V_f/∂x_a∂x_b = −(1/6)[x_c−o]× for (a, b, c) cyclic: zero
+ *   diagonal blocks, hence indefinite. We add each face's −p·∇²V_f to the same face's elastic block
+ *   BEFORE that block's PSD projection: the membrane stiffness absorbs the indefinite part where it
+ *   can, so Newton keeps the pressure stiffness where it is consistent (fast convergence near the
+ *   inflated equilibrium) and only the net non-convex part is discarded. Faces whose elastic block
+ *   is absent (no membrane and no mid-edge bending) get the pressure block projected on its own.
+ *
+ * ON CONTACT
+ *   Frictionless, vertex against analytic obstacle, one-sided (the obstacle is where d < 0): an
+ *   IPC-style log barrier (Li et al. 2020) b(d) = −(d − d̂)² ln(d/d̂) for 0 < d < d̂, 0 for d >= d̂
+ *   (C², so Newton sees a smooth energy), scaled by κ [N/m]. Only free vertices feel it; a free
+ *   vertex with d <= 0 at the start (after the perturbation) is WR_ERR_GEOMETRY (item = vertex).
+ *   Every Newton step is cut, before the line search, to the largest α <= 1 such that no free vertex
+ *   gets closer than WR_STATICS_CCD_KEEP (0.2) of its current distance to any obstacle: conservative
+ *   advancement along the straight path, exact for the plane and safe for the sphere and capsule
+ *   because d is 1-Lipschitz. So no iterate ever penetrates, whatever κ. The barrier Hessian is
+ *   κ[b''(d) ∇d∇dᵀ + b'(d) ∇²d]; the second term is negative semidefinite on a convex obstacle
+ *   (b' < 0, ∇²d >= 0, orthogonal to ∇d), so its PSD projection is exactly κ b''(d) ∇d∇dᵀ, which is
+ *   what we assemble. Defaults: d̂ = 1e-3 × bounding-box diagonal of x0; κ = 10 f_ref / d̂ with
+ *   f_ref = the largest per-vertex external load (gravity m_v|g| plus p × vertex area), or, with no
+ *   external load, 1e-3 · h·Y · (typical rest edge). κ only decides how close to the surface a
+ *   loaded vertex rests (within d̂), never whether it passes. Contact is vertex-only: a face between
+ *   vertices outside a curved obstacle can cut into it by its sagitta (≈ l²/(8R) for edge length l,
+ *   radius R); min_distance in the stats is measured at the vertices.
+ *
+ * ON MOTIONS AND INCREMENTS
+ *   A wr_motion moves a vertex set rigidly or by a simple deformation of its reference positions
+ *   (the x given to the incremental solve): translate, stretch (uniaxial, or isotropic scale when
+ *   axis = 0), simple shear, or twist (rotation about an axis line by an angle, so heights along the
+ *   axis are kept). wr_statics_solve_incremental applies fraction t = k/n_inc of every motion for
+ *   k = 1..n_inc and solves each increment to tolerance, warm-started from the previous equilibrium
+ *   (free vertices start where the previous increment left them; only the prescribed vertices jump
+ *   by one increment, which is what keeps each Newton solve in its basin). Intermediate increments use
+ *   inc_grad_tol (default grad_tol); an intermediate WR_ERR_NOT_CONVERGED is tolerated (its best
+ *   iterate warm-starts the next increment, counted in stats.increments_failed); the status of the
+ *   last increment is returned. The perturbation is applied in the first increment only.
+ *
+ * ON PROJECTION
+ *   Element Hessians are made PSD one by one. projection = WR_PROJECT_FAST (default) first tries a
+ *   Cholesky factorisation of Ke + τI, τ = WR_STATICS_PSD_TEST_REL · max|diag(Ke)| (1e-12): when it
+ *   succeeds every eigenvalue is >= −τ, far below the global shift μ (1e-8 of the mean diagonal),
+ *   and the block is used as is. Otherwise a Householder tridiagonalisation + implicit QL eigensolver
+ *   (O(n³) with a small constant, against cyclic Jacobi's several full sweeps) gives the spectrum and
+ *   only the negative eigenpairs are removed (A − Σ_{λ<floor} (λ−floor) v vᵀ). WR_PROJECT_JACOBI is
+ *   the former path (wr_dense_project_spd from core.h), kept to measure against; WR_PROJECT_NONE
+ *   assembles the exact Hessian (with no_projection = 1 meaning the same, for compatibility).
+ *
+ * ON SEWING
+ *   wr_mesh_weld merges the vertices of each pair (transitively), averages their positions and gives
+ *   every face its own rest corners (corner_rest) from the input, so each panel keeps its flat
+ *   pattern shape (TFW: two annuli → torus, two disks → Mylar balloon, two rectangles → teabag).
+ *   wr_mesh_pillow builds that two-panel case from one flat panel: the top copy keeps the panel's
+ *   orientation and is lifted by +lift·s(v), the bottom copy is mirrored in the rest domain (u → −u,
+ *   corners 1 and 2 swapped, so it is CCW in its own pattern and faces outward below) and lowered by
+ *   −lift·s(v); s = hop distance to the boundary / the largest such distance (0 on the seam, 1 at the
+ *   middle), a tent that keeps the seam faces non-degenerate. The closed result has outward normals,
+ *   so V > 0 and p > 0 inflates. (These two could move to mesh.h.)
  *
  * ON THREADS
  *   No global state; the progress callback runs on the calling thread.
@@ -51,7 +132,7 @@ typedef enum wr_statics_stop {
 } wr_statics_stop;
 
 typedef struct wr_statics_stats {
-    int32_t iterations;         /* Newton steps taken */
+    int32_t iterations;         /* Newton steps taken (this solve; last increment for incremental) */
     int32_t linear_iterations;  /* summed over steps */
     int32_t line_search_evals;  /* energy evaluations in line searches */
     double energy;              /* Π at the returned x [J] */
@@ -60,7 +141,36 @@ typedef struct wr_statics_stats {
     double shift;               /* last diagonal shift μ used */
     wr_statics_stop stop;
     double t_assembly, t_projection, t_linear, t_line_search, t_total; /* seconds */
+    /* added with pressure / contact / increments (zero when unused) */
+    double volume;              /* enclosed volume V at the returned x [m³] (pressure != 0) */
+    double min_distance;        /* smallest signed vertex–obstacle distance at x [m] (obstacles) */
+    double contact_dhat, contact_stiffness; /* d̂ [m] and κ [N/m] actually used */
+    int32_t n_contacts;         /* free vertices within d̂ of an obstacle at x */
+    int32_t elements_projected; /* element blocks changed by the projection, summed over steps */
+    int32_t elements_assembled; /* element blocks seen, summed over steps */
+    double ccd_alpha_min;       /* smallest CCD step cut over the solve (1 = never cut) */
+    int32_t increments, increments_failed, total_iterations; /* incremental solve only */
 } wr_statics_stats;
+
+typedef enum wr_statics_projection {
+    WR_PROJECT_FAST = 0,   /* PSD test, then Householder + QL (ON PROJECTION) */
+    WR_PROJECT_JACOBI = 1, /* wr_dense_project_spd (cyclic Jacobi) on every block */
+    WR_PROJECT_NONE = 2    /* exact element Hessians */
+} wr_statics_projection;
+
+typedef enum wr_obstacle_kind {
+    WR_OBSTACLE_PLANE = 0,  /* half-space n·(x − p) < 0 is solid */
+    WR_OBSTACLE_SPHERE = 1, /* |x − p| < radius is solid */
+    WR_OBSTACLE_CAPSULE = 2 /* distance to segment [p, q] < radius is solid */
+} wr_obstacle_kind;
+
+typedef struct wr_obstacle {
+    wr_obstacle_kind kind;
+    double p[3];      /* plane: a point on it; sphere: centre; capsule: axis end [m] */
+    double q[3];      /* capsule: other axis end [m] (p == q is a sphere) */
+    double normal[3]; /* plane: normal towards the free side (any length > 0) */
+    double radius;    /* sphere, capsule [m] > 0 */
+} wr_obstacle;
 
 /* Defaults (zero means default):
  *   max_iter 200; grad_tol 1e-8 (relative, see ON STOPPING); step_tol 1e-13 (relative to the
@@ -71,7 +181,10 @@ typedef struct wr_statics_stats {
  *   vertices along their area-weighted vertex normal (breaks the symmetry of flat starts), seed used
  *   as given (0 is a valid seed); shift_rel 1e-8 (diagonal shift relative to the mean diagonal);
  *   no_projection 0 = project element Hessians to PSD; linear: pcg.h options (fixed is set here);
- *   progress NULL, else called after every Newton step. */
+ *   progress NULL, else called after every Newton step;
+ *   pressure 0 Pa = none (ON PRESSURE); obstacles NULL / n_obstacles 0 = none, contact_dhat 0 →
+ *   1e-3 × bbox diagonal [m], contact_stiffness 0 → ON CONTACT default [N/m];
+ *   projection WR_PROJECT_FAST (ON PROJECTION); inc_grad_tol 0 → grad_tol (incremental solve). */
 typedef struct wr_statics_desc {
     int32_t max_iter;
     double grad_tol;
@@ -86,10 +199,74 @@ typedef struct wr_statics_desc {
     wr_spd_desc linear;
     void (*progress)(void *user, const wr_statics_stats *stats);
     void *progress_user;
+    /* added fields (zero = previous behaviour) */
+    double pressure;
+    const wr_obstacle *obstacles;
+    int32_t n_obstacles;
+    double contact_dhat;
+    double contact_stiffness;
+    wr_statics_projection projection;
+    double inc_grad_tol;
 } wr_statics_desc;
+
+typedef enum wr_motion_kind {
+    WR_MOTION_HOLD = 0,      /* prescribed at the reference position */
+    WR_MOTION_TRANSLATE = 1, /* x = X + t·vec */
+    WR_MOTION_STRETCH = 2,   /* x = X + t·amount·((X−origin)·â) â; axis = 0: x = origin + (1 + t·amount)(X−origin) */
+    WR_MOTION_SHEAR = 3,     /* x = X + t·amount·((X−origin)·n̂) â  (simple shear γ = amount) */
+    WR_MOTION_TWIST = 4      /* X rotated by t·amount [rad] about the line (origin, â), right-handed */
+} wr_motion_kind;
+
+/* A prescribed motion of the vertex set verts[0..n_verts) (their reference positions X are the x
+ * passed in). amount: stretch = engineering strain (0.1278 = +12.78%), shear = γ, twist = angle [rad]. */
+typedef struct wr_motion {
+    wr_motion_kind kind;
+    const int32_t *verts;
+    int32_t n_verts;
+    double origin[3]; /* [m] */
+    double axis[3];   /* stretch / twist axis, shear displacement direction (normalised here) */
+    double normal[3]; /* shear: the direction whose coordinate scales the displacement */
+    double vec[3];    /* translate [m] */
+    double amount;
+} wr_motion;
 
 WRDEF wr_status wr_statics_solve(const wr_shell *s, double *x, const wr_statics_desc *desc, wr_statics_stats *stats,
                                  wr_diag *diag);
+/* x: nv*3 reference positions in (the motions' X and the first warm start), final equilibrium out.
+ * desc->fixed / desc->target still prescribe other vertices (held at their target). n_inc >= 1. */
+WRDEF wr_status wr_statics_solve_incremental(const wr_shell *s, double *x, const wr_statics_desc *desc,
+                                             const wr_motion *motions, int32_t n_motions, int32_t n_inc,
+                                             wr_statics_stats *stats, wr_diag *diag);
+/* Writes target rows (nv*3 array, only the motion's vertices) at fraction t from reference x_ref and
+ * sets fixed[v] = 1 for them (fixed may be NULL). WR_ERR_INVALID_ARG on a vertex index outside
+ * [0, nv) (item = index position), a zero axis for twist/shear/… that needs one, non-finite data. */
+WRDEF wr_status wr_motion_apply(const wr_motion *m, int32_t nv, const double *x_ref, double t, double *target,
+                                uint8_t *fixed, wr_diag *diag);
+/* V = (1/6) Σ_f (x_a−o)·((x_b−o)×(x_c−o)) [m³], o = origin (NULL = 0). grad (nv*3) overwritten if non-NULL. */
+WRDEF double wr_statics_volume(const wr_shell *s, const double *x, const double origin[3], double *grad);
+/* One face: returns −p·V_f; g (9) and H (81, row-major) of −p·V_f when non-NULL. origin NULL = 0. */
+WRDEF double wr_statics_pressure_element(const double x9[9], const double origin[3], double p, double *g, double *H);
+/* Signed distance [m] from x to the obstacle surface (> 0 outside); grad (3) = ∇d, unit. */
+WRDEF double wr_obstacle_distance(const wr_obstacle *o, const double x[3], double grad[3]);
+/* κ·b(d) with b(d) = −(d−d̂)² ln(d/d̂) on (0, d̂), 0 for d >= d̂, +∞ for d <= 0; b1 = κ b'(d),
+ * b2 = κ b''(d) when non-NULL. */
+WRDEF double wr_statics_barrier(double d, double dhat, double kappa, double *b1, double *b2);
+/* In-place PSD projection of symmetric A (n×n, n <= WR_DENSE_MAX): eigenvalues below floor are raised
+ * to floor, except that a block passing the Cholesky test of ON PROJECTION (floor = 0 only) is kept
+ * unchanged. Returns the number of raised eigenvalues (0 = unchanged). */
+WRDEF int wr_statics_project_spd(int n, double *A, double floor);
+/* Sewing (ON SEWING). pairs: n_pairs × 2 vertex indices of `in`; vmap (in->nv) receives the new index
+ * of every input vertex when non-NULL. out gets corner_rest (and face_panel copied). Free with
+ * wr_mesh_free. Errors: WR_ERR_INVALID_ARG (index outside [0, nv), item = pair), WR_ERR_TOPOLOGY from
+ * wr_mesh_create (a face with two merged corners, an edge in more than two faces, inconsistent
+ * orientation across a seam). */
+WRDEF wr_status wr_mesh_weld(wr_mesh *out, const wr_mesh *in, int32_t n_pairs, const int32_t *pairs, int32_t *vmap,
+                             wr_diag *diag);
+/* Two copies of a flat panel (pos z = 0, at least one boundary loop) sewn along all its boundary
+ * loops; lift > 0 [m]. Top copy vertices keep their indices 0..nv−1 (face_panel 0, faces 0..nf−1),
+ * the bottom's interior vertices follow (face_panel 1). WR_ERR_INVALID_ARG for lift <= 0 or a panel
+ * without boundary. */
+WRDEF wr_status wr_mesh_pillow(wr_mesh *out, const wr_mesh *panel, double lift, wr_diag *diag);
 
 #ifdef __cplusplus
 }
@@ -101,6 +278,7 @@ WRDEF wr_status wr_statics_solve(const wr_shell *s, double *x, const wr_statics_
 #ifndef WRINKLE_STATICS_IMPLEMENTATION_DONE
 #define WRINKLE_STATICS_IMPLEMENTATION_DONE
 
+#include <float.h>
 #include <math.h>
 #include <string.h>
 
@@ -111,31 +289,322 @@ extern "C" {
 #define WR__STATICS_ARMIJO 1e-4   /* sufficient-decrease constant (Nocedal & Wright's usual value) */
 #define WR__STATICS_MAX_HALVINGS 40
 #define WR__STATICS_MAX_SHIFT_RAISES 8
+/* PSD test shift relative to the largest |diagonal| entry of the element block: a block that passes
+ * has no eigenvalue below −1e-12·max|Ke_ii|, four orders under the global shift (shift_rel 1e-8). */
+#define WR_STATICS_PSD_TEST_REL 1e-12
+/* CCD keeps a vertex at >= this fraction of its current obstacle distance per Newton step (IPC uses
+ * a similar safety fraction, 0.1–0.2, so iterates approach contact geometrically, never touching). */
+#define WR_STATICS_CCD_KEEP 0.2
+#define WR__STATICS_CCD_ITERS 64 /* conservative-advancement iterations; the result is safe at any count */
+#define WR__STATICS_QL_ITERS 60  /* implicit-QL iterations per eigenvalue before falling back to Jacobi */
+#define WR__STATICS_DHAT_REL 1e-3
+
+/* ---- dense PSD projection (ON PROJECTION) ----------------------------------------------------- */
+
+/* Cholesky of A + τI; 1 when every pivot is positive (A has no eigenvalue below −τ). */
+static int wr__statics_psd_test(int n, const double *A) {
+    double L[WR_DENSE_MAX * WR_DENSE_MAX], dmax = 0.0, tau;
+    int i, j, k;
+    for (i = 0; i < n; ++i) dmax = fmax(dmax, fabs(A[i * n + i]));
+    if (!(dmax > 0.0)) return 0;
+    tau = WR_STATICS_PSD_TEST_REL * dmax;
+    for (j = 0; j < n; ++j) {
+        double s = A[j * n + j] + tau;
+        for (k = 0; k < j; ++k) s -= L[j * n + k] * L[j * n + k];
+        if (!(s > 0.0)) return 0;
+        s = sqrt(s);
+        L[j * n + j] = s;
+        for (i = j + 1; i < n; ++i) {
+            double t = 0.5 * (A[i * n + j] + A[j * n + i]);
+            for (k = 0; k < j; ++k) t -= L[i * n + k] * L[j * n + k];
+            L[i * n + j] = t / s;
+        }
+    }
+    return 1;
+}
+
+/* Householder reduction of symmetric a (destroyed) to tridiagonal T = Qᵀ a Q: d diagonal, e[i] =
+ * T(i, i+1) (e[n−1] = 0), Q (row-major) accumulated. */
+static void wr__statics_tridiag(int n, double *a, double *Q, double *d, double *e) {
+    double v[WR_DENSE_MAX], p[WR_DENSE_MAX];
+    int i, j, k;
+    for (i = 0; i < n; ++i)
+        for (j = 0; j < n; ++j) Q[i * n + j] = i == j ? 1.0 : 0.0;
+    for (k = 0; k + 2 < n; ++k) {
+        double xn = 0.0, alpha, vv = 0.0, beta, K = 0.0;
+        for (i = k + 1; i < n; ++i) xn += a[i * n + k] * a[i * n + k];
+        xn = sqrt(xn);
+        if (xn == 0.0) continue;
+        /* reflect x = a[k+1.., k] onto alpha·e1 with the sign that avoids cancellation */
+        alpha = a[(k + 1) * n + k] > 0.0 ? -xn : xn;
+        for (i = k + 1; i < n; ++i) v[i] = a[i * n + k];
+        v[k + 1] -= alpha;
+        for (i = k + 1; i < n; ++i) vv += v[i] * v[i];
+        if (vv == 0.0) continue;
+        beta = 2.0 / vv;
+        /* H A H = A − v wᵀ − w vᵀ with p = βAv, w = p − (β vᵀp / 2) v, on the trailing block */
+        for (i = k + 1; i < n; ++i) {
+            double s = 0.0;
+            for (j = k + 1; j < n; ++j) s += a[i * n + j] * v[j];
+            p[i] = beta * s;
+            K += v[i] * p[i];
+        }
+        K *= 0.5 * beta;
+        for (i = k + 1; i < n; ++i) p[i] -= K * v[i];
+        for (i = k + 1; i < n; ++i)
+            for (j = k + 1; j < n; ++j) a[i * n + j] -= v[i] * p[j] + p[i] * v[j];
+        a[(k + 1) * n + k] = a[k * n + k + 1] = alpha;
+        for (i = k + 2; i < n; ++i) a[i * n + k] = a[k * n + i] = 0.0;
+        for (i = 0; i < n; ++i) {
+            double s = 0.0;
+            for (j = k + 1; j < n; ++j) s += Q[i * n + j] * v[j];
+            s *= beta;
+            for (j = k + 1; j < n; ++j) Q[i * n + j] -= s * v[j];
+        }
+    }
+    for (i = 0; i < n; ++i) {
+        d[i] = a[i * n + i];
+        e[i] = i + 1 < n ? a[(i + 1) * n + i] : 0.0;
+    }
+}
+
+/* Implicit QL with Wilkinson shifts on the tridiagonal (d, e), rotations accumulated into the
+ * columns of Z. Returns 0, or −1 when an eigenvalue needs more than WR__STATICS_QL_ITERS sweeps. */
+static int wr__statics_ql(int n, double *d, double *e, double *Z) {
+    int l, m, i, k;
+    for (l = 0; l < n; ++l) {
+        int iter = 0;
+        for (;;) {
+            double g, r, s, c, pp;
+            for (m = l; m + 1 < n; ++m)
+                if (fabs(e[m]) <= DBL_EPSILON * (fabs(d[m]) + fabs(d[m + 1]))) break;
+            if (m == l) break;
+            if (++iter > WR__STATICS_QL_ITERS) return -1;
+            /* shift: the eigenvalue of the leading 2×2 of the unreduced block closer to d[l] */
+            g = (d[l + 1] - d[l]) / (2.0 * e[l]);
+            r = sqrt(g * g + 1.0);
+            g = d[m] - d[l] + e[l] / (g + (g >= 0.0 ? r : -r));
+            s = c = 1.0;
+            pp = 0.0;
+            r = 1.0;
+            for (i = m - 1; i >= l; --i) {
+                double f = s * e[i], b = c * e[i];
+                r = sqrt(f * f + g * g);
+                e[i + 1] = r;
+                if (r == 0.0) { /* split: the bulge vanished, deflate */
+                    d[i + 1] -= pp;
+                    e[m] = 0.0;
+                    break;
+                }
+                s = f / r;
+                c = g / r;
+                g = d[i + 1] - pp;
+                r = (d[i] - g) * s + 2.0 * c * b;
+                pp = s * r;
+                d[i + 1] = g + pp;
+                g = c * r - b;
+                for (k = 0; k < n; ++k) {
+                    double zk = Z[k * n + i + 1];
+                    Z[k * n + i + 1] = s * Z[k * n + i] + c * zk;
+                    Z[k * n + i] = c * Z[k * n + i] - s * zk;
+                }
+            }
+            if (r == 0.0 && i >= l) continue;
+            d[l] -= pp;
+            e[l] = g;
+            e[m] = 0.0;
+        }
+    }
+    return 0;
+}
+
+WRDEF int wr_statics_project_spd(int n, double *A, double floor) {
+    double a[WR_DENSE_MAX * WR_DENSE_MAX], Z[WR_DENSE_MAX * WR_DENSE_MAX], lam[WR_DENSE_MAX], e[WR_DENSE_MAX];
+    int i, j, k, raised = 0;
+    WR_ASSERT(n > 0 && n <= WR_DENSE_MAX);
+    if (floor == 0.0 && wr__statics_psd_test(n, A)) return 0;
+    for (i = 0; i < n; ++i)
+        for (j = 0; j < n; ++j) a[i * n + j] = 0.5 * (A[i * n + j] + A[j * n + i]);
+    wr__statics_tridiag(n, a, Z, lam, e);
+    if (wr__statics_ql(n, lam, e, Z) != 0) return wr_dense_project_spd(n, A, floor);
+    for (k = 0; k < n; ++k)
+        if (lam[k] < floor) ++raised;
+    if (!raised) return 0;
+    /* remove only the offending eigenpairs: A ← sym(A) − Σ_{λ<floor} (λ − floor) z zᵀ */
+    for (i = 0; i < n; ++i)
+        for (j = 0; j < n; ++j) A[i * n + j] = 0.5 * (A[i * n + j] + A[j * n + i]);
+    for (k = 0; k < n; ++k) {
+        double c;
+        if (!(lam[k] < floor)) continue;
+        c = lam[k] - floor;
+        for (i = 0; i < n; ++i) {
+            double zi = c * Z[i * n + k];
+            for (j = 0; j < n; ++j) A[i * n + j] -= zi * Z[j * n + k];
+        }
+    }
+    return raised;
+}
+
+/* ---- pressure, obstacles, barrier --------------------------------------------------------------- */
+
+static void wr__statics_skew(const double u[3], double S[9]) {
+    S[0] = 0.0, S[1] = -u[2], S[2] = u[1];
+    S[3] = u[2], S[4] = 0.0, S[5] = -u[0];
+    S[6] = -u[1], S[7] = u[0], S[8] = 0.0;
+}
+
+WRDEF double wr_statics_pressure_element(const double x9[9], const double origin[3], double p, double *g, double *H) {
+    double r[9], V;
+    int a, i, j;
+    for (a = 0; a < 3; ++a)
+        for (i = 0; i < 3; ++i) r[3 * a + i] = x9[3 * a + i] - (origin ? origin[i] : 0.0);
+    V = (r[0] * (r[4] * r[8] - r[5] * r[7]) + r[1] * (r[5] * r[6] - r[3] * r[8]) + r[2] * (r[3] * r[7] - r[4] * r[6])) /
+        6.0;
+    if (g)
+        for (a = 0; a < 3; ++a) {
+            /* ∂V/∂x_a = (1/6) r_b × r_c, (a, b, c) cyclic */
+            const double *rb = r + 3 * ((a + 1) % 3), *rc = r + 3 * ((a + 2) % 3);
+            g[3 * a] = -p * (rb[1] * rc[2] - rb[2] * rc[1]) / 6.0;
+            g[3 * a + 1] = -p * (rb[2] * rc[0] - rb[0] * rc[2]) / 6.0;
+            g[3 * a + 2] = -p * (rb[0] * rc[1] - rb[1] * rc[0]) / 6.0;
+        }
+    if (H) {
+        memset(H, 0, sizeof(double) * 81);
+        for (a = 0; a < 3; ++a) {
+            /* ∂²V/∂x_a∂x_b = −(1/6)[r_c]×, (a, b, c) cyclic; the (b, a) block is its transpose */
+            int b = (a + 1) % 3, c = (a + 2) % 3;
+            double S[9];
+            wr__statics_skew(r + 3 * c, S);
+            for (i = 0; i < 3; ++i)
+                for (j = 0; j < 3; ++j) {
+                    H[(3 * a + i) * 9 + 3 * b + j] = p * S[3 * i + j] / 6.0;
+                    H[(3 * b + j) * 9 + 3 * a + i] = p * S[3 * i + j] / 6.0;
+                }
+        }
+    }
+    return -p * V;
+}
+
+WRDEF double wr_statics_volume(const wr_shell *s, const double *x, const double origin[3], double *grad) {
+    double V = 0.0, x9[9], g9[9];
+    int32_t f, a, i;
+    if (grad) memset(grad, 0, sizeof(double) * 3 * (size_t)s->nv);
+    for (f = 0; f < s->nf; ++f) {
+        for (a = 0; a < 3; ++a)
+            for (i = 0; i < 3; ++i) x9[3 * a + i] = x[3 * s->faces[3 * f + a] + i];
+        /* −p·V_f with p = −1 is V_f */
+        V += wr_statics_pressure_element(x9, origin, -1.0, grad ? g9 : NULL, NULL);
+        if (grad)
+            for (a = 0; a < 3; ++a)
+                for (i = 0; i < 3; ++i) grad[3 * s->faces[3 * f + a] + i] += g9[3 * a + i];
+    }
+    return V;
+}
+
+WRDEF double wr_obstacle_distance(const wr_obstacle *o, const double x[3], double grad[3]) {
+    double r[3], n, dd;
+    int i;
+    if (o->kind == WR_OBSTACLE_PLANE) {
+        n = sqrt(o->normal[0] * o->normal[0] + o->normal[1] * o->normal[1] + o->normal[2] * o->normal[2]);
+        dd = 0.0;
+        for (i = 0; i < 3; ++i) {
+            double u = n > 0.0 ? o->normal[i] / n : (i == 2 ? 1.0 : 0.0);
+            dd += u * (x[i] - o->p[i]);
+            if (grad) grad[i] = u;
+        }
+        return dd;
+    }
+    if (o->kind == WR_OBSTACLE_CAPSULE) {
+        double ab[3], t = 0.0, l2 = 0.0;
+        for (i = 0; i < 3; ++i) {
+            ab[i] = o->q[i] - o->p[i];
+            l2 += ab[i] * ab[i];
+            t += ab[i] * (x[i] - o->p[i]);
+        }
+        t = l2 > 0.0 ? fmin(1.0, fmax(0.0, t / l2)) : 0.0;
+        for (i = 0; i < 3; ++i) r[i] = x[i] - (o->p[i] + t * ab[i]);
+    } else {
+        for (i = 0; i < 3; ++i) r[i] = x[i] - o->p[i];
+    }
+    n = sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
+    if (grad)
+        for (i = 0; i < 3; ++i) grad[i] = n > 0.0 ? r[i] / n : (i == 2 ? 1.0 : 0.0);
+    return n - o->radius;
+}
+
+WRDEF double wr_statics_barrier(double d, double dhat, double kappa, double *b1, double *b2) {
+    double t, L;
+    if (b1) *b1 = 0.0;
+    if (b2) *b2 = 0.0;
+    if (!(d > 0.0)) return HUGE_VAL;
+    if (d >= dhat) return 0.0;
+    t = d - dhat;
+    L = log(d / dhat);
+    if (b1) *b1 = kappa * (-2.0 * t * L - t * t / d);
+    if (b2) *b2 = kappa * (-2.0 * L - 4.0 * t / d + t * t / (d * d));
+    return -kappa * t * t * L;
+}
+
+/* ---- the solver ---------------------------------------------------------------------------- */
+
+typedef struct wr__statics_ctx {
+    const wr_shell *s;
+    const double *fext;
+    const uint8_t *fixv; /* per vertex, may be NULL */
+    double p, origin[3];
+    const wr_obstacle *obs;
+    int32_t nobs;
+    double dhat, kappa;
+} wr__statics_ctx;
 
 typedef struct wr__statics_sink {
     wr_triplets *t; /* first assembly: collect the pattern */
     wr_csr *A;      /* later: add into the fixed pattern */
-    int project;
+    wr_statics_projection proj;
     double t_proj;
-    wr_status st;
+    int32_t n_proj, n_elem;
+    const wr__statics_ctx *c; /* pressure folded into face blocks */
+    const double *x;
+    int32_t face;             /* next face whose block is expected */
 } wr__statics_sink;
+
+static wr_status wr__statics_put(wr__statics_sink *S, int32_t k, const int32_t *verts, double *K) {
+    int32_t idx[WR_DENSE_MAX], a, i, n = 3 * k;
+    for (a = 0; a < k; ++a)
+        for (i = 0; i < 3; ++i) idx[3 * a + i] = 3 * verts[a] + i;
+    S->n_elem++;
+    if (S->proj != WR_PROJECT_NONE) {
+        double t0 = wr_time_seconds();
+        int r = S->proj == WR_PROJECT_JACOBI ? wr_dense_project_spd(n, K, 0.0) : wr_statics_project_spd(n, K, 0.0);
+        if (r) S->n_proj++;
+        S->t_proj += wr_time_seconds() - t0;
+    }
+    return S->t ? wr_triplets_add_element(S->t, n, idx, K, NULL) : wr_csr_add_element(S->A, n, idx, K, NULL);
+}
 
 static wr_status wr__statics_add(void *user, int32_t k, const int32_t *verts, const double *Ke) {
     wr__statics_sink *S = (wr__statics_sink *)user;
     double buf[WR_DENSE_MAX * WR_DENSE_MAX];
-    int32_t idx[WR_DENSE_MAX], a, i, n = 3 * k;
-    const double *K = Ke;
+    int32_t a, i, n = 3 * k;
     if (n <= WR_DENSE_MAX) {
-        for (a = 0; a < k; ++a)
-            for (i = 0; i < 3; ++i) idx[3 * a + i] = 3 * verts[a] + i;
-        if (S->project) {
-            double t0 = wr_time_seconds();
-            memcpy(buf, Ke, sizeof(double) * (size_t)(n * n));
-            wr_dense_project_spd(n, buf, 0.0);
-            S->t_proj += wr_time_seconds() - t0;
-            K = buf;
+        const wr_shell *s = S->c->s;
+        memcpy(buf, Ke, sizeof(double) * (size_t)(n * n));
+        /* shell.h streams one block per face, in face order, corners first (ON ELEMENT HESSIANS):
+         * fold that face's pressure Hessian in before the projection (ON PRESSURE) */
+        if (S->c->p != 0.0 && k >= 3 && S->face < s->nf && verts[0] == s->faces[3 * S->face] &&
+            verts[1] == s->faces[3 * S->face + 1] && verts[2] == s->faces[3 * S->face + 2]) {
+            double x9[9], H9[81];
+            int j, b;
+            for (a = 0; a < 3; ++a)
+                for (i = 0; i < 3; ++i) x9[3 * a + i] = S->x[3 * verts[a] + i];
+            wr_statics_pressure_element(x9, S->c->origin, S->c->p, NULL, H9);
+            for (a = 0; a < 3; ++a)
+                for (b = 0; b < 3; ++b)
+                    for (i = 0; i < 3; ++i)
+                        for (j = 0; j < 3; ++j) buf[(3 * a + i) * n + 3 * b + j] += H9[(3 * a + i) * 9 + 3 * b + j];
+            S->face++;
         }
-        return S->t ? wr_triplets_add_element(S->t, n, idx, K, NULL) : wr_csr_add_element(S->A, n, idx, K, NULL);
+        return wr__statics_put(S, k, verts, buf);
     }
     /* large stencils (quadratic bending at high valence) are PSD by construction: add 3×3 blocks */
     for (a = 0; a < k; ++a) {
@@ -154,18 +623,91 @@ static wr_status wr__statics_add(void *user, int32_t k, const int32_t *verts, co
     return WR_OK;
 }
 
-/* Π and ∇Π (gradient zeroed on fixed DOFs when g != NULL). */
-static wr_status wr__statics_energy(const wr_shell *s, const double *x, const double *fext, const uint8_t *fixv,
-                                    double *Pi, double *g, wr_diag *diag) {
+/* Π and ∇Π (gradient zeroed on fixed DOFs when g != NULL). WR_ERR_GEOMETRY (item = vertex) when a
+ * free vertex is on or inside an obstacle. */
+static wr_status wr__statics_energy(const wr__statics_ctx *c, const double *x, double *Pi, double *g, wr_diag *diag) {
+    const wr_shell *s = c->s;
     double E;
-    int32_t i, n = 3 * s->nv;
+    int32_t i, n = 3 * s->nv, v, o;
     wr_status st = wr_shell_energy(s, x, &E, g, diag);
     if (st != WR_OK) return st;
-    for (i = 0; i < n; ++i) {
-        E -= fext[i] * x[i];
-        if (g) g[i] = (fixv && fixv[i / 3]) ? 0.0 : g[i] - fext[i];
+    if (c->p != 0.0) {
+        int32_t f, a;
+        for (f = 0; f < s->nf; ++f) {
+            double x9[9], g9[9];
+            for (a = 0; a < 3; ++a)
+                for (i = 0; i < 3; ++i) x9[3 * a + i] = x[3 * s->faces[3 * f + a] + i];
+            E += wr_statics_pressure_element(x9, c->origin, c->p, g ? g9 : NULL, NULL);
+            if (g)
+                for (a = 0; a < 3; ++a)
+                    for (i = 0; i < 3; ++i) g[3 * s->faces[3 * f + a] + i] += g9[3 * a + i];
+        }
     }
+    for (o = 0; o < c->nobs; ++o)
+        for (v = 0; v < s->nv; ++v) {
+            double gd[3], b1, d;
+            if (c->fixv && c->fixv[v]) continue;
+            d = wr_obstacle_distance(c->obs + o, x + 3 * v, gd);
+            if (!(d > 0.0))
+                return wr_fail(diag, WR_ERR_GEOMETRY, v, "statics: vertex %d is %.3e m inside obstacle %d", (int)v, -d,
+                               (int)o);
+            if (d >= c->dhat) continue;
+            E += wr_statics_barrier(d, c->dhat, c->kappa, &b1, NULL);
+            if (g)
+                for (i = 0; i < 3; ++i) g[3 * v + i] += b1 * gd[i];
+        }
+    for (i = 0; i < n; ++i) {
+        E -= c->fext[i] * x[i];
+        if (g) g[i] = (c->fixv && c->fixv[i / 3]) ? 0.0 : g[i] - c->fext[i];
+    }
+    if (!(E - E == 0.0)) return wr_fail(diag, WR_ERR_DOMAIN, -1, "statics: potential is not finite");
     *Pi = E;
+    return WR_OK;
+}
+
+/* Largest α in (0, 1] keeping every free vertex at >= WR_STATICS_CCD_KEEP of its current distance
+ * to every obstacle along x + αΔx (conservative advancement: d is 1-Lipschitz, so advancing by
+ * (d − target)/|Δx| can never overshoot the target distance). */
+static double wr__statics_ccd(const wr__statics_ctx *c, const double *x, const double *dx) {
+    double alpha = 1.0;
+    int32_t v, o, it, i;
+    for (o = 0; o < c->nobs; ++o)
+        for (v = 0; v < c->s->nv; ++v) {
+            double d0, speed, target, t = 0.0, p[3];
+            if (c->fixv && c->fixv[v]) continue;
+            speed = sqrt(dx[3 * v] * dx[3 * v] + dx[3 * v + 1] * dx[3 * v + 1] + dx[3 * v + 2] * dx[3 * v + 2]);
+            if (speed == 0.0) continue;
+            d0 = wr_obstacle_distance(c->obs + o, x + 3 * v, NULL);
+            if (speed <= (1.0 - WR_STATICS_CCD_KEEP) * d0) continue; /* cannot reach the target at α = 1 */
+            target = WR_STATICS_CCD_KEEP * d0;
+            for (it = 0; it < WR__STATICS_CCD_ITERS && t < alpha; ++it) {
+                double gap;
+                for (i = 0; i < 3; ++i) p[i] = x[3 * v + i] + t * dx[3 * v + i];
+                gap = wr_obstacle_distance(c->obs + o, p, NULL) - target;
+                if (gap <= 1e-6 * d0) break; /* at the target distance (to 1e-6 of the start distance) */
+                t += gap / speed;
+            }
+            if (t < alpha) alpha = t;
+        }
+    return alpha;
+}
+
+/* Vertex-diagonal contact blocks κ b''(d) ∇d∇dᵀ (ON CONTACT) */
+static wr_status wr__statics_contact_hessian(const wr__statics_ctx *c, const double *x, wr__statics_sink *S) {
+    int32_t o, v, i, j;
+    for (o = 0; o < c->nobs; ++o)
+        for (v = 0; v < c->s->nv; ++v) {
+            double gd[3], b2, d, B[9];
+            wr_status st;
+            if (c->fixv && c->fixv[v]) continue;
+            d = wr_obstacle_distance(c->obs + o, x + 3 * v, gd);
+            if (!(d < c->dhat) || !(d > 0.0)) continue;
+            wr_statics_barrier(d, c->dhat, c->kappa, NULL, &b2);
+            for (i = 0; i < 3; ++i)
+                for (j = 0; j < 3; ++j) B[3 * i + j] = b2 * gd[i] * gd[j];
+            st = S->t ? wr_triplets_add_block3(S->t, v, v, B, NULL) : wr_csr_add_block3(S->A, v, v, B, NULL);
+            if (st != WR_OK) return st;
+        }
     return WR_OK;
 }
 
@@ -176,10 +718,35 @@ static double wr__statics_norm(const double *v, int32_t n) {
     return sqrt(s);
 }
 
+static wr_status wr__statics_check_obstacles(const wr_obstacle *obs, int32_t n, wr_diag *diag) {
+    int32_t o, i;
+    if (n < 0 || (n > 0 && !obs))
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "statics: %d obstacles with a NULL array", (int)n);
+    for (o = 0; o < n; ++o) {
+        const wr_obstacle *b = obs + o;
+        double nn = 0.0, fin = b->radius;
+        for (i = 0; i < 3; ++i) {
+            nn += b->normal[i] * b->normal[i];
+            fin += b->p[i] + b->q[i] + b->normal[i];
+        }
+        if (!(fin - fin == 0.0)) return wr_fail(diag, WR_ERR_INVALID_ARG, o, "statics: obstacle %d has non-finite data", (int)o);
+        if (b->kind == WR_OBSTACLE_PLANE) {
+            if (!(nn > 0.0)) return wr_fail(diag, WR_ERR_INVALID_ARG, o, "statics: plane obstacle %d has a zero normal", (int)o);
+        } else if (b->kind == WR_OBSTACLE_SPHERE || b->kind == WR_OBSTACLE_CAPSULE) {
+            if (!(b->radius > 0.0))
+                return wr_fail(diag, WR_ERR_INVALID_ARG, o, "statics: obstacle %d radius %g must be > 0", (int)o, b->radius);
+        } else {
+            return wr_fail(diag, WR_ERR_INVALID_ARG, o, "statics: obstacle %d has unknown kind %d", (int)o, (int)b->kind);
+        }
+    }
+    return WR_OK;
+}
+
 WRDEF wr_status wr_statics_solve(const wr_shell *s, double *x, const wr_statics_desc *desc, wr_statics_stats *stats,
                                  wr_diag *diag) {
     wr_statics_desc d;
     wr_statics_stats st;
+    wr__statics_ctx ctx;
     int32_t n, i, it;
     double *fext = NULL, *g = NULL, *dx = NULL, *xt = NULL, *xbest = NULL, *mass = NULL, *diagv = NULL;
     uint8_t *fixd = NULL;
@@ -193,6 +760,8 @@ WRDEF wr_status wr_statics_solve(const wr_shell *s, double *x, const wr_statics_
     memset(&T, 0, sizeof T);
     memset(&A, 0, sizeof A);
     memset(&S, 0, sizeof S);
+    memset(&ctx, 0, sizeof ctx);
+    st.ccd_alpha_min = 1.0;
     if (stats) *stats = st;
     if (!s || !x || !s->faces) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "statics: NULL shell or x");
     if (desc)
@@ -203,10 +772,19 @@ WRDEF wr_status wr_statics_solve(const wr_shell *s, double *x, const wr_statics_
     if (d.grad_tol == 0.0) d.grad_tol = 1e-8;
     if (d.step_tol == 0.0) d.step_tol = 1e-13;
     if (d.shift_rel == 0.0) d.shift_rel = 1e-8;
+    if (d.no_projection) d.projection = WR_PROJECT_NONE;
     if (d.max_iter < 0 || !(d.grad_tol > 0.0) || !(d.step_tol > 0.0) || !(d.shift_rel > 0.0) || !(d.perturb >= 0.0))
         return wr_fail(diag, WR_ERR_INVALID_ARG, -1,
                        "statics: max_iter %d, grad_tol %g, step_tol %g, shift_rel %g, perturb %g must be positive",
                        (int)d.max_iter, d.grad_tol, d.step_tol, d.shift_rel, d.perturb);
+    if (!(d.pressure - d.pressure == 0.0) || !(d.contact_dhat >= 0.0) || !(d.contact_stiffness >= 0.0) ||
+        d.contact_dhat - d.contact_dhat != 0.0 || d.contact_stiffness - d.contact_stiffness != 0.0)
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "statics: pressure %g, contact_dhat %g, contact_stiffness %g invalid",
+                       d.pressure, d.contact_dhat, d.contact_stiffness);
+    if ((int)d.projection < 0 || (int)d.projection > (int)WR_PROJECT_NONE)
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "statics: unknown projection %d", (int)d.projection);
+    rs = wr__statics_check_obstacles(d.obstacles, d.n_obstacles, diag);
+    if (rs != WR_OK) return rs;
     n = 3 * s->nv;
     fext = (double *)wr_calloc_array((size_t)n, sizeof(double));
     g = (double *)wr_alloc_array((size_t)n, sizeof(double));
@@ -233,6 +811,23 @@ WRDEF wr_status wr_statics_solve(const wr_shell *s, double *x, const wr_statics_
             rs = wr_fail(diag, WR_ERR_DOMAIN, i / 3, "statics: vertex %d has a non-finite coordinate", (int)(i / 3));
             goto done;
         }
+    if (d.pressure != 0.0) {
+        /* V depends on the origin through an open boundary unless that boundary is prescribed */
+        int32_t f, k;
+        for (f = 0; f < s->nf; ++f)
+            for (k = 0; k < 3; ++k)
+                if (s->opp[3 * f + k] < 0) {
+                    int32_t va = s->faces[3 * f + (k + 1) % 3], vb = s->faces[3 * f + (k + 2) % 3];
+                    int32_t bad = !fixd[3 * va] ? va : (!fixd[3 * vb] ? vb : -1);
+                    if (bad >= 0) {
+                        rs = wr_fail(diag, WR_ERR_UNSUPPORTED, bad,
+                                     "statics: pressure on an open surface with free boundary vertex %d (sew it closed "
+                                     "or prescribe the boundary)",
+                                     (int)bad);
+                        goto done;
+                    }
+                }
+    }
     if (d.perturb > 0.0) {
         /* seeded kick along area-weighted vertex normals (flat starts are saddle points of buckling) */
         wr_rng rng;
@@ -265,11 +860,38 @@ WRDEF wr_status wr_statics_solve(const wr_shell *s, double *x, const wr_statics_
         for (i = 0; i < n; ++i) {
             lo[i % 3] = fmin(lo[i % 3], x[i]);
             hi[i % 3] = fmax(hi[i % 3], x[i]);
+            ctx.origin[i % 3] += x[i] / s->nv;
         }
         bbox = sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
                     (hi[2] - lo[2]) * (hi[2] - lo[2]));
     }
-    rs = wr__statics_energy(s, x, fext, d.fixed, &Pi, g, diag);
+    ctx.s = s;
+    ctx.fext = fext;
+    ctx.fixv = d.fixed;
+    ctx.p = d.pressure;
+    ctx.obs = d.obstacles;
+    ctx.nobs = d.n_obstacles;
+    if (ctx.nobs > 0) {
+        /* ON CONTACT defaults */
+        double fref = 0.0, *av = xt;
+        int32_t f, k;
+        ctx.dhat = d.contact_dhat > 0.0 ? d.contact_dhat : WR__STATICS_DHAT_REL * bbox;
+        if (!(ctx.dhat > 0.0)) ctx.dhat = WR__STATICS_DHAT_REL;
+        memset(av, 0, sizeof(double) * (size_t)s->nv);
+        for (f = 0; f < s->nf; ++f)
+            for (k = 0; k < 3; ++k) av[s->faces[3 * f + k]] += s->area[f] / 3.0;
+        for (i = 0; i < s->nv; ++i)
+            fref = fmax(fref, mass[i] * sqrt(d.gravity[0] * d.gravity[0] + d.gravity[1] * d.gravity[1] +
+                                             d.gravity[2] * d.gravity[2]) +
+                                  fabs(d.pressure) * av[i]);
+        if (!(fref > 0.0)) fref = 1e-3 * fabs(s->C_mem[0]) * sqrt(2.0 * s->total_area / s->nf);
+        if (!(fref > 0.0)) fref = 1e-3 * s->bending_stiffness / sqrt(2.0 * s->total_area / s->nf);
+        ctx.kappa = d.contact_stiffness > 0.0 ? d.contact_stiffness : 10.0 * fref / ctx.dhat;
+        if (!(ctx.kappa > 0.0)) ctx.kappa = 1.0;
+        st.contact_dhat = ctx.dhat;
+        st.contact_stiffness = ctx.kappa;
+    }
+    rs = wr__statics_energy(&ctx, x, &Pi, g, diag);
     if (rs != WR_OK) goto done;
     memcpy(xbest, x, sizeof(double) * (size_t)n);
     Pibest = Pi;
@@ -288,7 +910,7 @@ WRDEF wr_status wr_statics_solve(const wr_shell *s, double *x, const wr_statics_
         wr__statics_sink sk;
         wr_hess_sink hs;
         wr_spd_stats ls;
-        double t0, gdx, alpha, mean_diag = 0.0, maxstep;
+        double t0, gdx, alpha, alpha0, mean_diag = 0.0, maxstep;
         int raises;
         if (st.grad_norm <= d.grad_tol * gref || gref == 0.0) {
             st.stop = WR_STATICS_STOP_GRADIENT;
@@ -297,9 +919,11 @@ WRDEF wr_status wr_statics_solve(const wr_shell *s, double *x, const wr_statics_
         /* assemble */
         t0 = wr_time_seconds();
         memset(&sk, 0, sizeof sk);
-        sk.project = !d.no_projection;
+        sk.proj = d.projection;
+        sk.c = &ctx;
+        sk.x = x;
         if (!have_A) {
-            rs = wr_triplets_create(&T, n, (int64_t)s->nf * 324, diag);
+            rs = wr_triplets_create(&T, n, (int64_t)s->nf * 324 + 9 * (int64_t)s->nv, diag);
             if (rs != WR_OK) goto done;
             sk.t = &T;
         } else {
@@ -310,15 +934,35 @@ WRDEF wr_status wr_statics_solve(const wr_shell *s, double *x, const wr_statics_
         hs.add = wr__statics_add;
         rs = wr_shell_hessian_elements(s, x, 0, &hs, diag);
         if (rs != WR_OK) goto done;
+        if (ctx.p != 0.0)
+            for (; sk.face < s->nf; ++sk.face) {
+                /* faces without an elastic block: the pressure block projected on its own */
+                double x9[9], H9[81];
+                int32_t a, k;
+                for (a = 0; a < 3; ++a)
+                    for (k = 0; k < 3; ++k) x9[3 * a + k] = x[3 * s->faces[3 * sk.face + a] + k];
+                wr_statics_pressure_element(x9, ctx.origin, ctx.p, NULL, H9);
+                if ((rs = wr__statics_put(&sk, 3, s->faces + 3 * sk.face, H9)) != WR_OK) {
+                    rs = wr_fail(diag, rs, sk.face, "statics: pressure block of face %d rejected", (int)sk.face);
+                    goto done;
+                }
+            }
+        if (ctx.nobs > 0 && (rs = wr__statics_contact_hessian(&ctx, x, &sk)) != WR_OK) {
+            rs = wr_fail(diag, rs, -1, "statics: contact block rejected");
+            goto done;
+        }
         if (!have_A) {
-            /* identity diagonal entries so the pattern holds the shift even on isolated DOFs */
-            for (i = 0; i < n; ++i)
-                if ((rs = wr_triplets_add(&T, i, i, 0.0, diag)) != WR_OK) goto done;
+            /* zero vertex-diagonal 3×3 blocks: the pattern then holds the shift and any contact block */
+            static const double Z9[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+            for (i = 0; i < s->nv; ++i)
+                if ((rs = wr_triplets_add_block3(&T, i, i, Z9, diag)) != WR_OK) goto done;
             rs = wr_csr_from_triplets(&A, &T, diag);
             wr_triplets_free(&T);
             if (rs != WR_OK) goto done;
             have_A = 1;
         }
+        st.elements_projected += sk.n_proj;
+        st.elements_assembled += sk.n_elem;
         st.t_projection += sk.t_proj;
         st.t_assembly += wr_time_seconds() - t0 - sk.t_proj;
         wr_csr_diagonal(&A, diagv);
@@ -366,16 +1010,18 @@ WRDEF wr_status wr_statics_solve(const wr_shell *s, double *x, const wr_statics_
             for (i = 0; i < n; ++i) gdx += g[i] * dx[i];
         }
         rs = WR_OK;
-        /* backtracking line search on Π */
+        /* backtracking line search on Π, from the CCD-safe step */
         t0 = wr_time_seconds();
-        alpha = 1.0;
+        alpha0 = ctx.nobs > 0 ? wr__statics_ccd(&ctx, x, dx) : 1.0;
+        st.ccd_alpha_min = fmin(st.ccd_alpha_min, alpha0);
+        alpha = alpha0;
         {
             int h, ok = 0;
             double Pit = 0.0;
             for (h = 0; h < WR__STATICS_MAX_HALVINGS; ++h, alpha *= 0.5) {
                 for (i = 0; i < n; ++i) xt[i] = x[i] + alpha * dx[i];
                 st.line_search_evals++;
-                if (wr__statics_energy(s, xt, fext, d.fixed, &Pit, NULL, NULL) != WR_OK) continue;
+                if (wr__statics_energy(&ctx, xt, &Pit, NULL, NULL) != WR_OK) continue;
                 if (Pit <= Pi + WR__STATICS_ARMIJO * alpha * gdx) {
                     ok = 1;
                     break;
@@ -390,7 +1036,7 @@ WRDEF wr_status wr_statics_solve(const wr_shell *s, double *x, const wr_statics_
         maxstep = 0.0;
         for (i = 0; i < n; ++i) maxstep = fmax(maxstep, fabs(alpha * dx[i]));
         memcpy(x, xt, sizeof(double) * (size_t)n);
-        rs = wr__statics_energy(s, x, fext, d.fixed, &Pi, g, diag);
+        rs = wr__statics_energy(&ctx, x, &Pi, g, diag);
         if (rs != WR_OK) goto done;
         /* successful full steps relax the shift back towards its floor */
         if (alpha == 1.0) shift = fmax(shift * 0.1, d.shift_rel * mean_diag);
@@ -408,7 +1054,8 @@ WRDEF wr_status wr_statics_solve(const wr_shell *s, double *x, const wr_statics_
             st.stop = WR_STATICS_STOP_GRADIENT;
             break;
         }
-        if (maxstep <= d.step_tol * bbox) {
+        /* a CCD-cut step is not small because the solution is near: do not stop on it */
+        if (maxstep <= d.step_tol * bbox && alpha0 == 1.0) {
             st.stop = WR_STATICS_STOP_STEP;
             break;
         }
@@ -417,7 +1064,7 @@ WRDEF wr_status wr_statics_solve(const wr_shell *s, double *x, const wr_statics_
     if (st.stop == WR_STATICS_STOP_MAX_ITER || st.stop == WR_STATICS_STOP_LINE_SEARCH) {
         if (Pibest < Pi) {
             memcpy(x, xbest, sizeof(double) * (size_t)n);
-            wr__statics_energy(s, x, fext, d.fixed, &Pi, g, NULL);
+            wr__statics_energy(&ctx, x, &Pi, g, NULL);
             st.energy = Pi;
             st.grad_norm = wr__statics_norm(g, n);
         }
@@ -425,6 +1072,18 @@ WRDEF wr_status wr_statics_solve(const wr_shell *s, double *x, const wr_statics_
                      "statics: %s after %d Newton steps, |grad| %.3e (target %.3e)",
                      st.stop == WR_STATICS_STOP_MAX_ITER ? "max_iter reached" : "line search failed",
                      (int)st.iterations, st.grad_norm, d.grad_tol * gref);
+    }
+    if (ctx.p != 0.0) st.volume = wr_statics_volume(s, x, ctx.origin, NULL);
+    if (ctx.nobs > 0) {
+        int32_t o, v;
+        st.min_distance = HUGE_VAL;
+        for (o = 0; o < ctx.nobs; ++o)
+            for (v = 0; v < s->nv; ++v) {
+                double dd = wr_obstacle_distance(ctx.obs + o, x + 3 * v, NULL);
+                if (ctx.fixv && ctx.fixv[v]) continue;
+                st.min_distance = fmin(st.min_distance, dd);
+                if (dd < ctx.dhat) st.n_contacts++;
+            }
     }
 done:
     st.t_total = wr_time_seconds() - t_start;
@@ -440,6 +1099,323 @@ done:
     wr_free(mass);
     wr_free(diagv);
     wr_free(fixd);
+    return rs;
+}
+
+/* ---- prescribed motions and load increments ---------------------------------------------------- */
+
+static int wr__statics_unit(const double a[3], double u[3]) {
+    double n = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+    int i;
+    if (!(n > 0.0) || n - n != 0.0) return 0;
+    for (i = 0; i < 3; ++i) u[i] = a[i] / n;
+    return 1;
+}
+
+WRDEF wr_status wr_motion_apply(const wr_motion *m, int32_t nv, const double *x_ref, double t, double *target,
+                                uint8_t *fixed, wr_diag *diag) {
+    double ax[3] = {0.0, 0.0, 0.0}, nr[3] = {0.0, 0.0, 0.0}, fin;
+    int32_t k, i;
+    int has_axis;
+    if (!m || !x_ref || !target || m->n_verts < 0 || (m->n_verts > 0 && !m->verts))
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "motion: NULL argument or negative vertex count");
+    fin = t + m->amount;
+    for (i = 0; i < 3; ++i) fin += m->origin[i] + m->axis[i] + m->normal[i] + m->vec[i];
+    if (fin - fin != 0.0) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "motion: non-finite parameter or t");
+    has_axis = wr__statics_unit(m->axis, ax);
+    if ((m->kind == WR_MOTION_TWIST || m->kind == WR_MOTION_SHEAR) && !has_axis)
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "motion: kind %d needs a nonzero axis", (int)m->kind);
+    if (m->kind == WR_MOTION_SHEAR && !wr__statics_unit(m->normal, nr))
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "motion: shear needs a nonzero normal");
+    if ((int)m->kind < 0 || (int)m->kind > (int)WR_MOTION_TWIST)
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "motion: unknown kind %d", (int)m->kind);
+    for (k = 0; k < m->n_verts; ++k) {
+        int32_t v = m->verts[k];
+        double X[3], r[3], y[3];
+        if (v < 0 || v >= nv)
+            return wr_fail(diag, WR_ERR_INVALID_ARG, k, "motion: vertex %d at position %d outside [0, %d)", (int)v,
+                           (int)k, (int)nv);
+        for (i = 0; i < 3; ++i) {
+            X[i] = x_ref[3 * v + i];
+            r[i] = X[i] - m->origin[i];
+            y[i] = X[i];
+        }
+        switch (m->kind) {
+        case WR_MOTION_TRANSLATE:
+            for (i = 0; i < 3; ++i) y[i] = X[i] + t * m->vec[i];
+            break;
+        case WR_MOTION_STRETCH:
+            if (has_axis) {
+                double c = r[0] * ax[0] + r[1] * ax[1] + r[2] * ax[2];
+                for (i = 0; i < 3; ++i) y[i] = X[i] + t * m->amount * c * ax[i];
+            } else {
+                for (i = 0; i < 3; ++i) y[i] = m->origin[i] + (1.0 + t * m->amount) * r[i];
+            }
+            break;
+        case WR_MOTION_SHEAR: {
+            double c = r[0] * nr[0] + r[1] * nr[1] + r[2] * nr[2];
+            for (i = 0; i < 3; ++i) y[i] = X[i] + t * m->amount * c * ax[i];
+            break;
+        }
+        case WR_MOTION_TWIST: {
+            /* Rodrigues: r cosθ + (â×r) sinθ + â(â·r)(1 − cosθ); the axial coordinate â·r is kept */
+            double th = t * m->amount, cs = cos(th), sn = sin(th), ar = r[0] * ax[0] + r[1] * ax[1] + r[2] * ax[2];
+            double cr[3];
+            cr[0] = ax[1] * r[2] - ax[2] * r[1];
+            cr[1] = ax[2] * r[0] - ax[0] * r[2];
+            cr[2] = ax[0] * r[1] - ax[1] * r[0];
+            for (i = 0; i < 3; ++i) y[i] = m->origin[i] + r[i] * cs + cr[i] * sn + ax[i] * ar * (1.0 - cs);
+            break;
+        }
+        default:
+            break;
+        }
+        for (i = 0; i < 3; ++i) target[3 * v + i] = y[i];
+        if (fixed) fixed[v] = 1;
+    }
+    return WR_OK;
+}
+
+WRDEF wr_status wr_statics_solve_incremental(const wr_shell *s, double *x, const wr_statics_desc *desc,
+                                             const wr_motion *motions, int32_t n_motions, int32_t n_inc,
+                                             wr_statics_stats *stats, wr_diag *diag) {
+    wr_statics_desc dk;
+    wr_statics_stats sk, acc;
+    double *X = NULL, *target = NULL;
+    uint8_t *fixed = NULL;
+    int32_t k, j, n;
+    wr_status rs = WR_OK;
+    double t0 = wr_time_seconds();
+    memset(&acc, 0, sizeof acc);
+    if (stats) *stats = acc;
+    if (!s || !x || !s->faces) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "statics: NULL shell or x");
+    if (n_inc < 1 || n_motions < 0 || (n_motions > 0 && !motions))
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "statics: n_inc %d must be >= 1, n_motions %d >= 0 with motions",
+                       (int)n_inc, (int)n_motions);
+    if (desc)
+        dk = *desc;
+    else
+        memset(&dk, 0, sizeof dk);
+    n = 3 * s->nv;
+    X = (double *)wr_alloc_array((size_t)n, sizeof(double));
+    target = (double *)wr_alloc_array((size_t)n, sizeof(double));
+    fixed = (uint8_t *)wr_calloc_array((size_t)s->nv, 1);
+    if (!X || !target || !fixed) {
+        rs = wr_fail(diag, WR_ERR_NOMEM, -1, "statics: out of memory (%d DOFs)", (int)n);
+        goto done;
+    }
+    memcpy(X, x, sizeof(double) * (size_t)n);
+    memcpy(target, desc && desc->target ? desc->target : x, sizeof(double) * (size_t)n);
+    if (desc && desc->fixed)
+        for (j = 0; j < s->nv; ++j) fixed[j] = desc->fixed[j] != 0;
+    for (j = 0; j < n_motions; ++j) /* validate everything before the first solve */
+        if ((rs = wr_motion_apply(motions + j, s->nv, X, 0.0, target, fixed, diag)) != WR_OK) goto done;
+    dk.fixed = fixed;
+    dk.target = target;
+    for (k = 1; k <= n_inc; ++k) {
+        double t = (double)k / (double)n_inc;
+        for (j = 0; j < n_motions; ++j)
+            if ((rs = wr_motion_apply(motions + j, s->nv, X, t, target, fixed, diag)) != WR_OK) goto done;
+        if (k > 1) dk.perturb = 0.0;
+        dk.grad_tol = (k < n_inc && desc && desc->inc_grad_tol > 0.0) ? desc->inc_grad_tol : (desc ? desc->grad_tol : 0.0);
+        rs = wr_statics_solve(s, x, &dk, &sk, diag);
+        acc.total_iterations += sk.iterations;
+        acc.linear_iterations += sk.linear_iterations;
+        acc.line_search_evals += sk.line_search_evals;
+        acc.t_assembly += sk.t_assembly;
+        acc.t_projection += sk.t_projection;
+        acc.t_linear += sk.t_linear;
+        acc.t_line_search += sk.t_line_search;
+        acc.elements_projected += sk.elements_projected;
+        acc.elements_assembled += sk.elements_assembled;
+        acc.increments = k;
+        if (rs == WR_ERR_NOT_CONVERGED && k < n_inc) {
+            acc.increments_failed++; /* best iterate warm-starts the next increment */
+            rs = WR_OK;
+            continue;
+        }
+        if (rs != WR_OK) break;
+    }
+    {
+        /* the last increment's figures, with the sums over all increments */
+        wr_statics_stats out = sk;
+        out.total_iterations = acc.total_iterations;
+        out.linear_iterations = acc.linear_iterations;
+        out.line_search_evals = acc.line_search_evals;
+        out.t_assembly = acc.t_assembly;
+        out.t_projection = acc.t_projection;
+        out.t_linear = acc.t_linear;
+        out.t_line_search = acc.t_line_search;
+        out.elements_projected = acc.elements_projected;
+        out.elements_assembled = acc.elements_assembled;
+        out.increments = acc.increments;
+        out.increments_failed = acc.increments_failed;
+        out.t_total = wr_time_seconds() - t0;
+        acc = out;
+    }
+done:
+    if (stats) *stats = acc;
+    wr_free(X);
+    wr_free(target);
+    wr_free(fixed);
+    return rs;
+}
+
+/* ---- sewing ------------------------------------------------------------------------------------ */
+
+static int32_t wr__statics_find(int32_t *par, int32_t v) {
+    while (par[v] != v) {
+        par[v] = par[par[v]];
+        v = par[v];
+    }
+    return v;
+}
+
+WRDEF wr_status wr_mesh_weld(wr_mesh *out, const wr_mesh *in, int32_t n_pairs, const int32_t *pairs, int32_t *vmap,
+                             wr_diag *diag) {
+    int32_t *par = NULL, *nid = NULL, *faces = NULL, *cnt = NULL, nn = 0, v, f, k, i;
+    double *pos = NULL, *cr = NULL;
+    wr_status rs = WR_OK;
+    if (out) memset(out, 0, sizeof *out);
+    if (!out || !in || !in->faces || n_pairs < 0 || (n_pairs > 0 && !pairs))
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "weld: NULL mesh or pairs, or n_pairs %d < 0", (int)n_pairs);
+    par = (int32_t *)wr_alloc_array((size_t)in->nv, sizeof(int32_t));
+    nid = (int32_t *)wr_alloc_array((size_t)in->nv, sizeof(int32_t));
+    cnt = (int32_t *)wr_calloc_array((size_t)in->nv, sizeof(int32_t));
+    faces = (int32_t *)wr_alloc_array((size_t)in->nf * 3, sizeof(int32_t));
+    pos = (double *)wr_calloc_array((size_t)in->nv * 3, sizeof(double));
+    cr = (double *)wr_alloc_array((size_t)in->nf * 6, sizeof(double));
+    if (!par || !nid || !cnt || !faces || !pos || !cr) {
+        rs = wr_fail(diag, WR_ERR_NOMEM, -1, "weld: out of memory");
+        goto done;
+    }
+    for (v = 0; v < in->nv; ++v) par[v] = v;
+    for (k = 0; k < n_pairs; ++k) {
+        int32_t a = pairs[2 * k], b = pairs[2 * k + 1];
+        if (a < 0 || a >= in->nv || b < 0 || b >= in->nv) {
+            rs = wr_fail(diag, WR_ERR_INVALID_ARG, k, "weld: pair %d (%d, %d) outside [0, %d)", (int)k, (int)a, (int)b,
+                         (int)in->nv);
+            goto done;
+        }
+        a = wr__statics_find(par, a);
+        b = wr__statics_find(par, b);
+        /* the smaller index is the root, so an unpaired prefix keeps its numbering */
+        if (a < b)
+            par[b] = a;
+        else
+            par[a] = b;
+    }
+    for (v = 0; v < in->nv; ++v) {
+        int32_t r = wr__statics_find(par, v);
+        if (r == v) nid[v] = nn++;
+    }
+    for (v = 0; v < in->nv; ++v) {
+        int32_t j = nid[wr__statics_find(par, v)];
+        if (vmap) vmap[v] = j;
+        for (i = 0; i < 3; ++i) pos[3 * j + i] += in->pos[3 * v + i];
+        cnt[j]++;
+    }
+    for (v = 0; v < nn; ++v)
+        for (i = 0; i < 3; ++i) pos[3 * v + i] /= cnt[v];
+    for (f = 0; f < in->nf; ++f) {
+        for (k = 0; k < 3; ++k) faces[3 * f + k] = nid[wr__statics_find(par, in->faces[3 * f + k])];
+        wr_mesh_face_rest(in, f, cr + 6 * f);
+    }
+    rs = wr_mesh_create(out, nn, pos, NULL, in->nf, faces, diag);
+    if (rs != WR_OK) goto done;
+    rs = wr_mesh_set_corner_rest(out, cr, diag);
+    if (rs == WR_OK && in->face_panel) rs = wr_mesh_set_face_panel(out, in->face_panel, diag);
+    if (rs != WR_OK) wr_mesh_free(out);
+done:
+    wr_free(par);
+    wr_free(nid);
+    wr_free(cnt);
+    wr_free(faces);
+    wr_free(pos);
+    wr_free(cr);
+    return rs;
+}
+
+WRDEF wr_status wr_mesh_pillow(wr_mesh *out, const wr_mesh *panel, double lift, wr_diag *diag) {
+    int32_t nv, nf, *faces = NULL, *hop = NULL, *pairs = NULL, *fp = NULL, np = 0, v, f, k, e, maxhop = 0, changed;
+    double *pos = NULL, *cr = NULL;
+    wr_mesh two;
+    wr_status rs = WR_OK;
+    memset(&two, 0, sizeof two);
+    if (out) memset(out, 0, sizeof *out);
+    if (!out || !panel || !panel->faces || !(lift > 0.0) || lift - lift != 0.0)
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "pillow: NULL mesh or lift %g not > 0", lift);
+    if (panel->n_loops < 1)
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "pillow: the panel has no boundary to sew");
+    nv = panel->nv;
+    nf = panel->nf;
+    faces = (int32_t *)wr_alloc_array((size_t)nf * 6, sizeof(int32_t));
+    fp = (int32_t *)wr_alloc_array((size_t)nf * 2, sizeof(int32_t));
+    hop = (int32_t *)wr_alloc_array((size_t)nv, sizeof(int32_t));
+    pairs = (int32_t *)wr_alloc_array((size_t)panel->loop_start[panel->n_loops] * 2, sizeof(int32_t));
+    pos = (double *)wr_alloc_array((size_t)nv * 6, sizeof(double));
+    cr = (double *)wr_alloc_array((size_t)nf * 12, sizeof(double));
+    if (!faces || !fp || !hop || !pairs || !pos || !cr) {
+        rs = wr_fail(diag, WR_ERR_NOMEM, -1, "pillow: out of memory");
+        goto done;
+    }
+    /* hop distance to the boundary (Bellman–Ford sweeps over the edges; O(ne · depth)) */
+    for (v = 0; v < nv; ++v) hop[v] = INT32_MAX;
+    for (k = 0; k < panel->loop_start[panel->n_loops]; ++k) {
+        hop[panel->loop_verts[k]] = 0;
+        pairs[2 * np] = panel->loop_verts[k];
+        pairs[2 * np + 1] = nv + panel->loop_verts[k];
+        np++;
+    }
+    do {
+        changed = 0;
+        for (e = 0; e < panel->ne; ++e) {
+            int32_t a = panel->edges[2 * e], b = panel->edges[2 * e + 1];
+            if (hop[a] != INT32_MAX && hop[a] + 1 < hop[b]) hop[b] = hop[a] + 1, changed = 1;
+            if (hop[b] != INT32_MAX && hop[b] + 1 < hop[a]) hop[a] = hop[b] + 1, changed = 1;
+        }
+    } while (changed);
+    for (v = 0; v < nv; ++v) {
+        if (hop[v] == INT32_MAX) hop[v] = 0; /* a component without boundary stays flat */
+        if (hop[v] > maxhop) maxhop = hop[v];
+    }
+    for (v = 0; v < nv; ++v) {
+        double z = maxhop > 0 ? lift * (double)hop[v] / (double)maxhop : 0.0;
+        pos[3 * v] = pos[3 * (nv + v)] = panel->pos[3 * v];
+        pos[3 * v + 1] = pos[3 * (nv + v) + 1] = panel->pos[3 * v + 1];
+        pos[3 * v + 2] = panel->pos[3 * v + 2] + z;
+        pos[3 * (nv + v) + 2] = panel->pos[3 * v + 2] - z;
+    }
+    for (f = 0; f < nf; ++f) {
+        double uv[6], *b = cr + 6 * (nf + f);
+        const int32_t *t = panel->faces + 3 * f;
+        wr_mesh_face_rest(panel, f, uv);
+        memcpy(cr + 6 * f, uv, sizeof uv);
+        faces[3 * f] = t[0];
+        faces[3 * f + 1] = t[1];
+        faces[3 * f + 2] = t[2];
+        /* bottom: mirrored pattern u → −u with corners 1 and 2 swapped (CCW again, normal flipped) */
+        faces[3 * (nf + f)] = nv + t[0];
+        faces[3 * (nf + f) + 1] = nv + t[2];
+        faces[3 * (nf + f) + 2] = nv + t[1];
+        b[0] = -uv[0], b[1] = uv[1];
+        b[2] = -uv[4], b[3] = uv[5];
+        b[4] = -uv[2], b[5] = uv[3];
+        fp[f] = 0;
+        fp[nf + f] = 1;
+    }
+    rs = wr_mesh_create(&two, 2 * nv, pos, NULL, 2 * nf, faces, diag);
+    if (rs == WR_OK) rs = wr_mesh_set_corner_rest(&two, cr, diag);
+    if (rs == WR_OK) rs = wr_mesh_set_face_panel(&two, fp, diag);
+    if (rs == WR_OK) rs = wr_mesh_weld(out, &two, np, pairs, NULL, diag);
+done:
+    wr_mesh_free(&two);
+    wr_free(faces);
+    wr_free(fp);
+    wr_free(hop);
+    wr_free(pairs);
+    wr_free(pos);
+    wr_free(cr);
     return rs;
 }
 
