@@ -407,6 +407,13 @@ Test(triangulate, open_polyline_keeps_hull) {
     cr_assert_float_eq(total_area(&r), 1.0, 1e-15);
     check_ok(&r, 0, NULL);
     wr_cdt_free(&r);
+    {   /* a hole seed in a region no closed boundary surrounds would remove everything: an error */
+        double hole[] = {0.5, 0.9};
+        cr_assert_eq(tri(p, 6, seg, 1, hole, 1, NULL, &r, &dg), WR_ERR_GEOMETRY);
+        cr_assert(strstr(dg.message, "hole 0") != NULL && strstr(dg.message, "not closed") != NULL, "%s", dg.message);
+        cr_assert_eq(dg.item, 0);
+        wr_cdt_free(&r);
+    }
 }
 
 Test(triangulate, crossing_segments_rejected_or_split) {

@@ -1205,10 +1205,11 @@ static wr_status wr__recover(wr__cdt *S, wr__segctx *C, int32_t a0, int32_t b0, 
 }
 
 /* ---- carving: flood fill across unconstrained edges ---- */
-static int wr__flood(wr__cdt *S, int32_t seed) {
+static int wr__flood(wr__cdt *S, int32_t seed, int64_t *removed) {
     S->nstk = 0;
     if (S->tf[seed] & WR__F_OUT) return 1;
     S->tf[seed] |= WR__F_OUT;
+    ++*removed;
     if (!wr__push(S, seed)) return 0;
     while (S->nstk) {
         int32_t t = S->stk[--S->nstk], k;
@@ -1216,6 +1217,7 @@ static int wr__flood(wr__cdt *S, int32_t seed) {
             int32_t he = 3 * t + k, u = S->tn[he] / 3;
             if (wr__cmark(S, he) != -1 || (S->tf[u] & WR__F_OUT) || WR__GHOSTLY(S, u)) continue;
             S->tf[u] |= WR__F_OUT;
+            ++*removed;
             if (!wr__push(S, u)) return 0;
         }
     }
@@ -1697,7 +1699,7 @@ WRDEF wr_status wr_cdt_triangulate(const wr_cdt_input *in, const wr_cdt_desc *de
     wr_status st = WR_OK, st_late = WR_OK;
     double t_start = wr_time_seconds();
     int refine, carved = 0;
-    int64_t budget;
+    int64_t budget, n_real = 0, n_live;
     memset(&S, 0, sizeof S);
     memset(&C, 0, sizeof C);
     memset(&R, 0, sizeof R);
@@ -1811,6 +1813,8 @@ WRDEF wr_status wr_cdt_triangulate(const wr_cdt_input *in, const wr_cdt_desc *de
             if (S.tv[3 * i + k] >= 0) S.vtri[S.tv[3 * i + k]] = i;
     }
     S.track_vtri = 1;
+    for (i = 0; i < S.nt; ++i) n_real += !WR__GHOSTLY(&S, i);
+    n_live = n_real;
     for (i = 0; i < n; ++i) {
         in2int[i] = dupof[pos[rep[i]]];
         out->n_duplicates += rep[i] != i || in2int[i] != pos[i];
@@ -1831,27 +1835,36 @@ WRDEF wr_status wr_cdt_triangulate(const wr_cdt_input *in, const wr_cdt_desc *de
             if (st != WR_OK) goto done;
         }
         if (!d.keep_convex_hull) {
-            int32_t t, live = 0;
+            int32_t t;
+            int64_t removed = 0;
             for (t = 0; t < S.nt; ++t)
                 if (WR__GHOSTLY(&S, t)) {
                     const int32_t *v = S.tv + 3 * t;
                     int g = v[0] < 0 ? 0 : v[1] < 0 ? 1 : 2;
-                    if (S.cm[3 * t + g] == -1 && !wr__flood(&S, S.tn[3 * t + g] / 3)) goto nomem;
+                    if (S.cm[3 * t + g] == -1 && !wr__flood(&S, S.tn[3 * t + g] / 3, &removed)) goto nomem;
                 }
-            for (t = 0; t < S.nt; ++t) live += wr__is_live(&S, t);
-            if (live == 0) /* the segments enclose nothing: keep the hull */
+            if (removed == n_real) /* the segments enclose nothing: keep the hull */
                 memset(S.tf, 0, (size_t)S.nt);
             else
                 carved = 1;
+            n_live = n_real - (carved ? removed : 0);
         }
     }
     for (i = 0; i < in->n_holes; ++i) {
         int32_t r, t;
+        int64_t removed = 0;
         int loc = wr__locate(&S, in->holes + 2 * i, S.last, 0, (int64_t)4 * S.nt + 64, &r);
         if (loc == WR__LOC_LOST) continue;
         t = loc == WR__LOC_TRI ? r : loc == WR__LOC_EDGE ? r / 3 : S.vtri[r];
         if (WR__GHOSTLY(&S, t)) continue; /* seed outside the convex hull */
-        if (!wr__flood(&S, t)) goto nomem;
+        if (!wr__flood(&S, t, &removed)) goto nomem;
+        n_live -= removed;
+        if (n_live == 0) {
+            st = wr_fail(diag, WR_ERR_GEOMETRY, i,
+                         "hole %d at (%g, %g) removed every remaining triangle: the boundary around it is not closed",
+                         i, in->holes[2 * i], in->holes[2 * i + 1]);
+            goto done;
+        }
     }
     if (refine) {
         int32_t t;
