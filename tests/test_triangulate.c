@@ -826,3 +826,29 @@ Test(triangulate, grid_segments_through_vertices) {
     free(p);
     wr_cdt_free(&r);
 }
+
+/* the same constrained, refined problem at very small and very large coordinate scales */
+Test(triangulate, extreme_scales) {
+    static const double scales[] = {1e-60, 1.0, 1e60};
+    int si;
+    for (si = 0; si < 3; ++si) {
+        double sc = scales[si], p[2 * 60];
+        int32_t seg[] = {0, 1, 1, 2, 2, 3, 3, 0, 4, 5}, i;
+        wr_rng rng;
+        wr_cdt_desc d;
+        wr_cdt_result r;
+        wr_diag dg;
+        wr_rng_seed(&rng, 3);
+        p[0] = 0; p[1] = 0; p[2] = sc; p[3] = 0; p[4] = sc; p[5] = sc; p[6] = 0; p[7] = sc;
+        for (i = 4; i < 60; ++i) { p[2 * i] = sc * wr_rng_uniform(&rng); p[2 * i + 1] = sc * wr_rng_uniform(&rng); }
+        p[8] = 0.1 * sc; p[9] = 0.1 * sc; p[10] = 0.9 * sc; p[11] = 0.7 * sc;
+        memset(&d, 0, sizeof d);
+        d.quality = 1;
+        d.min_angle_deg = 30.0;
+        cr_assert_eq(tri(p, 60, seg, 5, NULL, 0, &d, &r, &dg), WR_OK, "scale %g: %s", sc, dg.message);
+        check_ok(&r, 0, NULL);
+        cr_assert_geq(r.min_angle_deg, 30.0, "scale %g: %g", sc, r.min_angle_deg);
+        cr_assert_float_eq(total_area(&r) / (sc * sc), 1.0, 1e-12);
+        wr_cdt_free(&r);
+    }
+}

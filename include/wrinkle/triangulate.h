@@ -40,8 +40,9 @@
  *   and accepts the result when it exceeds Shewchuk's forward error bound ((3+16ε)ε and (10+96ε)ε
  *   times the permanent, ε = 2^-53); otherwise it re-evaluates exactly with floating-point expansion
  *   arithmetic (two-sum, Dekker's split two-product; no FMA, no long double). The sign is exact for
- *   all finite inputs provided no intermediate overflows or underflows: keep |coordinates| within
- *   about [1e-70, 1e70] or exactly 0 (cloth panels in metres are far inside). Needs strict IEEE-754
+ *   all finite inputs provided no intermediate overflows or underflows: every nonzero |coordinate|
+ *   within [1e-50, 1e50] is safe (the smallest expansion tail of incircle is about |coord·ε|⁴·ε²;
+ *   cloth panels in metres are far inside; tests run at 1e-60 and 1e60). Needs strict IEEE-754
  *   binary64 round-to-nearest: compile WITHOUT -ffast-math / -Ofast / -funsafe-math-optimizations,
  *   WITH -ffp-contract=off (FMA contraction would break two-product and the error bounds), and on
  *   32-bit x86 with -msse2 -mfpmath=sse (no x87 extended precision). The returned magnitude is an
