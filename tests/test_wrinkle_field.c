@@ -624,6 +624,28 @@ Test(wrinkle_field, sqp_converges_to_kkt_1e8_on_clamped_stretched_sheet) {
             cr_assert(amax > 5e-4 && amax < 2e-3, "amax %g", amax);
         }
     }
+    /* a = 0 is a KKT point (E is even in a); from a = 0 the second-order escape must find the
+     * wrinkles again (TFW App. F: "amplitude first vanishes globally ... then wrinkles emerge") */
+    {
+        wr_wf_solve_desc sd;
+        wr_wf_solve_stats ss;
+        double amax = 0.0;
+        memset(a, 0, sizeof(double) * m.nv);
+        memcpy(om, o0, sizeof(double) * m.ne);
+        memset(&sd, 0, sizeof sd);
+        sd.tol_energy = 1e-300;
+        sd.tol_step = 1e-300;
+        cr_assert_eq(wr_wf_solve(&wf, &sd, a, om, &ss, NULL), WR_OK);
+        cr_log_info("SQP from a = 0: %d iters, %d escapes, E %.10g -> %.10g, KKT %g -> %g", ss.iterations,
+                    ss.n_escapes, ss.energy0, ss.energy, ss.kkt0, ss.kkt);
+        cr_assert(ss.n_escapes >= 1);
+        cr_assert_eq(ss.stop, WR_WF_STOP_KKT);
+        cr_assert(ss.kkt <= 1e-8 * ss.kkt0 && ss.kkt0 > 0.0);
+        cr_assert(ss.energy < ss.energy0);
+        cr_assert(fabs(ss.energy - Eref) <= 1e-6 * Eref, "%.12g vs %.12g", ss.energy, Eref);
+        for (v = 0; v < m.nv; ++v) amax = fmax(amax, a[v]);
+        cr_assert(amax > 5e-4 && amax < 2e-3, "amax %g", amax);
+    }
     {
         wr_wf_solve_desc sd;
         memset(&sd, 0, sizeof sd);

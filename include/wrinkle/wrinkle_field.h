@@ -224,7 +224,7 @@ typedef struct wr_wf_solve_stats {
     int32_t n_generators;   /* cohomology generators of the complex outside W */
     double energy0, energy; /* objective (E_wf + regulariser) at the start and at the end [J] */
     double energy_reg;      /* the regulariser's share of energy at the end [J] (0 without omega_reg) */
-    double kkt0, kkt;       /* ||ŷ - P(ŷ - ĝ)||_∞, ŷ = y/s, ĝ = s ∇E / E_ref (stationarity of Eq. 39) */
+    double kkt0, kkt;       /* kkt0: at the start, or after an escape from a = 0 if larger; ||ŷ - P(ŷ - ĝ)||_∞, ŷ = y/s, ĝ = s ∇E / E_ref (stationarity of Eq. 39) */
     double a_ref, e_ref;    /* scales used: a_ref = max a at the start [m], E_ref = |E| at the start [J] */
     double seconds, seconds_assembly, seconds_solve;
     wr_wf_stop stop;
@@ -316,6 +316,7 @@ extern "C" {
 #define WR__WF_DAMP_FLOOR 1e-6    /* damping diagonal floor, relative to the block's mean |diag K| */
 #define WR__WF_EPS_ACTIVE 1e-3    /* ε of the ε-active set, in units of a_ref: a <= ε a_ref with ∂E/∂a > 0 is put on the bound */
 #define WR__WF_ROUNDOFF 1e-14     /* predicted decrease below this × |E| is below double round-off of E */
+#define WR__WF_ROUNDOFF_FLOOR 1e-6 /* ... of at least 1e-6 |E_wf(start)| (excess energy can be ~0) */
 #define WR__WF_MAX_ESCAPES 50     /* second-order escapes from a = 0 per solve */
 #define WR__WF_AREF_FALLBACK 1e-3 /* a_ref = 1e-3 × bbox diagonal when the start has a = 0 everywhere */
 
@@ -391,15 +392,22 @@ typedef struct wr__wf_sfun {
 
 static void wr__wf_sfun_zero(wr__wf_sfun *s) { memset(s, 0, sizeof *s); }
 
-static void wr__wf_norm_acc(const wr__wf_sfun *s, const double Q[9], double w, double *val, double *g,
-                            double *H) {
-    double Qs[3], QJ[3][5];
+/* off (or NULL): a constant added to s whose own N(off) is left out of the value (so the value is
+ * N(off + s) - N(off) = 2 offᵀQs + sᵀQs, computed without cancellation); derivatives are those of
+ * N(off + s). */
+static void wr__wf_norm_acc(const wr__wf_sfun *s, const double *off, const double Q[9], double w, double *val,
+                            double *g, double *H) {
+    double Qs[3], Qo[3], QJ[3][5];
     int c, d, i, j;
     for (c = 0; c < 3; ++c) {
-        Qs[c] = 0.0;
-        for (d = 0; d < 3; ++d) Qs[c] += Q[3 * c + d] * s->v[d];
+        Qs[c] = Qo[c] = 0.0;
+        for (d = 0; d < 3; ++d) {
+            Qs[c] += Q[3 * c + d] * s->v[d];
+            if (off) Qo[c] += Q[3 * c + d] * off[d];
+        }
     }
-    *val += w * (s->v[0] * Qs[0] + s->v[1] * Qs[1] + s->v[2] * Qs[2]);
+    *val += w * (s->v[0] * (Qs[0] + 2.0 * Qo[0]) + s->v[1] * (Qs[1] + 2.0 * Qo[1]) + s->v[2] * (Qs[2] + 2.0 * Qo[2]));
+    for (c = 0; c < 3; ++c) Qs[c] += Qo[c]; /* Q (off + s) for the derivatives */
     if (!g) return;
     for (i = 0; i < 5; ++i) {
         double t = 0.0;
@@ -427,8 +435,8 @@ static void wr__wf_sfun_mono(wr__wf_sfun *s, int comp, double coef, int n, const
 /* Face energy in local DOFs xl = (a0, a1, a2, ω̃0, ω̃1, ω̃2), ω̃k = phase change along face edge k in the
  * face's traversal (corner (k+1)%3 -> (k+2)%3). Adds into e, g[6], H[36], terms[6] (each may be NULL
  * except e). */
-static void wr__wf_face_eval(const wr_wf *wf, int32_t f, const double xl[6], double *e, double *g6, double *H36,
-                             double *terms) {
+static void wr__wf_face_eval(const wr_wf *wf, int32_t f, const double xl[6], int excess, double *e, double *g6,
+                             double *H36, double *terms) {
     /* dφ (Whitney face average, see ON READINGS): p = (2ω̃2 - ω̃0 - ω̃1, ω̃2 + ω̃0 - 2ω̃1)/3. */
     static const double JP[2][3] = {{-1.0 / 3.0, -1.0 / 3.0, 2.0 / 3.0}, {1.0 / 3.0, -2.0 / 3.0, 1.0 / 3.0}};
     static const int ix_g00[2] = {WR__Y_G0, WR__Y_G0}, ix_g01[2] = {WR__Y_G0, WR__Y_G1},
@@ -462,9 +470,11 @@ static void wr__wf_face_eval(const wr_wf *wf, int32_t f, const double xl[6], dou
         J[WR__Y_P0][3 + k] = JP[0][k];
         J[WR__Y_P1][3 + k] = JP[1][k];
     }
-    /* W_b^1: constant of the base (no a, ω dependence). */
-    *e += 3.0 * wb * wf->wb1[f];
-    if (terms) terms[WR_WF_TERM_B1] += 3.0 * wb * wf->wb1[f];
+    /* W_b^1: constant of the base (no a, ω dependence); left out of the excess energy. */
+    if (!excess) {
+        *e += 3.0 * wb * wf->wb1[f];
+        if (terms) terms[WR_WF_TERM_B1] += 3.0 * wb * wf->wb1[f];
+    }
     for (q = 0; q < 3; ++q) {
         wr__wf_sfun s;
         double vt;
@@ -477,35 +487,37 @@ static void wr__wf_face_eval(const wr_wf *wf, int32_t f, const double xl[6], dou
             wr__wf_sfun_zero(&s);
             switch (t) {
             case 0: /* W_s^1, Eq. 21: I_u⁻¹(I_b - I_u + ½ daᵀda + ½ a² dφᵀdφ) */
-                s.v[0] = c[0];
-                s.v[1] = c[1];
-                s.v[2] = c[2];
+                if (!excess) {
+                    s.v[0] = c[0];
+                    s.v[1] = c[1];
+                    s.v[2] = c[2];
+                }
                 wr__wf_sfun_mono(&s, 0, 0.5, 2, ix_g00, y);
                 wr__wf_sfun_mono(&s, 1, 0.5, 2, ix_g01, y);
                 wr__wf_sfun_mono(&s, 2, 0.5, 2, ix_g11, y);
                 wr__wf_sfun_mono(&s, 0, 0.5, 4, ix_aapp00, y);
                 wr__wf_sfun_mono(&s, 1, 0.5, 4, ix_aapp01, y);
                 wr__wf_sfun_mono(&s, 2, 0.5, 4, ix_aapp11, y);
-                wr__wf_norm_acc(&s, Q, ws, &vt, g6 ? gy : NULL, H36 ? Hy : NULL);
+                wr__wf_norm_acc(&s, excess ? c : NULL, Q, ws, &vt, g6 ? gy : NULL, H36 ? Hy : NULL);
                 break;
             case 1: /* W_s^3, Eq. 23: (a²/32)||I_u⁻¹(dφᵀda + daᵀdφ)||² = N((a/√32)(pᵀg + gᵀp)) */
                 wr__wf_sfun_mono(&s, 0, 2.0 * inv32, 3, ix_apg00, y);
                 wr__wf_sfun_mono(&s, 1, inv32, 3, ix_apg01a, y);
                 wr__wf_sfun_mono(&s, 1, inv32, 3, ix_apg01b, y);
                 wr__wf_sfun_mono(&s, 2, 2.0 * inv32, 3, ix_apg11, y);
-                wr__wf_norm_acc(&s, Q, ws, &vt, g6 ? gy : NULL, H36 ? Hy : NULL);
+                wr__wf_norm_acc(&s, NULL, Q, ws, &vt, g6 ? gy : NULL, H36 ? Hy : NULL);
                 break;
             case 2: /* W_s^4, Eq. 24: (1/8)||I_u⁻¹ daᵀda||² */
                 wr__wf_sfun_mono(&s, 0, inv8, 2, ix_g00, y);
                 wr__wf_sfun_mono(&s, 1, inv8, 2, ix_g01, y);
                 wr__wf_sfun_mono(&s, 2, inv8, 2, ix_g11, y);
-                wr__wf_norm_acc(&s, Q, ws, &vt, g6 ? gy : NULL, H36 ? Hy : NULL);
+                wr__wf_norm_acc(&s, NULL, Q, ws, &vt, g6 ? gy : NULL, H36 ? Hy : NULL);
                 break;
             case 3: /* W_b^2, Eq. 26: (a²/2)||I_u⁻¹ dφᵀdφ||² */
                 wr__wf_sfun_mono(&s, 0, inv2, 3, ix_app00, y);
                 wr__wf_sfun_mono(&s, 1, inv2, 3, ix_app01, y);
                 wr__wf_sfun_mono(&s, 2, inv2, 3, ix_app11, y);
-                wr__wf_norm_acc(&s, Q, wb, &vt, g6 ? gy : NULL, H36 ? Hy : NULL);
+                wr__wf_norm_acc(&s, NULL, Q, wb, &vt, g6 ? gy : NULL, H36 ? Hy : NULL);
                 break;
             default: { /* W_s^2, Eq. 22: c2 a² */
                 double dummy[5], dH[25];
@@ -795,8 +807,12 @@ WRDEF void wr_wf_curl(const wr_mesh *m, const double *omega, double *curl) {
     }
 }
 
-WRDEF wr_status wr_wf_energy(const wr_wf *wf, const double *a, const double *omega, double *energy, double *grad,
-                             double *face_hess, double *terms, wr_diag *diag) {
+/* excess != 0: E minus its a- and ω-independent part (the base's own stretching N(I_u⁻¹(I_b - I_u))
+ * and W_b^1), computed without cancellation. The SQP compares energies through it: on a stretched
+ * sheet the wrinkle part is ~3e-4 of E_wf, so differences of the full E hit round-off 1e4 times
+ * too early. */
+static wr_status wr__wf_energy_impl(const wr_wf *wf, const double *a, const double *omega, int excess, double *energy,
+                                    double *grad, double *face_hess, double *terms, wr_diag *diag) {
     int32_t f, i;
     double E = 0.0;
     if (!wf || !a || !omega || !energy) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "wf energy: NULL argument");
@@ -819,7 +835,7 @@ WRDEF wr_status wr_wf_energy(const wr_wf *wf, const double *a, const double *ome
             xl[3 + k] = sg[3 + k] * omega[idx[3 + k] - wf->nv];
         }
         memset(g6, 0, sizeof g6);
-        wr__wf_face_eval(wf, f, xl, &E, grad ? g6 : NULL, face_hess ? face_hess + 36 * (size_t)f : NULL, terms);
+        wr__wf_face_eval(wf, f, xl, excess, &E, grad ? g6 : NULL, face_hess ? face_hess + 36 * (size_t)f : NULL, terms);
         if (grad)
             for (k = 0; k < 6; ++k) grad[idx[k]] += sg[k] * g6[k];
         if (face_hess) {
@@ -831,6 +847,11 @@ WRDEF wr_status wr_wf_energy(const wr_wf *wf, const double *a, const double *ome
     }
     *energy = E;
     return WR_OK;
+}
+
+WRDEF wr_status wr_wf_energy(const wr_wf *wf, const double *a, const double *omega, double *energy, double *grad,
+                             double *face_hess, double *terms, wr_diag *diag) {
+    return wr__wf_energy_impl(wf, a, omega, 0, energy, grad, face_hess, terms, diag);
 }
 
 /* ---- null-space basis of {ω : dω_f = 0 for every face f outside W} (tree–cotree) ----
@@ -2020,7 +2041,7 @@ static int wr__wf_escape(const wr_wf *wf, const wr__wf_basis *B, const int32_t *
             if (hd[i] > 0.0) yt[i] = s * aref * hd[i] / pmax;
         for (v = 0; v < wf->nv; ++v) xa[v] = avar[v] >= 0 ? yt[avar[v]] : 0.0;
         wr__wf_z_apply(B, yt + na, xo);
-        if (wr_wf_energy(wf, xa, xo, &Et, NULL, NULL, NULL, NULL) == WR_OK && Et < E - WR__WF_ROUNDOFF * fabs(E)) {
+        if (wr__wf_energy_impl(wf, xa, xo, 1, &Et, NULL, NULL, NULL, NULL) == WR_OK && Et < E - WR__WF_ROUNDOFF * fabs(E)) {
             *Enew = Et;
             return 1;
         }
@@ -2075,7 +2096,8 @@ WRDEF wr_status wr_wf_solve(const wr_wf *wf, const wr_wf_solve_desc *desc, doubl
            *rhs = NULL, *kmodel = NULL, *mdiag = NULL, *ks = NULL, *ainit = NULL;
     double aref = 1.0, eref = 1.0, mu, nu_up = 2.0, greg = 0.0;
     int have_grad = 0, fresh_hess = 0, hess_true = 0;
-    double Et0 = 0.0;
+    double Et0 = 0.0, ebase = 0.0;
+    int rebase_kkt = 0;
     uint8_t *zero = NULL, *active = NULL;
     double t0 = wr_time_seconds(), E = 0.0;
     wr_status st = WR_OK;
@@ -2236,13 +2258,17 @@ WRDEF wr_status wr_wf_solve(const wr_wf *wf, const wr_wf_solve_desc *desc, doubl
         wr_wf_iter_info info;
         if (!have_grad) {
             wr__wf_sqp_tox(wf, &B, avar, y, na, xa, xo);
-            st = wr_wf_energy(wf, xa, xo, &E, gx, H, NULL, diag);
+            st = wr__wf_energy_impl(wf, xa, xo, 1, &E, gx, H, NULL, diag);
             if (st) goto done;
             for (v = 0; v < wf->nv; ++v)
                 if (avar[v] >= 0) g[avar[v]] = gx[v];
             if (it == 0) {
                 int32_t nact_e = 0;
-                eref = fabs(E) > 0.0 ? fabs(E) : 1.0;
+                double Efull = 0.0;
+                st = wr_wf_energy(wf, xa, xo, &Efull, NULL, NULL, NULL, diag);
+                if (st) goto done;
+                ebase = Efull - E; /* the constant part, for reporting only */
+                eref = fabs(Efull) > 0.0 ? fabs(Efull) : 1.0;
                 for (i = 0; i < wf->ne; ++i) nact_e += B.eact[i];
                 greg = D.omega_reg > 0.0 && nact_e > 0 ? D.omega_reg * eref / nact_e : 0.0;
             }
@@ -2252,11 +2278,15 @@ WRDEF wr_status wr_wf_solve(const wr_wf *wf, const wr_wf_solve_desc *desc, doubl
             fresh_hess = 1;
         }
         kkt = wr__wf_kkt(y, g, n, na, aref, eref);
+        if (rebase_kkt) { /* after an escape the reference residual is the escaped point's */
+            S.kkt0 = fmax(S.kkt0, kkt);
+            rebase_kkt = 0;
+        }
         if (it == 0) {
-            S.energy0 = E;
+            S.energy0 = E + ebase;
             S.kkt0 = kkt;
         }
-        S.energy = E;
+        S.energy = E + ebase;
         S.kkt = kkt;
         S.iterations = it;
         if (kkt <= D.tol_kkt * S.kkt0 || kkt == 0.0) {
@@ -2265,6 +2295,7 @@ WRDEF wr_status wr_wf_solve(const wr_wf *wf, const wr_wf_solve_desc *desc, doubl
             if (S.n_escapes < WR__WF_MAX_ESCAPES &&
                 wr__wf_escape(wf, &B, avar, na, y, H, aref, E, yt, xa, xo, ainit, mdiag, &Et0)) {
                 ++S.n_escapes;
+                rebase_kkt = 1;
                 for (i = 0; i < n; ++i) y[i] = yt[i];
                 E = Et0;
                 have_grad = 0;
@@ -2391,7 +2422,7 @@ WRDEF wr_status wr_wf_solve(const wr_wf *wf, const wr_wf_solve_desc *desc, doubl
                 pred -= d[i] * (g[i] + 0.5 * r);
             }
             wr__wf_sqp_tox(wf, &B, avar, yt, na, xa, xo);
-            fs = wr_wf_energy(wf, xa, xo, &Et, NULL, NULL, NULL, NULL);
+            fs = wr__wf_energy_impl(wf, xa, xo, 1, &Et, NULL, NULL, NULL, NULL);
             Et += wr__wf_reg(&B, greg, xo, NULL);
             rho = (fs == WR_OK && pred > 0.0) ? (E - Et) / pred : -1.0;
             if (fs == WR_OK && pred > 0.0 && rho > WR__WF_RHO_ACCEPT) {
@@ -2404,7 +2435,7 @@ WRDEF wr_status wr_wf_solve(const wr_wf *wf, const wr_wf_solve_desc *desc, doubl
             }
             /* the model promises less than the energy's round-off: no evaluation can confirm a
              * decrease any more, so rule 1 (energy change below resolution) holds */
-            if (fs == WR_OK && pred >= 0.0 && pred <= WR__WF_ROUNDOFF * fabs(E)) {
+            if (fs == WR_OK && pred >= 0.0 && pred <= WR__WF_ROUNDOFF * fmax(fabs(E), WR__WF_ROUNDOFF_FLOOR * eref)) {
                 roundoff = 1;
                 break;
             }
@@ -2435,7 +2466,7 @@ WRDEF wr_status wr_wf_solve(const wr_wf *wf, const wr_wf_solve_desc *desc, doubl
             y[i] = yt[i];
         }
         info.iteration = it + 1;
-        info.energy = Et;
+        info.energy = Et + ebase;
         info.kkt = kkt;
         info.step = fmax(stepa / aref, stepz);
         info.alpha_ls = rho;
@@ -2449,19 +2480,16 @@ WRDEF wr_status wr_wf_solve(const wr_wf *wf, const wr_wf_solve_desc *desc, doubl
         have_grad = 0;
         /* rules 1 and 3 only count a step the quadratic model predicted well (ρ > 1/2): a heavily
          * damped step is short and changes E little without the iterate being stationary. */
-        if (rho > 0.5 && fabs(E - Et) <= D.tol_energy * fabs(E)) {
+        if (rho > 0.5 && fabs(E - Et) <= D.tol_energy * fabs(E + ebase)) {
             E = Et;
-            S.energy = Et;
             S.stop = WR_WF_STOP_ENERGY;
             break;
         }
         if (rho > 0.5 && stepa <= D.tol_step * norma && stepz <= D.tol_step * normz) {
-            S.energy = Et;
             S.stop = WR_WF_STOP_STEP;
             break;
         }
         E = Et;
-        S.energy = Et;
     }
     /* final residual at the returned iterate */
     wr__wf_sqp_tox(wf, &B, avar, y, na, xa, xo);
