@@ -59,6 +59,7 @@ Test(mesher, constant_sizing_square_edge_length_and_count) {
     cr_expect_eq(r.report.n_inverted, 0);
     cr_expect_eq(r.report.n_zero_area, 0);
     cr_expect_gt(r.report.min_angle_deg, 15.0);
+    cr_expect(fabs(r.report.min_angle_metric_deg - r.report.min_angle_deg) < 1e-9); /* isotropic: T = I */
     cr_expect_eq(r.mesh.n_loops, 1);
     cr_expect_eq(r.mesh.nv - r.mesh.ne + r.mesh.nf, 1); /* a disk */
     cr_expect(fabs(r.sizing[0] - h) < 1e-15);
@@ -329,6 +330,9 @@ Test(mesher, anisotropic_edges_follow_warp_and_weft) {
     cr_assert_eq(wr_mesher_run(&pat, &desc, &u, NULL), WR_OK);
     cr_expect_lt(r.mesh.nv * 2, u.mesh.nv, "aniso %d vs uniform fine %d", r.mesh.nv, u.mesh.nv);
     cr_expect_eq(r.report.n_inverted, 0);
+    /* near-equilateral in the metric, stretched in the pattern */
+    cr_expect_gt(r.report.mean_min_angle_metric_deg, 35.0, "%.1f", r.report.mean_min_angle_metric_deg);
+    cr_expect_lt(r.report.mean_min_angle_deg, r.report.mean_min_angle_metric_deg - 5.0);
     wr_mesher_free(&r);
     wr_mesher_free(&u);
 }

@@ -196,6 +196,10 @@ int main(void) {
         }
         snprintf(name, sizeof name, "%s: minimum angle", pf.name);
         wr_vres_info(v, name, "deg", NAN, r.report.min_angle_deg);
+        if (r.panels[0].r_warp != r.panels[0].r_weft) {
+            snprintf(name, sizeof name, "%s: minimum angle in the warp/weft metric", pf.name);
+            wr_vres_info(v, name, "deg", NAN, r.report.min_angle_metric_deg);
+        }
         snprintf(name, sizeof name, "%s: mean edge length / sizing", pf.name);
         wr_vres_range(v, name, "1", 1.0, r.report.ratio_mean, 0.9, 1.1);
         snprintf(name, sizeof name, "%s: inverted or zero-area faces", pf.name);

@@ -259,6 +259,8 @@ static wr_status write_summary(const wr_mesher_result *res, const wr_pattern_fil
     cJSON_AddNumberToObject(q, "min_angle_deg", r->min_angle_deg);
     cJSON_AddNumberToObject(q, "max_angle_deg", r->max_angle_deg);
     cJSON_AddNumberToObject(q, "mean_min_angle_deg", r->mean_min_angle_deg);
+    cJSON_AddNumberToObject(q, "min_angle_metric_deg", r->min_angle_metric_deg);
+    cJSON_AddNumberToObject(q, "mean_min_angle_metric_deg", r->mean_min_angle_metric_deg);
     cJSON_AddNumberToObject(q, "edge_ratio_mean", r->ratio_mean);
     if (isfinite(r->ratio_interior_mean))
         cJSON_AddNumberToObject(q, "edge_ratio_interior_mean", r->ratio_interior_mean);

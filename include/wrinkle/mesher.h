@@ -80,7 +80,7 @@
  *   desc.sew: then side b's vertices are merged into side a's, rest is NULL and corner_rest carries
  *   each corner's own pattern position (a sewn vertex has two). sizing[v] = target edge length [m]
  *   (the fine direction for anisotropic panels), sizing_warp/_weft per direction.
- *   Quality: angles in pattern space; edge ratio = |T e| / mean of the two end sizings (metric
+ *   Quality: angles in pattern space and in the metric (stretched) space; edge ratio = |T e| / mean of the two end sizings (metric
  *   length over target, 1 is ideal), histogram of WR_MESHER_HIST_BINS bins on [0, 2).
  *
  * ON ERRORS (status + message naming the item; diag->item = its index)
@@ -246,7 +246,9 @@ typedef struct wr_mesher_panel_info {
 
 typedef struct wr_mesher_report {
     int32_t n_vertices, n_triangles, n_seam_pairs, n_constraint_segments;
-    double min_angle_deg, max_angle_deg, mean_min_angle_deg;
+    double min_angle_deg, max_angle_deg, mean_min_angle_deg; /* pattern space */
+    double min_angle_metric_deg, mean_min_angle_metric_deg;  /* in each panel's metric (stretched) space;
+                                                                equal to the above for isotropic panels */
     double ratio_mean, ratio_interior_mean, ratio_min, ratio_max; /* edge metric length / sizing */
     int32_t ratio_hist[WR_MESHER_HIST_BINS];                      /* bins on [0, 2) */
     int32_t n_inverted, n_zero_area;
@@ -2018,6 +2020,28 @@ WRDEF wr_status wr_mesher_run(const wr_pattern *pat, const wr_mesher_desc *desc_
         rp->min_angle_deg = q.min_angle_deg;
         rp->max_angle_deg = q.max_angle_deg;
         rp->mean_min_angle_deg = q.mean_min_angle_deg;
+        /* angles where the mesher actually worked: in each panel's stretched space */
+        {
+            double amin = 180.0, asum = 0.0;
+            int32_t ff;
+            for (ff = 0; ff < M->nf; ++ff) {
+                const wr_mesher_panel_info *pi = &res->panels[M->face_panel[ff]];
+                double uv[6], w[6], fmin_a = 180.0;
+                int c8;
+                wr_mesh_face_rest(M, ff, uv);
+                for (c8 = 0; c8 < 3; ++c8) wr__msh_apply(pi->T, uv + 2 * c8, w + 2 * c8);
+                for (c8 = 0; c8 < 3; ++c8) {
+                    const double *a = w + 2 * c8, *b = w + 2 * ((c8 + 1) % 3), *c = w + 2 * ((c8 + 2) % 3);
+                    double ux = b[0] - a[0], uy = b[1] - a[1], vx = c[0] - a[0], vy = c[1] - a[1];
+                    double ang = fabs(atan2(ux * vy - uy * vx, ux * vx + uy * vy)) * 57.29577951308232;
+                    if (ang < fmin_a) fmin_a = ang;
+                }
+                if (fmin_a < amin) amin = fmin_a;
+                asum += fmin_a;
+            }
+            rp->min_angle_metric_deg = amin;
+            rp->mean_min_angle_metric_deg = M->nf ? asum / M->nf : 0.0;
+        }
         rp->n_inverted = q.n_inverted;
         rp->n_zero_area = q.n_zero_area;
         rp->ratio_min = HUGE_VAL;
