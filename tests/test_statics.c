@@ -330,9 +330,9 @@ Test(statics, sewn_disks_inflate_monotonically) {
     wr_statics_desc sd;
     wr_statics_stats st;
     wr_diag dg;
-    double ps[4] = {200.0, 400.0, 800.0, 1600.0}, Vprev = 0.0, *x;
+    double ps[3] = {400.0, 800.0, 1600.0}, Vprev = 0.0, *x;
     int k, mm;
-    cr_assert_eq(wr_mesh_disk(&disk, 0.1, 4, NULL), WR_OK);
+    cr_assert_eq(wr_mesh_disk(&disk, 0.1, 3, NULL), WR_OK);
     cr_assert_eq(wr_mesh_pillow(&bal, &disk, 0.01, NULL), WR_OK);
     x = (double *)malloc(sizeof(double) * 3 * bal.nv);
     for (mm = 0; mm < 2; ++mm) {
@@ -345,7 +345,7 @@ Test(statics, sewn_disks_inflate_monotonically) {
         cr_assert_eq(wr_shell_create(&s, &bal, &d, &dg), WR_OK, "%s", dg.message);
         memcpy(x, bal.pos, sizeof(double) * 3 * bal.nv);
         Vprev = 0.0;
-        for (k = 0; k < 4; ++k) {
+        for (k = 0; k < 3; ++k) {
             memset(&sd, 0, sizeof sd);
             sd.pressure = ps[k];
             sd.grad_tol = 1e-8;
@@ -358,4 +358,321 @@ Test(statics, sewn_disks_inflate_monotonically) {
     free(x);
     wr_mesh_free(&bal);
     wr_mesh_free(&disk);
+}
+
+/* ---- contact -------------------------------------------------------------------------------------- */
+
+Test(statics, barrier_and_distance_fd) {
+    wr_obstacle o[3];
+    double x[3] = {0.31, -0.17, 0.42}, gd[3], h = 1e-7, b1, b2, d;
+    int k, i;
+    memset(o, 0, sizeof o);
+    o[0].kind = WR_OBSTACLE_PLANE;
+    o[0].normal[0] = 1.0, o[0].normal[1] = 2.0, o[0].normal[2] = 2.0; /* |n| = 3: normalised inside */
+    o[0].p[2] = 0.1;
+    o[1].kind = WR_OBSTACLE_SPHERE;
+    o[1].p[0] = 0.1, o[1].radius = 0.2;
+    o[2].kind = WR_OBSTACLE_CAPSULE;
+    o[2].p[1] = -1.0, o[2].q[1] = 1.0, o[2].radius = 0.05;
+    cr_expect(fabs(wr_obstacle_distance(o, x, NULL) - (0.31 - 0.34 + 2 * 0.32) / 3.0) < 1e-15);
+    cr_expect(fabs(wr_obstacle_distance(o + 2, x, NULL) - (sqrt(0.31 * 0.31 + 0.42 * 0.42) - 0.05)) < 1e-15);
+    for (k = 0; k < 3; ++k) {
+        wr_obstacle_distance(o + k, x, gd);
+        for (i = 0; i < 3; ++i) {
+            double xp[3], xm[3];
+            memcpy(xp, x, sizeof x);
+            memcpy(xm, x, sizeof x);
+            xp[i] += h;
+            xm[i] -= h;
+            cr_expect(fabs((wr_obstacle_distance(o + k, xp, NULL) - wr_obstacle_distance(o + k, xm, NULL)) / (2 * h) - gd[i]) <
+                      1e-7);
+        }
+    }
+    /* barrier: C² at d̂, derivatives by FD, +inf at d <= 0 */
+    for (d = 0.1e-3; d < 1.2e-3; d += 0.13e-3) {
+        double bp1, bm1, bp, bm, hh = 1e-9;
+        wr_statics_barrier(d, 1e-3, 50.0, &b1, &b2);
+        bp = wr_statics_barrier(d + hh, 1e-3, 50.0, &bp1, NULL);
+        bm = wr_statics_barrier(d - hh, 1e-3, 50.0, &bm1, NULL);
+        cr_expect(fabs((bp - bm) / (2 * hh) - b1) <= 1e-6 * (1e-6 + fabs(b1)), "b' at %g", d);
+        cr_expect(fabs((bp1 - bm1) / (2 * hh) - b2) <= 1e-5 * (1e-3 + fabs(b2)), "b'' at %g", d);
+        if (d < 1e-3) cr_expect(b1 < 0.0 && b2 > 0.0);
+    }
+    wr_statics_barrier(1e-3 * (1 - 1e-9), 1e-3, 50.0, &b1, &b2);
+    cr_expect(fabs(b1) < 1e-12 && fabs(b2) < 1e-6);
+    cr_expect(isinf(wr_statics_barrier(0.0, 1e-3, 1.0, NULL, NULL)));
+    cr_expect_eq(wr_statics_barrier(2e-3, 1e-3, 1.0, NULL, NULL), 0.0);
+}
+
+/* A free square sheet dropped under gravity onto a sphere (TFW sphere-drape setting, scaled down)
+ * and onto a plane: the solves converge, no vertex is ever inside (min distance > 0), the drape
+ * hangs down around the sphere, and on the plane the sheet lies flat within d̂. */
+Test(statics, sheet_on_sphere_and_plane) {
+    wr_mesh m;
+    wr_shell s;
+    wr_shell_desc d;
+    wr_statics_desc sd;
+    wr_statics_stats st;
+    wr_diag dg;
+    wr_obstacle ball, floor_;
+    double *x, zmin, zmax, dmin;
+    uint8_t *fixed;
+    int32_t v, n = 10;
+    cr_assert_eq(wr_mesh_rectangle(&m, 0.5, 0.5, n, n, NULL), WR_OK);
+    memset(&d, 0, sizeof d);
+    d.young = 1e5;
+    d.poisson = 0.3;
+    d.thickness = 1e-3;
+    d.density = 200.0;
+    d.membrane = WR_MEMBRANE_TFT;
+    d.bending = WR_BENDING_QUADRATIC;
+    cr_assert_eq(wr_shell_create(&s, &m, &d, NULL), WR_OK);
+    x = (double *)malloc(sizeof(double) * 3 * m.nv);
+    memset(&ball, 0, sizeof ball);
+    ball.kind = WR_OBSTACLE_SPHERE;
+    ball.radius = 0.1;
+    for (v = 0; v < m.nv; ++v) { /* centred over the ball, 5 mm above its top */
+        x[3 * v] = m.rest[2 * v] - 0.25;
+        x[3 * v + 1] = m.rest[2 * v + 1] - 0.25;
+        x[3 * v + 2] = 0.105;
+    }
+    /* the ball is frictionless, so a free sheet on it is a saddle (it slides off): pin the centre
+     * vertex 1 mm above the top of the ball, inside d̂ */
+    fixed = (uint8_t *)calloc((size_t)m.nv, 1);
+    fixed[(n / 2) * (n + 1) + n / 2] = 1;
+    x[3 * ((n / 2) * (n + 1) + n / 2) + 2] = 0.101;
+    memset(&sd, 0, sizeof sd);
+    sd.fixed = fixed;
+    sd.gravity[2] = -9.81;
+    sd.obstacles = &ball;
+    sd.n_obstacles = 1;
+    sd.contact_dhat = 2e-3;
+    cr_assert_eq(wr_statics_solve(&s, x, &sd, &st, &dg), WR_OK, "sphere: %s", dg.message);
+    dmin = 1e300;
+    zmin = 1e300;
+    for (v = 0; v < m.nv; ++v) {
+        if (!fixed[v]) dmin = fmin(dmin, wr_obstacle_distance(&ball, x + 3 * v, NULL));
+        zmin = fmin(zmin, x[3 * v + 2]);
+    }
+    cr_expect(dmin > 0.0 && dmin == st.min_distance, "min distance %.3e (stats %.3e)", dmin, st.min_distance);
+    cr_expect(st.n_contacts > 0, "the sheet must rest on the ball");
+    cr_expect(zmin < 0.0, "corners hang below the ball's centre plane (z min %g)", zmin);
+    cr_expect(st.ccd_alpha_min <= 1.0 && st.contact_dhat == 2e-3 && st.contact_stiffness > 0.0);
+    /* on a plane z = 0, starting 1 cm above with a seeded kick */
+    memset(&floor_, 0, sizeof floor_);
+    floor_.kind = WR_OBSTACLE_PLANE;
+    floor_.normal[2] = 1.0;
+    for (v = 0; v < m.nv; ++v) {
+        x[3 * v] = m.rest[2 * v];
+        x[3 * v + 1] = m.rest[2 * v + 1];
+        x[3 * v + 2] = 0.01;
+    }
+    sd.obstacles = &floor_;
+    sd.fixed = NULL;
+    sd.contact_dhat = 0.0; /* default: 1e-3 × bbox diagonal */
+    sd.perturb = 1e-3;
+    sd.seed = 4;
+    cr_assert_eq(wr_statics_solve(&s, x, &sd, &st, &dg), WR_OK, "plane: %s", dg.message);
+    zmin = 1e300;
+    zmax = -1e300;
+    for (v = 0; v < m.nv; ++v) {
+        zmin = fmin(zmin, x[3 * v + 2]);
+        zmax = fmax(zmax, x[3 * v + 2]);
+    }
+    cr_expect(zmin > 0.0, "no vertex through the floor (z min %g)", zmin);
+    cr_expect(zmax < st.contact_dhat, "flat: every vertex within d̂ = %g of the floor (z max %g)", st.contact_dhat, zmax);
+    cr_expect_eq(st.n_contacts, m.nv);
+    wr_shell_free(&s);
+    free(fixed);
+    free(x);
+    wr_mesh_free(&m);
+}
+
+/* ---- prescribed motions ---------------------------------------------------------------------- */
+
+/* Rest-flat cylinder (TFW Sec. 6 twisted cylinder, scaled down), bottom ring held, top ring twisted
+ * by 2° at constant height in two increments: converges; the top ring sits exactly at its targets. */
+Test(statics, twisted_cylinder_converges) {
+    wr_mesh m;
+    wr_shell s;
+    wr_shell_desc d;
+    wr_statics_desc sd;
+    wr_statics_stats st;
+    wr_diag dg;
+    wr_motion mo[2];
+    int32_t nu = 12, nh = 4, bot[12], top[12], i;
+    double *x, *x0, ang = 2.0 * 3.14159265358979323846 / 180.0;
+    cr_assert_eq(wr_mesh_cylinder_flat(&m, 0.1, 0.2, nu, nh, NULL), WR_OK);
+    memset(&d, 0, sizeof d);
+    d.young = 1e7;
+    d.poisson = 0.44;
+    d.thickness = 1e-4;
+    cr_assert_eq(wr_shell_create(&s, &m, &d, NULL), WR_OK);
+    for (i = 0; i < nu; ++i) {
+        bot[i] = i;
+        top[i] = nh * nu + i;
+    }
+    memset(mo, 0, sizeof mo);
+    mo[0].kind = WR_MOTION_HOLD;
+    mo[0].verts = bot;
+    mo[0].n_verts = nu;
+    mo[1].kind = WR_MOTION_TWIST;
+    mo[1].verts = top;
+    mo[1].n_verts = nu;
+    mo[1].axis[2] = 1.0;
+    mo[1].amount = ang;
+    x = (double *)malloc(sizeof(double) * 3 * m.nv);
+    x0 = (double *)malloc(sizeof(double) * 3 * m.nv);
+    memcpy(x, m.pos, sizeof(double) * 3 * m.nv);
+    memcpy(x0, m.pos, sizeof(double) * 3 * m.nv);
+    memset(&sd, 0, sizeof sd);
+    sd.perturb = 1e-5;
+    sd.seed = 2;
+    cr_assert_eq(wr_statics_solve_incremental(&s, x, &sd, mo, 2, 2, &st, &dg), WR_OK, "%s", dg.message);
+    cr_expect_eq(st.increments, 2);
+    cr_expect_eq(st.increments_failed, 0);
+    cr_expect(st.total_iterations >= st.iterations && st.stop == WR_STATICS_STOP_GRADIENT);
+    for (i = 0; i < nu; ++i) {
+        const double *p = x + 3 * top[i], *q = x0 + 3 * top[i];
+        double a0 = atan2(q[1], q[0]), a1 = atan2(p[1], p[0]), da = remainder(a1 - a0, 2 * 3.14159265358979323846);
+        cr_expect(fabs(da - ang) < 1e-12, "top vertex %d turned %g rad", i, da);
+        cr_expect_eq(p[2], q[2]);
+        cr_expect(fabs(hypot(p[0], p[1]) - 0.1) < 1e-12);
+        cr_expect_eq(x[3 * bot[i]], x0[3 * bot[i]]);
+    }
+    cr_expect(st.energy > 0.0);
+    wr_shell_free(&s);
+    free(x);
+    free(x0);
+    wr_mesh_free(&m);
+}
+
+/* Stretch by 6% in one increment or in four: both converge to the same state. */
+Test(statics, incremental_stretch_matches_direct) {
+    wr_mesh m;
+    wr_shell s;
+    wr_shell_desc d;
+    wr_statics_desc sd;
+    wr_statics_stats st1, st4;
+    wr_diag dg;
+    wr_motion mo[2];
+    int32_t nx = 8, ny = 4, left[5], right[5], j;
+    double *x1, *x4, err = 0.0;
+    cr_assert_eq(wr_mesh_rectangle(&m, 0.2, 0.1, nx, ny, NULL), WR_OK);
+    memset(&d, 0, sizeof d);
+    d.young = 1e6;
+    d.poisson = 0.3;
+    d.thickness = 5e-4;
+    cr_assert_eq(wr_shell_create(&s, &m, &d, NULL), WR_OK);
+    for (j = 0; j <= ny; ++j) {
+        left[j] = j * (nx + 1);
+        right[j] = j * (nx + 1) + nx;
+    }
+    memset(mo, 0, sizeof mo);
+    mo[0].verts = left;
+    mo[0].n_verts = ny + 1;
+    mo[1].kind = WR_MOTION_STRETCH;
+    mo[1].verts = right;
+    mo[1].n_verts = ny + 1;
+    mo[1].axis[0] = 1.0;
+    mo[1].amount = 0.06;
+    x1 = (double *)malloc(sizeof(double) * 3 * m.nv);
+    x4 = (double *)malloc(sizeof(double) * 3 * m.nv);
+    memcpy(x1, m.pos, sizeof(double) * 3 * m.nv);
+    memcpy(x4, m.pos, sizeof(double) * 3 * m.nv);
+    memset(&sd, 0, sizeof sd);
+    sd.grad_tol = 1e-10;
+    sd.inc_grad_tol = 1e-4;
+    cr_assert_eq(wr_statics_solve_incremental(&s, x1, &sd, mo, 2, 1, &st1, &dg), WR_OK, "%s", dg.message);
+    cr_assert_eq(wr_statics_solve_incremental(&s, x4, &sd, mo, 2, 4, &st4, &dg), WR_OK, "%s", dg.message);
+    cr_expect_eq(st4.increments, 4);
+    for (j = 0; j < 3 * m.nv; ++j) err = fmax(err, fabs(x1[j] - x4[j]));
+    cr_expect(err < 1e-9, "direct vs 4 increments differ by %.3e m", err);
+    cr_expect(fabs(x1[3 * right[2]] - 0.2 * 1.06) < 1e-15);
+    wr_shell_free(&s);
+    free(x1);
+    free(x4);
+    wr_mesh_free(&m);
+}
+
+/* motions: shear and stretch formulas; error paths of the new API */
+Test(statics, motions_and_new_error_paths) {
+    wr_motion mo;
+    wr_mesh m, w;
+    wr_shell s;
+    wr_shell_desc d;
+    wr_statics_desc sd;
+    wr_statics_stats st;
+    wr_diag dg;
+    wr_obstacle ob;
+    double X[6] = {1.0, 2.0, 3.0, -1.0, 0.5, 0.0}, T[6] = {0, 0, 0, 0, 0, 0}, *x;
+    int32_t vs[2] = {0, 1}, bad[1] = {2}, pairs[2] = {0, 99};
+    uint8_t fx[2] = {0, 0};
+    memset(&mo, 0, sizeof mo);
+    mo.kind = WR_MOTION_SHEAR;
+    mo.verts = vs;
+    mo.n_verts = 2;
+    mo.axis[0] = 2.0;
+    mo.normal[1] = 1.0;
+    mo.amount = 0.5;
+    cr_assert_eq(wr_motion_apply(&mo, 2, X, 0.5, T, fx, NULL), WR_OK);
+    cr_expect(T[0] == 1.0 + 0.25 * 2.0 && T[1] == 2.0 && T[2] == 3.0 && T[3] == -1.0 + 0.25 * 0.5 && fx[0] && fx[1]);
+    mo.kind = WR_MOTION_STRETCH;
+    memset(mo.axis, 0, sizeof mo.axis);
+    cr_assert_eq(wr_motion_apply(&mo, 2, X, 1.0, T, NULL, NULL), WR_OK);
+    cr_expect(T[0] == 1.5 && T[1] == 3.0 && T[5] == 0.0);
+    mo.kind = WR_MOTION_TWIST;
+    cr_expect_eq(wr_motion_apply(&mo, 2, X, 1.0, T, NULL, &dg), WR_ERR_INVALID_ARG);
+    mo.kind = WR_MOTION_TRANSLATE;
+    mo.verts = bad;
+    mo.n_verts = 1;
+    cr_expect_eq(wr_motion_apply(&mo, 2, X, 1.0, T, NULL, &dg), WR_ERR_INVALID_ARG);
+    cr_expect_eq(dg.item, 0);
+    /* open sheet under pressure with a free boundary; infeasible start; bad obstacles; n_inc */
+    cr_assert_eq(wr_mesh_rectangle(&m, 0.3, 0.3, 3, 3, NULL), WR_OK);
+    memset(&d, 0, sizeof d);
+    d.young = 1e5;
+    d.thickness = 1e-3;
+    cr_assert_eq(wr_shell_create(&s, &m, &d, NULL), WR_OK);
+    x = (double *)malloc(sizeof(double) * 3 * m.nv);
+    memcpy(x, m.pos, sizeof(double) * 3 * m.nv);
+    memset(&sd, 0, sizeof sd);
+    sd.pressure = 10.0;
+    cr_expect_eq(wr_statics_solve(&s, x, &sd, &st, &dg), WR_ERR_UNSUPPORTED);
+    memset(&sd, 0, sizeof sd);
+    memset(&ob, 0, sizeof ob);
+    ob.kind = WR_OBSTACLE_SPHERE;
+    ob.p[0] = 0.1, ob.p[1] = 0.1, ob.radius = 0.05; /* vertex 5 at (0.1, 0.1, 0) is inside */
+    sd.obstacles = &ob;
+    sd.n_obstacles = 1;
+    cr_expect_eq(wr_statics_solve(&s, x, &sd, &st, &dg), WR_ERR_GEOMETRY);
+    cr_expect_eq(dg.item, 5);
+    ob.radius = 0.0;
+    cr_expect_eq(wr_statics_solve(&s, x, &sd, &st, &dg), WR_ERR_INVALID_ARG);
+    ob.kind = WR_OBSTACLE_PLANE;
+    cr_expect_eq(wr_statics_solve(&s, x, &sd, &st, &dg), WR_ERR_INVALID_ARG); /* zero normal */
+    ob.kind = (wr_obstacle_kind)7;
+    cr_expect_eq(wr_statics_solve(&s, x, &sd, &st, &dg), WR_ERR_INVALID_ARG);
+    sd.n_obstacles = 0;
+    sd.contact_dhat = -1.0;
+    cr_expect_eq(wr_statics_solve(&s, x, &sd, &st, &dg), WR_ERR_INVALID_ARG);
+    sd.contact_dhat = 0.0;
+    sd.projection = (wr_statics_projection)9;
+    cr_expect_eq(wr_statics_solve(&s, x, &sd, &st, &dg), WR_ERR_INVALID_ARG);
+    sd.projection = WR_PROJECT_FAST;
+    cr_expect_eq(wr_statics_solve_incremental(&s, x, &sd, NULL, 0, 0, &st, &dg), WR_ERR_INVALID_ARG);
+    mo.verts = vs;
+    mo.n_verts = 2;
+    mo.kind = WR_MOTION_TWIST; /* zero axis: rejected before any solve */
+    cr_expect_eq(wr_statics_solve_incremental(&s, x, &sd, &mo, 1, 2, &st, &dg), WR_ERR_INVALID_ARG);
+    /* weld / pillow */
+    cr_expect_eq(wr_mesh_weld(&w, &m, 1, pairs, NULL, &dg), WR_ERR_INVALID_ARG);
+    cr_expect_eq(dg.item, 0);
+    pairs[1] = 1; /* merging two corners of one face */
+    cr_expect_eq(wr_mesh_weld(&w, &m, 1, pairs, NULL, &dg), WR_ERR_TOPOLOGY);
+    cr_expect_eq(w.nv, 0);
+    cr_expect_eq(wr_mesh_pillow(&w, &m, 0.0, &dg), WR_ERR_INVALID_ARG);
+    wr_shell_free(&s);
+    free(x);
+    wr_mesh_free(&m);
 }
