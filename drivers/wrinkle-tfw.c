@@ -1,0 +1,361 @@
+/* wrinkle-tfw — TFW wrinkles end to end on a JSON scene (docs/scene-format.md).
+ *
+ *   wrinkle-tfw SCENE.json -o DIR [--levels N] [--quiet]
+ *
+ * The scene's mesh, material, boundary conditions, gravity and load steps give the base surface,
+ * solved with the TFW Sec. 4.1 model whatever the scene's shell section says (TFT membrane +
+ * quadratic bending, statics.h through the scene library). Then tfw.h: wrinkle-free set W, App. E.2
+ * initial guess, App. E.3 SQP, App. E.4 phase, App. E.5 Loop upsampling (N levels, default 2).
+ * Writes DIR/base.obj, DIR/wrinkled.obj, DIR/fields.ply (per base vertex: a [m], |ω| mean over
+ * incident edges [rad], W = 1 when every incident face is wrinkle-free) and DIR/summary.json
+ * (TFT and SQP iterations, residuals, timings, wrinkle counts per scene probe measured on the
+ * wrinkled surface). Every file is written to a temporary name and renamed. Progress on stderr.
+ * Exit: 0 done; 1 outputs written but the base or the SQP did not converge; 2 bad input (one line);
+ * 3 solver or output failure.
+ */
+#define _POSIX_C_SOURCE 200809L
+#include <cjson/cJSON.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "cli.h"
+#include "scene.h"
+#include "wrinkle/tfw.h"
+
+static void usage(FILE *f) {
+    fprintf(f,
+            "usage: wrinkle-tfw SCENE.json -o DIR [options]\n"
+            "  TFW wrinkles (Chen et al. 2021) on the scene's TFT base surface (format: docs/scene-format.md).\n"
+            "  Writes DIR/base.obj, DIR/wrinkled.obj, DIR/fields.ply (a, |omega|, W), DIR/summary.json.\n"
+            "options:\n"
+            "  -o, --output DIR     output directory (created if missing)\n"
+            "  --levels N           Loop subdivision levels of the wrinkled mesh (default 2, 0..5)\n"
+            "  --quiet              no progress on stderr\n"
+            "  -h, --help           this text\n"
+            "exit status: 0 ok, 1 not converged (outputs written), 2 bad input, 3 failure\n");
+}
+
+static void base_progress(void *user, int32_t step, int32_t n, const wr_statics_stats *st) {
+    (void)user;
+    fprintf(stderr, "\r  TFT base: step %d/%d  Newton %3d  |g|/ref %.2e  %.1f s   ", (int)step, (int)n,
+            (int)st->iterations, st->grad_ref > 0 ? st->grad_norm / st->grad_ref : 0.0, st->t_total);
+}
+
+static void sqp_progress(const wr_wf_iter_info *info, void *user) {
+    (void)user;
+    fprintf(stderr, "\r  SQP: iteration %4d  E %.8e J  KKT %.2e  mu %.1e  active %d   ", (int)info->iteration,
+            info->energy, info->kkt, info->shift, (int)info->n_active);
+}
+
+/* Probe i of the scene on the wrinkled surface: displacement from the smooth (a = 0) subdivided base
+ * along the probe direction. */
+static wr_status probe_wrinkled(const wr_scene_probe *pr, const wr_mesh *fine, const double *smooth,
+                                wr_spectrum_result *res, wr_diag *d) {
+    wr_probe p;
+    int32_t n = pr->samples > 0 ? pr->samples : 512, v, nout = 0, start = 0, len;
+    double *pts = (double *)malloc(sizeof(double) * 2 * (size_t)n), *val = (double *)malloc(sizeof(double) * (size_t)n);
+    double *fld = (double *)malloc(sizeof(double) * (size_t)fine->nv), ds = 0.0, dir[3], nrm;
+    wr_status st;
+    if (!pts || !val || !fld) {
+        free(pts);
+        free(val);
+        free(fld);
+        return wr_fail(d, WR_ERR_NOMEM, -1, "probe: out of memory");
+    }
+    nrm = sqrt(pr->dir[0] * pr->dir[0] + pr->dir[1] * pr->dir[1] + pr->dir[2] * pr->dir[2]);
+    for (v = 0; v < 3; ++v) dir[v] = nrm > 0.0 ? pr->dir[v] / nrm : (v == 2 ? 1.0 : 0.0);
+    for (v = 0; v < fine->nv; ++v) {
+        int c;
+        fld[v] = 0.0;
+        for (c = 0; c < 3; ++c) fld[v] += (fine->pos[3 * v + c] - smooth[3 * v + c]) * dir[c];
+    }
+    st = wr_probe_create(&p, fine, NULL, d);
+    if (!st) {
+        if (pr->closed) {
+            double c[2], r;
+            c[0] = 0.5 * (pr->from[0] + pr->to[0]);
+            c[1] = 0.5 * (pr->from[1] + pr->to[1]);
+            r = 0.5 * hypot(pr->to[0] - pr->from[0], pr->to[1] - pr->from[1]);
+            st = wr_path_circle(c, r, n, pts, &ds, d);
+        } else {
+            st = wr_path_segment(pr->from, pr->to, n, 0, pts, &ds, d);
+        }
+        if (!st) st = wr_probe_sample(&p, fld, pts, n, val, &nout, d);
+        if (!st) {
+            len = nout ? wr_probe_longest_run(val, n, &start) : n;
+            st = wr_spectrum_analyze(val + start, len, ds, pr->closed && !nout, NULL, res, NULL, 0, d);
+        }
+        wr_probe_free(&p);
+    }
+    free(pts);
+    free(val);
+    free(fld);
+    return st;
+}
+
+static int write_json(const char *path, cJSON *root, wr_diag *d) {
+    wr_afile f;
+    char *txt = cJSON_Print(root);
+    if (!txt) return 0;
+    if (wr_afile_open(&f, path, d) != WR_OK) {
+        free(txt);
+        return 0;
+    }
+    fputs(txt, f.fp);
+    fputc('\n', f.fp);
+    free(txt);
+    return wr_afile_commit(&f, d) == WR_OK;
+}
+
+int main(int argc, char **argv) {
+    const char *scene_path = NULL, *out = NULL;
+    double levels_d = 2.0;
+    int quiet = 0, i, k, rc = 0;
+    wr_scene sc;
+    wr_scene_run run;
+    wr_diag d;
+    wr_status st, tst;
+    wr_wf_material mat;
+    wr_tfw_desc td;
+    wr_tfw_result r;
+    char path[4096];
+    double t0;
+    wr_cli_set_program(argv[0]);
+    for (i = 1; i < argc; ++i) {
+        const char *v;
+        if (wr_cli_is_flag(argv[i], "--help") || wr_cli_is_flag(argv[i], "-h")) {
+            usage(stdout);
+            return 0;
+        }
+        if (wr_cli_is_flag(argv[i], "--quiet")) {
+            quiet = 1;
+            continue;
+        }
+        if ((k = wr_cli_value(argc, argv, &i, "-o", &v)) != 0 || (k = wr_cli_value(argc, argv, &i, "--output", &v)) != 0) {
+            if (k < 0) return WR_CLI_EXIT_USAGE;
+            out = v;
+            continue;
+        }
+        if ((k = wr_cli_double(argc, argv, &i, "--levels", &levels_d)) != 0) {
+            if (k < 0) return WR_CLI_EXIT_USAGE;
+            if (!(levels_d >= 0.0 && levels_d <= 5.0) || levels_d != (int)levels_d) {
+                wr_cli_error("--levels must be an integer in [0, 5]");
+                return WR_CLI_EXIT_USAGE;
+            }
+            continue;
+        }
+        if (argv[i][0] == '-' && argv[i][1] != 0) {
+            wr_cli_error("unknown option '%s' (see --help)", argv[i]);
+            return WR_CLI_EXIT_USAGE;
+        }
+        if (scene_path) {
+            wr_cli_error("more than one scene file ('%s', '%s')", scene_path, argv[i]);
+            return WR_CLI_EXIT_USAGE;
+        }
+        scene_path = argv[i];
+    }
+    if (!scene_path || !out) {
+        wr_cli_error("need SCENE.json and -o DIR (see --help)");
+        return WR_CLI_EXIT_USAGE;
+    }
+    if (strlen(out) > 3000) {
+        wr_cli_error("output path too long");
+        return WR_CLI_EXIT_USAGE;
+    }
+    if (wr_scene_load(&sc, scene_path, &d) != WR_OK) {
+        wr_cli_error("%s: %s", scene_path, d.message);
+        return WR_CLI_EXIT_USAGE;
+    }
+    if (sc.shell.orthotropic) {
+        wr_cli_error("%s: $.material: TFW needs an isotropic material (orthotropic given)", scene_path);
+        wr_scene_free(&sc);
+        return WR_CLI_EXIT_USAGE;
+    }
+    /* TFW Sec. 4.1 base model, whatever the scene asked for */
+    sc.shell.membrane = WR_MEMBRANE_TFT;
+    sc.shell.bending = WR_BENDING_QUADRATIC;
+    st = wr_scene_run_create(&run, &sc, &d);
+    if (st != WR_OK) {
+        wr_cli_error("%s: %s", scene_path, d.message);
+        wr_scene_free(&sc);
+        return st == WR_ERR_NOMEM ? 3 : WR_CLI_EXIT_USAGE;
+    }
+    if (!quiet)
+        fprintf(stderr, "%s: %d vertices, %d faces, %d prescribed, %d load step(s)\n", sc.name, (int)run.mesh.nv,
+                (int)run.mesh.nf, (int)run.n_fixed, (int)sc.load_steps);
+    st = wr_scene_run_solve(&run, quiet ? NULL : base_progress, NULL, &d);
+    if (!quiet) fprintf(stderr, "\n");
+    if (st != WR_OK && st != WR_ERR_NOT_CONVERGED) {
+        wr_cli_error("base solve failed: %s", d.message);
+        wr_scene_run_free(&run);
+        wr_scene_free(&sc);
+        return 3;
+    }
+    if (st == WR_ERR_NOT_CONVERGED) {
+        fprintf(stderr, "%s: warning: base: %s\n", wr_cli_program(), d.message);
+        rc = 1;
+    }
+    mat.young = sc.shell.young;
+    mat.poisson = sc.shell.poisson;
+    mat.thickness = sc.shell.thickness;
+    memset(&td, 0, sizeof td);
+    td.upsample.levels = (int32_t)levels_d;
+    if (td.upsample.levels == 0) td.no_upsample = 1;
+    if (!quiet) td.solve.progress = sqp_progress;
+    t0 = wr_time_seconds();
+    tst = wr_tfw_fields(&run.mesh, run.x, &mat, &td, &r, &d);
+    if (!quiet) fprintf(stderr, "\n");
+    if (tst != WR_OK && tst != WR_ERR_NOT_CONVERGED) {
+        wr_cli_error("wrinkle field failed: %s", d.message);
+        wr_scene_run_free(&run);
+        wr_scene_free(&sc);
+        return 3;
+    }
+    if (tst == WR_ERR_NOT_CONVERGED) {
+        fprintf(stderr, "%s: warning: %s\n", wr_cli_program(), d.message);
+        rc = 1;
+    }
+    mkdir(out, 0777); /* may exist; real failures show up when the files are opened */
+    {
+        wr_mesh bm = run.mesh; /* shallow view with pos = base */
+        double *amp = (double *)calloc((size_t)run.mesh.nv, sizeof(double));
+        double *wmag = (double *)calloc((size_t)run.mesh.nv, sizeof(double));
+        double *wcnt = (double *)calloc((size_t)run.mesh.nv, sizeof(double));
+        double *wfl = (double *)malloc(sizeof(double) * (size_t)run.mesh.nv);
+        const char *names[3] = {"a", "omega_abs", "W"};
+        const double *vals[3];
+        wr_status ws = WR_OK;
+        int32_t v, e, f;
+        if (!amp || !wmag || !wcnt || !wfl) ws = wr_fail(&d, WR_ERR_NOMEM, -1, "out of memory");
+        bm.pos = run.x;
+        snprintf(path, sizeof path, "%s/base.obj", out);
+        if (!ws) ws = wr_mesh_write_obj(&bm, path, NULL, &d);
+        if (!ws && !td.no_upsample) {
+            snprintf(path, sizeof path, "%s/wrinkled.obj", out);
+            ws = wr_mesh_write_obj(&r.wrinkled, path, NULL, &d);
+        }
+        if (!ws) {
+            for (v = 0; v < run.mesh.nv; ++v) {
+                amp[v] = r.a[v];
+                wfl[v] = 1.0;
+            }
+            for (e = 0; e < run.mesh.ne; ++e)
+                for (k = 0; k < 2; ++k) {
+                    wmag[run.mesh.edges[2 * e + k]] += fabs(r.omega[e]);
+                    wcnt[run.mesh.edges[2 * e + k]] += 1.0;
+                }
+            for (v = 0; v < run.mesh.nv; ++v) wmag[v] = wcnt[v] > 0 ? wmag[v] / wcnt[v] : 0.0;
+            for (v = 0; v < run.mesh.nv; ++v) wcnt[v] = 0.0;
+            for (f = 0; f < run.mesh.nf; ++f)
+                for (k = 0; k < 3; ++k)
+                    if (!r.wfree[f]) wfl[run.mesh.faces[3 * f + k]] = 0.0;
+            vals[0] = amp;
+            vals[1] = wmag;
+            vals[2] = wfl;
+            snprintf(path, sizeof path, "%s/fields.ply", out);
+            ws = wr_mesh_write_ply(&bm, path, 3, names, vals, &d);
+        }
+        free(amp);
+        free(wmag);
+        free(wcnt);
+        free(wfl);
+        if (ws) {
+            wr_cli_error("writing %s: %s", out, d.message);
+            wr_tfw_result_free(&r);
+            wr_scene_run_free(&run);
+            wr_scene_free(&sc);
+            return 3;
+        }
+    }
+    /* summary.json */
+    {
+        cJSON *root = cJSON_CreateObject(), *base = cJSON_AddObjectToObject(root, "base"),
+              *sqp = cJSON_AddObjectToObject(root, "sqp"), *tm = cJSON_AddObjectToObject(root, "timings_s"),
+              *probes = cJSON_AddArrayToObject(root, "probes");
+        double amax = 0.0, *smooth = NULL;
+        int32_t v;
+        for (v = 0; v < run.mesh.nv; ++v) amax = fmax(amax, r.a[v]);
+        cJSON_AddStringToObject(root, "scene", sc.name);
+        cJSON_AddNumberToObject(root, "base_vertices", run.mesh.nv);
+        cJSON_AddNumberToObject(root, "base_faces", run.mesh.nf);
+        cJSON_AddNumberToObject(root, "wrinkled_vertices", td.no_upsample ? 0 : r.wrinkled.nv);
+        cJSON_AddNumberToObject(root, "wrinkle_free_faces", r.n_wrinkle_free);
+        cJSON_AddNumberToObject(root, "max_amplitude_m", amax);
+        cJSON_AddStringToObject(base, "status", wr_status_string(st));
+        cJSON_AddNumberToObject(base, "newton_iterations", run.newton_iterations);
+        cJSON_AddNumberToObject(base, "load_steps", run.n_steps_done);
+        if (run.n_steps_done > 0) {
+            const wr_statics_stats *ls = &run.steps[run.n_steps_done - 1].st;
+            cJSON_AddNumberToObject(base, "relative_gradient", ls->grad_ref > 0 ? ls->grad_norm / ls->grad_ref : 0.0);
+        }
+        cJSON_AddStringToObject(sqp, "status", wr_status_string(tst));
+        cJSON_AddNumberToObject(sqp, "iterations", r.sqp.iterations);
+        cJSON_AddNumberToObject(sqp, "rejected", r.sqp.n_rejected);
+        cJSON_AddNumberToObject(sqp, "factorizations", r.sqp.n_factorizations);
+        cJSON_AddNumberToObject(sqp, "escapes", r.sqp.n_escapes);
+        cJSON_AddNumberToObject(sqp, "stop_rule", (double)r.sqp.stop);
+        cJSON_AddNumberToObject(sqp, "kkt0", r.sqp.kkt0);
+        cJSON_AddNumberToObject(sqp, "kkt", r.sqp.kkt);
+        cJSON_AddNumberToObject(sqp, "energy0_J", r.sqp.energy0);
+        cJSON_AddNumberToObject(sqp, "energy_J", r.sqp.energy);
+        cJSON_AddNumberToObject(sqp, "unknowns", r.sqp.n_vars);
+        cJSON_AddNumberToObject(tm, "tft_base", run.t_solve);
+        cJSON_AddNumberToObject(tm, "tfw_total", wr_time_seconds() - t0);
+        cJSON_AddNumberToObject(tm, "sqp", r.seconds_sqp);
+        cJSON_AddNumberToObject(tm, "sqp_assembly", r.sqp.seconds_assembly);
+        cJSON_AddNumberToObject(tm, "sqp_linear", r.sqp.seconds_solve);
+        cJSON_AddNumberToObject(tm, "init", r.seconds_init);
+        cJSON_AddNumberToObject(tm, "phase", r.seconds_phase);
+        cJSON_AddNumberToObject(tm, "upsample", r.seconds_upsample);
+        /* probes on the wrinkled surface: displacement from the smooth subdivided base (a = 0) */
+        if (!td.no_upsample && sc.n_probes > 0) {
+            wr_wf wf;
+            wr_mesh sm;
+            double *zero = (double *)calloc((size_t)run.mesh.nv, sizeof(double));
+            memset(&sm, 0, sizeof sm);
+            if (zero && wr_wf_create(&wf, &run.mesh, run.x, &mat, &d) == WR_OK) {
+                wr_wf_set_wrinkle_free(&wf, r.wfree);
+                if (wr_wf_upsample(&wf, zero, r.phi, &td.upsample, &sm, NULL, &d) == WR_OK && sm.nv == r.wrinkled.nv)
+                    smooth = sm.pos;
+                wr_wf_free(&wf);
+            }
+            for (i = 0; i < sc.n_probes && smooth; ++i) {
+                wr_spectrum_result pr;
+                cJSON *o = cJSON_CreateObject();
+                cJSON_AddStringToObject(o, "name", sc.probe[i].name);
+                if (probe_wrinkled(&sc.probe[i], &r.wrinkled, smooth, &pr, &d) == WR_OK) {
+                    cJSON_AddNumberToObject(o, "count", pr.count);
+                    cJSON_AddNumberToObject(o, "count_rounded", pr.count_rounded);
+                    cJSON_AddNumberToObject(o, "zero_crossing_waves", pr.zc_waves);
+                    cJSON_AddNumberToObject(o, "wavelength_m", pr.wavelength);
+                    cJSON_AddNumberToObject(o, "amplitude_m", pr.amplitude_p2p);
+                    if (!quiet)
+                        fprintf(stderr, "  probe %s: %.2f wrinkles, wavelength %.3f mm, amplitude %.3f mm\n",
+                                sc.probe[i].name, pr.count, 1e3 * pr.wavelength, 1e3 * pr.amplitude_p2p);
+                } else {
+                    cJSON_AddStringToObject(o, "error", d.message);
+                }
+                cJSON_AddItemToArray(probes, o);
+            }
+            wr_mesh_free(&sm);
+            free(zero);
+        }
+        snprintf(path, sizeof path, "%s/summary.json", out);
+        if (!write_json(path, root, &d)) {
+            wr_cli_error("writing %s: %s", path, d.message);
+            rc = 3;
+        }
+        cJSON_Delete(root);
+    }
+    if (!quiet)
+        fprintf(stderr, "  TFT %.2f s (%d Newton steps); TFW %.2f s: SQP %d iterations %.2f s, KKT %.2e of %.2e\n",
+                run.t_solve, (int)run.newton_iterations, wr_time_seconds() - t0, (int)r.sqp.iterations, r.seconds_sqp,
+                r.sqp.kkt, r.sqp.kkt0);
+    wr_tfw_result_free(&r);
+    wr_scene_run_free(&run);
+    wr_scene_free(&sc);
+    return rc;
+}
