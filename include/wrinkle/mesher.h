@@ -1408,6 +1408,7 @@ WRDEF wr_status wr_mesher_run(const wr_pattern *pat, const wr_mesher_desc *desc_
         wr__msh_dbuf outer, holes, lines;
         wr__msh_ibuf hole_n, line_n, line_lab; /* line_lab: 2 per line (kind 0/1/2, technique index) */
         int32_t *idx_of = NULL, nL = w->n_loop, vbase = V.n / 2;
+        double *hseeds = NULL;
         wr__msh_dbuf cpts;
         wr__msh_ibuf csegs;
         wr_poisson_curve *hc = NULL, *lc = NULL;
@@ -1669,7 +1670,6 @@ WRDEF wr_status wr_mesher_run(const wr_pattern *pat, const wr_mesher_desc *desc_
             }
             goto panel_fail;
         }
-        res->report.t_poisson += wr_time_seconds() - t0;
         /* CDT input: OUR fixed points (outer, holes, lines — so seam counts are exactly ours) plus
          * the sampler's interior samples, minus any sample that falls outside our polygon or closer
          * than WR_MESHER_SAMPLE_CLEARANCE × h to one of our constraint segments (the sampler's own
@@ -1787,9 +1787,40 @@ WRDEF wr_status wr_mesher_run(const wr_pattern *pat, const wr_mesher_desc *desc_
             wr_free(gitem);
             (void)ns;
         }
+        res->report.t_poisson += wr_time_seconds() - t0; /* sampling + filtering against our curves */
         /* ---- CDT ---- */
         t0 = wr_time_seconds();
+        /* one seed strictly inside each hole: an edge midpoint nudged into the hole (checked) */
+        if (hole_n.n > 0) {
+            hseeds = (double *)wr_alloc_array((size_t)(2 * hole_n.n), sizeof(double));
+            if (!hseeds) goto panel_nomem;
+            for (k = 0; k < hole_n.n; ++k) {
+                const double *H = hc[k].xy;
+                int32_t nh = hc[k].n, e2, found = 0;
+                double sgn = wr__msh_area(H, nh) > 0.0 ? 1.0 : -1.0; /* CCW hole: interior on the left */
+                for (e2 = 0; e2 < nh && !found; ++e2) {
+                    const double *a = H + 2 * e2, *b = H + 2 * ((e2 + 1) % nh);
+                    double dx = b[0] - a[0], dy = b[1] - a[1], L = sqrt(dx * dx + dy * dy), f2;
+                    if (!(L > 0.0)) continue;
+                    for (f2 = 1e-2; f2 >= 1e-6 && !found; f2 *= 0.1) {
+                        double x = 0.5 * (a[0] + b[0]) - sgn * dy * f2, y = 0.5 * (a[1] + b[1]) + sgn * dx * f2;
+                        if (wr__msh_inside(H, nh, x, y)) {
+                            hseeds[2 * k] = x;
+                            hseeds[2 * k + 1] = y;
+                            found = 1;
+                        }
+                    }
+                }
+                if (!found) {
+                    st = wr_fail(diag, WR_ERR_GEOMETRY, p, "panels[%d] '%s': hole %d is too thin to seed", (int)p,
+                                 wr__msh_pname(pat, p), (int)k);
+                    goto panel_fail;
+                }
+            }
+        }
         memset(&ci, 0, sizeof ci);
+        ci.holes = hseeds;
+        ci.n_holes = hole_n.n;
         ci.points = cpts.v;
         ci.n_points = cpts.n / 2;
         ci.segments = csegs.v;
@@ -1819,16 +1850,15 @@ WRDEF wr_status wr_mesher_run(const wr_pattern *pat, const wr_mesher_desc *desc_
                 !wr__msh_dpush(&SW, h * pi->r_warp / pi->r0) || !wr__msh_dpush(&SF, h * pi->r_weft / pi->r0))
                 goto panel_nomem;
         }
-        /* faces: drop triangles inside holes (centroid test on the discretised holes) */
+        /* faces: the CDT carved the exterior (outer loop) and the holes (seeds) */
+        if (!cr.exterior_carved) {
+            st = wr_fail(diag, WR_ERR_GEOMETRY, p, "panels[%d] '%s': triangulation did not carve the exterior",
+                         (int)p, wr__msh_pname(pat, p));
+            goto panel_fail;
+        }
         pi->f_begin = F.n / 3;
         for (j = 0; j < cr.n_triangles; ++j) {
             const int32_t *t3 = cr.triangles + 3 * j;
-            double cx = (cr.points[2 * t3[0]] + cr.points[2 * t3[1]] + cr.points[2 * t3[2]]) / 3.0;
-            double cy = (cr.points[2 * t3[0] + 1] + cr.points[2 * t3[1] + 1] + cr.points[2 * t3[2] + 1]) / 3.0;
-            int in_hole = 0;
-            if (!wr__msh_inside(outer.v, outer.n / 2, cx, cy)) continue;
-            for (k = 0; k < hole_n.n && !in_hole; ++k) in_hole = wr__msh_inside(hc[k].xy, hc[k].n, cx, cy);
-            if (in_hole) continue;
             if (!wr__msh_ipush(&F, vbase + t3[0]) || !wr__msh_ipush(&F, vbase + t3[1]) ||
                 !wr__msh_ipush(&F, vbase + t3[2]) || !wr__msh_ipush(&FP, p))
                 goto panel_nomem;
@@ -1869,6 +1899,7 @@ WRDEF wr_status wr_mesher_run(const wr_pattern *pat, const wr_mesher_desc *desc_
         wr_free(hole_n.v);
         wr_free(line_n.v);
         wr_free(line_lab.v);
+        wr_free(hseeds);
         continue;
     panel_nomem:
         st = wr_fail(diag, WR_ERR_NOMEM, p, "out of memory meshing panels[%d]", (int)p);
@@ -1884,6 +1915,7 @@ WRDEF wr_status wr_mesher_run(const wr_pattern *pat, const wr_mesher_desc *desc_
         wr_free(hole_n.v);
         wr_free(line_n.v);
         wr_free(line_lab.v);
+        wr_free(hseeds);
         goto fail;
     }
 
