@@ -855,21 +855,17 @@ static int32_t wr__find_edge(const wr__cdt *S, int32_t u, int32_t v) {
  * A point joins the last round with probability 1/2, the one before with 1/4, ... (the randomness
  * that bounds the expected work); within a round points follow a Hilbert curve on a grid of about
  * 4n..16n cells (short walks). One radix sort on (round, curve index) does both. */
-static uint32_t wr__hilbert_key(uint32_t x, uint32_t y, uint32_t side) { /* x, y < side = 2^levels */
-    uint32_t d = 0, s, rx, ry, t;
-    for (s = side / 2; s > 0; s /= 2) {
-        rx = (x & s) ? 1u : 0u;
-        ry = (y & s) ? 1u : 0u;
-        d += s * s * ((3u * rx) ^ ry);
-        if (ry == 0) {
-            if (rx == 1) {
-                x = side - 1 - x;
-                y = side - 1 - y;
-            }
-            t = x;
-            x = y;
-            y = t;
-        }
+/* Hilbert-curve index of cell (x, y) on a 2^levels grid, most significant level first. The frame
+ * of the remaining levels is tracked as (swap, flip) instead of rewriting x and y: branch-free. */
+static uint32_t wr__hilbert_key(uint32_t x, uint32_t y, int levels) {
+    uint32_t d = 0, sw = 0, fl = 0;
+    int l;
+    for (l = levels - 1; l >= 0; --l) {
+        uint32_t bx = (x >> l) & 1u, by = (y >> l) & 1u;
+        uint32_t tx = ((sw ? by : bx) ^ fl), ty = ((sw ? bx : by) ^ fl), z = ty ^ 1u;
+        d = (d << 2) | ((3u * tx) ^ ty); /* quadrant digit in curve order */
+        fl ^= z & tx;                    /* lower-left/right quadrants turn the frame */
+        sw ^= z;
     }
     return d;
 }
@@ -923,10 +919,10 @@ static int wr__brio(const double *xy, const int32_t *ids, int32_t n, wr_rng *rng
     while (nr < 15 && (n >> (nr + 1)) >= 4096) ++nr; /* rounds 0..nr; the first holds >= ~4096 */
     for (i = 0; i < n; ++i) {
         const double *p = xy + 2 * (size_t)ids[i];
-        lo[0] = fmin(lo[0], p[0]);
-        lo[1] = fmin(lo[1], p[1]);
-        hi[0] = fmax(hi[0], p[0]);
-        hi[1] = fmax(hi[1], p[1]);
+        if (p[0] < lo[0]) lo[0] = p[0];
+        if (p[1] < lo[1]) lo[1] = p[1];
+        if (p[0] > hi[0]) hi[0] = p[0];
+        if (p[1] > hi[1]) hi[1] = p[1];
     }
     for (i = 0; i < 2; ++i) sc[i] = hi[i] > lo[i] ? (double)(side - 1) / (hi[i] - lo[i]) : 0.0;
     for (i = 0; i < n; ++i) {
@@ -941,7 +937,7 @@ static int wr__brio(const double *xy, const int32_t *ids, int32_t n, wr_rng *rng
             ++tz;
         }
         round = nr - tz;
-        key[i] = ((uint32_t)round << (2 * levels)) | wr__hilbert_key(qx, qy, side);
+        key[i] = ((uint32_t)round << (2 * levels)) | wr__hilbert_key(qx, qy, levels);
         order[i] = ids[i];
     }
     wr__radix_sort(key, order, tkey, tidx, n, 2 * levels + 4);
