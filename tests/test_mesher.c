@@ -1,3 +1,4 @@
+#define _POSIX_C_SOURCE 200809L /* mkdtemp for the output-directory test */
 /* Tests for wrinkle/mesher.h (pattern → mesh pipeline) and the pattern JSON reader
  * (drivers/lib/pattern.h). */
 #include <criterion/criterion.h>
@@ -759,4 +760,72 @@ Test(pattern_file, mutation_fuzz) {
     }
     cr_expect_gt(ok, 0);
     cr_expect_gt(bad, 0);
+}
+
+/* ---- output directory (drivers/lib/meshout.h) ------------------------------------------------ */
+#include <dirent.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "meshout.h"
+
+static int count_entries(const char *dir, const char *prefix) {
+    DIR *d = opendir(dir);
+    struct dirent *e;
+    int n = 0;
+    if (!d) return -1;
+    while ((e = readdir(d)) != NULL)
+        if (strncmp(e->d_name, prefix, strlen(prefix)) == 0) ++n;
+    closedir(d);
+    return n;
+}
+
+Test(meshout, writes_whole_directory_or_nothing) {
+    two_panels t;
+    wr_mesher_result r;
+    wr_mesh back;
+    wr_diag d;
+    char tmpl[] = "/tmp/wrinkle-test-meshoutXXXXXX", p[256], line[256];
+    FILE *f;
+    int png = -1, rows = 0;
+    struct stat sb;
+    make_two(&t);
+    cr_assert_eq(wr_mesher_run(&t.pat, NULL, &r, &d), WR_OK, "%s", d.message);
+    cr_assert_not_null(mkdtemp(tmpl));
+    cr_assert_eq(wr_meshout_write_dir(&r, NULL, tmpl, 0, &png, &d), WR_OK, "%s", d.message);
+    cr_expect_eq(png, 0);
+    snprintf(p, sizeof p, "%s/mesh.obj", tmpl);
+    cr_assert_eq(wr_mesh_read_obj(&back, p, &d), WR_OK, "%s", d.message);
+    cr_expect_eq(back.nv, r.mesh.nv);
+    cr_expect_eq(back.nf, r.mesh.nf);
+    cr_expect_not_null(back.rest);
+    cr_expect_eq(memcmp(back.rest, r.mesh.rest, sizeof(double) * 2 * (size_t)r.mesh.nv), 0); /* 17 digits: exact */
+    wr_mesh_free(&back);
+    snprintf(p, sizeof p, "%s/seams.csv", tmpl);
+    f = fopen(p, "r");
+    cr_assert_not_null(f);
+    while (fgets(line, sizeof line, f)) ++rows;
+    fclose(f);
+    cr_expect_eq(rows, 1 + r.n_seam_pairs);
+    snprintf(p, sizeof p, "%s/summary.json", tmpl);
+    cr_expect_eq(stat(p, &sb), 0);
+    snprintf(p, sizeof p, "%s/mesh.ply", tmpl);
+    cr_expect_eq(stat(p, &sb), 0);
+    cr_expect_eq(count_entries(tmpl, ".wrinkle-mesh-"), 0, "staging directory left behind");
+    cr_expect_eq(count_entries(tmpl, "mesh.obj.wrtmp"), 0);
+    /* a regular file where the directory should be: error, nothing created */
+    snprintf(p, sizeof p, "%s/mesh.obj", tmpl);
+    cr_expect_eq(wr_meshout_write_dir(&r, NULL, p, 0, &png, &d), WR_ERR_IO);
+    cr_expect(strstr(d.message, "not a directory") != NULL, "%s", d.message);
+    /* cleanup */
+    {
+        static const char *const names[] = {"mesh.obj", "mesh.ply", "seams.csv", "sizing.png", "summary.json"};
+        int k;
+        for (k = 0; k < 5; ++k) {
+            snprintf(p, sizeof p, "%s/%s", tmpl, names[k]);
+            remove(p);
+        }
+        cr_expect_eq(rmdir(tmpl), 0, "unexpected files left in %s", tmpl);
+    }
+    wr_mesher_free(&r);
 }
