@@ -221,6 +221,40 @@ Test(statics, fast_projection_matches_jacobi) {
         }
     }
     {
+        /* a repeated negative eigenvalue (inverse iteration must return an orthonormal set): 
+         * A = Q diag(−2, −2, −2, −1e-3, 1, 2, …) Qᵀ with Q from Gram–Schmidt on random vectors */
+        int n = 18, k, q;
+        double Q[324], A[324], lam[18], d[18], want[18];
+        for (k = 0; k < n; ++k) {
+            for (i = 0; i < n; ++i) Q[i * n + k] = wr_rng_normal(&r);
+            for (q = 0; q < k; ++q) {
+                double dot = 0.0;
+                for (i = 0; i < n; ++i) dot += Q[i * n + q] * Q[i * n + k];
+                for (i = 0; i < n; ++i) Q[i * n + k] -= dot * Q[i * n + q];
+            }
+            {
+                double nn = 0.0;
+                for (i = 0; i < n; ++i) nn += Q[i * n + k] * Q[i * n + k];
+                for (i = 0; i < n; ++i) Q[i * n + k] /= sqrt(nn);
+            }
+            d[k] = k < 3 ? -2.0 : (k == 3 ? -1e-3 : (double)(k - 3));
+            want[k] = d[k] < 0.0 ? 0.0 : d[k];
+        }
+        for (i = 0; i < n; ++i)
+            for (j = 0; j < n; ++j) {
+                double sum = 0.0;
+                for (k = 0; k < n; ++k) sum += Q[i * n + k] * d[k] * Q[j * n + k];
+                A[i * n + j] = sum;
+            }
+        cr_expect_eq(wr_statics_project_spd(n, A, 0.0), 4);
+        wr_dense_sym_eig(n, A, lam, NULL);
+        /* sorted: four zeros, then 1..14 */
+        for (k = 0; k < n; ++k) {
+            double w = k < 4 ? 0.0 : want[k];
+            cr_expect(fabs(lam[k] - w) < 1e-12 * 14.0, "eigenvalue %d: %.17g, want %g", k, lam[k], w);
+        }
+    }
+    {
         /* floor > 0 raises every eigenvalue below it */
         double A[4] = {1.0, 0.0, 0.0, -2.0}, lam[2];
         cr_expect_eq(wr_statics_project_spd(2, A, 0.5), 1);
