@@ -9,13 +9,14 @@
  * insert_constraint per segment; ours includes building the compact output arrays (CGAL's timing
  * ends with its internal data structure). Usage: bench_cdt [runs (default 5)]
  *
- * Measured 2026-11-24 on the 2-core build box (shared, load average 6-9 during the run, so wall
+ * Measured 2026-11-24 on the 2-core build box (shared, load average ~7 during the run, so wall
  * clock is inflated for both; CPU time is the steadier figure), CGAL 5.5.1, `bench_cdt 7`:
  *   case            cpu ours  cpu CGAL  ours pt/s  CGAL pt/s  ratio | wall ratio
- *   random 1e5       0.0655    0.0945   1.53e6     1.06e6     1.44  |  1.23
- *   random 1e6       0.7521    0.9459   1.33e6     1.06e6     1.26  |  1.17
- *   1000-gon + 1e5   0.0767    0.0988   1.32e6     1.02e6     1.29  |  1.29
- * The 1.5x goal against CGAL is not reached (1.26x-1.44x in CPU time). */
+ *   random 1e5       0.0510    0.0817   1.96e6     1.23e6     1.60  |  1.63
+ *   random 1e6       0.6925    0.8780   1.44e6     1.14e6     1.27  |  1.14
+ *   1000-gon + 1e5   0.0604    0.0853   1.67e6     1.18e6     1.41  |  1.46
+ * The 1.5x goal against CGAL is reached for 1e5 points (1.60x) but not for 1e6 (1.27x) or the
+ * polygon case (1.41x). */
 #include "wrinkle/core.h" /* implementation comes from drivers/lib/impl.c */
 #include "wrinkle/triangulate.h"
 
