@@ -50,10 +50,18 @@ static wr_status perr(pctx *c, wr_status s, const char *path, const char *fmt, .
 static wr_status perr(pctx *c, wr_status s, const char *path, const char *fmt, ...) {
     char msg[WR_DIAG_MESSAGE_LEN];
     va_list ap;
+    wr_status st;
     va_start(ap, fmt);
     vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
-    return wr_fail(c->diag, s, -1, "%s: %s: %s", c->file, path, msg);
+    st = wr_fail(c->diag, s, -1, "%s: %s: %s", c->file, path, msg);
+    /* names and keys are user text: keep the message one line */
+    if (c->diag) {
+        char *q;
+        for (q = c->diag->message; *q; ++q)
+            if (*q == '\n' || *q == '\r') *q = ' ';
+    }
+    return st;
 }
 
 /* Path builders (JSON paths are short; a longer one is cut, never overflowed). */

@@ -2159,6 +2159,12 @@ fail:
     wr_free(SP.v);
     wr_free(SPS.v);
     wr_mesher_free(res);
+    /* panel names are user text: keep the message one line */
+    if (diag) {
+        char *c;
+        for (c = diag->message; *c; ++c)
+            if (*c == '\n' || *c == '\r') *c = ' ';
+    }
     return st;
 }
 
