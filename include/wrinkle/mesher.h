@@ -74,6 +74,18 @@
  *   s/r0, keeping the fabric's aspect) — an approximation of transition.h's min(r_dir, s) metric
  *   that keeps the map affine-constant per panel; distances x for transitions are pattern-space.
  *
+ * ON SAMPLING AND TRIANGULATION (Sec. 4.3)
+ *   Per panel, in stretched coordinates: the outer loop (with seam ends inserted), holes and
+ *   constraint lines (shirring, quilt stitches, folds and their parallels) are discretised here at
+ *   ∫ ds/h (break points: corners turning > WR_MESHER_CORNER_DEG, seam ends; a seam range gets the
+ *   count N shared with its partner side). poisson.h fills the interior (its calibrated radius
+ *   factor unless desc.radius_factor); it re-discretises the curves it is given, so only its
+ *   INTERIOR samples are used: each is dropped when closer than WR_MESHER_SAMPLE_CLEARANCE × h to
+ *   one of our constraint segments or (near the boundary) outside our polygon. The CDT
+ *   (triangulate.h, no refinement, so no Steiner points and seam counts stay exact) gets our curve
+ *   points + the kept samples, our segments and one seed per hole. Measured: mean edge length /
+ *   sizing 0.99–1.01 on the Table 1 squares (validation/validate_meshing.c).
+ *
  * ON THE OUTPUT
  *   Vertices are numbered panel by panel. rest = pattern position, pos = (rest, 0). face_panel set.
  *   Seam sides are NOT merged (seam_pairs lists the vertices to sew, in order along the seam) unless
@@ -116,6 +128,7 @@ extern "C" {
 #define WR_MESHER_DEFAULT_MAX_VERTICES 20000000
 #define WR_MESHER_KL_POISSON 0.3      /* ν for the Kirchhoff–Love thickness h = (12(1-ν²) B/E)^{1/3} */
 #define WR_MESHER_MIN_STRAIN 1e-3     /* floor of δ in the compression law (δ = 0 gives L_w = 0) */
+#define WR_MESHER_FALLBACK_THICKNESS_RATIO 0.1 /* h / r when a panel has no stiffness (override only) */
 #define WR_MESHER_CORNER_DEG 30.0     /* turning angle above which a boundary vertex is kept exactly */
 #define WR_MESHER_TRIM_FACTOR 0.5     /* constraint trim at a line end lying on the boundary (× sizing) */
 #define WR_MESHER_HIST_BINS 20
@@ -137,7 +150,7 @@ typedef struct wr_pattern_curve {
 /* Fabric of a panel. Isotropic: B [N·m], E [N/m²]. anisotropic != 0: (B_warp, E_warp), (B_weft, E_weft)
  * and the warp direction grain_angle [rad] in the pattern frame. Overrides (> 0) replace Eq. 4:
  * resolution (isotropic), resolution_warp / resolution_weft (anisotropic) [m]; the stiffness is then
- * still used for the transition thickness when given, else h = r/10 (documented fallback). */
+ * still used for the transition thickness when given, else h = r · WR_MESHER_FALLBACK_THICKNESS_RATIO. */
 typedef struct wr_pattern_fabric {
     double B, E;
     int anisotropic;
@@ -518,9 +531,9 @@ WRDEF wr_status wr_mesher_panel_resolution(const wr_pattern_fabric *fab, const w
 }
 
 /* Kirchhoff–Love thickness of the panel's fabric for the compression law (see ON THE SIZING MAP).
- * Uses the smallest y = B/E (the fine direction); with resolution overrides and no stiffness,
- * h = r0 / 10 (a fabric resolved at r is typically ~10× thicker than... no: r/10 keeps L_w of the
- * order of a few r, the regime of Fig. 14). */
+ * Uses the smallest y = B/E (the fine direction). With a resolution override and no stiffness there
+ * is no thickness to compute; h = r0/10 is then used (WR_MESHER_FALLBACK_THICKNESS_RATIO): for the
+ * Table 1 fabrics h/r runs from 0.011 (Rose) over 0.04 (Green) to 0.13 (Dark Blue). */
 static double wr__msh_thickness(const wr_pattern_fabric *f, double r0) {
     double y = HUGE_VAL;
     if (!f->anisotropic) {
@@ -529,7 +542,7 @@ static double wr__msh_thickness(const wr_pattern_fabric *f, double r0) {
         if (f->B_warp > 0.0 && f->E_warp > 0.0) y = f->B_warp / f->E_warp;
         if (f->B_weft > 0.0 && f->E_weft > 0.0 && f->B_weft / f->E_weft < y) y = f->B_weft / f->E_weft;
     }
-    if (!(y < HUGE_VAL) || !isfinite(y)) return r0 / 10.0;
+    if (!(y < HUGE_VAL) || !isfinite(y)) return r0 * WR_MESHER_FALLBACK_THICKNESS_RATIO;
     return cbrt(12.0 * (1.0 - WR_MESHER_KL_POISSON * WR_MESHER_KL_POISSON) * y);
 }
 
