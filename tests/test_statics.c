@@ -622,6 +622,13 @@ Test(statics, incremental_stretch_matches_direct) {
     cr_expect_eq(st4.increments, 4);
     for (j = 0; j < 3 * m.nv; ++j) err = fmax(err, fabs(x1[j] - x4[j]));
     cr_expect(err < 1e-9, "direct vs 4 increments differ by %.3e m", err);
+    /* the same with the secant predictor between increments */
+    memcpy(x4, m.pos, sizeof(double) * 3 * m.nv);
+    sd.inc_predictor = 1;
+    cr_assert_eq(wr_statics_solve_incremental(&s, x4, &sd, mo, 2, 4, &st4, &dg), WR_OK, "%s", dg.message);
+    err = 0.0;
+    for (j = 0; j < 3 * m.nv; ++j) err = fmax(err, fabs(x1[j] - x4[j]));
+    cr_expect(err < 1e-9, "direct vs 4 predicted increments differ by %.3e m", err);
     cr_expect(fabs(x1[3 * right[2]] - 0.2 * 1.06) < 1e-15);
     wr_shell_free(&s);
     free(x1);
