@@ -159,7 +159,22 @@ if [ -x "$B/wrinkle-statics" ]; then
         "$B/wrinkle-statics" "$tmp/badscene.json" -o "$tmp/st"
 fi
 if [ -x "$B/wrinkle-tfw" ]; then
-    expect_fail "wrinkle-tfw missing input" "$B/wrinkle-tfw" "$tmp/none.json" -o "$tmp/t0"
+    expect_fail "wrinkle-tfw missing scene" "$B/wrinkle-tfw" "$tmp/none.json" -o "$tmp/t0"
+    printf '{"mesh": {"type": "rectangle"}, "material": {"young": -1}}' > "$tmp/badscene.json"
+    expect_fail "wrinkle-tfw invalid scene" "$B/wrinkle-tfw" "$tmp/badscene.json" -o "$tmp/t0"
+    expect_fail "wrinkle-tfw bad --levels" "$B/wrinkle-tfw" "$root/examples/scenes/tfw_stretched_sheet.json" \
+        -o "$tmp/t0" --levels 9
+    cat > "$tmp/tfw.json" <<'JSON'
+{"name": "tfw_small", "mesh": {"type": "rectangle", "width": 0.25, "height": 0.1, "nx": 10, "ny": 5},
+ "material": {"young": 1.0e6, "poisson": 0.5, "thickness": 1.0e-4},
+ "boundary": [{"name": "left", "box": {"min": [-1e-9, -1, -1], "max": [1e-9, 1, 1]}},
+  {"name": "right", "box": {"min": [0.249999999, -1, -1], "max": [1, 1, 1]}, "stretch": [1.1, 1, 1]}],
+ "solver": {"load_steps": 2, "hessian": "projected"}}
+JSON
+    atomic wrinkle-tfw "$tmp/tfw/base.obj" "$tmp/tfw/wrinkled.obj" "$tmp/tfw/fields.ply" "$tmp/tfw/summary.json" -- \
+        "$B/wrinkle-tfw" "$tmp/tfw.json" -o "$tmp/tfw" --quiet --levels 1
+    keep_on_failure "wrinkle-tfw invalid scene" "$tmp/tfw/wrinkled.obj" "$tmp/tfw/summary.json" -- \
+        "$B/wrinkle-tfw" "$tmp/badscene.json" -o "$tmp/tfw"
 fi
 echo "driver-check: $pass passed, $fail failed, $found drivers${note:+; skipped:$note}"
 [ $fail = 0 ]

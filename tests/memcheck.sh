@@ -84,7 +84,17 @@ if have wrinkle-statics; then
     run 2 statics_bad -- bin/wrinkle-statics "$tmp/no-such.json" -o "$tmp/st2" --quiet
 fi
 if have wrinkle-tfw; then
-    run 0 tfw_help -- bin/wrinkle-tfw --help
+    # a small stretched sheet (the examples/scenes/tfw_stretched_sheet.json set-up on a 10 x 5 grid)
+    cat > "$tmp/tfw.json" <<'JSON'
+{"name": "tfw_small", "mesh": {"type": "rectangle", "width": 0.25, "height": 0.1, "nx": 10, "ny": 5},
+ "material": {"young": 1.0e6, "poisson": 0.5, "thickness": 1.0e-4},
+ "boundary": [{"name": "left", "box": {"min": [-1e-9, -1, -1], "max": [1e-9, 1, 1]}},
+  {"name": "right", "box": {"min": [0.249999999, -1, -1], "max": [1, 1, 1]}, "stretch": [1.1, 1, 1]}],
+ "solver": {"load_steps": 2, "hessian": "projected"},
+ "probes": [{"name": "mid", "from": [0.125, 0.0], "to": [0.125, 0.1], "samples": 64}]}
+JSON
+    run 0 tfw_small -- bin/wrinkle-tfw "$tmp/tfw.json" -o "$tmp/tfw" --quiet --levels 1
+    run 2 tfw_bad -- bin/wrinkle-tfw "$tmp/no-such.json" -o "$tmp/tfw2" --quiet
 fi
 echo "memcheck: $pass passed, $fail failed, $skip skipped"
 [ $fail = 0 ]
