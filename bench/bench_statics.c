@@ -1,0 +1,135 @@
+/* bench_statics — Newton time per iteration vs vertex count on the Style3D Fig. 16 stretch test
+ * (examples/scenes/stretch.json: 0.25 m × 0.1 m, StVK + mid-edge bending, 12.78 % stretch), with each
+ * linear solver of pcg.h (PCG block-Jacobi 3×3, IC(0), smoothed-aggregation AMG) against CHOLMOD in
+ * the same run. Time per Newton iteration split into assembly / projection / linear solve / line search
+ * (TFW Fig. 23 style), from wr_statics_stats.
+ *
+ * Protocol: one load step (the whole stretch), affine warm start, projected Newton (per-element PSD
+ * projection, statics.h WR_PROJECT_FAST), exactly NEWTON_ITERS Newton iterations (max_iter; the solve
+ * then stops with WR_ERR_NOT_CONVERGED, which is expected here: we time iterations, not a converged
+ * solve — a full wrinkled solve takes hundreds of iterations and minutes at 4e3 vertices), linear
+ * relative tolerance 1e-8 for every method. Median of RUNS runs per (size, method) while a run takes
+ * < SLOW seconds, else one run (printed as n=1). Sizes: regular grids of about 1e3, 3e3, 1e4, 3e4, 1e5
+ * vertices, stopping at max_vertices (argv[1], default 100000). The final relative gradient is
+ * printed so that the methods' iterations can be compared (an inexact PCG step may reduce less).
+ * PCG runs on one thread; CHOLMOD's BLAS may use both cores.
+ */
+#define _POSIX_C_SOURCE 200809L
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "scene.h"
+
+#define SCENE_PATH "examples/scenes/stretch.json"
+#define NEWTON_ITERS 3
+#define RUNS 5
+#define SLOW 30.0 /* s per run above which one run only */
+
+static const wr_solver_method methods[] = {WR_SOLVER_PCG_BLOCK3, WR_SOLVER_PCG_IC0, WR_SOLVER_PCG_AMG,
+                                           WR_SOLVER_CHOLMOD};
+static const char *const mnames[] = {"pcg-block3", "pcg-ic0", "pcg-amg", "cholmod"};
+#define NM 4
+
+static int cmp_double(const void *a, const void *b) {
+    double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : x > y;
+}
+
+typedef struct sample {
+    double it, asm_, proj, lin, ls, grad;
+    int32_t nv, iters, lin_iters;
+} sample;
+
+static int one_run(const wr_scene *base, double r, wr_solver_method m, sample *s) {
+    wr_scene sc = *base;
+    wr_scene_run run;
+    wr_diag d;
+    int32_t k;
+    sc.mesh.resolution = r;
+    sc.mesh.nx = sc.mesh.ny = 0;
+    sc.load_steps = 1;
+    sc.max_iter = NEWTON_ITERS;
+    sc.hessian = WR_SCENE_HESSIAN_PROJECTED;
+    sc.linear = m;
+    sc.linear_tol = 1e-8;
+    sc.perturb = 1e-5;
+    sc.n_probes = 0;
+    if (wr_scene_run_create(&run, &sc, &d) != WR_OK) {
+        fprintf(stderr, "bench_statics: %s\n", d.message);
+        return -1;
+    }
+    {
+        wr_status st = wr_scene_run_solve(&run, NULL, NULL, &d);
+        if (st != WR_OK && st != WR_ERR_NOT_CONVERGED) {
+            fprintf(stderr, "bench_statics: %s: %s\n", mnames[m == WR_SOLVER_CHOLMOD ? 3 : 0], d.message);
+            wr_scene_run_free(&run);
+            return -1;
+        }
+    }
+    k = run.newton_iterations > 0 ? run.newton_iterations : 1;
+    s->nv = run.mesh.nv;
+    s->iters = run.newton_iterations;
+    s->lin_iters = run.linear_iterations;
+    s->it = run.t_solve / k;
+    s->asm_ = run.t_assembly / k;
+    s->proj = run.t_projection / k;
+    s->lin = run.t_linear / k;
+    s->ls = run.t_line_search / k;
+    s->grad = run.steps[0].st.grad_ref > 0 ? run.steps[0].st.grad_norm / run.steps[0].st.grad_ref : NAN;
+    wr_scene_run_free(&run);
+    return 0;
+}
+
+static double med(double *v, int n) {
+    qsort(v, (size_t)n, sizeof *v, cmp_double);
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+int main(int argc, char **argv) {
+    wr_scene sc;
+    wr_diag d;
+    /* resolutions for ~1e3, 3e3, 1e4, 3e4, 1e5 vertices on 0.25 × 0.1 m: nv ≈ 0.025 / r² */
+    const double res[] = {5.0e-3, 2.9e-3, 1.58e-3, 0.91e-3, 0.5e-3};
+    const int NR = (int)(sizeof res / sizeof res[0]);
+    long max_v = argc > 1 ? atol(argv[1]) : 100000;
+    int i, m, k;
+    if (wr_scene_load(&sc, SCENE_PATH, &d) != WR_OK) {
+        fprintf(stderr, "bench_statics: %s (run from the repository root)\n", d.message);
+        return 1;
+    }
+    printf("Newton time per iteration [ms] on the stretch test, %d projected-Newton iterations per run, median of "
+           "up to %d runs\n",
+           NEWTON_ITERS, RUNS);
+    printf("%8s %-10s %3s %9s %9s %9s %9s %9s %7s %9s %8s\n", "vertices", "method", "n", "per-it", "assembly", "project",
+           "linear", "linesrch", "lin-it", "|g|/ref", "vs chol");
+    for (i = 0; i < NR; ++i) {
+        double per_it[NM], expect = 0.025 / (res[i] * res[i]);
+        if (expect > 1.3 * (double)max_v) break;
+        for (m = 0; m < NM; ++m) {
+            sample s[RUNS];
+            double a[RUNS], b[RUNS], c[RUNS], e[RUNS], f[RUNS];
+            int n = 0;
+            for (k = 0; k < RUNS; ++k) {
+                if (one_run(&sc, res[i], methods[m], &s[k]) != 0) return 1;
+                ++n;
+                if (s[k].it * NEWTON_ITERS > SLOW) break;
+            }
+            for (k = 0; k < n; ++k) a[k] = s[k].it, b[k] = s[k].asm_, c[k] = s[k].proj, e[k] = s[k].lin, f[k] = s[k].ls;
+            per_it[m] = med(a, n);
+            printf("%8d %-10s %3d %9.1f %9.1f %9.1f %9.1f %9.1f %7.1f %9.2e", (int)s[0].nv, mnames[m], n, 1e3 * per_it[m],
+                   1e3 * med(b, n), 1e3 * med(c, n), 1e3 * med(e, n), 1e3 * med(f, n),
+                   (double)s[0].lin_iters / (s[0].iters > 0 ? s[0].iters : 1), s[0].grad);
+            printf(m == NM - 1 ? "\n" : "\n");
+            fflush(stdout);
+        }
+        for (m = 0; m < NM - 1; ++m)
+            printf("         %-10s linear-solve-inclusive time per iteration / CHOLMOD = %.2f\n", mnames[m],
+                   per_it[m] / per_it[NM - 1]);
+        fflush(stdout);
+    }
+    if (i < NR) printf("stopped before %.0f vertices (max_vertices = %ld)\n", 0.025 / (res[i] * res[i]), max_v);
+    wr_scene_free(&sc);
+    return 0;
+}
