@@ -6,7 +6,6 @@
  * more than Poisson's ratio allows, a few SQP iterations, Loop upsampling to the wrinkled surface. */
 #define WRINKLE_IMPLEMENTATION
 #include "wrinkle/wrinkle.h"
-#include "wrinkle/mesher.h" /* included by wrinkle.h in newer versions; harmless twice */
 
 #include <math.h>
 #include <stdio.h>

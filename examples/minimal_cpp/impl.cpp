@@ -2,4 +2,3 @@
 // Every other file (main.cpp here) includes the same headers without WRINKLE_IMPLEMENTATION.
 #define WRINKLE_IMPLEMENTATION
 #include "wrinkle/wrinkle.h"
-#include "wrinkle/mesher.h"

@@ -4,7 +4,6 @@
 // Same two jobs as examples/minimal_c: optimal resolution + meshed panel (Style3D), then a coarse
 // sheet wrinkled by the TFW wrinkle field and upsampled.
 #include "wrinkle/wrinkle.h"
-#include "wrinkle/mesher.h"
 
 #include <algorithm>
 #include <cmath>
