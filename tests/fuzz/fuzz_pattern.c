@@ -1,12 +1,11 @@
 /* libFuzzer harness: the garment pattern JSON reader (drivers/lib/pattern.c wr_pattern_parse) and,
  * on success, the mesher itself (mesher.h wr_mesher_run) under a small vertex budget — the path
- * bin/wrinkle-mesh takes. Linked with drivers/lib/pattern.c (Makefile FUZZ_EXTRA_fuzz_pattern). Contract: no crash or sanitizer report, no leak; failures carry a
- * one-line message; a successful mesh has in-range faces and a sizing value per vertex. */
-/* This harness is the WRINKLE_IMPLEMENTATION unit (mesher.h explicitly: it may not be in
- * wrinkle.h yet; the implementation guards make the double include harmless). */
+ * bin/wrinkle-mesh takes. Linked with drivers/lib/pattern.c (Makefile FUZZ_EXTRA_fuzz_pattern).
+ * Contract: no crash or sanitizer report, no leak; failures carry a one-line message; a successful
+ * mesh has in-range faces and a positive finite sizing value per vertex. */
+/* This harness is the program's one WRINKLE_IMPLEMENTATION unit. */
 #define WRINKLE_IMPLEMENTATION
 #include "wrinkle/wrinkle.h"
-#include "wrinkle/mesher.h"
 #include "pattern.h"
 
 #include <math.h>

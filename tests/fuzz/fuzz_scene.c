@@ -1,12 +1,11 @@
 /* libFuzzer harness: the statics scene JSON reader (drivers/lib/scene.c wr_scene_parse, pure, no
  * file access) and, for small generated meshes, the set-up step wr_scene_run_create (rest mesh,
- * shell, prescribed sets). Linked with drivers/lib/scene.c (Makefile FUZZ_EXTRA_fuzz_scene). Contract: no crash or sanitizer report, no leak; a failure carries a
- * one-line message naming the JSON path. */
-/* This harness is the WRINKLE_IMPLEMENTATION unit (mesher.h explicitly: it may not be in
- * wrinkle.h yet; the implementation guards make the double include harmless). */
+ * shell, prescribed sets). Linked with drivers/lib/scene.c (Makefile FUZZ_EXTRA_fuzz_scene).
+ * Contract: no crash or sanitizer report, no leak; a failure carries a one-line message naming the
+ * JSON path. */
+/* This harness is the program's one WRINKLE_IMPLEMENTATION unit. */
 #define WRINKLE_IMPLEMENTATION
 #include "wrinkle/wrinkle.h"
-#include "wrinkle/mesher.h"
 #include "scene.h"
 
 #include <math.h>
