@@ -125,13 +125,19 @@ FUZZERS       = $(addprefix build/fuzz/,$(FUZZ_NAMES))
 FUZZ_EXTRA_fuzz_scene   = drivers/lib/scene.c
 FUZZ_EXTRA_fuzz_pattern = drivers/lib/pattern.c
 
-.PHONY: fuzz fuzz-build fuzz-smoke memcheck examples install-check driver-check
+.PHONY: fuzz fuzz-build fuzz-smoke memcheck examples install-check driver-check deps-check
+
+# Tools of these checks (installed like DEB_PACKAGES: apt-get when root / passwordless sudo).
+CHECK_PACKAGES = clang libclang-rt-14-dev valgrind strace python3
+deps-check: deps
+	@sh tools/deps.sh $(CHECK_PACKAGES)
 
 build/fuzz/%: tests/fuzz/%.c $(HEADERS) $(EXTRA_HDR) $(LIB_SRC)
 	@mkdir -p build/fuzz
 	$(FUZZ_CC) $(FUZZ_FLAGS) $< $(FUZZ_EXTRA_$*) -o $@ $(LIBS)
 
-fuzz-build: $(FUZZERS)
+fuzz-build: deps-check
+	@$(MAKE) --no-print-directory $(FUZZERS)
 
 fuzz: fuzz-build
 	@sh tests/fuzz/run.sh $(FUZZ_SECONDS) $(FUZZ_NAMES)
@@ -140,11 +146,11 @@ fuzz-smoke:
 	@$(MAKE) --no-print-directory fuzz FUZZ_SECONDS=60
 
 # Every driver's smoke invocation under valgrind memcheck: any error or definite/indirect leak fails.
-memcheck: all
+memcheck: deps-check all
 	@sh tests/memcheck.sh
 
 # Every driver: --help, one-line non-zero failure on bad input, atomic outputs.
-driver-check: all
+driver-check: deps-check all
 	@sh tests/drivers_smoke.sh
 
 # The drop-in examples built straight against include/ (install-check builds them against an install).
