@@ -32,17 +32,24 @@
  *   wr_solver_method_name(m)                         "pcg-ic0", "pcg-amg", "cholmod", ...
  *   (the AMG hierarchy is value dependent, so for WR_SOLVER_PCG_AMG all setup happens in factor)
  *
- * EXAMPLE (Newton loop reusing the symbolic analysis)
- *     wr_spd_desc sd; wr_spd_solver S; wr_spd_stats st;
- *     memset(&sd, 0, sizeof sd);  sd.fixed = clamped;           // zero = defaults
- *     wr_spd_solver_create(&S, &K, &sd, &d);                     // K: pattern from sparse.h
- *     for (it = 0; it < n_newton; ++it) {
- *         assemble K values and -gradient g (wr_csr_zero_values + wr_csr_add_element);
- *         memset(dx, 0, ...);                                     // fixed DOFs: increment 0
- *         if (wr_spd_solver_factor(&S, &K, &d) || wr_spd_solver_solve(&S, &K, g, dx, &st, &d)) break;
- *         ... x += dx ...
+ * EXAMPLE (one-shot solve; see the note after it for a Newton loop)
+ *     wr_triplets t;  wr_csr K;  wr_spd_desc sd;  wr_spd_stats st;  wr_diag d;  int32_t e;
+ *     uint8_t fixed[5] = {1, 0, 0, 0, 0};                // DOF 0 clamped (Dirichlet)
+ *     double b[5] = {0, 0, 0, 0, 1.0}, x[5] = {0};       // unit force on the free end; x[0] stays 0
+ *     wr_triplets_create(&t, 5, 16, &d);                 // chain of 4 unit springs (see sparse.h)
+ *     for (e = 0; e < 4; ++e) {
+ *         wr_triplets_add(&t, e, e, 1.0, &d);  wr_triplets_add(&t, e + 1, e + 1, 1.0, &d);
+ *         wr_triplets_add(&t, e, e + 1, -1.0, &d);  wr_triplets_add(&t, e + 1, e, -1.0, &d);
  *     }
- *     wr_spd_solver_free(&S);
+ *     wr_csr_from_triplets(&K, &t, &d);  wr_triplets_free(&t);
+ *     memset(&sd, 0, sizeof sd);  sd.fixed = fixed;      // zero = defaults (AUTO, rel_tol 1e-10)
+ *     if (wr_spd_solve(&K, b, x, &sd, &st, &d) != WR_OK) puts(d.message);
+ *     printf("x[4] = %g m by %s\n", x[4], wr_solver_method_name(st.method));   // 4 (springs in series)
+ *     wr_csr_free(&K);
+ *   In a Newton loop keep one solver so the symbolic analysis is done once: wr_spd_solver_create(&S,
+ *   &K, &sd, &d) before the loop; per iteration reassemble K's values (sparse.h), then
+ *   wr_spd_solver_factor(&S, &K, &d) and wr_spd_solver_solve(&S, &K, g, dx, &st, &d) with dx = 0 on
+ *   the fixed DOFs; wr_spd_solver_free(&S) after it.
  *
  * ON FIXED DOFS
  *   desc->fixed[i] != 0 marks DOF i as Dirichlet: x[i] keeps its input value and row i of the

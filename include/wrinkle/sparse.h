@@ -26,15 +26,16 @@
  *   wr_csr_asymmetry(A)                          max |A(i,j) - A(j,i)| / max |A(i,j)| (0 = symmetric)
  *
  * EXAMPLE (Newton: build the pattern once, reassemble values every iteration)
- *     wr_triplets t; wr_csr K;
- *     wr_triplets_create(&t, 3 * nv, 81 * nf, &d);
- *     for (f = 0; f < nf; ++f) wr_triplets_add_element(&t, 9, dof_of_face[f], zeros81, &d);
- *     wr_csr_from_triplets(&K, &t, &d);  wr_triplets_free(&t);
- *     for (it = 0; it < iters; ++it) {
- *         wr_csr_zero_values(&K);
- *         for (f = 0; f < nf; ++f) wr_csr_add_element(&K, 9, dof_of_face[f], Ke[f], &d);
- *         ... wr_spd_solve(&K, ...) (pcg.h) ...
- *     }
+ *     wr_triplets t;  wr_csr K;  wr_diag d;  int32_t e, idx[2];
+ *     double Ke[4] = {1.0, -1.0, -1.0, 1.0}, x[5] = {0, 1, 2, 3, 4}, y[5];   // a chain of 4 unit springs
+ *     wr_triplets_create(&t, 5, 16, &d);                 // build the pattern once ...
+ *     for (e = 0; e < 4; ++e) { idx[0] = e; idx[1] = e + 1; wr_triplets_add_element(&t, 2, idx, Ke, &d); }
+ *     if (wr_csr_from_triplets(&K, &t, &d) != WR_OK) puts(d.message);
+ *     wr_triplets_free(&t);
+ *     wr_csr_zero_values(&K);                            // ... and reassemble values every Newton step
+ *     for (e = 0; e < 4; ++e) { idx[0] = e; idx[1] = e + 1; wr_csr_add_element(&K, 2, idx, Ke, &d); }
+ *     wr_csr_spmv(&K, x, y);                             // K x = (-1, 0, 0, 0, 1)
+ *     printf("nnz = %d, y[0] = %g, y[4] = %g\n", K.nnz, y[0], y[4]);   // 13, -1, 1
  *     wr_csr_free(&K);
  *
  * ON STORAGE
