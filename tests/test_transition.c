@@ -473,3 +473,49 @@ Test(transition, technique_sources) {
     cr_expect_eq(wr_source_stitch_ratio(0.0, 0.4, &rho, NULL), WR_ERR_INVALID_ARG);
     cr_expect_eq(wr_source_stitch_ratio(0.3, 0.4, NULL, NULL), WR_ERR_INVALID_ARG);
 }
+
+/* Regression: wr_sizing_build looped forever (doubling h to infinity) when the active segments
+ * could never fit the max_cells cap on stored entries — each segment needs at least one entry.
+ * Now a budget error; the map stays usable through the brute-force path. */
+Test(sizing, build_cap_below_segment_count_is_budget_error) {
+    wr_transition t;
+    wr_sizing *s;
+    wr_sizing_desc sd;
+    wr_diag d;
+    double line[6] = {0.0, 0.0, 0.1, 0.0, 0.2, 0.05};
+    memset(&sd, 0, sizeof sd);
+    sd.max_cells = 1;
+    cr_assert_eq(wr_transition_make(3.0e-3, 25.0e-3, NULL, &t, NULL), WR_OK);
+    cr_assert_eq(wr_sizing_create(9.0e-3, &sd, &s, NULL), WR_OK);
+    cr_assert_eq(wr_sizing_add_polyline(s, line, 3, &t, NULL), WR_OK);
+    cr_expect_eq(wr_sizing_build(s, &d), WR_ERR_BUDGET);
+    cr_expect(strstr(d.message, "max_cells") != NULL, "%s", d.message);
+    cr_expect_eq(wr_sizing_is_built(s), 0);
+    cr_expect_eq(wr_sizing_eval(s, 0.05, 0.025), wr_sizing_eval_brute(s, 0.05, 0.025));
+    cr_expect(rel(wr_sizing_eval(s, 0.05, 0.025), 6.0e-3) < 1e-12); /* 25 mm from the first segment */
+    wr_sizing_free(s);
+}
+
+/* Regression: finite sources whose extent overflows a double (xmax - xmin = inf) made the grid
+ * size NaN and wr_sizing_build looped forever. Now WR_ERR_DOMAIN naming the extent; a polyline
+ * segment whose squared length overflows (distances to it would be wrong) is refused when added. */
+Test(sizing, build_extent_overflow_is_domain_error) {
+    wr_transition t;
+    wr_sizing *s;
+    wr_diag d;
+    double far[4] = {-1e308, 0.0, 1e308, 0.0}, ok[4] = {0.0, 0.0, 1.0, 0.0};
+    cr_assert_eq(wr_transition_make(3.0e-3, 25.0e-3, NULL, &t, NULL), WR_OK);
+    cr_assert_eq(wr_sizing_create(9.0e-3, NULL, &s, NULL), WR_OK);
+    cr_expect_eq(wr_sizing_add_polyline(s, far, 2, &t, &d), WR_ERR_DOMAIN);
+    cr_expect_eq(d.item, 0);
+    cr_expect(strstr(d.message, "segment 0") != NULL, "%s", d.message);
+    cr_expect_eq(wr_sizing_segment_count(s), 0);
+    cr_assert_eq(wr_sizing_add_point(s, -1e308, 0.0, &t, NULL), WR_OK);
+    cr_assert_eq(wr_sizing_add_point(s, 1e308, 0.0, &t, NULL), WR_OK);
+    cr_assert_eq(wr_sizing_add_polyline(s, ok, 2, &t, NULL), WR_OK);
+    cr_expect_eq(wr_sizing_build(s, &d), WR_ERR_DOMAIN);
+    cr_expect(strstr(d.message, "extent") != NULL, "%s", d.message);
+    cr_expect_eq(wr_sizing_is_built(s), 0);
+    cr_expect(rel(wr_sizing_eval(s, 0.5, 0.025), 6.0e-3) < 1e-12);
+    wr_sizing_free(s);
+}

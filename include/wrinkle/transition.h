@@ -174,11 +174,14 @@ WRDEF wr_status wr_sizing_add_point(wr_sizing *s, double x, double y, const wr_t
 /* Only points p with (p - (x, y))·(dir_x, dir_y) ≥ 0 see this source; dir must be nonzero. */
 WRDEF wr_status wr_sizing_add_point_directional(wr_sizing *s, double x, double y, double dir_x, double dir_y,
                                                 const wr_transition *t, wr_diag *diag);
-/* xy[2n] = x0 y0 x1 y1 ...; n ≥ 1 (n = 1 is a point). diag->item names a bad coordinate's point. */
+/* xy[2n] = x0 y0 x1 y1 ...; n ≥ 1 (n = 1 is a point). diag->item names a bad coordinate's point
+ * (WR_ERR_INVALID_ARG), or a segment whose squared length overflows a double (WR_ERR_DOMAIN). */
 WRDEF wr_status wr_sizing_add_polyline(wr_sizing *s, const double *xy, int32_t n, const wr_transition *t,
                                        wr_diag *diag);
 /* Build (or rebuild) the grid index. Adding sources afterwards invalidates it until the next build;
- * eval then scans every source. */
+ * eval then scans every source. Errors leave the map unbuilt but usable (eval scans every source):
+ * more active segments than desc.max_cells (WR_ERR_BUDGET: each needs one cell entry), a source
+ * extent that overflows a double (WR_ERR_DOMAIN), WR_ERR_NOMEM. */
 WRDEF wr_status wr_sizing_build(wr_sizing *s, wr_diag *diag);
 WRDEF double wr_sizing_eval(const wr_sizing *s, double x, double y);
 WRDEF double wr_sizing_eval_brute(const wr_sizing *s, double x, double y);
@@ -559,6 +562,13 @@ WRDEF wr_status wr_sizing_add_polyline(wr_sizing *s, const double *xy, int32_t n
         if (!isfinite(xy[2 * i]) || !isfinite(xy[2 * i + 1]))
             return wr_fail(diag, WR_ERR_INVALID_ARG, i, "sizing: polyline point %d (%g, %g) not finite", (int)i,
                            xy[2 * i], xy[2 * i + 1]);
+    /* |b - a|² must be finite or the projection in wr__sz_seg_dist degenerates (inv_ee = 0). */
+    for (i = 0; i + 1 < n; ++i) {
+        double ex = xy[2 * i + 2] - xy[2 * i], ey = xy[2 * i + 3] - xy[2 * i + 1];
+        if (!isfinite(ex * ex + ey * ey))
+            return wr_fail(diag, WR_ERR_DOMAIN, i, "sizing: polyline segment %d is too long (%g, %g) m to measure",
+                           (int)i, ex, ey);
+    }
     st = wr__sz_check_transition(t, diag);
     if (st != WR_OK) return st;
     st = wr__sz_add_group(s, t, n > 1 ? n - 1 : 1, diag);
@@ -675,6 +685,14 @@ WRDEF wr_status wr_sizing_build(wr_sizing *s, wr_diag *diag) {
     }
     W = xmax - xmin;
     H = ymax - ymin;
+    /* Finite coordinates can still span more than DBL_MAX; no cell size would be finite then. */
+    if (!isfinite(W) || !isfinite(H))
+        return wr_fail(diag, WR_ERR_DOMAIN, -1, "sizing: source extent [%g, %g] x [%g, %g] m overflows a double", xmin,
+                       xmax, ymin, ymax);
+    /* Every active segment takes at least one cell entry, so no cell size can fit a smaller cap. */
+    if (n_act > s->desc.max_cells)
+        return wr_fail(diag, WR_ERR_BUDGET, -1, "sizing: %d active segments exceed max_cells = %d (raise the cap)",
+                       (int)n_act, (int)s->desc.max_cells);
     if (s->desc.cell_size > 0.0)
         h = s->desc.cell_size;
     else if (W > 0.0 && H > 0.0)
