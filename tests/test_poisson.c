@@ -652,3 +652,35 @@ Test(poisson, narrow_feature_detected_after_discretisation) {
     cr_assert_eq(wr_poisson_sample(&dom, size_const, &h, NULL, &res, &d), WR_OK, "%s", d.message);
     wr_poisson_free(&res);
 }
+
+/* Regression: finite input whose extent overflows a double (W = inf) turned the crossing check's
+ * bucket count into NaN → int64 conversion and a signed overflow (UBSan). Now WR_ERR_GEOMETRY. */
+Test(poisson, error_extent_overflow_is_geometry_error) {
+    double sq[8] = {-1e308, -1e308, 1e308, -1e308, 1e308, 1e308, -1e308, 1e308}, h = 1e307;
+    wr_poisson_domain dom;
+    wr_poisson_result res;
+    wr_diag d;
+    memset(&dom, 0, sizeof dom);
+    dom.outer.xy = sq;
+    dom.outer.n = 4;
+    cr_expect_eq(wr_poisson_sample(&dom, size_const, &h, NULL, &res, &d), WR_ERR_GEOMETRY);
+    cr_expect(strstr(d.message, "extent") != NULL, "%s", d.message);
+    wr_poisson_free(&res);
+}
+
+/* Regression: the zero-area test summed x_i y_j - x_j y_i about the origin, so a 1 mm square placed
+ * 1e7 m away lost its whole area to cancellation (terms ~1e14 m², area 1e-6 m²) and was rejected
+ * as "zero area". The shoelace sum now runs about the loop's first vertex. */
+Test(poisson, far_from_origin_loop_keeps_its_area) {
+    const double o = 1e7, s = 1e-3;
+    double sq[8] = {o, o, o + s, o, o + s, o + s, o, o + s}, h = 1e-4;
+    wr_poisson_domain dom;
+    wr_poisson_result res;
+    wr_diag d;
+    memset(&dom, 0, sizeof dom);
+    dom.outer.xy = sq;
+    dom.outer.n = 4;
+    cr_assert_eq(wr_poisson_sample(&dom, size_const, &h, NULL, &res, &d), WR_OK, "%s", d.message);
+    cr_expect_gt(res.n_points, res.n_fixed);
+    wr_poisson_free(&res);
+}

@@ -65,8 +65,9 @@
  *
  * ON VALIDATION (all WR_ERR_GEOMETRY unless said otherwise; diag->item as stated)
  *   Loops need >= 3 points, polylines >= 2 (closed polylines >= 3); non-finite coordinate (item = the
- *   point); zero-length segment; loop with |area| <= WR_POISSON_REL_TOL·bbox²; any two segments of the
- *   input (same or different curves, adjacent ones only when they fold back) that touch or cross — the
+ *   point); an input extent that overflows a double; zero-length segment; loop with |area| <=
+ *   WR_POISSON_REL_TOL·bbox²; any two segments of the input (same or different curves, adjacent ones
+ *   only when they fold back) that touch or cross — the
  *   message names both (curve and segment index; item = the first segment's index in its curve);
  *   a hole not inside the outer loop; a hole inside another hole; a polyline not inside the domain.
  *   Checked on a uniform bucket grid (O(n) for evenly spaced input). After discretisation the same
@@ -264,6 +265,10 @@ static wr_status wr__pz_check_crossings(const wr__pz_curves *cv, const char *wha
     }
     W = x1 - x0;
     H = y1 - y0;
+    /* Finite points can still span more than DBL_MAX; the bucket count would be NaN then. */
+    if (!isfinite(W) || !isfinite(H))
+        return wr_fail(diag, WR_ERR_GEOMETRY, -1, "%s extent [%g, %g] x [%g, %g] m overflows a double", what, x0, x1,
+                       y0, y1);
     g = sqrt(fmax(W * H, 1e-300) / (2.0 * (double)(ns > 0 ? ns : 1)));
     g = fmax(g, fmax(W, H) / 2048.0);
     if (!(g > 0.0)) g = 1.0;
@@ -1036,9 +1041,11 @@ WRDEF wr_status wr_poisson_sample(const wr_poisson_domain *dom, wr_poisson_sizin
         int32_t n = in.cnt[c];
         double area2 = 0.0;
         wr__pz_curve_name(&in, c, name, sizeof name);
-        for (i = 0; i < n; ++i) {
-            const double *a = v + 2 * i, *b = v + 2 * ((i + 1) % n);
-            area2 += a[0] * b[1] - a[1] * b[0];
+        /* Shoelace about the first vertex, not the origin: far from the origin the origin-based
+         * terms are ~|x|² and cancel away a small loop's whole area. */
+        for (i = 1; i + 1 < n; ++i) {
+            const double *a = v + 2 * i, *b = v + 2 * (i + 1);
+            area2 += (a[0] - v[0]) * (b[1] - v[1]) - (a[1] - v[1]) * (b[0] - v[0]);
         }
         if (!(fabs(0.5 * area2) > WR_POISSON_REL_TOL * maxdim * maxdim)) {
             st = wr_fail(diag, WR_ERR_GEOMETRY, c, "%s has zero area (%g m^2)", name, 0.5 * area2);
