@@ -1043,3 +1043,18 @@ Test(mesh, high_degree_vertex) {
     free(rest);
     free(faces);
 }
+
+/* Regression: wr_mesh_create accepted nv > INT32_MAX/3 although every module indexes positions as
+ * pos[3*i] with int32 i (and DOFs as 3*v): the validation loop itself overflowed 3*i and read past
+ * the caller's array. Now WR_ERR_OVERFLOW before any position is read, like nf > INT32_MAX/3. */
+Test(mesh, create_rejects_nv_beyond_int32_over_3) {
+    double pos[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    int32_t tri[3] = {0, 1, 2};
+    wr_mesh m;
+    wr_diag d;
+    cr_expect_eq(wr_mesh_create(&m, INT32_MAX / 3 + 1, pos, NULL, 1, tri, &d), WR_ERR_OVERFLOW);
+    cr_expect(strstr(d.message, "nv") != NULL, "%s", d.message);
+    cr_expect_eq(m.nv, 0);
+    cr_expect_eq(wr_mesh_create(&m, 3, pos, NULL, 1, tri, &d), WR_OK);
+    wr_mesh_free(&m);
+}
