@@ -549,3 +549,18 @@ Test(spectrum, probe_errors) {
     cr_assert_eq(wr_path_polyline(vv, 1, 0, 10, vv, NULL, NULL, &d), WR_ERR_INVALID_ARG);
     cr_assert_eq(wr_path_polyline(vv, 2, 0, 10, vv, NULL, NULL, &d), WR_ERR_INVALID_ARG, "zero length");
 }
+
+/* Regression: a mesh whose finite rest coordinates span more than DBL_MAX made the locator's cell
+ * size infinite and its cell counts NaN → int32 conversion (undefined behaviour). Now an error. */
+Test(spectrum, probe_extent_overflow_is_geometry_error) {
+    double rest[8] = {-1e308, -1e308, 1e308, -1e308, 1e308, 1e308, -1e308, 1e308};
+    int32_t faces[6] = {0, 1, 2, 0, 2, 3};
+    wr_mesh m;
+    wr_probe pr;
+    wr_diag d;
+    cr_assert_eq(wr_mesh_create(&m, 4, NULL, rest, 2, faces, NULL), WR_OK);
+    cr_expect_eq(wr_probe_create(&pr, &m, NULL, &d), WR_ERR_GEOMETRY);
+    cr_expect(strstr(d.message, "extent") != NULL, "%s", d.message);
+    wr_probe_free(&pr);
+    wr_mesh_free(&m);
+}

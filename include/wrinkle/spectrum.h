@@ -28,16 +28,18 @@
  *   wr_spectrum_rfft_power               the bare FFT path: |X_k|² of a zero-padded real signal
  *
  * EXAMPLE
- *     wr_probe pr;  wr_spectrum_result res;  wr_diag d;
- *     double a[2] = {0.0, 0.05}, b[2] = {0.2, 0.05}, pts[2 * 512], z[512], ds;
+ *     wr_mesh m;  wr_probe pr;  wr_spectrum_result res;  wr_diag d;
+ *     double a[2] = {0.0, 0.05}, b[2] = {0.2, 0.05}, pts[2 * 512], z[512], w[101 * 11], ds;
  *     int32_t n_out, i;
- *     for (i = 0; i < mesh.nv; ++i) w[i] = mesh.pos[3 * i + 2];      // out-of-plane displacement
- *     wr_probe_create(&pr, &mesh, NULL, &d);
- *     wr_path_segment(a, b, 512, 0, pts, &ds);                   // open probe, ds = |b-a|/511
+ *     wr_mesh_rectangle(&m, 0.2, 0.1, 100, 10, &d);              // 20 × 10 cm sheet, 2 mm grid
+ *     for (i = 0; i < m.nv; ++i)                                 // a 2 cm wave, 1 mm amplitude
+ *         w[i] = 1e-3 * sin(6.283185307179586 * m.rest[2 * i] / 0.02);
+ *     wr_probe_create(&pr, &m, NULL, &d);
+ *     wr_path_segment(a, b, 512, 0, pts, &ds, &d);               // open probe, ds = |b-a|/511
  *     wr_probe_sample(&pr, w, pts, 512, z, &n_out, &d);          // outside points -> NaN, counted
- *     if (wr_spectrum_analyze(z, 512, ds, 0, NULL, &res, NULL, 0, &d) == WR_OK)
+ *     if (wr_spectrum_analyze(z, 512, ds, 0, NULL, &res, NULL, 0, &d) == WR_OK)    // 0.02 m, 10, ~0.95e-3 m
  *         printf("lambda = %g m, %g wrinkles, A = %g m\n", res.wavelength, res.count, res.amplitude_p2p);
- *     wr_probe_free(&pr);
+ *     wr_probe_free(&pr);  wr_mesh_free(&m);
  *
  * ON THE METHOD (see docs/spectrum.md for the derivations and the measured accuracy)
  *   1. Detrend: remove the least-squares mean / line / parabola (default: line for open probes, where
@@ -124,7 +126,8 @@ typedef struct wr_probe {
 } wr_probe;
 
 /* Build the locator. Errors: mesh without faces, non-finite rest coordinates, all faces
- * degenerate (WR_ERR_GEOMETRY), bad desc (WR_ERR_INVALID_ARG), WR_ERR_NOMEM. On failure *p is zeroed. */
+ * degenerate, a rest extent that overflows a double (WR_ERR_GEOMETRY), bad desc (WR_ERR_INVALID_ARG),
+ * WR_ERR_NOMEM. On failure *p is zeroed. */
 WRDEF wr_status wr_probe_create(wr_probe *p, const wr_mesh *m, const wr_probe_desc *desc, wr_diag *diag);
 WRDEF void wr_probe_free(wr_probe *p); /* safe on a zeroed probe */
 /* Face containing rest point (x, y) (the face where it is deepest inside when it lies on an edge),
@@ -363,6 +366,12 @@ WRDEF wr_status wr_probe_create(wr_probe *p, const wr_mesh *m, const wr_probe_de
     }
     w = xmax - xmin;
     hgt = ymax - ymin;
+    /* Finite coordinates can still span more than DBL_MAX; no grid can cover that box. */
+    if (!isfinite(w) || !isfinite(hgt)) {
+        wr_probe_free(p);
+        return wr_fail(diag, WR_ERR_GEOMETRY, -1, "probe: rest extent [%g, %g] x [%g, %g] m overflows a double", xmin,
+                       xmax, ymin, ymax);
+    }
     /* Cell size from the bounding-box area shared among cells_per_face·n_ok cells. */
     cells = desc.cells_per_face * (double)n_ok;
     p->h = sqrt(w * hgt / cells);
