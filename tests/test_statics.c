@@ -492,6 +492,31 @@ Test(statics, sheet_on_sphere_and_plane) {
     cr_expect(st.n_contacts > 0, "the sheet must rest on the ball");
     cr_expect(zmin < 0.0, "corners hang below the ball's centre plane (z min %g)", zmin);
     cr_expect(st.ccd_alpha_min <= 1.0 && st.contact_dhat == 2e-3 && st.contact_stiffness > 0.0);
+    {
+        /* over a capsule (a bar along x, radius 5 cm, ends beyond the sheet), centre pinned likewise */
+        wr_obstacle bar;
+        memset(&bar, 0, sizeof bar);
+        bar.kind = WR_OBSTACLE_CAPSULE;
+        bar.p[0] = -0.4;
+        bar.q[0] = 0.4;
+        bar.radius = 0.05;
+        for (v = 0; v < m.nv; ++v) {
+            x[3 * v] = m.rest[2 * v] - 0.25;
+            x[3 * v + 1] = m.rest[2 * v + 1] - 0.25;
+            x[3 * v + 2] = 0.055;
+        }
+        x[3 * ((n / 2) * (n + 1) + n / 2) + 2] = 0.051;
+        sd.obstacles = &bar;
+        cr_assert_eq(wr_statics_solve(&s, x, &sd, &st, &dg), WR_OK, "capsule: %s", dg.message);
+        dmin = 1e300;
+        zmin = 1e300;
+        for (v = 0; v < m.nv; ++v) {
+            if (!fixed[v]) dmin = fmin(dmin, wr_obstacle_distance(&bar, x + 3 * v, NULL));
+            zmin = fmin(zmin, x[3 * v + 2]);
+        }
+        cr_expect(dmin > 0.0 && dmin == st.min_distance, "capsule: min distance %.3e (stats %.3e)", dmin, st.min_distance);
+        cr_expect(st.n_contacts > 0 && zmin < 0.0, "capsule: drapes over the bar (z min %g)", zmin);
+    }
     /* on a plane z = 0, starting 1 cm above with a seeded kick */
     memset(&floor_, 0, sizeof floor_);
     floor_.kind = WR_OBSTACLE_PLANE;
