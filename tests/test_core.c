@@ -259,3 +259,99 @@ Test(core, time_is_monotone_enough) {
     cr_assert(t1 >= t0);
     cr_assert(t0 > 1.6e9); /* seconds since the epoch: after 2020 */
 }
+
+Test(core, polygon_area_sign_and_far_from_origin) {
+    const double sq[8] = {0, 0, 2, 0, 2, 1, 0, 1}, cw[8] = {0, 0, 0, 1, 2, 1, 2, 0};
+    const double tri[6] = {1, 1, 4, 1, 1, 5};
+    const double o = 1e7, s = 1e-3;
+    double far[8], sx;
+    cr_expect_eq(wr_polygon_area(sq, 4), 2.0);
+    cr_expect_eq(wr_polygon_area(cw, 4), -2.0);
+    cr_expect_eq(wr_polygon_area(tri, 3), 6.0);
+    cr_expect_eq(wr_polygon_area(sq, 2), 0.0);
+    cr_expect_eq(wr_polygon_area(sq, 0), 0.0);
+    /* a 1 mm square 1e7 m away: the origin-based shoelace cancels to garbage (terms ~1e14 m²);
+     * about the first vertex the result is the exact square of the representable side */
+    far[0] = o, far[1] = o, far[2] = o + s, far[3] = o, far[4] = o + s, far[5] = o + s, far[6] = o, far[7] = o + s;
+    sx = (o + s) - o;
+    cr_expect_eq(wr_polygon_area(far, 4), sx * sx);
+}
+
+Test(core, point_in_polygon_nonconvex_and_degenerate) {
+    /* L shape: [0,2]x[0,1] plus [0,1]x[1,2], counter-clockwise */
+    const double L[12] = {0, 0, 2, 0, 2, 1, 1, 1, 1, 2, 0, 2};
+    cr_expect_eq(wr_point_in_polygon(L, 6, 0.5, 0.5), 1);
+    cr_expect_eq(wr_point_in_polygon(L, 6, 1.5, 0.5), 1);
+    cr_expect_eq(wr_point_in_polygon(L, 6, 0.5, 1.5), 1);
+    cr_expect_eq(wr_point_in_polygon(L, 6, 1.5, 1.5), 0); /* the notch */
+    cr_expect_eq(wr_point_in_polygon(L, 6, -0.5, 0.5), 0);
+    cr_expect_eq(wr_point_in_polygon(L, 6, 0.5, 1.0), 1);  /* level with a vertex: half-open rule */
+    cr_expect_eq(wr_point_in_polygon(L, 6, 2.5, 1.0), 0);
+    cr_expect_eq(wr_point_in_polygon(L, 2, 0.5, 0.5), 0);
+}
+
+Test(core, segment_distance_known_values) {
+    const double a[2] = {0, 0}, b[2] = {4, 0}, c[2] = {1, 1};
+    double p[2], t;
+    p[0] = 1, p[1] = 3;
+    cr_expect_eq(wr_segment_distance(p, a, b, &t), 3.0);
+    cr_expect_eq(t, 0.25);
+    p[0] = -3, p[1] = 4;
+    cr_expect_eq(wr_segment_distance(p, a, b, &t), 5.0); /* beyond a: distance to the end point */
+    cr_expect_eq(t, 0.0);
+    p[0] = 7, p[1] = -4;
+    cr_expect_eq(wr_segment_distance(p, a, b, &t), 5.0);
+    cr_expect_eq(t, 1.0);
+    p[0] = 4, p[1] = 5;
+    cr_expect_eq(wr_segment_distance(p, c, c, &t), 5.0); /* zero-length segment = point */
+    cr_expect_eq(t, 0.0);
+    p[0] = 2, p[1] = 2;
+    cr_expect_eq(wr_segment_distance(p, a, c, NULL), sqrt(2.0));
+    /* on the line y = x/2 through a skew segment (every coordinate exactly on it: halving is exact):
+     * the projected-point form leaves 5e-16 m here, the cross-product form gives exactly 0 */
+    {
+        double s0[2], s1[2];
+        s0[0] = 0.1 * 7.0, s0[1] = 0.5 * s0[0];
+        s1[0] = s0[0] + 3.0, s1[1] = 0.5 * s1[0];
+        p[0] = s0[0] + 1.1, p[1] = 0.5 * p[0];
+        cr_assert_eq((s1[0] - s0[0]) * (p[1] - s0[1]) - (s1[1] - s0[1]) * (p[0] - s0[0]), 0.0);
+        cr_expect_eq(wr_segment_distance(p, s0, s1, &t), 0.0);
+        cr_expect(t > 0.0 && t < 1.0);
+    }
+}
+
+/* Whole-file read: contents and length exact past the first 64 KiB chunk, NUL appended, embedded
+ * NUL kept, empty file, and the error paths naming the path. */
+Test(core, file_read_round_trip_and_errors) {
+    const char *path = "build/test/file_read_probe.bin";
+    const size_t n = 200003; /* three buffer doublings */
+    wr_afile f;
+    wr_diag d;
+    char *text = NULL;
+    size_t len = 7, i;
+    cr_assert_eq(wr_afile_open(&f, path, &d), WR_OK, "%s", d.message);
+    for (i = 0; i < n; ++i) fputc(i == 1000 ? 0 : (int)('a' + i % 26), f.fp);
+    cr_assert_eq(wr_afile_commit(&f, &d), WR_OK);
+    cr_assert_eq(wr_file_read(path, &text, &len, &d), WR_OK, "%s", d.message);
+    cr_assert_eq(len, n);
+    cr_expect_eq(text[n], 0);
+    cr_expect_eq(text[1000], 0);
+    cr_expect_eq(strlen(text), 1000u); /* how a caller detects a binary file */
+    for (i = 0; i < n; ++i)
+        if (i != 1000 && text[i] != (char)('a' + i % 26)) break;
+    cr_expect_eq(i, n, "first mismatch at byte %zu", i);
+    wr_free(text);
+    cr_assert_eq(wr_afile_open(&f, path, &d), WR_OK);
+    cr_assert_eq(wr_afile_commit(&f, &d), WR_OK);
+    cr_assert_eq(wr_file_read(path, &text, NULL, &d), WR_OK);
+    cr_expect_str_eq(text, "");
+    wr_free(text);
+    remove(path);
+    text = (char *)&len;
+    cr_expect_eq(wr_file_read("no/such/file.txt", &text, &len, &d), WR_ERR_IO);
+    cr_expect_null(text);
+    cr_expect_eq(len, 0u);
+    cr_expect(strstr(d.message, "no/such/file.txt") != NULL, "%s", d.message);
+    cr_expect_eq(wr_file_read(NULL, &text, &len, &d), WR_ERR_INVALID_ARG);
+    cr_expect_eq(wr_file_read(path, NULL, &len, &d), WR_ERR_INVALID_ARG);
+}

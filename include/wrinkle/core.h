@@ -19,11 +19,15 @@
  *   wr_diag                                caller-owned error detail (message, item index, backend code)
  *   wr_rng_seed / _u64 / _uniform / _normal   explicit seeded RNG (xoshiro256**), no global state
  *   wr_afile_open / _commit / _abort       write-to-temp-then-rename files
+ *   wr_file_read(path, &text, &len, diag)  whole file into a NUL-terminated buffer (free with wr_free)
  *   wr_time_seconds()                      wall clock for timings in reports
  *   wr_v2_* wr_v3_* wr_m2_* wr_m3_*        2-/3-vectors and 2×2/3×3 matrices (by value)
  *   wr_m2_sym_eig                          closed-form eigen-decomposition of a symmetric 2×2
  *   wr_dense_sym_eig / wr_dense_project_spd  cyclic-Jacobi eigen-solver for small dense symmetric
  *                                          matrices and the per-element SPD projection built on it
+ *   wr_polygon_area / wr_point_in_polygon / wr_segment_distance   2D geometry on xy point arrays
+ *                                          (signed shoelace area, crossing-number test, point-segment
+ *                                          distance) shared by the meshing-side modules
  *
  * EXAMPLE
  *     wr_diag d;  wr_rng rng;
@@ -141,6 +145,13 @@ WRDEF wr_status wr_afile_open(wr_afile *f, const char *path, wr_diag *diag);
 WRDEF wr_status wr_afile_commit(wr_afile *f, wr_diag *diag);
 WRDEF void wr_afile_abort(wr_afile *f);
 
+/* Read the whole file at `path` (regular file or pipe) into a new buffer with a NUL appended:
+ * *text owns len + 1 bytes (free with wr_free), *len (optional) = bytes read, the NUL not counted.
+ * Embedded NUL bytes are kept: a caller that wants text compares strlen(*text) with *len.
+ * WR_ERR_IO when the file cannot be opened or read (message names the path), WR_ERR_NOMEM;
+ * on failure *text = NULL. */
+WRDEF wr_status wr_file_read(const char *path, char **text, size_t *len, wr_diag *diag);
+
 /* Wall-clock seconds (C11 timespec_get); only differences are meaningful. */
 WRDEF double wr_time_seconds(void);
 
@@ -209,6 +220,23 @@ WRDEF void wr_dense_sym_eig(int n, const double *A, double *lam, double *V);
  * projection that keeps Newton's matrix SPD on non-convex energies. floor >= 0. Returns the number
  * of eigenvalues that were raised. */
 WRDEF int wr_dense_project_spd(int n, double *A, double floor);
+
+/* ---- small 2D geometry on point arrays: xy = x0 y0 x1 y1 ... [m] -------------------------- */
+/* Signed area [m²] of the closed polygon xy[0..n) (the last point joins the first): > 0 when
+ * counter-clockwise. The shoelace sum runs about xy[0], not the origin, so a small polygon far from
+ * the origin keeps its digits. For n = 3 it is the triangle area ½ (p1 − p0) × (p2 − p0).
+ * n < 3 gives 0. Plain floating point (no exact arithmetic): use triangulate.h for predicates. */
+WRDEF double wr_polygon_area(const double *xy, int32_t n);
+/* Crossing-number test: 1 when (x, y) is inside the closed polygon xy[0..n), else 0. Edges count
+ * with the half-open rule (y_i > y) != (y_j > y), so for a point ON the boundary the answer may go
+ * either way; callers that care test the boundary distance with their own tolerance first. Holes are
+ * separate polygons (inside the outer and not inside any hole). n < 3 gives 0. */
+WRDEF int wr_point_in_polygon(const double *xy, int32_t n, double x, double y);
+/* Distance [m] from p to the closed segment [a, b]; *t (optional) = the parameter in [0, 1] of the
+ * closest point a + t (b − a). A zero-length segment is the point a (t = 0). Where the closest point
+ * is interior the distance is |(b − a) × (p − a)| / |b − a|, which is exactly 0 for p on the line
+ * (the projected-point form leaves ~1e-17 m there). */
+WRDEF double wr_segment_distance(const double p[2], const double a[2], const double b[2], double *t);
 
 #ifdef __cplusplus
 }
@@ -396,6 +424,47 @@ WRDEF void wr_afile_abort(wr_afile *f) {
         f->fp = NULL;
         remove(f->tmp);
     }
+}
+
+/* First read chunk [bytes]; the buffer then doubles, so a file of n bytes costs O(n) copies. */
+#define WR__FILE_READ_CHUNK 65536
+
+WRDEF wr_status wr_file_read(const char *path, char **text, size_t *len, wr_diag *diag) {
+    FILE *fp;
+    char *buf = NULL;
+    size_t n = 0, cap = 0;
+    if (text) *text = NULL;
+    if (len) *len = 0;
+    if (!path || !text) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "wr_file_read: NULL path or output");
+    fp = fopen(path, "rb");
+    if (!fp) return wr_fail(diag, WR_ERR_IO, -1, "cannot open '%s' for reading", path);
+    for (;;) {
+        size_t got;
+        if (cap - n < 2) { /* room for at least one byte plus the terminator */
+            size_t ncap = cap ? 2 * cap : WR__FILE_READ_CHUNK;
+            char *nb = ncap > cap ? (char *)wr_realloc_array(buf, ncap, 1) : NULL;
+            if (!nb) {
+                wr_free(buf);
+                fclose(fp);
+                return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory reading '%s' (%zu bytes so far)", path, n);
+            }
+            buf = nb;
+            cap = ncap;
+        }
+        got = fread(buf + n, 1, cap - n - 1, fp);
+        n += got;
+        if (got == 0) break;
+    }
+    if (ferror(fp)) {
+        wr_free(buf);
+        fclose(fp);
+        return wr_fail(diag, WR_ERR_IO, -1, "read error on '%s'", path);
+    }
+    fclose(fp);
+    buf[n] = 0;
+    *text = buf;
+    if (len) *len = n;
+    return WR_OK;
 }
 
 WRDEF double wr_time_seconds(void) {
@@ -645,6 +714,43 @@ WRDEF int wr_dense_project_spd(int n, double *A, double floor) {
             A[i * n + j] = s;
         }
     return raised;
+}
+
+WRDEF double wr_polygon_area(const double *xy, int32_t n) {
+    double a2 = 0.0;
+    int32_t i;
+    /* Fan of triangles (p0, p_i, p_{i+1}): the same sum as the shoelace, relative to p0. */
+    for (i = 1; i + 1 < n; ++i) {
+        double ux = xy[2 * i] - xy[0], uy = xy[2 * i + 1] - xy[1];
+        double vx = xy[2 * i + 2] - xy[0], vy = xy[2 * i + 3] - xy[1];
+        a2 += ux * vy - uy * vx;
+    }
+    return 0.5 * a2;
+}
+
+WRDEF int wr_point_in_polygon(const double *xy, int32_t n, double x, double y) {
+    int32_t i, j;
+    int in = 0;
+    if (n < 3) return 0;
+    for (i = 0, j = n - 1; i < n; j = i++) {
+        double xi = xy[2 * i], yi = xy[2 * i + 1], xj = xy[2 * j], yj = xy[2 * j + 1];
+        /* the half-open rule never divides by yi - yj == 0 */
+        if ((yi > y) != (yj > y) && x < xj + (y - yj) * (xi - xj) / (yi - yj)) in = !in;
+    }
+    return in;
+}
+
+WRDEF double wr_segment_distance(const double p[2], const double a[2], const double b[2], double *t) {
+    double ex = b[0] - a[0], ey = b[1] - a[1], ee = ex * ex + ey * ey, u = 0.0, dx, dy;
+    if (ee > 0.0) {
+        u = ((p[0] - a[0]) * ex + (p[1] - a[1]) * ey) / ee;
+        u = u < 0.0 ? 0.0 : (u > 1.0 ? 1.0 : u);
+    }
+    if (t) *t = u;
+    if (u > 0.0 && u < 1.0) return fabs(ex * (p[1] - a[1]) - ey * (p[0] - a[0])) / sqrt(ee);
+    dx = a[0] + u * ex - p[0];
+    dy = a[1] + u * ey - p[1];
+    return sqrt(dx * dx + dy * dy);
 }
 
 #ifdef __cplusplus

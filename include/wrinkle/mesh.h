@@ -239,24 +239,6 @@ WRDEF wr_status wr_mesh_write_vtk(const wr_mesh *m, const char *path, int32_t n_
 extern "C" {
 #endif
 
-WRDEF void wr_mesh_free(wr_mesh *m) {
-    if (!m) return;
-    wr_free(m->pos);
-    wr_free(m->rest);
-    wr_free(m->corner_rest);
-    wr_free(m->faces);
-    wr_free(m->face_panel);
-    wr_free(m->edges);
-    wr_free(m->face_edges);
-    wr_free(m->face_edge_sign);
-    wr_free(m->edge_faces);
-    wr_free(m->vf_start);
-    wr_free(m->vf);
-    wr_free(m->loop_start);
-    wr_free(m->loop_verts);
-    memset(m, 0, sizeof *m);
-}
-
 /* Frees the derived topology only (pos/rest/faces stay). */
 static void wr__mesh_free_topology(wr_mesh *m) {
     wr_free(m->edges);
@@ -271,6 +253,17 @@ static void wr__mesh_free_topology(wr_mesh *m) {
     m->face_edge_sign = NULL;
     m->ne = 0;
     m->n_loops = 0;
+}
+
+WRDEF void wr_mesh_free(wr_mesh *m) {
+    if (!m) return;
+    wr__mesh_free_topology(m);
+    wr_free(m->pos);
+    wr_free(m->rest);
+    wr_free(m->corner_rest);
+    wr_free(m->faces);
+    wr_free(m->face_panel);
+    memset(m, 0, sizeof *m);
 }
 
 /* Builds edges, face_edges, face_edge_sign, edge_faces, vf CSR and boundary loops from nv, nf,
@@ -848,10 +841,6 @@ WRDEF void wr_mesh_edge_lengths(const wr_mesh *m, int use_rest, double *out) {
     }
 }
 
-static double wr__mesh_signed_area2(const double uv[6]) {
-    return 0.5 * ((uv[2] - uv[0]) * (uv[5] - uv[1]) - (uv[4] - uv[0]) * (uv[3] - uv[1]));
-}
-
 static wr_vec3 wr__mesh_face_cross(const wr_mesh *m, int32_t f) {
     const int32_t *t = m->faces + 3 * f;
     wr_vec3 p0 = wr_v3_load(m->pos + 3 * t[0]);
@@ -864,7 +853,7 @@ WRDEF void wr_mesh_face_areas(const wr_mesh *m, int use_rest, double *out) {
         if (use_rest) {
             double uv[6];
             wr_mesh_face_rest(m, f, uv);
-            out[f] = wr__mesh_signed_area2(uv);
+            out[f] = wr_polygon_area(uv, 3);
         } else {
             out[f] = 0.5 * wr_v3_norm(wr__mesh_face_cross(m, f));
         }
@@ -911,7 +900,7 @@ WRDEF void wr_mesh_quality(const wr_mesh *m, int use_rest, wr_mesh_quality_stats
             l[k] = use_rest ? lr[k]
                             : wr__mesh_dist3(m->pos + 3 * m->faces[3 * f + a], m->pos + 3 * m->faces[3 * f + b]);
         }
-        area = wr__mesh_signed_area2(uv);
+        area = wr_polygon_area(uv, 3);
         lmax = fmax(lr[0], fmax(lr[1], lr[2]));
         if (fabs(area) <= WR_MESH_ZERO_AREA_REL * lmax * lmax) ++q->n_zero_area;
         else if (area < 0.0) ++q->n_inverted;
@@ -1351,38 +1340,13 @@ done:
 }
 
 WRDEF wr_status wr_mesh_read_obj(wr_mesh *m, const char *path, wr_diag *diag) {
-    FILE *fp;
     char *data = NULL;
-    size_t n = 0, cap = 0;
+    size_t n = 0;
     wr_status st;
     if (!m) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "wr_mesh_read_obj: NULL mesh");
     memset(m, 0, sizeof *m);
     if (!path) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "wr_mesh_read_obj: NULL path");
-    fp = fopen(path, "rb");
-    if (!fp) return wr_fail(diag, WR_ERR_IO, -1, "cannot open '%s' for reading", path);
-    for (;;) {
-        size_t got;
-        if (n == cap) {
-            size_t ncap = cap ? 2 * cap : 65536;
-            char *nd = ncap > cap ? (char *)wr_realloc_array(data, ncap, 1) : NULL;
-            if (!nd) {
-                wr_free(data);
-                fclose(fp);
-                return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory reading '%s'", path);
-            }
-            data = nd;
-            cap = ncap;
-        }
-        got = fread(data + n, 1, cap - n, fp);
-        n += got;
-        if (got == 0) break;
-    }
-    if (ferror(fp)) {
-        wr_free(data);
-        fclose(fp);
-        return wr_fail(diag, WR_ERR_IO, -1, "read error on '%s'", path);
-    }
-    fclose(fp);
+    if ((st = wr_file_read(path, &data, &n, diag)) != WR_OK) return st;
     st = wr_mesh_parse_obj(m, data, n, diag);
     wr_free(data);
     return st;

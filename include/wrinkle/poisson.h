@@ -369,16 +369,7 @@ done:
 
 /* Brute-force crossing-number test of point p against curve c (used for containment validation). */
 static int wr__pz_in_curve(const wr__pz_curves *cv, int32_t c, const double *p) {
-    int32_t i, n = cv->cnt[c], in = 0;
-    const double *v = cv->xy + 2 * cv->off[c];
-    for (i = 0; i < n; ++i) {
-        const double *a = v + 2 * i, *b = v + 2 * ((i + 1) % n);
-        if ((a[1] > p[1]) != (b[1] > p[1])) {
-            double xi = a[0] + (p[1] - a[1]) * (b[0] - a[0]) / (b[1] - a[1]);
-            if (xi > p[0]) in ^= 1;
-        }
-    }
-    return in;
+    return wr_point_in_polygon(cv->xy + 2 * cv->off[c], cv->cnt[c], p[0], p[1]);
 }
 
 /* ---------------------------------------------------------------------------------------------- */
@@ -1039,16 +1030,11 @@ WRDEF wr_status wr_poisson_sample(const wr_poisson_domain *dom, wr_poisson_sizin
     for (c = 0; c <= in.n_holes; ++c) {
         const double *v = in.xy + 2 * in.off[c];
         int32_t n = in.cnt[c];
-        double area2 = 0.0;
+        /* about the first vertex (core.h): an origin-based shoelace cancels a small far loop away */
+        double area = wr_polygon_area(v, n);
         wr__pz_curve_name(&in, c, name, sizeof name);
-        /* Shoelace about the first vertex, not the origin: far from the origin the origin-based
-         * terms are ~|x|² and cancel away a small loop's whole area. */
-        for (i = 1; i + 1 < n; ++i) {
-            const double *a = v + 2 * i, *b = v + 2 * (i + 1);
-            area2 += (a[0] - v[0]) * (b[1] - v[1]) - (a[1] - v[1]) * (b[0] - v[0]);
-        }
-        if (!(fabs(0.5 * area2) > WR_POISSON_REL_TOL * maxdim * maxdim)) {
-            st = wr_fail(diag, WR_ERR_GEOMETRY, c, "%s has zero area (%g m^2)", name, 0.5 * area2);
+        if (!(fabs(area) > WR_POISSON_REL_TOL * maxdim * maxdim)) {
+            st = wr_fail(diag, WR_ERR_GEOMETRY, c, "%s has zero area (%g m^2)", name, area);
             goto done;
         }
     }

@@ -287,10 +287,6 @@ WRDEF void wr_probe_free(wr_probe *p) {
     memset(p, 0, sizeof *p);
 }
 
-static double wr__tri_area2(const double *uv) {
-    return (uv[2] - uv[0]) * (uv[5] - uv[1]) - (uv[4] - uv[0]) * (uv[3] - uv[1]);
-}
-
 static void wr__probe_cell_range(const wr_probe *p, const double *uv, int32_t *ix0, int32_t *ix1, int32_t *iy0,
                                  int32_t *iy1) {
     double xmin = uv[0], xmax = uv[0], ymin = uv[1], ymax = uv[1], pad;
@@ -348,7 +344,7 @@ WRDEF wr_status wr_probe_create(wr_probe *p, const wr_mesh *m, const wr_probe_de
                 wr_probe_free(p);
                 return wr_fail(diag, WR_ERR_GEOMETRY, f, "probe: face %d has a non-finite rest coordinate", (int)f);
             }
-        if (wr__tri_area2(uv) == 0.0) {
+        if (wr_polygon_area(uv, 3) == 0.0) {
             ++p->n_degenerate;
             continue;
         }
@@ -398,7 +394,7 @@ WRDEF wr_status wr_probe_create(wr_probe *p, const wr_mesh *m, const wr_probe_de
     for (f = 0; f < m->nf; ++f) {
         const double *uv = p->face_uv + 6 * (size_t)f;
         int32_t ix0, ix1, iy0, iy1, ix, iy;
-        if (wr__tri_area2(uv) == 0.0) continue;
+        if (wr_polygon_area(uv, 3) == 0.0) continue;
         wr__probe_cell_range(p, uv, &ix0, &ix1, &iy0, &iy1);
         for (iy = iy0; iy <= iy1; ++iy)
             for (ix = ix0; ix <= ix1; ++ix) {
@@ -426,7 +422,7 @@ WRDEF wr_status wr_probe_create(wr_probe *p, const wr_mesh *m, const wr_probe_de
         for (f = 0; f < m->nf; ++f) {
             const double *uv = p->face_uv + 6 * (size_t)f;
             int32_t ix0, ix1, iy0, iy1, ix, iy;
-            if (wr__tri_area2(uv) == 0.0) continue;
+            if (wr_polygon_area(uv, 3) == 0.0) continue;
             wr__probe_cell_range(p, uv, &ix0, &ix1, &iy0, &iy1);
             for (iy = iy0; iy <= iy1; ++iy)
                 for (ix = ix0; ix <= ix1; ++ix) p->cell_faces[fill[iy * p->gx + ix]++] = f;
@@ -455,7 +451,7 @@ WRDEF int32_t wr_probe_locate(const wr_probe *p, double x, double y, double bary
     for (j = p->cell_start[c]; j < p->cell_start[c + 1]; ++j) {
         int32_t f = p->cell_faces[j];
         const double *uv = p->face_uv + 6 * (size_t)f;
-        double a2 = wr__tri_area2(uv), l[3], mn;
+        double a2 = 2.0 * wr_polygon_area(uv, 3), l[3], mn;
         /* Barycentric coordinate of corner k = signed area of (point, next two corners) / area. */
         l[0] = ((uv[2] - x) * (uv[5] - y) - (uv[4] - x) * (uv[3] - y)) / a2;
         l[1] = ((uv[4] - x) * (uv[1] - y) - (uv[0] - x) * (uv[5] - y)) / a2;
