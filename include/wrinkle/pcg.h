@@ -657,17 +657,17 @@ static int wr__transpose(int32_t n, int32_t k, const int32_t *rp, const int32_t 
 /* Aggregate the nodes of level L; fills agg[node] (-1: left out of the coarse space). Returns the
  * number of aggregates, or -1 on allocation failure. */
 static int32_t wr__amg_aggregate(const wr__amg_level *L, int32_t bs, double theta, int32_t *agg) {
-    int32_t nn = L->n / bs, I, J, a, na = 0, p, q;
+    int32_t nn = L->n / bs, I, J, a = -1, na = 0, p, q;
     double *acc = (double *)wr_calloc_array((size_t)nn, sizeof(double));
     double *dn = (double *)wr_alloc_array((size_t)nn, sizeof(double));
     int32_t *list = (int32_t *)wr_alloc_array((size_t)nn, sizeof(int32_t));
     int32_t *srp = (int32_t *)wr_alloc_array((size_t)nn + 1, sizeof(int32_t));
     int32_t *sci = NULL, *snap = NULL;
     int64_t cap = (int64_t)L->rp[L->n] + 1, ns = 0; /* distinct neighbours <= stored entries */
-    if (!acc || !dn || !list || !srp) goto fail;
+    if (!acc || !dn || !list || !srp) goto done;
     sci = (int32_t *)wr_alloc_array((size_t)cap, sizeof(int32_t));
     snap = (int32_t *)wr_alloc_array((size_t)nn, sizeof(int32_t));
-    if (!sci || !snap) goto fail;
+    if (!sci || !snap) goto done;
     /* Frobenius norms of the node blocks: diagonal first, then strong neighbours
      * ||A_IJ|| >= theta sqrt(||A_II|| ||A_JJ||). */
     for (I = 0; I < nn; ++I) {
@@ -726,6 +726,7 @@ static int32_t wr__amg_aggregate(const wr__amg_level *L, int32_t bs, double thet
     for (I = 0; I < nn; ++I)
         if (agg[I] < -1) agg[I] = -1;
     a = na;
+done: /* one exit: a stays -1 when an allocation failed */
     wr_free(acc);
     wr_free(dn);
     wr_free(list);
@@ -733,14 +734,6 @@ static int32_t wr__amg_aggregate(const wr__amg_level *L, int32_t bs, double thet
     wr_free(sci);
     wr_free(snap);
     return a;
-fail:
-    wr_free(acc);
-    wr_free(dn);
-    wr_free(list);
-    wr_free(srp);
-    wr_free(sci);
-    wr_free(snap);
-    return -1;
 }
 
 /* rho(D^-1 A) by power iteration from a fixed deterministic start (no RNG state needed). */
