@@ -23,25 +23,6 @@ static void usage(FILE *to) {
             "  Exit: 0 all pass, 1 some quantity failed, 2 error.\n");
 }
 
-static char *slurp(const char *path) {
-    FILE *f = fopen(path, "rb");
-    long n;
-    char *buf;
-    if (!f) return NULL;
-    if (fseek(f, 0, SEEK_END) != 0 || (n = ftell(f)) < 0 || fseek(f, 0, SEEK_SET) != 0) {
-        fclose(f);
-        return NULL;
-    }
-    buf = (char *)malloc((size_t)n + 1);
-    if (buf && fread(buf, 1, (size_t)n, f) != (size_t)n) {
-        free(buf);
-        buf = NULL;
-    }
-    if (buf) buf[n] = 0;
-    fclose(f);
-    return buf;
-}
-
 static int cmp_str(const void *a, const void *b) { return strcmp(*(char *const *)a, *(char *const *)b); }
 
 static void fmt_num(const cJSON *x, char *out, size_t n) {
@@ -106,9 +87,13 @@ int main(int argc, char **argv) {
     if (ncase) qsort(names, ncase, sizeof *names, cmp_str);
     cases = (cJSON **)calloc(ncase ? ncase : 1, sizeof *cases);
     for (i = 0; i < ncase; ++i) {
-        char *text = slurp(names[i]);
-        cases[i] = text ? cJSON_Parse(text) : NULL;
-        free(text);
+        char *text = NULL;
+        if (wr_file_read(names[i], &text, NULL, &d) != WR_OK) {
+            fprintf(stderr, "wrinkle-report: %s\n", d.message);
+            return 2;
+        }
+        cases[i] = cJSON_Parse(text);
+        wr_free(text);
         if (!cases[i]) {
             fprintf(stderr, "wrinkle-report: '%s' is not valid JSON\n", names[i]);
             return 2;
@@ -162,11 +147,11 @@ int main(int argc, char **argv) {
         }
     }
     {
-        char *b = slurp(bench);
-        if (b) {
+        char *b = NULL; /* optional: a missing benchmark file only leaves the section out */
+        if (wr_file_read(bench, &b, NULL, NULL) == WR_OK) {
             fprintf(f.fp, "\n## Benchmarks\n\nFrom `%s` (written by `make bench`; ratios against peers measured "
                           "in the same run).\n\n%s\n", bench, b);
-            free(b);
+            wr_free(b);
         }
     }
     if (wr_afile_commit(&f, &d) != WR_OK) {
