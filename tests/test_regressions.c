@@ -47,3 +47,47 @@ Test(regressions, pattern_newline_in_key) {
     wr_pattern_file_free(&pf);
     free(text);
 }
+
+/* fuzz_poly: a 129-byte .poly whose header declares 200000000 vertices made wr_cdt_poly_parse
+ * allocate 3.2 GB before reading a vertex (libFuzzer out-of-memory). The section counts are now
+ * checked against the lines left first. Byte 0 of the file is the harness's mode (1 = .poly only). */
+Test(regressions, poly_huge_vertex_count) {
+    size_t len;
+    char *raw = read_regression("poly_huge_vertex_count.fuzz_poly", &len);
+    wr_cdt_poly p;
+    wr_diag d;
+    wr_status s;
+    cr_assert(len > 1 && raw[0] == 1);
+    memset(&d, 0, sizeof d);
+    s = wr_cdt_poly_parse(raw + 1, NULL, "fuzz.poly", &p, &d);
+    cr_assert_eq(s, WR_ERR_PARSE, "status %s: %s", wr_status_string(s), d.message);
+    cr_assert(strstr(d.message, "declares 200000000 vertices but fewer lines follow") != NULL, "[%s]", d.message);
+    cr_assert_eq(p.points, NULL); /* nothing allocated, output zeroed */
+    wr_cdt_poly_free(&p);
+    free(raw);
+}
+
+/* The same early check for the segment and hole sections, and its boundary: a count equal to the
+ * lines left still parses (the last line may lack its newline). */
+Test(regressions, poly_section_counts_vs_lines_left) {
+    static const char *const bad_seg = "3 2 0 0\n1 0 0\n2 1 0\n3 0 1\n100000000 0\n1 1 2\n";
+    static const char *const bad_holes = "3 2 0 0\n1 0 0\n2 1 0\n3 0 1\n1 0\n1 1 2\n99999999\n1 0.2 0.2\n";
+    static const char *const exact = "3 2 0 0\n1 0 0\n2 1 0\n3 0 1\n3 0\n1 1 2\n2 2 3\n3 3 1\n1\n1 0.2 0.2";
+    static const char *const crlf = "3 2 0 0\r\n1 0 0\r\n2 1 0\r\n3 0 1\r\n0 0\r\n";
+    wr_cdt_poly p;
+    wr_diag d;
+    cr_assert_eq(wr_cdt_poly_parse(bad_seg, NULL, "s.poly", &p, &d), WR_ERR_PARSE);
+    cr_assert(strstr(d.message, "declares 100000000 segments") != NULL, "[%s]", d.message);
+    wr_cdt_poly_free(&p);
+    cr_assert_eq(wr_cdt_poly_parse(bad_holes, NULL, "h.poly", &p, &d), WR_ERR_PARSE);
+    cr_assert(strstr(d.message, "declares 99999999 holes") != NULL, "[%s]", d.message);
+    wr_cdt_poly_free(&p);
+    cr_assert_eq(wr_cdt_poly_parse(exact, NULL, "e.poly", &p, &d), WR_OK, "%s", d.message);
+    cr_assert_eq(p.n_points, 3);
+    cr_assert_eq(p.n_segments, 3);
+    cr_assert_eq(p.n_holes, 1);
+    wr_cdt_poly_free(&p);
+    cr_assert_eq(wr_cdt_poly_parse(crlf, NULL, "c.poly", &p, &d), WR_OK, "%s", d.message);
+    cr_assert_eq(p.n_points, 3);
+    wr_cdt_poly_free(&p);
+}

@@ -2238,6 +2238,21 @@ static int wr__pl_int(const wr__pl *L, int i, int32_t *v) {
     return 1;
 }
 
+/* Each vertex, segment or hole takes a line of its own, so a section declaring more entries than
+ * there are lines left cannot be complete: checked before allocating, so a header that declares
+ * 2e8 vertices in a 100-byte file fails at once instead of reserving gigabytes (fuzzer finding
+ * tests/regressions/poly_huge_vertex_count.fuzz_poly). Counts '\n' and '\r' (an upper bound on the
+ * lines left), stopping as soon as `need` is reached. */
+static int wr__pl_lines_left(const wr__pl *L, int32_t need) {
+    const char *s = L->p;
+    int32_t n;
+    if (need <= 0) return 1;
+    n = *s ? 1 : 0;
+    for (; *s && n < need; ++s)
+        if (*s == '\n' || *s == '\r') ++n;
+    return n >= need;
+}
+
 /* node section (header already on the current line) */
 static wr_status wr__pl_nodes(wr__pl *L, wr_cdt_poly *out, wr_diag *diag) {
     int32_t n, dim, nattr = 0, nmark = 0, i;
@@ -2251,6 +2266,9 @@ static wr_status wr__pl_nodes(wr__pl *L, wr_cdt_poly *out, wr_diag *diag) {
     if (L->ntok > 3 && (!wr__pl_int(L, 3, &nmark) || nmark < 0 || nmark > 1))
         return wr_fail(diag, WR_ERR_PARSE, -1, "%s:%d: boundary-marker count must be 0 or 1", L->name, L->line);
     if (n > INT32_MAX / 8) return wr_fail(diag, WR_ERR_PARSE, -1, "%s:%d: too many vertices", L->name, L->line);
+    if (!wr__pl_lines_left(L, n))
+        return wr_fail(diag, WR_ERR_PARSE, -1, "%s:%d: declares %d vertices but fewer lines follow", L->name, L->line,
+                       n);
     out->points = (double *)wr_alloc_array((size_t)n * 2, sizeof(double));
     out->point_markers = (int32_t *)wr_calloc_array((size_t)n, sizeof(int32_t));
     if (!out->points || !out->point_markers) return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
@@ -2346,6 +2364,10 @@ WRDEF wr_status wr_cdt_poly_parse(const char *poly_text, const char *node_text, 
         st = wr_fail(diag, WR_ERR_PARSE, -1, "%s:%d: expected '<#segments> <#markers 0|1>'", name, L.line);
         goto fail;
     }
+    if (!wr__pl_lines_left(&L, m)) {
+        st = wr_fail(diag, WR_ERR_PARSE, -1, "%s:%d: declares %d segments but fewer lines follow", name, L.line, m);
+        goto fail;
+    }
     out->segments = (int32_t *)wr_alloc_array((size_t)m * 2, sizeof(int32_t));
     out->segment_markers = (int32_t *)wr_calloc_array((size_t)m, sizeof(int32_t));
     if (!out->segments || !out->segment_markers) {
@@ -2380,6 +2402,10 @@ WRDEF wr_status wr_cdt_poly_parse(const char *poly_text, const char *node_text, 
     if (!wr__pl_next(&L)) return WR_OK; /* Triangle tolerates a missing hole section */
     if (!wr__pl_int(&L, 0, &nh) || nh < 0 || nh > INT32_MAX / 8) {
         st = wr_fail(diag, WR_ERR_PARSE, -1, "%s:%d: bad hole count", name, L.line);
+        goto fail;
+    }
+    if (!wr__pl_lines_left(&L, nh)) {
+        st = wr_fail(diag, WR_ERR_PARSE, -1, "%s:%d: declares %d holes but fewer lines follow", name, L.line, nh);
         goto fail;
     }
     out->holes = (double *)wr_alloc_array((size_t)nh * 2, sizeof(double));
