@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "pattern.h"
+#include "scene.h"
 #include "wrinkle/wrinkle.h"
 
 /* Reads tests/regressions/<name> (tests run from the repository root). */
@@ -90,4 +91,21 @@ Test(regressions, poly_section_counts_vs_lines_left) {
     cr_assert_eq(wr_cdt_poly_parse(crlf, NULL, "c.poly", &p, &d), WR_OK, "%s", d.message);
     cr_assert_eq(p.n_points, 3);
     wr_cdt_poly_free(&p);
+}
+
+/* fuzz_scene: a key holding a newline ("m\n  esh") was echoed into a two-line message. Control
+ * characters are now shown as \xHH; the message still names the JSON path. */
+Test(regressions, scene_newline_in_key) {
+    size_t len;
+    char *text = read_regression("scene_newline_in_key.fuzz_scene", &len);
+    wr_scene sc;
+    wr_diag d;
+    wr_status s;
+    memset(&d, 0, sizeof d);
+    s = wr_scene_parse(&sc, text, len, ".", &d);
+    cr_assert_eq(s, WR_ERR_PARSE, "status %s: %s", wr_status_string(s), d.message);
+    cr_assert(strchr(d.message, '\n') == NULL, "multi-line message: [%s]", d.message);
+    cr_assert_str_eq(d.message, "$.m\\x0a  esh: unknown key");
+    wr_scene_free(&sc);
+    free(text);
 }

@@ -36,12 +36,23 @@ static wr_status sc_err(sc_ctx *c, const char *path, const char *fmt, ...)
 #endif
     ;
 static wr_status sc_err(sc_ctx *c, const char *path, const char *fmt, ...) {
-    char msg[400];
+    char msg[400], full[WR_DIAG_MESSAGE_LEN], line[WR_DIAG_MESSAGE_LEN];
+    size_t i, o = 0;
     va_list ap;
     va_start(ap, fmt);
     vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
-    return wr_fail(c->diag, WR_ERR_PARSE, -1, "%s: %s", path, msg);
+    snprintf(full, sizeof full, "%s: %s", path, msg);
+    /* Paths and messages quote the file's own keys and strings, which may hold control characters:
+     * show them as \xHH so the message stays one line (wr_diag contract; fuzzer finding
+     * tests/regressions/scene_newline_in_key.fuzz_scene). */
+    for (i = 0; full[i] && o + 5 < sizeof line; ++i) {
+        unsigned char ch = (unsigned char)full[i];
+        if (ch < 0x20 || ch == 0x7f) o += (size_t)snprintf(line + o, sizeof line - o, "\\x%02x", ch);
+        else line[o++] = (char)ch;
+    }
+    line[o] = 0;
+    return wr_fail(c->diag, WR_ERR_PARSE, -1, "%s", line);
 }
 
 static void sc_path(char *out, size_t n, const char *base, const char *key) { snprintf(out, n, "%s.%s", base, key); }
