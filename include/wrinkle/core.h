@@ -271,6 +271,17 @@ WRDEF double wr_segment_distance(const double p[2], const double a[2], const dou
 extern "C" {
 #endif
 
+/* Singularity test of wr_m2_inverse / wr_m3_inverse: |det| <= ABS + REL·(entry scale)^n counts as
+ * singular. REL = 1e-14 ≈ 45 ulps: a determinant that small relative to its terms is rounding noise
+ * (condition number beyond ~1e14); ABS keeps an all-zero matrix singular. */
+#define WR__SINGULAR_REL 1e-14
+#define WR__SINGULAR_ABS 1e-300
+/* Cyclic Jacobi stops when Σ offdiag² <= OFF_REL2 · Σ diag², i.e. off-diagonal mass below 1e-15
+ * relative (a few ulps of ||A||), or after MAX_SWEEPS sweeps (quadratic convergence needs < 10 for
+ * n <= 32; the cap only bounds work on NaN input). */
+#define WR__JACOBI_OFF_REL2 1e-30
+#define WR__JACOBI_MAX_SWEEPS 60
+
 WRDEF const char *wr_status_string(wr_status s) {
     switch (s) {
 #define WR__STATUS_NAME(name, text) \
@@ -544,7 +555,7 @@ WRDEF wr_vec2 wr_m2_mulv(wr_mat2 a, wr_vec2 v) {
 WRDEF int wr_m2_inverse(wr_mat2 a, wr_mat2 *out) {
     double d = wr_m2_det(a);
     double s = fabs(a.m[0][0]) + fabs(a.m[0][1]) + fabs(a.m[1][0]) + fabs(a.m[1][1]);
-    if (!(fabs(d) > 1e-300 + 1e-14 * s * s)) return 0;
+    if (!(fabs(d) > WR__SINGULAR_ABS + WR__SINGULAR_REL * s * s)) return 0;
     *out = wr_m2(a.m[1][1] / d, -a.m[0][1] / d, -a.m[1][0] / d, a.m[0][0] / d);
     return 1;
 }
@@ -619,7 +630,7 @@ WRDEF int wr_m3_inverse(wr_mat3 a, wr_mat3 *out) {
     int i, j;
     for (i = 0; i < 3; ++i)
         for (j = 0; j < 3; ++j) s = fmax(s, fabs(a.m[i][j]));
-    if (!(fabs(d) > 1e-300 + 1e-14 * s * s * s)) return 0;
+    if (!(fabs(d) > WR__SINGULAR_ABS + WR__SINGULAR_REL * s * s * s)) return 0;
     r.m[0][0] = (a.m[1][1] * a.m[2][2] - a.m[1][2] * a.m[2][1]) / d;
     r.m[0][1] = (a.m[0][2] * a.m[2][1] - a.m[0][1] * a.m[2][2]) / d;
     r.m[0][2] = (a.m[0][1] * a.m[1][2] - a.m[0][2] * a.m[1][1]) / d;
@@ -642,13 +653,13 @@ WRDEF void wr_dense_sym_eig(int n, const double *A, double *lam, double *V) {
             a[i * n + j] = 0.5 * (A[i * n + j] + A[j * n + i]);
             v[i * n + j] = i == j ? 1.0 : 0.0;
         }
-    for (sweep = 0; sweep < 60; ++sweep) {
+    for (sweep = 0; sweep < WR__JACOBI_MAX_SWEEPS; ++sweep) {
         double off = 0.0, diag = 0.0;
         for (i = 0; i < n; ++i) {
             diag += a[i * n + i] * a[i * n + i];
             for (j = i + 1; j < n; ++j) off += a[i * n + j] * a[i * n + j];
         }
-        if (off <= 1e-30 * diag || off == 0.0) break;
+        if (off <= WR__JACOBI_OFF_REL2 * diag || off == 0.0) break;
         for (i = 0; i < n; ++i)
             for (j = i + 1; j < n; ++j) {
                 double apq = a[i * n + j], app, aqq, theta, t, c, s;

@@ -1062,18 +1062,22 @@ WRDEF wr_status wr_spd_solver_create(wr_spd_solver *S, const wr_csr *A, const wr
     return WR_OK;
 }
 
+/* A 3×3 block's Cholesky pivot must exceed this fraction of its trace (|trace| sum) [1]: below it the
+ * block is singular to rounding (≈ 45 ulps), and block-Jacobi would amplify noise. */
+#define WR__BLOCK3_PIVOT_REL 1e-14
+
 /* Cholesky of a 3×3 SPD block, then its inverse (row-major). 0 when not positive definite. */
 static int wr__block3_inverse(const double *M, double *inv) {
     double l00, l10, l20, l11, l21, l22, i00, i10, i20, i11, i21, i22;
     double s = fabs(M[0]) + fabs(M[4]) + fabs(M[8]);
-    if (!(M[0] > 1e-14 * s)) return 0;
+    if (!(M[0] > WR__BLOCK3_PIVOT_REL * s)) return 0;
     l00 = sqrt(M[0]);
     l10 = M[3] / l00;
     l20 = M[6] / l00;
-    if (!(M[4] - l10 * l10 > 1e-14 * s)) return 0;
+    if (!(M[4] - l10 * l10 > WR__BLOCK3_PIVOT_REL * s)) return 0;
     l11 = sqrt(M[4] - l10 * l10);
     l21 = (M[7] - l20 * l10) / l11;
-    if (!(M[8] - l20 * l20 - l21 * l21 > 1e-14 * s)) return 0;
+    if (!(M[8] - l20 * l20 - l21 * l21 > WR__BLOCK3_PIVOT_REL * s)) return 0;
     l22 = sqrt(M[8] - l20 * l20 - l21 * l21);
     /* inverse of L (lower), then inv = L^-T L^-1 */
     i00 = 1.0 / l00;

@@ -174,6 +174,8 @@ extern "C" {
 /* Default Newton tolerance on u = r² (relative): converge to near machine precision. */
 #define WR__RES_DEFAULT_REL_TOL 1e-14
 #define WR__RES_DEFAULT_MAX_ITER 200
+/* Relative step [1] by which an analytic bracket end that misses the root by round-off is widened. */
+#define WR__RES_BRACKET_GROW 1e-12
 
 static int wr__res_pos(double v) { return isfinite(v) && v > 0.0; }
 
@@ -341,7 +343,7 @@ WRDEF wr_status wr_resolution_from_y(const wr_resolution_model *m, double y, con
             while (wr__res_f(c1, c2, lo) - y > 0.0 && lo > 0.0) lo *= 0.5; /* rounding guard */
         }
         /* The bracket bound can be tight to the last ulp; widen until it truly brackets. */
-        while (!(wr__res_f(c1, c2, hi) - y >= 0.0) && isfinite(hi)) hi = hi * (1.0 + 1e-12) + 1e-300;
+        while (!(wr__res_f(c1, c2, hi) - y >= 0.0) && isfinite(hi)) hi = hi * (1.0 + WR__RES_BRACKET_GROW) + 1e-300;
         u = 0.5 * (lo + hi);
         for (it = 0; it < d.max_iter; ++it) {
             double g = wr__res_f(c1, c2, u) - y;

@@ -268,6 +268,15 @@ extern "C" {
 
 /* Relative power below which a neighbouring bin counts as rounding noise in the peak fit. */
 #define WR__SP_NOISE_FLOOR 1e-24
+/* Default barycentric slack of the locator [1] (see wr_probe_desc): points within ~1e-9 of an edge
+ * in barycentric units are inside, so probes along a shared edge never fall between two faces. */
+#define WR__PROBE_DEFAULT_TOL 1e-9
+/* Pivot threshold of the small trend+tone least-squares solve, relative to its largest diagonal [1]. */
+#define WR__SP_SOLVE_PIVOT_REL 1e-12
+/* Slack in bins [1] that keeps a band edge falling exactly on a bin inclusive despite rounding. */
+#define WR__SP_BAND_EDGE_SLACK 1e-9
+/* "Flat after detrending": amplitude below this fraction of max |x| [1] is rounding noise. */
+#define WR__SP_FLAT_REL 1e-12
 
 /* ---- probe ---- */
 static void wr__probe_desc_defaults(const wr_probe_desc *in, wr_probe_desc *out) {
@@ -276,7 +285,7 @@ static void wr__probe_desc_defaults(const wr_probe_desc *in, wr_probe_desc *out)
     else
         memset(out, 0, sizeof *out);
     if (out->cells_per_face == 0.0) out->cells_per_face = 1.0;
-    if (out->tol == 0.0) out->tol = 1e-9;
+    if (out->tol == 0.0) out->tol = WR__PROBE_DEFAULT_TOL;
 }
 
 WRDEF void wr_probe_free(wr_probe *p) {
@@ -439,7 +448,7 @@ WRDEF int32_t wr_probe_locate(const wr_probe *p, double x, double y, double bary
     fx = (x - p->x0) / p->h;
     fy = (y - p->y0) / p->h;
     /* Points a hair outside the box may still be within tol of a boundary edge. */
-    slack = 1e-9;
+    slack = WR__PROBE_BOX_SLACK;
     if (fx < -slack || fy < -slack || fx > p->gx + slack || fy > p->gy + slack) return -1;
     ix = (int32_t)floor(fx);
     iy = (int32_t)floor(fy);
@@ -704,7 +713,7 @@ static wr_status wr__detrend(double *y, int32_t n, int deg) {
 }
 
 /* Solve the small dense system A z = b (m <= 5) by Gaussian elimination with partial pivoting.
- * Returns 0 when a pivot is below 1e-12 of the largest diagonal (numerically singular). */
+ * Returns 0 when a pivot is below WR__SP_SOLVE_PIVOT_REL of the largest diagonal (singular). */
 static int wr__small_solve(int m, double *A, double *b) {
     int i, j, k;
     double scale = 0.0;
@@ -713,7 +722,7 @@ static int wr__small_solve(int m, double *A, double *b) {
         int piv = k;
         for (i = k + 1; i < m; ++i)
             if (fabs(A[i * m + k]) > fabs(A[piv * m + k])) piv = i;
-        if (!(fabs(A[piv * m + k]) > 1e-12 * scale)) return 0;
+        if (!(fabs(A[piv * m + k]) > WR__SP_SOLVE_PIVOT_REL * scale)) return 0;
         if (piv != k) {
             double t;
             for (j = 0; j < m; ++j) {
@@ -954,9 +963,9 @@ WRDEF wr_status wr_spectrum_analyze(const double *x, int32_t n, double ds, int p
         double kmin_d, kmax_d;
         if (!(lmin < lmax))
             return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "spectrum: min_wavelength %g >= max_wavelength %g", lmin, lmax);
-        /* bin k <-> wavelength nfft·ds/k; the 1e-9 keeps a band edge that falls on a bin inclusive */
-        kmin_d = ceil((double)nfft * ds / lmax - 1e-9);
-        kmax_d = floor((double)nfft * ds / lmin + 1e-9);
+        /* bin k <-> wavelength nfft·ds/k; the slack keeps a band edge that falls on a bin inclusive */
+        kmin_d = ceil((double)nfft * ds / lmax - WR__SP_BAND_EDGE_SLACK);
+        kmax_d = floor((double)nfft * ds / lmin + WR__SP_BAND_EDGE_SLACK);
         r.k_min = kmin_d < 1.0 ? 1 : (int32_t)fmin(kmin_d, (double)nb);
         r.k_max = kmax_d > (double)(nb - 1) ? nb - 1 : (int32_t)kmax_d;
         if (r.k_min > r.k_max)
@@ -988,7 +997,7 @@ WRDEF wr_status wr_spectrum_analyze(const double *x, int32_t n, double ds, int p
         /* "No oscillation": what is left after detrending is rounding noise of the input's size. */
         double xs = 0.0;
         for (i = 0; i < n; ++i) xs = fmax(xs, fabs(x[i]));
-        if (!(r.amplitude_p2p > 1e-12 * xs) || r.amplitude_p2p == 0.0) {
+        if (!(r.amplitude_p2p > WR__SP_FLAT_REL * xs) || r.amplitude_p2p == 0.0) {
             st = wr_fail(diag, WR_ERR_DOMAIN, -1, "spectrum: signal is flat after detrending (amplitude %g)",
                          r.amplitude_p2p);
             goto done;

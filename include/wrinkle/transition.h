@@ -215,6 +215,9 @@ extern "C" {
 /* Relative safety margin of the grid's early-out bounds: a bound must exceed the running minimum by
  * this much before cells are skipped, so rounding in pow() can never drop a winning term. */
 #define WR__SZ_BOUND_MARGIN 1e-12
+/* A source's reach (distance where its term reaches r_f) is widened by this relative margin [1] so
+ * that the pow() round-off of the reach formula never drops a term the scan would keep. */
+#define WR__SZ_REACH_MARGIN 1e-9
 /* Up to this many source groups the ring lower bound is evaluated per group (exact); above it a
  * conservative O(1) bound from the extreme parameters is used. */
 #define WR__SZ_EXACT_LB_GROUPS 32
@@ -500,7 +503,7 @@ static wr_status wr__sz_add_group(wr_sizing *s, const wr_transition *t, int32_t 
         s->groups[s->n_groups].reach = -1.0; /* never active */
     else
         s->groups[s->n_groups].reach =
-            t->L_w * pow((s->r_f - t->r) / t->r, 1.0 / t->m) * (1.0 + 1e-9) + 1e-300;
+            t->L_w * pow((s->r_f - t->r) / t->r, 1.0 / t->m) * (1.0 + WR__SZ_REACH_MARGIN) + 1e-300;
     s->n_groups++;
     wr__sz_drop_index(s);
     return WR_OK;
