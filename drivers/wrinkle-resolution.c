@@ -12,6 +12,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "jsonout.h"
 #include "wrinkle/resolution.h"
 
 static void usage(FILE *to) {
@@ -66,15 +67,13 @@ typedef struct opts {
     int json;
 } opts;
 
+/* Prints o to stdout and frees it; exit status 1 when the output failed. */
 static int print_json(cJSON *o) {
-    char *s = cJSON_Print(o);
-    int ok = s != NULL;
-    if (s) {
-        ok = printf("%s\n", s) >= 0;
-        cJSON_free(s);
-    }
+    wr_diag d;
+    wr_status st = wr_json_write(o, "-", &d);
     cJSON_Delete(o);
-    return ok ? 0 : 1;
+    if (st != WR_OK) wr_cli_error("%s", d.message);
+    return st == WR_OK ? 0 : 1;
 }
 
 static int fail_status(const char *what, const wr_diag *d) {

@@ -9,6 +9,7 @@
 #include <sys/stat.h>
 #include <time.h>
 
+#include "jsonout.h"
 #include "wrinkle/core.h"
 
 struct wr_vres {
@@ -143,28 +144,17 @@ void wr_vres_table_md(wr_vres *v, const char *markdown) {
 
 int wr_vres_finish(wr_vres *v) {
     char path[WR_PATH_MAX];
-    char *text;
-    wr_afile f;
     wr_diag d;
     int failed;
     if (!v) return -1;
     cJSON_AddNumberToObject(v->root, "failed", v->failed);
     mkdir(wr_vres_dir(), 0777); /* may exist already */
     snprintf(path, sizeof path, "%s/%s.json", wr_vres_dir(), v->id);
-    text = cJSON_Print(v->root);
     failed = v->failed;
-    if (!text || wr_afile_open(&f, path, &d) != WR_OK) {
-        fprintf(stderr, "validation: cannot write %s: %s\n", path, text ? d.message : "out of memory");
+    if (wr_json_write(v->root, path, &d) != WR_OK) {
+        fprintf(stderr, "validation: cannot write %s: %s\n", path, d.message);
         failed = -1;
-    } else {
-        fputs(text, f.fp);
-        fputc('\n', f.fp);
-        if (wr_afile_commit(&f, &d) != WR_OK) {
-            fprintf(stderr, "validation: %s\n", d.message);
-            failed = -1;
-        }
     }
-    free(text);
     cJSON_Delete(v->root);
     free(v);
     return failed;
