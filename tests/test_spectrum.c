@@ -2,6 +2,7 @@
  * tones, amplitude estimates, dominant-tone selection, noise robustness, zero-crossing cross-check,
  * closed-curve counts, probe sampling on wr_mesh_rectangle, and every error path. */
 #include <criterion/criterion.h>
+#include <float.h>
 #include <math.h>
 #include <string.h>
 
@@ -563,4 +564,57 @@ Test(spectrum, probe_extent_overflow_is_geometry_error) {
     cr_expect(strstr(d.message, "extent") != NULL, "%s", d.message);
     wr_probe_free(&pr);
     wr_mesh_free(&m);
+}
+
+/* Regression: |X_k|² of a tone with amplitude 1e200 overflowed to inf (the peak search then returned
+ * the first band bin: lambda = 0.2 m with WR_OK) and with amplitude 1e-200 underflowed to 0 ("no power
+ * inside the band"). The analysis is scale-free: far outside double's comfortable range the signal is
+ * scaled by an exact power of two. Wavelengths must equal the unit-amplitude ones bit for bit,
+ * amplitudes scale exactly, and the power array scales by amp² (where representable). */
+Test(spectrum, extreme_amplitudes_give_the_unit_amplitude_answer) {
+    static const double amps[] = {0x1p-700, 1e-200, 1e200, 0x1p+700};
+    const int32_t n = 256;
+    const double ds = 1e-3, lam = 0.016;
+    double *x1 = tone(n, ds, lam, 1.0, 0.3, 0.0, 0.0), *x = (double *)wr_alloc_array((size_t)n, sizeof(double));
+    double p1[2 * 4 * 256 + 1], p[2 * 4 * 256 + 1];
+    wr_spectrum_result r1, r;
+    wr_diag d;
+    int32_t i, a, pb;
+    for (pb = 0; pb < 2; ++pb) {
+        cr_assert_eq(wr_spectrum_analyze(x1, n, ds, pb, NULL, &r1, p1, 2 * 4 * 256 + 1, &d), WR_OK, "%s", d.message);
+        for (a = 0; a < 4; ++a) {
+            for (i = 0; i < n; ++i) x[i] = x1[i] * amps[a];
+            cr_assert_eq(wr_spectrum_analyze(x, n, ds, pb, NULL, &r, p, 2 * 4 * 256 + 1, &d), WR_OK,
+                         "amp %g: %s", amps[a], d.message);
+            if (amps[a] == 0x1p-700 || amps[a] == 0x1p+700) { /* exact powers of two: bitwise */
+                cr_expect_eq(r.wavelength, r1.wavelength, "amp %g: %.17g vs %.17g", amps[a], r.wavelength,
+                             r1.wavelength);
+                cr_expect_eq(r.wavelength_ls, r1.wavelength_ls);
+                cr_expect_eq(r.amplitude_p2p, r1.amplitude_p2p * amps[a]);
+                cr_expect_eq(r.amplitude_fit, r1.amplitude_fit * amps[a]);
+                cr_expect_eq(r.peak_bin, r1.peak_bin);
+                cr_expect_eq(r.n_zero_crossings, r1.n_zero_crossings);
+            }
+            /* 1e±200 rounds every sample once: the FFT path moves by ulps, the golden-section LS search
+             * within its own tolerance (LAMBDA_TOL_LS) */
+            cr_expect(fabs(r.wavelength / r1.wavelength - 1.0) < 1e-12, "amp %g: lambda %.17g vs %.17g", amps[a],
+                      r.wavelength, r1.wavelength);
+            cr_expect(fabs(r.amplitude_spectral / (r1.amplitude_spectral * amps[a]) - 1.0) < 1e-12, "amp %g", amps[a]);
+            cr_expect(fabs(r.wavelength_ls / r1.wavelength_ls - 1.0) < LAMBDA_TOL_LS, "amp %g", amps[a]);
+            cr_expect(fabs(r.amplitude_fit / (r1.amplitude_fit * amps[a]) - 1.0) < LAMBDA_TOL_LS, "amp %g", amps[a]);
+            cr_expect_eq(r.peak_bin, r1.peak_bin);
+            {
+                /* the power array is in the caller's units: amp² p1, inf or ~0 where that is not a double */
+                double want = p1[r1.peak_bin] * amps[a] * amps[a];
+                if (isinf(want))
+                    cr_expect(isinf(p[r.peak_bin]), "amp %g: %g", amps[a], p[r.peak_bin]);
+                else if (want < DBL_MIN)
+                    cr_expect(p[r.peak_bin] < DBL_MIN, "amp %g: %g", amps[a], p[r.peak_bin]);
+                else
+                    cr_expect(fabs(p[r.peak_bin] / want - 1.0) < 1e-12, "amp %g", amps[a]);
+            }
+        }
+    }
+    wr_free(x);
+    wr_free(x1);
 }

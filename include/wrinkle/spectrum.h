@@ -231,7 +231,9 @@ WRDEF int32_t wr_spectrum_bins(int32_t n, int periodic, const wr_spectrum_desc *
  * windowed, padded signal, unnormalised FFTW scaling (a tone of amplitude A centred on bin k gives
  * |X_k| = A·Σw/2). Errors: n < 8, ds <= 0 or non-finite, non-finite sample (item = index), bad desc,
  * empty band (WR_ERR_INVALID_ARG); no oscillation left after detrending (WR_ERR_DOMAIN); FFTW
- * planning failure (WR_ERR_BACKEND); WR_ERR_NOMEM. res is written only on success. */
+ * planning failure (WR_ERR_BACKEND); WR_ERR_NOMEM. res is written only on success. The result does not
+ * depend on the signal's scale (any finite amplitude; see WR__SP_SCALE_EXP), but power[] is returned
+ * in the caller's units and so is inf / 0 where amp² itself is not a double (beyond ~1e±154). */
 WRDEF wr_status wr_spectrum_analyze(const double *x, int32_t n, double ds, int periodic, const wr_spectrum_desc *desc,
                                     wr_spectrum_result *res, double *power, int32_t power_cap, wr_diag *diag);
 /* The bare transform: power[k] = |X_k|², k = 0..nfft/2, of x[0..n) zero-padded to nfft >= n,
@@ -277,6 +279,10 @@ extern "C" {
 #define WR__SP_BAND_EDGE_SLACK 1e-9
 /* "Flat after detrending": amplitude below this fraction of max |x| [1] is rounding noise. */
 #define WR__SP_FLAT_REL 1e-12
+/* |X_k|² ~ (n·max|x|)² overflows past max|x| ~ 1e150 and underflows below ~1e-160: when max|x| lies
+ * outside [2^-E, 2^E] the analysis runs on x·2^-e (e its binary exponent; exact) and scales the
+ * amplitudes and the power array back. Inside the range nothing is scaled (results unchanged). */
+#define WR__SP_SCALE_EXP 400
 
 /* ---- probe ---- */
 static void wr__probe_desc_defaults(const wr_probe_desc *in, wr_probe_desc *out) {
@@ -932,8 +938,10 @@ WRDEF wr_status wr_spectrum_analyze(const double *x, int32_t n, double ds, int p
     wr_spectrum_desc desc;
     wr_spectrum_result r;
     wr_status st;
-    double *y = NULL, *yw = NULL, *pw = NULL, *sm = NULL, ymin, ymax, sumw = 0.0, total = 0.0, band;
+    double *y = NULL, *yw = NULL, *pw = NULL, *sm = NULL, *xsc = NULL, ymin, ymax, sumw = 0.0, total = 0.0, band;
+    double xmax_abs = 0.0;
     int32_t i, k, nfft, nb, deg;
+    int scale_e = 0;
     if (!x || !res_out) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "spectrum: NULL signal or result");
     if (n < WR_SPECTRUM_MIN_SAMPLES)
         return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "spectrum: n=%d samples, need >= %d", (int)n,
@@ -980,6 +988,20 @@ WRDEF wr_status wr_spectrum_analyze(const double *x, int32_t n, double ds, int p
         st = wr_fail(diag, WR_ERR_NOMEM, -1, "spectrum: out of memory for n=%d", (int)n);
         goto done;
     }
+    for (i = 0; i < n; ++i) xmax_abs = fmax(xmax_abs, fabs(x[i]));
+    if (xmax_abs > 0.0) {
+        (void)frexp(xmax_abs, &scale_e);
+        if (scale_e >= -WR__SP_SCALE_EXP && scale_e <= WR__SP_SCALE_EXP) scale_e = 0;
+    }
+    if (scale_e != 0) { /* see WR__SP_SCALE_EXP: analyse x·2^-e, x itself is not modified */
+        xsc = (double *)wr_alloc_array((size_t)n, sizeof(double));
+        if (!xsc) {
+            st = wr_fail(diag, WR_ERR_NOMEM, -1, "spectrum: out of memory for n=%d", (int)n);
+            goto done;
+        }
+        for (i = 0; i < n; ++i) xsc[i] = ldexp(x[i], -scale_e);
+        x = xsc;
+    }
     memcpy(y, x, sizeof(double) * (size_t)n);
     deg = desc.detrend == WR_DETREND_NONE ? -1
                                           : (desc.detrend == WR_DETREND_MEAN ? 0 : (desc.detrend == WR_DETREND_LINEAR ? 1 : 2));
@@ -999,7 +1021,7 @@ WRDEF wr_status wr_spectrum_analyze(const double *x, int32_t n, double ds, int p
         for (i = 0; i < n; ++i) xs = fmax(xs, fabs(x[i]));
         if (!(r.amplitude_p2p > WR__SP_FLAT_REL * xs) || r.amplitude_p2p == 0.0) {
             st = wr_fail(diag, WR_ERR_DOMAIN, -1, "spectrum: signal is flat after detrending (amplitude %g)",
-                         r.amplitude_p2p);
+                         ldexp(r.amplitude_p2p, scale_e));
             goto done;
         }
     }
@@ -1115,10 +1137,17 @@ WRDEF wr_status wr_spectrum_analyze(const double *x, int32_t n, double ds, int p
         else
             r.zc_wavelength = r.n_zero_crossings > 1 ? 2.0 * (p1 - p0) * ds / (double)(r.n_zero_crossings - 1) : 0.0;
     }
+    if (scale_e != 0) { /* back to the caller's units (power may over/underflow there: its own range) */
+        r.amplitude_p2p = ldexp(r.amplitude_p2p, scale_e);
+        r.amplitude_spectral = ldexp(r.amplitude_spectral, scale_e);
+        r.amplitude_fit = ldexp(r.amplitude_fit, scale_e);
+        for (k = 0; k < nb; ++k) pw[k] = ldexp(pw[k], 2 * scale_e);
+    }
     if (power) memcpy(power, pw, sizeof(double) * (size_t)nb);
     *res_out = r;
     st = WR_OK;
 done:
+    wr_free(xsc);
     wr_free(y);
     wr_free(yw);
     wr_free(sm);
