@@ -21,7 +21,7 @@
  *   wr_csr_add_block3(A, I, J, B, diag)          add a dense 3×3 block
  *   wr_csr_block3(A, I, J, B)                    read the 3×3 block (I, J) (absent entries read 0)
  *   wr_csr_block3_diagonal(A, D)                 all n/3 diagonal 3×3 blocks, row-major, 9 per block
- *   wr_csr_spmv(A, x, y)                         y = A x
+ *   wr_csr_spmv(A, x, y)                         y = A x (x and y must not overlap)
  *   wr_csr_diagonal(A, d)                        d[i] = A(i,i)
  *   wr_csr_asymmetry(A)                          max |A(i,j) - A(j,i)| / max |A(i,j)| (0 = symmetric)
  *
@@ -100,6 +100,7 @@ WRDEF wr_status wr_csr_add_block3(wr_csr *A, int32_t I, int32_t J, const double 
 WRDEF int wr_csr_block3(const wr_csr *A, int32_t I, int32_t J, double B[9]);
 /* D has 9*(n/3) doubles; n must be a multiple of 3 (WR_ASSERT). */
 WRDEF void wr_csr_block3_diagonal(const wr_csr *A, double *D);
+/* y = A x. y is written row by row while x is still read, so x and y must not overlap. */
 WRDEF void wr_csr_spmv(const wr_csr *A, const double *x, double *y);
 WRDEF void wr_csr_diagonal(const wr_csr *A, double *d);
 WRDEF double wr_csr_asymmetry(const wr_csr *A);
