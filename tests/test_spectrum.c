@@ -618,3 +618,23 @@ Test(spectrum, extreme_amplitudes_give_the_unit_amplitude_answer) {
     wr_free(x);
     wr_free(x1);
 }
+
+/* Regression: probe paths whose length overflows a double (finite ends 2e308 apart, a circle of
+ * radius 1e308) returned WR_OK with ds = inf and infinite points. Now WR_ERR_DOMAIN. */
+Test(spectrum, path_length_overflow_is_domain_error) {
+    double a[2] = {-1e308, 0.0}, b[2] = {1e308, 0.0}, v[4] = {-1e308, 0.0, 1e308, 0.0}, c[2] = {0.0, 0.0};
+    double pts[2 * 16], ds = 0.0, len = 0.0;
+    wr_diag d;
+    cr_expect_eq(wr_path_segment(a, b, 16, 0, pts, &ds, &d), WR_ERR_DOMAIN);
+    cr_expect(strstr(d.message, "overflow") != NULL, "%s", d.message);
+    cr_expect_eq(wr_path_polyline(v, 2, 0, 16, pts, &ds, &len, &d), WR_ERR_DOMAIN);
+    cr_expect(strstr(d.message, "overflow") != NULL, "%s", d.message);
+    cr_expect_eq(wr_path_circle(c, 1e308, 16, pts, &ds, &d), WR_ERR_DOMAIN);
+    c[0] = 1.5e308;
+    cr_expect_eq(wr_path_circle(c, 0.5e308, 16, pts, &ds, &d), WR_ERR_DOMAIN);
+    /* the largest representable cases still work */
+    a[0] = -0.5e308, b[0] = 0.5e308, c[0] = 0.0;
+    cr_expect_eq(wr_path_segment(a, b, 16, 0, pts, &ds, &d), WR_OK, "%s", d.message);
+    cr_expect(isfinite(ds));
+    cr_expect_eq(wr_path_circle(c, 1e307, 16, pts, &ds, &d), WR_OK, "%s", d.message);
+}

@@ -145,7 +145,8 @@ WRDEF wr_status wr_path_segment(const double a[2], const double b[2], int32_t n,
  * first), n points starting at verts[0], *ds = perimeter/n. *length (optional) = length or perimeter. */
 WRDEF wr_status wr_path_polyline(const double *verts, int32_t nv, int closed, int32_t n, double *pts,
                                  double *ds, double *length, wr_diag *diag);
-/* Circle, centre c, radius r > 0, n points at angles 2πi/n; *ds = 2πr/n (arc length). */
+/* Circle, centre c, radius r > 0, n points at angles 2πi/n; *ds = 2πr/n (arc length).
+ * All three paths: a length, circumference or point that overflows a double is WR_ERR_DOMAIN. */
 WRDEF wr_status wr_path_circle(const double c[2], double r, int32_t n, double *pts, double *ds, wr_diag *diag);
 
 /* ---- sampling ---------------------------------------------------------------------------- */
@@ -496,6 +497,7 @@ WRDEF wr_status wr_path_segment(const double a[2], const double b[2], int32_t n,
         return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "path: non-finite segment end");
     L = hypot(b[0] - a[0], b[1] - a[1]);
     if (!(L > 0.0)) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "path: segment has zero length");
+    if (!isfinite(L)) return wr_fail(diag, WR_ERR_DOMAIN, -1, "path: segment length overflows a double");
     denom = closed ? (double)n : (double)(n - 1);
     for (i = 0; i < n; ++i) {
         double t = (double)i / denom;
@@ -524,6 +526,7 @@ WRDEF wr_status wr_path_polyline(const double *verts, int32_t nv, int closed, in
         L += hypot(verts[2 * t] - verts[2 * s], verts[2 * t + 1] - verts[2 * s + 1]);
     }
     if (!(L > 0.0)) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "path: polyline has zero length");
+    if (!isfinite(L)) return wr_fail(diag, WR_ERR_DOMAIN, -1, "path: polyline length overflows a double");
     step = closed ? L / n : L / (n - 1);
     /* Walk the segments once; sample i sits at arc length i·step. */
     s = 0;
@@ -559,6 +562,9 @@ WRDEF wr_status wr_path_circle(const double c[2], double r, int32_t n, double *p
     if (n < 3) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "path: circle with n=%d points, need >= 3", (int)n);
     if (!(r > 0.0) || !isfinite(r)) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "path: circle radius r=%g", r);
     if (!isfinite(c[0]) || !isfinite(c[1])) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "path: non-finite centre");
+    /* the circumference and every point c ± r must be doubles */
+    if (!isfinite(2.0 * WR__SP_PI * r) || !isfinite(fabs(c[0]) + r) || !isfinite(fabs(c[1]) + r))
+        return wr_fail(diag, WR_ERR_DOMAIN, -1, "path: circle (%g, %g) r=%g overflows a double", c[0], c[1], r);
     for (i = 0; i < n; ++i) {
         double t = 2.0 * WR__SP_PI * (double)i / (double)n;
         pts[2 * i] = c[0] + r * cos(t);
