@@ -310,50 +310,13 @@ extern "C" {
 #endif
 
 /* ---- small geometry ------------------------------------------------------------------------ */
-static double wr__msh_area(const double *xy, int32_t n) {
-    double a = 0.0;
-    int32_t i;
-    for (i = 0; i < n; ++i) {
-        int32_t j = (i + 1) % n;
-        a += xy[2 * i] * xy[2 * j + 1] - xy[2 * j] * xy[2 * i + 1];
-    }
-    return 0.5 * a;
-}
-
-/* Crossing-number inside test (points on the boundary may go either way; callers use tolerances). */
-static int wr__msh_inside(const double *xy, int32_t n, double x, double y) {
-    int c = 0;
-    int32_t i, j;
-    for (i = 0, j = n - 1; i < n; j = i++) {
-        double xi = xy[2 * i], yi = xy[2 * i + 1], xj = xy[2 * j], yj = xy[2 * j + 1];
-        if ((yi > y) != (yj > y)) {
-            double xc = xj + (y - yj) * (xi - xj) / (yi - yj);
-            if (x < xc) c = !c;
-        }
-    }
-    return c;
-}
-
-/* Distance from p to segment ab, and the parameter t of the closest point. */
-static double wr__msh_seg_dist(const double *p, const double *a, const double *b, double *t_out) {
-    double dx = b[0] - a[0], dy = b[1] - a[1], L2 = dx * dx + dy * dy, t = 0.0, ex, ey;
-    if (L2 > 0.0) {
-        t = ((p[0] - a[0]) * dx + (p[1] - a[1]) * dy) / L2;
-        if (t < 0.0) t = 0.0;
-        if (t > 1.0) t = 1.0;
-    }
-    ex = a[0] + t * dx - p[0];
-    ey = a[1] + t * dy - p[1];
-    if (t_out) *t_out = t;
-    return sqrt(ex * ex + ey * ey);
-}
 
 /* Closest edge of a closed loop to p: returns the distance, the edge index and its parameter. */
 static double wr__msh_loop_closest(const double *xy, int32_t n, const double *p, int32_t *edge, double *t) {
     double best = HUGE_VAL;
     int32_t i;
     for (i = 0; i < n; ++i) {
-        double tt, d = wr__msh_seg_dist(p, xy + 2 * i, xy + 2 * ((i + 1) % n), &tt);
+        double tt, d = wr_segment_distance(p, xy + 2 * i, xy + 2 * ((i + 1) % n), &tt);
         if (d < best) {
             best = d;
             *edge = i;
@@ -457,7 +420,7 @@ static double wr__msh_map_eval(const wr__msh_map *m, double x, double y) {
     s = m->s ? wr_sizing_eval(m->s, x, y) : m->r0;
     for (i = 0; i < m->n_regions; ++i) {
         const wr__msh_region *g = &m->regions[i];
-        int in = g->xy ? wr__msh_inside(g->xy, g->n, x, y)
+        int in = g->xy ? wr_point_in_polygon(g->xy, g->n, x, y)
                        : ((x - g->cx) * (x - g->cx) + (y - g->cy) * (y - g->cy) <= g->R * g->R);
         if (in && g->r < s) s = g->r;
     }
@@ -768,11 +731,11 @@ static wr_status wr__msh_check_line(const wr_pattern *pat, int32_t p, const doub
             return wr_fail(diag, WR_ERR_GEOMETRY, idx, "%s[%d]: point %d touches the boundary of panel %d '%s'",
                            what, (int)idx, (int)i, (int)p, wr__msh_pname(pat, p));
         }
-        if (!wr__msh_inside(pn->outer.xy, pn->outer.n, q[0], q[1]))
+        if (!wr_point_in_polygon(pn->outer.xy, pn->outer.n, q[0], q[1]))
             return wr_fail(diag, WR_ERR_GEOMETRY, idx, "%s[%d]: point %d (%g, %g) m leaves panel %d '%s'", what,
                            (int)idx, (int)i, q[0], q[1], (int)p, wr__msh_pname(pat, p));
         for (h = 0; h < pn->n_holes; ++h)
-            if (wr__msh_inside(pn->holes[h].xy, pn->holes[h].n, q[0], q[1]))
+            if (wr_point_in_polygon(pn->holes[h].xy, pn->holes[h].n, q[0], q[1]))
                 return wr_fail(diag, WR_ERR_GEOMETRY, idx, "%s[%d]: point %d lies in hole %d of panel %d '%s'", what,
                                (int)idx, (int)i, (int)h, (int)p, wr__msh_pname(pat, p));
     }
@@ -787,7 +750,7 @@ static wr_status wr__msh_check_line(const wr_pattern *pat, int32_t p, const doub
                     double o1 = wr_orient2d(a, b, u), o2 = wr_orient2d(a, b, w), o3 = wr_orient2d(u, w, a),
                            o4 = wr_orient2d(u, w, b);
                     if (((o1 > 0 && o2 < 0) || (o1 < 0 && o2 > 0)) && ((o3 > 0 && o4 < 0) || (o3 < 0 && o4 > 0))) {
-                        double da = wr__msh_seg_dist(a, u, w, NULL), db = wr__msh_seg_dist(b, u, w, NULL);
+                        double da = wr_segment_distance(a, u, w, NULL), db = wr_segment_distance(b, u, w, NULL);
                         if (da > tol && db > tol)
                             return wr_fail(diag, WR_ERR_GEOMETRY, idx, "%s[%d]: segment %d leaves panel %d '%s'",
                                            what, (int)idx, (int)i, (int)p, wr__msh_pname(pat, p));
@@ -841,7 +804,7 @@ static wr_status wr__msh_validate(const wr_pattern *pat, wr_diag *diag) {
         if (!wr__msh_finite_curve(pn->outer.xy, pn->outer.n))
             return wr_fail(diag, WR_ERR_GEOMETRY, p, "panels[%d] '%s': non-finite coordinate", (int)p,
                            wr__msh_pname(pat, p));
-        if (wr__msh_area(pn->outer.xy, pn->outer.n) == 0.0)
+        if (wr_polygon_area(pn->outer.xy, pn->outer.n) == 0.0)
             return wr_fail(diag, WR_ERR_GEOMETRY, p, "panels[%d] '%s': zero area", (int)p, wr__msh_pname(pat, p));
         if (pn->n_holes < 0 || (pn->n_holes > 0 && !pn->holes))
             return wr_fail(diag, WR_ERR_INVALID_ARG, p, "panels[%d] '%s': holes inconsistent", (int)p,
@@ -913,7 +876,7 @@ static wr_status wr__msh_validate(const wr_pattern *pat, wr_diag *diag) {
                 return wr_fail(diag, WR_ERR_GEOMETRY, i, "collisions[%d]: polygon has fewer than 3 points", (int)i);
             if (!wr__msh_finite_curve(c->xy, c->n))
                 return wr_fail(diag, WR_ERR_GEOMETRY, i, "collisions[%d]: non-finite coordinate", (int)i);
-            if (wr__msh_area(c->xy, c->n) == 0.0)
+            if (wr_polygon_area(c->xy, c->n) == 0.0)
                 return wr_fail(diag, WR_ERR_GEOMETRY, i, "collisions[%d]: zero-area polygon", (int)i);
         }
         if ((st = wr__msh_check_nonneg(c->transition_length, "collisions", i, "transition_length", diag)) != WR_OK)
@@ -1031,8 +994,8 @@ WRDEF wr_status wr_mesher_run(const wr_pattern *pat, const wr_mesher_desc *desc_
         wr__msh_m2(pi->r0 / rw * c, pi->r0 / rw * s, -pi->r0 / rf * s, pi->r0 / rf * c, pi->T);
         /* T⁻¹ = R diag(rw, rf)/r0 */
         wr__msh_m2(c * rw / pi->r0, -s * rf / pi->r0, s * rw / pi->r0, c * rf / pi->r0, pi->Tinv);
-        pi->area = fabs(wr__msh_area(pn->outer.xy, pn->outer.n));
-        for (i = 0; i < pn->n_holes; ++i) pi->area -= fabs(wr__msh_area(pn->holes[i].xy, pn->holes[i].n));
+        pi->area = fabs(wr_polygon_area(pn->outer.xy, pn->outer.n));
+        for (i = 0; i < pn->n_holes; ++i) pi->area -= fabs(wr_polygon_area(pn->holes[i].xy, pn->holes[i].n));
         m = (wr__msh_map *)wr_calloc_array(1, sizeof(wr__msh_map));
         if (!m) goto nomem;
         pi->map_ = m;
@@ -1779,7 +1742,7 @@ WRDEF wr_status wr_mesher_run(const wr_pattern *pat, const wr_mesher_desc *desc_
                         if (xx < 0 || yy < 0 || xx >= gx || yy >= gy) continue;
                         for (it = gstart[yy * gx + xx]; it < gstart[yy * gx + xx + 1]; ++it) {
                             int32_t sg = gitem[it];
-                            double d = wr__msh_seg_dist(q, cpts.v + 2 * csegs.v[2 * sg], cpts.v + 2 * csegs.v[2 * sg + 1],
+                            double d = wr_segment_distance(q, cpts.v + 2 * csegs.v[2 * sg], cpts.v + 2 * csegs.v[2 * sg + 1],
                                                         NULL);
                             if (d < dmin) dmin = d;
                         }
@@ -1787,9 +1750,9 @@ WRDEF wr_status wr_mesher_run(const wr_pattern *pat, const wr_mesher_desc *desc_
                 if (dmin < WR_MESHER_SAMPLE_CLEARANCE * h) keep = 0;
                 if (keep && dmin < 2.0 * h) {
                     /* near our boundary: exact-ish containment against our own polygon */
-                    if (!wr__msh_inside(outer.v, n_out, q[0], q[1])) keep = 0;
+                    if (!wr_point_in_polygon(outer.v, n_out, q[0], q[1])) keep = 0;
                     for (k = 0; k < hole_n.n && keep; ++k)
-                        if (wr__msh_inside(hc[k].xy, hc[k].n, q[0], q[1])) keep = 0;
+                        if (wr_point_in_polygon(hc[k].xy, hc[k].n, q[0], q[1])) keep = 0;
                 }
                 if (!keep) continue;
                 cpts.v[cpts.n++] = q[0];
@@ -1810,14 +1773,14 @@ WRDEF wr_status wr_mesher_run(const wr_pattern *pat, const wr_mesher_desc *desc_
             for (k = 0; k < hole_n.n; ++k) {
                 const double *H = hc[k].xy;
                 int32_t nh = hc[k].n, e2, found = 0;
-                double sgn = wr__msh_area(H, nh) > 0.0 ? 1.0 : -1.0; /* CCW hole: interior on the left */
+                double sgn = wr_polygon_area(H, nh) > 0.0 ? 1.0 : -1.0; /* CCW hole: interior on the left */
                 for (e2 = 0; e2 < nh && !found; ++e2) {
                     const double *a = H + 2 * e2, *b = H + 2 * ((e2 + 1) % nh);
                     double dx = b[0] - a[0], dy = b[1] - a[1], L = sqrt(dx * dx + dy * dy), f2;
                     if (!(L > 0.0)) continue;
                     for (f2 = 1e-2; f2 >= 1e-6 && !found; f2 *= 0.1) {
                         double x = 0.5 * (a[0] + b[0]) - sgn * dy * f2, y = 0.5 * (a[1] + b[1]) + sgn * dx * f2;
-                        if (wr__msh_inside(H, nh, x, y)) {
+                        if (wr_point_in_polygon(H, nh, x, y)) {
                             hseeds[2 * k] = x;
                             hseeds[2 * k + 1] = y;
                             found = 1;
