@@ -114,9 +114,9 @@ int main(int argc, char **argv) {
         const cJSON *fl = cJSON_GetObjectItemCaseSensitive(cases[i], "failed");
         int nf = cJSON_IsNumber(fl) ? fl->valueint : 0;
         if (nf) any_fail = 1;
-        fprintf(f.fp, "| [%s](#%s) | %s | %d | %s | %s |\n", str_or(cases[i], "case", "?"),
+        fprintf(f.fp, "| [%s](#%s) | %s | %d | %s%d%s | %s |\n", str_or(cases[i], "case", "?"),
                 str_or(cases[i], "case", "?"), str_or(cases[i], "title", ""), cJSON_GetArraySize(q),
-                nf ? "**FAIL**" : "0", str_or(cases[i], "machine", ""));
+                nf ? "**" : "", nf, nf ? " missed**" : "", str_or(cases[i], "machine", ""));
     }
     for (i = 0; i < ncase; ++i) {
         const cJSON *c = cases[i], *it;
