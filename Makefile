@@ -163,9 +163,15 @@ build/examples/minimal_c: examples/minimal_c/main.c $(HEADERS)
 build/examples/minimal_cpp: examples/minimal_cpp/impl.cpp examples/minimal_cpp/main.cpp $(HEADERS)
 	@mkdir -p build/examples
 	$(CXX) -std=c++17 $(EXAMPLE_FLAGS) examples/minimal_cpp/impl.cpp examples/minimal_cpp/main.cpp -o $@ $(EXAMPLE_LIBS)
-examples: build/examples/minimal_c build/examples/minimal_cpp
+build/examples/%: examples/tutorial/%.c $(HEADERS)
+	@mkdir -p build/examples
+	$(CC) -std=c11 $(EXAMPLE_FLAGS) $< -o $@ $(EXAMPLE_LIBS)
+examples: build/examples/minimal_c build/examples/minimal_cpp build/examples/fabric_to_mesh \
+          build/examples/coarse_to_wrinkles
 	./build/examples/minimal_c
 	./build/examples/minimal_cpp
+	./build/examples/fabric_to_mesh
+	./build/examples/coarse_to_wrinkles
 
 # `make install` into a scratch DESTDIR, then build and run the examples through pkg-config.
 install-check:
