@@ -286,12 +286,12 @@ int main(void) {
                 if (rc[i].ran) fprintf(f.fp, "%d %.6g %.6g\n", (int)rc[i].nv, rc[i].count, tfw_cyl);
             if (wr_afile_commit(&f, &d) == WR_OK) {
                 snprintf(buf, sizeof buf,
-                         "set multiplot layout 1,2\nset logscale x\nset xlabel 'StVK vertices'\nset key bottom right\n"
-                         "set title 'stretched sheet'\nset ylabel 'periods across the width'\n"
-                         "plot '%s' index 0 u 1:2 w lp t 'StVK', '' index 0 u 1:3 w l t 'TFW, 522-vertex base', 5 w l dt 2 t 'paper 5'\n"
-                         "set title 'twisted cylinder'\nset ylabel 'waves at mid-height'\n"
-                         "plot '%s' index 1 u 1:2 w lp t 'StVK', '' index 1 u 1:3 w l t 'TFW, 1320-vertex base', 46 w l dt 2 t 'paper 46'\n"
-                         "unset multiplot\n", dat, dat);
+                         "set multiplot layout 1,2\nset logscale x\nset xrange [300:20000]\nset xlabel 'StVK vertices'\nset key bottom right\n"
+                         "set title 'stretched sheet'\nset ylabel 'periods across the width'\nset yrange [0:12]\n"
+                         "plot '%s' index 0 u 1:2 w lp pt 7 t 'StVK', %.4g w l t 'TFW, 522-vertex base', 5 w l dt 2 t 'paper 5'\n"
+                         "set title 'twisted cylinder'\nset ylabel 'waves at mid-height'\nset yrange [0:60]\n"
+                         "plot '%s' index 1 u 1:2 w lp pt 7 t 'StVK', %.4g w l t 'TFW, 1320-vertex base', 46 w l dt 2 t 'paper 46'\n"
+                         "unset multiplot\n", dat, isfinite(tfw_sheet) ? tfw_sheet : 0.0, dat, isfinite(tfw_cyl) ? tfw_cyl : 0.0);
                 tp_figure(v, "tfw_crosscheck", buf, "StVK counts vs resolution beside TFW's coarse-base counts");
             }
         }
