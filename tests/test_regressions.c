@@ -1,6 +1,8 @@
 /* Regression tests for fuzzer findings (tests/regressions/README.md): each fixed finding's input is
  * replayed through the same entry point the harness used and the contract it broke is asserted. */
 #include <criterion/criterion.h>
+#include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -108,4 +110,123 @@ Test(regressions, scene_newline_in_key) {
     cr_assert_str_eq(d.message, "$.m\\x0a  esh: unknown key");
     wr_scene_free(&sc);
     free(text);
+}
+
+/* Decodes a fuzz_cdt input exactly as tests/fuzz/fuzz_cdt.c does (byte layout documented there),
+ * runs wr_cdt_triangulate and returns its status; *r holds the result. */
+static double cdt_coord(const unsigned char *p, size_t n, size_t *at, int mode) {
+#define RD8() (*at < n ? p[(*at)++] : 0)
+    if (mode == 3) mode = RD8() % 3;
+    if (mode == 0) return (double)((int)(RD8() % 16) - 8);
+    if (mode == 1) {
+        double base = (double)((int)(RD8() % 16) - 8);
+        int k = (int)(signed char)RD8();
+        return base + ldexp((double)k, -48);
+    } else {
+        uint64_t u = 0;
+        double x;
+        int i;
+        for (i = 0; i < 8; ++i) u |= (uint64_t)RD8() << (8 * i);
+        memcpy(&x, &u, sizeof x);
+        if (!isfinite(x) || fabs(x) > 1e30 || (x != 0.0 && fabs(x) < 1e-30)) x = 0.0;
+        return x;
+    }
+#undef RD8
+}
+
+static wr_status replay_cdt(const char *name, int32_t max_vertices, wr_cdt_result *r) {
+    size_t n, at = 0;
+    unsigned char *p = (unsigned char *)read_regression(name, &n);
+    double pts[2 * 32], holes[2 * 2];
+    int32_t seg[2 * 24], np, ns, nh, i;
+    unsigned char flags;
+    int mode;
+    wr_cdt_input in;
+    wr_cdt_desc cd;
+    wr_diag d;
+    wr_status s;
+#define RD8() (at < n ? p[at++] : 0)
+    flags = RD8();
+    np = RD8() % 33;
+    ns = RD8() % 25;
+    nh = RD8() % 3;
+    memset(&cd, 0, sizeof cd);
+    cd.quality = flags & 1;
+    cd.split_intersections = (flags >> 1) & 1;
+    cd.keep_convex_hull = (flags >> 2) & 1;
+    cd.off_center = (flags >> 3) & 1;
+    mode = (flags >> 4) & 3;
+    cd.min_angle_deg = 5.0 + (double)(RD8() % 30);
+    if (flags & 64) cd.merge_tolerance = 1e-9;
+    if (flags & 128) cd.max_area = 0.5;
+    cd.max_vertices = max_vertices;
+    for (i = 0; i < np; ++i) {
+        pts[2 * i] = cdt_coord(p, n, &at, mode);
+        pts[2 * i + 1] = cdt_coord(p, n, &at, mode);
+    }
+    if (np == 0) ns = 0;
+    for (i = 0; i < ns; ++i) {
+        seg[2 * i] = RD8() % np;
+        seg[2 * i + 1] = RD8() % np;
+    }
+    for (i = 0; i < nh; ++i) {
+        holes[2 * i] = cdt_coord(p, n, &at, mode);
+        holes[2 * i + 1] = cdt_coord(p, n, &at, mode);
+    }
+#undef RD8
+    memset(&in, 0, sizeof in);
+    in.points = pts;
+    in.n_points = np;
+    in.segments = ns ? seg : NULL;
+    in.n_segments = ns;
+    in.holes = nh ? holes : NULL;
+    in.n_holes = nh;
+    s = wr_cdt_triangulate(&in, &cd, r, &d);
+    free(p);
+    return s;
+}
+
+/* fuzz_cdt: segment 0-3 given twice, quality refinement: WR_OK but wr_cdt_check said "input segment 2
+ * (0-3) is not a chain of subsegments" (the refined chain carries the first occurrence's id and its
+ * split points are rounded off the line). The checker now accepts the first identical segment's id,
+ * as documented for segment_id. */
+Test(regressions, cdt_duplicate_segment_refine) {
+    wr_cdt_result r;
+    wr_diag dc;
+    wr_status s = replay_cdt("cdt_duplicate_segment_refine.fuzz_cdt", 2000, &r), c;
+    cr_assert(s == WR_OK || s == WR_ERR_BUDGET, "%s", wr_status_string(s));
+    cr_assert_eq(r.n_input_segments, 3);
+    cr_assert_gt(r.n_steiner, 0);
+    c = wr_cdt_check(&r, -1, NULL, &dc);
+    cr_assert_eq(c, WR_OK, "%s", dc.message);
+    wr_cdt_free(&r);
+}
+
+/* fuzz_cdt: refinement toward a sharp corner / a 5e-10 feature pushed Steiner coordinates down to
+ * ~1e-78 and ~1e-316, where the exact predicates' products underflow; WR_ERR_BUDGET then returned a
+ * non-Delaunay edge or a zero-area triangle. Checked at every budget around the old failures. */
+Test(regressions, cdt_budget_underflow) {
+    static const char *const names[] = {"cdt_budget_not_delaunay.fuzz_cdt", "cdt_budget_degenerate_triangle.fuzz_cdt"};
+    int k;
+    int32_t mv;
+    for (k = 0; k < 2; ++k)
+        for (mv = 1040; mv <= 1160; mv += 3) {
+            wr_cdt_result r;
+            wr_diag dc;
+            wr_status s = replay_cdt(names[k], mv, &r), c;
+            cr_assert(s == WR_OK || s == WR_ERR_BUDGET, "%s", wr_status_string(s));
+            c = wr_cdt_check(&r, -1, NULL, &dc);
+            cr_assert_eq(c, WR_OK, "%s at max_vertices %d: %s", names[k], mv, dc.message);
+            wr_cdt_free(&r);
+        }
+    {
+        wr_cdt_result r;
+        wr_diag dc;
+        cr_assert_eq(replay_cdt(names[0], 2000, &r), WR_ERR_BUDGET);
+        cr_assert_eq(wr_cdt_check(&r, -1, NULL, &dc), WR_OK, "%s", dc.message);
+        wr_cdt_free(&r);
+        cr_assert_eq(replay_cdt(names[1], 2000, &r), WR_ERR_BUDGET);
+        cr_assert_eq(wr_cdt_check(&r, -1, NULL, &dc), WR_OK, "%s", dc.message);
+        wr_cdt_free(&r);
+    }
 }

@@ -144,7 +144,8 @@ typedef struct wr_cdt_result {
     int32_t *edge_segment;   /* n_triangles × 3: input segment containing that edge, or -1 */
     int32_t *segments;       /* n_segments × 2: subsegments (pieces of input segments), including
                               * pieces that only bounded removed triangles (exterior or holes) */
-    int32_t *segment_id;     /* n_segments: which input segment each subsegment belongs to */
+    int32_t *segment_id;     /* n_segments: which input segment each subsegment belongs to (a
+                              * segment given twice, also via merged points: the first one) */
     int32_t n_segments;
     int32_t *input_segments; /* n_input_segments × 2: the input segments in output vertex numbers */
     int32_t n_input_segments;
@@ -1243,6 +1244,7 @@ typedef struct wr__ref {
     double sin2;      /* sin²(min angle); a triangle is bad when sin² of its smallest angle is below */
     double max_area;  /* 0: none */
     double cot_theta; /* off-center distance factor cot(θ/2) (0: circumcenters) */
+    double tiny;      /* smallest nonzero |coordinate| a Steiner point may have (see wr__coord_ok) */
     const int32_t *seg; /* input segments in internal vertex ids (for the small-angle rule) */
     wr__ivec segq;      /* vertex pairs of possibly encroached subsegments */
     wr__ivec badq;      /* (t, a, b, c) of possibly bad triangles */
@@ -1251,6 +1253,16 @@ typedef struct wr__ref {
 } wr__ref;
 
 static int wr__is_live(const wr__cdt *S, int32_t t) { return !WR__GHOSTLY(S, t) && !(S->tf[t] & WR__F_OUT); }
+
+/* The predicates are exact only while no product underflows (nonzero |coordinates| >= 1e-50, or as
+ * small as the input's own). Refinement toward a sharp corner or a tiny feature halves coordinates
+ * without end; once they reach ~1e-78 the incircle terms (|d|^4) underflow and a flip or split made
+ * on a wrong sign leaves a zero-area triangle or a non-Delaunay edge (fuzzer findings). A Steiner
+ * point below that floor is therefore not inserted: the triangle or subsegment stays as it is. */
+static int wr__coord_ok(const wr__ref *R, const double *p) {
+    double ax = fabs(p[0]), ay = fabs(p[1]);
+    return (ax == 0.0 || ax >= R->tiny) && (ay == 0.0 || ay >= R->tiny);
+}
 
 /* input segment a Steiner vertex lies on (junctions of crossing segments are stored as -3 - id) */
 static int32_t wr__seg_of(const wr__cdt *S, int32_t v) {
@@ -1360,6 +1372,7 @@ static int wr__split_segment(wr__cdt *S, wr__ref *R, int32_t he) {
         p[0] = 0.5 * (px[0] + py[0]);
         p[1] = 0.5 * (px[1] + py[1]);
     }
+    if (!wr__coord_ok(R, p)) return 0;
     if (a >= 0 && !(wr__orient(WR__P(S, a), px, p) > 0.0 && wr__orient(WR__P(S, a), p, py) > 0.0)) return 0;
     if (d >= 0 && !(wr__orient(WR__P(S, d), py, p) > 0.0 && wr__orient(WR__P(S, d), p, px) > 0.0)) return 0;
     if (S->nv >= S->max_vertices) return -1;
@@ -1532,6 +1545,9 @@ static wr_status wr__refine(wr__cdt *S, wr__ref *R, wr_diag *diag) {
                 return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
             continue;
         }
+        /* checked here, not before the walk: a point outside the domain is not inserted anyway (the
+         * segment it lies beyond is split instead, above) */
+        if (!wr__coord_ok(R, cp)) continue;
         if (S->nv >= S->max_vertices) goto budget;
         if (!wr__reserve_verts(S, 1)) return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
         q = S->nv++;
@@ -1898,6 +1914,9 @@ WRDEF wr_status wr_cdt_triangulate(const wr_cdt_input *in, const wr_cdt_desc *de
             if (d.off_center) R.cot_theta = 1.0 / tan(0.5 * d.min_angle_deg * (3.14159265358979323846 / 180.0));
         }
         R.max_area = d.max_area;
+        R.tiny = 1e-50;
+        for (i = 0; i < 2 * nid; ++i)
+            if (S.xy[i] != 0.0 && fabs(S.xy[i]) < R.tiny) R.tiny = fabs(S.xy[i]);
         R.seg = NULL;
         if (m > 0) {
             int32_t *sg = (int32_t *)wr_alloc_array((size_t)m * 2, sizeof(int32_t));
@@ -1948,7 +1967,7 @@ static int32_t wr__uf_find(int32_t *p, int32_t x) {
 
 WRDEF wr_status wr_cdt_check(const wr_cdt_result *r, int32_t expected_holes, wr_cdt_check_info *info, wr_diag *diag) {
     int32_t nT, nP, t, k, *bout = NULL, *bnext = NULL, *uf = NULL, *used = NULL, *cstart = NULL, *cadj = NULL,
-                              *cmk = NULL, *stamp = NULL, *dfs = NULL, *sstart = NULL;
+                              *cmk = NULL, *stamp = NULL, *dfs = NULL, *sstart = NULL, *canon = NULL, *clink = NULL;
     int32_t E = 0, V = 0, C = 0, B = 0, pinched = 0, ncon = 0, s;
     double minang = 1.0; /* sin² of the smallest angle seen */
     wr_status st = WR_OK;
@@ -2128,13 +2147,37 @@ WRDEF wr_status wr_cdt_check(const wr_cdt_result *r, int32_t expected_holes, wr_
             }
         }
     }
+    /* An input segment given twice (directly or through merged duplicate points) is represented by
+     * the first one's id: canon[s] = first input segment with the same (unordered) end points,
+     * found with per-vertex lists (stamp = list head by lower end, canon doubles as the link). */
+    canon = (int32_t *)wr_alloc_array((size_t)r->n_input_segments + 1, sizeof(int32_t));
+    clink = (int32_t *)wr_alloc_array((size_t)r->n_input_segments + 1, sizeof(int32_t));
+    if (!canon || !clink) goto nomem;
     for (s = 0; s < nP; ++s) stamp[s] = -1;
-    for (s = 0; s < r->n_input_segments; ++s) { /* (2) */
-        int32_t a = r->input_segments[2 * s], b = r->input_segments[2 * s + 1], nd = 0, ok = 0;
+    for (s = 0; s < r->n_input_segments; ++s) {
+        int32_t a = r->input_segments[2 * s], b = r->input_segments[2 * s + 1], lo, hi, j;
         if (a < 0 || a >= nP || b < 0 || b >= nP) {
             st = wr_fail(diag, WR_ERR_TOPOLOGY, s, "input segment %d has an out-of-range end", s);
             goto done;
         }
+        lo = a < b ? a : b;
+        hi = a < b ? b : a;
+        canon[s] = s;
+        for (j = stamp[lo]; j >= 0; j = clink[j]) {
+            int32_t a2 = r->input_segments[2 * j], b2 = r->input_segments[2 * j + 1];
+            if ((a2 < b2 ? b2 : a2) == hi) {
+                canon[s] = j;
+                break;
+            }
+        }
+        if (canon[s] == s) {
+            clink[s] = stamp[lo];
+            stamp[lo] = s;
+        }
+    }
+    for (s = 0; s < nP; ++s) stamp[s] = -1;
+    for (s = 0; s < r->n_input_segments; ++s) { /* (2) */
+        int32_t a = r->input_segments[2 * s], b = r->input_segments[2 * s + 1], nd = 0, ok = 0;
         dfs[nd++] = a;
         stamp[a] = s;
         while (nd && !ok) {
@@ -2143,7 +2186,7 @@ WRDEF wr_status wr_cdt_check(const wr_cdt_result *r, int32_t expected_holes, wr_
                 int32_t y = cadj[j];
                 if (stamp[y] == s) continue;
                 /* a piece shared by two overlapping collinear segments carries the first one's id */
-                if (cmk[j] != s && !(wr__orient(r->points + 2 * a, r->points + 2 * b, r->points + 2 * x) == 0.0 &&
+                if (cmk[j] != s && cmk[j] != canon[s] && !(wr__orient(r->points + 2 * a, r->points + 2 * b, r->points + 2 * x) == 0.0 &&
                                      wr__orient(r->points + 2 * a, r->points + 2 * b, r->points + 2 * y) == 0.0))
                     continue;
                 if (y == b) {
@@ -2180,6 +2223,8 @@ done:
     wr_free(stamp);
     wr_free(dfs);
     wr_free(sstart);
+    wr_free(canon);
+    wr_free(clink);
     return st;
 }
 
