@@ -587,10 +587,13 @@ static int32_t wr__msh_piece(const double *P, int32_t np, wr__msh_map *m, int32_
         const double *a = P + 2 * i, *b = P + 2 * i + 2;
         double dx = b[0] - a[0], dy = b[1] - a[1], L = sqrt(dx * dx + dy * dy);
         double h0 = wr__msh_stretched_size(m, a[0], a[1]);
-        int32_t ns = (int32_t)ceil(L / (WR_POISSON_WALK_STEP * h0));
+        /* clamp in double before the cast: a huge or NaN ratio must not overflow int32 (fuzzer finding) */
+        double nsd = ceil(L / (WR_POISSON_WALK_STEP * h0));
+        int32_t ns;
         double hp = h0;
-        if (ns < 1) ns = 1;
-        if (ns > 100000) ns = 100000;
+        if (!(nsd >= 1.0)) nsd = 1.0;
+        if (nsd > 100000.0) nsd = 100000.0;
+        ns = (int32_t)nsd;
         for (k = 1; k <= ns; ++k) {
             double t = (double)k / ns, x = a[0] + t * dx, y = a[1] + t * dy;
             double hk = wr__msh_stretched_size(m, x, y);
@@ -600,6 +603,9 @@ static int32_t wr__msh_piece(const double *P, int32_t np, wr__msh_map *m, int32_
         }
     }
     if (integral_out) *integral_out = total;
+    /* More than 1e7 segments on one curve piece is no cloth pattern; refuse before the int32 cast
+     * (reported by the callers as an allocation failure). */
+    if (!(total < 1e7)) goto nomem;
     N = (int32_t)floor(total + 0.5);
     if (N < 1) N = 1;
     if (total / N > 1.4) ++N;
