@@ -22,7 +22,7 @@ DEB_PACKAGES = libgsl-dev libfftw3-dev libsuitesparse-dev libopenblas0 libcjson-
                libcriterion-dev gnuplot-nox pkg-config
 BENCH_PACKAGES = libcgal-dev
 
-SAN = -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined
+SAN = -fsanitize=address,undefined,float-cast-overflow -fno-omit-frame-pointer -fno-sanitize-recover=all
 
 HEADERS     = $(wildcard include/wrinkle/*.h)
 DRIVER_SRC  = $(wildcard drivers/*.c)

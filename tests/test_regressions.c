@@ -230,3 +230,28 @@ Test(regressions, cdt_budget_underflow) {
         wr_cdt_free(&r);
     }
 }
+
+/* fuzz_pattern: a curve piece needing ~5.5e127 discretisation steps overflowed the int32 cast in
+ * mesher.h's curve walk (UBSan, found by the CI fuzz smoke run). The counts are now clamped in double
+ * and absurd pieces refused: the run must end with a status, never undefined behaviour (this binary
+ * runs under UBSan with -fno-sanitize-recover, so the old code aborts here). */
+Test(regressions, pattern_piece_count_overflow) {
+    size_t len;
+    char *text = read_regression("pattern_piece_count_overflow.fuzz_pattern", &len);
+    wr_pattern_file pf;
+    wr_diag d;
+    wr_status s;
+    memset(&d, 0, sizeof d);
+    s = wr_pattern_parse(text, len, "fuzz.json", &pf, &d);
+    if (s == WR_OK) {
+        wr_mesher_desc md = pf.desc;
+        wr_mesher_result res;
+        md.max_vertices = 2000;
+        s = wr_mesher_run(&pf.pattern, &md, &res, &d);
+        cr_assert(s != WR_OK || res.mesh.nv <= 2000, "status %s", wr_status_string(s));
+        if (s == WR_OK) wr_mesher_free(&res);
+        else cr_assert(strchr(d.message, '\n') == NULL);
+    }
+    wr_pattern_file_free(&pf);
+    free(text);
+}
