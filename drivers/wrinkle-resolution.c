@@ -39,7 +39,8 @@ static void usage(FILE *to) {
             "  --inverse-mm R           print y = c1 r^6 + c2 r^4 [m^3] for r in mm (r must exceed the\n"
             "                           model's zero, about 2.42 mm for the paper's constants)\n"
             "  --csv FILE               batch: rows name,B,E (optional header) -> name,B,E,r_mm on stdout;\n"
-            "                           '-' reads stdin\n"
+            "                           '-' reads stdin. All rows are checked first: a bad row prints one\n"
+            "                           error line and no table\n"
             "  --c1 X --c2 X            use this model instead of the paper's calibration (both needed)\n"
             "  --r-lo-mm X --r-hi-mm X  design band: a result outside it is an error (or clamped with\n"
             "                           --clamp)\n"
@@ -93,15 +94,42 @@ static char *trim(char *s) {
     return s;
 }
 
+/* The CSV batch's output, built in memory: every row is validated (and its resolution computed)
+ * before the first byte reaches stdout, so bad input anywhere gives one error line and no output. */
+typedef struct csv_out {
+    char *p;
+    size_t n, cap;
+} csv_out;
+
+/* Appends one formatted row; 0 when out of memory or the row cannot be formatted. */
+static int csv_append(csv_out *o, const char *name, double B, double E, double r_mm) {
+    int k = snprintf(NULL, 0, "%s,%.6g,%.6g,%.6f\n", name, B, E, r_mm);
+    if (k < 0) return 0;
+    if (o->n + (size_t)k + 1 > o->cap) {
+        size_t cap = o->cap ? o->cap : 4096;
+        char *q;
+        while (o->n + (size_t)k + 1 > cap) cap *= 2;
+        q = (char *)wr_realloc_array(o->p, cap, 1);
+        if (!q) return 0;
+        o->p = q;
+        o->cap = cap;
+    }
+    snprintf(o->p + o->n, (size_t)k + 1, "%s,%.6g,%.6g,%.6f\n", name, B, E, r_mm);
+    o->n += (size_t)k;
+    return 1;
+}
+
 static int run_csv(const opts *o, const wr_resolution_model *m, const wr_resolution_desc *desc) {
     FILE *f = strcmp(o->csv, "-") == 0 ? stdin : fopen(o->csv, "r");
     char line[4096];
     long lineno = 0, rows = 0;
+    csv_out out;
+    int rc;
+    memset(&out, 0, sizeof out);
     if (!f) {
         wr_cli_error("--csv: cannot open '%s'", o->csv);
         return WR_CLI_EXIT_USAGE;
     }
-    printf("name,B,E,r_mm\n");
     while (fgets(line, sizeof line, f)) {
         char *fld[4], *p = line, *name;
         int nf = 0;
@@ -146,7 +174,10 @@ static int run_csv(const opts *o, const wr_resolution_model *m, const wr_resolut
             wr_cli_error("--csv line %ld (%s): %s", lineno, name, d.message);
             goto bad;
         }
-        printf("%s,%.6g,%.6g,%.6f\n", name, B, E, 1e3 * r);
+        if (!csv_append(&out, name, B, E, 1e3 * r)) {
+            wr_cli_error("--csv line %ld: out of memory buffering the output", lineno);
+            goto bad;
+        }
         ++rows;
     }
     if (ferror(f)) {
@@ -154,9 +185,17 @@ static int run_csv(const opts *o, const wr_resolution_model *m, const wr_resolut
         goto bad;
     }
     if (f != stdin) fclose(f);
-    return fflush(stdout) == 0 ? 0 : 1;
+    /* all input is good: now write the whole table */
+    rc = fputs("name,B,E,r_mm\n", stdout) == EOF || (out.n && fwrite(out.p, 1, out.n, stdout) != out.n) ||
+                 fflush(stdout) != 0
+             ? 1
+             : 0;
+    if (rc) wr_cli_error("--csv: writing the output failed");
+    wr_free(out.p);
+    return rc;
 bad:
     if (f != stdin) fclose(f);
+    wr_free(out.p);
     return WR_CLI_EXIT_USAGE;
 }
 

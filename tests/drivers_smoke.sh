@@ -21,17 +21,15 @@ STRACE=""
 if command -v strace >/dev/null 2>&1 && strace -f -qq -o /dev/null true 2>/dev/null; then STRACE=strace; fi
 
 # expect_fail NAME DRIVER ARGS... : non-zero exit, one stderr line, empty stdout
-# (STREAMING=1 before the call: rows already printed to stdout are allowed, e.g. a CSV batch)
 expect_fail() {
     name=$1; shift
-    streaming=${STREAMING:-0}
     (cd "$tmp/cwd" && "$@") >"$tmp/out" 2>"$tmp/err" </dev/null
     rc=$?
     n=$(grep -c . "$tmp/err")
     if [ $rc = 0 ]; then bad "$name: exit 0 on bad input"
     elif [ $rc -ge 126 ]; then bad "$name: exit $rc (crash or signal)"; head -n 3 "$tmp/err"
     elif [ "$n" != 1 ]; then bad "$name: $n lines on stderr, want 1"; head -n 5 "$tmp/err"
-    elif [ -s "$tmp/out" ] && [ "$streaming" = 0 ]; then bad "$name: output on stdout with an error"
+    elif [ -s "$tmp/out" ]; then bad "$name: output on stdout with an error"
     else ok; fi
 }
 
@@ -115,10 +113,17 @@ if [ -x "$B/wrinkle-resolution" ]; then
     expect_fail "wrinkle-resolution non-number" "$B/wrinkle-resolution" --bending 2e-6x --young 1e6
     expect_fail "wrinkle-resolution missing csv" "$B/wrinkle-resolution" --csv "$tmp/none.csv"
     printf 'name,B,E\ngreen,abc,2e6\n' > "$tmp/bad.csv"
-    # the CSV batch streams rows as it goes (its header is out before a bad row is met)
-    STREAMING=1
     expect_fail "wrinkle-resolution malformed csv" "$B/wrinkle-resolution" --csv "$tmp/bad.csv"
-    STREAMING=0
+    # good rows before a bad one: the whole batch is checked first, so nothing reaches stdout
+    printf 'name,B,E\ngreen,2.6e-6,2e6\nwool,1e-5,1e6\nbad,-1,2e6\n' > "$tmp/late.csv"
+    expect_fail "wrinkle-resolution bad csv row after good rows" "$B/wrinkle-resolution" --csv "$tmp/late.csv"
+    printf 'name,B,E\ngreen,2.6e-6,2e6\nwool,1e-5,1e6\nsilk,1e-6\n' > "$tmp/late.csv"
+    expect_fail "wrinkle-resolution short csv row after good rows" "$B/wrinkle-resolution" --csv "$tmp/late.csv"
+    # and a good batch prints the header plus one row per fabric
+    printf 'green,2.6e-6,2e6\nwool,1e-5,1e6\n' > "$tmp/good.csv"
+    if (cd "$tmp/cwd" && "$B/wrinkle-resolution" --csv "$tmp/good.csv") >"$tmp/out" 2>"$tmp/err" </dev/null &&
+       [ "$(grep -c . "$tmp/out")" = 3 ] && [ ! -s "$tmp/err" ]; then ok
+    else bad "wrinkle-resolution good csv: want header + 2 rows and a silent stderr"; cat "$tmp/err"; fi
 fi
 if [ -x "$B/wrinkle-report" ] && [ -x "$B/validate_table1" ]; then
     mkdir -p "$tmp/results"
