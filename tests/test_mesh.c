@@ -230,20 +230,26 @@ Test(mesh, rectangle_errors) {
     cr_assert_null(m.pos);
 }
 
-static void expect_topology_error(int32_t nv, const double *pos, const double *rest, int32_t nf,
-                                  const int32_t *faces, int32_t item, const char *needle) {
+static void expect_create_error(wr_status want, int32_t nv, const double *pos, const double *rest, int32_t nf,
+                                const int32_t *faces, int32_t item, const char *needle) {
     wr_mesh m;
     wr_diag d;
+    wr_status st;
     memset(&d, 0, sizeof d);
     m.nv = 77;
-    cr_assert_eq(wr_mesh_create(&m, nv, pos, rest, nf, faces, &d), WR_ERR_TOPOLOGY, "expected topology error (%s)",
-                 needle);
-    cr_assert_eq(d.status, WR_ERR_TOPOLOGY);
+    st = wr_mesh_create(&m, nv, pos, rest, nf, faces, &d);
+    cr_assert_eq(st, want, "expected %s, got %s (%s)", wr_status_string(want), wr_status_string(st), needle);
+    cr_assert_eq(d.status, want);
     cr_assert_eq(d.item, item, "item %d, expected %d: %s", d.item, item, d.message);
     cr_assert(strstr(d.message, needle) != NULL, "message '%s' lacks '%s'", d.message, needle);
     cr_assert_eq(m.nv, 0);
     cr_assert_null(m.pos);
     cr_assert_null(m.edges);
+}
+
+static void expect_topology_error(int32_t nv, const double *pos, const double *rest, int32_t nf,
+                                  const int32_t *faces, int32_t item, const char *needle) {
+    expect_create_error(WR_ERR_TOPOLOGY, nv, pos, rest, nf, faces, item, needle);
 }
 
 Test(mesh, topology_errors) {
@@ -264,10 +270,11 @@ Test(mesh, topology_errors) {
     expect_topology_error(4, NULL, sq_rest, 2, negative, 1, "out of range");
     expect_topology_error(4, NULL, sq_rest, 2, repeated, 1, "repeats");
     expect_topology_error(4, NULL, sq_rest, 2, flipped, 1, "orientation");
-    expect_topology_error(4, NULL, bad_rest, 2, sq_faces, 2, "vertex 2");
+    /* non-finite coordinates are geometry errors, not topology ones */
+    expect_create_error(WR_ERR_GEOMETRY, 4, NULL, bad_rest, 2, sq_faces, 2, "vertex 2");
     memset(bad_pos, 0, sizeof bad_pos);
     bad_pos[3 * 3 + 2] = INFINITY;
-    expect_topology_error(4, bad_pos, sq_rest, 2, sq_faces, 3, "vertex 3");
+    expect_create_error(WR_ERR_GEOMETRY, 4, bad_pos, sq_rest, 2, sq_faces, 3, "vertex 3");
     expect_topology_error(5, NULL, fan_rest, 3, nonmanifold, 2, "non-manifold edge (0,1)");
     expect_topology_error(5, NULL, bow_rest, 2, bowtie, 0, "non-manifold vertex 0");
     {
@@ -569,7 +576,7 @@ Test(mesh, corner_rest_and_panels_setters) {
     wr_mesh_edge_lengths(&m, 1, len);
     cr_assert_float_eq(len[2], 2.0 * sqrt(2.0), 1e-15);
     cr[7] = NAN;
-    cr_assert_eq(wr_mesh_set_corner_rest(&m, cr, &d), WR_ERR_TOPOLOGY);
+    cr_assert_eq(wr_mesh_set_corner_rest(&m, cr, &d), WR_ERR_GEOMETRY);
     cr_assert_eq(d.item, 1);
     cr_assert_eq(wr_mesh_set_corner_rest(&m, NULL, &d), WR_OK);
     wr_mesh_face_rest(&m, 1, uv);

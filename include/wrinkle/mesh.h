@@ -59,12 +59,13 @@
  *
  * ON VALIDATION
  *   wr_mesh_create rejects, with WR_ERR_TOPOLOGY and diag->item set: a face index outside [0,nv)
- *   (item = face), a face repeating a vertex (item = face), a non-finite coordinate (item = vertex),
- *   an edge shared by more than two faces (item = the third face; message names the edge's vertices),
- *   two faces traversing a shared edge in the same direction, i.e. inconsistent orientation (item =
- *   the second face), a non-manifold vertex whose incident faces form more than one fan (bow-tie;
- *   item = vertex). The contract lists non-finite coordinates with the topology errors, so they are
- *   WR_ERR_TOPOLOGY too. Counts < 1, NULL faces, or pos3 and rest2 both NULL → WR_ERR_INVALID_ARG.
+ *   (item = face), a face repeating a vertex (item = face), an edge shared by more than two faces
+ *   (item = the third face; message names the edge's vertices), two faces traversing a shared edge in
+ *   the same direction, i.e. inconsistent orientation (item = the second face), a non-manifold vertex
+ *   whose incident faces form more than one fan (bow-tie; item = vertex). A non-finite coordinate is
+ *   bad geometry, not bad connectivity: WR_ERR_GEOMETRY (item = vertex; checked after the face indices).
+ *   wr_mesh_set_corner_rest likewise returns WR_ERR_GEOMETRY (item = face) for a non-finite corner.
+ *   Counts < 1, NULL faces, or pos3 and rest2 both NULL → WR_ERR_INVALID_ARG.
  *   Orientation is checked combinatorially; faces whose rest area is <= 0 are not rejected here
  *   (a quality report counts them). Vertices in no face are allowed (empty vf range).
  *   nf or nv > INT32_MAX/3 → WR_ERR_OVERFLOW. The topology build is O(nv + nf): two counting-sort passes
@@ -479,10 +480,10 @@ WRDEF wr_status wr_mesh_create(wr_mesh *m, int32_t nv, const double *pos3, const
     }
     for (i = 0; i < nv; ++i) {
         if (pos3 && !(isfinite(pos3[3 * i]) && isfinite(pos3[3 * i + 1]) && isfinite(pos3[3 * i + 2])))
-            return wr_fail(diag, WR_ERR_TOPOLOGY, i, "vertex %d has a non-finite position (%g,%g,%g)", i,
+            return wr_fail(diag, WR_ERR_GEOMETRY, i, "vertex %d has a non-finite position (%g,%g,%g)", i,
                            pos3[3 * i], pos3[3 * i + 1], pos3[3 * i + 2]);
         if (rest2 && !(isfinite(rest2[2 * i]) && isfinite(rest2[2 * i + 1])))
-            return wr_fail(diag, WR_ERR_TOPOLOGY, i, "vertex %d has a non-finite rest coordinate (%g,%g)", i,
+            return wr_fail(diag, WR_ERR_GEOMETRY, i, "vertex %d has a non-finite rest coordinate (%g,%g)", i,
                            rest2[2 * i], rest2[2 * i + 1]);
     }
     m->nv = nv;
@@ -785,7 +786,7 @@ WRDEF wr_status wr_mesh_set_corner_rest(wr_mesh *m, const double *cr, wr_diag *d
     }
     for (i = 0; i < 6 * m->nf; ++i)
         if (!isfinite(cr[i]))
-            return wr_fail(diag, WR_ERR_TOPOLOGY, i / 6, "face %d has a non-finite corner rest coordinate (%g)", i / 6,
+            return wr_fail(diag, WR_ERR_GEOMETRY, i / 6, "face %d has a non-finite corner rest coordinate (%g)", i / 6,
                            cr[i]);
     p = (double *)wr_alloc_array((size_t)m->nf * 6, sizeof(double));
     if (!p) return wr_fail(diag, WR_ERR_NOMEM, -1, "wr_mesh_set_corner_rest: out of memory");
