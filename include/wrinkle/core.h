@@ -30,16 +30,15 @@
  *                                          distance) shared by the meshing-side modules
  *
  * EXAMPLE
- *     wr_diag d;  wr_rng rng;
+ *     wr_diag d;  wr_rng rng;  wr_afile f;  wr_mat2 A;  wr_vec2 vec[2];  double u, lam[2];
  *     wr_rng_seed(&rng, 42);                      // every random result is reproducible
- *     double u = wr_rng_uniform(&rng);            // in [0, 1)
- *     wr_mat2 A = wr_m2(2.0, 1.0, 1.0, 3.0);
- *     double lam[2]; wr_vec2 vec[2];
- *     wr_m2_sym_eig(A, lam, vec);                 // lam ascending
- *     wr_afile f;
- *     if (wr_afile_open(&f, "out.txt", &d) != WR_OK) puts(d.message);
- *     fprintf(f.fp, "%g\n", u);
- *     wr_afile_commit(&f, &d);                    // out.txt appears whole or not at all
+ *     u = wr_rng_uniform(&rng);                   // in [0, 1)
+ *     A = wr_m2(2.0, 1.0, 1.0, 3.0);
+ *     wr_m2_sym_eig(A, lam, vec);                 // lam ascending: 1.382, 3.618
+ *     if (wr_afile_open(&f, "out.txt", &d) != WR_OK) { puts(d.message); return 1; }
+ *     fprintf(f.fp, "%g %g %g\n", u, lam[0], lam[1]);
+ *     if (wr_afile_commit(&f, &d) != WR_OK) { puts(d.message); return 1; }   // whole or not at all
+ *     printf("lambda = %.3f, %.3f\n", lam[0], lam[1]);
  *
  * ON ERRORS
  *   Fallible functions return wr_status (WR_OK == 0) and take an optional `wr_diag *` (may be NULL).
