@@ -36,14 +36,15 @@
  *     wr_triplets t;  wr_csr K;  wr_spd_desc sd;  wr_spd_stats st;  wr_diag d;  int32_t e;
  *     uint8_t fixed[5] = {1, 0, 0, 0, 0};                // DOF 0 clamped (Dirichlet)
  *     double b[5] = {0, 0, 0, 0, 1.0}, x[5] = {0};       // unit force on the free end; x[0] stays 0
- *     wr_triplets_create(&t, 5, 16, &d);                 // chain of 4 unit springs (see sparse.h)
+ *     if (wr_triplets_create(&t, 5, 16, &d) != WR_OK) { puts(d.message); return 1; }   // 4 unit springs
  *     for (e = 0; e < 4; ++e) {
  *         wr_triplets_add(&t, e, e, 1.0, &d);  wr_triplets_add(&t, e + 1, e + 1, 1.0, &d);
  *         wr_triplets_add(&t, e, e + 1, -1.0, &d);  wr_triplets_add(&t, e + 1, e, -1.0, &d);
  *     }
- *     wr_csr_from_triplets(&K, &t, &d);  wr_triplets_free(&t);
+ *     if (wr_csr_from_triplets(&K, &t, &d) != WR_OK) { puts(d.message); return 1; }
+ *     wr_triplets_free(&t);
  *     memset(&sd, 0, sizeof sd);  sd.fixed = fixed;      // zero = defaults (AUTO, rel_tol 1e-10)
- *     if (wr_spd_solve(&K, b, x, &sd, &st, &d) != WR_OK) puts(d.message);
+ *     if (wr_spd_solve(&K, b, x, &sd, &st, &d) != WR_OK) { puts(d.message); return 1; }
  *     printf("x[4] = %g m by %s\n", x[4], wr_solver_method_name(st.method));   // 4 (springs in series)
  *     wr_csr_free(&K);
  *   In a Newton loop keep one solver so the symbolic analysis is done once: wr_spd_solver_create(&S,
