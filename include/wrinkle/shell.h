@@ -34,15 +34,16 @@
  *   wr_shell_stvk_density(C, eps, dW, d2W)          Voigt StVK density in Green-strain coordinates
  *
  * EXAMPLE
- *     wr_mesh m; wr_shell s; wr_shell_desc d; wr_diag dg; double E;
- *     wr_mesh_rectangle(&m, 1.0, 1.0, 20, 20, &dg);
+ *     wr_mesh m;  wr_shell s;  wr_shell_desc d;  wr_diag dg;  double E, *g;
+ *     if (wr_mesh_rectangle(&m, 1.0, 1.0, 20, 20, &dg) != WR_OK) { puts(dg.message); return 1; }
  *     memset(&d, 0, sizeof d);
  *     d.young = 1e6; d.poisson = 0.3; d.thickness = 1e-3;         // SI units
  *     d.membrane = WR_MEMBRANE_TFT; d.bending = WR_BENDING_QUADRATIC; // TFW Sec. 4.1 base surface
- *     if (wr_shell_create(&s, &m, &d, &dg) != WR_OK) puts(dg.message);
- *     double *g = malloc(sizeof(double) * 3 * m.nv);
- *     wr_shell_energy(&s, m.pos, &E, g, &dg);                       // E = 0 at rest
- *     wr_shell_free(&s); wr_mesh_free(&m); free(g);
+ *     if (wr_shell_create(&s, &m, &d, &dg) != WR_OK) { puts(dg.message); return 1; }
+ *     g = (double *)wr_alloc_array(3 * (size_t)m.nv, sizeof(double));
+ *     if (wr_shell_energy(&s, m.pos, &E, g, &dg) != WR_OK) { puts(dg.message); return 1; }
+ *     printf("E = %g J at rest\n", E);                              // 0 (to rounding)
+ *     wr_shell_free(&s);  wr_mesh_free(&m);  wr_free(g);
  *
  * ON NORMALISATION
  *   TFW Eq. (1) as printed reads E = ½∫(h/4 W_s + h³/12 W_b) with ‖M‖²_SV = α/2 tr²M + β tr M²,
