@@ -24,8 +24,9 @@
  *
  * EXAMPLE
  *     double eps[3] = {0.02, -0.05, 0.0};           // Green strain (ε11, ε22, ε12) in a rest frame
- *     double dW[3], d2W[9];
- *     double W = wr_tft_density(eps, 1e6, 0.3, 1e-3, dW, d2W);   // = h·Y·ε11²/2 (wrinkled)
+ *     double dW[3], d2W[9], W;
+ *     W = wr_tft_density(eps, 1e6, 0.3, 1e-3, dW, d2W);          // = h·Y·ε11²/2 = 0.2 J/m² (wrinkled)
+ *     printf("W = %g J/m^2\n", W);
  *     if (wr_tft_regime_of(eps, 0.3) == WR_TFT_WRINKLED) puts("wrinkles run along the tension");
  *
  * ON STRAIN COORDINATES
