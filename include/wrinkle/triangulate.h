@@ -27,9 +27,10 @@
  *     memset(&in, 0, sizeof in); memset(&d, 0, sizeof d);
  *     in.points = pts; in.n_points = 5; in.segments = seg; in.n_segments = 4;
  *     d.quality = 1; d.min_angle_deg = 30.0;            // Ruppert refinement, 30° minimum angle
- *     if (wr_cdt_triangulate(&in, &d, &r, &dg) != WR_OK) puts(dg.message);
+ *     if (wr_cdt_triangulate(&in, &d, &r, &dg) != WR_OK) { puts(dg.message); return 1; }
  *     // r.points (r.n_points×2), r.triangles (r.n_triangles×3, CCW), r.neighbors, r.edge_segment
- *     wr_cdt_check(&r, 0, NULL, &dg);                   // verifies CCW, CDT property, segments, Euler
+ *     if (wr_cdt_check(&r, 0, NULL, &dg) != WR_OK) { puts(dg.message); return 1; }   // CCW, CDT, Euler
+ *     printf("%d points, %d triangles\n", r.n_points, r.n_triangles);
  *     wr_cdt_free(&r);
  *
  * ON PREDICATES (the flags they need)
