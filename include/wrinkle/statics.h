@@ -29,13 +29,22 @@
  *   (weld and pillow fill a wr_mesh: free it with wr_mesh_free; on failure it is left zeroed)
  *
  * EXAMPLE
- *     wr_statics_desc sd; wr_statics_stats st; wr_obstacle ball;
- *     memset(&sd, 0, sizeof sd); memset(&ball, 0, sizeof ball);
- *     ball.kind = WR_OBSTACLE_SPHERE; ball.radius = 0.2;            // centred at the origin
- *     sd.gravity[2] = -9.81; sd.perturb = 1e-4; sd.seed = 7;        // seeded out-of-plane kick
+ *     wr_mesh m;  wr_shell shell;  wr_shell_desc sh;  wr_statics_desc sd;  wr_statics_stats st;
+ *     wr_obstacle ball;  wr_diag d;  double *x;  uint8_t *pin;  int32_t i;
+ *     if (wr_mesh_rectangle(&m, 0.3, 0.3, 8, 8, &d) != WR_OK) { puts(d.message); return 1; }
+ *     memset(&sh, 0, sizeof sh);  memset(&sd, 0, sizeof sd);  memset(&ball, 0, sizeof ball);
+ *     sh.young = 1e6; sh.poisson = 0.3; sh.thickness = 1e-3; sh.density = 200;   // SI: Pa, -, m, kg/m³
+ *     if (wr_shell_create(&shell, &m, &sh, &d) != WR_OK) { puts(d.message); return 1; }
+ *     x = (double *)wr_alloc_array(3 * (size_t)m.nv, sizeof(double));
+ *     pin = (uint8_t *)wr_calloc_array((size_t)m.nv, 1);
+ *     for (i = 0; i < 3 * m.nv; ++i) x[i] = m.pos[i] - (i % 3 == 2 ? -0.11 : 0.15);  // centred, 1 cm above
+ *     pin[0] = pin[8] = pin[72] = pin[80] = 1;                      // the four corners are held
+ *     ball.kind = WR_OBSTACLE_SPHERE; ball.radius = 0.1;             // centred at the origin
+ *     sd.gravity[2] = -9.81; sd.fixed = pin;                         // sags onto the ball
  *     sd.obstacles = &ball; sd.n_obstacles = 1;                      // default d̂ and κ
- *     if (wr_statics_solve(&shell, x, &sd, &st, &d) != WR_OK) puts(d.message);
- *     printf("%d Newton steps, |g| %.2e, gap %.2e m\n", st.iterations, st.grad_norm, st.min_distance);
+ *     if (wr_statics_solve(&shell, x, &sd, &st, &d) != WR_OK) { puts(d.message); return 1; }
+ *     printf("%d Newton steps, |g| %.2e N, gap %.2e m\n", st.iterations, st.grad_norm, st.min_distance);
+ *     wr_free(x);  wr_free(pin);  wr_shell_free(&shell);  wr_mesh_free(&m);
  *
  * ON STOPPING ("solve to tolerance")
  *   Converged when ‖∇Π_free‖ <= grad_tol · max(‖∇Π_free(x0)‖, ‖f_ext,free‖) (stop GRADIENT), or when
