@@ -14,11 +14,21 @@
  *   wr_tfw_result_free(result)
  *
  * EXAMPLE
- *     wr_shell_desc sd; wr_tfw_base_shell_desc(1e6, 0.5, 1e-4, 0.0, &sd);
- *     ... wr_shell_create(&shell, &mesh, &sd, &d); wr_statics_solve_incremental(&shell, x, ...);
- *     wr_wf_material mat = {1e6, 0.5, 1e-4}; wr_tfw_result r;
- *     if (wr_tfw_fields(&mesh, x, &mat, NULL, &r, &d) == WR_OK) wr_mesh_write_obj(&r.wrinkled, ...);
- *     wr_tfw_result_free(&r);
+ *     wr_mesh m;  wr_wf_material mat;  wr_tfw_desc td;  wr_tfw_result r;  wr_diag d;  wr_status st;
+ *     double *x, amax = 0.0;  int32_t i;
+ *     if (wr_mesh_rectangle(&m, 0.25, 0.10, 12, 5, &d) != WR_OK) { puts(d.message); return 1; }
+ *     x = (double *)wr_alloc_array(3 * (size_t)m.nv, sizeof(double));
+ *     for (i = 0; i < m.nv; ++i) {     // base surface (in practice statics.h with wr_tfw_base_shell_desc):
+ *         double u = m.pos[3 * i], v = m.pos[3 * i + 1] - 0.05;      // 10 % stretch, width pulled in
+ *         x[3 * i] = 1.1 * u;  x[3 * i + 1] = 0.05 + v * (1.0 - 0.1 * sin(3.14159265 * u / 0.25));  x[3 * i + 2] = 0.0;
+ *     }
+ *     mat.young = 1e6; mat.poisson = 0.5; mat.thickness = 1e-4;     // Pa, -, m
+ *     memset(&td, 0, sizeof td);  td.solve.max_iter = 30;            // a few SQP steps (App. E.3)
+ *     st = wr_tfw_fields(&m, x, &mat, &td, &r, &d);                  // W, E.2, E.3, E.4, E.5
+ *     if (st != WR_OK && st != WR_ERR_NOT_CONVERGED) { puts(d.message); return 1; }
+ *     for (i = 0; i < m.nv; ++i) amax = fmax(amax, r.a[i]);
+ *     printf("max amplitude %.2f mm; wrinkled mesh %d vertices\n", 1e3 * amax, r.wrinkled.nv);
+ *     wr_tfw_result_free(&r);  wr_free(x);  wr_mesh_free(&m);
  *
  * ON RESULTS
  *   a (nv) [m], omega (ne) [rad per edge], phi (3 nf) per-corner phase [rad], wfree (nf), the wrinkled
