@@ -27,16 +27,29 @@
  *   wr_wf_upsample(wf, a, phi, desc, out, out_a, diag)  App. E.5: Loop n levels + Eq. 19 (v2 term)
  *
  * EXAMPLE
- *     wr_wf wf; wr_wf_material mat = {1e6, 0.5, 1e-4};      // E [Pa], ν, h [m]
- *     wr_wf_create(&wf, &mesh, base_pos, &mat, &d);         // base_pos: nv*3 from the TFT solve
- *     wr_wf_classify(&wf, NULL);                            // W (Sec. 5.1)
- *     double *a = ..nv.., *omega = ..ne.., *phi = ..3*nf..;
- *     wr_wf_init(&wf, NULL, a, omega, &d);                  // App. E.2
- *     wr_wf_solve(&wf, NULL, a, omega, &stats, &d);         // App. E.3
- *     wr_wf_phase(&wf, omega, phi, NULL, &d);               // App. E.4
- *     wr_mesh fine; wr_wf_upsample_desc ud = {0}; ud.levels = 3;
- *     wr_wf_upsample(&wf, a, phi, &ud, &fine, NULL, &d);    // App. E.5, Eq. 19
- *     ... write fine ..., wr_mesh_free(&fine); wr_wf_free(&wf);
+ *     wr_mesh m, fine;  wr_wf wf;  wr_wf_material mat;  wr_wf_solve_stats ss;  wr_wf_upsample_desc ud;  wr_diag d;
+ *     double *x, *a, *omega, *phi;  int32_t i;  wr_status st;
+ *     if (wr_mesh_rectangle(&m, 0.25, 0.10, 12, 5, &d) != WR_OK) { puts(d.message); return 1; }
+ *     x = (double *)wr_alloc_array(3 * (size_t)m.nv, sizeof(double));       // base_pos: nv*3 (TFT solve)
+ *     a = (double *)wr_alloc_array((size_t)m.nv, sizeof(double));            // amplitude per vertex [m]
+ *     omega = (double *)wr_alloc_array((size_t)m.ne, sizeof(double));        // frequency one-form [rad]
+ *     phi = (double *)wr_alloc_array(3 * (size_t)m.nf, sizeof(double));      // phase per corner [rad]
+ *     for (i = 0; i < m.nv; ++i) {                      // 10 % stretch, width pulled in mid-span
+ *         double u = m.pos[3 * i], v = m.pos[3 * i + 1] - 0.05;
+ *         x[3 * i] = 1.1 * u;  x[3 * i + 1] = 0.05 + v * (1.0 - 0.1 * sin(3.14159265 * u / 0.25));  x[3 * i + 2] = 0.0;
+ *     }
+ *     mat.young = 1e6; mat.poisson = 0.5; mat.thickness = 1e-4;     // E [Pa], ν, h [m]
+ *     if (wr_wf_create(&wf, &m, x, &mat, &d) != WR_OK) { puts(d.message); return 1; }
+ *     wr_wf_classify(&wf, NULL);                                     // W (Sec. 5.1)
+ *     if (wr_wf_init(&wf, NULL, a, omega, &d) != WR_OK) { puts(d.message); return 1; }   // App. E.2
+ *     st = wr_wf_solve(&wf, NULL, a, omega, &ss, &d);                // App. E.3 (SQP)
+ *     if (st != WR_OK && st != WR_ERR_NOT_CONVERGED) { puts(d.message); return 1; }   // best iterate kept
+ *     if (wr_wf_phase(&wf, omega, phi, NULL, &d) != WR_OK) { puts(d.message); return 1; }  // App. E.4
+ *     memset(&ud, 0, sizeof ud);  ud.levels = 2;
+ *     if (wr_wf_upsample(&wf, a, phi, &ud, &fine, NULL, &d) != WR_OK) { puts(d.message); return 1; }  // Eq. 19
+ *     printf("SQP %d iterations; wrinkled mesh %d vertices\n", ss.iterations, fine.nv);
+ *     wr_mesh_free(&fine);  wr_wf_free(&wf);  wr_mesh_free(&m);
+ *     wr_free(x);  wr_free(a);  wr_free(omega);  wr_free(phi);
  *
  * ON CHARTS AND UNITS
  *   Every face works in its own barycentric chart (s, t): r = r0 + s (r1 - r0) + t (r2 - r0), as in
