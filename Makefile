@@ -38,7 +38,7 @@ BENCHES     = $(patsubst bench/%.c,bin/%,$(BENCH_SRC)) $(patsubst bench/%.cpp,bi
 EXTRA_HDR   = $(wildcard drivers/lib/*.h)
 
 .SECONDARY: $(LIB_OBJ)
-.PHONY: all deps deps-bench demo test validate bench install uninstall clean check-headers
+.PHONY: all deps deps-bench demo test validate bench install uninstall clean check-headers check-examples
 
 all: $(DRIVERS) $(VALIDATORS)
 
@@ -79,9 +79,14 @@ build/test/wrinkle_tests: $(TEST_SRC) tests/impl.c $(LIB_SRC) $(HEADERS) $(EXTRA
 check-headers:
 	@sh tests/check_headers.sh
 
+# Every header's top-block EXAMPLE, compiled (C11 and C++17, -Werror) and run (tests/check_examples.sh).
+check-examples:
+	@sh tests/check_examples.sh
+
 test: deps
 	@$(MAKE) --no-print-directory all build/test/wrinkle_tests
 	@sh tests/check_headers.sh
+	@sh tests/check_examples.sh
 	@sh tests/run_tests.sh
 
 demo: deps

@@ -25,6 +25,7 @@
  *     if (wr_poisson_sample(&dom, size_fn, NULL, &desc, &res, &d) != WR_OK) { puts(d.message); return 1; }
  *     // res.points[0 .. 2*res.n_fixed) are the boundary points, then the interior samples;
  *     // res.segments (res.n_segments pairs) are the boundary edges to hand to the CDT.
+ *     printf("%d points (%d on the boundary), %d segments\n", res.n_points, res.n_fixed, res.n_segments);
  *     wr_poisson_free(&res);
  *
  * ON THE SIZING → RADIUS RELATION

@@ -30,7 +30,7 @@
  * EXAMPLE
  *     wr_resolution_model mdl = wr_resolution_model_paper();   // c1 ≈ 32.08 m⁻³, c2 ≈ -1.876e-4 m⁻¹
  *     double r;  wr_diag d;
- *     if (wr_resolution_from_BE(&mdl, 2.0e-6, 1.0e6, NULL, &r, &d) != WR_OK) puts(d.message);
+ *     if (wr_resolution_from_BE(&mdl, 2.0e-6, 1.0e6, NULL, &r, &d) != WR_OK) { puts(d.message); return 1; }
  *     printf("%.2f mm\n", 1e3 * r);                            // 6.46 mm (paper Fig. 18: 6.45 mm)
  *
  * ON UNITS

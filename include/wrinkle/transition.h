@@ -40,11 +40,11 @@
  * EXAMPLE
  *     wr_transition t;  wr_sizing *s;  wr_diag d;
  *     double line[4] = {0.0, 0.0, 0.3, 0.0};                 // a 30 cm shirring line
- *     wr_transition_make(3.0e-3, 25.0e-3, NULL, &t, &d);     // r = 3 mm doubling over 25 mm
- *     wr_sizing_create(9.0e-3, NULL, &s, &d);                // fabric resolution r_f = 9 mm
- *     wr_sizing_add_polyline(s, line, 2, &t, &d);
- *     wr_sizing_build(s, &d);
- *     double r = wr_sizing_eval(s, 0.1, 0.025);              // 6 mm: 25 mm away the size has doubled
+ *     if (wr_transition_make(3.0e-3, 25.0e-3, NULL, &t, &d) != WR_OK) { puts(d.message); return 1; }
+ *     if (wr_sizing_create(9.0e-3, NULL, &s, &d) != WR_OK) { puts(d.message); return 1; }  // r_f = 9 mm
+ *     wr_sizing_add_polyline(s, line, 2, &t, &d);            // r = 3 mm on the line, doubling over 25 mm
+ *     if (wr_sizing_build(s, &d) != WR_OK) { puts(d.message); return 1; }
+ *     printf("%.1f mm\n", 1e3 * wr_sizing_eval(s, 0.1, 0.025));   // 6 mm: 25 mm away the size has doubled
  *     wr_sizing_free(s);
  *
  * ON UNITS AND THE MILLIMETRE POWER LAW
