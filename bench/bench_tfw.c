@@ -1,11 +1,24 @@
 /* bench_tfw: TFW timings per validation case against the paper's Table 2 (8-core i9-9900K):
- * stretched sheet (522 vertices; paper TFT 0.45 s + TFW 3.93 s), sheared rectangle (990; 2.27 +
- * 27.52 s), twisted cylinder (696; paper 688 vertices, 0.69 + 104.92 s). Per case: TFT base time
- * (statics.h, 4 load steps), SQP iterations, SQP time, and the TFW time split like the paper's
- * Fig. 23 (SQP assembly / SQP linear solves / SQP rest / init + phase + upsampling). Medians of 5
- * runs; the SQP is also run with the per-face-projected Hessian throughout (WR_WF_HESSIAN_PROJECTED,
- * the paper's first method) as the in-run peer, ratio printed. The sheared-rectangle base takes
- * ~45 s here, so it is timed once (marked "1 run") unless --full is given. Prints the machine. */
+ * stretched sheet (522 vertices; paper TFT 10 it 0.45 s + TFW 23 it 3.93 s), sheared rectangle
+ * (990; paper 1k, 21 it 2.27 s + 147 it 27.52 s), twisted cylinder (696; paper 688, 12 it 0.69 s +
+ * 813 it 104.92 s), teabag (962 sewn; paper 936, 8 it 0.78 s + 46 it 7.32 s).
+ *
+ * TFT base (statics.h, TFW Sec. 4.1): Newton iterations, seconds, and their split into assembly
+ * (+ per-element projection), linear solves and line search, plus line-search energy evaluations.
+ * The base is solved in ONE load increment: TFT + quadratic bending is convex (TFW Sec. 6.5 "an
+ * entirely convex problem"), so its minimiser does not depend on the path and load stepping only
+ * multiplies the Newton solves (measured here: stretched sheet 28 Newton steps in 4 increments
+ * against 9 in 1; twisted cylinder 33 against 14, same equilibrium to 1e-9 m). The teabag adds the
+ * pressure work −pV (not convex) and is solved at full pressure from the lifted pillow, as in
+ * validate_tfw_inflatables.
+ * TFW: SQP iterations, SQP seconds, and the whole TFW time split like the paper's Fig. 23: SQP
+ * assembly (gradient + Hessian), SQP linear solves (the paper's QP-solver share), the rest of the
+ * SQP (energy evaluations in the step control, bookkeeping) and everything outside the SQP (setup,
+ * W, initialisation, phase, Loop upsampling to level 2).
+ * Medians of RUNS runs per case, except the sheared-rectangle base (Newton needs ~400 steps there,
+ * ~15 s; timed once unless --full, marked in the runs column). --peer also times the SQP with the
+ * per-face-projected Hessian throughout (WR_WF_HESSIAN_PROJECTED, the paper's method) as an in-run
+ * peer. Prints the machine and the load average (the box is shared: timings are noisy). */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -21,9 +34,19 @@ static int cmp_d(const void *a, const void *b) {
     double x = *(const double *)a, y = *(const double *)b;
     return x < y ? -1 : x > y;
 }
-static double median(double *v, int n) {
+static double median(const double *v0, int n) {
+    double v[RUNS];
+    memcpy(v, v0, sizeof(double) * (size_t)n);
     qsort(v, (size_t)n, sizeof(double), cmp_d);
     return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+/* index of the run whose value is the (upper) median, so the parts of that run add up */
+static int median_index(const double *v, int n) {
+    double m = median(v, n), best = HUGE_VAL;
+    int k, km = 0;
+    for (k = 0; k < n; ++k)
+        if (fabs(v[k] - m) < best) best = fabs(v[k] - m), km = k;
+    return km;
 }
 
 static void machine(void) {
@@ -42,69 +65,112 @@ static void machine(void) {
     }
     printf("machine: %s, %d logical CPUs (single-threaded code)\n", model, ncpu);
 }
+static void loadavg(const char *when) {
+    FILE *f = fopen("/proc/loadavg", "r");
+    char line[128] = "?";
+    if (f) {
+        if (!fgets(line, sizeof line, f)) strcpy(line, "?");
+        fclose(f);
+    }
+    line[strcspn(line, "\n")] = 0;
+    printf("load average %s: %s\n", when, line);
+}
 
 typedef struct bcase {
     const char *name;
-    int kind; /* 0 sheet, 1 shear, 2 cylinder */
+    int kind; /* 0 sheet, 1 shear, 2 cylinder, 3 teabag */
     double paper_tft, paper_tfw;
-    int paper_iters, paper_nv;
+    int paper_tft_it, paper_iters, paper_nv;
 } bcase;
 
-/* builds mesh, shell and motions; returns base positions after the statics solve in x */
-static int solve_base(int kind, wr_mesh *m, double **xout, double *t_base, wr_wf_material *mat) {
+typedef struct base_timing {
+    double total, assembly, linear, line_search;
+    int iters, ls_evals;
+    wr_status status;
+} base_timing;
+
+/* Builds the case's mesh and solves the TFT base; x gets the base positions. 0 on failure. */
+static int solve_base(int kind, wr_mesh *m, double **xout, base_timing *bt, wr_wf_material *mat) {
     wr_diag d;
     wr_shell sh;
     wr_shell_desc sd;
     wr_statics_desc st;
     wr_statics_stats ss;
     wr_motion mo[2];
-    int32_t *s0, *s1, n0 = 0, n1 = 0, v;
+    int32_t *s0 = NULL, *s1 = NULL, n0 = 0, n1 = 0, v;
     double *x, t0;
     wr_status s;
+    memset(m, 0, sizeof *m);
+    memset(&st, 0, sizeof st);
+    memset(&ss, 0, sizeof ss);
     if (kind == 0) {
-        wr_mesh_rectangle(m, 0.25, 0.1, 28, 17, &d);
+        if (wr_mesh_rectangle(m, 0.25, 0.1, 28, 17, &d)) return 0;
         mat->young = 1e6, mat->poisson = 0.5, mat->thickness = 1e-4;
     } else if (kind == 1) {
-        wr_mesh_rectangle(m, 0.38, 0.128, 54, 17, &d);
+        if (wr_mesh_rectangle(m, 0.38, 0.128, 54, 17, &d)) return 0;
         mat->young = 3530e6, mat->poisson = 0.3, mat->thickness = 25e-6;
-    } else {
-        wr_mesh_cylinder_flat(m, 1.0, 5.0, 29, 23, &d);
+    } else if (kind == 2) {
+        if (wr_mesh_cylinder_flat(m, 1.0, 5.0, 29, 23, &d)) return 0;
         mat->young = 10e6, mat->poisson = 0.44, mat->thickness = 1e-4;
+    } else {
+        /* teabag as in validate_tfw_inflatables: two 1.4 × 0.74 m panels (30 × 16) sewn, tent 0.1 m, 10 Pa */
+        wr_mesh panel;
+        memset(&panel, 0, sizeof panel);
+        if (wr_mesh_rectangle(&panel, 1.4, 0.74, 30, 16, &d)) return 0;
+        s = wr_mesh_pillow(m, &panel, 0.1, &d);
+        wr_mesh_free(&panel);
+        if (s) return 0;
+        mat->young = 1e5, mat->poisson = 0.3, mat->thickness = 1e-3;
     }
     wr_tfw_base_shell_desc(mat->young, mat->poisson, mat->thickness, 0.0, &sd);
     if (wr_shell_create(&sh, m, &sd, &d)) return 0;
-    s0 = (int32_t *)malloc(sizeof(int32_t) * m->nv);
-    s1 = (int32_t *)malloc(sizeof(int32_t) * m->nv);
     x = (double *)malloc(sizeof(double) * 3 * m->nv);
-    for (v = 0; v < m->nv; ++v) {
-        double c = kind == 0 ? m->pos[3 * v] : kind == 1 ? m->pos[3 * v + 1] : m->pos[3 * v + 2];
-        double hi = kind == 0 ? 0.25 : kind == 1 ? 0.128 : 5.0;
-        if (c < 1e-9) s0[n0++] = v;
-        if (c > hi - 1e-9) s1[n1++] = v;
-    }
-    memset(mo, 0, sizeof mo);
-    mo[0].kind = WR_MOTION_HOLD;
-    mo[0].verts = s0;
-    mo[0].n_verts = n0;
-    mo[1].verts = s1;
-    mo[1].n_verts = n1;
-    if (kind == 0) {
-        mo[1].kind = WR_MOTION_STRETCH;
-        mo[1].axis[0] = 1.0;
-        mo[1].amount = 0.1278;
-    } else if (kind == 1) {
-        mo[1].kind = WR_MOTION_TRANSLATE;
-        mo[1].vec[0] = 0.003;
-    } else {
-        mo[1].kind = WR_MOTION_TWIST;
-        mo[1].axis[2] = 1.0;
-        mo[1].amount = 10.0 * PI_ / 180.0;
-    }
-    memset(&st, 0, sizeof st);
     memcpy(x, m->pos, sizeof(double) * 3 * m->nv);
-    t0 = wr_time_seconds();
-    s = wr_statics_solve_incremental(&sh, x, &st, mo, 2, 4, &ss, &d);
-    *t_base = wr_time_seconds() - t0;
+    if (kind == 3) {
+        st.pressure = 10.0;
+        st.max_iter = 300;
+        t0 = wr_time_seconds();
+        s = wr_statics_solve(&sh, x, &st, &ss, &d);
+        bt->total = wr_time_seconds() - t0;
+    } else {
+        s0 = (int32_t *)malloc(sizeof(int32_t) * m->nv);
+        s1 = (int32_t *)malloc(sizeof(int32_t) * m->nv);
+        for (v = 0; v < m->nv; ++v) {
+            double c = kind == 0 ? m->pos[3 * v] : kind == 1 ? m->pos[3 * v + 1] : m->pos[3 * v + 2];
+            double hi = kind == 0 ? 0.25 : kind == 1 ? 0.128 : 5.0;
+            if (c < 1e-9) s0[n0++] = v;
+            if (c > hi - 1e-9) s1[n1++] = v;
+        }
+        memset(mo, 0, sizeof mo);
+        mo[0].kind = WR_MOTION_HOLD;
+        mo[0].verts = s0;
+        mo[0].n_verts = n0;
+        mo[1].verts = s1;
+        mo[1].n_verts = n1;
+        if (kind == 0) {
+            mo[1].kind = WR_MOTION_STRETCH;
+            mo[1].axis[0] = 1.0;
+            mo[1].amount = 0.1278;
+        } else if (kind == 1) {
+            mo[1].kind = WR_MOTION_TRANSLATE;
+            mo[1].vec[0] = 0.003;
+        } else {
+            mo[1].kind = WR_MOTION_TWIST;
+            mo[1].axis[2] = 1.0;
+            mo[1].amount = 10.0 * PI_ / 180.0;
+        }
+        /* one increment: the TFT + quadratic-bending problem is convex (see the top comment) */
+        st.max_iter = 1000;
+        t0 = wr_time_seconds();
+        s = wr_statics_solve_incremental(&sh, x, &st, mo, 2, 1, &ss, &d);
+        bt->total = wr_time_seconds() - t0;
+    }
+    bt->assembly = ss.t_assembly + ss.t_projection;
+    bt->linear = ss.t_linear;
+    bt->line_search = ss.t_line_search;
+    bt->iters = ss.iterations;
+    bt->ls_evals = ss.line_search_evals;
+    bt->status = s;
     wr_shell_free(&sh);
     free(s0);
     free(s1);
@@ -113,29 +179,40 @@ static int solve_base(int kind, wr_mesh *m, double **xout, double *t_base, wr_wf
 }
 
 int main(int argc, char **argv) {
-    static const bcase cases[3] = {{"stretched sheet", 0, 0.45, 3.93, 23, 522},
-                                   {"sheared rectangle", 1, 2.27, 27.52, 147, 1000},
-                                   {"twisted cylinder", 2, 0.69, 104.92, 813, 688}};
-    int full = argc > 1 && !strcmp(argv[1], "--full"), c, r;
+    static const bcase cases[4] = {{"stretched sheet", 0, 0.45, 3.93, 10, 23, 522},
+                                   {"sheared rectangle", 1, 2.27, 27.52, 21, 147, 1000},
+                                   {"twisted cylinder", 2, 0.69, 104.92, 12, 813, 688},
+                                   {"teabag", 3, 0.78, 7.32, 8, 46, 936}};
+    int full = 0, peer = 0, only = -1, c, r, a;
+    for (a = 1; a < argc; ++a) {
+        if (!strcmp(argv[a], "--full")) full = 1;
+        else if (!strcmp(argv[a], "--peer")) peer = 1;
+        else if (!strncmp(argv[a], "--case=", 7)) only = atoi(argv[a] + 7);
+    }
     machine();
-    printf("TFW per case, medians of %d runs (base: see runs column); paper = Table 2, 8-core i9-9900K\n", RUNS);
-    printf("%-18s %6s %5s %9s %9s %6s %9s %9s | split of TFW: %7s %7s %7s %7s | %9s %9s %7s | %9s %7s\n", "case",
-           "nv", "runs", "TFT [s]", "paper", "SQP it", "TFW [s]", "paper", "asm", "linear", "sqp-rest", "other",
-           "speedup", "TFT x", "paper it", "proj [s]", "proj/auto");
-    for (c = 0; c < 3; ++c) {
+    loadavg("at start");
+    printf("TFW per case, medians over the runs column (base runs / TFW runs); paper = Table 2, 8-core i9-9900K\n");
+    printf("TFT base: Newton it, seconds, split asm(+proj)/linear/line-search, line-search energy evals, status\n");
+    printf("%-18s %5s %5s | %4s %4s %8s %7s %7s %7s %7s %4s %-5s | %4s %4s %8s %7s | %7s %7s %7s %7s | %7s %7s %7s\n",
+           "case", "nv", "runs", "it", "ppr", "TFT [s]", "paper", "asm", "linear", "ls", "lsev", "stat", "it", "ppr",
+           "TFW [s]", "paper", "sqp-asm", "sqp-lin", "sqp-rst", "other", "TFT x", "TFW x", "total x");
+    for (c = 0; c < 4; ++c) {
         wr_mesh m;
         wr_wf_material mat;
-        double tb[RUNS], tt[RUNS], ta[RUNS], tl[RUNS], ts[RUNS], tp[RUNS], *x = NULL, t_base;
-        int nb = (cases[c].kind == 1 && !full) ? 1 : RUNS, iters = 0;
+        base_timing bt[RUNS];
+        double tb[RUNS], tt[RUNS], ta[RUNS], tl[RUNS], ts[RUNS], tp[RUNS], *x = NULL;
+        int nb = (cases[c].kind == 1 && !full) ? 1 : RUNS, iters = 0, kb, kt;
+        if (only >= 0 && c != only) continue;
         for (r = 0; r < nb; ++r) {
-            memset(&m, 0, sizeof m);
-            if (r > 0) free(x);
-            if (!solve_base(cases[c].kind, &m, &x, &t_base, &mat)) {
-                printf("%s: base failed\n", cases[c].name);
+            if (r > 0) {
+                free(x);
+                wr_mesh_free(&m);
+            }
+            if (!solve_base(cases[c].kind, &m, &x, &bt[r], &mat)) {
+                printf("%s: base failed (%s)\n", cases[c].name, wr_status_string(bt[r].status));
                 return 1;
             }
-            tb[r] = t_base;
-            if (r < nb - 1) wr_mesh_free(&m);
+            tb[r] = bt[r].total;
         }
         for (r = 0; r < RUNS; ++r) {
             wr_tfw_desc td;
@@ -150,34 +227,38 @@ int main(int argc, char **argv) {
             ts[r] = res.seconds_sqp - res.sqp.seconds_assembly - res.sqp.seconds_solve;
             iters = res.sqp.iterations;
             wr_tfw_result_free(&res);
-            td.solve.hessian = WR_WF_HESSIAN_PROJECTED;
-            td.no_upsample = 1;
-            wr_tfw_fields(&m, x, &mat, &td, &res, &d);
-            tp[r] = res.seconds_sqp;
-            wr_tfw_result_free(&res);
+            tp[r] = NAN;
+            if (peer) {
+                td.solve.hessian = WR_WF_HESSIAN_PROJECTED;
+                td.no_upsample = 1;
+                wr_tfw_fields(&m, x, &mat, &td, &res, &d);
+                tp[r] = res.seconds_sqp;
+                wr_tfw_result_free(&res);
+            }
         }
         {
-            /* the split comes from the run whose TFW total is the median, so its parts add up */
-            double mtb = median(tb, nb), mtt, mta, mtl, mts, mtp;
-            double tt2[RUNS];
-            int k, km = 0;
-            memcpy(tt2, tt, sizeof tt);
-            mtt = median(tt2, RUNS);
-            for (k = 0; k < RUNS; ++k)
-                if (tt[k] == mtt) km = k;
-            mta = ta[km];
-            mtl = tl[km];
-            mts = ts[km];
-            mtp = median(tp, RUNS);
-            printf("%-18s %6d %5d %9.3f %9.2f %6d %9.3f %9.2f | %12.3f %7.3f %7.3f %7.3f | %8.1fx %8.1fx %7d | %9.3f %7.2f\n",
-                   cases[c].name, (int)m.nv, nb, mtb, cases[c].paper_tft, iters, mtt, cases[c].paper_tfw, mta, mtl, mts,
-                   mtt - mta - mtl - mts, (cases[c].paper_tft + cases[c].paper_tfw) / (mtb + mtt),
-                   cases[c].paper_tft / mtb, cases[c].paper_iters, mtp, mtp / (mta + mtl + mts));
+            double mtb = median(tb, nb), mtt = median(tt, RUNS);
+            const base_timing *b;
+            kb = median_index(tb, nb);
+            kt = median_index(tt, RUNS);
+            b = &bt[kb];
+            printf("%-18s %5d %2d/%-2d | %4d %4d %8.3f %7.2f %7.3f %7.3f %7.3f %4d %-5s | %4d %4d %8.3f %7.2f | %7.3f %7.3f "
+                   "%7.3f %7.3f | %6.1fx %6.1fx %6.1fx\n",
+                   cases[c].name, (int)m.nv, nb, RUNS, b->iters, cases[c].paper_tft_it, mtb, cases[c].paper_tft,
+                   b->assembly, b->linear, b->line_search, b->ls_evals, b->status == WR_OK ? "ok" : "NOCONV", iters,
+                   cases[c].paper_iters, mtt, cases[c].paper_tfw, ta[kt], tl[kt], ts[kt], tt[kt] - ta[kt] - tl[kt] - ts[kt],
+                   cases[c].paper_tft / mtb, cases[c].paper_tfw / mtt,
+                   (cases[c].paper_tft + cases[c].paper_tfw) / (mtb + mtt));
+            if (peer)
+                printf("%-18s   peer: SQP with the projected Hessian throughout %.3f s (median), %.2fx the default SQP\n", "",
+                       median(tp, RUNS), median(tp, RUNS) / (ta[kt] + tl[kt] + ts[kt]));
+            fflush(stdout);
         }
         free(x);
         wr_mesh_free(&m);
     }
-    printf("speedup = (paper TFT + TFW) / (ours TFT + TFW); TFT x = paper TFT / ours; proj = SQP seconds with the "
-           "projected Hessian throughout (in-run peer), proj/auto its ratio to the default AUTO strategy.\n");
+    loadavg("at end");
+    printf("x = paper seconds / ours (TFT, TFW, TFT + TFW); goal >= 10x. it/ppr = our / paper iterations. "
+           "sqp-asm/sqp-lin/sqp-rst/other = parts of the median TFW run (Fig. 23 split).\n");
     return 0;
 }
