@@ -66,12 +66,17 @@
  *   would remove everything, i.e. the segments enclose nothing, the hull is kept), and so are those
  *   reachable from each hole seed. Refinement (desc.quality or desc.max_area > 0) then inserts
  *   circumcenters (or off-centers) of bad triangles and splits encroached subsegments, treating the
- *   convex hull as segments when it is kept. Subsegments are split at their midpoint, or at a power
+ *   convex hull edges as segments when the hull is kept (the domain boundary never moves during
+ *   refinement: no flips between ghost triangles, so a split point rounded a few ulps outside the
+ *   hull cannot bury a hull edge). Subsegments are split at their midpoint, or at a power
  *   of two from an input vertex or a segment junction (concentric shells). Left alone: triangles
- *   whose shortest edge joins points on two segments meeting at less than 60° (the input's own small
- *   angle), and slivers with all corners on one segment (split points are rounded a few ulps off the
+ *   whose shortest edge joins points on two segments (or hull edges) meeting at less than 60° (the
+ *   input's own small angle), and slivers with all corners on one segment (split points are rounded a few ulps off the
  *   segment's line; the output stays an exact CDT of the vertices produced). A vertex budget stops
  *   everything else: WR_ERR_BUDGET is returned with the valid mesh reached so far in *out.
+ *   Coordinates beyond ±WR_CDT_MAX_COORD (1e70) are refused with WR_ERR_GEOMETRY (the predicates
+ *   would overflow). Input segments that overlap on one line share their common subsegments, which
+ *   carry the lowest of their ids (segment_id); wr_cdt_check accepts such pieces in each chain.
  *   Always call wr_cdt_free on the result, also after an error.
  *   Cost: O(n log n) expected for the Delaunay part (BRIO order, walks of O(1) expected length);
  *   1e6 uniform points: about 0.7 s of CPU on the 2-core reference box, 1.27x faster than CGAL 5.5
@@ -97,6 +102,13 @@ WRDEF double wr_orient2d_fast(const double *a, const double *b, const double *c)
 WRDEF double wr_incircle_fast(const double *a, const double *b, const double *c, const double *d);
 
 /* ---- constrained Delaunay triangulation ---- */
+/* Largest |coordinate| wr_cdt_triangulate accepts (points and hole seeds; larger ones are
+ * WR_ERR_GEOMETRY). The in-circle determinant is a sum of products of four coordinate differences,
+ * at most 192·c⁴ for |coordinates| <= c; it and the circumcenter arithmetic of refinement stay far
+ * below DBL_MAX (1.8e308) up to c = 1e70, while at ~3e76 the fast stage overflows to inf/NaN and the
+ * signs (and with them the mesh topology) become meaningless. */
+#define WR_CDT_MAX_COORD 1e70
+
 typedef struct wr_cdt_input {
     const double *points;    /* n_points × 2 coordinates, row-major */
     int32_t n_points;
@@ -145,8 +157,10 @@ typedef struct wr_cdt_result {
     int32_t *edge_segment;   /* n_triangles × 3: input segment containing that edge, or -1 */
     int32_t *segments;       /* n_segments × 2: subsegments (pieces of input segments), including
                               * pieces that only bounded removed triangles (exterior or holes) */
-    int32_t *segment_id;     /* n_segments: which input segment each subsegment belongs to (a
-                              * segment given twice, also via merged points: the first one) */
+    int32_t *segment_id;     /* n_segments: which input segment each subsegment belongs to; where
+                              * input segments overlap on one line (one given twice, also via merged
+                              * points, or one passing through another's end point) their common
+                              * pieces carry the lowest of their ids */
     int32_t n_segments;
     int32_t *input_segments; /* n_input_segments × 2: the input segments in output vertex numbers */
     int32_t n_input_segments;
@@ -174,7 +188,8 @@ typedef struct wr_cdt_check_info {
 
 /* Verifies with exact predicates: indices in range, every triangle strictly CCW, neighbor symmetry
  * (and equal edge_segment on both sides), every unconstrained interior edge locally Delaunay
- * (incircle <= 0), every input segment present as a chain of subsegments, every constrained mesh
+ * (incircle <= 0), every input segment present as a chain of subsegments (each carrying its id, or
+ * the id of an input segment lying exactly on its line: shared pieces, see segment_id), every constrained mesh
  * edge listed as a subsegment and — unless the exterior was carved — every subsegment between used
  * vertices present as a constrained mesh edge, Euler characteristic
  * V - E + F == 2·components - boundary_loops, and, when expected_holes >= 0, that the number of
@@ -421,9 +436,10 @@ WRDEF double wr_incircle_fast(const double *a, const double *b, const double *c,
  * neighbor across the edge opposite corner k (that edge runs tv[3t+(k+1)%3] -> tv[3t+(k+2)%3]).
  * The convex hull is closed by "ghost" triangles holding the vertex at infinity (index -1), so every
  * half-edge has a twin and every vertex star is a full cycle. cm[3t+k] is the segment id of a
- * constrained edge (-1 none, -2 convex-hull edge treated as a segment during refinement). */
+ * constrained edge: >= 0 an input segment, -1 none, <= -2 convex-hull edge k = -2 - cm, treated as a
+ * segment ("pseudo-segment" n_segments + k) while refinement keeps the hull as the domain boundary. */
 #define WR__INF (-1)
-#define WR__HULLSEG (-2)
+#define WR__HULL_MARK(k) (-2 - (k)) /* cm of hull edge k (and k = -2 - cm) */
 #define WR__F_OUT 1 /* triangle removed by carving (outside or in a hole) */
 
 static const int wr__n1[3] = {1, 2, 0};
@@ -443,6 +459,7 @@ typedef struct wr__cdt {
     uint32_t walk_rng;
     int32_t max_vertices;
     int track_vtri; /* vtri is kept current only after bulk insertion (rebuilt once, saves stores) */
+    int fixed_boundary; /* refinement: the domain boundary may not move (no flips between ghosts) */
 } wr__cdt;
 
 static int wr__push(wr__cdt *S, int32_t x) {
@@ -597,6 +614,13 @@ static void wr__legalize(wr__cdt *S, int32_t p) {
     while (S->nstk) {
         int32_t he = S->stk[--S->nstk], t, u;
         if (S->cm && S->cm[he] != -1) continue;
+        /* he's corner is the real vertex p, so its triangle is a ghost exactly when the edge joins a
+         * hull vertex to infinity. Flipping it would fill the notch at that hull vertex with a new
+         * real triangle and bury its two hull edges. During refinement the boundary is fixed (its
+         * edges are constraints): a split point rounded a few ulps outside the hull must not
+         * enlarge the domain (fuzzer findings cdt_needle_hull_not_delaunay, cdt_tiny_edge_refine_cubic:
+         * the buried hull edges were non-Delaunay and the new hull edge unconstrained). */
+        if (S->fixed_boundary && WR__GHOSTLY(S, he / 3)) continue;
         if (!wr__conflict(S, S->tn[he] / 3, pp)) continue;
         wr__flip(S, he, &t, &u);
         S->stk[S->nstk++] = 3 * t; /* room: two pushes replace one pop, reserved by callers */
@@ -1160,6 +1184,12 @@ static wr_status wr__recover(wr__cdt *S, wr__segctx *C, int32_t a0, int32_t b0, 
             j = tw % 3;
             d = S->tv[tw];
             if (d == b) break;
+            /* The segment joins two vertices of a convex triangulation, so with exact predicates the
+             * walk stays inside the hull; reaching the vertex at infinity means the predicates were
+             * wrong (overflow), and its coordinates must not be read. */
+            if (d < 0)
+                return wr_fail(diag, WR_ERR_GEOMETRY, sid, "segment %d: the walk along it left the triangulation",
+                               sid);
             o = wr__orient(pa, pb, WR__P(S, d));
             if (o == 0.0) { /* d lies on the segment: recover a-d now, d-b later */
                 bend = d;
@@ -1246,7 +1276,9 @@ typedef struct wr__ref {
     double max_area;  /* 0: none */
     double cot_theta; /* off-center distance factor cot(θ/2) (0: circumcenters) */
     double tiny;      /* smallest nonzero |coordinate| a Steiner point may have (see wr__coord_ok) */
-    const int32_t *seg; /* input segments in internal vertex ids (for the small-angle rule) */
+    const int32_t *seg; /* segments in internal vertex ids (for the small-angle rule): the n_seg_in
+                         * input segments, then the hull edges when the hull bounds the domain */
+    int32_t n_seg_in;
     wr__ivec segq;      /* vertex pairs of possibly encroached subsegments */
     wr__ivec badq;      /* (t, a, b, c) of possibly bad triangles */
     wr__ivec cav;       /* cavity scratch */
@@ -1382,7 +1414,7 @@ static int wr__split_segment(wr__cdt *S, wr__ref *R, int32_t he) {
     S->xy[2 * q] = p[0];
     S->xy[2 * q + 1] = p[1];
     S->vtri[q] = -1;
-    S->vseg[q] = m >= 0 ? m : -1;
+    S->vseg[q] = m >= 0 ? m : R->n_seg_in + (-2 - m); /* hull edge k: pseudo-segment n_seg_in + k */
     if (!wr__split_edge(S, he, q)) return -2;
     R->n_steiner++;
     /* The split point is the rounded midpoint, a few ulps off the segment's line; the edges at q
@@ -1666,7 +1698,8 @@ static wr_status wr__cdt_output(wr__cdt *S, const int32_t *rep, const int32_t *p
         if (outv[i] >= 0) {
             out->points[2 * outv[i]] = S->xy[2 * i];
             out->points[2 * outv[i] + 1] = S->xy[2 * i + 1];
-            out->point_segment[outv[i]] = i >= nid ? wr__seg_of(S, i) : -1;
+            int32_t sg = i >= nid ? wr__seg_of(S, i) : -1;
+            out->point_segment[outv[i]] = sg < in->n_segments ? sg : -1; /* hull pseudo-segments: -1 */
         }
     for (i = 0; i < n; ++i) out->point_map[i] = outv[in2int[i]];
     for (i = 0; i < in->n_segments; ++i) {
@@ -1754,10 +1787,16 @@ WRDEF wr_status wr_cdt_triangulate(const wr_cdt_input *in, const wr_cdt_desc *de
     if (!(d.merge_tolerance >= 0.0) || !isfinite(d.merge_tolerance))
         return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "merge_tolerance %g must be finite and >= 0", d.merge_tolerance);
     if (d.max_vertices < 0) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "max_vertices %d < 0", d.max_vertices);
-    for (i = 0; i < n; ++i)
-        if (!isfinite(in->points[2 * i]) || !isfinite(in->points[2 * i + 1]))
-            return wr_fail(diag, WR_ERR_INVALID_ARG, i, "point %d has a non-finite coordinate (%g, %g)", i,
-                           in->points[2 * i], in->points[2 * i + 1]);
+    for (i = 0; i < n; ++i) {
+        double x = in->points[2 * i], y = in->points[2 * i + 1];
+        if (!isfinite(x) || !isfinite(y))
+            return wr_fail(diag, WR_ERR_INVALID_ARG, i, "point %d has a non-finite coordinate (%g, %g)", i, x, y);
+        if (fabs(x) > WR_CDT_MAX_COORD || fabs(y) > WR_CDT_MAX_COORD)
+            return wr_fail(diag, WR_ERR_GEOMETRY, i,
+                           "point %d (%g, %g) has a coordinate beyond +-%g, where the exact predicates would "
+                           "overflow; scale the input",
+                           i, x, y, WR_CDT_MAX_COORD);
+    }
     for (i = 0; i < m; ++i) {
         int32_t a = in->segments[2 * i], b = in->segments[2 * i + 1];
         if (a < 0 || a >= n || b < 0 || b >= n)
@@ -1765,9 +1804,14 @@ WRDEF wr_status wr_cdt_triangulate(const wr_cdt_input *in, const wr_cdt_desc *de
                            (a < 0 || a >= n) ? a : b, n);
         if (a == b) return wr_fail(diag, WR_ERR_GEOMETRY, i, "segment %d has zero length (both ends are point %d)", i, a);
     }
-    for (i = 0; i < in->n_holes; ++i)
-        if (!isfinite(in->holes[2 * i]) || !isfinite(in->holes[2 * i + 1]))
+    for (i = 0; i < in->n_holes; ++i) {
+        double x = in->holes[2 * i], y = in->holes[2 * i + 1];
+        if (!isfinite(x) || !isfinite(y))
             return wr_fail(diag, WR_ERR_INVALID_ARG, i, "hole %d has a non-finite coordinate", i);
+        if (fabs(x) > WR_CDT_MAX_COORD || fabs(y) > WR_CDT_MAX_COORD)
+            return wr_fail(diag, WR_ERR_GEOMETRY, i, "hole %d (%g, %g) has a coordinate beyond +-%g", i, x, y,
+                           WR_CDT_MAX_COORD);
+    }
     refine = d.quality || d.max_area > 0.0;
     budget = d.max_vertices > 0 ? (int64_t)d.max_vertices
                                 : refine ? 16 * ((int64_t)n + m) + 65536 : (int64_t)INT32_MAX / 4;
@@ -1898,15 +1942,31 @@ WRDEF wr_status wr_cdt_triangulate(const wr_cdt_input *in, const wr_cdt_desc *de
         }
     }
     if (refine) {
-        int32_t t;
+        int32_t t, n_ghost = 0, n_hull = 0, *sg;
         if (!wr__ensure_cm(&S)) goto nomem;
+        for (t = 0; t < S.nt; ++t) n_ghost += WR__GHOSTLY(&S, t);
+        sg = (int32_t *)wr_alloc_array(2 * ((size_t)m + (size_t)n_ghost), sizeof(int32_t));
+        if (!sg) goto nomem;
+        for (i = 0; i < 2 * m; ++i) sg[i] = in2int[in->segments[i]];
+        /* When the hull bounds the domain, its edges not already on a segment become segments for
+         * refinement (Ruppert treats the boundary of the domain as segments): they are split when
+         * encroached, never flipped, concentric shells apply at hull vertices, and the small-angle
+         * rule covers two hull edges (a needle-thin input triangle) or a hull edge and a segment
+         * meeting at a small angle; each hull edge k is pseudo-segment m + k of R.seg. */
         if (!carved)
             for (t = 0; t < S.nt; ++t)
                 if (WR__GHOSTLY(&S, t)) {
                     const int32_t *v = S.tv + 3 * t;
                     int g = v[0] < 0 ? 0 : v[1] < 0 ? 1 : 2;
-                    if (S.cm[3 * t + g] == -1) S.cm[3 * t + g] = S.cm[S.tn[3 * t + g]] = WR__HULLSEG;
+                    if (S.cm[3 * t + g] != -1) continue;
+                    S.cm[3 * t + g] = S.cm[S.tn[3 * t + g]] = WR__HULL_MARK(n_hull);
+                    sg[2 * (m + n_hull)] = v[wr__n1[g]];
+                    sg[2 * (m + n_hull) + 1] = v[wr__n2[g]];
+                    ++n_hull;
                 }
+        S.fixed_boundary = 1;
+        R.seg = sg;
+        R.n_seg_in = m;
         if (d.quality) {
             double s = sin(d.min_angle_deg * (3.14159265358979323846 / 180.0));
             R.sin2 = s * s;
@@ -1918,15 +1978,9 @@ WRDEF wr_status wr_cdt_triangulate(const wr_cdt_input *in, const wr_cdt_desc *de
         R.tiny = 1e-50;
         for (i = 0; i < 2 * nid; ++i)
             if (S.xy[i] != 0.0 && fabs(S.xy[i]) < R.tiny) R.tiny = fabs(S.xy[i]);
-        R.seg = NULL;
-        if (m > 0) {
-            int32_t *sg = (int32_t *)wr_alloc_array((size_t)m * 2, sizeof(int32_t));
-            if (!sg) goto nomem;
-            for (i = 0; i < 2 * m; ++i) sg[i] = in2int[in->segments[i]];
-            R.seg = sg;
-        }
         st_late = wr__refine(&S, &R, diag);
         wr_free((void *)R.seg);
+        R.seg = NULL;
         if (st_late != WR_OK && st_late != WR_ERR_BUDGET) {
             st = st_late;
             goto done;
@@ -1950,6 +2004,7 @@ done:
     wr_free(R.segq.a);
     wr_free(R.badq.a);
     wr_free(R.cav.a);
+    wr_free((void *)R.seg);
     wr_free(rep);
     wr_free(ids);
     wr_free(order);
@@ -1968,7 +2023,7 @@ static int32_t wr__uf_find(int32_t *p, int32_t x) {
 
 WRDEF wr_status wr_cdt_check(const wr_cdt_result *r, int32_t expected_holes, wr_cdt_check_info *info, wr_diag *diag) {
     int32_t nT, nP, t, k, *bout = NULL, *bnext = NULL, *uf = NULL, *used = NULL, *cstart = NULL, *cadj = NULL,
-                              *cmk = NULL, *stamp = NULL, *dfs = NULL, *sstart = NULL, *canon = NULL, *clink = NULL;
+                              *cmk = NULL, *stamp = NULL, *dfs = NULL, *sstart = NULL;
     int32_t E = 0, V = 0, C = 0, B = 0, pinched = 0, ncon = 0, s;
     double minang = 1.0; /* sin² of the smallest angle seen */
     wr_status st = WR_OK;
@@ -2148,32 +2203,17 @@ WRDEF wr_status wr_cdt_check(const wr_cdt_result *r, int32_t expected_holes, wr_
             }
         }
     }
-    /* An input segment given twice (directly or through merged duplicate points) is represented by
-     * the first one's id: canon[s] = first input segment with the same (unordered) end points,
-     * found with per-vertex lists (stamp = list head by lower end, canon doubles as the link). */
-    canon = (int32_t *)wr_alloc_array((size_t)r->n_input_segments + 1, sizeof(int32_t));
-    clink = (int32_t *)wr_alloc_array((size_t)r->n_input_segments + 1, sizeof(int32_t));
-    if (!canon || !clink) goto nomem;
-    for (s = 0; s < nP; ++s) stamp[s] = -1;
+    /* Input segments overlapping on one line (a segment given twice, also through merged duplicate
+     * points, or one passing through another's end point) share their common pieces, which carry the
+     * lowest id among them (see segment_id). A piece therefore counts for input segment s when its id
+     * is s or names an input segment whose two end points lie exactly on s's line (exact orient of
+     * the input end points, not of the piece's own end points, which refinement rounds a few ulps
+     * off the line: fuzzer finding cdt_overlapping_segments_refine). */
     for (s = 0; s < r->n_input_segments; ++s) {
-        int32_t a = r->input_segments[2 * s], b = r->input_segments[2 * s + 1], lo, hi, j;
+        int32_t a = r->input_segments[2 * s], b = r->input_segments[2 * s + 1];
         if (a < 0 || a >= nP || b < 0 || b >= nP) {
             st = wr_fail(diag, WR_ERR_TOPOLOGY, s, "input segment %d has an out-of-range end", s);
             goto done;
-        }
-        lo = a < b ? a : b;
-        hi = a < b ? b : a;
-        canon[s] = s;
-        for (j = stamp[lo]; j >= 0; j = clink[j]) {
-            int32_t a2 = r->input_segments[2 * j], b2 = r->input_segments[2 * j + 1];
-            if ((a2 < b2 ? b2 : a2) == hi) {
-                canon[s] = j;
-                break;
-            }
-        }
-        if (canon[s] == s) {
-            clink[s] = stamp[lo];
-            stamp[lo] = s;
         }
     }
     for (s = 0; s < nP; ++s) stamp[s] = -1;
@@ -2184,12 +2224,16 @@ WRDEF wr_status wr_cdt_check(const wr_cdt_result *r, int32_t expected_holes, wr_
         while (nd && !ok) {
             int32_t x = dfs[--nd], j;
             for (j = ncon + sstart[x]; j < ncon + sstart[x + 1]; ++j) {
-                int32_t y = cadj[j];
+                int32_t y = cadj[j], o = cmk[j];
                 if (stamp[y] == s) continue;
-                /* a piece shared by two overlapping collinear segments carries the first one's id */
-                if (cmk[j] != s && cmk[j] != canon[s] && !(wr__orient(r->points + 2 * a, r->points + 2 * b, r->points + 2 * x) == 0.0 &&
-                                     wr__orient(r->points + 2 * a, r->points + 2 * b, r->points + 2 * y) == 0.0))
-                    continue;
+                if (o != s) {
+                    const int32_t *e;
+                    if (o < 0 || o >= r->n_input_segments) continue;
+                    e = r->input_segments + 2 * o;
+                    if (!(wr__orient(r->points + 2 * a, r->points + 2 * b, r->points + 2 * e[0]) == 0.0 &&
+                          wr__orient(r->points + 2 * a, r->points + 2 * b, r->points + 2 * e[1]) == 0.0))
+                        continue;
+                }
                 if (y == b) {
                     ok = 1;
                     break;
@@ -2224,8 +2268,6 @@ done:
     wr_free(stamp);
     wr_free(dfs);
     wr_free(sstart);
-    wr_free(canon);
-    wr_free(clink);
     return st;
 }
 
