@@ -2517,46 +2517,18 @@ fail:
     return st;
 }
 
+/* core.h's wr_file_read, plus the one check a text format needs: an embedded NUL byte would end
+ * the parse early and silently, so it is refused. */
 static char *wr__slurp(const char *path, wr_diag *diag, wr_status *st) {
-    FILE *f = fopen(path, "rb");
     char *buf = NULL;
-    size_t cap = 0, len = 0;
-    if (!f) {
-        *st = wr_fail(diag, WR_ERR_IO, -1, "%s: cannot open", path);
-        return NULL;
-    }
-    for (;;) {
-        size_t got;
-        if (len + 65536 + 1 > cap) {
-            size_t nc = cap ? 2 * cap : 131072;
-            char *nb = (char *)wr_realloc_array(buf, nc, 1);
-            if (!nb) {
-                wr_free(buf);
-                fclose(f);
-                *st = wr_fail(diag, WR_ERR_NOMEM, -1, "%s: out of memory", path);
-                return NULL;
-            }
-            buf = nb;
-            cap = nc;
-        }
-        got = fread(buf + len, 1, cap - len - 1, f);
-        len += got;
-        if (got == 0) break;
-    }
-    if (ferror(f)) {
-        wr_free(buf);
-        fclose(f);
-        *st = wr_fail(diag, WR_ERR_IO, -1, "%s: read error", path);
-        return NULL;
-    }
-    fclose(f);
-    buf[len] = 0;
+    size_t len = 0;
+    *st = wr_file_read(path, &buf, &len, diag);
+    if (*st != WR_OK) return NULL;
     if (strlen(buf) != len) {
         wr_free(buf);
         *st = wr_fail(diag, WR_ERR_PARSE, -1, "%s: contains a NUL byte (not a text file)", path);
         return NULL;
     }
-    *st = WR_OK;
     return buf;
 }
 
