@@ -24,11 +24,19 @@
  * Medians of RUNS runs per case, except the sheared-rectangle base (Newton needs ~400 steps there,
  * ~15 s; timed once unless --full, marked in the runs column). --peer also times the SQP with the
  * per-face-projected Hessian throughout (WR_WF_HESSIAN_PROJECTED, the paper's method) as an in-run
- * peer. Prints the machine and the load average (the box is shared: timings are noisy). */
+ * peer. Prints the machine and the load average (the box is shared: timings are noisy).
+ * BLAS/OpenMP threads: unless OPENBLAS_NUM_THREADS and OMP_NUM_THREADS are both set, the bench sets
+ * them to 1 and re-executes itself (OpenBLAS reads them when it is loaded, before main). On this
+ * 2-core shared box CHOLMOD's threaded BLAS spent ~75 % of the teabag base solve in sched_yield
+ * (perf), 2.3–4.1 s against 0.7–1.2 s single-threaded for the same 11 Newton steps (load ~8);
+ * the factorisations here (≤ 3k DOFs) are too small for threads to pay. */
+#define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
+#include <unistd.h>
 
 #include "wrinkle/wrinkle.h"
 #include "wrinkle/tfw.h"
@@ -53,6 +61,14 @@ static int median_index(const double *v, int n) {
     for (k = 0; k < n; ++k)
         if (fabs(v[k] - m) < best) best = fabs(v[k] - m), km = k;
     return km;
+}
+
+/* CPU seconds of this process (all threads; the BLAS is single-threaded here): on a shared box the
+ * wall clock also counts the time other jobs hold the cores, the CPU time does not. */
+static double cpu_seconds(void) {
+    struct timespec ts;
+    if (clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts) != 0) return NAN;
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
 static void machine(void) {
@@ -90,7 +106,7 @@ typedef struct bcase {
 } bcase;
 
 typedef struct base_timing {
-    double total, assembly, linear, line_search;
+    double total, cpu, assembly, linear, line_search;
     int iters, ls_evals;
     wr_status status;
 } base_timing;
@@ -104,7 +120,7 @@ static int solve_base(int kind, wr_mesh *m, double **xout, base_timing *bt, wr_w
     wr_statics_stats ss;
     wr_motion mo[2];
     int32_t *s0 = NULL, *s1 = NULL, n0 = 0, n1 = 0, v;
-    double *x, t0;
+    double *x, t0, c0;
     wr_status s;
     memset(m, 0, sizeof *m);
     memset(&st, 0, sizeof st);
@@ -136,9 +152,11 @@ static int solve_base(int kind, wr_mesh *m, double **xout, base_timing *bt, wr_w
     if (kind == 3) {
         st.pressure = 10.0;
         st.max_iter = 300;
+        c0 = cpu_seconds();
         t0 = wr_time_seconds();
         s = wr_statics_solve(&sh, x, &st, &ss, &d);
         bt->total = wr_time_seconds() - t0;
+        bt->cpu = cpu_seconds() - c0;
     } else {
         s0 = (int32_t *)malloc(sizeof(int32_t) * m->nv);
         s1 = (int32_t *)malloc(sizeof(int32_t) * m->nv);
@@ -168,9 +186,11 @@ static int solve_base(int kind, wr_mesh *m, double **xout, base_timing *bt, wr_w
         }
         /* one increment: the TFT + quadratic-bending problem is convex (see the top comment) */
         st.max_iter = 1000;
+        c0 = cpu_seconds();
         t0 = wr_time_seconds();
         s = wr_statics_solve_incremental(&sh, x, &st, mo, 2, 1, &ss, &d);
         bt->total = wr_time_seconds() - t0;
+        bt->cpu = cpu_seconds() - c0;
     }
     bt->assembly = ss.t_assembly + ss.t_projection;
     bt->linear = ss.t_linear;
@@ -191,12 +211,19 @@ int main(int argc, char **argv) {
                                    {"twisted cylinder", 2, 0.69, 104.92, 12, 813, 688},
                                    {"teabag", 3, 0.78, 7.32, 8, 46, 936}};
     int full = 0, peer = 0, only = -1, c, r, a;
+    if (!getenv("OPENBLAS_NUM_THREADS") || !getenv("OMP_NUM_THREADS")) {
+        /* single-threaded BLAS / OpenMP (see the top comment); on failure run as we are */
+        if (!getenv("OPENBLAS_NUM_THREADS")) setenv("OPENBLAS_NUM_THREADS", "1", 1);
+        if (!getenv("OMP_NUM_THREADS")) setenv("OMP_NUM_THREADS", "1", 1);
+        execv("/proc/self/exe", argv);
+    }
     for (a = 1; a < argc; ++a) {
         if (!strcmp(argv[a], "--full")) full = 1;
         else if (!strcmp(argv[a], "--peer")) peer = 1;
         else if (!strncmp(argv[a], "--case=", 7)) only = atoi(argv[a] + 7);
     }
     machine();
+    printf("OPENBLAS_NUM_THREADS=%s OMP_NUM_THREADS=%s\n", getenv("OPENBLAS_NUM_THREADS"), getenv("OMP_NUM_THREADS"));
     loadavg("at start");
     printf("TFW per case, medians over the runs column (base runs / TFW runs); paper = Table 2, 8-core i9-9900K\n");
     printf("TFT base: Newton it, seconds, split asm(+proj)/linear/line-search, line-search energy evals, status\n");
@@ -207,7 +234,7 @@ int main(int argc, char **argv) {
         wr_mesh m;
         wr_wf_material mat;
         base_timing bt[RUNS];
-        double tb[RUNS], tt[RUNS], ta[RUNS], tl[RUNS], ts[RUNS], tp[RUNS], *x = NULL;
+        double tb[RUNS], tt[RUNS], cb[RUNS], ct[RUNS], ta[RUNS], tl[RUNS], ts[RUNS], tp[RUNS], *x = NULL;
         int nb = (cases[c].kind == 1 && !full) ? 1 : RUNS, iters = 0, kb, kt;
         if (only >= 0 && c != only) continue;
         for (r = 0; r < nb; ++r) {
@@ -220,14 +247,18 @@ int main(int argc, char **argv) {
                 return 1;
             }
             tb[r] = bt[r].total;
+            cb[r] = bt[r].cpu;
         }
         for (r = 0; r < RUNS; ++r) {
             wr_tfw_desc td;
             wr_tfw_result res;
             wr_diag d;
+            double c0;
             memset(&td, 0, sizeof td);
             td.upsample.levels = 2;
+            c0 = cpu_seconds();
             wr_tfw_fields(&m, x, &mat, &td, &res, &d);
+            ct[r] = cpu_seconds() - c0;
             tt[r] = res.seconds_total;
             ta[r] = res.sqp.seconds_assembly;
             tl[r] = res.sqp.seconds_solve;
@@ -256,6 +287,10 @@ int main(int argc, char **argv) {
                    cases[c].paper_iters, mtt, cases[c].paper_tfw, ta[kt], tl[kt], ts[kt], tt[kt] - ta[kt] - tl[kt] - ts[kt],
                    cases[c].paper_tft / mtb, cases[c].paper_tfw / mtt,
                    (cases[c].paper_tft + cases[c].paper_tfw) / (mtb + mtt));
+            printf("%-18s   CPU seconds (medians): TFT %.3f, TFW %.3f -> x paper: TFT %.1fx, TFW %.1fx, total %.1fx\n", "",
+                   median(cb, nb), median(ct, RUNS), cases[c].paper_tft / median(cb, nb),
+                   cases[c].paper_tfw / median(ct, RUNS),
+                   (cases[c].paper_tft + cases[c].paper_tfw) / (median(cb, nb) + median(ct, RUNS)));
             if (peer)
                 printf("%-18s   peer: SQP with the projected Hessian throughout %.3f s (median), %.2fx the default SQP\n", "",
                        median(tp, RUNS), median(tp, RUNS) / (ta[kt] + tl[kt] + ts[kt]));
@@ -265,7 +300,8 @@ int main(int argc, char **argv) {
         wr_mesh_free(&m);
     }
     loadavg("at end");
-    printf("x = paper seconds / ours (TFT, TFW, TFT + TFW); goal >= 10x. it/ppr = our / paper iterations. "
+    printf("x = paper wall seconds / ours (TFT, TFW, TFT + TFW), wall clock on the table line, process CPU time on the "
+           "CPU line (steadier on a shared box); goal >= 10x. it/ppr = our / paper iterations. "
            "sqp-asm/sqp-lin/sqp-rst/other = parts of the median TFW run (Fig. 23 split).\n");
     return 0;
 }
