@@ -127,7 +127,7 @@ FUZZ_FLAGS    = -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover
 FUZZ_SRC      = $(wildcard tests/fuzz/fuzz_*.c)
 FUZZ_NAMES    = $(patsubst tests/fuzz/%.c,%,$(FUZZ_SRC))
 FUZZERS       = $(addprefix build/fuzz/,$(FUZZ_NAMES))
-FUZZ_EXTRA_fuzz_scene   = drivers/lib/scene.c
+FUZZ_EXTRA_fuzz_scene   = drivers/lib/scene.c drivers/lib/jsonout.c
 FUZZ_EXTRA_fuzz_pattern = drivers/lib/pattern.c
 
 .PHONY: fuzz fuzz-build fuzz-smoke memcheck examples install-check driver-check deps-check

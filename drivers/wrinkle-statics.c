@@ -47,19 +47,12 @@ int main(int argc, char **argv) {
     wr_status st;
     wr_cli_set_program(argv[0]);
     for (i = 1; i < argc; ++i) {
-        const char *v;
         if (wr_cli_is_flag(argv[i], "--help") || wr_cli_is_flag(argv[i], "-h")) {
             usage(stdout);
             return 0;
         }
         if (wr_cli_is_flag(argv[i], "--quiet")) {
             quiet = 1;
-            continue;
-        }
-        if ((k = wr_cli_value(argc, argv, &i, "-o", &v)) != 0 ||
-            (k = wr_cli_value(argc, argv, &i, "--output", &v)) != 0) {
-            if (k < 0) return WR_CLI_EXIT_USAGE;
-            out = v;
             continue;
         }
         if ((k = wr_cli_double(argc, argv, &i, "--resolution", &res_override)) != 0) {
@@ -78,20 +71,10 @@ int main(int argc, char **argv) {
             }
             continue;
         }
-        if (argv[i][0] == '-' && argv[i][1] != 0) {
-            wr_cli_error("unknown option '%s' (see --help)", argv[i]);
-            return WR_CLI_EXIT_USAGE;
-        }
-        if (scene_path) {
-            wr_cli_error("more than one scene file ('%s', '%s')", scene_path, argv[i]);
-            return WR_CLI_EXIT_USAGE;
-        }
-        scene_path = argv[i];
+        /* -o/--output DIR, the SCENE.json positional, or an unknown option */
+        if (wr_cli_scene_arg(argc, argv, &i, &scene_path, &out) < 0) return WR_CLI_EXIT_USAGE;
     }
-    if (!scene_path || !out) {
-        wr_cli_error("need SCENE.json and -o DIR (see --help)");
-        return WR_CLI_EXIT_USAGE;
-    }
+    if (!wr_cli_scene_args_ok(scene_path, out)) return WR_CLI_EXIT_USAGE;
     if (wr_scene_load(&sc, scene_path, &d) != WR_OK) {
         wr_cli_error("%s: %s", scene_path, d.message);
         return WR_CLI_EXIT_USAGE;

@@ -22,6 +22,7 @@
 #include <sys/stat.h>
 
 #include "cli.h"
+#include "jsonout.h"
 #include "scene.h"
 #include "wrinkle/tfw.h"
 
@@ -96,20 +97,6 @@ static wr_status probe_wrinkled(const wr_scene_probe *pr, const wr_mesh *fine, c
     return st;
 }
 
-static int write_json(const char *path, cJSON *root, wr_diag *d) {
-    wr_afile f;
-    char *txt = cJSON_Print(root);
-    if (!txt) return 0;
-    if (wr_afile_open(&f, path, d) != WR_OK) {
-        free(txt);
-        return 0;
-    }
-    fputs(txt, f.fp);
-    fputc('\n', f.fp);
-    free(txt);
-    return wr_afile_commit(&f, d) == WR_OK;
-}
-
 int main(int argc, char **argv) {
     const char *scene_path = NULL, *out = NULL;
     double levels_d = 2.0;
@@ -125,18 +112,12 @@ int main(int argc, char **argv) {
     double t0;
     wr_cli_set_program(argv[0]);
     for (i = 1; i < argc; ++i) {
-        const char *v;
         if (wr_cli_is_flag(argv[i], "--help") || wr_cli_is_flag(argv[i], "-h")) {
             usage(stdout);
             return 0;
         }
         if (wr_cli_is_flag(argv[i], "--quiet")) {
             quiet = 1;
-            continue;
-        }
-        if ((k = wr_cli_value(argc, argv, &i, "-o", &v)) != 0 || (k = wr_cli_value(argc, argv, &i, "--output", &v)) != 0) {
-            if (k < 0) return WR_CLI_EXIT_USAGE;
-            out = v;
             continue;
         }
         if ((k = wr_cli_double(argc, argv, &i, "--levels", &levels_d)) != 0) {
@@ -147,20 +128,10 @@ int main(int argc, char **argv) {
             }
             continue;
         }
-        if (argv[i][0] == '-' && argv[i][1] != 0) {
-            wr_cli_error("unknown option '%s' (see --help)", argv[i]);
-            return WR_CLI_EXIT_USAGE;
-        }
-        if (scene_path) {
-            wr_cli_error("more than one scene file ('%s', '%s')", scene_path, argv[i]);
-            return WR_CLI_EXIT_USAGE;
-        }
-        scene_path = argv[i];
+        /* -o/--output DIR, the SCENE.json positional, or an unknown option */
+        if (wr_cli_scene_arg(argc, argv, &i, &scene_path, &out) < 0) return WR_CLI_EXIT_USAGE;
     }
-    if (!scene_path || !out) {
-        wr_cli_error("need SCENE.json and -o DIR (see --help)");
-        return WR_CLI_EXIT_USAGE;
-    }
+    if (!wr_cli_scene_args_ok(scene_path, out)) return WR_CLI_EXIT_USAGE;
     if (strlen(out) > 3000) {
         wr_cli_error("output path too long");
         return WR_CLI_EXIT_USAGE;
@@ -344,7 +315,7 @@ int main(int argc, char **argv) {
             free(zero);
         }
         snprintf(path, sizeof path, "%s/summary.json", out);
-        if (!write_json(path, root, &d)) {
+        if (wr_json_write(root, path, &d) != WR_OK) {
             wr_cli_error("writing %s: %s", path, d.message);
             rc = 3;
         }

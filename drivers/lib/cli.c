@@ -95,3 +95,29 @@ int wr_cli_double(int argc, char **argv, int *i, const char *name, double *out) 
     }
     return 1;
 }
+
+int wr_cli_scene_arg(int argc, char **argv, int *i, const char **scene_path, const char **out) {
+    const char *v;
+    int k;
+    if ((k = wr_cli_value(argc, argv, i, "-o", &v)) != 0 || (k = wr_cli_value(argc, argv, i, "--output", &v)) != 0) {
+        if (k < 0) return -1;
+        *out = v;
+        return 1;
+    }
+    if (argv[*i][0] == '-' && argv[*i][1] != 0) { /* a lone "-" is a file name (stdin) */
+        wr_cli_error("unknown option '%s' (see --help)", argv[*i]);
+        return -1;
+    }
+    if (*scene_path) {
+        wr_cli_error("more than one scene file ('%s', '%s')", *scene_path, argv[*i]);
+        return -1;
+    }
+    *scene_path = argv[*i];
+    return 1;
+}
+
+int wr_cli_scene_args_ok(const char *scene_path, const char *out) {
+    if (scene_path && out) return 1;
+    wr_cli_error("need SCENE.json and -o DIR (see --help)");
+    return 0;
+}

@@ -2,6 +2,8 @@
 #define _POSIX_C_SOURCE 200809L
 #include "meshout.h"
 
+#include "jsonout.h"
+
 #include <cjson/cJSON.h>
 #include <dirent.h>
 #include <errno.h>
@@ -231,8 +233,6 @@ static wr_status write_summary(const wr_mesher_result *res, const wr_pattern_fil
                                int png_written, wr_diag *diag) {
     const wr_mesher_report *r = &res->report;
     cJSON *root = cJSON_CreateObject(), *q, *h, *t, *panels, *files;
-    char *text;
-    wr_afile af;
     wr_status st;
     int32_t p;
     if (!root) return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
@@ -287,16 +287,8 @@ static wr_status write_summary(const wr_mesher_result *res, const wr_pattern_fil
     if (res->n_seam_pairs) cJSON_AddItemToArray(files, cJSON_CreateString("seams.csv"));
     if (png_written) cJSON_AddItemToArray(files, cJSON_CreateString("sizing.png"));
     cJSON_AddItemToArray(files, cJSON_CreateString("summary.json"));
-    text = cJSON_Print(root);
+    st = wr_json_write(root, path, diag);
     cJSON_Delete(root);
-    if (!text) return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
-    st = wr_afile_open(&af, path, diag);
-    if (st == WR_OK) {
-        fputs(text, af.fp);
-        fputc('\n', af.fp);
-        st = wr_afile_commit(&af, diag);
-    }
-    cJSON_free(text);
     return st;
 }
 

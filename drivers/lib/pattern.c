@@ -2,12 +2,12 @@
 #include "pattern.h"
 
 #include <cjson/cJSON.h>
-#include <errno.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #define MM 1e-3 /* file millimetres → metres */
 
@@ -645,37 +645,23 @@ done:
 }
 
 wr_status wr_pattern_load(const char *path, wr_pattern_file *out, wr_diag *diag) {
-    FILE *fp;
-    char *buf;
-    long n;
-    size_t got;
+    struct stat sb;
+    char *buf = NULL;
+    size_t n = 0;
     wr_status st;
     if (out) memset(out, 0, sizeof *out);
     if (!path || !out) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "NULL argument");
-    fp = fopen(path, "rb");
-    if (!fp) return wr_fail(diag, WR_ERR_IO, -1, "%s: cannot open (%s)", path, strerror(errno));
-    if (fseek(fp, 0, SEEK_END) != 0 || (n = ftell(fp)) < 0 || fseek(fp, 0, SEEK_SET) != 0) {
-        fclose(fp);
-        return wr_fail(diag, WR_ERR_IO, -1, "%s: cannot determine the size (not a regular file?)", path);
-    }
-    if (n > WR_PATTERN_MAX_FILE_BYTES) {
-        fclose(fp);
+    /* a regular file over the limit is refused before anything is read */
+    if (stat(path, &sb) == 0 && S_ISREG(sb.st_mode) && (double)sb.st_size > (double)WR_PATTERN_MAX_FILE_BYTES)
+        return wr_fail(diag, WR_ERR_IO, -1, "%s: larger than %ld bytes", path, (long)WR_PATTERN_MAX_FILE_BYTES);
+    st = wr_file_read(path, &buf, &n, diag); /* core.h: WR_ERR_IO naming the path, or WR_ERR_NOMEM */
+    if (st != WR_OK) return st;
+    if (n > (size_t)WR_PATTERN_MAX_FILE_BYTES) { /* a pipe or device that delivered more */
+        wr_free(buf);
         return wr_fail(diag, WR_ERR_IO, -1, "%s: larger than %ld bytes", path, (long)WR_PATTERN_MAX_FILE_BYTES);
     }
-    buf = (char *)malloc((size_t)n + 1);
-    if (!buf) {
-        fclose(fp);
-        return wr_fail(diag, WR_ERR_NOMEM, -1, "%s: out of memory", path);
-    }
-    got = fread(buf, 1, (size_t)n, fp);
-    fclose(fp);
-    if (got != (size_t)n) {
-        free(buf);
-        return wr_fail(diag, WR_ERR_IO, -1, "%s: short read", path);
-    }
-    buf[n] = 0;
-    st = wr_pattern_parse(buf, (size_t)n, path, out, diag);
-    free(buf);
+    st = wr_pattern_parse(buf, n, path, out, diag);
+    wr_free(buf);
     return st;
 }
 

@@ -2,8 +2,9 @@
 #define _POSIX_C_SOURCE 200809L
 #include "scene.h"
 
+#include "jsonout.h"
+
 #include <cjson/cJSON.h>
-#include <errno.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -515,33 +516,21 @@ done:
 }
 
 wr_status wr_scene_load(wr_scene *sc, const char *path, wr_diag *diag) {
-    FILE *f = fopen(path, "rb");
     char *buf = NULL, dir[WR_SCENE_PATH_LEN];
-    long n;
+    size_t n = 0;
     const char *slash;
     wr_status st;
     wr_scene_defaults(sc);
-    if (!f) return wr_fail(diag, WR_ERR_IO, -1, "%s: cannot open (%s)", path, strerror(errno));
-    if (fseek(f, 0, SEEK_END) != 0 || (n = ftell(f)) < 0 || fseek(f, 0, SEEK_SET) != 0) {
-        fclose(f);
-        return wr_fail(diag, WR_ERR_IO, -1, "%s: cannot read", path);
-    }
-    buf = (char *)malloc((size_t)n + 1);
-    if (!buf || fread(buf, 1, (size_t)n, f) != (size_t)n) {
-        free(buf);
-        fclose(f);
-        return wr_fail(diag, WR_ERR_IO, -1, "%s: cannot read", path);
-    }
-    fclose(f);
-    buf[n] = 0;
+    st = wr_file_read(path, &buf, &n, diag); /* core.h: WR_ERR_IO naming the path, or WR_ERR_NOMEM */
+    if (st != WR_OK) return st;
     slash = strrchr(path, '/');
     if (slash && (size_t)(slash - path) < sizeof dir) {
         memcpy(dir, path, (size_t)(slash - path));
         dir[slash - path] = 0;
     } else
         strcpy(dir, ".");
-    st = wr_scene_parse(sc, buf, (size_t)n, dir, diag);
-    free(buf);
+    st = wr_scene_parse(sc, buf, n, dir, diag);
+    wr_free(buf);
     return st;
 }
 
@@ -986,8 +975,6 @@ wr_status wr_scene_run_probe(const wr_scene_run *run, int32_t i, wr_spectrum_res
 static wr_status sc_write_summary(const wr_scene_run *run, const char *path, wr_diag *diag) {
     const wr_scene *sc = run->sc;
     cJSON *root = cJSON_CreateObject(), *a, *o;
-    char *txt;
-    wr_afile f;
     wr_status st;
     double Em = 0.0, Eb = 0.0, E = 0.0, maxu = 0.0;
     int32_t i;
@@ -1059,16 +1046,8 @@ static wr_status sc_write_summary(const wr_scene_run *run, const char *path, wr_
             cJSON_AddStringToObject(e, "error", pd.message);
         cJSON_AddItemToArray(a, e);
     }
-    txt = cJSON_Print(root);
+    st = wr_json_write(root, path, diag);
     cJSON_Delete(root);
-    if (!txt) return wr_fail(diag, WR_ERR_NOMEM, -1, "summary: out of memory");
-    st = wr_afile_open(&f, path, diag);
-    if (st == WR_OK) {
-        fputs(txt, f.fp);
-        fputc('\n', f.fp);
-        st = wr_afile_commit(&f, diag);
-    }
-    free(txt);
     return st;
 }
 
