@@ -25,11 +25,15 @@
  * ~15 s; timed once unless --full, marked in the runs column). --peer also times the SQP with the
  * per-face-projected Hessian throughout (WR_WF_HESSIAN_PROJECTED, the paper's method) as an in-run
  * peer. Prints the machine and the load average (the box is shared: timings are noisy).
- * BLAS/OpenMP threads: unless OPENBLAS_NUM_THREADS and OMP_NUM_THREADS are both set, the bench sets
- * them to 1 and re-executes itself (OpenBLAS reads them when it is loaded, before main). On this
- * 2-core shared box CHOLMOD's threaded BLAS spent ~75 % of the teabag base solve in sched_yield
- * (perf), 2.3–4.1 s against 0.7–1.2 s single-threaded for the same 11 Newton steps (load ~8);
- * the factorisations here (≤ 3k DOFs) are too small for threads to pay. */
+ * BLAS/OpenMP threads: unless OPENBLAS_NUM_THREADS, OMP_NUM_THREADS and OMP_WAIT_POLICY are all
+ * set, the bench sets them to 1, 1, PASSIVE and re-executes itself (the libraries read them when
+ * they are loaded, before main). On this 2-core shared box CHOLMOD's threaded BLAS spent ~75 % of
+ * the teabag base solve in sched_yield (perf), 2.3–4.1 s against 0.7–1.2 s single-threaded for the
+ * same 11 Newton steps (load ~8); the factorisations here (≤ 3k DOFs) are too small for threads
+ * to pay. CHOLMOD's supernodal numeric factorisation still opens OpenMP teams of its own fixed size
+ * (3 extra threads seen in perf whatever OMP_NUM_THREADS says), whose idle threads spin unless the
+ * wait policy is passive: twisted-cylinder base, 14 Newton steps, user CPU 0.60–0.65 s (ACTIVE),
+ * 0.23 s (default), 0.18–0.19 s (PASSIVE). */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdio.h>
@@ -211,10 +215,11 @@ int main(int argc, char **argv) {
                                    {"twisted cylinder", 2, 0.69, 104.92, 12, 813, 688},
                                    {"teabag", 3, 0.78, 7.32, 8, 46, 936}};
     int full = 0, peer = 0, only = -1, c, r, a;
-    if (!getenv("OPENBLAS_NUM_THREADS") || !getenv("OMP_NUM_THREADS")) {
-        /* single-threaded BLAS / OpenMP (see the top comment); on failure run as we are */
+    if (!getenv("OPENBLAS_NUM_THREADS") || !getenv("OMP_NUM_THREADS") || !getenv("OMP_WAIT_POLICY")) {
+        /* single-threaded BLAS / OpenMP, passive waits (see the top comment); on failure run as we are */
         if (!getenv("OPENBLAS_NUM_THREADS")) setenv("OPENBLAS_NUM_THREADS", "1", 1);
         if (!getenv("OMP_NUM_THREADS")) setenv("OMP_NUM_THREADS", "1", 1);
+        if (!getenv("OMP_WAIT_POLICY")) setenv("OMP_WAIT_POLICY", "PASSIVE", 1);
         execv("/proc/self/exe", argv);
     }
     for (a = 1; a < argc; ++a) {
@@ -223,7 +228,8 @@ int main(int argc, char **argv) {
         else if (!strncmp(argv[a], "--case=", 7)) only = atoi(argv[a] + 7);
     }
     machine();
-    printf("OPENBLAS_NUM_THREADS=%s OMP_NUM_THREADS=%s\n", getenv("OPENBLAS_NUM_THREADS"), getenv("OMP_NUM_THREADS"));
+    printf("OPENBLAS_NUM_THREADS=%s OMP_NUM_THREADS=%s OMP_WAIT_POLICY=%s\n", getenv("OPENBLAS_NUM_THREADS"),
+           getenv("OMP_NUM_THREADS"), getenv("OMP_WAIT_POLICY"));
     loadavg("at start");
     printf("TFW per case, medians over the runs column (base runs / TFW runs); paper = Table 2, 8-core i9-9900K\n");
     printf("TFT base: Newton it, seconds, split asm(+proj)/linear/line-search, line-search energy evals, status\n");
