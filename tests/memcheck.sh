@@ -39,6 +39,8 @@ if have wrinkle-resolution; then
     printf 'name,B,E\ngreen,2.6e-6,2.0e6\ndenim,1e-5,5e6\n' > "$tmp/fabrics.csv"
     run 0 resolution_csv -- bin/wrinkle-resolution --csv "$tmp/fabrics.csv"
     run 2 resolution_bad -- bin/wrinkle-resolution --bending -1 --young 1e6
+    printf 'name,B,E\ngreen,2.6e-6,2e6\nwool,1e-5,1e6\nbad,-1,2e6\n' > "$tmp/late.csv"
+    run 2 resolution_csv_bad_row -- bin/wrinkle-resolution --csv "$tmp/late.csv"   # buffered rows freed
 fi
 if have wrinkle-report && [ -x bin/validate_table1 ]; then
     mkdir -p "$tmp/results"

@@ -60,3 +60,34 @@ Test(cli, option_values) {
     wr_cli_set_program("/usr/bin/some-tool");
     cr_expect_str_eq(wr_cli_program(), "some-tool");
 }
+
+/* The shared tail of the scene drivers' option loops (wrinkle-statics, wrinkle-tfw). */
+Test(cli, scene_args) {
+    char *argv[] = {"prog", "scene.json", "-o", "out", "--output=o2", "-", "--bogus", "-o"};
+    int argc = 8, i;
+    const char *scene = NULL, *out = NULL;
+    wr_cli_set_program("prog");
+    i = 1;
+    cr_expect_eq(wr_cli_scene_arg(argc, argv, &i, &scene, &out), 1);
+    cr_expect(scene == argv[1] && i == 1);
+    i = 2;
+    cr_expect_eq(wr_cli_scene_arg(argc, argv, &i, &scene, &out), 1);
+    cr_expect(out == argv[3] && i == 3, "-o takes the next argument");
+    i = 4;
+    cr_expect_eq(wr_cli_scene_arg(argc, argv, &i, &scene, &out), 1);
+    cr_expect_str_eq(out, "o2");
+    i = 5; /* a second positional ("-" is a file name, not an option) */
+    cr_expect_eq(wr_cli_scene_arg(argc, argv, &i, &scene, &out), -1);
+    cr_expect(scene == argv[1], "the first scene is kept");
+    i = 6;
+    cr_expect_eq(wr_cli_scene_arg(argc, argv, &i, &scene, &out), -1); /* unknown option */
+    i = 7;
+    cr_expect_eq(wr_cli_scene_arg(argc, argv, &i, &scene, &out), -1); /* -o without a value */
+    cr_expect_eq(wr_cli_scene_args_ok(scene, out), 1);
+    cr_expect_eq(wr_cli_scene_args_ok(NULL, out), 0);
+    cr_expect_eq(wr_cli_scene_args_ok(scene, NULL), 0);
+    scene = NULL;
+    i = 5; /* "-" alone is taken as the scene file */
+    cr_expect_eq(wr_cli_scene_arg(argc, argv, &i, &scene, &out), 1);
+    cr_expect_str_eq(scene, "-");
+}

@@ -1,6 +1,7 @@
 /* tests for drivers/lib/scene.c: the JSON scene parser (happy path, every error path names the JSON
  * path), BC selection and motions, a small end-to-end solve with output files. */
 #define _POSIX_C_SOURCE 200809L /* mkdtemp */
+#include <cjson/cJSON.h>
 #include <criterion/criterion.h>
 #include <math.h>
 #include <stdio.h>
@@ -221,11 +222,46 @@ Test(scene, end_to_end_uniform_stretch_and_outputs) {
     cr_assert_eq(access(path, R_OK), 0);
     unlink(path);
     snprintf(path, sizeof path, "%s/summary.json", dir);
-    cr_assert_eq(access(path, R_OK), 0);
+    {
+        /* written whole through wr_json_write: one JSON document and a final newline */
+        char *txt = NULL;
+        size_t n = 0;
+        cJSON *j;
+        cr_assert_eq(wr_file_read(path, &txt, &n, &d), WR_OK, "%s", d.message);
+        cr_assert(n > 2 && txt[n - 1] == '\n' && txt[n - 2] == '}', "summary.json does not end in \"}\\n\"");
+        j = cJSON_Parse(txt);
+        cr_assert_not_null(j, "summary.json is not JSON");
+        cJSON_Delete(j);
+        wr_free(txt);
+    }
     unlink(path);
     rmdir(dir);
     wr_scene_run_free(&run);
     wr_scene_free(&sc);
+}
+
+/* wr_scene_load reads through core's wr_file_read: a file gives the same scene as parsing its text
+ * (relative paths resolve against the file's directory), a missing file is WR_ERR_IO naming it. */
+Test(scene, load_from_file) {
+    const char *t = "{\"name\": \"from-file\", \"mesh\": {\"type\": \"obj\", \"path\": \"sheet.obj\"}, " BASE_MAT "}";
+    char dir[] = "/tmp/wr_test_sceneloadXXXXXX", path[256];
+    wr_scene sc;
+    wr_diag d;
+    FILE *f;
+    cr_assert_not_null(mkdtemp(dir));
+    snprintf(path, sizeof path, "%s/scene.json", dir);
+    f = fopen(path, "w");
+    cr_assert_not_null(f);
+    fputs(t, f);
+    fclose(f);
+    cr_assert_eq(wr_scene_load(&sc, path, &d), WR_OK, "%s", d.message);
+    cr_expect_str_eq(sc.name, "from-file");
+    cr_expect(strncmp(sc.mesh.path, dir, strlen(dir)) == 0, "obj path '%s' not under '%s'", sc.mesh.path, dir);
+    wr_scene_free(&sc);
+    unlink(path);
+    rmdir(dir);
+    cr_assert_eq(wr_scene_load(&sc, path, &d), WR_ERR_IO);
+    cr_expect(strstr(d.message, "scene.json") != NULL, "%s", d.message);
 }
 
 Test(scene, twist_motion_rotates_about_axis) {
