@@ -1,7 +1,9 @@
-set terminal pngcairo size 900,500
+set terminal pngcairo size 1000,520
 set output 'validation/results/../figures/curtain.png'
 set grid
+set key bottom right
 set xlabel 'depth below the gathered top edge [mm]'
-set ylabel 'wavelength [mm]'
-set yrange [0:40]
-plot 'validation/results/curtain_0.dat' u 1:2 w l lw 2 t 'B = 1e-06 (L_w pred. 34.3 mm)', 'validation/results/curtain_1.dat' u 1:2 w l lw 2 t 'B = 2e-06 (L_w pred. 24.3 mm)', 'validation/results/curtain_2.dat' u 1:2 w l lw 2 t 'B = 4e-06 (L_w pred. 17.2 mm)', 20 w l dt 2 t '2 lambda0'
+set ylabel 'crest-count wavelength [mm]'
+set xrange [0:80]
+set yrange [0:60]
+plot 'validation/results/curtain_0.dat' u 1:6 w l lw 2 lc 1 t 'B = 1e-06, rho_A = 0.15: 2 lambda0 at 9.0 mm (L_w tension 34.3, compression 30.0)', 'validation/results/curtain_1.dat' u 1:6 w l lw 2 lc 2 t 'B = 2e-06, rho_A = 0.15: 2 lambda0 at 7.0 mm (L_w tension 24.3, compression 26.7)', 'validation/results/curtain_2.dat' u 1:6 w l lw 2 lc 3 t 'B = 4e-06, rho_A = 0.15: 2 lambda0 at 6.4 mm (L_w tension 17.2, compression 23.8)', 'validation/results/curtain_3.dat' u 1:6 w l lw 2 lc 4 t 'B = 2e-06, rho_A = 0.60: 2 lambda0 at 7.0 mm (L_w tension 48.5, compression 26.7)', 20 w l dt 2 lc rgb 'black' t '2 lambda0'
