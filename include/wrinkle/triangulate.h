@@ -71,9 +71,12 @@
  *   hull cannot bury a hull edge). Subsegments are split at their midpoint, or at a power
  *   of two from an input vertex or a segment junction (concentric shells). Left alone: triangles
  *   whose shortest edge joins points on two segments (or hull edges) meeting at less than 60° (the
- *   input's own small angle), and slivers with all corners on one segment (split points are rounded a few ulps off the
- *   segment's line; the output stays an exact CDT of the vertices produced). A vertex budget stops
- *   everything else: WR_ERR_BUDGET is returned with the valid mesh reached so far in *out.
+ *   input's own small angle; a vertex on one of them does not count as encroaching the other's
+ *   subsegments), slivers with all corners on one segment (split points are rounded a few ulps off
+ *   the segment's line; the output stays an exact CDT of the vertices produced), and triangles and
+ *   subsegments shorter than 2^-36 of their coordinates' magnitude (rounding scale, where a computed
+ *   Steiner point is no longer where it should be). A vertex budget stops everything else:
+ *   WR_ERR_BUDGET is returned with the valid mesh reached so far in *out.
  *   Coordinates beyond ±WR_CDT_MAX_COORD (1e70) are refused with WR_ERR_GEOMETRY (the predicates
  *   would overflow). Input segments that overlap on one line share their common subsegments, which
  *   carry the lowest of their ids (segment_id); wr_cdt_check accepts such pieces in each chain.
@@ -1326,6 +1329,20 @@ static int wr__coord_ok(const wr__ref *R, const double *p) {
     return (ax == 0.0 || ax >= R->tiny) && (ay == 0.0 || ay >= R->tiny);
 }
 
+/* Relative precision floor of refinement: an edge shorter than this times the largest |coordinate|
+ * of its end points is at the scale of rounding (2^-36 is 2^16 ulps). A Steiner point computed for
+ * a triangle (or subsegment) at that scale carries a rounding error of a sizeable fraction of the
+ * triangle itself — a circumcenter of a 1e-25-wide sliver at y = 0.25 rounds onto the sliver's
+ * base — so inserting it does not improve anything and, repeated, makes new slivers without end
+ * (fuzzer finding cdt_sliver_cascade: exponential growth to the vertex budget, ~n^2.5 time).
+ * Such triangles are left alone like the input's small angles, such subsegments are not split.
+ * Cloth panels in metres need features above ~1e-11 of their coordinates' size: far above. */
+#define WR__REFINE_REL_FLOOR 1.4551915228366852e-11 /* 2^-36 */
+static int wr__below_floor(const double *p, const double *q, double len2) {
+    double m = fmax(fmax(fabs(p[0]), fabs(p[1])), fmax(fabs(q[0]), fabs(q[1]))) * WR__REFINE_REL_FLOOR;
+    return len2 < m * m;
+}
+
 /* input segment a Steiner vertex lies on (junctions of crossing segments are stored as -3 - id) */
 static int32_t wr__seg_of(const wr__cdt *S, int32_t v) {
     int32_t s = S->vseg[v];
@@ -1360,9 +1377,12 @@ static int wr__segs_meet_sharply(const wr__cdt *S, const wr__ref *R, int32_t s1,
  * own and splitting there would never end). */
 static int wr__is_bad(const wr__cdt *S, const wr__ref *R, int32_t t) {
     const int32_t *v = S->tv + 3 * t;
-    const double *p0 = WR__P(S, v[0]), *p1 = WR__P(S, v[1]), *p2 = WR__P(S, v[2]);
+    const double *p0 = WR__P(S, v[0]), *p1 = WR__P(S, v[1]), *p2 = WR__P(S, v[2]), *P3[3];
     double e[3], a2, l1, l2;
     int k, m = 0;
+    P3[0] = p0;
+    P3[1] = p1;
+    P3[2] = p2;
     e[0] = (p1[0] - p2[0]) * (p1[0] - p2[0]) + (p1[1] - p2[1]) * (p1[1] - p2[1]);
     e[1] = (p2[0] - p0[0]) * (p2[0] - p0[0]) + (p2[1] - p0[1]) * (p2[1] - p0[1]);
     e[2] = (p0[0] - p1[0]) * (p0[0] - p1[0]) + (p0[1] - p1[1]) * (p0[1] - p1[1]);
@@ -1374,6 +1394,7 @@ static int wr__is_bad(const wr__cdt *S, const wr__ref *R, int32_t t) {
     l1 = e[wr__n1[m]];
     l2 = e[wr__n2[m]];
     if (!(a2 * a2 < R->sin2 * l1 * l2)) return 0;
+    if (wr__below_floor(P3[wr__n1[m]], P3[wr__n2[m]], e[m])) return 0; /* rounding scale: see the floor */
     if (R->seg) {
         int32_t u = v[wr__n1[m]], w = v[wr__n2[m]], su = wr__seg_of(S, u), sw = wr__seg_of(S, w);
         if (su >= 0 && sw >= 0 && su != sw && wr__segs_meet_sharply(S, R, su, sw)) return 0;
@@ -1424,6 +1445,7 @@ static int wr__split_segment(wr__cdt *S, wr__ref *R, int32_t he) {
     const double *px = WR__P(S, x), *py = WR__P(S, y);
     double len = hypot(py[0] - px[0], py[1] - px[1]), f = 0.5, p[2];
     int xin = x < S->n_input || S->vseg[x] <= -3, yin = y < S->n_input || S->vseg[y] <= -3;
+    if (wr__below_floor(px, py, len * len)) return 0;
     if (xin != yin && len > 0.0) {
         double dd = ldexp(1.0, (int)floor(log2(0.5 * len) + 0.5)); /* nearest power of two to len/2 */
         f = xin ? dd / len : 1.0 - dd / len;
@@ -1469,10 +1491,26 @@ static int wr__split_segment(wr__cdt *S, wr__ref *R, int32_t he) {
     return 1;
 }
 
-static int wr__seg_encroached(const wr__cdt *S, int32_t he) {
+/* Is apex w of a triangle on subsegment he (segment id sg in R->seg numbering) an encroachment that
+ * splitting can resolve? Not when w lies on another segment meeting sg at less than 60°: near such
+ * an input angle the two segments' vertices are close because the segments are (the skinny
+ * triangles between them are left alone by wr__is_bad). Concentric shells would make the vertices
+ * of both pair up in exact arithmetic, but split points are rounded: a few ulps of misalignment
+ * between two segments 1e-25 apart made each one's vertices encroach the other's subsegments
+ * without end (fuzzer finding cdt_sliver_cascade: ~n^2.5 cost, out of memory). */
+static int wr__encroach_counts(const wr__cdt *S, const wr__ref *R, int32_t sg, int32_t w) {
+    int32_t sw = wr__seg_of(S, w);
+    return !(sg >= 0 && sw >= 0 && sw != sg && wr__segs_meet_sharply(S, R, sg, sw));
+}
+
+static int wr__seg_encroached(const wr__cdt *S, const wr__ref *R, int32_t he) {
     int32_t t = he / 3, k = he % 3, tw = S->tn[he], x = S->tv[3 * t + wr__n1[k]], y = S->tv[3 * t + wr__n2[k]];
-    if (wr__is_live(S, t) && wr__encroaches(S, x, y, WR__P(S, S->tv[he]))) return 1;
-    if (wr__is_live(S, tw / 3) && wr__encroaches(S, x, y, WR__P(S, S->tv[tw]))) return 1;
+    int32_t m = S->cm[he], sg = m >= 0 ? m : m <= -2 ? R->n_seg_in + (-2 - m) : -1;
+    if (wr__is_live(S, t) && wr__encroaches(S, x, y, WR__P(S, S->tv[he])) && wr__encroach_counts(S, R, sg, S->tv[he]))
+        return 1;
+    if (wr__is_live(S, tw / 3) && wr__encroaches(S, x, y, WR__P(S, S->tv[tw])) &&
+        wr__encroach_counts(S, R, sg, S->tv[tw]))
+        return 1;
     return 0;
 }
 
@@ -1530,7 +1568,7 @@ static wr_status wr__refine(wr__cdt *S, wr__ref *R, wr_diag *diag) {
         while (R->segq.n >= 2) {
             int32_t y = R->segq.a[--R->segq.n], x = R->segq.a[--R->segq.n], rc;
             he = wr__find_edge(S, x, y);
-            if (he < 0 || S->cm[he] == -1 || !wr__seg_encroached(S, he)) continue;
+            if (he < 0 || S->cm[he] == -1 || !wr__seg_encroached(S, R, he)) continue;
             rc = wr__split_segment(S, R, he);
             if (rc == -1) goto budget;
             if (rc == -2) return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
