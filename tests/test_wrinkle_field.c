@@ -696,3 +696,151 @@ Test(wrinkle_field, sqp_in_tension_drives_amplitude_to_zero) {
     wr_wf_free(&wf);
     wr_mesh_free(&m);
 }
+
+/* Clamped-edge condition (wr_wf_set_amplitude_zero) and the Cerda-Mahadevan balance. On the clamped,
+ * stretched sheet (no W set: the clamps hold a = 0 instead) the solved fields must keep a = 0 on the
+ * clamped vertices, stay curl free, and select the wavelength of Cerda & Mahadevan's bending-vs-crest-
+ * tension balance on the envelope E_wf itself produces: k⁴ = T ∫a'² / (D ∫a²) along the mid-line,
+ * T = E h ε_xx (Green strain 0.105 of the 1.1 stretch), D = E h³ / (12(1 - ν²)) (from Eq. 21's
+ * ½ daᵀda term against Eq. 26's W_b^2; a factor 2 error in either moves k by 19 %). */
+Test(wrinkle_field, clamped_amplitude_and_cerda_mahadevan_wavelength) {
+    const double L = 0.25, Hh = 0.1, E = 1e6, nu = 0.5, h = 1e-4;
+    const int32_t nx = 24, ny = 6;
+    wr_mesh m;
+    wr_wf wf;
+    wr_wf_material mat;
+    wr_wf_solve_desc sd;
+    wr_wf_solve_stats ss;
+    double *base, *a, *om, *curl, s2 = 0.0, d2 = 0.0, ksum = 0.0, wsum = 0.0, kpred, T, D, amax = 0.0;
+    double *xs, *as;
+    uint8_t *az;
+    int32_t v, f, k, nmid = 0;
+    mat.young = E;
+    mat.poisson = nu;
+    mat.thickness = h;
+    cr_assert_eq(wr_mesh_rectangle(&m, L, Hh, nx, ny, NULL), WR_OK);
+    base = (double *)malloc(sizeof(double) * 3 * m.nv);
+    stretched_base(&m, L, Hh, base);
+    cr_assert_eq(wr_wf_create(&wf, &m, base, &mat, NULL), WR_OK);
+    az = (uint8_t *)calloc((size_t)m.nv, 1);
+    for (v = 0; v < m.nv; ++v) az[v] = (uint8_t)(m.pos[3 * v] < 1e-9 || m.pos[3 * v] > L - 1e-9);
+    wr_wf_set_amplitude_zero(&wf, az);
+    a = (double *)malloc(sizeof(double) * m.nv);
+    om = (double *)malloc(sizeof(double) * m.ne);
+    curl = (double *)malloc(sizeof(double) * m.nf);
+    cr_assert_eq(wr_wf_init(&wf, NULL, a, om, NULL), WR_OK);
+    for (v = 0; v < m.nv; ++v)
+        if (az[v]) cr_assert_eq(a[v], 0.0);
+    memset(&sd, 0, sizeof sd);
+    sd.tol_energy = 1e-300; /* only the KKT rule may stop */
+    sd.tol_step = 1e-300;
+    sd.max_iter = 300;
+    cr_assert_eq(wr_wf_solve(&wf, &sd, a, om, &ss, NULL), WR_OK);
+    cr_assert_eq(ss.stop, WR_WF_STOP_KKT);
+    for (v = 0; v < m.nv; ++v) {
+        cr_assert(a[v] >= 0.0);
+        if (az[v]) cr_assert_eq(a[v], 0.0, "clamped vertex %d has a = %g", v, a[v]);
+        amax = fmax(amax, a[v]);
+    }
+    cr_assert(amax > 1e-4, "amax %g", amax);
+    wr_wf_curl(&m, om, curl);
+    for (f = 0; f < m.nf; ++f) cr_assert(fabs(curl[f]) < 1e-9, "curl %g", curl[f]);
+    /* envelope along the mid-line row y = H/2 (vertex row ny/2 of the grid), exact integrals of the
+     * piecewise-linear a */
+    xs = (double *)malloc(sizeof(double) * m.nv);
+    as = (double *)malloc(sizeof(double) * m.nv);
+    for (v = 0; v < m.nv; ++v)
+        if (fabs(m.pos[3 * v + 1] - 0.5 * Hh) < 1e-9) {
+            xs[nmid] = m.pos[3 * v];
+            as[nmid++] = a[v];
+        }
+    cr_assert_eq(nmid, nx + 1);
+    for (k = 1; k < nmid; ++k) /* rows are produced in x order by wr_mesh_rectangle */
+        cr_assert(xs[k] > xs[k - 1]);
+    for (k = 0; k + 1 < nmid; ++k) {
+        double dx = xs[k + 1] - xs[k];
+        s2 += dx / 3.0 * (as[k] * as[k] + as[k] * as[k + 1] + as[k + 1] * as[k + 1]);
+        d2 += (as[k + 1] - as[k]) * (as[k + 1] - as[k]) / dx;
+    }
+    /* |dφ| on the faces, weighted by a² (where the wrinkles are) */
+    for (f = 0; f < m.nf; ++f) {
+        int32_t idx[6];
+        double sg[6], w[3], p0, p1, am = 0.0, kk;
+        const double *ii = wf.iu_inv + 3 * f;
+        wr_wf_face_dofs(&wf, f, idx, sg);
+        for (k = 0; k < 3; ++k) {
+            w[k] = sg[3 + k] * om[idx[3 + k] - m.nv];
+            am += a[m.faces[3 * f + k]] / 3.0;
+        }
+        p0 = (-w[0] - w[1] + 2.0 * w[2]) / 3.0;
+        p1 = (w[0] - 2.0 * w[1] + w[2]) / 3.0;
+        kk = sqrt(p0 * p0 * ii[0] + 2.0 * p0 * p1 * ii[1] + p1 * p1 * ii[2]);
+        ksum += am * am * kk;
+        wsum += am * am;
+    }
+    T = E * h * 0.5 * (1.1 * 1.1 - 1.0);
+    D = E * h * h * h / (12.0 * (1.0 - nu * nu));
+    kpred = pow(T * d2 / (D * s2), 0.25);
+    cr_log_info("clamped sheet: %d iters, KKT %g/%g, amax %.3g mm, L_eff %.1f mm, k %.1f vs CM %.1f rad/m (%.2f mm vs %.2f mm), "
+                "folds %d",
+                ss.iterations, ss.kkt, ss.kkt0, 1e3 * amax, 1e3 * PI * sqrt(s2 / d2), ksum / wsum, kpred,
+                2e3 * PI / (ksum / wsum), 2e3 * PI / kpred, wr_wf_count_folds(&wf, a, om));
+    /* measured 408.1 vs 407.4 rad/m (0.2 %) */
+    cr_assert(fabs(ksum / wsum / kpred - 1.0) < 0.03, "k %g vs Cerda-Mahadevan %g", ksum / wsum, kpred);
+    wr_wf_set_amplitude_zero(&wf, NULL);
+    for (v = 0; v < m.nv; ++v) cr_assert_eq(wf.azero[v], 0);
+    free(xs);
+    free(as);
+    free(base);
+    free(a);
+    free(om);
+    free(curl);
+    free(az);
+    wr_wf_free(&wf);
+    wr_mesh_free(&m);
+}
+
+/* A zig-zag phase (φ = 2.5 on odd grid rows, 0 on even ones) is curl free and, face by face, has the
+ * same |dφ| as the monotone φ = 2.5·row: the fold E_wf cannot see. wr_wf_count_folds must find it and
+ * wr_wf_unfold must return the monotone one-form (up to a global sign) with no folds. */
+Test(wrinkle_field, unfold_turns_zigzag_phase_monotone) {
+    const double L = 0.1, Hh = 0.05;
+    const int32_t nx = 8, ny = 6;
+    wr_mesh m;
+    wr_wf wf;
+    wr_wf_material mat = material();
+    double *a, *om, *mono, dy = Hh / ny, sgn = 0.0, E0 = 0.0, E1 = 0.0;
+    int32_t v, e, nf0, nf1;
+    cr_assert_eq(wr_mesh_rectangle(&m, L, Hh, nx, ny, NULL), WR_OK);
+    cr_assert_eq(wr_wf_create(&wf, &m, NULL, &mat, NULL), WR_OK);
+    a = (double *)malloc(sizeof(double) * m.nv);
+    om = (double *)malloc(sizeof(double) * m.ne);
+    mono = (double *)malloc(sizeof(double) * m.ne);
+    for (v = 0; v < m.nv; ++v) a[v] = 1e-3;
+    for (e = 0; e < m.ne; ++e) {
+        int32_t r0 = (int32_t)floor(m.pos[3 * m.edges[2 * e] + 1] / dy + 0.5);
+        int32_t r1 = (int32_t)floor(m.pos[3 * m.edges[2 * e + 1] + 1] / dy + 0.5);
+        om[e] = 2.5 * ((r1 % 2) - (r0 % 2));
+        mono[e] = 2.5 * (r1 - r0);
+    }
+    nf0 = wr_wf_count_folds(&wf, a, om);
+    cr_assert(nf0 >= nx, "zig-zag has %d fold edges", nf0);
+    cr_assert_eq(wr_wf_count_folds(&wf, a, mono), 0);
+    cr_assert_eq(wr_wf_energy(&wf, a, om, &E0, NULL, NULL, NULL, NULL), WR_OK);
+    cr_assert_eq(wr_wf_unfold(&wf, a, om, NULL), WR_OK);
+    nf1 = wr_wf_count_folds(&wf, a, om);
+    cr_assert_eq(nf1, 0);
+    for (e = 0; e < m.ne; ++e) {
+        if (sgn == 0.0 && mono[e] != 0.0) sgn = om[e] / mono[e] > 0.0 ? 1.0 : -1.0;
+        cr_assert(fabs(om[e] - sgn * mono[e]) < 1e-9, "edge %d: %g vs %g", e, om[e], sgn * mono[e]);
+    }
+    /* the energy is blind to the fold: same E before and after (the point of the fold counter) */
+    cr_assert_eq(wr_wf_energy(&wf, a, om, &E1, NULL, NULL, NULL, NULL), WR_OK);
+    cr_log_info("zig-zag: %d folds -> %d, E %.12g vs %.12g", nf0, nf1, E0, E1);
+    cr_assert(fabs(E1 - E0) <= 1e-9 * fabs(E0), "E %g vs %g", E1, E0);
+    free(a);
+    free(om);
+    free(mono);
+    wr_wf_free(&wf);
+    wr_mesh_free(&m);
+}

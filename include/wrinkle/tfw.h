@@ -36,6 +36,12 @@
  *   converging (WR_ERR_NOT_CONVERGED) still yields fields, phase and the wrinkled mesh; the status is
  *   returned after everything is filled, and result->sqp tells why.
  *
+ * ON CLAMPS AND FOLDS
+ *   desc->a_zero_vertices holds a = 0 on clamped vertices (wr_wf_set_amplitude_zero). After the SQP,
+ *   edges where dφ reverses between wrinkled faces are counted (wr_wf_count_folds); if there are any
+ *   (and not desc->no_unfold), ω is re-oriented (wr_wf_unfold) and solved again; the re-solve is kept
+ *   when it has fewer folds. result->sqp_first / n_folds_first describe the first solve, result->sqp /
+ *   n_folds the returned fields, result->unfolded says which.
  * ON THREADS
  *   No global state.
  */
@@ -59,7 +65,9 @@ typedef struct wr_tfw_desc {
     wr_wf_solve_desc solve;
     wr_wf_upsample_desc upsample;
     const uint8_t *wfree_override;
+    const uint8_t *a_zero_vertices; /* nv flags or NULL: a held at 0 there (clamped edges, wr_wf_set_amplitude_zero) */
     int no_upsample; /* nonzero: skip E.5 (result->wrinkled stays empty) */
+    int no_unfold;   /* nonzero: keep the SQP's ω even where dφ folds (see wr_wf_count_folds) */
 } wr_tfw_desc;
 
 typedef struct wr_tfw_result {
@@ -69,7 +77,10 @@ typedef struct wr_tfw_result {
     int32_t n_wrinkle_free;
     wr_mesh wrinkled;
     double *wrinkled_a;
-    wr_wf_solve_stats sqp;
+    wr_wf_solve_stats sqp;          /* the SQP whose fields are returned (the re-solve after unfolding, if any) */
+    wr_wf_solve_stats sqp_first;    /* the first SQP from the App. E.2 start */
+    int32_t n_folds_first, n_folds; /* fold edges after the first SQP and in the returned ω */
+    int32_t unfolded;               /* 1: the returned fields come from wr_wf_unfold + a second SQP */
     wr_wf_phase_stats phase;
     double seconds_setup, seconds_init, seconds_sqp, seconds_phase, seconds_upsample, seconds_total;
 } wr_tfw_result;
@@ -146,6 +157,7 @@ WRDEF wr_status wr_tfw_fields(const wr_mesh *m, const double *base_pos, const wr
         wr_wf_set_wrinkle_free(&wf, D.wfree_override);
     else
         wr_wf_classify(&wf, &D.classify); /* Sec. 5.1 */
+    if (D.a_zero_vertices) wr_wf_set_amplitude_zero(&wf, D.a_zero_vertices);
     for (f = 0; f < m->nf; ++f) {
         res->wfree[f] = wf.wfree[f];
         res->n_wrinkle_free += wf.wfree[f];
@@ -157,11 +169,51 @@ WRDEF wr_status wr_tfw_fields(const wr_mesh *m, const double *base_pos, const wr
     res->seconds_init = wr_time_seconds() - t1;
     t1 = wr_time_seconds();
     sqp_st = wr_wf_solve(&wf, &D.solve, res->a, res->omega, &res->sqp, diag); /* App. E.3 */
-    res->seconds_sqp = wr_time_seconds() - t1;
     if (sqp_st && sqp_st != WR_ERR_NOT_CONVERGED) {
         st = sqp_st;
+        res->seconds_sqp = wr_time_seconds() - t1;
         goto fail;
     }
+    res->sqp_first = res->sqp;
+    res->n_folds_first = res->n_folds = wr_wf_count_folds(&wf, res->a, res->omega);
+    if (res->n_folds > 0 && !D.no_unfold) {
+        /* E_wf cannot see a sign flip of dφ between faces (see wr_wf_count_folds): re-orient ω
+         * consistently and solve again from there; keep the re-solve if it has fewer folds */
+        double *a2 = (double *)wr_alloc_array((size_t)m->nv, sizeof(double));
+        double *o2 = (double *)wr_alloc_array((size_t)m->ne, sizeof(double));
+        wr_wf_solve_stats s2;
+        wr_status st2;
+        if (!a2 || !o2) {
+            wr_free(a2);
+            wr_free(o2);
+            st = wr_fail(diag, WR_ERR_NOMEM, -1, "tfw: out of memory");
+            goto fail;
+        }
+        memcpy(a2, res->a, sizeof(double) * (size_t)m->nv);
+        memcpy(o2, res->omega, sizeof(double) * (size_t)m->ne);
+        st2 = wr_wf_unfold(&wf, a2, o2, diag);
+        if (!st2) st2 = wr_wf_solve(&wf, &D.solve, a2, o2, &s2, diag);
+        if (st2 == WR_OK || st2 == WR_ERR_NOT_CONVERGED) {
+            int32_t n2 = wr_wf_count_folds(&wf, a2, o2);
+            if (n2 < res->n_folds) {
+                memcpy(res->a, a2, sizeof(double) * (size_t)m->nv);
+                memcpy(res->omega, o2, sizeof(double) * (size_t)m->ne);
+                res->sqp = s2;
+                res->n_folds = n2;
+                res->unfolded = 1;
+                sqp_st = st2;
+            }
+        } else if (st2 != WR_ERR_NOMEM) {
+            st2 = WR_OK; /* a failed re-solve keeps the first solution */
+        }
+        wr_free(a2);
+        wr_free(o2);
+        if (st2 == WR_ERR_NOMEM) {
+            st = st2;
+            goto fail;
+        }
+    }
+    res->seconds_sqp = wr_time_seconds() - t1;
     t1 = wr_time_seconds();
     st = wr_wf_phase(&wf, res->omega, res->phi, &res->phase, diag); /* App. E.4 */
     res->seconds_phase = wr_time_seconds() - t1;

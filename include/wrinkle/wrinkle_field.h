@@ -16,12 +16,15 @@
  *   wr_wf_free(wf)
  *   wr_wf_classify(wf, desc)                          W by the rule of Sec. 5.1; returns |W|
  *   wr_wf_set_wrinkle_free(wf, flags)                 set W explicitly (NULL = empty)
+ *   wr_wf_set_amplitude_zero(wf, vflags)              hold a = 0 on vertices (clamped edges)
  *   wr_wf_energy(wf, a, omega, E, grad, face_hess, terms, diag)   E_wf (Eq. 20–27, 37), ∇, per-face ∇²
  *   wr_wf_face_dofs(wf, f, idx[6], sign[6])           global indices of a face's local DOFs
  *   wr_wf_curl(mesh, omega, curl)                     dω per face (mesh.h sign convention)
  *   wr_wf_project_closed(wf, omega, diag)             least-squares nearest ω with dω = 0 off W
  *   wr_wf_init(wf, desc, a, omega, diag)              App. E.2 initial guess (projected to dω = 0)
  *   wr_wf_solve(wf, desc, a, omega, stats, diag)      App. E.3 SQP: a >= 0, dω = 0 off W
+ *   wr_wf_count_folds(wf, a, omega)                   edges where dφ reverses between wrinkled faces
+ *   wr_wf_unfold(wf, a, omega, diag)                  re-orient dφ consistently, project to dω = 0
  *   wr_wf_phase(wf, omega, phi, stats, diag)          App. E.4: per-corner φ, 2π-integer jumps
  *   wr_wf_loop_step(m, ncomp, vals, desc, fine_faces, fine_vals, diag)  one Loop step, any fields
  *   wr_wf_upsample(wf, a, phi, desc, out, out_a, diag)  App. E.5: Loop n levels + Eq. 19 (v2 term)
@@ -83,7 +86,7 @@
  *   Unknowns after eliminating dω = 0: y = (free a, z), ω = Z z. Per iteration one sparse Cholesky of
  *   (PᵀH P + μ M) restricted to the free set, H the per-face Hessians (SPD-projected or true, see
  *   wr_wf_hessian; AUTO = the paper's switch, at a relative KKT of 1e-2 instead of its ΔE < 1e-8),
- *   M = max(|diag|, 1e-6 · block mean), μ adapted from ρ = actual/predicted decrease (Nielsen's rule)
+ *   M = max(|diag|, 1e-2 · block mean), μ adapted from ρ = actual/predicted decrease (Nielsen's rule)
  *   instead of a Moré–Thuente line search; bounds by a projected-Newton ε-active set (ε = 1e-3 a_ref).
  *   KKT residual: see wr__wf_kkt — nondimensional (a / a_ref, E / E_ref), so its relative tolerance
  *   means the same on every case. Measured on a 12×5 clamped stretched sheet (tests): 24 (AUTO),
@@ -97,6 +100,18 @@
  *   as the paper's video notes describe.
  *   omega_reg (default 0 = the paper's energy) adds a tiny Tikhonov term on ω; it is not needed for
  *   convergence and changes the solution, so it is off unless asked for.
+ *
+ * ON CLAMPED EDGES AND PHASE FOLDS
+ *   wr_wf_set_amplitude_zero holds a = 0 on given vertices: a clamp keeps the sheet in the base
+ *   surface, so Eq. 19's a cos φ n̂ must vanish there. The paper states no such condition; without it
+ *   a clamped edge under TFT compression keeps a finite amplitude along the whole wrinkle, nothing
+ *   opposes W_b^2 but W_s^3/W_s^4, and the wavelength grows (sheared rectangle: 10 instead of 25
+ *   wrinkles). With it, the crest-tension part of W_s^1 (½ daᵀda along the tension) against W_b^2
+ *   reproduces Cerda & Mahadevan's k⁴ = T∫a'²/(D∫a²) to 0.2 % (tests).
+ *   E_wf is even in dφ face by face, so a curl-free ω may zig-zag (dφ reversing between neighbouring
+ *   faces) at no cost; near 2 edges per wavelength the SQP does end in such states (stretched sheet:
+ *   20–114 fold edges). wr_wf_count_folds finds them, wr_wf_unfold re-orients dφ (breadth-first from
+ *   the largest amplitude) and projects to dω = 0; tfw.h then solves again from there.
  *
  * ON THREADS
  *   No global state; a wr_wf is read-only after classify/set, so concurrent energy calls are fine.
@@ -138,6 +153,7 @@ typedef struct wr_wf {
     double *c2;              /* nf: W_s^2 = c2 a² (0 where lambda[0] >= 0) [1/m²] */
     double *wb1;             /* nf: W_b^1 density ||I_u⁻¹ II_b||²_SV [Pa/m²] */
     uint8_t *wfree;          /* nf: 1 = face in the wrinkle-free set W */
+    uint8_t *azero;          /* nv: 1 = amplitude held at 0 (clamped boundary, see wr_wf_set_amplitude_zero) */
 } wr_wf;
 
 WRDEF wr_status wr_wf_create(wr_wf *wf, const wr_mesh *m, const double *base_pos, const wr_wf_material *mat,
@@ -156,6 +172,10 @@ typedef struct wr_wf_classify_desc {
  * Sets wf->wfree and returns |W|. desc may be NULL. */
 WRDEF int32_t wr_wf_classify(wr_wf *wf, const wr_wf_classify_desc *desc);
 WRDEF void wr_wf_set_wrinkle_free(wr_wf *wf, const uint8_t *flags /* nf or NULL */);
+/* Hold a = 0 on the flagged vertices (nv flags, NULL = none) in init, solve and upsampling: the
+ * boundary condition of a clamped edge, where the out-of-plane displacement a cos φ of Eq. 19 must
+ * vanish (the clamp holds the sheet in the base surface). Faces keep their energy and curl constraint. */
+WRDEF void wr_wf_set_amplitude_zero(wr_wf *wf, const uint8_t *vflags);
 
 /* E_wf of Eq. 20, 22–24, 26 summed over faces outside W (Eq. 37). a: nv [m], omega: ne [rad].
  * grad (nv+ne, or NULL): dE/dx for x = (a, ω). face_hess (nf*36, or NULL): per face the 6×6 Hessian
@@ -254,6 +274,21 @@ typedef struct wr_wf_solve_stats {
 WRDEF wr_status wr_wf_solve(const wr_wf *wf, const wr_wf_solve_desc *desc, double *a, double *omega,
                             wr_wf_solve_stats *stats, wr_diag *diag);
 
+/* Phase folds. E_wf depends on dφ only through dφᵀdφ and (dφᵀda + daᵀdφ)² (Eq. 21–26): flipping the
+ * sign of dφ on a patch of faces costs nothing but the mismatch on the patch border, and at ~2 base
+ * edges per wavelength a curl-free ω that zig-zags (φ = 0, 2.9, 0, 2.9, ... along the wave vector)
+ * has the same discrete energy as the monotone one. The continuum model forbids it (dφ is a slow
+ * variable, Sec. 3.3), and the visualised surface (Loop-smoothed φ, Eq. 19) is wrong where it happens.
+ * A fold edge: interior edge whose two faces (outside W) both have mean a >= 0.2 max a and whose dφ
+ * (pushed to the base surface) point in opposite directions (dot < 0). Returns the count. */
+WRDEF int32_t wr_wf_count_folds(const wr_wf *wf, const double *a, const double *omega);
+/* Orient dφ consistently: per face outside W the Whitney dφ; a breadth-first sweep over the dual graph
+ * (outside W) from the face of largest amplitude, visiting through the edge between faces, flips a
+ * face's dφ when it points against its parent's; edge targets = mean of the adjacent faces' oriented
+ * phase changes; then the least-squares projection to dω = 0 (wr_wf_project_closed). |dφ| per face is
+ * kept where the faces agreed; the result is a start for another wr_wf_solve. */
+WRDEF wr_status wr_wf_unfold(const wr_wf *wf, const double *a, double *omega, wr_diag *diag);
+
 typedef struct wr_wf_phase_stats {
     int32_t n_cut_edges;      /* interior edges (outside W) across which the corner phases jump */
     int32_t n_nonzero_jumps;  /* of those, jumps by a nonzero multiple of 2π */
@@ -326,7 +361,13 @@ extern "C" {
 #define WR__WF_MU_MAX 1e12        /* μ beyond which the step is negligible: stop (line-search rule) */
 #define WR__WF_MU_UP 10.0         /* μ growth after a failed (non-SPD) factorisation */
 #define WR__WF_RHO_ACCEPT 1e-4    /* accept a step when actual/predicted decrease > this */
-#define WR__WF_DAMP_FLOOR 1e-6    /* damping diagonal floor, relative to the block's mean |diag K| */
+/* Damping diagonal floor, relative to the block's mean |diag K|. It is the trust radius of the
+ * directions E_wf barely sees (ω on faces where a ~ 0): with 1e-6 those coordinates jumped by 20+ rad
+ * per step and spoiled the next model (stretched sheet, 522 vertices: 134 accepted + 67 rejected steps
+ * to the same energy that 1e-2 reaches in 46 + 28; unit-test cases unchanged). */
+#ifndef WR__WF_DAMP_FLOOR
+#define WR__WF_DAMP_FLOOR 1e-2
+#endif
 #define WR__WF_EPS_ACTIVE 1e-3    /* ε of the ε-active set, in units of a_ref: a <= ε a_ref with ∂E/∂a > 0 is put on the bound */
 #define WR__WF_ROUNDOFF 1e-14     /* predicted decrease below this × |E| is below double round-off of E */
 #define WR__WF_ROUNDOFF_FLOOR 1e-6 /* ... of at least 1e-6 |E_wf(start)| (excess energy can be ~0) */
@@ -584,6 +625,7 @@ WRDEF void wr_wf_free(wr_wf *wf) {
     wr_free(wf->c2);
     wr_free(wf->wb1);
     wr_free(wf->wfree);
+    wr_free(wf->azero);
     memset(wf, 0, sizeof *wf);
 }
 
@@ -631,8 +673,9 @@ WRDEF wr_status wr_wf_create(wr_wf *wf, const wr_mesh *m, const double *base_pos
     wf->c2 = (double *)wr_alloc_array((size_t)nf, sizeof(double));
     wf->wb1 = (double *)wr_alloc_array((size_t)nf, sizeof(double));
     wf->wfree = (uint8_t *)wr_calloc_array((size_t)nf, sizeof(uint8_t));
+    wf->azero = (uint8_t *)wr_calloc_array((size_t)m->nv, sizeof(uint8_t));
     if (!wf->base || !wf->iu || !wf->iu_inv || !wf->ib || !wf->iib || !wf->area || !wf->lambda || !wf->wdir ||
-        !wf->wperp || !wf->kperp || !wf->c2 || !wf->wb1 || !wf->wfree) {
+        !wf->wperp || !wf->kperp || !wf->c2 || !wf->wb1 || !wf->wfree || !wf->azero) {
         wr_wf_free(wf);
         return wr_fail(diag, WR_ERR_NOMEM, -1, "wrinkle field: out of memory for %d faces", (int)nf);
     }
@@ -750,6 +793,11 @@ WRDEF wr_status wr_wf_create(wr_wf *wf, const wr_mesh *m, const double *base_pos
 WRDEF void wr_wf_set_wrinkle_free(wr_wf *wf, const uint8_t *flags) {
     int32_t f;
     for (f = 0; f < wf->nf; ++f) wf->wfree[f] = (uint8_t)(flags && flags[f] ? 1 : 0);
+}
+
+WRDEF void wr_wf_set_amplitude_zero(wr_wf *wf, const uint8_t *vflags) {
+    int32_t v;
+    for (v = 0; v < wf->nv; ++v) wf->azero[v] = (uint8_t)(vflags && vflags[v] ? 1 : 0);
 }
 
 static int32_t wr__wf_face_neighbor(const wr_mesh *m, int32_t f, int k) {
@@ -1238,6 +1286,9 @@ static void wr__wf_zero_vertices(const wr_wf *wf, uint8_t *zero) {
     for (f = 0; f < wf->nf; ++f)
         if (wf->wfree[f])
             for (v = 0; v < 3; ++v) zero[m->faces[3 * f + v]] = 1;
+    if (wf->azero)
+        for (v = 0; v < wf->nv; ++v)
+            if (wf->azero[v]) zero[v] = 1;
 }
 
 WRDEF wr_status wr_wf_init(const wr_wf *wf, const wr_wf_init_desc *desc, double *a, double *omega, wr_diag *diag) {
@@ -1341,6 +1392,123 @@ done:
     wr_free(wd);
     wr_free(zero);
     wr_free(vis);
+    wr_free(queue);
+    return st;
+}
+
+/* ---- phase folds (see wr_wf_count_folds) ---- */
+#define WR__WF_FOLD_AMP 0.2 /* faces below this fraction of max mean amplitude do not count (visible wrinkles only) */
+
+/* Face f's dφ as a vector on the base surface (dr_b I_b⁻¹ dφᵀ) and as chart components p. */
+static wr_vec3 wr__wf_dphi_vec(const wr_wf *wf, const double *omega, int32_t f, double p[2]) {
+    const wr_mesh *m = wf->mesh;
+    const int32_t *fv = m->faces + 3 * f;
+    const double *ib = wf->ib + 3 * f;
+    double w[3], det, c0, c1;
+    int k;
+    for (k = 0; k < 3; ++k) w[k] = m->face_edge_sign[3 * f + k] * omega[m->face_edges[3 * f + k]];
+    /* Whitney face average, as in wr__wf_face_eval */
+    p[0] = (-w[0] - w[1] + 2.0 * w[2]) / 3.0;
+    p[1] = (w[0] - 2.0 * w[1] + w[2]) / 3.0;
+    det = ib[0] * ib[2] - ib[1] * ib[1];
+    if (!(det > 0.0)) det = 1.0;
+    c0 = (ib[2] * p[0] - ib[1] * p[1]) / det;
+    c1 = (-ib[1] * p[0] + ib[0] * p[1]) / det;
+    return wr_v3_add(wr_v3_scale(wr_v3_sub(wr_v3_load(wf->base + 3 * fv[1]), wr_v3_load(wf->base + 3 * fv[0])), c0),
+                     wr_v3_scale(wr_v3_sub(wr_v3_load(wf->base + 3 * fv[2]), wr_v3_load(wf->base + 3 * fv[0])), c1));
+}
+
+WRDEF int32_t wr_wf_count_folds(const wr_wf *wf, const double *a, const double *omega) {
+    const wr_mesh *m;
+    double amax = 0.0;
+    int32_t f, e, n = 0;
+    if (!wf || !a || !omega) return 0;
+    m = wf->mesh;
+    for (f = 0; f < wf->nf; ++f) {
+        const int32_t *fv = m->faces + 3 * f;
+        if (!wf->wfree[f]) amax = fmax(amax, (a[fv[0]] + a[fv[1]] + a[fv[2]]) / 3.0);
+    }
+    if (!(amax > 0.0)) return 0;
+    for (e = 0; e < wf->ne; ++e) {
+        int32_t f0 = m->edge_faces[2 * e], f1 = m->edge_faces[2 * e + 1];
+        const int32_t *v0, *v1;
+        double p[2];
+        if (f0 < 0 || f1 < 0 || wf->wfree[f0] || wf->wfree[f1]) continue;
+        v0 = m->faces + 3 * f0;
+        v1 = m->faces + 3 * f1;
+        if ((a[v0[0]] + a[v0[1]] + a[v0[2]]) / 3.0 < WR__WF_FOLD_AMP * amax) continue;
+        if ((a[v1[0]] + a[v1[1]] + a[v1[2]]) / 3.0 < WR__WF_FOLD_AMP * amax) continue;
+        if (wr_v3_dot(wr__wf_dphi_vec(wf, omega, f0, p), wr__wf_dphi_vec(wf, omega, f1, p)) < 0.0) ++n;
+    }
+    return n;
+}
+
+WRDEF wr_status wr_wf_unfold(const wr_wf *wf, const double *a, double *omega, wr_diag *diag) {
+    const wr_mesh *m;
+    double *sgn = NULL, *tsum = NULL, *tcnt = NULL, best = -1.0;
+    int32_t *queue = NULL, f, e, seed;
+    wr_status st = WR_OK;
+    if (!wf || !a || !omega) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "wf unfold: NULL argument");
+    m = wf->mesh;
+    sgn = (double *)wr_calloc_array((size_t)wf->nf, sizeof(double));
+    tsum = (double *)wr_calloc_array((size_t)wf->ne, sizeof(double));
+    tcnt = (double *)wr_calloc_array((size_t)wf->ne, sizeof(double));
+    queue = (int32_t *)wr_alloc_array((size_t)wf->nf, sizeof(int32_t));
+    if (!sgn || !tsum || !tcnt || !queue) {
+        st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf unfold: out of memory");
+        goto done;
+    }
+    /* one sweep per connected component outside W, seeded at its largest-amplitude face */
+    for (;;) {
+        int32_t qh = 0, qt = 0;
+        seed = -1;
+        best = -1.0;
+        for (f = 0; f < wf->nf; ++f) {
+            const int32_t *fv = m->faces + 3 * f;
+            double am = (a[fv[0]] + a[fv[1]] + a[fv[2]]) / 3.0;
+            if (wf->wfree[f] || sgn[f] != 0.0) continue;
+            if (am > best) {
+                best = am;
+                seed = f;
+            }
+        }
+        if (seed < 0) break;
+        sgn[seed] = 1.0;
+        queue[qt++] = seed;
+        while (qh < qt) {
+            int32_t g = queue[qh++], c;
+            double p[2];
+            wr_vec3 vg = wr_v3_scale(wr__wf_dphi_vec(wf, omega, g, p), sgn[g]);
+            for (c = 0; c < 3; ++c) {
+                int32_t ee = m->face_edges[3 * g + c];
+                int32_t h2 = m->edge_faces[2 * ee] == g ? m->edge_faces[2 * ee + 1] : m->edge_faces[2 * ee];
+                if (h2 < 0 || wf->wfree[h2] || sgn[h2] != 0.0) continue;
+                sgn[h2] = wr_v3_dot(vg, wr__wf_dphi_vec(wf, omega, h2, p)) < 0.0 ? -1.0 : 1.0;
+                queue[qt++] = h2;
+            }
+        }
+    }
+    /* edge targets: the oriented faces' phase change along the edge (chart vectors of the three
+     * traversals as in wr_wf_init: 1->2 = (-1, 1), 2->0 = (0, -1), 0->1 = (1, 0)) */
+    for (f = 0; f < wf->nf; ++f) {
+        static const double ev[3][2] = {{-1.0, 1.0}, {0.0, -1.0}, {1.0, 0.0}};
+        double p[2];
+        int c;
+        if (wf->wfree[f]) continue;
+        (void)wr__wf_dphi_vec(wf, omega, f, p);
+        for (c = 0; c < 3; ++c) {
+            int32_t ee = m->face_edges[3 * f + c];
+            tsum[ee] += m->face_edge_sign[3 * f + c] * sgn[f] * (p[0] * ev[c][0] + p[1] * ev[c][1]);
+            tcnt[ee] += 1.0;
+        }
+    }
+    for (e = 0; e < wf->ne; ++e)
+        if (tcnt[e] > 0.0) omega[e] = tsum[e] / tcnt[e];
+    st = wr_wf_project_closed(wf, omega, diag);
+done:
+    wr_free(sgn);
+    wr_free(tsum);
+    wr_free(tcnt);
     wr_free(queue);
     return st;
 }
