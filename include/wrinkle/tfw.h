@@ -40,8 +40,9 @@
  *   desc->a_zero_vertices holds a = 0 on clamped vertices (wr_wf_set_amplitude_zero). After the SQP,
  *   edges where dφ reverses between wrinkled faces are counted (wr_wf_count_folds); if there are any
  *   (and not desc->no_unfold), ω is re-oriented (wr_wf_unfold) and solved again; the re-solve is kept
- *   when it has fewer folds. result->sqp_first / n_folds_first describe the first solve, result->sqp /
- *   n_folds the returned fields, result->unfolded says which.
+ *   when it has fewer folds. result->sqp_first / n_folds_first describe the first solve; result->sqp
+ *   the returned one (energy, KKT, stop rule) with the work of both summed (iterations, rejected
+ *   steps, factorisations, seconds); n_folds the returned fields; result->unfolded says which.
  * ON THREADS
  *   No global state.
  */
@@ -77,7 +78,8 @@ typedef struct wr_tfw_result {
     int32_t n_wrinkle_free;
     wr_mesh wrinkled;
     double *wrinkled_a;
-    wr_wf_solve_stats sqp;          /* the SQP whose fields are returned (the re-solve after unfolding, if any) */
+    wr_wf_solve_stats sqp;          /* the returned solve (energy, KKT, stop); work counts (iterations, rejected
+                                     * steps, factorisations, escapes, seconds) summed over both solves */
     wr_wf_solve_stats sqp_first;    /* the first SQP from the App. E.2 start */
     int32_t n_folds_first, n_folds; /* fold edges after the first SQP and in the returned ω */
     int32_t unfolded;               /* 1: the returned fields come from wr_wf_unfold + a second SQP */
@@ -199,6 +201,13 @@ WRDEF wr_status wr_tfw_fields(const wr_mesh *m, const double *base_pos, const wr
                 memcpy(res->a, a2, sizeof(double) * (size_t)m->nv);
                 memcpy(res->omega, o2, sizeof(double) * (size_t)m->ne);
                 res->sqp = s2;
+                res->sqp.iterations += res->sqp_first.iterations;
+                res->sqp.n_rejected += res->sqp_first.n_rejected;
+                res->sqp.n_factorizations += res->sqp_first.n_factorizations;
+                res->sqp.n_escapes += res->sqp_first.n_escapes;
+                res->sqp.seconds += res->sqp_first.seconds;
+                res->sqp.seconds_assembly += res->sqp_first.seconds_assembly;
+                res->sqp.seconds_solve += res->sqp_first.seconds_solve;
                 res->n_folds = n2;
                 res->unfolded = 1;
                 sqp_st = st2;
