@@ -85,12 +85,8 @@ int main(int argc, char **argv) {
             }
             continue;
         }
-        if ((k = wr_cli_double(argc, argv, &i, "--max-vertices", &maxv)) != 0) {
+        if ((k = wr_cli_integer(argc, argv, &i, "--max-vertices", 1.0, 2147483647.0, &maxv)) != 0) {
             if (k < 0) return WR_CLI_EXIT_USAGE;
-            if (!(maxv >= 1.0) || maxv != (double)(long)maxv || maxv > 2147483647.0) {
-                wr_cli_error("--max-vertices must be an integer in [1, 2147483647]");
-                return WR_CLI_EXIT_USAGE;
-            }
             continue;
         }
         if (wr_cli_is_flag(argv[i], "--sew")) {

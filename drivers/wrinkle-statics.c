@@ -63,12 +63,8 @@ int main(int argc, char **argv) {
             }
             continue;
         }
-        if ((k = wr_cli_double(argc, argv, &i, "--load-steps", &steps_override)) != 0) {
+        if ((k = wr_cli_integer(argc, argv, &i, "--load-steps", 1.0, 100000.0, &steps_override)) != 0) {
             if (k < 0) return WR_CLI_EXIT_USAGE;
-            if (!(steps_override >= 1.0 && steps_override <= 100000.0) || steps_override != (int)steps_override) {
-                wr_cli_error("--load-steps must be an integer in [1, 100000]");
-                return WR_CLI_EXIT_USAGE;
-            }
             continue;
         }
         /* -o/--output DIR, the SCENE.json positional, or an unknown option */

@@ -120,12 +120,8 @@ int main(int argc, char **argv) {
             quiet = 1;
             continue;
         }
-        if ((k = wr_cli_double(argc, argv, &i, "--levels", &levels_d)) != 0) {
+        if ((k = wr_cli_integer(argc, argv, &i, "--levels", 0.0, 5.0, &levels_d)) != 0) {
             if (k < 0) return WR_CLI_EXIT_USAGE;
-            if (!(levels_d >= 0.0 && levels_d <= 5.0) || levels_d != (int)levels_d) {
-                wr_cli_error("--levels must be an integer in [0, 5]");
-                return WR_CLI_EXIT_USAGE;
-            }
             continue;
         }
         /* -o/--output DIR, the SCENE.json positional, or an unknown option */

@@ -91,3 +91,26 @@ Test(cli, scene_args) {
     cr_expect_eq(wr_cli_scene_arg(argc, argv, &i, &scene, &out), 1);
     cr_expect_str_eq(scene, "-");
 }
+
+Test(cli, integer_option) {
+    char *argv[] = {"prog", "--levels", "3", "--levels=1e1", "--levels", "2.5", "--levels", "-1", "--levels=x"};
+    int argc = 9, i;
+    double x = -7.0;
+    wr_cli_set_program("prog");
+    i = 1;
+    cr_expect_eq(wr_cli_integer(argc, argv, &i, "--levels", 0.0, 5.0, &x), 1);
+    cr_expect(x == 3.0 && i == 2);
+    i = 3; /* 10 is whole but above the range */
+    cr_expect_eq(wr_cli_integer(argc, argv, &i, "--levels", 0.0, 5.0, &x), -1);
+    cr_expect_eq(wr_cli_integer(argc, argv, &i, "--levels", 0.0, 10.0, &x), 1);
+    cr_expect_eq(x, 10.0);
+    i = 4; /* not whole */
+    cr_expect_eq(wr_cli_integer(argc, argv, &i, "--levels", 0.0, 5.0, &x), -1);
+    i = 6; /* below the range */
+    cr_expect_eq(wr_cli_integer(argc, argv, &i, "--levels", 0.0, 5.0, &x), -1);
+    i = 8; /* malformed */
+    cr_expect_eq(wr_cli_integer(argc, argv, &i, "--levels", 0.0, 5.0, &x), -1);
+    cr_expect_eq(x, 10.0, "failures leave the output alone");
+    i = 1; /* another option */
+    cr_expect_eq(wr_cli_integer(argc, argv, &i, "--steps", 0.0, 5.0, &x), 0);
+}

@@ -96,6 +96,18 @@ int wr_cli_double(int argc, char **argv, int *i, const char *name, double *out) 
     return 1;
 }
 
+int wr_cli_integer(int argc, char **argv, int *i, const char *name, double lo, double hi, double *out) {
+    double x;
+    int k = wr_cli_double(argc, argv, i, name, &x);
+    if (k <= 0) return k;
+    if (!(x >= lo && x <= hi) || x != floor(x)) {
+        wr_cli_error("%s must be an integer in [%.0f, %.0f]", name, lo, hi);
+        return -1;
+    }
+    *out = x;
+    return 1;
+}
+
 int wr_cli_scene_arg(int argc, char **argv, int *i, const char **scene_path, const char **out) {
     const char *v;
     int k;

@@ -20,6 +20,9 @@
  *                                           0: not this option; -1: value missing (error printed)
  *   wr_cli_double(argc, argv, &i, "--x", &d) as wr_cli_value, then strict number parsing
  *                                           (-1 with the error printed when malformed)
+ *   wr_cli_integer(argc, argv, &i, "--x", lo, hi, &d)  as wr_cli_double, and the number must be a
+ *                                           whole number in [lo, hi] (else -1 with "--x must be an
+ *                                           integer in [lo, hi]" printed); *d holds it as a double
  *   wr_cli_scene_arg(argc, argv, &i, &scene, &out)  the LAST branch of a scene driver's option loop
  *                                           (wrinkle-statics, wrinkle-tfw): -o/--output DIR, else an
  *                                           unknown option (error), else the one positional
@@ -55,6 +58,7 @@ int wr_cli_parse_long(const char *s, long *out);
 int wr_cli_is_flag(const char *arg, const char *name);
 int wr_cli_value(int argc, char **argv, int *i, const char *name, const char **value);
 int wr_cli_double(int argc, char **argv, int *i, const char *name, double *out);
+int wr_cli_integer(int argc, char **argv, int *i, const char *name, double lo, double hi, double *out);
 int wr_cli_scene_arg(int argc, char **argv, int *i, const char **scene_path, const char **out);
 int wr_cli_scene_args_ok(const char *scene_path, const char *out);
 
