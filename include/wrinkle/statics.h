@@ -91,7 +91,12 @@
  *   against 119 without, same tip to 1e-5 mm. Bending is not scaled (it drives the shape). It is an
  *   option, off by default: for a buckling problem (a stretched sheet that wrinkles) a softer
  *   membrane changes the wrinkle pattern the path selects, so callers opt in for smooth large-
- *   deflection problems. The perturbation is applied in the first stage only; stats report the whole
+ *   deflection problems. Choose s0 so that the soft stage's membrane strain stays small (s0 ≳ 100 ×
+ *   load per width / (Eh), strain ≲ 1 %): with s0 = 1e-3 on a heavier 25 mm strip (load / (Eh) =
+ *   1.3e-4, soft strain ~13 %) the soft path folded the strip at its clamp and the real shell
+ *   converged (WR_OK) to that folded equilibrium, tip = L. When the last stage ends
+ *   WR_ERR_NOT_CONVERGED the solve restarts from the initial x without continuation
+ *   (stats.ramp_fallback = 1, the discarded steps counted in ramp_iterations). The perturbation is applied in the first stage only; stats report the whole
  *   solve (iterations and times summed over stages, ramp_stages/ramp_iterations for the soft ones).
  *
  * ON PRESSURE (Skouras et al. 2014; TFW Sec. 6 inflatables)
@@ -229,6 +234,7 @@ typedef struct wr_statics_stats {
     int32_t increments, increments_failed, total_iterations; /* incremental solve only */
     int32_t ramp_stages, ramp_iterations; /* membrane continuation: soft stages and their Newton steps */
     int32_t exact_steps;        /* Newton steps taken with the exact Hessian in a projected solve (ON PROJECTION) */
+    int32_t ramp_fallback;      /* 1: the continuation's last stage did not converge, solved again without it */
 } wr_statics_stats;
 
 typedef enum wr_statics_projection {
@@ -1364,11 +1370,12 @@ WRDEF wr_status wr_statics_solve(const wr_shell *s, double *x, const wr_statics_
     if (!x0) return wr_fail(diag, WR_ERR_NOMEM, -1, "statics: out of memory (%d vertices)", (int)s->nv);
     memcpy(x0, x, sizeof(double) * 3 * (size_t)s->nv);
     rs = wr__statics_solve_one(s, x0, &dk, &sk, diag, 0.0, 1);
-    wr_free(x0);
     if (rs != WR_OK) {
+        wr_free(x0);
         if (stats) *stats = sk;
         return rs;
     }
+    memcpy(x0, x, sizeof(double) * 3 * (size_t)s->nv); /* the start, for the fallback */
     gref = sk.grad_ref;
     for (; m < 1.0; m *= f) {
         /* a shallow copy: only the membrane constants differ, the arrays are shared read-only */
@@ -1378,6 +1385,7 @@ WRDEF wr_status wr_statics_solve(const wr_shell *s, double *x, const wr_statics_
         dk.grad_tol = WR_STATICS_RAMP_TOL;
         rs = wr__statics_solve_one(&soft, x, &dk, &sk, diag, gref, 0);
         if (rs != WR_OK && rs != WR_ERR_NOT_CONVERGED) { /* best iterate of a stage is a fine warm start */
+            wr_free(x0);
             if (stats) {
                 sk.ramp_stages = acc.ramp_stages;
                 sk.ramp_iterations = acc.ramp_iterations;
@@ -1400,6 +1408,21 @@ WRDEF wr_status wr_statics_solve(const wr_shell *s, double *x, const wr_statics_
     }
     dk.grad_tol = desc->grad_tol;
     rs = wr__statics_solve_one(s, x, &dk, &sk, diag, gref, 0);
+    if (rs == WR_ERR_NOT_CONVERGED) {
+        /* the soft path led somewhere the real shell cannot converge from: plain solve from the start */
+        acc.ramp_iterations += sk.iterations;
+        acc.linear_iterations += sk.linear_iterations;
+        acc.line_search_evals += sk.line_search_evals;
+        acc.t_assembly += sk.t_assembly;
+        acc.t_projection += sk.t_projection;
+        acc.t_linear += sk.t_linear;
+        acc.t_line_search += sk.t_line_search;
+        memcpy(x, x0, sizeof(double) * 3 * (size_t)s->nv);
+        dk.perturb = desc->perturb;
+        rs = wr__statics_solve_one(s, x, &dk, &sk, diag, 0.0, 0);
+        acc.ramp_fallback = 1;
+    }
+    wr_free(x0);
     /* the final stage's state, with the work of the whole solve */
     sk.iterations += acc.ramp_iterations;
     sk.linear_iterations += acc.linear_iterations;
@@ -1413,6 +1436,7 @@ WRDEF wr_status wr_statics_solve(const wr_shell *s, double *x, const wr_statics_
     sk.ccd_alpha_min = fmin(sk.ccd_alpha_min, acc.ccd_alpha_min);
     sk.ramp_stages = acc.ramp_stages;
     sk.ramp_iterations = acc.ramp_iterations;
+    sk.ramp_fallback = acc.ramp_fallback;
     sk.t_total = wr_time_seconds() - t0;
     if (stats) *stats = sk;
     return rs;
