@@ -1268,7 +1268,7 @@ static wr_status wr__statics_solve_one(const wr_shell *s, double *x, const wr_st
         last_full = alpha == 1.0;
         if (use_exact) st.exact_steps++;
         /* round-off (ON STOPPING): the Newton decrement −∇Π·Δx is below what Π resolves AND the
-         * gradient no longer halves; a gradient that still falls is still converging */
+         * gradient makes no new 10 % low; a gradient that still falls is still converging */
         {
             double gn = wr__statics_norm(g, n);
             if (-gdx <= WR_STATICS_ENERGY_NOISE * Pscale0 && gn <= sqrt(d.grad_tol) * gref && gn > 0.9 * gbest)
