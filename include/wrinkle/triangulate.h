@@ -1750,9 +1750,13 @@ static wr_status wr__cdt_output(wr__cdt *S, const int32_t *rep, const int32_t *p
     out->points = (double *)wr_alloc_array((size_t)nvo * 2, sizeof(double));
     out->point_segment = (int32_t *)wr_alloc_array((size_t)nvo, sizeof(int32_t));
     out->point_map = (int32_t *)wr_alloc_array((size_t)n, sizeof(int32_t));
-    out->edge_segment = (int32_t *)wr_alloc_array((size_t)nto * 3, sizeof(int32_t));
+    if (!S->cm) { /* no constraints: all -1 (else S->cm is compacted and handed over below) */
+        out->edge_segment = (int32_t *)wr_alloc_array((size_t)nto * 3, sizeof(int32_t));
+        if (out->edge_segment) memset(out->edge_segment, 0xff, sizeof(int32_t) * 3 * (size_t)nto);
+    }
     out->input_segments = (int32_t *)wr_alloc_array((size_t)in->n_segments * 2, sizeof(int32_t));
-    if (!out->points || !out->point_segment || !out->point_map || !out->edge_segment || !out->input_segments)
+    if (!out->points || !out->point_segment || !out->point_map || (!S->cm && !out->edge_segment) ||
+        !out->input_segments)
         goto nomem;
     out->n_points = nvo;
     out->n_map = n;
@@ -1791,8 +1795,8 @@ static wr_status wr__cdt_output(wr__cdt *S, const int32_t *rep, const int32_t *p
                 if (!out->segments || !out->segment_id) goto nomem;
             }
         }
-    /* Triangles and neighbors are compacted in place into the working arrays S->tv / S->tn, which are
-     * then handed over: live triangle t goes to slot outt[t] <= t, so every write lands at or before
+    /* Triangles, neighbors and edge marks are compacted in place into the working arrays S->tv / S->tn
+     * / S->cm, which are then handed over: live triangle t goes to slot outt[t] <= t, so every write lands at or before
      * the slot being read (the three entries are read first). This saves writing 24 bytes per
      * triangle into freshly allocated pages (page faults were ~10% of a 1e6-point run). The smallest
      * angle is tracked as sin² = (2·area)²/(L1²·L2²) compared by multiplication: one division per
@@ -1806,10 +1810,11 @@ static wr_status wr__cdt_output(wr__cdt *S, const int32_t *rep, const int32_t *p
         n0 = outt[S->tn[3 * t] / 3];
         n1 = outt[S->tn[3 * t + 1] / 3];
         n2 = outt[S->tn[3 * t + 2] / 3];
-        for (k = 0; k < 3; ++k) {
-            int32_t m = wr__cmark(S, 3 * t + k);
-            out->edge_segment[3 * o + k] = m >= 0 ? m : -1;
-        }
+        if (S->cm)
+            for (k = 0; k < 3; ++k) {
+                int32_t m = S->cm[3 * t + k];
+                S->cm[3 * o + k] = m >= 0 ? m : -1; /* hull marks are not input segments */
+            }
         {
             const double *a = WR__P(S, v0), *b = WR__P(S, v1), *c = WR__P(S, v2);
             double e0 = (b[0] - c[0]) * (b[0] - c[0]) + (b[1] - c[1]) * (b[1] - c[1]);
@@ -1829,7 +1834,8 @@ static wr_status wr__cdt_output(wr__cdt *S, const int32_t *rep, const int32_t *p
     }
     out->triangles = S->tv;
     out->neighbors = S->tn;
-    S->tv = S->tn = NULL;
+    if (S->cm) out->edge_segment = S->cm;
+    S->tv = S->tn = S->cm = NULL;
     S->capt = S->nt = 0;
     out->n_triangles = nto;
     if (nto > 0) { /* give back the unused tail; keep the larger block if shrinking fails */
@@ -1837,6 +1843,8 @@ static wr_status wr__cdt_output(wr__cdt *S, const int32_t *rep, const int32_t *p
         if (p) out->triangles = p;
         p = (int32_t *)wr_realloc_array(out->neighbors, (size_t)nto * 3, sizeof(int32_t));
         if (p) out->neighbors = p;
+        p = (int32_t *)wr_realloc_array(out->edge_segment, (size_t)nto * 3, sizeof(int32_t));
+        if (p) out->edge_segment = p;
     }
     out->min_angle_deg = nto ? wr__sin2_to_deg(minang) : 0.0;
     wr_free(outv);
@@ -1921,10 +1929,7 @@ WRDEF wr_status wr_cdt_triangulate(const wr_cdt_input *in, const wr_cdt_desc *de
 
     if (!wr__reserve_verts(&S, n + 16)) goto nomem;
     /* S.xy is filled below, in insertion order; the input stays where it is until then */
-    for (i = 0; i < S.capv; ++i) {
-        S.vtri[i] = -1;
-        S.vseg[i] = -1;
-    }
+    for (i = 0; i < S.capv; ++i) S.vseg[i] = -1; /* vtri: set when first needed, below */
     rep = (int32_t *)wr_alloc_array((size_t)n, sizeof(int32_t));
     ids = (int32_t *)wr_alloc_array((size_t)n, sizeof(int32_t));
     order = (int32_t *)wr_alloc_array((size_t)n, sizeof(int32_t));
@@ -1980,6 +1985,7 @@ WRDEF wr_status wr_cdt_triangulate(const wr_cdt_input *in, const wr_cdt_desc *de
         dupof[i] = vq; /* vq != i: exact duplicate of an inserted vertex */
     }
     if (m > 0 || refine || in->n_holes > 0) { /* vertex stars are needed from here on */
+        for (i = 0; i < S.capv; ++i) S.vtri[i] = -1; /* -1: not in the mesh (a merged duplicate) */
         for (i = 0; i < S.nt; ++i) {
             int k;
             for (k = 0; k < 3; ++k)
