@@ -307,7 +307,8 @@ int main(int argc, char **argv) {
                     "The flat-vs-wrinkled energy difference is ~4e-7 J on the 5 mm grid, 25x smaller than the change of the flat "
                     "membrane energy between meshes (2.3936e-2 J grid 5 mm vs 2.3921e-2 J Delaunay 2.5 mm), so the "
                     "discretisation error, not the physics, decides the pattern at these resolutions.");
-    wr_vres_note(v, "Delaunay meshes do not wrinkle at 5, 4.17, 2.5 or even 1.5 mm (13974 vertices): the flat state is a local "
+    wr_vres_note(v, "Delaunay meshes do not wrinkle at 5, 4.17, 2.5, 1.5 mm (13974 vertices) or even 1.1 mm (25885 vertices, "
+                    "scratch runs, same solver settings): the flat state is a local "
                     "minimum there - a 0.3 mm random kick at full load, and a smooth 0.3 mm, 12 mm-wavelength wrinkle added to "
                     "the converged flat 2.5 mm state, both relax back to the flat energy with monotone projected Newton. "
                     "Likely cause: membrane locking of linear (constant-strain) triangles - on an unstructured mesh a "
