@@ -5,7 +5,8 @@
  *   tension form      L_w = λ0² sqrt(T/B)            (heavy curtain: gravity tension T dominates)
  *   compression form  L_w = λ0^{3/2} (δ/h²)^{1/4}    (light curtain: membrane stretching dominates)
  * for three bending stiffnesses, plus one run at 4× the areal density (the tension form doubles, the
- * compression form does not change) to tell which regime the simulated curtain is in.
+ * compression form does not change) to tell which regime the simulated curtain is in, and one
+ * tension-dominated curtain (H = 200 mm, ρ_A = 2.5 kg/m², T = 4.9 N/m) inside the tension form's regime.
  *
  * WHICH FORM APPLIES (our re-derivation of Vandeparre et al.'s energy balance; the Style3D text only
  * gives the two results). A wrinklon of length L, width λ and amplitude A ~ λ sqrt(δ) costs bending
@@ -61,6 +62,8 @@
 #define GRAV 9.81
 #define AMP_FLOOR 0.01  /* wrinkles "present" while the probe amplitude is ≥ 1 % of A */
 #define NB 3
+#define HEAVY_HEIGHT 0.200 /* [m] tension-dominated run (see main) */
+#define HEAVY_RHO 2.5      /* kg/m² */
 
 /* experiment switches (command line) */
 static int g_nwaves = NWAVES;    /* --waves N: W = N λ0 */
@@ -320,11 +323,11 @@ static double loglog_slope(const double *x, const double *y, int n) {
 }
 
 int main(int argc, char **argv) {
-    static curtain_row rows[NB + 1];
+    static curtain_row rows[NB + 2];
     double Bs[NB] = {1.0e-6, 2.0e-6, 4.0e-6}, r = LAMBDA0 / 8.0, Bone = 0.0, x[NB], y[NB];
     double A = LAMBDA0 * sqrt(GATHER) / PI;
     int i, nb = NB, quick = 0, load_steps = 6, heavy_check = 1, nrun;
-    char dat[NB + 1][4096], table[8192], buf[2048], name[256], field[4096];
+    char dat[NB + 2][4096], table[8192], buf[2048], name[256], field[4096];
     wr_vres *v;
     for (i = 1; i < argc; ++i) {
         if (strcmp(argv[i], "--quick") == 0) quick = 1;
@@ -373,6 +376,16 @@ int main(int argc, char **argv) {
         if (curtain_run(Bs[1], r, load_steps, &rows[nb], dat[nb]) != 0) return 2;
         g_rho = rho0;
         nrun = nb + 1;
+        /* Tension-dominated curtain: the tension form's own regime, T/(E h) well above (A/L)^2. A taller
+         * sheet (the transition must fit) of a heavy material: H = 200 mm, rho_A = 2.5 kg/m^2, T = 4.9 N/m. */
+        {
+            double H0 = g_height;
+            g_height = HEAVY_HEIGHT, g_rho = HEAVY_RHO;
+            snprintf(dat[nb + 1], sizeof dat[nb + 1], "%s/curtain_%d.dat", wr_vres_dir(), nb + 1);
+            if (curtain_run(Bs[1], r, load_steps, &rows[nb + 1], dat[nb + 1]) != 0) return 2;
+            g_height = H0, g_rho = rho0;
+            nrun = nb + 2;
+        }
     }
     snprintf(table, sizeof table,
              "| B [N m] | rho_A [kg/m^2] | T = rho_A g H [N/m] | h (K-L) [mm] | L_w tension form [mm] | L_w compression form [mm] | "
@@ -416,9 +429,16 @@ int main(int argc, char **argv) {
         wr_vres_info(v, "exponent of L vs B (tension form -1/2, compression form -1/6 via h ~ B^(1/3))", "", -0.5,
                      loglog_slope(x, y, nb));
     }
-    if (heavy_check)
+    if (heavy_check) {
         wr_vres_info(v, "L(4 rho_A) / L(rho_A) at B = 2e-6 (tension form 2, compression form 1)", "", 2.0,
                      rows[nb].L_zc / rows[1].L_zc);
+        snprintf(name, sizeof name,
+                 "tension-dominated curtain (H = %.0f mm, rho_A = %.1f kg/m^2, T = %.2f N/m, B = 2e-6): measured vs tension form",
+                 1e3 * HEAVY_HEIGHT, HEAVY_RHO, rows[nb + 1].T);
+        wr_vres_rel(v, name, "mm", 1e3 * rows[nb + 1].Lw_pred, 1e3 * rows[nb + 1].L_zc, 0.25);
+        wr_vres_info(v, "exponent of L vs T, B = 2e-6, T = 0.118 -> 4.9 N/m (tension form 1/2, compression form 0)", "", 0.5,
+                     log(rows[nb + 1].L_zc / rows[1].L_zc) / log(rows[nb + 1].T / rows[1].T));
+    }
     wr_vres_info(v, "paper's case: predicted L_w", "mm", 26.7, NAN);
     wr_vres_info(v, "paper's case: measured", "mm", 25.0, NAN);
     wr_vres_info(v, "mesh resolution", "mm", NAN, 1e3 * r);
@@ -466,6 +486,30 @@ int main(int argc, char **argv) {
                  "%.2f (a1-halved depth: %.2f); the tension form predicts 2, the compression form 1.",
                  rows[nb].T, rows[1].T, rows[nb].L_zc / rows[1].L_zc, rows[nb].L_a1half / rows[1].L_a1half);
         wr_vres_note(v, buf);
+        {
+            curtain_row *R = &rows[nb + 1];
+            double q = A / R->L_zc;
+            snprintf(buf, sizeof buf,
+                     "Tension-dominated run: H = %.0f mm, rho_A = %.1f kg/m^2, T = %.2f N/m at the top, T/(E h) = %.1e vs (A/L)^2 = "
+                     "%.1e (%.1fx: the tension form's regime). Measured %.1f mm (a1 halved at %.1f mm) against the tension "
+                     "form's %.1f mm: 42x the tension of the default curtain lengthens the transition by %.2fx (a1-halved "
+                     "depth %.2fx), where the tension form predicts %.1fx. %s",
+                     1e3 * HEAVY_HEIGHT, HEAVY_RHO, R->T, R->T / (g_young * R->h), q * q, R->T / (g_young * R->h) / (q * q),
+                     1e3 * R->L_zc, 1e3 * R->L_a1half, 1e3 * R->Lw_pred, R->L_zc / rows[1].L_zc, R->L_a1half / rows[1].L_a1half,
+                     sqrt(R->T / rows[1].T),
+                     !(R->L_zc > 0.0 && rows[1].L_zc > 0.0)
+                         ? "No crest-count transition was measured in one of the two runs."
+                     : R->L_zc / rows[1].L_zc < 0.5 * sqrt(R->T / rows[1].T)
+                         ? "So the miss is not only a matter of regime: the simulated lambda0 wrinkles give way within a few "
+                           "wavelengths of the gathered edge nearly whatever T and B, like an edge boundary layer of width "
+                           "~lambda0 rather than a wrinklon whose length grows as sqrt(T/B). Likely cause (not settled here): the "
+                           "scaling argument assumes a slow, self-similar cascade (L >> lambda) away from the boundary, while the "
+                           "hinged sinusoidal top edge prescribes only positions and the sheet relaxes from it like a "
+                           "Saint-Venant edge layer; the paper's measurement (its own cloth simulation, set-up not given) may "
+                           "also define the distance differently."
+                         : "Here the measured distance does follow the tension form's sqrt(T) to within a factor 2.");
+            wr_vres_note(v, buf);
+        }
     }
     if (nb >= 2) {
         double rt[NB], rc[NB], ra[NB];
@@ -475,9 +519,9 @@ int main(int argc, char **argv) {
         snprintf(buf, sizeof buf,
                  "Result: measured/predicted = %.2f, %.2f, %.2f (tension form), %.2f, %.2f, %.2f (compression form) and "
                  "%.2f, %.2f, %.2f (lambda0 (A/h)^0.5, info) for B = 1, 2, 4e-6 N m; L ~ B^%.2f measured (tension form -0.50, "
-                 "compression form -0.17 through h ~ B^(1/3)). Where the tension form (the one the old result used) is outside "
-                 "its regime and the density test shows no sqrt(T), the light-curtain forms are the applicable ones and "
-                 "their unit-prefactor magnitude is what remains to compare: the PRL's law in terms of the "
+                 "compression form -0.17 through h ~ B^(1/3)). For this fabric-like curtain the tension form (the one the old "
+                 "result used) is outside its regime and the density test shows no sqrt(T); the light-curtain forms have the "
+                 "weak T and B dependence seen here, but over-predict the magnitude too. For reference, the PRL's law in terms of the "
                  "amplitude, L ~ lambda (A/h)^0.5, with the exact gather amplitude A = lambda0 sqrt(delta)/pi, is sqrt(pi) = "
                  "1.77 below Style3D's compression form (which substitutes A ~ lambda sqrt(delta)); that is a prefactor "
                  "convention of a scaling law, so it is listed for information and not applied to transition.h.",
