@@ -1821,7 +1821,7 @@ static wr_status wr__cdt_output(wr__cdt *S, const int32_t *rep, const int32_t *p
             double e1 = (c[0] - a[0]) * (c[0] - a[0]) + (c[1] - a[1]) * (c[1] - a[1]);
             double e2 = (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]);
             double a2 = wr_orient2d_fast(a, b, c), l1l2, num;
-            l1l2 = (e0 <= e1 && e0 <= e2) ? e1 * e2 : (e1 <= e2) ? e0 * e2 : e0 * e1;
+            l1l2 = fmax(e1 * e2, fmax(e0 * e2, e0 * e1)); /* the two longer edges: largest product */
             num = a2 * a2;
             if (num < minang * l1l2) minang = num / l1l2;
         }
