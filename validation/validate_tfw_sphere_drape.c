@@ -37,8 +37,8 @@ static const double radii[NRAD] = {0.30, 0.35, 0.40};
 
 typedef struct solve_out {
     wr_status st;
-    int32_t iters, nv, fails, stop;
-    double seconds, min_dist, grad_rel, zmin;
+    int32_t iters, nv, fails, stop, n_contacts;
+    double seconds, min_dist, grad_rel, zmin, ccd_alpha_min;
 } solve_out;
 
 /* Square sheet centred over the ball, 5 mm above its top; centre vertex pinned 1 mm above the top. */
@@ -111,6 +111,8 @@ static void drape(wr_mesh *m, int32_t n, wr_membrane_model mem, wr_bending_model
     }
     o->stop = (int32_t)ss.stop;
     o->min_dist = ss.min_distance;
+    o->n_contacts = ss.n_contacts;
+    o->ccd_alpha_min = ss.ccd_alpha_min;
     o->grad_rel = ss.grad_ref > 0 ? ss.grad_norm / ss.grad_ref : NAN;
     o->zmin = 1e300;
     for (v = 0; v < m->nv; ++v) o->zmin = fmin(o->zmin, x[3 * v + 2]);
@@ -272,6 +274,12 @@ int main(void) {
                   "0 (informational: a miss means no converged reference)", oref.fails == 0);
     wr_vres_info(v, "StVK reference time", "s", NAN, oref.seconds);
     wr_vres_info(v, "StVK reference Newton steps", "", NAN, oref.iters);
+    /* where the StVK reference stalls: contact state at its returned iterate (restarting Newton from
+     * that iterate was tried: 27 more steps ended in another line-search stall at a 1e4 times larger
+     * gradient, so it is not done) */
+    wr_vres_info(v, "StVK reference: smallest vertex-sphere distance", "mm", NAN, 1e3 * oref.min_dist);
+    wr_vres_info(v, "StVK reference: free vertices within d_hat of the sphere", "", NAN, oref.n_contacts);
+    wr_vres_info(v, "StVK reference: smallest CCD step cut", "", NAN, oref.ccd_alpha_min);
     wr_vres_info(v, "StVK reference final relative gradient", "", NAN, oref.grad_rel);
     wr_vres_info(v, "StVK reference stop rule (1 gradient, 2 step, 3 max-iter, 4 line search)", "", NAN, oref.stop);
     off += (size_t)snprintf(table + off, sizeof table - off,
