@@ -21,8 +21,8 @@
  * assembly (gradient + Hessian), SQP linear solves (the paper's QP-solver share), the rest of the
  * SQP (energy evaluations in the step control, bookkeeping) and everything outside the SQP (setup,
  * W, initialisation, phase, Loop upsampling to level 2).
- * Medians of RUNS runs per case, except the sheared-rectangle base (Newton needs ~400 steps there,
- * ~15 s; timed once unless --full, marked in the runs column). --peer also times the SQP with the
+ * Medians of RUNS runs per case, except the sheared-rectangle base (Newton needs ~300 steps there,
+ * 313 measured, 6.6 s CPU; timed once unless --full, marked in the runs column). --peer also times the SQP with the
  * per-face-projected Hessian throughout (WR_WF_HESSIAN_PROJECTED, the paper's method) as an in-run
  * peer. Prints the machine and the load average (the box is shared: timings are noisy).
  * BLAS/OpenMP threads: unless OPENBLAS_NUM_THREADS, OMP_NUM_THREADS and OMP_WAIT_POLICY are all
