@@ -101,6 +101,14 @@
  *   (stats.ramp_fallback = 1, the discarded steps counted in ramp_iterations). The perturbation is applied in the first stage only; stats report the whole
  *   solve (iterations and times summed over stages, ramp_stages/ramp_iterations for the soft ones).
  *
+ * ON INEXACT NEWTON (desc.linear_forcing)
+ *   Far from the solution a Newton direction needs no 1e-8 linear accuracy. With linear_forcing =
+ *   η_max > 0 each PCG solve stops at the relative residual η_k = min(η_max, max(tol, √(‖∇Π‖ /
+ *   reference))) (tol = linear.rel_tol or pcg.h's default): the forcing sequence η_k → 0 with the
+ *   gradient keeps Newton's local convergence superlinear (Dembo, Eisenstat & Steihaug 1982;
+ *   Eisenstat & Walker 1996 use the same √ scaling). The direction is still checked for descent
+ *   (CG from x = 0 on an SPD matrix always gives one). CHOLMOD solves exactly whatever η_k.
+ *
  * ON PRESSURE (Skouras et al. 2014; TFW Sec. 6 inflatables)
  *   desc.pressure p [Pa] (> 0 inflates) adds −p·V with V = (1/6) Σ_f (x_a−o)·((x_b−o)×(x_c−o)) over
  *   faces (a, b, c), o = the centroid of the initial x (held fixed during the solve). V > 0 when the
@@ -275,7 +283,9 @@ typedef struct wr_obstacle {
  *   inc_predictor 0 = each increment starts from the last equilibrium, 1 = secant predictor
  *   (ON MOTIONS AND INCREMENTS);
  *   membrane_ramp 0 = off, else the first stage's membrane scale s0 in (0, 1), membrane_ramp_factor
- *   0 → 1e3 (> 1) (ON MEMBRANE CONTINUATION). */
+ *   0 → 1e3 (> 1) (ON MEMBRANE CONTINUATION);
+ *   linear_forcing 0 = every PCG solve to linear.rel_tol, else η_max in (0, 1) of the inexact Newton
+ *   forcing (ON INEXACT NEWTON; no effect with CHOLMOD). */
 typedef struct wr_statics_desc {
     int32_t max_iter;
     double grad_tol;
@@ -301,6 +311,7 @@ typedef struct wr_statics_desc {
     int32_t inc_predictor;
     double membrane_ramp;
     double membrane_ramp_factor;
+    double linear_forcing;
 } wr_statics_desc;
 
 typedef enum wr_motion_kind {
@@ -944,6 +955,7 @@ static wr_status wr__statics_solve_one(const wr_shell *s, double *x, const wr_st
     double *fext = NULL, *g = NULL, *dx = NULL, *xt = NULL, *xbest = NULL, *mass = NULL, *diagv = NULL;
     int32_t *dpos = NULL, roundoff_hits = 0;
     int exact_ok = 1, last_full = 0;
+    double lin_tol = 0.0;
     double gbest = HUGE_VAL;
     uint8_t *fixd = NULL;
     wr_triplets T;
@@ -977,6 +989,8 @@ static wr_status wr__statics_solve_one(const wr_shell *s, double *x, const wr_st
         d.contact_dhat - d.contact_dhat != 0.0 || d.contact_stiffness - d.contact_stiffness != 0.0)
         return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "statics: pressure %g, contact_dhat %g, contact_stiffness %g invalid",
                        d.pressure, d.contact_dhat, d.contact_stiffness);
+    if (!(d.linear_forcing >= 0.0 && d.linear_forcing < 1.0))
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "statics: linear_forcing %g must be in [0, 1)", d.linear_forcing);
     if ((int)d.projection < 0 || (int)d.projection > (int)WR_PROJECT_NONE)
         return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "statics: unknown projection %d", (int)d.projection);
     rs = wr__statics_check_obstacles(d.obstacles, d.n_obstacles, diag);
@@ -1191,7 +1205,10 @@ static wr_status wr__statics_solve_one(const wr_shell *s, double *x, const wr_st
                 rs = wr_spd_solver_create(&S, &A, &d.linear, diag);
                 if (rs != WR_OK) goto done;
                 have_S = 1;
+                lin_tol = S.rel_tol;
             }
+            if (d.linear_forcing > 0.0 && S.method != WR_SOLVER_CHOLMOD) /* ON INEXACT NEWTON */
+                S.rel_tol = fmin(d.linear_forcing, fmax(lin_tol, sqrt(st.grad_norm / gref)));
             rs = wr_spd_solver_factor(&S, &A, diag);
             if (rs == WR_OK) rs = wr_spd_solver_solve(&S, &A, xt, dx, &ls, diag);
             if (rs == WR_OK || rs == WR_ERR_NOT_CONVERGED) {
