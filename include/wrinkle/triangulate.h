@@ -1777,24 +1777,27 @@ static wr_status wr__cdt_output(wr__cdt *S, const int32_t *rep, const int32_t *p
      * chains in this list); each edge once, from the lower-numbered internal triangle. Done before
      * the triangle arrays are compacted below. */
     for (i = 0; i < 2; ++i) {
-            for (t = 0; S->cm && t < S->nt; ++t)
-                for (k = 0; k < 3; ++k) {
-                    int32_t m = S->cm[3 * t + k], a = S->tv[3 * t + wr__n1[k]], b = S->tv[3 * t + wr__n2[k]];
-                    if (m < 0 || a < 0 || b < 0 || S->tn[3 * t + k] / 3 < t) continue;
-                    if (i == 0) {
-                        ++nso;
-                        continue;
-                    }
-                    out->segments[2 * out->n_segments] = outv[a];
-                    out->segments[2 * out->n_segments + 1] = outv[b];
-                    out->segment_id[out->n_segments++] = m;
+        for (t = 0; S->cm && t < S->nt; ++t)
+            for (k = 0; k < 3; ++k) {
+                int32_t m = S->cm[3 * t + k], a, b;
+                if (m < 0 || S->tn[3 * t + k] / 3 < t) continue; /* most edges: unconstrained */
+                a = S->tv[3 * t + wr__n1[k]];
+                b = S->tv[3 * t + wr__n2[k]];
+                if (a < 0 || b < 0) continue;
+                if (i == 0) {
+                    ++nso;
+                    continue;
                 }
-            if (i == 0) {
-                out->segments = (int32_t *)wr_alloc_array((size_t)nso * 2, sizeof(int32_t));
-                out->segment_id = (int32_t *)wr_alloc_array((size_t)nso, sizeof(int32_t));
-                if (!out->segments || !out->segment_id) goto nomem;
+                out->segments[2 * out->n_segments] = outv[a];
+                out->segments[2 * out->n_segments + 1] = outv[b];
+                out->segment_id[out->n_segments++] = m;
             }
+        if (i == 0) {
+            out->segments = (int32_t *)wr_alloc_array((size_t)nso * 2, sizeof(int32_t));
+            out->segment_id = (int32_t *)wr_alloc_array((size_t)nso, sizeof(int32_t));
+            if (!out->segments || !out->segment_id) goto nomem;
         }
+    }
     /* Triangles, neighbors and edge marks are compacted in place into the working arrays S->tv / S->tn
      * / S->cm, which are then handed over: live triangle t goes to slot outt[t] <= t, so every write lands at or before
      * the slot being read (the three entries are read first). This saves writing 24 bytes per
