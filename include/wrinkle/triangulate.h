@@ -82,9 +82,9 @@
  *   carry the lowest of their ids (segment_id); wr_cdt_check accepts such pieces in each chain.
  *   Always call wr_cdt_free on the result, also after an error.
  *   Cost: O(n log n) expected for the Delaunay part (BRIO order, walks of O(1) expected length);
- *   1e6 uniform points: about 0.7 s of CPU on the 2-core reference box, 1.27x faster than CGAL 5.5
- *   Constrained_Delaunay_triangulation_2 (EPICK) in CPU time there; 1e5 points 1.60x, a 1000-gon with
- *   1e5 inner points 1.41x (bench/bench_cdt; figures in its header).
+ *   1e6 uniform points: about 0.55 s of CPU on the 2-core reference box, 1.55x faster than CGAL 5.5
+ *   Constrained_Delaunay_triangulation_2 (EPICK) in CPU time there; 1e5 points 1.82x, a 1000-gon with
+ *   1e5 inner points 1.73x (bench/bench_cdt; figures in its header).
  *
  * ON THREADS
  *   No global state; distinct calls may run concurrently.
