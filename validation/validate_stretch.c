@@ -45,6 +45,7 @@ typedef struct row {
     int delaunay; /* 0 = union-jack grid, 1 = Poisson + Delaunay */
     double r, mean_edge;
     double band, band_count; /* wrinkled band width across y [m] at L/2 and band / λ */
+    double zone_len;         /* rest length along x of the wrinkled zone (|w| >= 10 % of the sheet's peak) [m] */
     double grad_final, grad_ref; /* last load step: ‖∇Π_free‖ and its reference [N] */
     int flat, bad_steps;
     int32_t nv;
@@ -117,6 +118,18 @@ static int run_row(const wr_scene *base, row *R, const char *datpath) {
     fprintf(stderr, "\n");
     R->t_solve = run.t_solve;
     R->newton = run.newton_iterations;
+    {
+        /* longitudinal extent of the wrinkles, in rest coordinates: Cerda–Mahadevan's L is the length
+         * over which the tension straightens a wrinkle (K = T/L², from ∂x ζ ~ ζ/L), which their derivation
+         * takes as the clamp distance; here we measure it for a reported-only comparison */
+        double zmax = 0.0, xlo = 1e300, xhi = -1e300;
+        int32_t i;
+        for (i = 0; i < run.mesh.nv; ++i) zmax = fmax(zmax, fabs(run.x[3 * i + 2]));
+        for (i = 0; i < run.mesh.nv; ++i)
+            if (zmax >= FLAT_AMPLITUDE && fabs(run.x[3 * i + 2]) >= BAND_FRACTION * zmax)
+                xlo = fmin(xlo, run.mesh.pos[3 * i]), xhi = fmax(xhi, run.mesh.pos[3 * i]);
+        R->zone_len = xhi > xlo ? xhi - xlo : 0.0;
+    }
     {
         int32_t k;
         R->bad_steps = 0;
@@ -257,6 +270,13 @@ int main(int argc, char **argv) {
         wr_vres_info(v, "peak amplitude at 2.5 mm (grid; Wang et al. 2018)", "mm", 1e3 * WANG_AMPLITUDE, 1e3 * g25->amplitude);
         wr_vres_info(v, "wrinkled band / wavelength at 2.5 mm (grid; second count, reported only)", "wrinkles", NAN,
                      g25->band_count);
+        {
+            double lam_zone = NAN;
+            if (g25->zone_len > 0.0) wr_cm_wavelength(B, T, g25->zone_len, &lam_zone, &d);
+            wr_vres_info(v, "wrinkled zone length along x at 2.5 mm (grid, rest coordinates)", "mm", NAN, 1e3 * g25->zone_len);
+            wr_vres_info(v, "Cerda-Mahadevan wavelength with L = wrinkled zone length (diagnostic, reported only)", "mm",
+                         NAN, 1e3 * lam_zone);
+        }
         wr_vres_info(v, "count at 2 r_opt (grid; 0 = flat)", "wrinkles", NAN, rows[2].flat ? 0.0 : rows[2].count);
         wr_vres_info(v, "count at 5 mm (grid)", "wrinkles", 4.0, rows[3].flat ? 0.0 : rows[3].count);
         for (i = NRES; i < nrows; ++i) {
@@ -330,6 +350,16 @@ int main(int argc, char **argv) {
                     "not strain, collapses). So ~17 mm, not 12 mm, is the physical scale; our 12 mm at 2.5 mm (grid) is 30% "
                     "short, consistent with a grid-biased pattern at 4.8 cells per wave, and only fine meshes (>= 32k vertices "
                     "on Delaunay) could settle it - beyond this run's budget.");
+    wr_vres_note(v, "Grid refinement (scratch run, same settings): a 150 x 60 grid (r = 1.67 mm, 9211 vertices) gives lambda "
+                    "12.60 mm (7.6 cells per wave), count 7.94 on all five probes, amplitude 0.289 mm, but every load step "
+                    "stopped at max_iter (final residual 1.4e-10 N; 810 Newton, 2144 s on the loaded box). So on grids lambda "
+                    "stays at 12.0-12.6 mm from 4.8 to 7.6 cells per wave: the 30% gap to Cerda-Mahadevan is not (only) grid "
+                    "under-resolution at 2.5 mm.");
+    wr_vres_note(v, "Likely cause of the short wavelength: Cerda-Mahadevan's L is the length over which the tension "
+                    "straightens a wrinkle (K = T/L^2) and their derivation takes the wrinkles to run clamp to clamp. In this "
+                    "L/W = 2.5 sheet they occupy only the middle of the length (measured zone length in the table: |w| >= 10% "
+                    "of the peak); C-M with that L gives the diagnostic wavelength listed above (reported only; the band keeps "
+                    "L = 0.25 m as issue 5 specifies).");
     wr_vres_note(v, "TFT variant not run: the tension-field membrane has no compressive stiffness at all, so a flat "
                     "sheet is already its minimiser and it cannot buckle into wrinkles (it is TFW's coarse base "
                     "surface, not a reduced-compression StVK).");
