@@ -354,6 +354,20 @@ Test(regressions, cdt_sliver_cascade) {
     cr_assert_lt(wr_time_seconds() - t0, 5.0, "took %g s", wr_time_seconds() - t0);
 }
 
+/* fuzz_cdt (found by a later fuzz run; the code before this session fails it too, also without
+ * refinement): split_intersections, segment 5-8 given twice, crossing segment 9-0 and others near
+ * one point. Recovering the duplicate again crossed the first copy's rounded junction 1.3e-15
+ * away, split segment 9-0 there too, and the sliver piece between the two junctions ended up in
+ * the duplicate's chain with its id: "input segment 0 (8-0) is not a chain of subsegments". A
+ * segment given again is now recovered once. */
+Test(regressions, cdt_duplicate_crossing_split) {
+    wr_cdt_result r;
+    replay_cdt_ok("cdt_duplicate_crossing_split.fuzz_cdt", &r);
+    cr_assert_eq(r.n_input_segments, 6);
+    cr_assert_gt(r.n_steiner, 0);
+    wr_cdt_free(&r);
+}
+
 /* fuzz_poly: a .poly with coordinates up to 1e118: the in-circle determinant overflowed, flips went
  * wrong, and the segment-recovery walk reached the vertex at infinity and read coordinates at index
  * -1 (UBSan: unsigned offset overflow). Policy: |coordinates| beyond WR_CDT_MAX_COORD (1e70) are

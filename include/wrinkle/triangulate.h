@@ -2004,19 +2004,44 @@ WRDEF wr_status wr_cdt_triangulate(const wr_cdt_input *in, const wr_cdt_desc *de
     }
     /* constraints */
     if (m > 0) {
+        int32_t *shead, *slink;
         if (!wr__ensure_cm(&S)) goto nomem;
         C.split = d.split_intersections;
-        for (i = 0; i < m; ++i) {
-            int32_t a = in2int[in->segments[2 * i]], b = in2int[in->segments[2 * i + 1]];
+        /* A segment given again (same end points, also through merged duplicates) is recovered once:
+         * its chain is the first one's (pieces carry the lowest id, see segment_id). Recovering it
+         * again with split_intersections made it cross the first one's rounded junctions a few ulps
+         * away, and the two chains then shared a sliver of a third segment (fuzzer finding
+         * cdt_duplicate_crossing_split). shead/slink: per lower end, earlier segments. */
+        shead = (int32_t *)wr_alloc_array((size_t)nid, sizeof(int32_t));
+        slink = (int32_t *)wr_alloc_array((size_t)m, sizeof(int32_t));
+        if (!shead || !slink) {
+            wr_free(shead);
+            wr_free(slink);
+            goto nomem;
+        }
+        for (i = 0; i < nid; ++i) shead[i] = -1;
+        for (i = 0; i < m && st == WR_OK; ++i) {
+            int32_t a = in2int[in->segments[2 * i]], b = in2int[in->segments[2 * i + 1]], lo, hi, j;
             if (a == b) {
                 st = wr_fail(diag, WR_ERR_GEOMETRY, i,
                              "segment %d has zero length: its end points %d and %d were merged as duplicates", i,
                              in->segments[2 * i], in->segments[2 * i + 1]);
-                goto done;
+                break;
             }
+            lo = a < b ? a : b;
+            hi = a < b ? b : a;
+            for (j = shead[lo]; j >= 0; j = slink[j]) {
+                int32_t a2 = in2int[in->segments[2 * j]], b2 = in2int[in->segments[2 * j + 1]];
+                if ((a2 < b2 ? b2 : a2) == hi) break;
+            }
+            if (j >= 0) continue; /* same as segment j */
+            slink[i] = shead[lo];
+            shead[lo] = i;
             st = wr__recover(&S, &C, a, b, i, diag);
-            if (st != WR_OK) goto done;
         }
+        wr_free(shead);
+        wr_free(slink);
+        if (st != WR_OK) goto done;
         if (!d.keep_convex_hull) {
             int32_t t;
             int64_t removed = 0;
