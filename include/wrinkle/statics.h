@@ -90,7 +90,8 @@
  *   Measured (L = 100 mm cantilever, mirror clamp, exact Hessian, CHOLMOD): at 20 mm, s0 = 1e-3 and
  *   full gravity in one solve 28 Newton steps, against 110 without (219 with 5 gravity increments),
  *   same tip to 1e-5 mm; validate_cantilever (s0 = 8.8e-4) 29–38 steps from 20 to 1.25 mm, all WR_OK
- *   (1.25 mm: 38 steps, 7.6 s on the 2-core box, was 991 steps, 369 s, NOT_CONVERGED). Bending is not scaled (it drives the shape). It is an
+ *   (1.25 mm: 38 steps, 7.6 s on the 2-core box, was 991 steps, 369 s, NOT_CONVERGED).
+ *   Bending is not scaled (it drives the shape). It is an
  *   option, off by default: for a buckling problem (a stretched sheet that wrinkles) a softer
  *   membrane changes the wrinkle pattern the path selects, so callers opt in for smooth large-
  *   deflection problems. Choose s0 so that the soft stage's membrane strain stays small (s0 ≳ 100 ×
