@@ -368,6 +368,20 @@ Test(regressions, cdt_duplicate_crossing_split) {
     wr_cdt_free(&r);
 }
 
+/* fuzz_cdt (later fuzz run; the code before this session fails it too, also without refinement):
+ * a hole seed exactly on hull vertex (7,7) removed the triangles inside hull subsegment (7,7)-(7,6),
+ * whose other side is outside the hull: the subsegment rightly stays in the list (it bounded removed
+ * triangles, as `segments` documents) but wr_cdt_check only allowed that when the exterior was
+ * carved: "subsegment (8, 9) of segment 0 is not a constrained mesh edge". The result now records
+ * holes_carved and the checker applies the same rule to holes. */
+Test(regressions, cdt_hole_seed_on_hull_vertex) {
+    wr_cdt_result r;
+    replay_cdt_ok("cdt_hole_seed_on_hull_vertex.fuzz_cdt", &r);
+    cr_assert(r.holes_carved);
+    cr_assert(!r.exterior_carved);
+    wr_cdt_free(&r);
+}
+
 /* fuzz_poly: a .poly with coordinates up to 1e118: the in-circle determinant overflowed, flips went
  * wrong, and the segment-recovery walk reached the vertex at infinity and read coordinates at index
  * -1 (UBSan: unsigned offset overflow). Policy: |coordinates| beyond WR_CDT_MAX_COORD (1e70) are

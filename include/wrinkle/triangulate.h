@@ -168,6 +168,7 @@ typedef struct wr_cdt_result {
     int32_t *input_segments; /* n_input_segments × 2: the input segments in output vertex numbers */
     int32_t n_input_segments;
     int exterior_carved;     /* 1 when triangles outside the segments were removed */
+    int holes_carved;        /* 1 when hole seeds removed triangles */
     int32_t n_steiner;       /* Steiner points inserted (intersections + refinement) */
     int32_t n_duplicates;    /* input points merged into an earlier one */
     double min_angle_deg;    /* smallest angle over the output triangles */
@@ -193,8 +194,8 @@ typedef struct wr_cdt_check_info {
  * (and equal edge_segment on both sides), every unconstrained interior edge locally Delaunay
  * (incircle <= 0), every input segment present as a chain of subsegments (each carrying its id, or
  * the id of an input segment lying exactly on its line: shared pieces, see segment_id), every constrained mesh
- * edge listed as a subsegment and — unless the exterior was carved — every subsegment between used
- * vertices present as a constrained mesh edge, Euler characteristic
+ * edge listed as a subsegment and — unless the exterior or holes were carved (a subsegment may then
+ * bound removed triangles only) — every subsegment between used vertices present as a constrained mesh edge, Euler characteristic
  * V - E + F == 2·components - boundary_loops, and, when expected_holes >= 0, that the number of
  * holes (boundary_loops - components) equals it. info may be NULL. WR_ERR_TOPOLOGY /
  * WR_ERR_GEOMETRY name the first failing triangle or segment. */
@@ -1870,7 +1871,7 @@ WRDEF wr_status wr_cdt_triangulate(const wr_cdt_input *in, const wr_cdt_desc *de
             i0, i1 = -1, i2 = -1;
     wr_status st = WR_OK, st_late = WR_OK;
     double t_start = wr_time_seconds();
-    int refine, carved = 0;
+    int refine, carved = 0, holes_carved = 0;
     int64_t budget, n_real = 0, n_live;
     memset(&S, 0, sizeof S);
     memset(&C, 0, sizeof C);
@@ -2067,6 +2068,7 @@ WRDEF wr_status wr_cdt_triangulate(const wr_cdt_input *in, const wr_cdt_desc *de
         if (WR__GHOSTLY(&S, t)) continue; /* seed outside the convex hull */
         if (!wr__flood(&S, t, &removed)) goto nomem;
         n_live -= removed;
+        holes_carved |= removed > 0;
         if (n_live == 0) {
             st = wr_fail(diag, WR_ERR_GEOMETRY, i,
                          "hole %d at (%g, %g) removed every remaining triangle: the boundary around it is not closed",
@@ -2122,6 +2124,7 @@ WRDEF wr_status wr_cdt_triangulate(const wr_cdt_input *in, const wr_cdt_desc *de
     st = wr__cdt_output(&S, rep, pos, dupof, in2int, nid, in, out, diag);
     if (st != WR_OK) goto done;
     out->exterior_carved = carved;
+    out->holes_carved = holes_carved;
     out->n_steiner = C.n_steiner + R.n_steiner;
     st = st_late;
     goto done;
@@ -2329,7 +2332,7 @@ WRDEF wr_status wr_cdt_check(const wr_cdt_result *r, int32_t expected_holes, wr_
             for (j = cstart[y]; j < cstart[y + 1] && !found; ++j)
                 if (cadj[j] == s) found = cmk[j] == cmk[j2] ? 1 : -1;
             /* not a mesh edge at all: only allowed where triangles were removed */
-            if (found < 0 || (found == 0 && !r->exterior_carved && used[s] && used[y])) {
+            if (found < 0 || (found == 0 && !r->exterior_carved && !r->holes_carved && used[s] && used[y])) {
                 st = wr_fail(diag, WR_ERR_GEOMETRY, cmk[j2], "subsegment (%d, %d) of segment %d is not a constrained mesh edge",
                              s, y, cmk[j2]);
                 goto done;
