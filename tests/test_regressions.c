@@ -134,9 +134,9 @@ static double cdt_coord(const unsigned char *p, size_t n, size_t *at, int mode) 
 #undef RD8
 }
 
-static wr_status replay_cdt(const char *name, int32_t max_vertices, wr_cdt_result *r) {
-    size_t n, at = 0;
-    unsigned char *p = (unsigned char *)read_regression(name, &n);
+/* Decodes fuzz_cdt bytes as the harness does and triangulates them. */
+static wr_status replay_cdt_bytes(const unsigned char *p, size_t n, int32_t max_vertices, wr_cdt_result *r) {
+    size_t at = 0;
     double pts[2 * 32], holes[2 * 2];
     int32_t seg[2 * 24], np, ns, nh, i;
     unsigned char flags;
@@ -182,6 +182,13 @@ static wr_status replay_cdt(const char *name, int32_t max_vertices, wr_cdt_resul
     in.holes = nh ? holes : NULL;
     in.n_holes = nh;
     s = wr_cdt_triangulate(&in, &cd, r, &d);
+    return s;
+}
+
+static wr_status replay_cdt(const char *name, int32_t max_vertices, wr_cdt_result *r) {
+    size_t n;
+    unsigned char *p = (unsigned char *)read_regression(name, &n);
+    wr_status s = replay_cdt_bytes(p, n, max_vertices, r);
     free(p);
     return s;
 }
@@ -380,6 +387,62 @@ Test(regressions, cdt_hole_seed_on_hull_vertex) {
     cr_assert(r.holes_carved);
     cr_assert(!r.exterior_carved);
     wr_cdt_free(&r);
+}
+
+/* fuzz_cdt (last fuzz run of that session; the code before it fails too, also without refinement):
+ * split_intersections, 20 small-integer points, 19 crossing segments. Segment 12 (7,-8)-(-8,4)
+ * passes exactly through (-3,0), the end of segments 3 and 15, and segment 15 exactly through
+ * (0,-3), the end of segment 8; but the pieces being recovered start at rounded junctions, so they
+ * crossed those segments' last edges and junctions were computed at (-3,-2.2e-16),
+ * (-3,-7.7e-17), ...: segment 3's chain overshot its end and came back, and "input segment 15
+ * (1-17) is not a chain of subsegments". A crossing is now first resolved exactly on the input
+ * segments (an end of one strictly inside the other is the junction), and a computed point within
+ * rounding distance of an end vertex of either piece snaps to it. */
+Test(regressions, cdt_crossing_chain_split) {
+    wr_cdt_result r;
+    int32_t i, k;
+    replay_cdt_ok("cdt_crossing_chain_split.fuzz_cdt", &r);
+    cr_assert_eq(r.n_input_segments, 19);
+    cr_assert_gt(r.n_steiner, 0);
+    /* no junction a rounding error away from an input point: those points are the junctions */
+    for (i = r.n_input_points; i < r.n_points; ++i)
+        for (k = 0; k < r.n_input_points; ++k) {
+            double dx = r.points[2 * i] - r.points[2 * k], dy = r.points[2 * i + 1] - r.points[2 * k + 1];
+            cr_assert(fabs(dx) > 1e-12 || fabs(dy) > 1e-12, "Steiner point %d (%.17g, %.17g) next to input point %d",
+                      i, r.points[2 * i], r.points[2 * i + 1], k);
+        }
+    wr_cdt_free(&r);
+}
+
+/* Found by the fuzz run on the first version of that fix (also seed
+ * tests/fuzz/corpus/fuzz_cdt/regr_crossing_snap_not_delaunay; fine with the code before it):
+ * split_intersections, a piece of segment 12 again crossing an edge at the end (-3,0) of segment 3
+ * that segment 12 passes exactly through. The junction is now that vertex, so no point is inserted
+ * there, and an edge that an earlier rounded junction's insertion had left non-Delaunay (waiting for
+ * that insertion's legalization) stayed so: "edge (10, 32) between triangles 1 and 36 is not locally
+ * Delaunay". After recovering the segments, one Lawson pass now covers every unconstrained edge. */
+Test(regressions, cdt_crossing_vertex_junction_delaunay) {
+    static const unsigned char bytes[] = {
+        0x03, 0x14, 0x77, 0x08, 0x05, 0x7e, 0xff, 0xbd, 0x00, 0x2e, 0x02, 0x04, 0x00, 0x08, 0x04, 0x08,
+        0xfc, 0xf7, 0xff, 0x0c, 0xff, 0xff, 0xff, 0xff, 0xff, 0xff, 0x00, 0x00, 0xf6, 0x61, 0x40, 0x30,
+        0x05, 0x00, 0x44, 0x00, 0x1c, 0x0b, 0x08, 0x08, 0x0b, 0x05, 0x08, 0x08, 0x05, 0x5b, 0x0a, 0x0a,
+        0x06, 0x0a, 0x06, 0x06, 0x12, 0x00, 0xff, 0x7e, 0xff, 0xbd, 0x00, 0x2e, 0xf8, 0x03, 0x00, 0x08,
+        0x05, 0xf8, 0x03, 0x08, 0x0c, 0x0a, 0xff, 0xff, 0xfe, 0x01, 0x00, 0x00, 0x2e, 0xe8, 0x0b, 0x2e,
+        0x11, 0x0b, 0x05, 0xff, 0x1b, 0x00,
+    };
+    wr_cdt_result r;
+    wr_diag dc;
+    wr_status s;
+    int q;
+    for (q = 0; q < 2; ++q) { /* as found (quality on) and without refinement: recovery alone */
+        unsigned char b[sizeof bytes];
+        memcpy(b, bytes, sizeof b);
+        if (q) b[0] &= (unsigned char)~1u;
+        s = replay_cdt_bytes(b, sizeof b, 2000, &r);
+        cr_assert_eq(s, WR_OK, "status %s", wr_status_string(s));
+        cr_assert_eq(wr_cdt_check(&r, -1, NULL, &dc), WR_OK, "quality %d: %s", !q, dc.message);
+        wr_cdt_free(&r);
+    }
 }
 
 /* fuzz_poly: a .poly with coordinates up to 1e118: the in-circle determinant overflowed, flips went

@@ -1077,6 +1077,8 @@ typedef struct wr__segctx {
     wr__ivec fresh;  /* vertex pairs: edges made by flips, to re-check for the CDT property */
     int split;       /* desc.split_intersections */
     int32_t n_steiner;
+    const int32_t *seg;    /* input segments (input point ids), for the exact junction tests */
+    const int32_t *in2int; /* input point -> internal vertex */
 } wr__segctx;
 
 static void wr__mark_both(wr__cdt *S, int32_t he, int32_t s) {
@@ -1113,6 +1115,86 @@ static int wr__restore_delaunay(wr__cdt *S, wr__ivec *fresh) {
 
 static int wr__push3(wr__ivec *v, int32_t a, int32_t b, int32_t c) {
     return wr__ivec_push(v, a) && wr__ivec_push(v, b) && wr__ivec_push(v, c);
+}
+
+/* A computed crossing point within this many units of its coordinates' magnitude (L-inf) of an end
+ * vertex of either crossing piece is that vertex. The point is a + t(b - a) with t = oa/(oa - ob)
+ * from two orientations: a few rounding errors of 2^-53 relative to the coordinates, so 64·2^-53
+ * (7.1e-15) covers them with margin while staying far below any feature the predicates resolve
+ * as distinct in practice. (Fuzzer finding cdt_crossing_chain_split: junctions 1e-16..1e-15 from a
+ * segment's end vertex made that segment's chain overshoot its end.) */
+#define WR__CROSS_SNAP (64.0 * WR__EPS)
+
+/* x lies exactly on segment p-q strictly between its ends (exact orientation; for collinear points
+ * the sign of (p-x)·(q-x) is exact: both terms are <= 0, each a correctly rounded product). */
+static int wr__strictly_on(const double *p, const double *q, const double *x) {
+    return wr__orient(p, q, x) == 0.0 && wr__dot3(x, p, q) < 0.0;
+}
+
+/* The piece a-b of segment s crosses the constrained edge xr-yl of segment s2 (strictly, by the
+ * walk's predicates). Before a floating crossing point is computed, the junction is looked for among
+ * the existing vertices: *v gets that vertex (or -1) and *on_s says whether it splits the piece a-b
+ * (v is xr or yl) or the crossed edge (v is a or b).
+ * 1. Exact degeneracies of the input segments (exact orientation): an end of s2 that lies strictly
+ *    inside input segment s is the only common point of the two segments (they are not collinear:
+ *    s2's other end is off s, or they would not cross), so when that end is xr or yl the junction is
+ *    it; likewise an end of s strictly inside s2 when it is a or b. The pieces' own end points may be
+ *    rounded junctions slightly off their segment's line, which is how a piece can cross an edge at
+ *    an end vertex that its input segment passes exactly through.
+ * 2. Otherwise the crossing point a + tt(b - a) is computed (*ppx, *ppy; only in this case) and
+ *    snaps to an end vertex of either piece within WR__CROSS_SNAP of it.
+ * Either way the vertex must project strictly inside the piece it splits, so a chain never runs
+ * past an end and back. */
+static void wr__cross_vertex(const wr__cdt *S, const wr__segctx *C, int32_t s, int32_t s2, int32_t a, int32_t b,
+                             int32_t xr, int32_t yl, double tt, double *ppx, double *ppy, int32_t *v, int *on_s) {
+    const double *pa = WR__P(S, a), *pb = WR__P(S, b), *px_ = WR__P(S, xr), *py_ = WR__P(S, yl);
+    int32_t e[4], c[4];
+    double scale = 0.0, best = 0.0, px, py;
+    int k;
+    *v = -1;
+    *on_s = 0;
+    e[0] = e[1] = e[2] = e[3] = -1; /* (recovery only meets input segment ids; hull marks come later) */
+    if (s >= 0 && s2 >= 0) {
+        e[0] = C->in2int[C->seg[2 * s]];
+        e[1] = C->in2int[C->seg[2 * s + 1]];
+        e[2] = C->in2int[C->seg[2 * s2]];
+        e[3] = C->in2int[C->seg[2 * s2 + 1]];
+    }
+    for (k = 2; k < 4 && e[k] >= 0; ++k) /* an end of s2 inside s, at the crossed edge */
+        if ((e[k] == xr || e[k] == yl) && wr__strictly_on(WR__P(S, e[0]), WR__P(S, e[1]), WR__P(S, e[k])) &&
+            wr__dot3(WR__P(S, e[k]), pa, pb) < 0.0) {
+            *v = e[k];
+            *on_s = 1;
+            return;
+        }
+    for (k = 0; k < 2 && e[k] >= 0; ++k) /* an end of s inside s2, at the current piece */
+        if ((e[k] == a || e[k] == b) && wr__strictly_on(WR__P(S, e[2]), WR__P(S, e[3]), WR__P(S, e[k])) &&
+            wr__dot3(WR__P(S, e[k]), px_, py_) < 0.0) {
+            *v = e[k];
+            *on_s = 0;
+            return;
+        }
+    px = *ppx = pa[0] + tt * (pb[0] - pa[0]);
+    py = *ppy = pa[1] + tt * (pb[1] - pa[1]);
+    c[0] = a;
+    c[1] = b;
+    c[2] = xr;
+    c[3] = yl;
+    for (k = 0; k < 4; ++k) {
+        const double *q = WR__P(S, c[k]);
+        double m = fabs(q[0]) > fabs(q[1]) ? fabs(q[0]) : fabs(q[1]);
+        if (m > scale) scale = m;
+    }
+    for (k = 0; k < 4; ++k) {
+        const double *q = WR__P(S, c[k]);
+        double dx = fabs(px - q[0]), dy = fabs(py - q[1]), dist = dx > dy ? dx : dy;
+        if (dist > WR__CROSS_SNAP * scale || (*v >= 0 && dist >= best)) continue;
+        if (k < 2 ? wr__dot3(q, px_, py_) < 0.0 : wr__dot3(q, pa, pb) < 0.0) {
+            *v = c[k];
+            *on_s = k >= 2;
+            best = dist;
+        }
+    }
 }
 
 /* Make segment (a0, b0) a chain of constrained edges: split it at vertices lying exactly on it,
@@ -1177,6 +1259,7 @@ static wr_status wr__recover(wr__cdt *S, wr__segctx *C, int32_t a0, int32_t b0, 
             if (m != -1) { /* the segment crosses a constrained edge */
                 double oa, ob, tt, px, py;
                 int32_t q, vq, s2 = m;
+                int on_s;
                 if (!C->split)
                     return wr_fail(diag, WR_ERR_GEOMETRY, sid,
                                    "segments %d and %d cross (self-intersecting boundary); set split_intersections "
@@ -1185,8 +1268,29 @@ static wr_status wr__recover(wr__cdt *S, wr__segctx *C, int32_t a0, int32_t b0, 
                 oa = wr__orient(WR__P(S, xr), WR__P(S, yl), pa);
                 ob = wr__orient(WR__P(S, xr), WR__P(S, yl), pb);
                 tt = oa / (oa - ob); /* oa, ob have strictly opposite signs here */
-                px = pa[0] + tt * (pb[0] - pa[0]);
-                py = pa[1] + tt * (pb[1] - pa[1]);
+                px = py = 0.0;
+                wr__cross_vertex(S, C, s, s2, a, b, xr, yl, tt, &px, &py, &vq, &on_s);
+                if (vq >= 0 && on_s) { /* the junction is an end of the crossed edge: split the piece */
+                    if (!wr__push3(&C->pieces, a, vq, s) || !wr__push3(&C->pieces, vq, b, s))
+                        return wr_fail(diag, WR_ERR_NOMEM, sid, "out of memory");
+                    bend = -1;
+                    break;
+                }
+                if (vq >= 0) { /* the junction is an end of the piece: split the crossed edge there */
+                    /* The edge is no longer a constraint: make it locally Delaunay now (a constrained
+                     * edge need not be, and if the next walk stops at another crossing first, nothing
+                     * else would look at it). */
+                    S->cm[he] = S->cm[S->tn[he]] = -1;
+                    C->fresh.n = 0;
+                    if (!wr__ivec_push(&C->fresh, xr) || !wr__ivec_push(&C->fresh, yl) ||
+                        !wr__restore_delaunay(S, &C->fresh))
+                        return wr_fail(diag, WR_ERR_NOMEM, sid, "out of memory");
+                    if (!wr__push3(&C->pieces, xr, vq, s2) || !wr__push3(&C->pieces, vq, yl, s2) ||
+                        !wr__push3(&C->pieces, a, b, s))
+                        return wr_fail(diag, WR_ERR_NOMEM, sid, "out of memory");
+                    bend = -1;
+                    break;
+                }
                 if (S->nv >= S->max_vertices)
                     return wr_fail(diag, WR_ERR_BUDGET, sid, "vertex budget %d reached while splitting crossing segments",
                                    S->max_vertices);
@@ -2008,6 +2112,8 @@ WRDEF wr_status wr_cdt_triangulate(const wr_cdt_input *in, const wr_cdt_desc *de
         int32_t *shead, *slink;
         if (!wr__ensure_cm(&S)) goto nomem;
         C.split = d.split_intersections;
+        C.seg = in->segments;
+        C.in2int = in2int;
         /* A segment given again (same end points, also through merged duplicates) is recovered once:
          * its chain is the first one's (pieces carry the lowest id, see segment_id). Recovering it
          * again with split_intersections made it cross the first one's rounded junctions a few ulps
@@ -2043,6 +2149,27 @@ WRDEF wr_status wr_cdt_triangulate(const wr_cdt_input *in, const wr_cdt_desc *de
         wr_free(shead);
         wr_free(slink);
         if (st != WR_OK) goto done;
+        if (C.split) {
+            /* A crossing unconstrains the crossed edge and inserts its junction; an edge the
+             * insertion could not legalize (the rounded junction fell beside it) is left to later
+             * pieces, and when a junction is an existing vertex (wr__cross_vertex) no insertion
+             * happens at all. One Lawson pass over every unconstrained edge restores the CDT
+             * property for the final constraints (fuzzer finding after cdt_crossing_chain_split). */
+            int32_t t;
+            C.fresh.n = 0;
+            for (t = 0; t < S.nt; ++t) {
+                int k;
+                if (WR__GHOSTLY(&S, t)) continue;
+                for (k = 0; k < 3; ++k) {
+                    int32_t he = 3 * t + k;
+                    if (S.cm[he] != -1 || S.tn[he] < he) continue;
+                    if (!wr__ivec_push(&C.fresh, S.tv[3 * t + wr__n1[k]]) ||
+                        !wr__ivec_push(&C.fresh, S.tv[3 * t + wr__n2[k]]))
+                        goto nomem;
+                }
+            }
+            if (!wr__restore_delaunay(&S, &C.fresh)) goto nomem;
+        }
         if (!d.keep_convex_hull) {
             int32_t t;
             int64_t removed = 0;
