@@ -8,7 +8,7 @@ set key bottom right
 set title 'stretched sheet'
 set ylabel 'periods across the width'
 set yrange [0:12]
-plot 'validation/results/tfw_crosscheck.dat' index 0 u 1:2 w lp pt 7 t 'StVK', 7.73 w l t 'TFW, 522-vertex base', 5 w l dt 2 t 'paper 5'
+plot 'validation/results/tfw_crosscheck.dat' index 0 u 1:2 w lp pt 7 t 'StVK', 7.745 w l t 'TFW, 522-vertex base', 5 w l dt 2 t 'paper 5'
 set title 'twisted cylinder'
 set ylabel 'waves at mid-height'
 set yrange [0:60]
