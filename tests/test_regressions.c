@@ -270,7 +270,8 @@ Test(regressions, cdt_needle_hull_not_delaunay) {
  * the default budget (65k vertices) the old code would have run for hours. */
 Test(regressions, cdt_tiny_edge_refine_cubic) {
     wr_cdt_result r;
-    double t0 = wr_time_seconds();
+    /* the vertex counts are the guard (the old code ran to the harness budget); no wall-clock
+     * assertion here: performance lives in bench/, never in tests */
     replay_cdt_ok("cdt_tiny_edge_refine_cubic.fuzz_cdt", &r);
     cr_assert_eq(r.n_input_points, 3);
     cr_assert_lt(r.n_points, 1000, "%d vertices for a 3-point input", r.n_points);
@@ -278,7 +279,6 @@ Test(regressions, cdt_tiny_edge_refine_cubic) {
     cr_assert_eq(replay_cdt("cdt_tiny_edge_refine_cubic.fuzz_cdt", 0, &r), WR_OK); /* default budget */
     cr_assert_lt(r.n_points, 1000, "%d vertices", r.n_points);
     wr_cdt_free(&r);
-    cr_assert_lt(wr_time_seconds() - t0, 5.0, "took %g s", wr_time_seconds() - t0);
 }
 
 /* fuzz_cdt: segment 7-0 passes through point 6 and so overlaps segments 0-6 / 6-0; the shared piece
@@ -349,7 +349,6 @@ Test(regressions, cdt_early_finding) {
  * below the relative precision floor 2^-36 are left alone). Each rule alone does not end it. */
 Test(regressions, cdt_sliver_cascade) {
     wr_cdt_result r;
-    double t0 = wr_time_seconds();
     int32_t nv;
     replay_cdt_ok("cdt_sliver_cascade.fuzz_cdt", &r);
     nv = r.n_points;
@@ -358,7 +357,6 @@ Test(regressions, cdt_sliver_cascade) {
     cr_assert_eq(replay_cdt("cdt_sliver_cascade.fuzz_cdt", 0, &r), WR_OK);
     cr_assert_eq(r.n_points, nv);
     wr_cdt_free(&r);
-    cr_assert_lt(wr_time_seconds() - t0, 5.0, "took %g s", wr_time_seconds() - t0);
 }
 
 /* fuzz_cdt (found by a later fuzz run; the code before this session fails it too, also without
