@@ -73,6 +73,17 @@
  *   · mean diagonal — the factorisation's own round-off level, kept so that an exactly singular PSD
  *   matrix still factors — and is raised again (to shift_rel · mean diagonal, then ×100) only when
  *   the linear solve reports a non-SPD matrix or gives no descent direction.
+ *   Opt-in (desc.shift_raise = r > 1, 0 = off): after a step the line search had to shorten (α below
+ *   the CCD-safe step), μ is also multiplied by r (Levenberg–Marquardt style), capped at
+ *   WR_STATICS_SHIFT_RAISE_CAP (1e6) · shift_rel · mean diagonal (a μ already above the cap from a
+ *   non-SPD raise is left alone), and decays ×0.1 again after full steps. Why: on the TFW sheared
+ *   rectangle base (TFT, 1789 of 1836 elements wrinkled, 34 slack) full Newton steps push slack
+ *   elements back into tension and the line search halved up to 9 times per step, along directions
+ *   held only by bending (~1e-6 of the membrane stiffness); a larger μ shortens exactly those
+ *   directions. Measured there (bench_tfw --shift-raise=R, one increment): 313 Newton steps → 175
+ *   (R = 10) or 126 (R = 100). μ only changes the path, not the minimiser, but where Π is that flat
+ *   the solve stops elsewhere in the valley: that base differs by up to 1.5e-4 m (Π higher by 4e-10 J
+ *   of 0.245 J), so it is off by default (0 keeps every caller on its previous iterates).
  *
  * ON MEMBRANE CONTINUATION (desc.membrane_ramp)
  *   A displacement-based thin shell under large rotation converges slowly with Newton: a step that
@@ -286,7 +297,9 @@ typedef struct wr_obstacle {
  *   membrane_ramp 0 = off, else the first stage's membrane scale s0 in (0, 1), membrane_ramp_factor
  *   0 → 1e3 (> 1) (ON MEMBRANE CONTINUATION);
  *   linear_forcing 0 = every PCG solve to linear.rel_tol, else η_max in (0, 1) of the inexact Newton
- *   forcing (ON INEXACT NEWTON; no effect with CHOLMOD). */
+ *   forcing (ON INEXACT NEWTON; no effect with CHOLMOD);
+ *   shift_raise 0 = off, else the factor r > 1 applied to μ after a backtracked step (ON SHIFT);
+ *   r in (0, 1], negative or not finite is WR_ERR_INVALID_ARG. */
 typedef struct wr_statics_desc {
     int32_t max_iter;
     double grad_tol;
@@ -313,6 +326,7 @@ typedef struct wr_statics_desc {
     double membrane_ramp;
     double membrane_ramp_factor;
     double linear_forcing;
+    double shift_raise;
 } wr_statics_desc;
 
 typedef enum wr_motion_kind {
@@ -416,6 +430,10 @@ extern "C" {
 /* smallest diagonal shift, relative to the mean diagonal: the round-off level of the factorisation
  * (ON SHIFT); below it μ no longer changes K + μI in double precision for the stiff DOFs */
 #define WR_STATICS_SHIFT_MIN_REL 1e-14
+/* ceiling of the opt-in raise after backtracked steps (desc.shift_raise), relative to shift_rel ·
+ * mean diagonal: 1e6 · 1e-8 = 1e-2 of the membrane stiffness at the default shift_rel, still far
+ * below it so a step keeps the Newton direction in the stiff modes (ON SHIFT) */
+#define WR_STATICS_SHIFT_RAISE_CAP 1e6
 /* relative gradient tolerance of the soft stages of the membrane continuation: they only have to
  * bring the shape near the final one (ON MEMBRANE CONTINUATION) */
 #define WR_STATICS_RAMP_TOL 1e-6
@@ -992,6 +1010,8 @@ static wr_status wr__statics_solve_one(const wr_shell *s, double *x, const wr_st
                        d.pressure, d.contact_dhat, d.contact_stiffness);
     if (!(d.linear_forcing >= 0.0 && d.linear_forcing < 1.0))
         return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "statics: linear_forcing %g must be in [0, 1)", d.linear_forcing);
+    if (!(d.shift_raise == 0.0 || (d.shift_raise > 1.0 && d.shift_raise - d.shift_raise == 0.0)))
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "statics: shift_raise %g must be 0 (off) or > 1", d.shift_raise);
     if ((int)d.projection < 0 || (int)d.projection > (int)WR_PROJECT_NONE)
         return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "statics: unknown projection %d", (int)d.projection);
     rs = wr__statics_check_obstacles(d.obstacles, d.n_obstacles, diag);
@@ -1283,6 +1303,9 @@ static wr_status wr__statics_solve_one(const wr_shell *s, double *x, const wr_st
         if (rs != WR_OK) goto done;
         /* successful full steps relax the shift towards the factorisation's round-off (ON SHIFT) */
         if (alpha == 1.0) shift = fmax(shift * 0.1, WR_STATICS_SHIFT_MIN_REL * mean_diag);
+        /* opt-in: a backtracked step raises it (ON SHIFT, desc.shift_raise), up to the cap */
+        else if (d.shift_raise > 0.0 && alpha < alpha0)
+            shift = fmax(shift, fmin(shift * d.shift_raise, WR_STATICS_SHIFT_RAISE_CAP * d.shift_rel * mean_diag));
         last_full = alpha == 1.0;
         if (use_exact) st.exact_steps++;
         /* round-off (ON STOPPING): the Newton decrement −∇Π·Δx is below what Π resolves AND the
