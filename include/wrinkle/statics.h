@@ -889,6 +889,19 @@ static wr_status wr__statics_energy(const wr__statics_ctx *c, const double *x, d
 /* Largest α in (0, 1] keeping every free vertex at >= WR_STATICS_CCD_KEEP of its current distance
  * to every obstacle along x + αΔx (conservative advancement: d is 1-Lipschitz, so advancing by
  * (d − target)/|Δx| can never overshoot the target distance). */
+/* Adds one solve's work counters and timings to a running total (continuation stages, load increments);
+ * iteration counts are kept by the callers because each totals them differently. */
+static void wr__statics_work_add(wr_statics_stats *to, const wr_statics_stats *from) {
+    to->linear_iterations += from->linear_iterations;
+    to->line_search_evals += from->line_search_evals;
+    to->t_assembly += from->t_assembly;
+    to->t_projection += from->t_projection;
+    to->t_linear += from->t_linear;
+    to->t_line_search += from->t_line_search;
+    to->elements_projected += from->elements_projected;
+    to->elements_assembled += from->elements_assembled;
+}
+
 static double wr__statics_ccd(const wr__statics_ctx *c, const double *x, const double *dx) {
     double alpha = 1.0;
     int32_t v, o, it, i;
@@ -1439,14 +1452,7 @@ WRDEF wr_status wr_statics_solve(const wr_shell *s, double *x, const wr_statics_
         dk.perturb = 0.0;
         acc.ramp_stages++;
         acc.ramp_iterations += sk.iterations;
-        acc.linear_iterations += sk.linear_iterations;
-        acc.line_search_evals += sk.line_search_evals;
-        acc.t_assembly += sk.t_assembly;
-        acc.t_projection += sk.t_projection;
-        acc.t_linear += sk.t_linear;
-        acc.t_line_search += sk.t_line_search;
-        acc.elements_projected += sk.elements_projected;
-        acc.elements_assembled += sk.elements_assembled;
+        wr__statics_work_add(&acc, &sk);
         acc.ccd_alpha_min = acc.ramp_stages == 1 ? sk.ccd_alpha_min : fmin(acc.ccd_alpha_min, sk.ccd_alpha_min);
     }
     dk.grad_tol = desc->grad_tol;
@@ -1454,12 +1460,7 @@ WRDEF wr_status wr_statics_solve(const wr_shell *s, double *x, const wr_statics_
     if (rs == WR_ERR_NOT_CONVERGED) {
         /* the soft path led somewhere the real shell cannot converge from: plain solve from the start */
         acc.ramp_iterations += sk.iterations;
-        acc.linear_iterations += sk.linear_iterations;
-        acc.line_search_evals += sk.line_search_evals;
-        acc.t_assembly += sk.t_assembly;
-        acc.t_projection += sk.t_projection;
-        acc.t_linear += sk.t_linear;
-        acc.t_line_search += sk.t_line_search;
+        wr__statics_work_add(&acc, &sk);
         memcpy(x, x0, sizeof(double) * 3 * (size_t)s->nv);
         dk.perturb = desc->perturb;
         rs = wr__statics_solve_one(s, x, &dk, &sk, diag, 0.0, 0);
@@ -1468,14 +1469,7 @@ WRDEF wr_status wr_statics_solve(const wr_shell *s, double *x, const wr_statics_
     wr_free(x0);
     /* the final stage's state, with the work of the whole solve */
     sk.iterations += acc.ramp_iterations;
-    sk.linear_iterations += acc.linear_iterations;
-    sk.line_search_evals += acc.line_search_evals;
-    sk.t_assembly += acc.t_assembly;
-    sk.t_projection += acc.t_projection;
-    sk.t_linear += acc.t_linear;
-    sk.t_line_search += acc.t_line_search;
-    sk.elements_projected += acc.elements_projected;
-    sk.elements_assembled += acc.elements_assembled;
+    wr__statics_work_add(&sk, &acc);
     sk.ccd_alpha_min = fmin(sk.ccd_alpha_min, acc.ccd_alpha_min);
     sk.ramp_stages = acc.ramp_stages;
     sk.ramp_iterations = acc.ramp_iterations;
@@ -1618,14 +1612,7 @@ WRDEF wr_status wr_statics_solve_incremental(const wr_shell *s, double *x, const
         }
         memcpy(xprev, xsave, sizeof(double) * (size_t)n);
         acc.total_iterations += sk.iterations;
-        acc.linear_iterations += sk.linear_iterations;
-        acc.line_search_evals += sk.line_search_evals;
-        acc.t_assembly += sk.t_assembly;
-        acc.t_projection += sk.t_projection;
-        acc.t_linear += sk.t_linear;
-        acc.t_line_search += sk.t_line_search;
-        acc.elements_projected += sk.elements_projected;
-        acc.elements_assembled += sk.elements_assembled;
+        wr__statics_work_add(&acc, &sk);
         acc.increments = k;
         if (rs == WR_ERR_NOT_CONVERGED && k < n_inc) {
             acc.increments_failed++; /* best iterate warm-starts the next increment */
