@@ -443,6 +443,41 @@ Test(regressions, cdt_crossing_vertex_junction_delaunay) {
     }
 }
 
+/* fuzz_cdt (CI fuzz smoke after the snap fix above, 29k runs): split_intersections; segments 1-2
+ * (0.001,0)-(0,1e-9) and 2-4 (0,1e-9)-(1,0) meet at their shared end at 1e-6 rad and both cross
+ * segment 0-3 (slope 1/2) near (2e-9, 1e-9), 4e-15 apart. The second crossing snapped onto the
+ * first junction, so both chains ran through the edge from that junction to (0,1e-9), which carries
+ * one id: WR_OK but "input segment 3 (2-4) is not a chain of subsegments". A snap that would make a
+ * split half an edge another segment owns is refused; the computed point becomes its own vertex. */
+Test(regressions, cdt_chain_after_crossing_fix) {
+    size_t n;
+    unsigned char *p = (unsigned char *)read_regression("cdt_chain_after_crossing_fix.fuzz_cdt", &n);
+    int q;
+    cr_assert(n > 0);
+    for (q = 0; q < 2; ++q) { /* as found (quality on) and without refinement: recovery alone */
+        wr_cdt_result r;
+        wr_diag dc;
+        wr_status s;
+        int32_t i, own3 = 0, own2 = 0;
+        if (q) p[0] &= (unsigned char)~1u;
+        s = replay_cdt_bytes(p, n, 2000, &r);
+        cr_assert_eq(s, WR_OK, "status %s", wr_status_string(s));
+        cr_assert_eq(wr_cdt_check(&r, -1, NULL, &dc), WR_OK, "quality %d: %s", !q, dc.message);
+        cr_assert_eq(r.n_input_segments, 4);
+        cr_assert_eq(r.input_segments[2 * 3], 2); /* output numbering = input numbering here */
+        /* both segments ending at input point 2 keep a piece of their own there */
+        for (i = 0; i < r.n_segments; ++i)
+            if (r.segments[2 * i] == 2 || r.segments[2 * i + 1] == 2) {
+                own2 += r.segment_id[i] == 2;
+                own3 += r.segment_id[i] == 3;
+            }
+        cr_assert_eq(own2, 1);
+        cr_assert_eq(own3, 1);
+        wr_cdt_free(&r);
+    }
+    free(p);
+}
+
 /* fuzz_poly: a .poly with coordinates up to 1e118: the in-circle determinant overflowed, flips went
  * wrong, and the segment-recovery walk reached the vertex at infinity and read coordinates at index
  * -1 (UBSan: unsigned offset overflow). Policy: |coordinates| beyond WR_CDT_MAX_COORD (1e70) are

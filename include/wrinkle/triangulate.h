@@ -1131,6 +1131,12 @@ static int wr__strictly_on(const double *p, const double *q, const double *x) {
     return wr__orient(p, q, x) == 0.0 && wr__dot3(x, p, q) < 0.0;
 }
 
+/* u-v is an edge constrained by a segment other than s. */
+static int wr__owned_by_other(const wr__cdt *S, int32_t u, int32_t v, int32_t s) {
+    int32_t he = wr__find_edge(S, u, v);
+    return he >= 0 && S->cm[he] != -1 && S->cm[he] != s;
+}
+
 /* The piece a-b of segment s crosses the constrained edge xr-yl of segment s2 (strictly, by the
  * walk's predicates). Before a floating crossing point is computed, the junction is looked for among
  * the existing vertices: *v gets that vertex (or -1) and *on_s says whether it splits the piece a-b
@@ -1189,6 +1195,14 @@ static void wr__cross_vertex(const wr__cdt *S, const wr__segctx *C, int32_t s, i
         const double *q = WR__P(S, c[k]);
         double dx = fabs(px - q[0]), dy = fabs(py - q[1]), dist = dx > dy ? dx : dy;
         if (dist > WR__CROSS_SNAP * scale || (*v >= 0 && dist >= best)) continue;
+        /* A snap must not make the split piece's half an edge another segment already owns: two
+         * segments meeting at a hair-thin angle (fuzzer finding cdt_chain_after_crossing_fix: 1e-6
+         * rad at a shared end) cross a third one 4e-15 apart, and snapping the second crossing onto
+         * the first junction made both chains run through one edge, which carries one id. The
+         * computed point is a distinct vertex then. */
+        if (k < 2 ? wr__owned_by_other(S, xr, c[k], s2) || wr__owned_by_other(S, c[k], yl, s2)
+                  : wr__owned_by_other(S, a, c[k], s) || wr__owned_by_other(S, c[k], b, s))
+            continue;
         if (k < 2 ? wr__dot3(q, px_, py_) < 0.0 : wr__dot3(q, pa, pb) < 0.0) {
             *v = c[k];
             *on_s = k >= 2;
