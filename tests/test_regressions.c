@@ -478,6 +478,37 @@ Test(regressions, cdt_chain_after_crossing_fix) {
     free(p);
 }
 
+/* Found by the fuzz run on the first version of that fix (fine with the code before it):
+ * split_intersections; segments 4 (0,-2)-(-7,-7) and 10 (-7,-7)-(7,3) are collinear and overlap,
+ * and segment 0 (-5,0)-(7,-8) crosses both at (-28/29, -78/29). Refusing every snap onto an edge of
+ * another segment also refused the snap onto the pieces segments 4 and 10 share by contract, so
+ * three vertices an ulp apart were made there and "input segment 0 (11-10) is not a chain of
+ * subsegments". An edge of a collinear overlapping segment does not block the snap. */
+Test(regressions, cdt_collinear_overlap_snap) {
+    size_t n;
+    unsigned char *p = (unsigned char *)read_regression("cdt_collinear_overlap_snap.fuzz_cdt", &n);
+    int q;
+    cr_assert(n > 0);
+    for (q = 0; q < 2; ++q) { /* as found (quality on) and without refinement */
+        wr_cdt_result r;
+        wr_diag dc;
+        wr_status s;
+        int32_t i, k, near = 0;
+        if (q) p[0] &= (unsigned char)~1u;
+        s = replay_cdt_bytes(p, n, 2000, &r);
+        cr_assert_eq(s, WR_OK, "status %s", wr_status_string(s));
+        cr_assert_eq(wr_cdt_check(&r, -1, NULL, &dc), WR_OK, "quality %d: %s", !q, dc.message);
+        /* one junction at the triple crossing, not several an ulp apart */
+        for (i = 0; i < r.n_points; ++i)
+            for (k = i + 1; k < r.n_points; ++k)
+                near += fabs(r.points[2 * i] - r.points[2 * k]) < 1e-12 &&
+                        fabs(r.points[2 * i + 1] - r.points[2 * k + 1]) < 1e-12;
+        cr_assert_eq(near, 0, "quality %d: %d vertex pairs closer than 1e-12", !q, near);
+        wr_cdt_free(&r);
+    }
+    free(p);
+}
+
 /* fuzz_poly: a .poly with coordinates up to 1e118: the in-circle determinant overflowed, flips went
  * wrong, and the segment-recovery walk reached the vertex at infinity and read coordinates at index
  * -1 (UBSan: unsigned offset overflow). Policy: |coordinates| beyond WR_CDT_MAX_COORD (1e70) are

@@ -1131,10 +1131,19 @@ static int wr__strictly_on(const double *p, const double *q, const double *x) {
     return wr__orient(p, q, x) == 0.0 && wr__dot3(x, p, q) < 0.0;
 }
 
-/* u-v is an edge constrained by a segment other than s. */
-static int wr__owned_by_other(const wr__cdt *S, int32_t u, int32_t v, int32_t s) {
-    int32_t he = wr__find_edge(S, u, v);
-    return he >= 0 && S->cm[he] != -1 && S->cm[he] != s;
+/* u-v is an edge constrained by an input segment other than s and not collinear with it (exact
+ * orientation of its input end points on s's line): collinear overlapping segments share their
+ * common pieces by contract, so an edge of theirs is not another segment's. */
+static int wr__owned_by_other(const wr__cdt *S, const wr__segctx *C, int32_t u, int32_t v, int32_t s) {
+    int32_t he = wr__find_edge(S, u, v), o;
+    const double *p, *q;
+    if (he < 0 || S->cm[he] == -1 || S->cm[he] == s) return 0;
+    o = S->cm[he];
+    if (s < 0 || o < 0) return 1;
+    p = WR__P(S, C->in2int[C->seg[2 * s]]);
+    q = WR__P(S, C->in2int[C->seg[2 * s + 1]]);
+    return wr__orient(p, q, WR__P(S, C->in2int[C->seg[2 * o]])) != 0.0 ||
+           wr__orient(p, q, WR__P(S, C->in2int[C->seg[2 * o + 1]])) != 0.0;
 }
 
 /* The piece a-b of segment s crosses the constrained edge xr-yl of segment s2 (strictly, by the
@@ -1200,8 +1209,8 @@ static void wr__cross_vertex(const wr__cdt *S, const wr__segctx *C, int32_t s, i
          * rad at a shared end) cross a third one 4e-15 apart, and snapping the second crossing onto
          * the first junction made both chains run through one edge, which carries one id. The
          * computed point is a distinct vertex then. */
-        if (k < 2 ? wr__owned_by_other(S, xr, c[k], s2) || wr__owned_by_other(S, c[k], yl, s2)
-                  : wr__owned_by_other(S, a, c[k], s) || wr__owned_by_other(S, c[k], b, s))
+        if (k < 2 ? wr__owned_by_other(S, C, xr, c[k], s2) || wr__owned_by_other(S, C, c[k], yl, s2)
+                  : wr__owned_by_other(S, C, a, c[k], s) || wr__owned_by_other(S, C, c[k], b, s))
             continue;
         if (k < 2 ? wr__dot3(q, px_, py_) < 0.0 : wr__dot3(q, pa, pb) < 0.0) {
             *v = c[k];
