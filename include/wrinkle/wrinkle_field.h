@@ -152,8 +152,11 @@ typedef struct wr_wf {
     double *kperp;           /* nf κ⊥ [1/m] */
     double *c2;              /* nf: W_s^2 = c2 a² (0 where lambda[0] >= 0) [1/m²] */
     double *wb1;             /* nf: W_b^1 density ||I_u⁻¹ II_b||²_SV [Pa/m²] */
+    double *qf;              /* nf*9: Q of ||I_u⁻¹ S||²_SV = sᵀQs (Eq. 4), a constant of the rest face */
     uint8_t *wfree;          /* nf: 1 = face in the wrinkle-free set W */
     uint8_t *azero;          /* nv: 1 = amplitude held at 0 (clamped boundary, see wr_wf_set_amplitude_zero) */
+    int reference_eval;      /* nonzero: wr_wf_energy uses the generic monomial evaluator (the slow, literal
+                              * transcription of Eq. 20–27 that the hand-expanded default is tested against) */
 } wr_wf;
 
 WRDEF wr_status wr_wf_create(wr_wf *wf, const wr_mesh *m, const double *base_pos, const wr_wf_material *mat,
@@ -624,6 +627,7 @@ WRDEF void wr_wf_free(wr_wf *wf) {
     wr_free(wf->kperp);
     wr_free(wf->c2);
     wr_free(wf->wb1);
+    wr_free(wf->qf);
     wr_free(wf->wfree);
     wr_free(wf->azero);
     memset(wf, 0, sizeof *wf);
@@ -672,10 +676,11 @@ WRDEF wr_status wr_wf_create(wr_wf *wf, const wr_mesh *m, const double *base_pos
     wf->kperp = (double *)wr_alloc_array((size_t)nf, sizeof(double));
     wf->c2 = (double *)wr_alloc_array((size_t)nf, sizeof(double));
     wf->wb1 = (double *)wr_alloc_array((size_t)nf, sizeof(double));
+    wf->qf = (double *)wr_alloc_array((size_t)nf * 9, sizeof(double));
     wf->wfree = (uint8_t *)wr_calloc_array((size_t)nf, sizeof(uint8_t));
     wf->azero = (uint8_t *)wr_calloc_array((size_t)m->nv, sizeof(uint8_t));
     if (!wf->base || !wf->iu || !wf->iu_inv || !wf->ib || !wf->iib || !wf->area || !wf->lambda || !wf->wdir ||
-        !wf->wperp || !wf->kperp || !wf->c2 || !wf->wb1 || !wf->wfree || !wf->azero) {
+        !wf->wperp || !wf->kperp || !wf->c2 || !wf->wb1 || !wf->qf || !wf->wfree || !wf->azero) {
         wr_wf_free(wf);
         return wr_fail(diag, WR_ERR_NOMEM, -1, "wrinkle field: out of memory for %d faces", (int)nf);
     }
@@ -779,6 +784,7 @@ WRDEF wr_status wr_wf_create(wr_wf *wf, const wr_mesh *m, const double *base_pos
                                      : 0.0;
         }
         wr__wf_qform(wf->iu_inv + 3 * f, wf->alpha, wf->beta, Qm);
+        memcpy(wf->qf + 9 * (size_t)f, Qm, sizeof Qm); /* constant per face: the SQP reuses it every evaluation */
         {
             int c, d;
             double s = 0.0;
@@ -847,6 +853,220 @@ WRDEF int32_t wr_wf_classify(wr_wf *wf, const wr_wf_classify_desc *desc) {
     return count;
 }
 
+/* ---- hand-expanded face evaluation (the default; wr__wf_face_eval above is the literal reference) ----
+ * Same energy as wr__wf_face_eval, organised for speed: per quadrature point each of W_s^1, W_s^3,
+ * W_s^4 and W_b^2 is w·N(s(y)) with s a 3-vector (00, 01, 11) of y = (a, g0, g1, p0, p1), so its
+ * gradient is Jᵀλ and its Hessian 2w JᵀQJ + Σ_c λ_c ∇²s_c with λ = 2w Q s; the ∇²s_c contractions
+ * are written out per term below. Q comes from wf->qf (constant per face). The 5-variable derivatives
+ * are summed over the three points in blocks (a-a per corner pair, a-rest per corner, rest-rest) and
+ * mapped to the 6 local DOFs once per face, because only the a-row of dy/dx changes between points. */
+#define WR__WF_NY 5
+
+/* w·N(s) (+ cross term 2 sᵀQ off when Qoff = Q off is given): adds the value to *val; when J (∂s/∂y,
+ * row y = 3 entries) is given, adds Jᵀλ to gy and 2w JᵀQJ to Hy (over the y listed in iy) and returns λ = 2w Q(off + s). */
+static void wr__wf_qterm(const double Q[9], const double *Qoff, double w, const double s[3], const double *J /* 5×3 */,
+                         const int *iy, int ny, double *val, double *gy, double *Hy, double lam[3]) {
+    double Qs[3], QJ[WR__WF_NY][3];
+    int c, i, j;
+    for (c = 0; c < 3; ++c) Qs[c] = Q[3 * c] * s[0] + Q[3 * c + 1] * s[1] + Q[3 * c + 2] * s[2];
+    if (Qoff) {
+        *val += w * (s[0] * (Qs[0] + 2.0 * Qoff[0]) + s[1] * (Qs[1] + 2.0 * Qoff[1]) + s[2] * (Qs[2] + 2.0 * Qoff[2]));
+        for (c = 0; c < 3; ++c) Qs[c] += Qoff[c];
+    } else {
+        *val += w * (s[0] * Qs[0] + s[1] * Qs[1] + s[2] * Qs[2]);
+    }
+    if (!J) return;
+    for (c = 0; c < 3; ++c) lam[c] = 2.0 * w * Qs[c];
+    for (i = 0; i < ny; ++i) {
+        const double *Ji = J + 3 * iy[i];
+        gy[iy[i]] += Ji[0] * lam[0] + Ji[1] * lam[1] + Ji[2] * lam[2];
+        if (!Hy) continue;
+        for (c = 0; c < 3; ++c) QJ[iy[i]][c] = Q[3 * c] * Ji[0] + Q[3 * c + 1] * Ji[1] + Q[3 * c + 2] * Ji[2];
+    }
+    if (!Hy) return;
+    for (i = 0; i < ny; ++i)
+        for (j = i; j < ny; ++j) {
+            const double *Ji = J + 3 * iy[i], *Qj = QJ[iy[j]];
+            double v = 2.0 * w * (Ji[0] * Qj[0] + Ji[1] * Qj[1] + Ji[2] * Qj[2]);
+            Hy[WR__WF_NY * iy[i] + iy[j]] += v;
+            if (j != i) Hy[WR__WF_NY * iy[j] + iy[i]] += v;
+        }
+}
+
+/* symmetric add into the 5×5 y-Hessian */
+static void wr__wf_hadd(double *Hy, int i, int j, double v) {
+    Hy[WR__WF_NY * i + j] += v;
+    if (i != j) Hy[WR__WF_NY * j + i] += v;
+}
+
+static void wr__wf_face_eval_fast(const wr_wf *wf, int32_t f, const double xl[6], int excess, double *e, double *g6,
+                                  double *H36, double *terms) {
+    /* dφ (Whitney face average, see ON READINGS): p = JP ω̃, as in wr__wf_face_eval */
+    static const double JP[2][3] = {{-1.0 / 3.0, -1.0 / 3.0, 2.0 / 3.0}, {1.0 / 3.0, -2.0 / 3.0, 1.0 / 3.0}};
+    static const int iy_all[5] = {WR__Y_A, WR__Y_G0, WR__Y_G1, WR__Y_P0, WR__Y_P1}, iy_g[2] = {WR__Y_G0, WR__Y_G1},
+                     iy_ap[3] = {WR__Y_A, WR__Y_P0, WR__Y_P1};
+    const double *Q = wf->qf + 9 * (size_t)f;
+    const double ws = wf->h / 4.0 * wf->area[f] / 3.0;                  /* Eq. 20 prefactor × quadrature weight */
+    const double wb = wf->h * wf->h * wf->h / 12.0 * wf->area[f] / 3.0; /* Eq. 26 */
+    const double k3 = 1.0 / sqrt(32.0), k4 = 1.0 / sqrt(8.0), k2 = 1.0 / sqrt(2.0), c2 = wf->c2[f];
+    const int deriv = g6 != NULL || H36 != NULL;
+    double c[3], Qc[3], G[3], P[3], X[3], s[3], lam[3], J[WR__WF_NY][3];
+    double tv[5] = {0.0, 0.0, 0.0, 0.0, 0.0}; /* S1, S3, S4, B2, S2 */
+    double ga[3] = {0.0, 0.0, 0.0}, gr[4] = {0.0, 0.0, 0.0, 0.0};
+    double Haa[9], Har[3][4], Hrr[16];
+    double g0, g1, p0, p1;
+    int q, i, j, k, r, t;
+    for (k = 0; k < 3; ++k) c[k] = wf->ib[3 * f + k] - wf->iu[3 * f + k];
+    for (k = 0; k < 3; ++k) Qc[k] = Q[3 * k] * c[0] + Q[3 * k + 1] * c[1] + Q[3 * k + 2] * c[2];
+    g0 = xl[1] - xl[0];
+    g1 = xl[2] - xl[0];
+    p0 = JP[0][0] * xl[3] + JP[0][1] * xl[4] + JP[0][2] * xl[5];
+    p1 = JP[1][0] * xl[3] + JP[1][1] * xl[4] + JP[1][2] * xl[5];
+    G[0] = g0 * g0, G[1] = g0 * g1, G[2] = g1 * g1;
+    P[0] = p0 * p0, P[1] = p0 * p1, P[2] = p1 * p1;
+    X[0] = 2.0 * p0 * g0, X[1] = p0 * g1 + p1 * g0, X[2] = 2.0 * p1 * g1;
+    memset(Haa, 0, sizeof Haa);
+    memset(Har, 0, sizeof Har);
+    memset(Hrr, 0, sizeof Hrr);
+    /* W_b^1: constant of the base (no a, ω dependence); left out of the excess energy. */
+    if (!excess) {
+        *e += 3.0 * wb * wf->wb1[f];
+        if (terms) terms[WR_WF_TERM_B1] += 3.0 * wb * wf->wb1[f];
+    }
+    for (q = 0; q < 3; ++q) {
+        const double *lq = wr__wf_qp[q];
+        double a = lq[0] * xl[0] + lq[1] * xl[1] + lq[2] * xl[2], a2 = a * a;
+        double gy[WR__WF_NY] = {0.0, 0.0, 0.0, 0.0, 0.0}, Hy[WR__WF_NY * WR__WF_NY], *H = H36 ? Hy : NULL;
+        if (H) memset(Hy, 0, sizeof Hy);
+        /* W_s^1, Eq. 21: s = (c) + ½ G + ½ a² P */
+        for (k = 0; k < 3; ++k) s[k] = 0.5 * G[k] + 0.5 * a2 * P[k] + (excess ? 0.0 : c[k]);
+        if (deriv) {
+            for (k = 0; k < 3; ++k) J[WR__Y_A][k] = a * P[k];
+            J[WR__Y_G0][0] = g0, J[WR__Y_G0][1] = 0.5 * g1, J[WR__Y_G0][2] = 0.0;
+            J[WR__Y_G1][0] = 0.0, J[WR__Y_G1][1] = 0.5 * g0, J[WR__Y_G1][2] = g1;
+            J[WR__Y_P0][0] = a2 * p0, J[WR__Y_P0][1] = 0.5 * a2 * p1, J[WR__Y_P0][2] = 0.0;
+            J[WR__Y_P1][0] = 0.0, J[WR__Y_P1][1] = 0.5 * a2 * p0, J[WR__Y_P1][2] = a2 * p1;
+        }
+        wr__wf_qterm(Q, excess ? Qc : NULL, ws, s, deriv ? J[0] : NULL, iy_all, 5, &tv[0], gy, H, lam);
+        if (H) {
+            wr__wf_hadd(Hy, WR__Y_A, WR__Y_A, lam[0] * P[0] + lam[1] * P[1] + lam[2] * P[2]);
+            wr__wf_hadd(Hy, WR__Y_A, WR__Y_P0, a * (2.0 * lam[0] * p0 + lam[1] * p1));
+            wr__wf_hadd(Hy, WR__Y_A, WR__Y_P1, a * (lam[1] * p0 + 2.0 * lam[2] * p1));
+            wr__wf_hadd(Hy, WR__Y_G0, WR__Y_G0, lam[0]);
+            wr__wf_hadd(Hy, WR__Y_G0, WR__Y_G1, 0.5 * lam[1]);
+            wr__wf_hadd(Hy, WR__Y_G1, WR__Y_G1, lam[2]);
+            wr__wf_hadd(Hy, WR__Y_P0, WR__Y_P0, a2 * lam[0]);
+            wr__wf_hadd(Hy, WR__Y_P0, WR__Y_P1, 0.5 * a2 * lam[1]);
+            wr__wf_hadd(Hy, WR__Y_P1, WR__Y_P1, a2 * lam[2]);
+        }
+        /* W_s^3, Eq. 23: s = a X / √32, X = pᵀg + gᵀp */
+        for (k = 0; k < 3; ++k) s[k] = k3 * a * X[k];
+        if (deriv) {
+            for (k = 0; k < 3; ++k) J[WR__Y_A][k] = k3 * X[k];
+            J[WR__Y_G0][0] = 2.0 * k3 * a * p0, J[WR__Y_G0][1] = k3 * a * p1, J[WR__Y_G0][2] = 0.0;
+            J[WR__Y_G1][0] = 0.0, J[WR__Y_G1][1] = k3 * a * p0, J[WR__Y_G1][2] = 2.0 * k3 * a * p1;
+            J[WR__Y_P0][0] = 2.0 * k3 * a * g0, J[WR__Y_P0][1] = k3 * a * g1, J[WR__Y_P0][2] = 0.0;
+            J[WR__Y_P1][0] = 0.0, J[WR__Y_P1][1] = k3 * a * g0, J[WR__Y_P1][2] = 2.0 * k3 * a * g1;
+        }
+        wr__wf_qterm(Q, NULL, ws, s, deriv ? J[0] : NULL, iy_all, 5, &tv[1], gy, H, lam);
+        if (H) {
+            wr__wf_hadd(Hy, WR__Y_A, WR__Y_G0, k3 * (2.0 * lam[0] * p0 + lam[1] * p1));
+            wr__wf_hadd(Hy, WR__Y_A, WR__Y_G1, k3 * (lam[1] * p0 + 2.0 * lam[2] * p1));
+            wr__wf_hadd(Hy, WR__Y_A, WR__Y_P0, k3 * (2.0 * lam[0] * g0 + lam[1] * g1));
+            wr__wf_hadd(Hy, WR__Y_A, WR__Y_P1, k3 * (lam[1] * g0 + 2.0 * lam[2] * g1));
+            wr__wf_hadd(Hy, WR__Y_G0, WR__Y_P0, 2.0 * k3 * a * lam[0]);
+            wr__wf_hadd(Hy, WR__Y_G0, WR__Y_P1, k3 * a * lam[1]);
+            wr__wf_hadd(Hy, WR__Y_G1, WR__Y_P0, k3 * a * lam[1]);
+            wr__wf_hadd(Hy, WR__Y_G1, WR__Y_P1, 2.0 * k3 * a * lam[2]);
+        }
+        /* W_s^4, Eq. 24: s = G / √8 */
+        for (k = 0; k < 3; ++k) s[k] = k4 * G[k];
+        if (deriv) {
+            J[WR__Y_G0][0] = 2.0 * k4 * g0, J[WR__Y_G0][1] = k4 * g1, J[WR__Y_G0][2] = 0.0;
+            J[WR__Y_G1][0] = 0.0, J[WR__Y_G1][1] = k4 * g0, J[WR__Y_G1][2] = 2.0 * k4 * g1;
+        }
+        wr__wf_qterm(Q, NULL, ws, s, deriv ? J[0] : NULL, iy_g, 2, &tv[2], gy, H, lam);
+        if (H) {
+            wr__wf_hadd(Hy, WR__Y_G0, WR__Y_G0, 2.0 * k4 * lam[0]);
+            wr__wf_hadd(Hy, WR__Y_G0, WR__Y_G1, k4 * lam[1]);
+            wr__wf_hadd(Hy, WR__Y_G1, WR__Y_G1, 2.0 * k4 * lam[2]);
+        }
+        /* W_b^2, Eq. 26: s = a P / √2, weight h³/12 */
+        for (k = 0; k < 3; ++k) s[k] = k2 * a * P[k];
+        if (deriv) {
+            for (k = 0; k < 3; ++k) J[WR__Y_A][k] = k2 * P[k];
+            J[WR__Y_P0][0] = 2.0 * k2 * a * p0, J[WR__Y_P0][1] = k2 * a * p1, J[WR__Y_P0][2] = 0.0;
+            J[WR__Y_P1][0] = 0.0, J[WR__Y_P1][1] = k2 * a * p0, J[WR__Y_P1][2] = 2.0 * k2 * a * p1;
+        }
+        wr__wf_qterm(Q, NULL, wb, s, deriv ? J[0] : NULL, iy_ap, 3, &tv[3], gy, H, lam);
+        if (H) {
+            wr__wf_hadd(Hy, WR__Y_A, WR__Y_P0, k2 * (2.0 * lam[0] * p0 + lam[1] * p1));
+            wr__wf_hadd(Hy, WR__Y_A, WR__Y_P1, k2 * (lam[1] * p0 + 2.0 * lam[2] * p1));
+            wr__wf_hadd(Hy, WR__Y_P0, WR__Y_P0, 2.0 * k2 * a * lam[0]);
+            wr__wf_hadd(Hy, WR__Y_P0, WR__Y_P1, k2 * a * lam[1]);
+            wr__wf_hadd(Hy, WR__Y_P1, WR__Y_P1, 2.0 * k2 * a * lam[2]);
+        }
+        /* W_s^2, Eq. 22: c2 a² */
+        tv[4] += ws * c2 * a2;
+        if (deriv) gy[WR__Y_A] += 2.0 * ws * c2 * a;
+        if (H) Hy[0] += 2.0 * ws * c2;
+        if (!deriv) continue;
+        /* chain to the local DOFs: only the a-row (the point's barycentric weights) depends on q */
+        for (k = 0; k < 3; ++k) ga[k] += lq[k] * gy[WR__Y_A];
+        for (r = 0; r < 4; ++r) gr[r] += gy[1 + r];
+        if (H) {
+            for (k = 0; k < 3; ++k) {
+                for (j = 0; j < 3; ++j) Haa[3 * k + j] += lq[k] * lq[j] * Hy[0];
+                for (r = 0; r < 4; ++r) Har[k][r] += lq[k] * Hy[1 + r];
+            }
+            for (r = 0; r < 4; ++r)
+                for (t = 0; t < 4; ++t) Hrr[4 * r + t] += Hy[WR__WF_NY * (1 + r) + 1 + t];
+        }
+    }
+    for (t = 0; t < 5; ++t) *e += tv[t];
+    if (terms) {
+        terms[WR_WF_TERM_S1] += tv[0];
+        terms[WR_WF_TERM_S3] += tv[1];
+        terms[WR_WF_TERM_S4] += tv[2];
+        terms[WR_WF_TERM_B2] += tv[3];
+        terms[WR_WF_TERM_S2] += tv[4];
+    }
+    if (!deriv) return;
+    {
+        /* R: dy_rest/dx (rows g0, g1, p0, p1; columns the 6 local DOFs) */
+        double R[4][6], HR[4][6];
+        memset(R, 0, sizeof R);
+        R[0][0] = -1.0, R[0][1] = 1.0;
+        R[1][0] = -1.0, R[1][2] = 1.0;
+        for (k = 0; k < 3; ++k) R[2][3 + k] = JP[0][k], R[3][3 + k] = JP[1][k];
+        if (g6)
+            for (i = 0; i < 6; ++i) {
+                double v = i < 3 ? ga[i] : 0.0;
+                for (r = 0; r < 4; ++r) v += R[r][i] * gr[r];
+                g6[i] += v;
+            }
+        if (!H36) return;
+        for (r = 0; r < 4; ++r)
+            for (j = 0; j < 6; ++j) {
+                double v = 0.0;
+                for (t = 0; t < 4; ++t) v += Hrr[4 * r + t] * R[t][j];
+                HR[r][j] = v;
+            }
+        for (i = 0; i < 6; ++i)
+            for (j = i; j < 6; ++j) {
+                double v = 0.0;
+                for (r = 0; r < 4; ++r) v += R[r][i] * HR[r][j];
+                if (i < 3 && j < 3) v += Haa[3 * i + j];
+                if (i < 3)
+                    for (r = 0; r < 4; ++r) v += Har[i][r] * R[r][j];
+                if (j < 3)
+                    for (r = 0; r < 4; ++r) v += Har[j][r] * R[r][i];
+                H36[6 * i + j] += v;
+                if (j != i) H36[6 * j + i] += v;
+            }
+    }
+}
+
 WRDEF void wr_wf_face_dofs(const wr_wf *wf, int32_t f, int32_t idx[6], double sign[6]) {
     const wr_mesh *m = wf->mesh;
     int k;
@@ -896,7 +1116,11 @@ static wr_status wr__wf_energy_impl(const wr_wf *wf, const double *a, const doub
             xl[3 + k] = sg[3 + k] * omega[idx[3 + k] - wf->nv];
         }
         memset(g6, 0, sizeof g6);
-        wr__wf_face_eval(wf, f, xl, excess, &E, grad ? g6 : NULL, face_hess ? face_hess + 36 * (size_t)f : NULL, terms);
+        if (wf->reference_eval)
+            wr__wf_face_eval(wf, f, xl, excess, &E, grad ? g6 : NULL, face_hess ? face_hess + 36 * (size_t)f : NULL, terms);
+        else
+            wr__wf_face_eval_fast(wf, f, xl, excess, &E, grad ? g6 : NULL, face_hess ? face_hess + 36 * (size_t)f : NULL,
+                                  terms);
         if (grad)
             for (k = 0; k < 6; ++k) grad[idx[k]] += sg[k] * g6[k];
         if (face_hess) {
