@@ -43,7 +43,12 @@
  * to pay. CHOLMOD's supernodal numeric factorisation still opens OpenMP teams of its own fixed size
  * (3 extra threads seen in perf whatever OMP_NUM_THREADS says), whose idle threads spin unless the
  * wait policy is passive: twisted-cylinder base, 14 Newton steps, user CPU 0.60–0.65 s (ACTIVE),
- * 0.23 s (default), 0.18–0.19 s (PASSIVE). */
+ * 0.23 s (default), 0.18–0.19 s (PASSIVE). Those teams are opened by num_threads clauses inside CHOLMOD,
+ * which OMP_NUM_THREADS does not cap but OMP_THREAD_LIMIT does: with OMP_THREAD_LIMIT=1 the kernel's
+ * futex / task-switch share (~20 % of a base solve in perf) disappears and the base linear time
+ * halved (sheet 0.055 → 0.031 s, cylinder 0.223 → 0.120 s, teabag 0.297 → 0.165 s, same iterates),
+ * so the bench sets it to 1 too.
+ * --base-only times the TFT bases alone (no TFW fields; for profiling the statics solve). */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdio.h>
@@ -228,23 +233,26 @@ int main(int argc, char **argv) {
                                    {"sheared rectangle", 1, 2.27, 27.52, 21, 147, 1000},
                                    {"twisted cylinder", 2, 0.69, 104.92, 12, 813, 688},
                                    {"teabag", 3, 0.78, 7.32, 8, 46, 936}};
-    int full = 0, peer = 0, only = -1, c, r, a;
-    if (!getenv("OPENBLAS_NUM_THREADS") || !getenv("OMP_NUM_THREADS") || !getenv("OMP_WAIT_POLICY")) {
+    int full = 0, peer = 0, only = -1, base_only = 0, c, r, a;
+    if (!getenv("OPENBLAS_NUM_THREADS") || !getenv("OMP_NUM_THREADS") || !getenv("OMP_WAIT_POLICY") ||
+        !getenv("OMP_THREAD_LIMIT")) {
         /* single-threaded BLAS / OpenMP, passive waits (see the top comment); on failure run as we are */
         if (!getenv("OPENBLAS_NUM_THREADS")) setenv("OPENBLAS_NUM_THREADS", "1", 1);
         if (!getenv("OMP_NUM_THREADS")) setenv("OMP_NUM_THREADS", "1", 1);
         if (!getenv("OMP_WAIT_POLICY")) setenv("OMP_WAIT_POLICY", "PASSIVE", 1);
+        if (!getenv("OMP_THREAD_LIMIT")) setenv("OMP_THREAD_LIMIT", "1", 1);
         execv("/proc/self/exe", argv);
     }
     for (a = 1; a < argc; ++a) {
         if (!strcmp(argv[a], "--full")) full = 1;
         else if (!strcmp(argv[a], "--peer")) peer = 1;
+        else if (!strcmp(argv[a], "--base-only")) base_only = 1;
         else if (!strncmp(argv[a], "--shift-raise=", 14)) g_shift_raise = atof(argv[a] + 14);
         else if (!strncmp(argv[a], "--case=", 7)) only = atoi(argv[a] + 7);
     }
     machine();
-    printf("OPENBLAS_NUM_THREADS=%s OMP_NUM_THREADS=%s OMP_WAIT_POLICY=%s\n", getenv("OPENBLAS_NUM_THREADS"),
-           getenv("OMP_NUM_THREADS"), getenv("OMP_WAIT_POLICY"));
+    printf("OPENBLAS_NUM_THREADS=%s OMP_NUM_THREADS=%s OMP_WAIT_POLICY=%s OMP_THREAD_LIMIT=%s\n",
+           getenv("OPENBLAS_NUM_THREADS"), getenv("OMP_NUM_THREADS"), getenv("OMP_WAIT_POLICY"), getenv("OMP_THREAD_LIMIT"));
     loadavg("at start");
     printf("TFW per case, medians over the runs column (base runs / TFW runs); paper = Table 2, 8-core i9-9900K\n");
     printf("TFT base: Newton it, seconds, split asm(+proj)/linear/line-search, line-search energy evals, status\n");
@@ -269,6 +277,18 @@ int main(int argc, char **argv) {
             }
             tb[r] = bt[r].total;
             cb[r] = bt[r].cpu;
+        }
+        if (base_only) {
+            /* --base-only: the TFT base alone (profiling the statics solve), no TFW fields */
+            const base_timing *b = &bt[median_index(cb, nb)];
+            printf("%-18s %5d %2d    | %4d %4d %8.3f %7.2f %7.3f %7.3f %7.3f %4d %-5s | CPU %.3f s (median), %.1fx paper\n",
+                   cases[c].name, (int)m.nv, nb, b->iters, cases[c].paper_tft_it, median(tb, nb), cases[c].paper_tft,
+                   b->assembly, b->linear, b->line_search, b->ls_evals, b->status == WR_OK ? "ok" : "NOCONV",
+                   median(cb, nb), cases[c].paper_tft / median(cb, nb));
+            fflush(stdout);
+            free(x);
+            wr_mesh_free(&m);
+            continue;
         }
         for (r = 0; r < RUNS; ++r) {
             wr_tfw_desc td;

@@ -601,6 +601,68 @@ Test(shell, projected_hessian_psd_and_sink_errors) {
     wr_mesh_free(&m);
 }
 
+/* ON ELEMENT HESSIANS: face blocks + quadratic stencils streamed separately sum to the full stream,
+ * the quadratic part does not depend on x, and unknown parts flags are rejected */
+Test(shell, hessian_parts_sum_to_all) {
+    wr_rng rng;
+    wr_mesh m;
+    wr_shell s;
+    wr_shell_desc d;
+    sh_dense all, part, part2;
+    wr_hess_sink sink;
+    wr_diag dg;
+    double *x;
+    int32_t n, i, calls_faces;
+    wr_rng_seed(&rng, 33);
+    sh_mesh(&m, &rng, 3);
+    n = 3 * m.nv;
+    x = (double *)malloc(sizeof(double) * n);
+    sh_deform(&m, &rng, 0.05, x);
+    sh_desc(&d, WR_MEMBRANE_TFT, WR_BENDING_QUADRATIC);
+    cr_assert_eq(wr_shell_create(&s, &m, &d, NULL), WR_OK);
+    cr_assert(s.n_qb > 0, "no quadratic stencils: test is void");
+    memset(&all, 0, sizeof all);
+    all.n = part.n = part2.n = n;
+    all.fail_after = -1;
+    all.min_ratio = 1e300;
+    part = all;
+    part2 = all;
+    all.K = (double *)calloc((size_t)n * n, sizeof(double));
+    part.K = (double *)calloc((size_t)n * n, sizeof(double));
+    part2.K = (double *)calloc((size_t)n * n, sizeof(double));
+    sink.add = sh_dense_add;
+    sink.user = &all;
+    cr_assert_eq(wr_shell_hessian_elements(&s, x, 0, &sink, NULL), WR_OK);
+    sink.user = &part;
+    cr_assert_eq(wr_shell_hessian_elements_part(&s, x, 0, WR_SHELL_HESS_FACES, &sink, NULL), WR_OK);
+    calls_faces = part.calls;
+    cr_expect_eq(calls_faces, m.nf);
+    cr_assert_eq(wr_shell_hessian_elements_part(&s, x, 0, WR_SHELL_HESS_QUADRATIC, &sink, NULL), WR_OK);
+    cr_expect_eq(part.calls - calls_faces, s.n_qb);
+    cr_expect_eq(part.calls, all.calls);
+    for (i = 0; i < n * n; ++i)
+        cr_expect(fabs(part.K[i] - all.K[i]) <= 1e-12 * (fabs(all.K[i]) + 1.0), "entry %d: %g vs %g", (int)i, part.K[i],
+                  all.K[i]);
+    /* the quadratic part at the rest positions is the same matrix (constant in x) */
+    sink.user = &part2;
+    cr_assert_eq(wr_shell_hessian_elements_part(&s, m.pos, 0, WR_SHELL_HESS_QUADRATIC, &sink, NULL), WR_OK);
+    memset(part.K, 0, sizeof(double) * (size_t)n * n);
+    part.calls = 0;
+    sink.user = &part;
+    cr_assert_eq(wr_shell_hessian_elements_part(&s, x, 0, WR_SHELL_HESS_QUADRATIC, &sink, NULL), WR_OK);
+    for (i = 0; i < n * n; ++i) cr_expect_eq(part.K[i], part2.K[i]);
+    cr_expect_eq(wr_shell_hessian_elements_part(&s, x, 0, 4, &sink, &dg), WR_ERR_INVALID_ARG);
+    part.calls = 0;
+    cr_expect_eq(wr_shell_hessian_elements_part(&s, x, 0, 0, &sink, NULL), WR_OK);
+    cr_expect_eq(part.calls, 0);
+    wr_shell_free(&s);
+    free(all.K);
+    free(part.K);
+    free(part2.K);
+    free(x);
+    wr_mesh_free(&m);
+}
+
 Test(shell, vertex_masses_and_strain) {
     wr_mesh m;
     wr_shell s;

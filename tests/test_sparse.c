@@ -217,3 +217,83 @@ Test(sparse, error_paths) {
     wr_csr_free(&A);
     wr_triplets_free(&t);
 }
+
+/* ON CACHED ASSEMBLY: the stencil pattern equals the triplet pattern of the same blocks, and adding
+ * through cached block offsets gives the same values as the searched wr_csr_add_element. */
+Test(sparse, stencil_pattern_and_cached_block_offsets) {
+    /* 6 vertices, stencils of 3, 4 and 2 vertices (one repeated pair, vertex 5 only on the diagonal),
+     * one negative (dropped) entry */
+    static const int32_t start[4] = {0, 3, 7, 10};
+    static const int32_t verts[10] = {0, 1, 2, 3, 1, 2, 4, 4, -1, 0};
+    wr_triplets t;
+    wr_csr A, B;
+    wr_diag d;
+    wr_rng rng;
+    int32_t e, p, off[16], badoff[4];
+    double Ke[144];
+    wr_rng_seed(&rng, 7);
+    cr_assert_eq(wr_csr_from_stencils(&A, 6, 3, start, verts, &d), WR_OK);
+    cr_assert_eq(wr_triplets_create(&t, 18, 0, &d), WR_OK);
+    for (e = 0; e < 3; ++e) {
+        int32_t k = start[e + 1] - start[e], idx[12], a, i;
+        for (a = 0; a < k; ++a)
+            for (i = 0; i < 3; ++i) idx[3 * a + i] = verts[start[e] + a] < 0 ? -1 : 3 * verts[start[e] + a] + i;
+        for (a = 0; a < 9 * k * k; ++a) Ke[a] = wr_rng_normal(&rng);
+        cr_assert_eq(wr_triplets_add_element(&t, 3 * k, idx, Ke, &d), WR_OK);
+    }
+    for (e = 0; e < 6; ++e) {
+        static const double Z[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+        cr_assert_eq(wr_triplets_add_block3(&t, e, e, Z, &d), WR_OK);
+    }
+    cr_assert_eq(wr_csr_from_triplets(&B, &t, &d), WR_OK);
+    wr_triplets_free(&t);
+    /* same pattern: 18 rows; vertex 0 couples 0,1,2,4 → 12 columns per row */
+    cr_assert_eq(A.n, 18);
+    cr_assert_eq(A.nnz, B.nnz);
+    for (p = 0; p <= A.n; ++p) cr_assert_eq(A.rowptr[p], B.rowptr[p]);
+    for (p = 0; p < A.nnz; ++p) {
+        cr_assert_eq(A.col[p], B.col[p]);
+        cr_assert_eq(A.val[p], 0.0);
+    }
+    cr_assert_eq(A.rowptr[1] - A.rowptr[0], 12);
+    cr_assert_eq(A.rowptr[16] - A.rowptr[15], 3); /* vertex 5: its diagonal block only */
+    /* random element values: cached offsets against the binary-search path */
+    wr_csr_zero_values(&B);
+    for (e = 0; e < 3; ++e) {
+        int32_t k = start[e + 1] - start[e], idx[12], a, i;
+        for (a = 0; a < k; ++a)
+            for (i = 0; i < 3; ++i) idx[3 * a + i] = verts[start[e] + a] < 0 ? -1 : 3 * verts[start[e] + a] + i;
+        for (a = 0; a < 9 * k * k; ++a) Ke[a] = wr_rng_normal(&rng);
+        cr_assert_eq(wr_csr_block_offsets(&A, k, verts + start[e], off, &d), WR_OK);
+        if (e == 2) cr_expect_eq(off[1], -1); /* the dropped vertex */
+        wr_csr_add_element_blocks(&A, k, verts + start[e], off, Ke);
+        cr_assert_eq(wr_csr_add_element(&B, 3 * k, idx, Ke, &d), WR_OK);
+    }
+    for (p = 0; p < A.nnz; ++p) cr_expect_eq(A.val[p], B.val[p], "entry %d: %g vs %g", (int)p, A.val[p], B.val[p]);
+    /* errors: a block outside the pattern, a vertex outside n, a pattern without whole 3×3 blocks */
+    {
+        int32_t v2[2] = {0, 3}, v3[2] = {0, 6};
+        cr_expect_eq(wr_csr_block_offsets(&A, 2, v2, badoff, &d), WR_ERR_INVALID_ARG);
+        cr_expect_eq(wr_csr_block_offsets(&A, 2, v3, badoff, &d), WR_ERR_INVALID_ARG);
+    }
+    wr_csr_free(&B);
+    cr_assert_eq(wr_triplets_create(&t, 6, 0, &d), WR_OK);
+    cr_assert_eq(wr_triplets_add(&t, 0, 3, 1.0, &d), WR_OK); /* only (0,3) of block (0,1) */
+    cr_assert_eq(wr_csr_from_triplets(&B, &t, &d), WR_OK);
+    {
+        int32_t v01[2] = {0, 1};
+        cr_expect_eq(wr_csr_block_offsets(&B, 2, v01, badoff, &d), WR_ERR_INVALID_ARG);
+    }
+    {
+        static const int32_t bad_start[2] = {0, 2}, bad_verts[2] = {0, 9};
+        wr_csr C;
+        cr_expect_eq(wr_csr_from_stencils(&C, 6, 1, bad_start, bad_verts, &d), WR_ERR_INVALID_ARG);
+        cr_expect_null(C.rowptr);
+        cr_expect_eq(wr_csr_from_stencils(&C, 0, 0, NULL, NULL, &d), WR_OK); /* empty */
+        cr_expect_eq(C.n, 0);
+        wr_csr_free(&C);
+    }
+    wr_triplets_free(&t);
+    wr_csr_free(&B);
+    wr_csr_free(&A);
+}

@@ -26,6 +26,8 @@
  *   wr_shell_energy(s, x, E, grad, diag)            total energy [J] and gradient (nv*3) at x (nv*3)
  *   wr_shell_energy_parts(s, x, Emem, Ebend, diag)  membrane and bending parts
  *   wr_shell_hessian_elements(s, x, project, sink, diag)  element Hessians streamed to a callback
+ *   wr_shell_hessian_elements_part(s, x, project, parts, sink, diag)  only the face blocks and/or
+ *                                                   the (constant) quadratic-bending blocks
  *   wr_shell_vertex_masses(s, mass)                 lumped masses ρ·h·A/3 [kg] (for gravity)
  *   wr_shell_face_strain(s, f, x, eps)              Green strain (ε11, ε22, ε12) of face f
  *   wr_shell_face_stencil(s, f, verts)              the 6 vertices of face f's bending stencil
@@ -80,6 +82,10 @@
  *   with quadratic bending, one block per interior vertex stencil (the vertex and its neighbours).
  *   project_spd != 0 replaces each face block by its nearest PSD matrix (wr_dense_project_spd, floor
  *   0); the quadratic blocks are PSD by construction. A non-WR_OK return from add stops the loop.
+ *   The quadratic-bending blocks do not depend on x (TFW Eq. 28 is quadratic in the positions), so a
+ *   Newton loop can assemble them once: wr_shell_hessian_elements_part streams only the face blocks
+ *   (parts = WR_SHELL_HESS_FACES), only the quadratic stencils (WR_SHELL_HESS_QUADRATIC), or both
+ *   (WR_SHELL_HESS_ALL, what wr_shell_hessian_elements does), each in the same order as above.
  *
  * ON UNITS
  *   Y, E1, E2, G12 [Pa], h [m], B [N·m], ρ [kg/m³], positions [m], energies [J], angles [rad].
@@ -170,6 +176,12 @@ WRDEF wr_status wr_shell_energy_parts(const wr_shell *s, const double *x, double
                                       wr_diag *diag);
 WRDEF wr_status wr_shell_hessian_elements(const wr_shell *s, const double *x, int32_t project_spd,
                                           const wr_hess_sink *sink, wr_diag *diag);
+/* parts for wr_shell_hessian_elements_part (ON ELEMENT HESSIANS); any other bit is WR_ERR_INVALID_ARG */
+#define WR_SHELL_HESS_FACES 1     /* per face: membrane + mid-edge bending */
+#define WR_SHELL_HESS_QUADRATIC 2 /* per interior vertex stencil: quadratic bending (constant in x) */
+#define WR_SHELL_HESS_ALL 3
+WRDEF wr_status wr_shell_hessian_elements_part(const wr_shell *s, const double *x, int32_t project_spd, int32_t parts,
+                                               const wr_hess_sink *sink, wr_diag *diag);
 WRDEF void wr_shell_vertex_masses(const wr_shell *s, double *mass);
 WRDEF void wr_shell_face_strain(const wr_shell *s, int32_t f, const double *x, double eps[3]);
 /* verts[0..2] = face corners, verts[3+k] = vertex across the edge opposite corner k or -1.
@@ -985,13 +997,20 @@ WRDEF wr_status wr_shell_energy_parts(const wr_shell *s, const double *x, double
 
 WRDEF wr_status wr_shell_hessian_elements(const wr_shell *s, const double *x, int32_t project_spd,
                                           const wr_hess_sink *sink, wr_diag *diag) {
+    return wr_shell_hessian_elements_part(s, x, project_spd, WR_SHELL_HESS_ALL, sink, diag);
+}
+
+WRDEF wr_status wr_shell_hessian_elements_part(const wr_shell *s, const double *x, int32_t project_spd, int32_t parts,
+                                               const wr_hess_sink *sink, wr_diag *diag) {
     int32_t f, st;
     if (!s || !x || !sink || !sink->add || !s->faces)
         return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "shell Hessian: NULL shell, x or sink");
+    if (parts & ~WR_SHELL_HESS_ALL)
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "shell Hessian: unknown parts flags 0x%x", (unsigned)parts);
     for (f = 0; f < 3 * s->nv; ++f)
         if (!wr__shell_finite(x[f]))
             return wr_fail(diag, WR_ERR_DOMAIN, f / 3, "shell Hessian: vertex %d has a non-finite coordinate", (int)(f / 3));
-    if (s->membrane != WR_MEMBRANE_NONE || s->bending == WR_BENDING_MIDEDGE)
+    if ((parts & WR_SHELL_HESS_FACES) && (s->membrane != WR_MEMBRANE_NONE || s->bending == WR_BENDING_MIDEDGE))
         for (f = 0; f < s->nf; ++f) {
             int32_t verts[6], mask, idx[6], n = 0, a, b, i, j;
             double x18[18], H18[324], H9[81], Ke[324];
@@ -1022,7 +1041,7 @@ WRDEF wr_status wr_shell_hessian_elements(const wr_shell *s, const double *x, in
             rs = sink->add(sink->user, n, idx, Ke);
             if (rs != WR_OK) return wr_fail(diag, rs, f, "shell Hessian: sink rejected face %d", (int)f);
         }
-    if (s->bending == WR_BENDING_QUADRATIC) {
+    if ((parts & WR_SHELL_HESS_QUADRATIC) && s->bending == WR_BENDING_QUADRATIC) {
         double *Ke = NULL;
         int32_t cap = 0;
         for (st = 0; st < s->n_qb; ++st) {

@@ -19,6 +19,9 @@
  *   wr_csr_add(A, i, j, v, diag)                 A(i,j) += v, (i,j) must be in the pattern
  *   wr_csr_add_element(A, k, idx, Ke, diag)      scatter-add a k×k element matrix into the pattern
  *   wr_csr_add_block3(A, I, J, B, diag)          add a dense 3×3 block
+ *   wr_csr_from_stencils(A, nb, ns, start, verts, diag)  3-DOF pattern of vertex stencils, zero values
+ *   wr_csr_block_offsets(A, k, verts, off, diag) cache where an element's 3×3 blocks sit (ON CACHED ASSEMBLY)
+ *   wr_csr_add_element_blocks(A, k, verts, off, Ke)  add a 3k×3k element through cached offsets
  *   wr_csr_block3(A, I, J, B)                    read the 3×3 block (I, J) (absent entries read 0)
  *   wr_csr_block3_diagonal(A, D)                 all n/3 diagonal 3×3 blocks, row-major, 9 per block
  *   wr_csr_spmv(A, x, y)                         y = A x (x and y must not overlap)
@@ -48,6 +51,20 @@
  *   which holds for 3-DOF triangle meshes far beyond 10^7 vertices.
  *   In wr_triplets_add_element / wr_csr_add_element a negative idx[a] drops row a and column a of
  *   the element matrix (an eliminated DOF), anything >= n is WR_ERR_INVALID_ARG.
+ *
+ * ON CACHED ASSEMBLY (Newton loops whose pattern does not change)
+ *   wr_csr_add_element finds every entry by binary search: (3k)² searches per element, which was
+ *   20–29 % of a whole TFT base solve (perf, statics.h on the TFW bench cases). For 3-DOF problems
+ *   whose pattern is made of full 3×3 vertex blocks (every shell / membrane Hessian here), the three
+ *   scalar rows of a vertex have the same columns, so one offset per vertex pair locates a block in
+ *   all three rows: entry (3a+i, 3b+j) of the element sits at rowptr[3·verts[a]+i] + off[a·k+b] + j.
+ *   wr_csr_block_offsets computes off (k² ints per element, kept by the caller across iterations)
+ *   and fails with WR_ERR_INVALID_ARG when a block is missing or not contiguous in the pattern (then
+ *   the caller keeps wr_csr_add_element); wr_csr_add_element_blocks then adds without any search.
+ *   A negative verts[a] drops that vertex (off entries −1). wr_csr_from_stencils builds such a
+ *   pattern directly from the vertex stencils (vertex sets of the elements, CSR-like start/verts
+ *   arrays), without a triplet list of every scalar entry: the union of the full 3×3 blocks of all
+ *   vertex pairs in each stencil, plus every diagonal block, all values 0.
  *
  * ON THREADS
  *   No global state. wr_csr_spmv reads A only, so several threads may multiply with one matrix.
@@ -96,6 +113,14 @@ WRDEF int32_t wr_csr_find(const wr_csr *A, int32_t i, int32_t j);
 WRDEF wr_status wr_csr_add(wr_csr *A, int32_t i, int32_t j, double v, wr_diag *diag);
 WRDEF wr_status wr_csr_add_element(wr_csr *A, int32_t k, const int32_t *idx, const double *Ke, wr_diag *diag);
 WRDEF wr_status wr_csr_add_block3(wr_csr *A, int32_t I, int32_t J, const double B[9], wr_diag *diag);
+/* ON CACHED ASSEMBLY. n = 3·nb; stencil t has the vertices verts[start[t] .. start[t+1]) (entries in
+ * [0, nb), negative entries skipped). On failure *A is zeroed. */
+WRDEF wr_status wr_csr_from_stencils(wr_csr *A, int32_t nb, int32_t n_stencils, const int32_t *start,
+                                     const int32_t *verts, wr_diag *diag);
+/* off (k·k) receives the block offsets of the element with vertices verts[0..k) (ON CACHED ASSEMBLY). */
+WRDEF wr_status wr_csr_block_offsets(const wr_csr *A, int32_t k, const int32_t *verts, int32_t *off, wr_diag *diag);
+/* A += Ke (3k×3k row-major, dof order (v0x, v0y, v0z, v1x, …)) through offsets from wr_csr_block_offsets. */
+WRDEF void wr_csr_add_element_blocks(wr_csr *A, int32_t k, const int32_t *verts, const int32_t *off, const double *Ke);
 /* Returns how many of the 9 entries are in the pattern (missing ones read as 0). */
 WRDEF int wr_csr_block3(const wr_csr *A, int32_t I, int32_t J, double B[9]);
 /* D has 9*(n/3) doubles; n must be a multiple of 3 (WR_ASSERT). */
@@ -453,6 +478,149 @@ WRDEF wr_status wr_csr_add_block3(wr_csr *A, int32_t I, int32_t J, const double 
     for (a = 0; a < 3; ++a)
         for (b = 0; b < 3; ++b) A->val[wr_csr_find(A, idx[a], jdx[b])] += B[3 * a + b];
     return WR_OK;
+}
+
+static int wr__sparse_cmp_i32(const void *a, const void *b) {
+    int32_t x = *(const int32_t *)a, y = *(const int32_t *)b;
+    return x < y ? -1 : x > y;
+}
+
+WRDEF wr_status wr_csr_from_stencils(wr_csr *A, int32_t nb, int32_t n_stencils, const int32_t *start,
+                                     const int32_t *verts, wr_diag *diag) {
+    int64_t *cnt = NULL, total = 0, nnz;
+    int32_t *adj = NULL, *fill = NULL, *deg = NULL, t, v, a, b, i;
+    wr_status rs = WR_OK;
+    if (!A) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "csr_from_stencils: NULL output");
+    memset(A, 0, sizeof *A);
+    if (nb < 0 || nb > (INT32_MAX - 3) / 3 || n_stencils < 0 || (n_stencils > 0 && (!start || !verts)))
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "csr_from_stencils: nb = %d, %d stencils", (int)nb, (int)n_stencils);
+    for (t = 0; t < n_stencils; ++t) {
+        if (start[t + 1] < start[t] || start[t] < 0)
+            return wr_fail(diag, WR_ERR_INVALID_ARG, t, "csr_from_stencils: stencil %d has start %d > end %d", (int)t,
+                           (int)start[t], (int)start[t + 1]);
+        for (a = start[t]; a < start[t + 1]; ++a)
+            if (verts[a] >= nb)
+                return wr_fail(diag, WR_ERR_INVALID_ARG, t, "csr_from_stencils: stencil %d has vertex %d >= %d", (int)t,
+                               (int)verts[a], (int)nb);
+    }
+    /* per vertex: every stencil neighbour (with repeats) plus itself, then sorted and made unique */
+    cnt = (int64_t *)wr_calloc_array((size_t)nb + 1, sizeof(int64_t));
+    deg = (int32_t *)wr_alloc_array((size_t)nb + 1, sizeof(int32_t));
+    if (!cnt || !deg) {
+        rs = wr_fail(diag, WR_ERR_NOMEM, -1, "csr_from_stencils: out of memory (%d vertices)", (int)nb);
+        goto done;
+    }
+    for (v = 0; v < nb; ++v) cnt[v + 1] = 1;
+    for (t = 0; t < n_stencils; ++t) {
+        int64_t k = 0;
+        for (a = start[t]; a < start[t + 1]; ++a) k += verts[a] >= 0;
+        for (a = start[t]; a < start[t + 1]; ++a)
+            if (verts[a] >= 0) cnt[verts[a] + 1] += k;
+    }
+    for (v = 0; v < nb; ++v) cnt[v + 1] += cnt[v];
+    total = cnt[nb];
+    adj = (int32_t *)wr_alloc_array((size_t)total, sizeof(int32_t));
+    fill = (int32_t *)wr_calloc_array((size_t)nb + 1, sizeof(int32_t));
+    if (!adj || !fill) {
+        rs = wr_fail(diag, WR_ERR_NOMEM, -1, "csr_from_stencils: out of memory (%lld pairs)", (long long)total);
+        goto done;
+    }
+    for (v = 0; v < nb; ++v) adj[cnt[v] + fill[v]++] = v;
+    for (t = 0; t < n_stencils; ++t)
+        for (a = start[t]; a < start[t + 1]; ++a)
+            if (verts[a] >= 0)
+                for (b = start[t]; b < start[t + 1]; ++b)
+                    if (verts[b] >= 0) adj[cnt[verts[a]] + fill[verts[a]]++] = verts[b];
+    nnz = 0;
+    for (v = 0; v < nb; ++v) {
+        int32_t *r = adj + cnt[v], m = fill[v], u = 0;
+        qsort(r, (size_t)m, sizeof(int32_t), wr__sparse_cmp_i32);
+        for (i = 0; i < m; ++i)
+            if (u == 0 || r[i] != r[u - 1]) r[u++] = r[i];
+        deg[v] = u;
+        nnz += 9 * (int64_t)u;
+    }
+    if (nnz > INT32_MAX) {
+        rs = wr_fail(diag, WR_ERR_OVERFLOW, -1, "csr_from_stencils: %lld entries exceed int32", (long long)nnz);
+        goto done;
+    }
+    A->n = 3 * nb;
+    A->nnz = (int32_t)nnz;
+    A->rowptr = (int32_t *)wr_alloc_array((size_t)A->n + 1, sizeof(int32_t));
+    A->col = (int32_t *)wr_alloc_array(nnz > 0 ? (size_t)nnz : 1, sizeof(int32_t));
+    A->val = (double *)wr_calloc_array(nnz > 0 ? (size_t)nnz : 1, sizeof(double));
+    if (!A->rowptr || !A->col || !A->val) {
+        wr_csr_free(A);
+        rs = wr_fail(diag, WR_ERR_NOMEM, -1, "csr_from_stencils: out of memory (%lld entries)", (long long)nnz);
+        goto done;
+    }
+    A->rowptr[0] = 0;
+    for (v = 0; v < nb; ++v)
+        for (i = 0; i < 3; ++i) {
+            int32_t p = A->rowptr[3 * v + i], q;
+            for (q = 0; q < deg[v]; ++q) {
+                int32_t c = 3 * adj[cnt[v] + q];
+                A->col[p++] = c;
+                A->col[p++] = c + 1;
+                A->col[p++] = c + 2;
+            }
+            A->rowptr[3 * v + i + 1] = p;
+        }
+done:
+    wr_free(cnt);
+    wr_free(adj);
+    wr_free(fill);
+    wr_free(deg);
+    return rs;
+}
+
+WRDEF wr_status wr_csr_block_offsets(const wr_csr *A, int32_t k, const int32_t *verts, int32_t *off, wr_diag *diag) {
+    int32_t a, b, i, j;
+    if (!A || !A->rowptr || k < 0 || (k > 0 && (!verts || !off)) || A->n % 3 != 0)
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "csr_block_offsets: NULL argument, k = %d or n not 3-DOF", (int)k);
+    for (a = 0; a < k; ++a)
+        for (b = 0; b < k; ++b) {
+            int32_t va = verts[a], vb = verts[b], p;
+            off[a * k + b] = -1;
+            if (va < 0 || vb < 0) continue;
+            if (3 * va >= A->n || 3 * vb >= A->n)
+                return wr_fail(diag, WR_ERR_INVALID_ARG, a, "csr_block_offsets: vertex %d outside n = %d",
+                               (int)(3 * va >= A->n ? va : vb), (int)A->n);
+            p = wr_csr_find(A, 3 * va, 3 * vb);
+            if (p < 0)
+                return wr_fail(diag, WR_ERR_INVALID_ARG, a, "csr_block_offsets: block (%d, %d) not in the pattern", (int)va,
+                               (int)vb);
+            p -= A->rowptr[3 * va];
+            /* the same offset must address the whole block in all three rows (ON CACHED ASSEMBLY) */
+            for (i = 0; i < 3; ++i)
+                for (j = 0; j < 3; ++j) {
+                    int32_t q = A->rowptr[3 * va + i] + p + j;
+                    if (q >= A->rowptr[3 * va + i + 1] || A->col[q] != 3 * vb + j)
+                        return wr_fail(diag, WR_ERR_INVALID_ARG, a,
+                                       "csr_block_offsets: block (%d, %d) is not a contiguous 3x3 block of the pattern",
+                                       (int)va, (int)vb);
+                }
+            off[a * k + b] = p;
+        }
+    return WR_OK;
+}
+
+WRDEF void wr_csr_add_element_blocks(wr_csr *A, int32_t k, const int32_t *verts, const int32_t *off, const double *Ke) {
+    int32_t a, b, i, n = 3 * k;
+    for (a = 0; a < k; ++a) {
+        if (verts[a] < 0) continue;
+        for (i = 0; i < 3; ++i) {
+            double *row = A->val + A->rowptr[3 * verts[a] + i];
+            const double *ke = Ke + (size_t)(3 * a + i) * (size_t)n;
+            for (b = 0; b < k; ++b) {
+                int32_t p = off[a * k + b];
+                if (p < 0) continue;
+                row[p] += ke[3 * b];
+                row[p + 1] += ke[3 * b + 1];
+                row[p + 2] += ke[3 * b + 2];
+            }
+        }
+    }
 }
 
 WRDEF int wr_csr_block3(const wr_csr *A, int32_t I, int32_t J, double B[9]) {

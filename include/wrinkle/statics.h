@@ -200,6 +200,22 @@
  *   step continues with the shift raised and the rest of the solve is projected again
  *   (stats.exact_steps counts the exact steps).
  *
+ * ON ASSEMBLY CACHE
+ *   The Hessian pattern does not change between Newton steps, so each solve (each continuation stage
+ *   and load increment) records the element stencils of its first assembly, builds the pattern from
+ *   them (sparse.h wr_csr_from_stencils: every 3×3 vertex block of each stencil, plus all diagonal
+ *   blocks for the shift and contact), and keeps each element's block offsets (wr_csr_block_offsets);
+ *   later assemblies add every element block without any search (wr_csr_add_element_blocks). An
+ *   element that does not match the record (never seen with shell.h, which streams the same elements
+ *   in the same order) falls back to the searched add. The quadratic-bending blocks (TFW Eq. 28) do
+ *   not depend on x and are PSD, so the FAST projection and the exact Hessian keep them unchanged:
+ *   they are assembled once into a value array added to each later assembly (shell.h
+ *   wr_shell_hessian_elements_part streams the face blocks alone); with WR_PROJECT_JACOBI they are
+ *   streamed every time as before. Measured on the TFW bench bases (bench_tfw --base-only, CPU, this
+ *   2-core box): the searched scatter wr_csr_add_element was 20–29 % of the whole TFT base solve and
+ *   the triplet pattern build (allocation, page clearing, sort) another ~10 % on short solves;
+ *   assembly time per stretched-sheet solve 0.084 → 0.019 s, iterates identical to 6e-17 m.
+ *
  * ON SEWING
  *   wr_mesh_weld merges the vertices of each pair (transitively), averages their positions and gives
  *   every face its own rest corners (corner_rest) from the input, so each panel keeps its flat
@@ -768,9 +784,27 @@ typedef struct wr__statics_ctx {
     double dhat, kappa;
 } wr__statics_ctx;
 
+/* ON ASSEMBLY CACHE: the element stencils of the first assembly, their block offsets in the fixed
+ * pattern, and the constant quadratic-bending part of K. */
+typedef struct wr__statics_cache {
+    int32_t n_el, cap_el;  /* elements recorded in the first assembly */
+    int32_t *vstart;       /* n_el + 1: element e has verts[vstart[e] .. vstart[e+1]) */
+    int32_t *verts;
+    int64_t vcap;
+    int64_t *ostart;       /* n_el + 1: its block offsets off[ostart[e] ..), k² of them */
+    int32_t *off;
+    double *rec;           /* first assembly only: the element blocks, (3k)² each, in order */
+    int64_t rn, rcap;
+    int32_t face_end;      /* elements [0, face_end) are face blocks, [face_end, qb_end) quadratic stencils */
+    int32_t qb_end, qb_small; /* qb_small: quadratic stencils with 3k <= WR_DENSE_MAX (counted as elements) */
+    double *Kq;            /* nnz: the assembled quadratic-bending blocks, NULL when not cached */
+    int32_t misses;        /* elements of later assemblies that did not match the record (added by search) */
+} wr__statics_cache;
+
 typedef struct wr__statics_sink {
-    wr_triplets *t; /* first assembly: collect the pattern */
-    wr_csr *A;      /* later: add into the fixed pattern */
+    wr_csr *A;      /* the fixed pattern (NULL while recording) */
+    wr__statics_cache *cache;
+    int32_t e;      /* next recorded element expected */
     wr_statics_projection proj;
     double t_proj;
     int32_t n_proj, n_elem;
@@ -779,10 +813,78 @@ typedef struct wr__statics_sink {
     int32_t face;             /* next face whose block is expected */
 } wr__statics_sink;
 
+static void wr__statics_cache_free(wr__statics_cache *C) {
+    wr_free(C->vstart);
+    wr_free(C->verts);
+    wr_free(C->ostart);
+    wr_free(C->off);
+    wr_free(C->rec);
+    wr_free(C->Kq);
+    memset(C, 0, sizeof *C);
+}
+
+/* first assembly: append the element's stencil and (3k)² block to the record */
+static wr_status wr__statics_record(wr__statics_cache *C, int32_t k, const int32_t *verts, const double *K) {
+    int64_t nn = 9 * (int64_t)k * k;
+    if (C->n_el + 1 >= C->cap_el) {
+        int32_t cap = C->cap_el ? 2 * C->cap_el : 1024;
+        int32_t *vs = (int32_t *)wr_realloc_array(C->vstart, (size_t)cap + 1, sizeof(int32_t));
+        if (!vs) return WR_ERR_NOMEM;
+        C->vstart = vs;
+        C->cap_el = cap;
+        if (C->n_el == 0) C->vstart[0] = 0;
+    }
+    if (C->vstart[C->n_el] + k > C->vcap) {
+        int64_t cap = 2 * C->vcap + 4 * (int64_t)k + 4096;
+        int32_t *v = (int32_t *)wr_realloc_array(C->verts, (size_t)cap, sizeof(int32_t));
+        if (!v) return WR_ERR_NOMEM;
+        C->verts = v;
+        C->vcap = cap;
+    }
+    if (C->rn + nn > C->rcap) {
+        int64_t cap = 2 * C->rcap + 4 * nn + 65536;
+        double *r = (double *)wr_realloc_array(C->rec, (size_t)cap, sizeof(double));
+        if (!r) return WR_ERR_NOMEM;
+        C->rec = r;
+        C->rcap = cap;
+    }
+    memcpy(C->verts + C->vstart[C->n_el], verts, sizeof(int32_t) * (size_t)k);
+    memcpy(C->rec + C->rn, K, sizeof(double) * (size_t)nn);
+    C->rn += nn;
+    C->vstart[C->n_el + 1] = C->vstart[C->n_el] + k;
+    C->n_el++;
+    return WR_OK;
+}
+
+/* later assemblies: the recorded element e through its cached offsets when the stream still matches
+ * the record (shell.h streams the same elements in the same order every time), else by search */
+static wr_status wr__statics_scatter(wr__statics_sink *S, int32_t k, const int32_t *verts, const double *K) {
+    wr__statics_cache *C = S->cache;
+    int32_t e = S->e;
+    if (!S->A) return wr__statics_record(C, k, verts, K);
+    if (e < C->n_el && C->vstart[e + 1] - C->vstart[e] == k &&
+        !memcmp(C->verts + C->vstart[e], verts, sizeof(int32_t) * (size_t)k)) {
+        S->e = e + 1;
+        wr_csr_add_element_blocks(S->A, k, verts, C->off + C->ostart[e], K);
+        return WR_OK;
+    }
+    {
+        int32_t a, b, i, j, n = 3 * k;
+        C->misses++;
+        for (a = 0; a < k; ++a)
+            for (b = 0; b < k; ++b) {
+                double B[9];
+                wr_status st;
+                for (i = 0; i < 3; ++i)
+                    for (j = 0; j < 3; ++j) B[3 * i + j] = K[(3 * a + i) * n + 3 * b + j];
+                if ((st = wr_csr_add_block3(S->A, verts[a], verts[b], B, NULL)) != WR_OK) return st;
+            }
+        return WR_OK;
+    }
+}
+
 static wr_status wr__statics_put(wr__statics_sink *S, int32_t k, const int32_t *verts, double *K) {
-    int32_t idx[WR_DENSE_MAX], a, i, n = 3 * k;
-    for (a = 0; a < k; ++a)
-        for (i = 0; i < 3; ++i) idx[3 * a + i] = 3 * verts[a] + i;
+    int32_t n = 3 * k;
     S->n_elem++;
     if (S->proj != WR_PROJECT_NONE) {
         double t0 = wr_time_seconds();
@@ -790,7 +892,7 @@ static wr_status wr__statics_put(wr__statics_sink *S, int32_t k, const int32_t *
         if (r) S->n_proj++;
         S->t_proj += wr_time_seconds() - t0;
     }
-    return S->t ? wr_triplets_add_element(S->t, n, idx, K, NULL) : wr_csr_add_element(S->A, n, idx, K, NULL);
+    return wr__statics_scatter(S, k, verts, K);
 }
 
 static wr_status wr__statics_add(void *user, int32_t k, const int32_t *verts, const double *Ke) {
@@ -817,21 +919,8 @@ static wr_status wr__statics_add(void *user, int32_t k, const int32_t *verts, co
         }
         return wr__statics_put(S, k, verts, buf);
     }
-    /* large stencils (quadratic bending at high valence) are PSD by construction: add 3×3 blocks */
-    for (a = 0; a < k; ++a) {
-        int32_t b;
-        for (b = 0; b < k; ++b) {
-            double B[9];
-            int j;
-            wr_status st;
-            for (i = 0; i < 3; ++i)
-                for (j = 0; j < 3; ++j) B[3 * i + j] = Ke[(3 * a + i) * n + 3 * b + j];
-            st = S->t ? wr_triplets_add_block3(S->t, verts[a], verts[b], B, NULL)
-                      : wr_csr_add_block3(S->A, verts[a], verts[b], B, NULL);
-            if (st != WR_OK) return st;
-        }
-    }
-    return WR_OK;
+    /* large stencils (quadratic bending at high valence) are PSD by construction: added unprojected */
+    return wr__statics_scatter(S, k, verts, Ke);
 }
 
 /* Π and ∇Π (gradient zeroed on fixed DOFs when g != NULL). WR_ERR_GEOMETRY (item = vertex) when a
@@ -939,7 +1028,7 @@ static wr_status wr__statics_contact_hessian(const wr__statics_ctx *c, const dou
             wr_statics_barrier(d, c->dhat, c->kappa, NULL, &b2);
             for (i = 0; i < 3; ++i)
                 for (j = 0; j < 3; ++j) B[3 * i + j] = b2 * gd[i] * gd[j];
-            st = S->t ? wr_triplets_add_block3(S->t, v, v, B, NULL) : wr_csr_add_block3(S->A, v, v, B, NULL);
+            st = wr_csr_add_block3(S->A, v, v, B, NULL);
             if (st != WR_OK) return st;
         }
     return WR_OK;
@@ -990,14 +1079,14 @@ static wr_status wr__statics_solve_one(const wr_shell *s, double *x, const wr_st
     double lin_tol = 0.0;
     double gbest = HUGE_VAL;
     uint8_t *fixd = NULL;
-    wr_triplets T;
+    wr__statics_cache cache;
     wr_csr A;
     wr_spd_solver S;
     int have_A = 0, have_S = 0;
     wr_status rs = WR_OK;
     double Pi, Pibest, Pscale = 0.0, gref, bbox, t_start = wr_time_seconds(), shift;
     memset(&st, 0, sizeof st);
-    memset(&T, 0, sizeof T);
+    memset(&cache, 0, sizeof cache);
     memset(&A, 0, sizeof A);
     memset(&S, 0, sizeof S);
     memset(&ctx, 0, sizeof ctx);
@@ -1172,18 +1261,34 @@ static wr_status wr__statics_solve_one(const wr_shell *s, double *x, const wr_st
         sk.proj = use_exact ? WR_PROJECT_NONE : d.projection;
         sk.c = &ctx;
         sk.x = x;
-        if (!have_A) {
-            rs = wr_triplets_create(&T, n, (int64_t)s->nf * 324 + 9 * (int64_t)s->nv, diag);
-            if (rs != WR_OK) goto done;
-            sk.t = &T;
-        } else {
-            wr_csr_zero_values(&A);
-            sk.A = &A;
-        }
+        sk.cache = &cache;
         hs.user = &sk;
         hs.add = wr__statics_add;
-        rs = wr_shell_hessian_elements(s, x, 0, &hs, diag);
-        if (rs != WR_OK) goto done;
+        if (have_A) {
+            /* ON ASSEMBLY CACHE: same pattern, values through the recorded offsets */
+            wr_csr_zero_values(&A);
+            sk.A = &A;
+            if (cache.Kq) {
+                rs = wr_shell_hessian_elements_part(s, x, 0, WR_SHELL_HESS_FACES, &hs, diag);
+                if (rs != WR_OK) goto done;
+                /* the constant quadratic-bending part, added where the stream would have added it */
+                for (i = 0; i < A.nnz; ++i) A.val[i] += cache.Kq[i];
+                sk.e = cache.qb_end;
+                sk.n_elem += cache.qb_small;
+            } else {
+                rs = wr_shell_hessian_elements(s, x, 0, &hs, diag);
+                if (rs != WR_OK) goto done;
+            }
+        } else {
+            /* first assembly: record the stencils and blocks (faces, then quadratic bending) */
+            rs = wr_shell_hessian_elements_part(s, x, 0, WR_SHELL_HESS_FACES, &hs, diag);
+            if (rs == WR_OK) {
+                cache.face_end = cache.n_el;
+                rs = wr_shell_hessian_elements_part(s, x, 0, WR_SHELL_HESS_QUADRATIC, &hs, diag);
+                cache.qb_end = cache.n_el;
+            }
+            if (rs != WR_OK) goto done;
+        }
         if (ctx.p != 0.0)
             for (; sk.face < s->nf; ++sk.face) {
                 /* faces without an elastic block: the pressure block projected on its own */
@@ -1197,26 +1302,55 @@ static wr_status wr__statics_solve_one(const wr_shell *s, double *x, const wr_st
                     goto done;
                 }
             }
-        if (ctx.nobs > 0 && (rs = wr__statics_contact_hessian(&ctx, x, &sk)) != WR_OK) {
-            rs = wr_fail(diag, rs, -1, "statics: contact block rejected");
-            goto done;
-        }
         if (!have_A) {
-            /* zero vertex-diagonal 3×3 blocks: the pattern then holds the shift and any contact block */
-            static const double Z9[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
-            for (i = 0; i < s->nv; ++i)
-                if ((rs = wr_triplets_add_block3(&T, i, i, Z9, diag)) != WR_OK) goto done;
-            rs = wr_csr_from_triplets(&A, &T, diag);
-            wr_triplets_free(&T);
+            /* the pattern of the recorded stencils (plus every diagonal block: the shift and any contact
+             * block go there), each element's block offsets, then the recorded values in stream order */
+            int32_t e;
+            int64_t r = 0;
+            rs = wr_csr_from_stencils(&A, s->nv, cache.n_el, cache.vstart, cache.verts, diag);
             if (rs != WR_OK) goto done;
             have_A = 1;
-            /* positions of the diagonal entries, looked up once (the pattern is fixed from here on) */
+            cache.ostart = (int64_t *)wr_alloc_array((size_t)cache.n_el + 1, sizeof(int64_t));
             dpos = (int32_t *)wr_alloc_array((size_t)n, sizeof(int32_t));
-            if (!dpos) {
+            if (!cache.ostart || !dpos) {
                 rs = wr_fail(diag, WR_ERR_NOMEM, -1, "statics: out of memory (%d DOFs)", (int)n);
                 goto done;
             }
+            cache.ostart[0] = 0;
+            for (e = 0; e < cache.n_el; ++e) {
+                int64_t k = cache.vstart[e + 1] - cache.vstart[e];
+                cache.ostart[e + 1] = cache.ostart[e] + k * k;
+            }
+            cache.off = (int32_t *)wr_alloc_array((size_t)cache.ostart[cache.n_el] + 1, sizeof(int32_t));
+            /* the quadratic-bending blocks are constant and left unchanged by the FAST projection (PSD) */
+            if (cache.qb_end > cache.face_end && d.projection != WR_PROJECT_JACOBI)
+                cache.Kq = (double *)wr_calloc_array((size_t)A.nnz + 1, sizeof(double));
+            if (!cache.off || (cache.qb_end > cache.face_end && d.projection != WR_PROJECT_JACOBI && !cache.Kq)) {
+                rs = wr_fail(diag, WR_ERR_NOMEM, -1, "statics: out of memory (%d DOFs)", (int)n);
+                goto done;
+            }
+            for (e = 0; e < cache.n_el; ++e) {
+                int32_t k = cache.vstart[e + 1] - cache.vstart[e];
+                const int32_t *ev = cache.verts + cache.vstart[e];
+                int32_t *off = cache.off + cache.ostart[e];
+                if ((rs = wr_csr_block_offsets(&A, k, ev, off, diag)) != WR_OK) goto done;
+                wr_csr_add_element_blocks(&A, k, ev, off, cache.rec + r);
+                if (cache.Kq && e >= cache.face_end && e < cache.qb_end) {
+                    wr_csr kq = A;
+                    kq.val = cache.Kq;
+                    wr_csr_add_element_blocks(&kq, k, ev, off, cache.rec + r);
+                    if (3 * k <= WR_DENSE_MAX) cache.qb_small++;
+                }
+                r += 9 * (int64_t)k * k;
+            }
+            wr_free(cache.rec);
+            cache.rec = NULL;
+            cache.rcap = cache.rn = 0;
             for (i = 0; i < n; ++i) dpos[i] = wr_csr_find(&A, i, i);
+        }
+        if (ctx.nobs > 0 && (rs = wr__statics_contact_hessian(&ctx, x, &sk)) != WR_OK) {
+            rs = wr_fail(diag, rs, -1, "statics: contact block rejected");
+            goto done;
         }
         st.elements_projected += sk.n_proj;
         st.elements_assembled += sk.n_elem;
@@ -1386,7 +1520,7 @@ done:
     if (stats) *stats = st;
     if (have_S) wr_spd_solver_free(&S);
     if (have_A) wr_csr_free(&A);
-    wr_triplets_free(&T);
+    wr__statics_cache_free(&cache);
     wr_free(fext);
     wr_free(g);
     wr_free(dx);
