@@ -692,9 +692,11 @@ static void wr__ic_pack(wr_spd_solver *S) {
 }
 
 /* y = A x with the symmetric upper block triangle: block (I, J), J > I, serves y_I += B x_J and
- * y_J += B^T x_I. */
-static void wr__bspmv(const wr_spd_solver *S, const double *x, double *y) {
+ * y_J += B^T x_I. Returns x^T y (PCG's p^T A p), summed as each y_I becomes final (rows after I
+ * only add to y_J, J > I), which saves CG a separate pass over two vectors. */
+static double wr__bspmv(const wr_spd_solver *S, const double *x, double *y) {
     int32_t I, k, nb = S->nb;
+    double xy = 0.0;
     memset(y, 0, sizeof(double) * 3 * (size_t)nb);
     for (I = 0; I < nb; ++I) {
         const double *B = S->abval + 9 * (size_t)S->abrow[I];
@@ -718,13 +720,17 @@ static void wr__bspmv(const wr_spd_solver *S, const double *x, double *y) {
         y[3 * I] = s0;
         y[3 * I + 1] = s1;
         y[3 * I + 2] = s2;
+        xy += x0 * s0 + x1 * s1 + x2 * s2;
     }
+    return xy;
 }
 
 /* z = (L~ L~^T)^{-1} r by block rows: forward with the lower blocks and the diagonal triangle,
- * backward with the same blocks transposed (the scalar wr__ic_apply, grouped by 3). */
-static void wr__ic_apply_blocked(const wr_spd_solver *S, const double *r, double *z) {
+ * backward with the same blocks transposed (the scalar wr__ic_apply, grouped by 3). Returns r^T z
+ * (PCG's rho), summed in the backward sweep where each z_I becomes final. */
+static double wr__ic_apply_blocked(const wr_spd_solver *S, const double *r, double *z) {
     int32_t I, k, nb = S->nb;
+    double rz = 0.0;
     for (I = 0; I < nb; ++I) {
         const float *d = S->lbdia + 6 * (size_t)I;
         double s0 = r[3 * I], s1 = r[3 * I + 1], s2 = r[3 * I + 2], z0, z1;
@@ -749,6 +755,7 @@ static void wr__ic_apply_blocked(const wr_spd_solver *S, const double *r, double
         z[3 * I] = t0;
         z[3 * I + 1] = t1;
         z[3 * I + 2] = t2;
+        rz += r[3 * I] * t0 + r[3 * I + 1] * t1 + r[3 * I + 2] * t2;
         for (k = S->lbrow[I]; k < S->lbrow[I + 1]; ++k) {
             const float *B = S->lboff + 9 * (size_t)k;
             double *zj = z + 3 * (size_t)S->lbcol[k];
@@ -757,6 +764,7 @@ static void wr__ic_apply_blocked(const wr_spd_solver *S, const double *r, double
             zj[2] -= (double)B[2] * t0 + (double)B[5] * t1 + (double)B[8] * t2;
         }
     }
+    return rz;
 }
 
 /* ---------------------------------------------------------------- smoothed aggregation AMG - */
@@ -1414,8 +1422,14 @@ WRDEF wr_status wr_spd_solver_factor(wr_spd_solver *S, const wr_csr *A, wr_diag 
     return WR_OK;
 }
 
-static void wr__prec_apply(wr_spd_solver *S, const double *r, double *z) {
+/* z = M^{-1} r (zero on fixed DOFs); returns r^T z. */
+static double wr__prec_apply(wr_spd_solver *S, const double *r, double *z) {
     int32_t i, n = S->n;
+    if (S->method == WR_SOLVER_PCG_IC0 && S->nb > 0) {
+        /* the masked rows are identity and r is 0 there, so z is exactly 0 on fixed DOFs already
+         * (row i of L is e_i, and L_ki = 0 below it because A_ki = 0 and L_i,<i = 0) */
+        return wr__ic_apply_blocked(S, r, z);
+    }
     switch (S->method) {
     case WR_SOLVER_PCG_JACOBI:
         for (i = 0; i < n; ++i) z[i] = S->prec[i] * r[i];
@@ -1430,8 +1444,7 @@ static void wr__prec_apply(wr_spd_solver *S, const double *r, double *z) {
         }
         break;
     case WR_SOLVER_PCG_IC0:
-        if (S->nb > 0) wr__ic_apply_blocked(S, r, z);
-        else wr__ic_apply(S, r, z);
+        wr__ic_apply(S, r, z);
         break;
     case WR_SOLVER_PCG_AMG:
         wr__amg_apply(S->amg, r, z);
@@ -1442,6 +1455,7 @@ static void wr__prec_apply(wr_spd_solver *S, const double *r, double *z) {
     if (S->fixed)
         for (i = 0; i < n; ++i)
             if (S->fixed[i]) z[i] = 0.0;
+    return wr__dot(n, r, z);
 }
 
 static void wr__fill_stats(wr_spd_stats *st, const wr_spd_solver *S, int32_t it, double rel, double t0, wr_spd_stop stop) {
@@ -1520,18 +1534,20 @@ WRDEF wr_status wr_spd_solver_solve(wr_spd_solver *S, const wr_csr *A, const dou
     if (rnorm <= tol_abs) {
         stop = WR_SPD_STOP_CONVERGED;
     } else {
-        wr__prec_apply(S, r, z);
+        rz = wr__prec_apply(S, r, z);
         memcpy(pv, z, sizeof(double) * (size_t)n);
-        rz = wr__dot(n, r, z);
         while (stop == WR_SPD_STOP_NONE) {
             double pq, alpha, beta, rz_new, rr = 0.0;
             if (it >= S->max_iter) {
                 stop = WR_SPD_STOP_MAX_ITER;
                 break;
             }
-            if (S->nb > 0) wr__bspmv(S, pv, q);
-            else wr__spmv_vals(A, val, pv, q);
-            pq = wr__dot(n, pv, q);
+            if (S->nb > 0) {
+                pq = wr__bspmv(S, pv, q);
+            } else {
+                wr__spmv_vals(A, val, pv, q);
+                pq = wr__dot(n, pv, q);
+            }
             if (!isfinite(pq) || !isfinite(rz)) {
                 stop = WR_SPD_STOP_NONFINITE;
                 break;
@@ -1559,13 +1575,11 @@ WRDEF wr_status wr_spd_solver_solve(wr_spd_solver *S, const wr_csr *A, const dou
                     break;
                 }
                 replacements++;
-                wr__prec_apply(S, r, z);
+                rz = wr__prec_apply(S, r, z);
                 memcpy(pv, z, sizeof(double) * (size_t)n);
-                rz = wr__dot(n, r, z);
                 continue;
             }
-            wr__prec_apply(S, r, z);
-            rz_new = wr__dot(n, r, z);
+            rz_new = wr__prec_apply(S, r, z);
             beta = rz_new / rz;
             rz = rz_new;
             for (i = 0; i < n; ++i) pv[i] = z[i] + beta * pv[i];
