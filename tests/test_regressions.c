@@ -509,6 +509,38 @@ Test(regressions, cdt_collinear_overlap_snap) {
     free(p);
 }
 
+/* fuzz_cdt (fails with the code of the whole previous session too): split_intersections; points
+ * (1.08e-19,0) (0,0.001) (0,0) (0.5,0.25) (1,0.5), segments 0-1 1-2 2-4 4-0. Segment 2-4 crosses
+ * 0-1 at (1.08e-19, 5.4e-20), 5.4e-20 from point 0; the snap radius was 64 ulps of the largest end
+ * point (|(1,0.5)| = 1, so 7e-15) and the crossing snapped onto point 0, making 2-4's chain run
+ * 2-0-4 through the edge of segment 4-0 (not yet recovered): "input segment 3 (4-0) is not a chain
+ * of subsegments". The radius now follows the computed point's own error (a few ulps of the point,
+ * of its distance from the piece's start, and of the pieces' computed end points), with the
+ * orientations evaluated to a few ulps. */
+Test(regressions, cdt_crossing_near_tiny_feature) {
+    size_t n;
+    unsigned char *p = (unsigned char *)read_regression("cdt_crossing_near_tiny_feature.fuzz_cdt", &n);
+    int q;
+    cr_assert(n > 0);
+    for (q = 0; q < 2; ++q) { /* as found (quality on) and without refinement */
+        wr_cdt_result r;
+        wr_diag dc;
+        wr_status s;
+        int32_t i, junction = -1;
+        if (q) p[0] &= (unsigned char)~1u;
+        s = replay_cdt_bytes(p, n, 2000, &r);
+        cr_assert_eq(s, WR_OK, "status %s", wr_status_string(s));
+        cr_assert_eq(wr_cdt_check(&r, -1, NULL, &dc), WR_OK, "quality %d: %s", !q, dc.message);
+        /* the crossing is its own vertex, a few ulps from the exact (1.0843e-19, 5.4215e-20) */
+        for (i = r.n_input_points; i < r.n_points; ++i)
+            if (fabs(r.points[2 * i] - 1.0843018218998615e-19) < 1e-33 && fabs(r.points[2 * i + 1] - 0.5 * 1.0843018218998615e-19) < 1e-33)
+                junction = i;
+        cr_assert_geq(junction, 0, "quality %d: no junction at the crossing", !q);
+        wr_cdt_free(&r);
+    }
+    free(p);
+}
+
 /* fuzz_poly: a .poly with coordinates up to 1e118: the in-circle determinant overflowed, flips went
  * wrong, and the segment-recovery walk reached the vertex at infinity and read coordinates at index
  * -1 (UBSan: unsigned offset overflow). Policy: |coordinates| beyond WR_CDT_MAX_COORD (1e70) are

@@ -351,9 +351,10 @@ static int wr__diff_exp(double a, double b, double *e) {
     return 2;
 }
 
-static double wr__orient_exact(const double *a, const double *b, const double *c) {
-    double acx[2], acy[2], bcx[2], bcy[2], l[8], r[8], s[16];
-    int nl, nr, ns, n1, n2, n3, n4;
+/* The orientation determinant as an exact expansion s[0..n) (components by increasing magnitude). */
+static int wr__orient_expansion(const double *a, const double *b, const double *c, double *s) {
+    double acx[2], acy[2], bcx[2], bcy[2], l[8], r[8];
+    int nl, nr, n1, n2, n3, n4;
     n1 = wr__diff_exp(a[0], c[0], acx);
     n2 = wr__diff_exp(a[1], c[1], acy);
     n3 = wr__diff_exp(b[0], c[0], bcx);
@@ -361,8 +362,23 @@ static double wr__orient_exact(const double *a, const double *b, const double *c
     nl = wr__exp_mul(n1, acx, n4, bcy, l);
     nr = wr__exp_mul(n2, acy, n3, bcx, r);
     wr__exp_neg(nr, r);
-    ns = wr__exp_sum(nl, l, nr, r, s);
-    return s[ns - 1];
+    return wr__exp_sum(nl, l, nr, r, s);
+}
+
+static double wr__orient_exact(const double *a, const double *b, const double *c) {
+    double s[16];
+    int ns = wr__orient_expansion(a, b, c, s);
+    return s[ns - 1]; /* the sign (all callers need) is the largest component's */
+}
+
+/* The orientation determinant's value to a few ulps (the fast filter's value may be off by a large
+ * relative amount when it only certifies the sign): where a crossing point is computed from two of
+ * them, its rounding error is then a few ulps of its own coordinates. */
+static double wr__orient_value(const double *a, const double *b, const double *c) {
+    double s[16], v = 0.0;
+    int ns = wr__orient_expansion(a, b, c, s), i;
+    for (i = 0; i < ns; ++i) v += s[i];
+    return v;
 }
 
 static double wr__incircle_exact(const double *a, const double *b, const double *c, const double *d) {
@@ -1157,7 +1173,8 @@ static int wr__owned_by_other(const wr__cdt *S, const wr__segctx *C, int32_t u, 
  *    rounded junctions slightly off their segment's line, which is how a piece can cross an edge at
  *    an end vertex that its input segment passes exactly through.
  * 2. Otherwise the crossing point a + tt(b - a) is computed (*ppx, *ppy; only in this case) and
- *    snaps to an end vertex of either piece within WR__CROSS_SNAP of it.
+ *    snaps to an end vertex of either piece within WR__CROSS_SNAP of it, relative to the size of
+ *    the point's own possible error (below).
  * Either way the vertex must project strictly inside the piece it splits, so a chain never runs
  * past an end and back. */
 static void wr__cross_vertex(const wr__cdt *S, const wr__segctx *C, int32_t s, int32_t s2, int32_t a, int32_t b,
@@ -1195,10 +1212,18 @@ static void wr__cross_vertex(const wr__cdt *S, const wr__segctx *C, int32_t s, i
     c[1] = b;
     c[2] = xr;
     c[3] = yl;
+    /* What the computed point may be off by: the arithmetic, a few ulps of |p| and |p - a| (the
+     * orientations are accurate to a few ulps), and the rounding of the pieces' end points that are
+     * themselves computed junctions (input points are exact). The magnitude of a far input end
+     * point does not enter (fuzzer finding cdt_crossing_near_tiny_feature: a crossing 5e-20 from an
+     * input point at 1e-19 snapped onto it because the pieces reached coordinates ~1). */
+    scale = fabs(px) > fabs(py) ? fabs(px) : fabs(py);
+    if (fabs(px - pa[0]) > scale) scale = fabs(px - pa[0]);
+    if (fabs(py - pa[1]) > scale) scale = fabs(py - pa[1]);
     for (k = 0; k < 4; ++k) {
         const double *q = WR__P(S, c[k]);
         double m = fabs(q[0]) > fabs(q[1]) ? fabs(q[0]) : fabs(q[1]);
-        if (m > scale) scale = m;
+        if (c[k] >= S->n_input && m > scale) scale = m;
     }
     for (k = 0; k < 4; ++k) {
         const double *q = WR__P(S, c[k]);
@@ -1288,8 +1313,8 @@ static wr_status wr__recover(wr__cdt *S, wr__segctx *C, int32_t a0, int32_t b0, 
                                    "segments %d and %d cross (self-intersecting boundary); set split_intersections "
                                    "to split them",
                                    sid, s2);
-                oa = wr__orient(WR__P(S, xr), WR__P(S, yl), pa);
-                ob = wr__orient(WR__P(S, xr), WR__P(S, yl), pb);
+                oa = wr__orient_value(WR__P(S, xr), WR__P(S, yl), pa);
+                ob = wr__orient_value(WR__P(S, xr), WR__P(S, yl), pb);
                 tt = oa / (oa - ob); /* oa, ob have strictly opposite signs here */
                 px = py = 0.0;
                 wr__cross_vertex(S, C, s, s2, a, b, xr, yl, tt, &px, &py, &vq, &on_s);
