@@ -22,7 +22,17 @@
  * SQP (energy evaluations in the step control, bookkeeping) and everything outside the SQP (setup,
  * W, initialisation, phase, Loop upsampling to level 2).
  * Medians of RUNS runs per case, except the sheared-rectangle base (Newton needs ~300 steps there,
- * 313 measured, 6.6 s CPU; timed once unless --full, marked in the runs column).
+ * 296–358 measured, 2.3 s CPU; timed once unless --full, marked in the runs column).
+ * TFT base speed (statics.h ON ASSEMBLY CACHE, and OMP_THREAD_LIMIT below), CPU seconds, same box
+ * under load ~3, before → after: stretched sheet 0.079 → 0.030 (9 Newton steps both), sheared
+ * rectangle 6.31 (313 steps) → 2.30 (358), twisted cylinder 0.260 → 0.080 (14), teabag 0.342 → 0.137
+ * (11); assembly per sheet solve 0.033 → 0.013 s. What is left is CHOLMOD's supernodal numeric
+ * factorisation (perf, cylinder base: OpenBLAS 45 %, CHOLMOD 20 % of which its internal
+ * cholmod_l_transpose_sym 10 %, the shell's element Hessians ~5 %); simplicial CHOLMOD was 2.5–5×
+ * slower on all three (sheet 0.028 → 0.072 s, cylinder 0.092 → 0.447 s, teabag 0.136 → 0.708 s),
+ * so the supernodal default stays. The sheared base's step count is path-sensitive: round-off-level
+ * changes (assembly order, -O2/-O3) give 296–358 steps and bases up to 3.6e-5 m apart (Π equal to
+ * 1.4e-10 J of 0.245 J), see statics.h ON SHIFT.
  * --shift-raise=R sets statics desc.shift_raise = R for the TFT bases (μ ×R after backtracked
  * steps, statics.h ON SHIFT; off by default). Measured on the sheared-rectangle base (one
  * increment, default grad_tol): R = 10 313 → 175 Newton steps (CPU 11.4–13.8 → 6.3–6.7 s), R = 100 → 126

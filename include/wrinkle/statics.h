@@ -84,6 +84,17 @@
  *   (R = 10) or 126 (R = 100). μ only changes the path, not the minimiser, but where Π is that flat
  *   the solve stops elsewhere in the valley: that base differs by up to 1.5e-4 m (Π higher by 4e-10 J
  *   of 0.245 J), so it is off by default (0 keeps every caller on its previous iterates).
+ *   Why that base crawls (measured with the exact Hessian, one increment; not fixed): in the tail no
+ *   element changes TFT regime between accepted iterates (none over steps ~150–296), yet the full
+ *   Newton step raises Π by up to ~2300× the quadratic model's predicted decrease (step 150: +1.1e-7 J
+ *   against −4.8e-11 J), falling like α^3.6 over the halvings: the step is large along directions held
+ *   only by bending, whose stretching is second order in the step, so its membrane energy is quartic
+ *   (the geometric nonlinearity of ON MEMBRANE CONTINUATION) and Armijo cuts α to 1/4–1/32. Tried
+ *   without gain there: the wrinkled-side Hessian for near-slack elements (272–497 steps), the taut
+ *   Hessian for near-taut wrinkled ones (241–386), membrane continuation s0 = 1e-2 / 1e-4 (299 / 458),
+ *   a ‖∇Π‖-merit line search near the end (stalls). The returned base is only as determined as that
+ *   valley: round-off-level changes (summation order of the assembly, -O2 vs -O3) give 296–358 steps
+ *   and bases up to 3.6e-5 m apart with Π equal to 1.4e-10 J.
  *
  * ON MEMBRANE CONTINUATION (desc.membrane_ramp)
  *   A displacement-based thin shell under large rotation converges slowly with Newton: a step that
