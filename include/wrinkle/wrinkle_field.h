@@ -854,216 +854,199 @@ WRDEF int32_t wr_wf_classify(wr_wf *wf, const wr_wf_classify_desc *desc) {
 }
 
 /* ---- hand-expanded face evaluation (the default; wr__wf_face_eval above is the literal reference) ----
- * Same energy as wr__wf_face_eval, organised for speed: per quadrature point each of W_s^1, W_s^3,
- * W_s^4 and W_b^2 is w·N(s(y)) with s a 3-vector (00, 01, 11) of y = (a, g0, g1, p0, p1), so its
- * gradient is Jᵀλ and its Hessian 2w JᵀQJ + Σ_c λ_c ∇²s_c with λ = 2w Q s; the ∇²s_c contractions
- * are written out per term below. Q comes from wf->qf (constant per face). The 5-variable derivatives
- * are summed over the three points in blocks (a-a per corner pair, a-rest per corner, rest-rest) and
- * mapped to the 6 local DOFs once per face, because only the a-row of dy/dx changes between points. */
-#define WR__WF_NY 5
+ * With g = da and p = dφ constant on the face (see ON READINGS) only a varies between quadrature
+ * points, and every term of Eq. 21–26 is a polynomial in a² whose coefficients depend on
+ * u = (g0, g1, p0, p1) alone. Per point, h/4 (W_s^1 + W_s^2 + W_s^3 + W_s^4) + h³/12 W_b^2 (times the
+ * point's weight) = α0(u) + α2(u) a² + α4(u) a⁴ with
+ *   α0 = ws [cᵀQc + cᵀQG + ⅜ GᵀQG]                      (W_s^1 at a = 0; W_s^4 = GᵀQG/8)
+ *   α2 = ws [cᵀQP + ½ GᵀQP + XᵀQX/32 + c2] + wb PᵀQP/2  (W_s^1 cross term, W_s^3, W_s^2, W_b^2)
+ *   α4 = ws PᵀQP/4                                      (W_s^1)
+ * where Q is the face's Eq. 4 form (wf->qf), c = I_b - I_u, and G = gᵀg, P = pᵀp, X = pᵀg + gᵀp are
+ * 3-vectors (00, 01, 11). So E_f = 3 α0 + α2 M2 + α4 M4 with the quadrature moments M2 = Σ_q a_q²,
+ * M4 = Σ_q a_q⁴; gradient and Hessian follow from those of the α's (bilinear forms sᵀQt of G, P, X)
+ * and of the moments. excess drops cᵀQc (and W_b^1), as in wr__wf_face_eval. */
+enum { WR__WF_VC = 0, WR__WF_VG, WR__WF_VP, WR__WF_VX };
 
-/* w·N(s) (+ cross term 2 sᵀQ off when Qoff = Q off is given): adds the value to *val; when J (∂s/∂y,
- * row y = 3 entries) is given, adds Jᵀλ to gy and 2w JᵀQJ to Hy (over the y listed in iy) and returns λ = 2w Q(off + s). */
-static void wr__wf_qterm(const double Q[9], const double *Qoff, double w, const double s[3], const double *J /* 5×3 */,
-                         const int *iy, int ny, double *val, double *gy, double *Hy, double lam[3]) {
-    double Qs[3], QJ[WR__WF_NY][3];
-    int c, i, j;
-    for (c = 0; c < 3; ++c) Qs[c] = Q[3 * c] * s[0] + Q[3 * c + 1] * s[1] + Q[3 * c + 2] * s[2];
-    if (Qoff) {
-        *val += w * (s[0] * (Qs[0] + 2.0 * Qoff[0]) + s[1] * (Qs[1] + 2.0 * Qoff[1]) + s[2] * (Qs[2] + 2.0 * Qoff[2]));
-        for (c = 0; c < 3; ++c) Qs[c] += Qoff[c];
-    } else {
-        *val += w * (s[0] * Qs[0] + s[1] * Qs[1] + s[2] * Qs[2]);
+/* Adds w Σ_c lam_c ∇²v_c to the 4×4 H (u = (g0, g1, p0, p1)) for v = G, P or X; c is constant. */
+static void wr__wf_d2(int kind, const double *lam, double w, double *H) {
+    if (kind == WR__WF_VG || kind == WR__WF_VP) { /* G = (g0², g0 g1, g1²), P alike on (p0, p1) */
+        int o = kind == WR__WF_VP ? 2 : 0;
+        H[5 * o] += 2.0 * w * lam[0];
+        H[5 * o + 1] += w * lam[1];
+        H[5 * o + 4] += w * lam[1];
+        H[5 * o + 5] += 2.0 * w * lam[2];
+    } else if (kind == WR__WF_VX) { /* X = (2 p0 g0, p0 g1 + p1 g0, 2 p1 g1) */
+        H[2] += 2.0 * w * lam[0], H[8] += 2.0 * w * lam[0];
+        H[3] += w * lam[1], H[12] += w * lam[1];
+        H[6] += w * lam[1], H[9] += w * lam[1];
+        H[7] += 2.0 * w * lam[2], H[13] += 2.0 * w * lam[2];
     }
-    if (!J) return;
-    for (c = 0; c < 3; ++c) lam[c] = 2.0 * w * Qs[c];
-    for (i = 0; i < ny; ++i) {
-        const double *Ji = J + 3 * iy[i];
-        gy[iy[i]] += Ji[0] * lam[0] + Ji[1] * lam[1] + Ji[2] * lam[2];
-        if (!Hy) continue;
-        for (c = 0; c < 3; ++c) QJ[iy[i]][c] = Q[3 * c] * Ji[0] + Q[3 * c + 1] * Ji[1] + Q[3 * c + 2] * Ji[2];
-    }
-    if (!Hy) return;
-    for (i = 0; i < ny; ++i)
-        for (j = i; j < ny; ++j) {
-            const double *Ji = J + 3 * iy[i], *Qj = QJ[iy[j]];
-            double v = 2.0 * w * (Ji[0] * Qj[0] + Ji[1] * Qj[1] + Ji[2] * Qj[2]);
-            Hy[WR__WF_NY * iy[i] + iy[j]] += v;
-            if (j != i) Hy[WR__WF_NY * iy[j] + iy[i]] += v;
-        }
 }
 
-/* symmetric add into the 5×5 y-Hessian */
-static void wr__wf_hadd(double *Hy, int i, int j, double v) {
-    Hy[WR__WF_NY * i + j] += v;
-    if (i != j) Hy[WR__WF_NY * j + i] += v;
+/* sᵀQt for s, t among (c, G, P, X) (v, Qv: 3 per kind, Qv = Q v); when grad is given, adds
+ * w ∇_u(sᵀQt) = w (J_s Qt + J_t Qs) to grad and, when H is given, w ∇²_u(sᵀQt) =
+ * w (J_s Q J_tᵀ + J_t Q J_sᵀ + ∇²s·Qt + ∇²t·Qs) to H (J: 12 per kind, 4 rows of 3; QJ = rows of Q J). */
+static double wr__wf_bil(const double *v, const double *Qv, const double *J, const double *QJ, int ks, int kt, double w,
+                         double *grad, double *H) {
+    const double *s = v + 3 * ks, *Qs = Qv + 3 * ks, *Qt = Qv + 3 * kt, *Js = J + 12 * ks, *Jt = J + 12 * kt;
+    const double *QJs = QJ + 12 * ks, *QJt = QJ + 12 * kt;
+    int i, j;
+    if (grad)
+        for (i = 0; i < 4; ++i) {
+            const double *a = Js + 3 * i, *b = Jt + 3 * i;
+            grad[i] += w * (a[0] * Qt[0] + a[1] * Qt[1] + a[2] * Qt[2] + b[0] * Qs[0] + b[1] * Qs[1] + b[2] * Qs[2]);
+        }
+    if (H) {
+        for (i = 0; i < 4; ++i)
+            for (j = 0; j < 4; ++j) {
+                const double *a = Js + 3 * i, *b = Jt + 3 * i, *qa = QJs + 3 * j, *qb = QJt + 3 * j;
+                H[4 * i + j] += w * (a[0] * qb[0] + a[1] * qb[1] + a[2] * qb[2] + b[0] * qa[0] + b[1] * qa[1] + b[2] * qa[2]);
+            }
+        wr__wf_d2(ks, Qt, w, H);
+        wr__wf_d2(kt, Qs, w, H);
+    }
+    return s[0] * Qt[0] + s[1] * Qt[1] + s[2] * Qt[2];
 }
 
 static void wr__wf_face_eval_fast(const wr_wf *wf, int32_t f, const double xl[6], int excess, double *e, double *g6,
                                   double *H36, double *terms) {
     /* dφ (Whitney face average, see ON READINGS): p = JP ω̃, as in wr__wf_face_eval */
     static const double JP[2][3] = {{-1.0 / 3.0, -1.0 / 3.0, 2.0 / 3.0}, {1.0 / 3.0, -2.0 / 3.0, 1.0 / 3.0}};
-    static const int iy_all[5] = {WR__Y_A, WR__Y_G0, WR__Y_G1, WR__Y_P0, WR__Y_P1}, iy_g[2] = {WR__Y_G0, WR__Y_G1},
-                     iy_ap[3] = {WR__Y_A, WR__Y_P0, WR__Y_P1};
     const double *Q = wf->qf + 9 * (size_t)f;
     const double ws = wf->h / 4.0 * wf->area[f] / 3.0;                  /* Eq. 20 prefactor × quadrature weight */
     const double wb = wf->h * wf->h * wf->h / 12.0 * wf->area[f] / 3.0; /* Eq. 26 */
-    const double k3 = 1.0 / sqrt(32.0), k4 = 1.0 / sqrt(8.0), k2 = 1.0 / sqrt(2.0), c2 = wf->c2[f];
+    const double c2 = wf->c2[f];
     const int deriv = g6 != NULL || H36 != NULL;
-    double c[3], Qc[3], G[3], P[3], X[3], s[3], lam[3], J[WR__WF_NY][3];
-    double tv[5] = {0.0, 0.0, 0.0, 0.0, 0.0}; /* S1, S3, S4, B2, S2 */
-    double ga[3] = {0.0, 0.0, 0.0}, gr[4] = {0.0, 0.0, 0.0, 0.0};
-    double Haa[9], Har[3][4], Hrr[16];
-    double g0, g1, p0, p1;
-    int q, i, j, k, r, t;
-    for (k = 0; k < 3; ++k) c[k] = wf->ib[3 * f + k] - wf->iu[3 * f + k];
-    for (k = 0; k < 3; ++k) Qc[k] = Q[3 * k] * c[0] + Q[3 * k + 1] * c[1] + Q[3 * k + 2] * c[2];
+    double v[12], Qv[12], J[48], QJ[48];
+    double d0[4], d2[4], dP[4], H0[16], H2[16], HP[16], *pd0 = NULL, *pd2 = NULL, *pdP = NULL, *pH0 = NULL, *pH2 = NULL,
+                                                         *pHP = NULL;
+    double g0, g1, p0, p1, aq[3], M2 = 0.0, M4 = 0.0;
+    double cQc, cQG, GQG, cQP, GQP, XQX, PQP, al0, al2, al4;
+    int i, j, k, q;
+    for (k = 0; k < 3; ++k) v[k] = wf->ib[3 * f + k] - wf->iu[3 * f + k];
     g0 = xl[1] - xl[0];
     g1 = xl[2] - xl[0];
     p0 = JP[0][0] * xl[3] + JP[0][1] * xl[4] + JP[0][2] * xl[5];
     p1 = JP[1][0] * xl[3] + JP[1][1] * xl[4] + JP[1][2] * xl[5];
-    G[0] = g0 * g0, G[1] = g0 * g1, G[2] = g1 * g1;
-    P[0] = p0 * p0, P[1] = p0 * p1, P[2] = p1 * p1;
-    X[0] = 2.0 * p0 * g0, X[1] = p0 * g1 + p1 * g0, X[2] = 2.0 * p1 * g1;
-    memset(Haa, 0, sizeof Haa);
-    memset(Har, 0, sizeof Har);
-    memset(Hrr, 0, sizeof Hrr);
+    v[3] = g0 * g0, v[4] = g0 * g1, v[5] = g1 * g1;
+    v[6] = p0 * p0, v[7] = p0 * p1, v[8] = p1 * p1;
+    v[9] = 2.0 * p0 * g0, v[10] = p0 * g1 + p1 * g0, v[11] = 2.0 * p1 * g1;
+    for (k = 0; k < 4; ++k)
+        for (i = 0; i < 3; ++i) Qv[3 * k + i] = Q[3 * i] * v[3 * k] + Q[3 * i + 1] * v[3 * k + 1] + Q[3 * i + 2] * v[3 * k + 2];
+    if (deriv) {
+        memset(J, 0, sizeof J); /* J + 12 kind: row i = ∂v/∂u_i, u = (g0, g1, p0, p1) */
+        J[12 * WR__WF_VG + 0] = 2.0 * g0, J[12 * WR__WF_VG + 1] = g1;
+        J[12 * WR__WF_VG + 4] = g0, J[12 * WR__WF_VG + 5] = 2.0 * g1;
+        J[12 * WR__WF_VP + 6] = 2.0 * p0, J[12 * WR__WF_VP + 7] = p1;
+        J[12 * WR__WF_VP + 10] = p0, J[12 * WR__WF_VP + 11] = 2.0 * p1;
+        J[12 * WR__WF_VX + 0] = 2.0 * p0, J[12 * WR__WF_VX + 1] = p1;
+        J[12 * WR__WF_VX + 4] = p0, J[12 * WR__WF_VX + 5] = 2.0 * p1;
+        J[12 * WR__WF_VX + 6] = 2.0 * g0, J[12 * WR__WF_VX + 7] = g1;
+        J[12 * WR__WF_VX + 10] = g0, J[12 * WR__WF_VX + 11] = 2.0 * g1;
+        memset(d0, 0, sizeof d0);
+        memset(d2, 0, sizeof d2);
+        memset(dP, 0, sizeof dP);
+        pd0 = d0, pd2 = d2, pdP = dP;
+        if (H36) {
+            for (k = 0; k < 16; ++k) /* 4 kinds × 4 rows */
+                for (i = 0; i < 3; ++i)
+                    QJ[3 * k + i] = Q[3 * i] * J[3 * k] + Q[3 * i + 1] * J[3 * k + 1] + Q[3 * i + 2] * J[3 * k + 2];
+            memset(H0, 0, sizeof H0);
+            memset(H2, 0, sizeof H2);
+            memset(HP, 0, sizeof HP);
+            pH0 = H0, pH2 = H2, pHP = HP;
+        }
+    }
+    /* each bilinear form once; its derivatives weighted into the α it feeds (PᵀQP feeds α2 and α4) */
+    cQc = excess ? 0.0 : v[0] * Qv[0] + v[1] * Qv[1] + v[2] * Qv[2];
+    cQG = wr__wf_bil(v, Qv, J, QJ, WR__WF_VC, WR__WF_VG, ws, pd0, pH0);
+    GQG = wr__wf_bil(v, Qv, J, QJ, WR__WF_VG, WR__WF_VG, 0.375 * ws, pd0, pH0);
+    cQP = wr__wf_bil(v, Qv, J, QJ, WR__WF_VC, WR__WF_VP, ws, pd2, pH2);
+    GQP = wr__wf_bil(v, Qv, J, QJ, WR__WF_VG, WR__WF_VP, 0.5 * ws, pd2, pH2);
+    XQX = wr__wf_bil(v, Qv, J, QJ, WR__WF_VX, WR__WF_VX, ws / 32.0, pd2, pH2);
+    PQP = wr__wf_bil(v, Qv, J, QJ, WR__WF_VP, WR__WF_VP, 1.0, pdP, pHP);
+    al0 = ws * (cQc + cQG + 0.375 * GQG);
+    al2 = ws * (cQP + 0.5 * GQP + XQX / 32.0 + c2) + 0.5 * wb * PQP;
+    al4 = 0.25 * ws * PQP;
+    /* quadrature moments of a (three-point rule, see ON READINGS) */
+    for (q = 0; q < 3; ++q) {
+        aq[q] = wr__wf_qp[q][0] * xl[0] + wr__wf_qp[q][1] * xl[1] + wr__wf_qp[q][2] * xl[2];
+        M2 += aq[q] * aq[q];
+        M4 += aq[q] * aq[q] * aq[q] * aq[q];
+    }
     /* W_b^1: constant of the base (no a, ω dependence); left out of the excess energy. */
     if (!excess) {
         *e += 3.0 * wb * wf->wb1[f];
         if (terms) terms[WR_WF_TERM_B1] += 3.0 * wb * wf->wb1[f];
     }
-    for (q = 0; q < 3; ++q) {
-        const double *lq = wr__wf_qp[q];
-        double a = lq[0] * xl[0] + lq[1] * xl[1] + lq[2] * xl[2], a2 = a * a;
-        double gy[WR__WF_NY] = {0.0, 0.0, 0.0, 0.0, 0.0}, Hy[WR__WF_NY * WR__WF_NY], *H = H36 ? Hy : NULL;
-        if (H) memset(Hy, 0, sizeof Hy);
-        /* W_s^1, Eq. 21: s = (c) + ½ G + ½ a² P */
-        for (k = 0; k < 3; ++k) s[k] = 0.5 * G[k] + 0.5 * a2 * P[k] + (excess ? 0.0 : c[k]);
-        if (deriv) {
-            for (k = 0; k < 3; ++k) J[WR__Y_A][k] = a * P[k];
-            J[WR__Y_G0][0] = g0, J[WR__Y_G0][1] = 0.5 * g1, J[WR__Y_G0][2] = 0.0;
-            J[WR__Y_G1][0] = 0.0, J[WR__Y_G1][1] = 0.5 * g0, J[WR__Y_G1][2] = g1;
-            J[WR__Y_P0][0] = a2 * p0, J[WR__Y_P0][1] = 0.5 * a2 * p1, J[WR__Y_P0][2] = 0.0;
-            J[WR__Y_P1][0] = 0.0, J[WR__Y_P1][1] = 0.5 * a2 * p0, J[WR__Y_P1][2] = a2 * p1;
-        }
-        wr__wf_qterm(Q, excess ? Qc : NULL, ws, s, deriv ? J[0] : NULL, iy_all, 5, &tv[0], gy, H, lam);
-        if (H) {
-            wr__wf_hadd(Hy, WR__Y_A, WR__Y_A, lam[0] * P[0] + lam[1] * P[1] + lam[2] * P[2]);
-            wr__wf_hadd(Hy, WR__Y_A, WR__Y_P0, a * (2.0 * lam[0] * p0 + lam[1] * p1));
-            wr__wf_hadd(Hy, WR__Y_A, WR__Y_P1, a * (lam[1] * p0 + 2.0 * lam[2] * p1));
-            wr__wf_hadd(Hy, WR__Y_G0, WR__Y_G0, lam[0]);
-            wr__wf_hadd(Hy, WR__Y_G0, WR__Y_G1, 0.5 * lam[1]);
-            wr__wf_hadd(Hy, WR__Y_G1, WR__Y_G1, lam[2]);
-            wr__wf_hadd(Hy, WR__Y_P0, WR__Y_P0, a2 * lam[0]);
-            wr__wf_hadd(Hy, WR__Y_P0, WR__Y_P1, 0.5 * a2 * lam[1]);
-            wr__wf_hadd(Hy, WR__Y_P1, WR__Y_P1, a2 * lam[2]);
-        }
-        /* W_s^3, Eq. 23: s = a X / √32, X = pᵀg + gᵀp */
-        for (k = 0; k < 3; ++k) s[k] = k3 * a * X[k];
-        if (deriv) {
-            for (k = 0; k < 3; ++k) J[WR__Y_A][k] = k3 * X[k];
-            J[WR__Y_G0][0] = 2.0 * k3 * a * p0, J[WR__Y_G0][1] = k3 * a * p1, J[WR__Y_G0][2] = 0.0;
-            J[WR__Y_G1][0] = 0.0, J[WR__Y_G1][1] = k3 * a * p0, J[WR__Y_G1][2] = 2.0 * k3 * a * p1;
-            J[WR__Y_P0][0] = 2.0 * k3 * a * g0, J[WR__Y_P0][1] = k3 * a * g1, J[WR__Y_P0][2] = 0.0;
-            J[WR__Y_P1][0] = 0.0, J[WR__Y_P1][1] = k3 * a * g0, J[WR__Y_P1][2] = 2.0 * k3 * a * g1;
-        }
-        wr__wf_qterm(Q, NULL, ws, s, deriv ? J[0] : NULL, iy_all, 5, &tv[1], gy, H, lam);
-        if (H) {
-            wr__wf_hadd(Hy, WR__Y_A, WR__Y_G0, k3 * (2.0 * lam[0] * p0 + lam[1] * p1));
-            wr__wf_hadd(Hy, WR__Y_A, WR__Y_G1, k3 * (lam[1] * p0 + 2.0 * lam[2] * p1));
-            wr__wf_hadd(Hy, WR__Y_A, WR__Y_P0, k3 * (2.0 * lam[0] * g0 + lam[1] * g1));
-            wr__wf_hadd(Hy, WR__Y_A, WR__Y_P1, k3 * (lam[1] * g0 + 2.0 * lam[2] * g1));
-            wr__wf_hadd(Hy, WR__Y_G0, WR__Y_P0, 2.0 * k3 * a * lam[0]);
-            wr__wf_hadd(Hy, WR__Y_G0, WR__Y_P1, k3 * a * lam[1]);
-            wr__wf_hadd(Hy, WR__Y_G1, WR__Y_P0, k3 * a * lam[1]);
-            wr__wf_hadd(Hy, WR__Y_G1, WR__Y_P1, 2.0 * k3 * a * lam[2]);
-        }
-        /* W_s^4, Eq. 24: s = G / √8 */
-        for (k = 0; k < 3; ++k) s[k] = k4 * G[k];
-        if (deriv) {
-            J[WR__Y_G0][0] = 2.0 * k4 * g0, J[WR__Y_G0][1] = k4 * g1, J[WR__Y_G0][2] = 0.0;
-            J[WR__Y_G1][0] = 0.0, J[WR__Y_G1][1] = k4 * g0, J[WR__Y_G1][2] = 2.0 * k4 * g1;
-        }
-        wr__wf_qterm(Q, NULL, ws, s, deriv ? J[0] : NULL, iy_g, 2, &tv[2], gy, H, lam);
-        if (H) {
-            wr__wf_hadd(Hy, WR__Y_G0, WR__Y_G0, 2.0 * k4 * lam[0]);
-            wr__wf_hadd(Hy, WR__Y_G0, WR__Y_G1, k4 * lam[1]);
-            wr__wf_hadd(Hy, WR__Y_G1, WR__Y_G1, 2.0 * k4 * lam[2]);
-        }
-        /* W_b^2, Eq. 26: s = a P / √2, weight h³/12 */
-        for (k = 0; k < 3; ++k) s[k] = k2 * a * P[k];
-        if (deriv) {
-            for (k = 0; k < 3; ++k) J[WR__Y_A][k] = k2 * P[k];
-            J[WR__Y_P0][0] = 2.0 * k2 * a * p0, J[WR__Y_P0][1] = k2 * a * p1, J[WR__Y_P0][2] = 0.0;
-            J[WR__Y_P1][0] = 0.0, J[WR__Y_P1][1] = k2 * a * p0, J[WR__Y_P1][2] = 2.0 * k2 * a * p1;
-        }
-        wr__wf_qterm(Q, NULL, wb, s, deriv ? J[0] : NULL, iy_ap, 3, &tv[3], gy, H, lam);
-        if (H) {
-            wr__wf_hadd(Hy, WR__Y_A, WR__Y_P0, k2 * (2.0 * lam[0] * p0 + lam[1] * p1));
-            wr__wf_hadd(Hy, WR__Y_A, WR__Y_P1, k2 * (lam[1] * p0 + 2.0 * lam[2] * p1));
-            wr__wf_hadd(Hy, WR__Y_P0, WR__Y_P0, 2.0 * k2 * a * lam[0]);
-            wr__wf_hadd(Hy, WR__Y_P0, WR__Y_P1, k2 * a * lam[1]);
-            wr__wf_hadd(Hy, WR__Y_P1, WR__Y_P1, 2.0 * k2 * a * lam[2]);
-        }
-        /* W_s^2, Eq. 22: c2 a² */
-        tv[4] += ws * c2 * a2;
-        if (deriv) gy[WR__Y_A] += 2.0 * ws * c2 * a;
-        if (H) Hy[0] += 2.0 * ws * c2;
-        if (!deriv) continue;
-        /* chain to the local DOFs: only the a-row (the point's barycentric weights) depends on q */
-        for (k = 0; k < 3; ++k) ga[k] += lq[k] * gy[WR__Y_A];
-        for (r = 0; r < 4; ++r) gr[r] += gy[1 + r];
-        if (H) {
-            for (k = 0; k < 3; ++k) {
-                for (j = 0; j < 3; ++j) Haa[3 * k + j] += lq[k] * lq[j] * Hy[0];
-                for (r = 0; r < 4; ++r) Har[k][r] += lq[k] * Hy[1 + r];
-            }
-            for (r = 0; r < 4; ++r)
-                for (t = 0; t < 4; ++t) Hrr[4 * r + t] += Hy[WR__WF_NY * (1 + r) + 1 + t];
-        }
-    }
-    for (t = 0; t < 5; ++t) *e += tv[t];
+    *e += 3.0 * al0 + al2 * M2 + al4 * M4;
     if (terms) {
-        terms[WR_WF_TERM_S1] += tv[0];
-        terms[WR_WF_TERM_S3] += tv[1];
-        terms[WR_WF_TERM_S4] += tv[2];
-        terms[WR_WF_TERM_B2] += tv[3];
-        terms[WR_WF_TERM_S2] += tv[4];
+        terms[WR_WF_TERM_S1] += 3.0 * ws * (cQc + cQG + 0.25 * GQG) + M2 * ws * (cQP + 0.5 * GQP) + M4 * al4;
+        terms[WR_WF_TERM_S4] += 3.0 * ws * 0.125 * GQG;
+        terms[WR_WF_TERM_S3] += M2 * ws * XQX / 32.0;
+        terms[WR_WF_TERM_S2] += M2 * ws * c2;
+        terms[WR_WF_TERM_B2] += M2 * 0.5 * wb * PQP;
     }
     if (!deriv) return;
     {
-        /* R: dy_rest/dx (rows g0, g1, p0, p1; columns the 6 local DOFs) */
-        double R[4][6], HR[4][6];
+        /* x = (a0, a1, a2, ω̃0, ω̃1, ω̃2) -> u = R x; E = 3 α0(u) + α2(u) M2(a) + α4(u) M4(a) */
+        double R[4][6], gu[4], gRa2[6], gRa4[6], dM2[3] = {0.0, 0.0, 0.0}, dM4[3] = {0.0, 0.0, 0.0};
         memset(R, 0, sizeof R);
         R[0][0] = -1.0, R[0][1] = 1.0;
         R[1][0] = -1.0, R[1][2] = 1.0;
         for (k = 0; k < 3; ++k) R[2][3 + k] = JP[0][k], R[3][3 + k] = JP[1][k];
+        for (q = 0; q < 3; ++q)
+            for (k = 0; k < 3; ++k) {
+                dM2[k] += 2.0 * aq[q] * wr__wf_qp[q][k];
+                dM4[k] += 4.0 * aq[q] * aq[q] * aq[q] * wr__wf_qp[q][k];
+            }
+        for (i = 0; i < 4; ++i) {
+            d2[i] += 0.5 * wb * dP[i];       /* ∇α2 */
+            gu[i] = 3.0 * d0[i] + M2 * d2[i] + M4 * 0.25 * ws * dP[i];
+        }
+        for (j = 0; j < 6; ++j) {
+            double s2 = 0.0, s4 = 0.0;
+            for (i = 0; i < 4; ++i) s2 += d2[i] * R[i][j], s4 += 0.25 * ws * dP[i] * R[i][j];
+            gRa2[j] = s2; /* ∇_x α2 */
+            gRa4[j] = s4; /* ∇_x α4 */
+        }
         if (g6)
-            for (i = 0; i < 6; ++i) {
-                double v = i < 3 ? ga[i] : 0.0;
-                for (r = 0; r < 4; ++r) v += R[r][i] * gr[r];
-                g6[i] += v;
-            }
-        if (!H36) return;
-        for (r = 0; r < 4; ++r)
             for (j = 0; j < 6; ++j) {
-                double v = 0.0;
-                for (t = 0; t < 4; ++t) v += Hrr[4 * r + t] * R[t][j];
-                HR[r][j] = v;
+                double s = j < 3 ? al2 * dM2[j] + al4 * dM4[j] : 0.0;
+                for (i = 0; i < 4; ++i) s += gu[i] * R[i][j];
+                g6[j] += s;
             }
-        for (i = 0; i < 6; ++i)
-            for (j = i; j < 6; ++j) {
-                double v = 0.0;
-                for (r = 0; r < 4; ++r) v += R[r][i] * HR[r][j];
-                if (i < 3 && j < 3) v += Haa[3 * i + j];
-                if (i < 3)
-                    for (r = 0; r < 4; ++r) v += Har[i][r] * R[r][j];
-                if (j < 3)
-                    for (r = 0; r < 4; ++r) v += Har[j][r] * R[r][i];
-                H36[6 * i + j] += v;
-                if (j != i) H36[6 * j + i] += v;
-            }
+        if (H36) {
+            double Hu[16], HR[4][6];
+            for (k = 0; k < 16; ++k) Hu[k] = 3.0 * H0[k] + M2 * (H2[k] + 0.5 * wb * HP[k]) + M4 * 0.25 * ws * HP[k];
+            for (i = 0; i < 4; ++i)
+                for (j = 0; j < 6; ++j) {
+                    double s = 0.0;
+                    int l;
+                    for (l = 0; l < 4; ++l) s += Hu[4 * i + l] * R[l][j];
+                    HR[i][j] = s;
+                }
+            for (i = 0; i < 6; ++i)
+                for (j = i; j < 6; ++j) {
+                    double s = 0.0;
+                    int l;
+                    for (l = 0; l < 4; ++l) s += R[l][i] * HR[l][j];
+                    if (i < 3) s += dM2[i] * gRa2[j] + dM4[i] * gRa4[j];
+                    if (j < 3) s += dM2[j] * gRa2[i] + dM4[j] * gRa4[i];
+                    if (i < 3 && j < 3) {
+                        /* ∇²M2 = 2 Σ λλᵀ, ∇²M4 = 12 Σ a² λλᵀ */
+                        double m2 = 0.0, m4 = 0.0;
+                        for (q = 0; q < 3; ++q) {
+                            double ll = wr__wf_qp[q][i] * wr__wf_qp[q][j];
+                            m2 += 2.0 * ll;
+                            m4 += 12.0 * aq[q] * aq[q] * ll;
+                        }
+                        s += al2 * m2 + al4 * m4;
+                    }
+                    H36[6 * i + j] += s;
+                    if (j != i) H36[6 * j + i] += s;
+                }
+        }
     }
 }
 
@@ -2398,6 +2381,34 @@ done:
 
 /* ---- SQP (App. E.3) ---- */
 
+/* Pivot floor of the positive-definiteness test below, relative to the largest diagonal entry [1]:
+ * a block that is positive definite only by less than this goes through the eigen-decomposition, so
+ * nearly singular blocks (ω rows of faces with a ≈ 0) are projected exactly as before. */
+#define WR__WF_SPD_PIVOT_REL 1e-10
+
+/* 1 when the symmetric 6×6 A passes a Cholesky factorisation with every pivot above
+ * WR__WF_SPD_PIVOT_REL · max diag: then every eigenvalue is positive and the projection to the PSD
+ * cone (wr_dense_project_spd with floor 0) would return A unchanged. */
+static int wr__wf_spd6(const double A[36]) {
+    double L[36], dmax = 0.0;
+    int i, j, k;
+    for (i = 0; i < 6; ++i) dmax = fmax(dmax, A[7 * i]);
+    if (!(dmax > 0.0)) return 0;
+    for (j = 0; j < 6; ++j) {
+        double d = A[7 * j];
+        for (k = 0; k < j; ++k) d -= L[6 * j + k] * L[6 * j + k];
+        if (!(d > WR__WF_SPD_PIVOT_REL * dmax)) return 0;
+        d = sqrt(d);
+        L[7 * j] = d;
+        for (i = j + 1; i < 6; ++i) {
+            double t = A[6 * i + j];
+            for (k = 0; k < j; ++k) t -= L[6 * i + k] * L[6 * j + k];
+            L[6 * i + j] = t / d;
+        }
+    }
+    return 1;
+}
+
 static void wr__wf_sqp_tox(const wr_wf *wf, const wr__wf_basis *B, const int32_t *avar, const double *y, int32_t na,
                            double *a, double *omega) {
     int32_t v;
@@ -2496,7 +2507,8 @@ WRDEF wr_status wr_wf_solve(const wr_wf *wf, const wr_wf_solve_desc *desc, doubl
     wr_csr K;
     wr_spd_solver SV;
     wr_spd_desc sd;
-    int32_t *avar = NULL, *fstart = NULL, *fcols = NULL, na = 0, n = 0, v, f, i, it;
+    int32_t *avar = NULL, *fstart = NULL, *fcols = NULL, *fused = NULL, *kpstart = NULL, *kpos = NULL, na = 0, n = 0, v, f,
+            i, it;
     double *Pm = NULL, *y = NULL, *yt = NULL, *d = NULL, *g = NULL, *gx = NULL, *H = NULL, *xa = NULL, *xo = NULL,
            *rhs = NULL, *kmodel = NULL, *mdiag = NULL, *ks = NULL, *ainit = NULL;
     double aref = 1.0, eref = 1.0, mu, nu_up = 2.0, greg = 0.0;
@@ -2635,6 +2647,50 @@ WRDEF wr_status wr_wf_solve(const wr_wf *wf, const wr_wf_solve_desc *desc, doubl
         st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf solve: out of memory");
         goto done;
     }
+    /* The pattern is fixed for the whole solve: per face, the used column count and the position in
+     * K.val of every entry of its reduced block, so each assembly adds straight into K.val (no
+     * searches, no allocation). */
+    fused = (int32_t *)wr_calloc_array((size_t)wf->nf, sizeof(int32_t));
+    kpstart = (int32_t *)wr_calloc_array((size_t)wf->nf + 1, sizeof(int32_t));
+    if (!fused || !kpstart) {
+        st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf solve: out of memory");
+        goto done;
+    }
+    {
+        int64_t tot = 0;
+        for (f = 0; f < wf->nf; ++f) {
+            int32_t s0 = fstart[f], m = fstart[f + 1] - s0, u = 0;
+            kpstart[f] = (int32_t)tot;
+            if (wf->wfree[f]) continue;
+            while (u < m && fcols[s0 + u] >= 0) ++u; /* used columns come first (see above) */
+            if (u > WR_DENSE_MAX) {
+                st = wr_fail(diag, WR_ERR_BUDGET, f, "wf solve: face %d couples %d unknowns (> %d)", (int)f, (int)u,
+                             WR_DENSE_MAX);
+                goto done;
+            }
+            fused[f] = u;
+            tot += (int64_t)u * u;
+            if (tot > INT32_MAX) {
+                st = wr_fail(diag, WR_ERR_BUDGET, f, "wf solve: face blocks exceed 2^31 entries");
+                goto done;
+            }
+        }
+        kpstart[wf->nf] = (int32_t)tot;
+        kpos = (int32_t *)wr_alloc_array((size_t)(tot > 0 ? tot : 1), sizeof(int32_t));
+        if (!kpos) {
+            st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf solve: out of memory");
+            goto done;
+        }
+        for (f = 0; f < wf->nf; ++f) {
+            int32_t s0 = fstart[f], u = fused[f], r, c;
+            for (r = 0; r < u; ++r)
+                for (c = 0; c < u; ++c) {
+                    int32_t pk = wr_csr_find(&K, fcols[s0 + r], fcols[s0 + c]);
+                    WR_ASSERT(pk >= 0); /* every face block is in the pattern by construction */
+                    kpos[kpstart[f] + r * u + c] = pk;
+                }
+        }
+    }
     /* Nondimensionalisation (see ON THE SQP SOLVER): amplitudes in units of a_ref, energy in units
      * of E_ref; closed-form coordinates are already in radians. */
     {
@@ -2719,28 +2775,32 @@ WRDEF wr_status wr_wf_solve(const wr_wf *wf, const wr_wf_solve_desc *desc, doubl
         if (fresh_hess) {
             wr_csr_zero_values(&K);
             for (f = 0; f < wf->nf; ++f) {
-                int32_t s0 = fstart[f], m = fstart[f + 1] - s0, r, c, k, l;
-                double He[36], Ke[WR_DENSE_MAX * WR_DENSE_MAX];
+                int32_t s0 = fstart[f], u = fused[f], r, c, k, l;
+                const int32_t *kp = kpos + kpstart[f];
+                double He[36], HP[6 * WR_DENSE_MAX];
                 if (wf->wfree[f]) continue;
                 memcpy(He, H + 36 * (size_t)f, sizeof He);
-                if (!hess_true) wr_dense_project_spd(6, He, 0.0);
-                if (m > WR_DENSE_MAX) {
-                    st = wr_fail(diag, WR_ERR_BUDGET, f, "wf solve: face %d couples %d unknowns (> %d)", (int)f, (int)m,
-                                 WR_DENSE_MAX);
-                    goto done;
-                }
-                for (r = 0; r < m; ++r)
-                    for (c = 0; c < m; ++c) {
-                        double s = 0.0;
-                        const double *pr = Pm + 6 * (size_t)(s0 + r), *pc = Pm + 6 * (size_t)(s0 + c);
-                        for (k = 0; k < 6; ++k) {
-                            if (pr[k] == 0.0) continue;
-                            for (l = 0; l < 6; ++l) s += pr[k] * He[6 * k + l] * pc[l];
-                        }
-                        Ke[r * m + c] = s;
+                /* App. E.3 per-face projection; a positive definite block is its own projection, and a
+                 * Cholesky attempt settles that far cheaper than the eigen-decomposition */
+                if (!hess_true && !wr__wf_spd6(He)) wr_dense_project_spd(6, He, 0.0);
+                /* reduced block Pᵀ He P: HP = He P first (6 × u), then the upper triangle of Pᵀ HP */
+                for (c = 0; c < u; ++c) {
+                    const double *pc = Pm + 6 * (size_t)(s0 + c);
+                    for (k = 0; k < 6; ++k) {
+                        double t = 0.0;
+                        for (l = 0; l < 6; ++l) t += He[6 * k + l] * pc[l];
+                        HP[6 * c + k] = t;
                     }
-                st = wr_csr_add_element(&K, m, fcols + s0, Ke, diag);
-                if (st) goto done;
+                }
+                for (r = 0; r < u; ++r) {
+                    const double *pr = Pm + 6 * (size_t)(s0 + r);
+                    for (c = r; c < u; ++c) {
+                        const double *hc = HP + 6 * c;
+                        double t = pr[0] * hc[0] + pr[1] * hc[1] + pr[2] * hc[2] + pr[3] * hc[3] + pr[4] * hc[4] + pr[5] * hc[5];
+                        K.val[kp[r * u + c]] += t;
+                        if (c != r) K.val[kp[c * u + r]] += t;
+                    }
+                }
             }
             if (greg > 0.0) {
                 int32_t e;
@@ -2830,18 +2890,36 @@ WRDEF wr_status wr_wf_solve(const wr_wf *wf, const wr_wf_solve_desc *desc, doubl
             fs = wr__wf_energy_impl(wf, xa, xo, 1, &Et, NULL, NULL, NULL, NULL);
             Et += wr__wf_reg(&B, greg, xo, NULL);
             rho = (fs == WR_OK && pred > 0.0) ? (E - Et) / pred : -1.0;
+            /* the model promises less than the energy's round-off: E - Et is noise and ρ a coin flip
+             * (whether the last Newton step was taken used to depend on the last bits of E). Decide
+             * by the stationarity residual instead: take the step when it lowers it (a Newton step
+             * near a minimiser does), else no evaluation can confirm a decrease any more and rule 1
+             * (energy change below resolution) holds. */
+            if (fs == WR_OK && pred >= 0.0 && pred <= WR__WF_ROUNDOFF * fmax(fabs(E), WR__WF_ROUNDOFF_FLOOR * eref)) {
+                double Eg = 0.0, kt = HUGE_VAL;
+                if (wr__wf_energy_impl(wf, xa, xo, 1, &Eg, gx, NULL, NULL, NULL) == WR_OK) {
+                    wr__wf_reg(&B, greg, xo, gx + wf->nv);
+                    for (v = 0; v < wf->nv; ++v)
+                        if (avar[v] >= 0) ks[avar[v]] = gx[v];
+                    wr__wf_z_applyT(&B, gx + wf->nv, ks + na);
+                    kt = wr__wf_kkt(yt, ks, n, na, aref, eref);
+                }
+                if (kt < kkt) {
+                    rho = 1.0; /* for the report and rules 1/3: the model is as good as it can be checked */
+                    mu = fmax(WR__WF_MU_MIN, mu / 3.0);
+                    nu_up = 2.0;
+                    accepted = 1;
+                    break;
+                }
+                roundoff = 1;
+                break;
+            }
             if (fs == WR_OK && pred > 0.0 && rho > WR__WF_RHO_ACCEPT) {
                 double c3 = 2.0 * rho - 1.0;
                 mu *= fmax(1.0 / 3.0, 1.0 - c3 * c3 * c3);
                 if (mu < WR__WF_MU_MIN) mu = WR__WF_MU_MIN;
                 nu_up = 2.0;
                 accepted = 1;
-                break;
-            }
-            /* the model promises less than the energy's round-off: no evaluation can confirm a
-             * decrease any more, so rule 1 (energy change below resolution) holds */
-            if (fs == WR_OK && pred >= 0.0 && pred <= WR__WF_ROUNDOFF * fmax(fabs(E), WR__WF_ROUNDOFF_FLOOR * eref)) {
-                roundoff = 1;
                 break;
             }
             ++S.n_rejected;
@@ -2924,6 +3002,9 @@ done:
     wr_free(zero);
     wr_free(fstart);
     wr_free(fcols);
+    wr_free(fused);
+    wr_free(kpstart);
+    wr_free(kpos);
     wr_free(Pm);
     wr_free(y);
     wr_free(yt);
