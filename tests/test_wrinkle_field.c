@@ -728,6 +728,107 @@ Test(wrinkle_field, sqp_converges_to_kkt_1e8_on_clamped_stretched_sheet) {
     wr_mesh_free(&m);
 }
 
+/* Energies and ρ of the accepted steps, as the progress callback reports them. */
+#define TERM_MAX_STEPS 400
+static double g_step_e[TERM_MAX_STEPS], g_step_rho[TERM_MAX_STEPS];
+static int g_steps;
+static void record_steps(const wr_wf_iter_info *info, void *user) {
+    (void)user;
+    if (g_steps < TERM_MAX_STEPS) {
+        g_step_e[g_steps] = info->energy;
+        g_step_rho[g_steps] = info->alpha_ls;
+    }
+    ++g_steps;
+}
+
+/* App. E.3 rule 1 as implemented: stop at the FIRST accepted step the quadratic model predicted well
+ * (ρ > 1/2) whose energy change is <= tol_energy · |E| (E the objective before the step), never
+ * earlier, and return its end point. Checked at the default tol_energy (1e-10) and at 1e-5, which
+ * must stop earlier; the start has no amplitude at the bound with zero gradient, so no escape moves
+ * E between reported steps. Also: the SQP with the literal monomial evaluator (reference_eval) takes
+ * the same steps to the same energy (the cached Q, moments and K positions change nothing). */
+Test(wrinkle_field, sqp_energy_rule_stops_at_first_qualifying_step) {
+    const double L = 0.25, Hh = 0.1;
+    static const double tols[2] = {0.0, 1e-5};
+    wr_mesh m;
+    wr_wf wf;
+    wr_wf_material mat;
+    double *base, *a0, *o0, *a, *om, Edef = 0.0;
+    uint8_t *wfl;
+    int32_t f, k, t, itdef = 0;
+    mat.young = 1e6;
+    mat.poisson = 0.5;
+    mat.thickness = 1e-4;
+    cr_assert_eq(wr_mesh_rectangle(&m, L, Hh, 12, 5, NULL), WR_OK);
+    base = (double *)malloc(sizeof(double) * 3 * m.nv);
+    stretched_base(&m, L, Hh, base);
+    cr_assert_eq(wr_wf_create(&wf, &m, base, &mat, NULL), WR_OK);
+    wfl = (uint8_t *)calloc((size_t)m.nf, 1);
+    for (f = 0; f < m.nf; ++f) {
+        double cx = 0.0;
+        for (k = 0; k < 3; ++k) cx += m.pos[3 * m.faces[3 * f + k]] / 3.0;
+        wfl[f] = (uint8_t)(cx < 0.02 || cx > L - 0.02);
+    }
+    wr_wf_set_wrinkle_free(&wf, wfl);
+    a0 = (double *)malloc(sizeof(double) * m.nv);
+    o0 = (double *)malloc(sizeof(double) * m.ne);
+    a = (double *)malloc(sizeof(double) * m.nv);
+    om = (double *)malloc(sizeof(double) * m.ne);
+    cr_assert_eq(wr_wf_init(&wf, NULL, a0, o0, NULL), WR_OK);
+    for (t = 0; t < 3; ++t) {
+        wr_wf_solve_desc sd;
+        wr_wf_solve_stats ss;
+        double tol = t == 1 ? tols[1] : 1e-10, Eprev;
+        int32_t i;
+        memcpy(a, a0, sizeof(double) * m.nv);
+        memcpy(om, o0, sizeof(double) * m.ne);
+        memset(&sd, 0, sizeof sd);
+        sd.tol_energy = t == 1 ? tols[1] : 0.0;
+        sd.progress = record_steps;
+        wf.reference_eval = t == 2;
+        g_steps = 0;
+        cr_assert_eq(wr_wf_solve(&wf, &sd, a, om, &ss, NULL), WR_OK);
+        cr_log_info("tol_energy %g%s: %d steps, stop %d, E %.15g, KKT %g of %g", tol, t == 2 ? " (reference eval)" : "",
+                    ss.iterations, (int)ss.stop, ss.energy, ss.kkt, ss.kkt0);
+        cr_assert_eq(ss.n_escapes, 0);
+        cr_assert_eq(g_steps, ss.iterations);
+        cr_assert(g_steps <= TERM_MAX_STEPS);
+        cr_assert_eq(ss.stop, WR_WF_STOP_ENERGY, "stop rule %d", (int)ss.stop);
+        Eprev = ss.energy0;
+        for (i = 0; i < g_steps; ++i) {
+            int qualifies = g_step_rho[i] > 0.5 && fabs(Eprev - g_step_e[i]) <= tol * fabs(Eprev);
+            if (i + 1 < g_steps)
+                cr_assert(!qualifies, "step %d already met rule 1 (dE %g, E %g, rho %g)", (int)i + 1,
+                          Eprev - g_step_e[i], Eprev, g_step_rho[i]);
+            else
+                cr_assert(qualifies, "last step does not meet rule 1 (dE %g, E %g, rho %g)", Eprev - g_step_e[i], Eprev,
+                          g_step_rho[i]);
+            Eprev = g_step_e[i];
+        }
+        /* the returned fields are the last step's end point */
+        cr_assert(fabs(ss.energy - g_step_e[g_steps - 1]) <= 1e-12 * fabs(ss.energy));
+        if (t == 0) {
+            Edef = ss.energy;
+            itdef = ss.iterations;
+        } else if (t == 1) {
+            cr_assert(ss.iterations < itdef, "a looser rule 1 must stop earlier (%d vs %d)", ss.iterations, itdef);
+            cr_assert(ss.energy >= Edef - 1e-12 * fabs(Edef));
+        } else {
+            cr_assert_eq(ss.iterations, itdef, "reference evaluator: %d steps vs %d", ss.iterations, itdef);
+            cr_assert(fabs(ss.energy - Edef) <= 1e-12 * fabs(Edef), "%.15g vs %.15g", ss.energy, Edef);
+        }
+    }
+    wf.reference_eval = 0;
+    free(base);
+    free(wfl);
+    free(a0);
+    free(o0);
+    free(a);
+    free(om);
+    wr_wf_free(&wf);
+    wr_mesh_free(&m);
+}
+
 Test(wrinkle_field, sqp_in_tension_drives_amplitude_to_zero) {
     wr_mesh m;
     wr_wf wf;
