@@ -225,7 +225,11 @@
  *   streamed every time as before. Measured on the TFW bench bases (bench_tfw --base-only, CPU, this
  *   2-core box): the searched scatter wr_csr_add_element was 20–29 % of the whole TFT base solve and
  *   the triplet pattern build (allocation, page clearing, sort) another ~10 % on short solves;
- *   assembly time per stretched-sheet solve 0.084 → 0.019 s, iterates identical to 6e-17 m.
+ *   assembly time per stretched-sheet solve 0.084 → 0.019 s. Same bases as the searched, triplet-
+ *   built assembly (bench_tfw settings, max vertex distance): stretched sheet 7e-17 m, twisted
+ *   cylinder 2e-15 m (same 9 and 14 Newton steps), teabag 2.3e-6 m (same 11 steps, both at ‖∇Π‖ =
+ *   5e-11 of the reference: the slack TFT regions of the pillow leave a soft direction), sheared
+ *   rectangle 3.6e-5 m (296 against 313 steps: the flat valley of ON SHIFT).
  *
  * ON SEWING
  *   wr_mesh_weld merges the vertices of each pair (transitively), averages their positions and gives
