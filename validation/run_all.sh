@@ -3,6 +3,11 @@
 # Exits non-zero when any driver fails or any quantity misses its pass band.
 cd "$(dirname "$0")/.." || exit 2
 mkdir -p validation/results validation/figures
+# The solvers are single-threaded; CHOLMOD's supernodal kernels open OpenMP teams and OpenBLAS its own
+# threads, which on a small shared box cost ~20 % in switching (bench_tfw, perf). OMP_NUM_THREADS does
+# not cap those teams, OMP_THREAD_LIMIT does. A caller's own settings win.
+: "${OMP_THREAD_LIMIT:=1}" "${OMP_NUM_THREADS:=1}" "${OPENBLAS_NUM_THREADS:=1}" "${OMP_WAIT_POLICY:=PASSIVE}"
+export OMP_THREAD_LIMIT OMP_NUM_THREADS OPENBLAS_NUM_THREADS OMP_WAIT_POLICY
 status=0
 # Cross-check drivers read other cases' result files, so they run last.
 for src in $(ls validation/validate_*.c | grep -v crosscheck) $(ls validation/validate_*crosscheck*.c 2>/dev/null); do
