@@ -9,8 +9,12 @@
  *   tol 1e-8, shared 2-core box, CHOLMOD on OpenBLAS): PCG-AMG needs 27–34 iterations from 1e4 to
  *   4e5 vertices and took 0.35–0.67× CHOLMOD's time at 1e5 vertices and 0.38× at 4e5 (analysis +
  *   factor + solve each); at 1e4 vertices the two are about equal. Jacobi / block-Jacobi / IC(0)
- *   need O(sqrt(n)) iterations and lost to CHOLMOD by 3–8× at 1e5 on this stiff membrane; they suit
- *   small or mass-dominated (well-conditioned) systems and serve as references.
+ *   need O(sqrt(n)) iterations (IC(0) 737 at 1e5) and lost to CHOLMOD by 2–8× at 1e5 on this stiff
+ *   membrane. On the shell statics Newton systems (bench/bench_statics.c, stretch test, projected
+ *   StVK + bending Hessian, 56 entries per row) the picture turns: AMG needs 50–100 iterations
+ *   (buckling modes are not smooth) while IC(0) with the blocked kernels (ON BLOCKED KERNELS) needs
+ *   306–335 at 1e5 vertices and solves in 4.7–5.2 s CPU against CHOLMOD's 5.5–6.8 s factorisation
+ *   (+2.1 s analysis once, single-threaded BLAS), so IC(0) is the PCG choice there.
  *   See bench/RESULTS.md for the latest run.
  * wrinkle v0.1.0 — MIT licence (see LICENSE).
  *
@@ -72,6 +76,14 @@
  *   last iterate, which is the best one in the A-norm of the error (CG minimises that norm over the
  *   growing Krylov space); its residual is reported. p^T A p <= 0 (or a non-positive diagonal /
  *   3×3 block / CHOLMOD pivot) returns WR_ERR_NOT_SPD with the last valid iterate in x.
+ *
+ * ON BLOCKED KERNELS
+ *   When n is a multiple of 3 and A's pattern consists of full 3×3 blocks with a symmetric block
+ *   pattern (sparse.h's block/element assembly of 3-DOF vertices gives that), PCG multiplies with the
+ *   upper block triangle only (BCSR, double) and IC(0) applies its factor from single-precision 3×3
+ *   blocks (factorised in double, then rounded; sweeps accumulate in double): same iterations, less
+ *   memory traffic. M = L~ L~^T with the rounded L~ is still SPD, so CG's guarantees hold. Other
+ *   patterns run the scalar CSR paths. wr_spd_solver.nb > 0 tells which (see the code note).
  *
  * ON THREADS
  *   No global state; one solver object per thread. CHOLMOD calls its BLAS, which may start threads.
