@@ -2,6 +2,7 @@
  * membrane stiffness with clamped DOFs; agreement with CHOLMOD; pattern reuse; error paths. */
 #include <criterion/criterion.h>
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "wrinkle/pcg.h"
