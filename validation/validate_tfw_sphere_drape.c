@@ -396,14 +396,15 @@ int main(void) {
                         "loaded box): 60x60 from the TFT base 130 Newton / 133 s, line-search stall at |g|/ref 2.9e-2 after "
                         "reaching 1.5e-4 (12 waves, as here; 3 edges > 178 deg); 40x40 from the TFT base 158 Newton / 40 s, "
                         "stall at 3.7e-2 (5 edges > 178 deg, 11-14 waves); 40x40 with shift_raise = 10: 200 Newton (max), "
-                        "mu driven to 5.6e8, steps 4e-18 m, |g|/ref 8.7e-2; 30x30 from the flat sheet (1 increment): 147 "
+                        "mu driven to 5.6e8, steps 4e-18 m, |g|/ref 8.7e-2 (11 edges > 178 deg); 40x40 with d_hat = 0.5 mm: 160 "
+                        "Newton, stall at |g|/ref 0.12 (12 edges > 178 deg, 11-12 waves); 30x30 from the flat sheet (1 increment): 147 "
                         "Newton, stall at |g|/ref 37; restarting Newton at a stalled 40x40 iterate: 3 steps of 1e-11 m, "
                         "gradient x2600, stall. membrane_ramp does not apply: the hanging skirt's load per width "
                         "(~rho_A g 0.4 m = 0.8 N/m) is 0.8 % of Eh, so ON MEMBRANE CONTINUATION's rule s0 >~ 100 load/(Eh) "
                         "gives s0 ~ 1.");
         wr_vres_note(v, "What a converged reference needs: a grid that resolves the folds, i.e. several edges per TFW wave "
-                        "along the drape (rows 'TFW wavelength in ... grid edges'; ~2-3 at 60x60): at ~6 edges per wave "
-                        "~0.008 m edges (~130x130, ~17k vertices) -- hundreds of Newton steps at several s each on this box, "
+                        "along the drape (rows 'TFW wavelength in ... grid edges': 2.7 at 60x60): at ~6 edges per wave "
+                        "~7.5 mm edges (~135x135, ~18k vertices) -- hundreds of Newton steps at several s each on this box, "
                         "outside this driver's budget. The sub-mesh folds also cap the coarse reference's count (12 here "
                         "against TFW's 28), so its best iterate says nothing about the count.");
     }
