@@ -541,6 +541,19 @@ Test(statics, sheet_on_sphere_and_plane) {
     cr_expect(zmin > 0.0, "no vertex through the floor (z min %g)", zmin);
     cr_expect(zmax < st.contact_dhat, "flat: every vertex within d̂ = %g of the floor (z max %g)", st.contact_dhat, zmax);
     cr_expect_eq(st.n_contacts, m.nv);
+    /* a solve that starts in contact (every vertex within d̂): the contact blocks go into the very
+     * first assembly (the cached-assembly change once left them without a matrix there: "contact
+     * block rejected"); from the equilibrium it stays there */
+    {
+        double *x0 = (double *)malloc(sizeof(double) * 3 * m.nv), moved = 0.0;
+        memcpy(x0, x, sizeof(double) * 3 * m.nv);
+        sd.perturb = 0.0;
+        cr_assert_eq(wr_statics_solve(&s, x, &sd, &st, &dg), WR_OK, "plane restart: %s", dg.message);
+        for (v = 0; v < 3 * m.nv; ++v) moved = fmax(moved, fabs(x[v] - x0[v]));
+        cr_expect(moved < 0.1 * st.contact_dhat, "plane restart moved %g m", moved);
+        cr_expect_eq(st.n_contacts, m.nv);
+        free(x0);
+    }
     wr_shell_free(&s);
     free(fixed);
     free(x);

@@ -1362,6 +1362,7 @@ static wr_status wr__statics_solve_one(const wr_shell *s, double *x, const wr_st
             cache.rec = NULL;
             cache.rcap = cache.rn = 0;
             for (i = 0; i < n; ++i) dpos[i] = wr_csr_find(&A, i, i);
+            sk.A = &A; /* the contact blocks below go straight into A */
         }
         if (ctx.nobs > 0 && (rs = wr__statics_contact_hessian(&ctx, x, &sk)) != WR_OK) {
             rs = wr_fail(diag, rs, -1, "statics: contact block rejected");
