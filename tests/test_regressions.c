@@ -134,8 +134,16 @@ static double cdt_coord(const unsigned char *p, size_t n, size_t *at, int mode) 
 #undef RD8
 }
 
-/* Decodes fuzz_cdt bytes as the harness does and triangulates them. */
+static wr_status replay_cdt_bytes_diag(const unsigned char *p, size_t n, int32_t max_vertices, wr_cdt_result *r,
+                                      wr_diag *dg);
 static wr_status replay_cdt_bytes(const unsigned char *p, size_t n, int32_t max_vertices, wr_cdt_result *r) {
+    wr_diag d;
+    return replay_cdt_bytes_diag(p, n, max_vertices, r, &d);
+}
+
+/* Decodes fuzz_cdt bytes as the harness does and triangulates them; the diagnostics go to *dg. */
+static wr_status replay_cdt_bytes_diag(const unsigned char *p, size_t n, int32_t max_vertices, wr_cdt_result *r,
+                                      wr_diag *dg) {
     size_t at = 0;
     double pts[2 * 32], holes[2 * 2];
     int32_t seg[2 * 24], np, ns, nh, i;
@@ -143,7 +151,6 @@ static wr_status replay_cdt_bytes(const unsigned char *p, size_t n, int32_t max_
     int mode;
     wr_cdt_input in;
     wr_cdt_desc cd;
-    wr_diag d;
     wr_status s;
 #define RD8() (at < n ? p[at++] : 0)
     flags = RD8();
@@ -181,7 +188,7 @@ static wr_status replay_cdt_bytes(const unsigned char *p, size_t n, int32_t max_
     in.n_segments = ns;
     in.holes = nh ? holes : NULL;
     in.n_holes = nh;
-    s = wr_cdt_triangulate(&in, &cd, r, &d);
+    s = wr_cdt_triangulate(&in, &cd, r, dg);
     return s;
 }
 
@@ -537,6 +544,39 @@ Test(regressions, cdt_crossing_near_tiny_feature) {
                 junction = i;
         cr_assert_geq(junction, 0, "quality %d: no junction at the crossing", !q);
         wr_cdt_free(&r);
+    }
+    free(p);
+}
+
+/* fuzz_cdt (fails with the code of the whole previous session too): split_intersections, near-integer
+ * points; segments 0 (6,4)-(-8,7-1.8e-13) and 8 (-8,7+4.5e-13)-(6,4) share the end (6,4) and meet
+ * there at 4.5e-14 rad; both cross segments 3 and 4, and those crossings round to the same
+ * junctions, so pieces of segment 0 were reused by segment 8 under segment 0's id: WR_OK but "input
+ * segment 8 (6-5) is not a chain of subsegments". One piece cannot belong to two segments off one
+ * line in the result, so this input is now refused with WR_ERR_GEOMETRY naming both segments. */
+Test(regressions, cdt_hairline_segments_share_piece) {
+    size_t n;
+    unsigned char *p = (unsigned char *)read_regression("cdt_hairline_segments_share_piece.fuzz_cdt", &n);
+    int q;
+    cr_assert(n > 0);
+    for (q = 0; q < 2; ++q) { /* as found (quality on) and without refinement */
+        wr_cdt_result r;
+        wr_diag d;
+        wr_status s;
+        if (q) p[0] &= (unsigned char)~1u;
+        memset(&r, 0, sizeof r);
+        s = replay_cdt_bytes_diag(p, n, 2000, &r, &d);
+        if (s == WR_OK) {
+            wr_diag dc;
+            cr_assert_eq(wr_cdt_check(&r, -1, NULL, &dc), WR_OK, "quality %d: WR_OK but %s", !q, dc.message);
+            wr_cdt_free(&r);
+            continue;
+        }
+        cr_assert_eq(s, WR_ERR_GEOMETRY, "quality %d: %s", !q, wr_status_string(s));
+        cr_assert(strstr(d.message, "segments 0 and 8 cannot be kept apart") != NULL, "message: %s", d.message);
+        cr_assert(strchr(d.message, '\n') == NULL);
+        cr_assert_eq(r.n_triangles, 0); /* nothing handed out on failure */
+        cr_assert(r.triangles == NULL && r.points == NULL);
     }
     free(p);
 }

@@ -60,8 +60,10 @@
  *   opposite corner k (joining corners (k+1)%3 -> (k+2)%3), or -1 on the boundary; edge_segment[3t+k]
  *   is the input segment that edge is part of, or -1. Segments crossing each other are rejected with
  *   WR_ERR_GEOMETRY naming both (a garment panel boundary must not self-intersect) unless
- *   desc.split_intersections is set, in which case they are split at a computed Steiner point.
- *   Points lying exactly on a segment split it. With segments given and keep_convex_hull unset,
+ *   desc.split_intersections is set, in which case they are split at a computed Steiner point
+ *   (junctions are rounded to doubles; two segments meeting at an angle so small that their pieces
+ *   round onto the same edges cannot be represented — one id per piece — and are refused with
+ *   WR_ERR_GEOMETRY naming both). Points lying exactly on a segment split it. With segments given and keep_convex_hull unset,
  *   triangles reachable from the convex hull without crossing a segment are removed (when that
  *   would remove everything, i.e. the segments enclose nothing, the hull is kept), and so are those
  *   reachable from each hole seed. Refinement (desc.quality or desc.max_area > 0) then inserts
@@ -1147,19 +1149,44 @@ static int wr__strictly_on(const double *p, const double *q, const double *x) {
     return wr__orient(p, q, x) == 0.0 && wr__dot3(x, p, q) < 0.0;
 }
 
-/* u-v is an edge constrained by an input segment other than s and not collinear with it (exact
- * orientation of its input end points on s's line): collinear overlapping segments share their
- * common pieces by contract, so an edge of theirs is not another segment's. */
-static int wr__owned_by_other(const wr__cdt *S, const wr__segctx *C, int32_t u, int32_t v, int32_t s) {
-    int32_t he = wr__find_edge(S, u, v), o;
+/* Input segment o lies on input segment s's line (exact orientation of its input end points):
+ * collinear overlapping segments share their common pieces by contract (see segment_id). */
+static int wr__same_line(const wr__cdt *S, const wr__segctx *C, int32_t s, int32_t o) {
     const double *p, *q;
-    if (he < 0 || S->cm[he] == -1 || S->cm[he] == s) return 0;
-    o = S->cm[he];
-    if (s < 0 || o < 0) return 1;
+    if (s < 0 || o < 0 || !C->seg) return 0;
     p = WR__P(S, C->in2int[C->seg[2 * s]]);
     q = WR__P(S, C->in2int[C->seg[2 * s + 1]]);
-    return wr__orient(p, q, WR__P(S, C->in2int[C->seg[2 * o]])) != 0.0 ||
-           wr__orient(p, q, WR__P(S, C->in2int[C->seg[2 * o + 1]])) != 0.0;
+    return wr__orient(p, q, WR__P(S, C->in2int[C->seg[2 * o]])) == 0.0 &&
+           wr__orient(p, q, WR__P(S, C->in2int[C->seg[2 * o + 1]])) == 0.0;
+}
+
+/* u-v is an edge constrained by an input segment other than s and not on its line. */
+static int wr__owned_by_other(const wr__cdt *S, const wr__segctx *C, int32_t u, int32_t v, int32_t s) {
+    int32_t he = wr__find_edge(S, u, v), o;
+    if (he < 0 || S->cm[he] == -1 || S->cm[he] == s) return 0;
+    o = S->cm[he];
+    return !wr__same_line(S, C, s, o);
+}
+
+/* Mark the existing edge u-v (half-edge he) as a piece of segment s. An edge that already is a piece
+ * of a segment off s's line means the two segments could not be kept apart in double precision:
+ * they meet at an angle below its resolution (fuzzer finding cdt_hairline_segments_share_piece: 4.5e-14
+ * rad at a shared end) and their crossings with a third segment rounded to the same junctions, so
+ * one piece would have to belong to both — which the result cannot represent (one id per piece).
+ * That input is refused with a clear error rather than returned with a broken chain. */
+static wr_status wr__claim(wr__cdt *S, const wr__segctx *C, int32_t he, int32_t u, int32_t v, int32_t s,
+                           int32_t sid, wr_diag *diag) {
+    int32_t o = S->cm[he];
+    if (o != -1 && o != s && s >= 0 && o >= 0 && !wr__same_line(S, C, s, o)) {
+        const double *pu = WR__P(S, u), *pv = WR__P(S, v);
+        return wr_fail(diag, WR_ERR_GEOMETRY, sid,
+                       "segments %d and %d cannot be kept apart in double precision: after splitting at their "
+                       "crossings both run through the piece (%.17g, %.17g)-(%.17g, %.17g) (they meet at an "
+                       "angle below its resolution)",
+                       (int)(o < s ? o : s), (int)(o < s ? s : o), pu[0], pu[1], pv[0], pv[1]);
+    }
+    wr__mark_both(S, he, s);
+    return WR_OK;
 }
 
 /* The piece a-b of segment s crosses the constrained edge xr-yl of segment s2 (strictly, by the
@@ -1259,7 +1286,8 @@ static wr_status wr__recover(wr__cdt *S, wr__segctx *C, int32_t a0, int32_t b0, 
         if (a == b) continue;
         he = wr__find_edge(S, a, b);
         if (he >= 0) {
-            wr__mark_both(S, he, s);
+            wr_status cs = wr__claim(S, C, he, a, b, s, sid, diag);
+            if (cs != WR_OK) return cs;
             continue;
         }
         pa = WR__P(S, a);
@@ -1273,13 +1301,15 @@ static wr_status wr__recover(wr__cdt *S, wr__segctx *C, int32_t a0, int32_t b0, 
             if (x >= 0 && y >= 0) {
                 double ox = wr__orient(pa, pb, WR__P(S, x)), oy = wr__orient(pa, pb, WR__P(S, y));
                 if (ox == 0.0 && wr__dot3(pa, WR__P(S, x), pb) > 0.0) {
-                    wr__mark_both(S, 3 * t + wr__n2[i], s);
+                    wr_status cs = wr__claim(S, C, 3 * t + wr__n2[i], a, x, s, sid, diag);
+                    if (cs != WR_OK) return cs;
                     if (!wr__push3(&C->pieces, x, b, s)) return wr_fail(diag, WR_ERR_NOMEM, sid, "out of memory");
                     found = 2;
                     break;
                 }
                 if (oy == 0.0 && wr__dot3(pa, WR__P(S, y), pb) > 0.0) {
-                    wr__mark_both(S, 3 * t + wr__n1[i], s);
+                    wr_status cs = wr__claim(S, C, 3 * t + wr__n1[i], a, y, s, sid, diag);
+                    if (cs != WR_OK) return cs;
                     if (!wr__push3(&C->pieces, y, b, s)) return wr_fail(diag, WR_ERR_NOMEM, sid, "out of memory");
                     found = 2;
                     break;
