@@ -286,9 +286,16 @@ int main(void) {
                     "|grad| = 9.97e-9 of the reference, linear rate ~0.95 per step). With the retry (same seed and increments): "
                     "56x44 increments 1-4 WR_OK in 261 / 153 / 254 / 253 Newton steps (921 in all, 245 s on the loaded box); "
                     "the exact Hessian was still indefinite at some retries (e.g. increment 1 at |grad| 6.5e-8 of the reference), "
-                    "where projected steps carried the state over the flat stretch. Not tried further (the retry sufficed): more "
-                    "twist increments, shift_raise, a start interpolated from 40x32; the exact Hessian throughout "
-                    "(projection NONE) was far slower (Pi 0.186 J after 160 steps of increment 1 against 0.028 J projected).");
+                    "where projected steps carried the state over the flat stretch. 40x32 with the retry: 695 Newton steps (1042 without). "
+                    "Alternatives measured on 56x44 without the retry: 8 twist increments: increment 3 NOT_CONVERGED after 300 steps "
+                    "(|grad| 1.4e-5 of the reference); shift_raise = 10: no effect (it acts only on backtracked steps and the crawl "
+                    "takes full ones; increment 1 identical, 300 steps, 6.1e-8); start interpolated (cylindrical coordinates, "
+                    "bilinear on the pattern grid) from the converged 40x32 solution, full 10 deg in one solve: NOT_CONVERGED after "
+                    "300 steps at 1.9e-8; the same start with the retry: WR_OK in 123 steps (31 s) but at a different, lower "
+                    "equilibrium (Pi 0.58566 J against 0.59223 J on the 4-increment path; mid-height radius 0.777-0.961 m against "
+                    "0.789-0.939 m): the coarse StVK cylinder has several wrinkled equilibria and the loading path selects one, so "
+                    "the driver keeps the same 4-increment path at every resolution. The exact Hessian throughout (projection NONE) "
+                    "was far slower (Pi 0.186 J after 160 steps of increment 1 against 0.028 J projected).");
     wr_vres_note(v, "Paper Table 1: StVK needed 260k+ vertices (stretched sheet) and 96k+ (twisted cylinder) to resolve the wrinkles.");
     snprintf(buf, sizeof buf, "Total driver time %.1f s (budget %.0f s before starting a new resolution), shared 2-core box.",
              wr_time_seconds() - t_all, WALL_BUDGET);
