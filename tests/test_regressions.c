@@ -581,6 +581,29 @@ Test(regressions, cdt_hairline_segments_share_piece) {
     free(p);
 }
 
+/* fuzz_cdt (libFuzzer timeout, 26 s on the loaded box; fails the same way on the code of the whole
+ * previous session): points spanning 1e-3 to 1e28, segments 1-2 and 2-4 forming a wedge 1e-3 wide
+ * and 1e26 long, 30° with off-centers. Refinement candidates near the wedge had cavities of n/6
+ * triangles (huge skinny circumcircles), each rejected candidate costing that many exact in-circle
+ * tests: ~n^2, 10 s to the harness budget of 2000 vertices. The cavity search now stops at 256
+ * triangles. Guarded by the result: with the default budget refinement ends (WR_OK) with a valid
+ * mesh of fewer than 20000 vertices (8509 measured, 0.5 s; the old code needs minutes for it). */
+Test(regressions, cdt_wedge_cavity_quadratic) {
+    int32_t budgets[2] = {2000, 0}, k;
+    for (k = 0; k < 2; ++k) {
+        wr_cdt_result r;
+        wr_diag dc;
+        wr_status s = replay_cdt("cdt_wedge_cavity_quadratic.fuzz_cdt", budgets[k], &r);
+        cr_assert(s == WR_OK || s == WR_ERR_BUDGET, "budget %d: %s", (int)budgets[k], wr_status_string(s));
+        if (budgets[k] == 0) {
+            cr_assert_eq(s, WR_OK, "default budget: refinement must end");
+            cr_assert_lt(r.n_points, 20000);
+        }
+        cr_assert_eq(wr_cdt_check(&r, -1, NULL, &dc), WR_OK, "budget %d: %s", (int)budgets[k], dc.message);
+        wr_cdt_free(&r);
+    }
+}
+
 /* fuzz_poly: a .poly with coordinates up to 1e118: the in-circle determinant overflowed, flips went
  * wrong, and the segment-recovery walk reached the vertex at infinity and read coordinates at index
  * -1 (UBSan: unsigned offset overflow). Policy: |coordinates| beyond WR_CDT_MAX_COORD (1e70) are
