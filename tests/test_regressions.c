@@ -671,6 +671,34 @@ Test(regressions, cdt_coordinate_bound) {
     wr_cdt_free(&r);
 }
 
+/* fuzz_pattern (libFuzzer timeout in the CI smoke, 28 s under load): the Fig. 14 square with one
+ * corner moved to y = 33333250 mm, a 33 km panel edge. At the sizing its curves need ~1.1e7 points
+ * against the harness budget of 2000, but the mesher handed them to the sampler, whose crossing check
+ * binned them into a grid floored at 1/2048 of the long side (thousands of segments per cell,
+ * quadratic pair tests) before its own budget test. The mesher now refuses a panel whose curve
+ * points alone exceed the vertex budget, and the crossing grid keeps O(segments) cells for any
+ * aspect ratio. */
+Test(regressions, pattern_giant_panel_budget) {
+    size_t len;
+    char *text = read_regression("pattern_giant_panel_budget.fuzz_pattern", &len);
+    wr_pattern_file pf;
+    wr_mesher_desc md;
+    wr_mesher_result res;
+    wr_diag d;
+    wr_status s;
+    memset(&d, 0, sizeof d);
+    cr_assert_eq(wr_pattern_parse(text, len, "fuzz.json", &pf, &d), WR_OK, "%s", d.message);
+    md = pf.desc;
+    md.max_vertices = 2000;
+    s = wr_mesher_run(&pf.pattern, &md, &res, &d);
+    cr_assert_eq(s, WR_ERR_BUDGET, "status %s: %s", wr_status_string(s), d.message);
+    cr_assert(strstr(d.message, "its curves alone need") != NULL, "message: %s", d.message);
+    cr_assert(strchr(d.message, '\n') == NULL);
+    wr_mesher_free(&res);
+    wr_pattern_file_free(&pf);
+    free(text);
+}
+
 /* fuzz_pattern: a curve piece needing ~5.5e127 discretisation steps overflowed the int32 cast in
  * mesher.h's curve walk (UBSan, found by the CI fuzz smoke run). The counts are now clamped in double
  * and absurd pieces refused: the run must end with a status, never undefined behaviour (this binary

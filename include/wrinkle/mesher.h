@@ -1589,6 +1589,16 @@ WRDEF wr_status wr_mesher_run(const wr_pattern *pat, const wr_mesher_desc *desc_
             }
         }
         res->report.t_discretise += wr_time_seconds() - t0;
+        /* The curve points become mesh vertices: when they alone exceed the budget, refuse now, before
+         * the sampler's crossing checks over them (fuzzer finding pattern_giant_panel_budget: a 33 km
+         * panel edge at the sizing gave ~1.1e7 boundary points against a budget of 2000, and minutes
+         * of checks before the sampler's own budget test). */
+        if ((double)V.n / 2 + (double)(outer.n + holes.n + lines.n) / 2 > (double)max_v) {
+            st = wr_fail(diag, WR_ERR_BUDGET, p,
+                         "vertex budget of %d exceeded at panels[%d] '%s': its curves alone need %.0f points at the sizing",
+                         (int)max_v, (int)p, wr__msh_pname(pat, p), (double)(outer.n + holes.n + lines.n) / 2);
+            goto panel_fail;
+        }
         /* ---- Poisson sampling in stretched space (Sec. 4.3, Bridson) ---- */
         t0 = wr_time_seconds();
         hc = (wr_poisson_curve *)wr_calloc_array((size_t)hole_n.n, sizeof(wr_poisson_curve));

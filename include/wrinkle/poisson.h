@@ -270,8 +270,12 @@ static wr_status wr__pz_check_crossings(const wr__pz_curves *cv, const char *wha
     if (!isfinite(W) || !isfinite(H))
         return wr_fail(diag, WR_ERR_GEOMETRY, -1, "%s extent [%g, %g] x [%g, %g] m overflows a double", what, x0, x1,
                        y0, y1);
+    /* About two segments per cell, and at most ~2 ns + 16 cells along the longer side (so the cell
+     * count stays O(ns) for any aspect ratio). The former floor of 1/2048 of the longer side put a
+     * 0.25 m x 33 km panel's millions of segments into one column of 2048 cells, thousands per cell,
+     * and the pair test went quadratic (fuzzer finding pattern_giant_panel_budget). */
     g = sqrt(fmax(W * H, 1e-300) / (2.0 * (double)(ns > 0 ? ns : 1)));
-    g = fmax(g, fmax(W, H) / 2048.0);
+    g = fmax(g, fmax(W, H) / (2.0 * (double)ns + 16.0));
     if (!(g > 0.0)) g = 1.0;
     nx = (int64_t)(W / g) + 1;
     ny = (int64_t)(H / g) + 1;
