@@ -341,6 +341,46 @@ static double seg_dist(const double *p, const double *a, const double *b) {
 /* Pentagon panel 1.0 × 0.9 with a square hole and a 24-gon hole; an open wavy shirring line and a closed
  * circular seam; 4× graded sizing. Checks fixed points (order, exact corners/endpoints, on the input
  * curves, spacing ≈ h), segments and owners, interior samples inside the domain and off the holes. */
+/* A strip thinner than the inside grid's cell rows (every cell of its boundary rows holds a long
+ * edge): the inside test must answer from the short ray. Both orientations, brute-force inside check
+ * of every interior sample and the largest empty disk over a probe lattice (a wrong inside test
+ * either admits outside samples or starves the strip). Before the two-ray walk this strip's queries
+ * walked whole rows (20k vertices of a 216 m x 0.1 mm strip: 5 s, now 0.1 s). */
+Test(poisson, thin_strip_both_orientations) {
+    double strip[8], h = 0.004, md, cov;
+    wr_poisson_domain dom;
+    wr_poisson_desc desc;
+    wr_poisson_result res;
+    wr_diag d;
+    int32_t i, axis, n_in;
+    for (axis = 0; axis < 2; ++axis) {
+        double L = 3.0, w = 0.01;
+        double xy[8] = {0, 0, L, 0, L, w, 0, w};
+        for (i = 0; i < 4; ++i) {
+            strip[2 * i + axis] = xy[2 * i];
+            strip[2 * i + 1 - axis] = xy[2 * i + 1];
+        }
+        memset(&dom, 0, sizeof dom);
+        dom.outer.xy = strip;
+        dom.outer.n = 4;
+        memset(&desc, 0, sizeof desc);
+        desc.seed = 5;
+        cr_assert_eq(wr_poisson_sample(&dom, size_const, &h, &desc, &res, &d), WR_OK, "%s", d.message);
+        n_in = 0;
+        for (i = res.n_fixed; i < res.n_points; ++i) {
+            cr_assert(inside_loops(&res, 0, res.points[2 * i], res.points[2 * i + 1]), "axis %d: sample %d (%g, %g) outside",
+                      axis, i, res.points[2 * i], res.points[2 * i + 1]);
+            ++n_in;
+        }
+        cr_assert(n_in > 0, "axis %d: no interior samples", axis);
+        cov = coverage_ratio(&res, 0, size_const, &h, 0, 0, axis ? w : L, axis ? L : w, 100);
+        cr_assert(cov < 2.0, "axis %d: largest empty disk %.3f r (bound 2 r)", axis, cov);
+        md = min_distance_ratio(&res);
+        cr_assert(md >= 1.0, "axis %d: min distance ratio %.9f < 1", axis, md);
+        wr_poisson_free(&res);
+    }
+}
+
 Test(poisson, holes_and_polylines) {
     static double outer[10] = {0, 0, 1.0, 0, 1.0, 0.6, 0.5, 0.9, 0, 0.6}; /* pentagon, CCW, all corners > 30° */
     static double hole1[8] = {0.1, 0.1, 0.1, 0.25, 0.25, 0.25, 0.25, 0.1}; /* CW on purpose */

@@ -379,9 +379,14 @@ static int wr__pz_in_curve(const wr__pz_curves *cv, int32_t c, const double *p) 
 
 /* ---------------------------------------------------------------------------------------------- */
 /* Inside test over the discretised loops: bucket grid; edge-free cells carry their in/out status
- * (computed by a right-to-left sweep per row), other cells walk right along y = q.y to the first
- * edge-free cell, counting crossings with the half-open rule (y1 > y) != (y2 > y); a crossing is
- * counted only in the cell that contains its x, so edges spanning several cells count once. */
+ * (computed by a right-to-left sweep per row), other cells cast two rays in lockstep, +x along
+ * y = q.y and +y along x = q.x, each ending at its first edge-free cell (status ^ parity) or at the
+ * grid's end (outside); the ray that ends first answers. Crossings use the half-open rule
+ * ((y1 > y) != (y2 > y) for the +x ray) and count only in the cell that contains the crossing, so
+ * edges spanning several cells count once. Why two rays: in a domain thinner than a cell every
+ * cell of its rows holds both long boundaries, so a +x ray alone walks the whole row (O(nx) per
+ * query, quadratic sampling: 20k vertices of a 216 m x 0.1 mm strip took 5 s); the +y ray leaves
+ * such a strip within two cells, and a strip along y is the +x ray's easy case. */
 typedef struct wr__pz_inside {
     double x0, y0, g, inv_g, tol;
     int32_t nx, ny;
@@ -406,8 +411,15 @@ static int32_t wr__pz_cell_x(const wr__pz_inside *t, double x) {
     return (int32_t)f;
 }
 
+static int32_t wr__pz_cell_y(const wr__pz_inside *t, double y) {
+    double f = (y - t->y0) * t->inv_g;
+    if (f < 0.0) return -1;
+    if (f >= (double)t->ny) return t->ny;
+    return (int32_t)f;
+}
+
 static int wr__pz_inside_at(const wr__pz_inside *t, double qx, double qy) {
-    int32_t ix = wr__pz_cell_x(t, qx), iy, i, par = 0;
+    int32_t ix = wr__pz_cell_x(t, qx), iy, i, j, parx = 0, pary = 0;
     double fy = (qy - t->y0) * t->inv_g;
     if (ix < 0 || ix >= t->nx || !(fy >= 0.0) || fy >= (double)t->ny) return 0;
     iy = (int32_t)fy;
@@ -426,18 +438,29 @@ static int wr__pz_inside_at(const wr__pz_inside *t, double qx, double qy) {
             if (dx * dx + dy * dy <= t->tol * t->tol) return 0;
         }
     }
-    for (i = ix; i < t->nx; ++i) {
-        int32_t cell = iy * t->nx + i, p;
-        if (i > ix && t->cstart[cell] == t->cstart[cell + 1]) return t->status[cell] ^ par;
+    for (i = ix, j = iy;; ++i, ++j) {
+        int32_t cell, p;
+        if (i >= t->nx) return parx;
+        cell = iy * t->nx + i;
+        if (i > ix && t->cstart[cell] == t->cstart[cell + 1]) return t->status[cell] ^ parx;
         for (p = t->cstart[cell]; p < t->cstart[cell + 1]; ++p) {
             const double *s = t->seg + 4 * t->clist[p];
             if ((s[1] > qy) != (s[3] > qy)) {
                 double xi = s[0] + (qy - s[1]) * (s[2] - s[0]) / (s[3] - s[1]);
-                if (xi > qx && wr__pz_cell_x(t, xi) == i) par ^= 1;
+                if (xi > qx && wr__pz_cell_x(t, xi) == i) parx ^= 1;
+            }
+        }
+        if (j >= t->ny) return pary;
+        cell = j * t->nx + ix;
+        if (j > iy && t->cstart[cell] == t->cstart[cell + 1]) return t->status[cell] ^ pary;
+        for (p = t->cstart[cell]; p < t->cstart[cell + 1]; ++p) {
+            const double *s = t->seg + 4 * t->clist[p];
+            if ((s[0] > qx) != (s[2] > qx)) {
+                double yi = s[1] + (qx - s[0]) * (s[3] - s[1]) / (s[2] - s[0]);
+                if (yi > qy && wr__pz_cell_y(t, yi) == j) pary ^= 1;
             }
         }
     }
-    return par;
 }
 
 /* Build from the loops (curves 0..n_holes) of a curve set. */
