@@ -404,25 +404,40 @@ static void wr__pz_inside_free(wr__pz_inside *t) {
     memset(t, 0, sizeof *t);
 }
 
-static int32_t wr__pz_cell_x(const wr__pz_inside *t, double x) {
-    double f = (x - t->x0) * t->inv_g;
+/* Cell index along axis 0 (x) or 1 (y), clamped to [-1, n]. */
+static int32_t wr__pz_cell(const wr__pz_inside *t, int axis, double v) {
+    double f = (v - (axis ? t->y0 : t->x0)) * t->inv_g;
+    int32_t n = axis ? t->ny : t->nx;
     if (f < 0.0) return -1;
-    if (f >= (double)t->nx) return t->nx;
+    if (f >= (double)n) return n;
     return (int32_t)f;
 }
 
-static int32_t wr__pz_cell_y(const wr__pz_inside *t, double y) {
-    double f = (y - t->y0) * t->inv_g;
-    if (f < 0.0) return -1;
-    if (f >= (double)t->ny) return t->ny;
-    return (int32_t)f;
+static int32_t wr__pz_cell_x(const wr__pz_inside *t, double x) { return wr__pz_cell(t, 0, x); }
+
+/* Parity of the crossings, inside `cell` (index k along the ray), of the ray from q along +x (axis 0)
+ * or +y (axis 1); half-open rule across the other axis, counted only where the crossing lies. */
+static int wr__pz_ray_cell(const wr__pz_inside *t, int32_t cell, int axis, const double q[2], int32_t k) {
+    int32_t p, a = axis, b = 1 - axis;
+    int par = 0;
+    for (p = t->cstart[cell]; p < t->cstart[cell + 1]; ++p) {
+        const double *s = t->seg + 4 * t->clist[p];
+        if ((s[b] > q[b]) != (s[2 + b] > q[b])) {
+            double c = s[a] + (q[b] - s[b]) * (s[2 + a] - s[a]) / (s[2 + b] - s[b]);
+            if (c > q[a] && wr__pz_cell(t, axis, c) == k) par ^= 1;
+        }
+    }
+    return par;
 }
 
 static int wr__pz_inside_at(const wr__pz_inside *t, double qx, double qy) {
-    int32_t ix = wr__pz_cell_x(t, qx), iy, i, j, parx = 0, pary = 0;
-    double fy = (qy - t->y0) * t->inv_g;
+    int32_t ix = wr__pz_cell_x(t, qx), iy, i, j;
+    int parx = 0, pary = 0;
+    double fy = (qy - t->y0) * t->inv_g, q[2];
     if (ix < 0 || ix >= t->nx || !(fy >= 0.0) || fy >= (double)t->ny) return 0;
     iy = (int32_t)fy;
+    q[0] = qx;
+    q[1] = qy;
     {
         int32_t cell = iy * t->nx + ix, p;
         if (t->cstart[cell] == t->cstart[cell + 1]) return t->status[cell];
@@ -439,27 +454,15 @@ static int wr__pz_inside_at(const wr__pz_inside *t, double qx, double qy) {
         }
     }
     for (i = ix, j = iy;; ++i, ++j) {
-        int32_t cell, p;
+        int32_t cell;
         if (i >= t->nx) return parx;
         cell = iy * t->nx + i;
         if (i > ix && t->cstart[cell] == t->cstart[cell + 1]) return t->status[cell] ^ parx;
-        for (p = t->cstart[cell]; p < t->cstart[cell + 1]; ++p) {
-            const double *s = t->seg + 4 * t->clist[p];
-            if ((s[1] > qy) != (s[3] > qy)) {
-                double xi = s[0] + (qy - s[1]) * (s[2] - s[0]) / (s[3] - s[1]);
-                if (xi > qx && wr__pz_cell_x(t, xi) == i) parx ^= 1;
-            }
-        }
+        parx ^= wr__pz_ray_cell(t, cell, 0, q, i);
         if (j >= t->ny) return pary;
         cell = j * t->nx + ix;
         if (j > iy && t->cstart[cell] == t->cstart[cell + 1]) return t->status[cell] ^ pary;
-        for (p = t->cstart[cell]; p < t->cstart[cell + 1]; ++p) {
-            const double *s = t->seg + 4 * t->clist[p];
-            if ((s[0] > qx) != (s[2] > qx)) {
-                double yi = s[1] + (qx - s[0]) * (s[3] - s[1]) / (s[2] - s[0]);
-                if (yi > qy && wr__pz_cell_y(t, yi) == j) pary ^= 1;
-            }
-        }
+        pary ^= wr__pz_ray_cell(t, cell, 1, q, j);
     }
 }
 
