@@ -141,6 +141,17 @@ static wr_status replay_cdt_bytes(const unsigned char *p, size_t n, int32_t max_
     return replay_cdt_bytes_diag(p, n, max_vertices, r, &d);
 }
 
+/* replay_cdt_ok (below) on bytes in memory: as found (quick = 0) or with refinement switched off
+ * (quick = 1: recovery alone; flag bit 0 cleared in p); free r after. */
+static void replay_cdt_bytes_ok(unsigned char *p, size_t n, int quick, wr_cdt_result *r) {
+    wr_diag dc;
+    wr_status s;
+    if (quick) p[0] &= (unsigned char)~1u;
+    s = replay_cdt_bytes(p, n, 2000, r);
+    cr_assert_eq(s, WR_OK, "status %s", wr_status_string(s));
+    cr_assert_eq(wr_cdt_check(r, -1, NULL, &dc), WR_OK, "quality %d: %s", !quick, dc.message);
+}
+
 /* Decodes fuzz_cdt bytes as the harness does and triangulates them; the diagnostics go to *dg. */
 static wr_status replay_cdt_bytes_diag(const unsigned char *p, size_t n, int32_t max_vertices, wr_cdt_result *r,
                                       wr_diag *dg) {
@@ -436,16 +447,11 @@ Test(regressions, cdt_crossing_vertex_junction_delaunay) {
         0x11, 0x0b, 0x05, 0xff, 0x1b, 0x00,
     };
     wr_cdt_result r;
-    wr_diag dc;
-    wr_status s;
     int q;
     for (q = 0; q < 2; ++q) { /* as found (quality on) and without refinement: recovery alone */
         unsigned char b[sizeof bytes];
         memcpy(b, bytes, sizeof b);
-        if (q) b[0] &= (unsigned char)~1u;
-        s = replay_cdt_bytes(b, sizeof b, 2000, &r);
-        cr_assert_eq(s, WR_OK, "status %s", wr_status_string(s));
-        cr_assert_eq(wr_cdt_check(&r, -1, NULL, &dc), WR_OK, "quality %d: %s", !q, dc.message);
+        replay_cdt_bytes_ok(b, sizeof b, q, &r);
         wr_cdt_free(&r);
     }
 }
@@ -463,13 +469,8 @@ Test(regressions, cdt_chain_after_crossing_fix) {
     cr_assert(n > 0);
     for (q = 0; q < 2; ++q) { /* as found (quality on) and without refinement: recovery alone */
         wr_cdt_result r;
-        wr_diag dc;
-        wr_status s;
         int32_t i, own3 = 0, own2 = 0;
-        if (q) p[0] &= (unsigned char)~1u;
-        s = replay_cdt_bytes(p, n, 2000, &r);
-        cr_assert_eq(s, WR_OK, "status %s", wr_status_string(s));
-        cr_assert_eq(wr_cdt_check(&r, -1, NULL, &dc), WR_OK, "quality %d: %s", !q, dc.message);
+        replay_cdt_bytes_ok(p, n, q, &r);
         cr_assert_eq(r.n_input_segments, 4);
         cr_assert_eq(r.input_segments[2 * 3], 2); /* output numbering = input numbering here */
         /* both segments ending at input point 2 keep a piece of their own there */
@@ -498,13 +499,8 @@ Test(regressions, cdt_collinear_overlap_snap) {
     cr_assert(n > 0);
     for (q = 0; q < 2; ++q) { /* as found (quality on) and without refinement */
         wr_cdt_result r;
-        wr_diag dc;
-        wr_status s;
         int32_t i, k, near = 0;
-        if (q) p[0] &= (unsigned char)~1u;
-        s = replay_cdt_bytes(p, n, 2000, &r);
-        cr_assert_eq(s, WR_OK, "status %s", wr_status_string(s));
-        cr_assert_eq(wr_cdt_check(&r, -1, NULL, &dc), WR_OK, "quality %d: %s", !q, dc.message);
+        replay_cdt_bytes_ok(p, n, q, &r);
         /* one junction at the triple crossing, not several an ulp apart */
         for (i = 0; i < r.n_points; ++i)
             for (k = i + 1; k < r.n_points; ++k)
@@ -531,13 +527,8 @@ Test(regressions, cdt_crossing_near_tiny_feature) {
     cr_assert(n > 0);
     for (q = 0; q < 2; ++q) { /* as found (quality on) and without refinement */
         wr_cdt_result r;
-        wr_diag dc;
-        wr_status s;
         int32_t i, junction = -1;
-        if (q) p[0] &= (unsigned char)~1u;
-        s = replay_cdt_bytes(p, n, 2000, &r);
-        cr_assert_eq(s, WR_OK, "status %s", wr_status_string(s));
-        cr_assert_eq(wr_cdt_check(&r, -1, NULL, &dc), WR_OK, "quality %d: %s", !q, dc.message);
+        replay_cdt_bytes_ok(p, n, q, &r);
         /* the crossing is its own vertex, a few ulps from the exact (1.0843e-19, 5.4215e-20) */
         for (i = r.n_input_points; i < r.n_points; ++i)
             if (fabs(r.points[2 * i] - 1.0843018218998615e-19) < 1e-33 && fabs(r.points[2 * i + 1] - 0.5 * 1.0843018218998615e-19) < 1e-33)

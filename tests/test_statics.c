@@ -562,6 +562,25 @@ Test(statics, sheet_on_sphere_and_plane) {
 
 /* ---- prescribed motions ---------------------------------------------------------------------- */
 
+/* The twisted-cylinder load of wr_mesh_cylinder_flat(nu, nh): bottom ring held, top ring turned by
+ * angle [rad] about +z. bot and top (nu each) receive the ring indices. */
+static void cylinder_twist_motions(wr_motion mo[2], int32_t *bot, int32_t *top, int32_t nu, int32_t nh, double angle) {
+    int32_t i;
+    for (i = 0; i < nu; ++i) {
+        bot[i] = i;
+        top[i] = nh * nu + i;
+    }
+    memset(mo, 0, 2 * sizeof *mo);
+    mo[0].kind = WR_MOTION_HOLD;
+    mo[0].verts = bot;
+    mo[0].n_verts = nu;
+    mo[1].kind = WR_MOTION_TWIST;
+    mo[1].verts = top;
+    mo[1].n_verts = nu;
+    mo[1].axis[2] = 1.0;
+    mo[1].amount = angle;
+}
+
 /* Rest-flat cylinder (TFW Sec. 6 twisted cylinder, scaled down), bottom ring held, top ring twisted
  * by 2° at constant height in two increments: converges; the top ring sits exactly at its targets. */
 Test(statics, twisted_cylinder_converges) {
@@ -580,19 +599,7 @@ Test(statics, twisted_cylinder_converges) {
     d.poisson = 0.44;
     d.thickness = 1e-4;
     cr_assert_eq(wr_shell_create(&s, &m, &d, NULL), WR_OK);
-    for (i = 0; i < nu; ++i) {
-        bot[i] = i;
-        top[i] = nh * nu + i;
-    }
-    memset(mo, 0, sizeof mo);
-    mo[0].kind = WR_MOTION_HOLD;
-    mo[0].verts = bot;
-    mo[0].n_verts = nu;
-    mo[1].kind = WR_MOTION_TWIST;
-    mo[1].verts = top;
-    mo[1].n_verts = nu;
-    mo[1].axis[2] = 1.0;
-    mo[1].amount = ang;
+    cylinder_twist_motions(mo, bot, top, nu, nh, ang);
     x = (double *)malloc(sizeof(double) * 3 * m.nv);
     x0 = (double *)malloc(sizeof(double) * 3 * m.nv);
     memcpy(x, m.pos, sizeof(double) * 3 * m.nv);
@@ -1111,19 +1118,7 @@ Test(statics, exact_retry_resumes_exact_phase_and_errors) {
     d.poisson = 0.44;
     d.thickness = 1e-4;
     cr_assert_eq(wr_shell_create(&s, &m, &d, NULL), WR_OK);
-    for (i = 0; i < nu; ++i) {
-        bot[i] = i;
-        top[i] = nh * nu + i;
-    }
-    memset(mo, 0, sizeof mo);
-    mo[0].kind = WR_MOTION_HOLD;
-    mo[0].verts = bot;
-    mo[0].n_verts = nu;
-    mo[1].kind = WR_MOTION_TWIST;
-    mo[1].verts = top;
-    mo[1].n_verts = nu;
-    mo[1].axis[2] = 1.0;
-    mo[1].amount = 5.0 * 3.14159265358979323846 / 180.0;
+    cylinder_twist_motions(mo, bot, top, nu, nh, 5.0 * 3.14159265358979323846 / 180.0);
     x0 = (double *)malloc(sizeof(double) * 3 * m.nv);
     x1 = (double *)malloc(sizeof(double) * 3 * m.nv);
     memcpy(x0, m.pos, sizeof(double) * 3 * m.nv);

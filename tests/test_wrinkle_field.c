@@ -616,36 +616,45 @@ static void stretched_base(const wr_mesh *m, double L, double H, double *base) {
     }
 }
 
+/* The clamped stretched sheet of the SQP tests: an L × H rectangle (12 × 5 cells) on stretched_base,
+ * E = 1 MPa, ν = 0.5, h = 0.1 mm, W = the faces within 2 cm of either end; a0 (nv) and o0 (ne) from
+ * wr_wf_init. The caller frees base, wfl, a0, o0, the wf and the mesh. */
+static void clamped_sheet_setup(wr_mesh *m, wr_wf *wf, double L, double H, double **base, uint8_t **wfl, double **a0,
+                                double **o0) {
+    wr_wf_material mat;
+    int32_t f, k;
+    mat.young = 1e6;
+    mat.poisson = 0.5;
+    mat.thickness = 1e-4;
+    cr_assert_eq(wr_mesh_rectangle(m, L, H, 12, 5, NULL), WR_OK);
+    *base = (double *)malloc(sizeof(double) * 3 * m->nv);
+    stretched_base(m, L, H, *base);
+    cr_assert_eq(wr_wf_create(wf, m, *base, &mat, NULL), WR_OK);
+    *wfl = (uint8_t *)calloc((size_t)m->nf, 1);
+    for (f = 0; f < m->nf; ++f) {
+        double cx = 0.0;
+        for (k = 0; k < 3; ++k) cx += m->pos[3 * m->faces[3 * f + k]] / 3.0;
+        (*wfl)[f] = (uint8_t)(cx < 0.02 || cx > L - 0.02);
+    }
+    wr_wf_set_wrinkle_free(wf, *wfl);
+    *a0 = (double *)malloc(sizeof(double) * m->nv);
+    *o0 = (double *)malloc(sizeof(double) * m->ne);
+    cr_assert_eq(wr_wf_init(wf, NULL, *a0, *o0, NULL), WR_OK);
+}
+
 Test(wrinkle_field, sqp_converges_to_kkt_1e8_on_clamped_stretched_sheet) {
     const double L = 0.25, Hh = 0.1;
     wr_mesh m;
     wr_wf wf;
-    wr_wf_material mat;
     double *base, *a0, *o0, *a, *om, *curl, Eref = 0.0;
     uint8_t *wfl;
     int32_t v, f, k, h;
     static const wr_wf_hessian strat[3] = {WR_WF_HESSIAN_AUTO, WR_WF_HESSIAN_TRUE, WR_WF_HESSIAN_PROJECTED};
     static const int32_t max_it[3] = {40, 40, 80}; /* measured 24, 26, 62 */
-    mat.young = 1e6;
-    mat.poisson = 0.5;
-    mat.thickness = 1e-4;
-    cr_assert_eq(wr_mesh_rectangle(&m, L, Hh, 12, 5, NULL), WR_OK);
-    base = (double *)malloc(sizeof(double) * 3 * m.nv);
-    stretched_base(&m, L, Hh, base);
-    cr_assert_eq(wr_wf_create(&wf, &m, base, &mat, NULL), WR_OK);
-    wfl = (uint8_t *)calloc((size_t)m.nf, 1);
-    for (f = 0; f < m.nf; ++f) {
-        double cx = 0.0;
-        for (k = 0; k < 3; ++k) cx += m.pos[3 * m.faces[3 * f + k]] / 3.0;
-        wfl[f] = (uint8_t)(cx < 0.02 || cx > L - 0.02);
-    }
-    wr_wf_set_wrinkle_free(&wf, wfl);
-    a0 = (double *)malloc(sizeof(double) * m.nv);
-    o0 = (double *)malloc(sizeof(double) * m.ne);
+    clamped_sheet_setup(&m, &wf, L, Hh, &base, &wfl, &a0, &o0);
     a = (double *)malloc(sizeof(double) * m.nv);
     om = (double *)malloc(sizeof(double) * m.ne);
     curl = (double *)malloc(sizeof(double) * m.nf);
-    cr_assert_eq(wr_wf_init(&wf, NULL, a0, o0, NULL), WR_OK);
     for (h = 0; h < 3; ++h) {
         wr_wf_solve_desc sd;
         wr_wf_solve_stats ss;
@@ -752,29 +761,12 @@ Test(wrinkle_field, sqp_energy_rule_stops_at_first_qualifying_step) {
     static const double tols[2] = {0.0, 1e-5};
     wr_mesh m;
     wr_wf wf;
-    wr_wf_material mat;
     double *base, *a0, *o0, *a, *om, Edef = 0.0;
     uint8_t *wfl;
-    int32_t f, k, t, itdef = 0;
-    mat.young = 1e6;
-    mat.poisson = 0.5;
-    mat.thickness = 1e-4;
-    cr_assert_eq(wr_mesh_rectangle(&m, L, Hh, 12, 5, NULL), WR_OK);
-    base = (double *)malloc(sizeof(double) * 3 * m.nv);
-    stretched_base(&m, L, Hh, base);
-    cr_assert_eq(wr_wf_create(&wf, &m, base, &mat, NULL), WR_OK);
-    wfl = (uint8_t *)calloc((size_t)m.nf, 1);
-    for (f = 0; f < m.nf; ++f) {
-        double cx = 0.0;
-        for (k = 0; k < 3; ++k) cx += m.pos[3 * m.faces[3 * f + k]] / 3.0;
-        wfl[f] = (uint8_t)(cx < 0.02 || cx > L - 0.02);
-    }
-    wr_wf_set_wrinkle_free(&wf, wfl);
-    a0 = (double *)malloc(sizeof(double) * m.nv);
-    o0 = (double *)malloc(sizeof(double) * m.ne);
+    int32_t t, itdef = 0;
+    clamped_sheet_setup(&m, &wf, L, Hh, &base, &wfl, &a0, &o0);
     a = (double *)malloc(sizeof(double) * m.nv);
     om = (double *)malloc(sizeof(double) * m.ne);
-    cr_assert_eq(wr_wf_init(&wf, NULL, a0, o0, NULL), WR_OK);
     for (t = 0; t < 3; ++t) {
         wr_wf_solve_desc sd;
         wr_wf_solve_stats ss;
