@@ -10,16 +10,16 @@ CXX     ?= c++
 # double arithmetic, and -ffp-contract=off keeps FMA contraction from changing their results.
 OPT     ?= -O2
 CFLAGS_COMMON = -g $(OPT) -Wall -Wextra -pedantic -ffp-contract=off -Iinclude -Idrivers/lib \
-                -I/usr/include/suitesparse -DWR_USE_CHOLMOD=1
+                -I/usr/include/suitesparse -DWR_USE_CHOLMOD=1 -DWR_USE_FFTW=1 -DWR_USE_LIBPNG=1
 CFLAGS  ?=
 ALL_CFLAGS   = -std=c11 $(CFLAGS_COMMON) $(CFLAGS)
 ALL_CXXFLAGS = -std=c++17 $(CFLAGS_COMMON) $(CFLAGS)
-LIBS    = -lcjson -lcholmod -lfftw3 -lgsl -lgslcblas -lm
+LIBS    = -lcjson -lcholmod -lfftw3 -lpng -lgsl -lgslcblas -lm
 
 # Debian packages the kit builds against. libopenblas0 gives CHOLMOD an optimized BLAS
 # (through the libblas.so.3 alternative) instead of the reference one.
 DEB_PACKAGES = libgsl-dev libfftw3-dev libsuitesparse-dev libopenblas0 libcjson-dev \
-               libcriterion-dev gnuplot-nox pkg-config
+               libcriterion-dev gnuplot-nox pkg-config libpng-dev
 BENCH_PACKAGES = libcgal-dev
 
 SAN = -fsanitize=address,undefined,float-cast-overflow -fno-omit-frame-pointer -fno-sanitize-recover=all
@@ -123,7 +123,7 @@ FUZZ_CC      ?= clang
 FUZZ_SECONDS ?= 600
 FUZZ_FLAGS    = -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined \
                 -fno-omit-frame-pointer -ffp-contract=off -Iinclude -Idrivers/lib \
-                -I/usr/include/suitesparse -DWR_USE_CHOLMOD=1
+                -I/usr/include/suitesparse -DWR_USE_CHOLMOD=1 -DWR_USE_FFTW=1
 FUZZ_SRC      = $(wildcard tests/fuzz/fuzz_*.c)
 FUZZ_NAMES    = $(patsubst tests/fuzz/%.c,%,$(FUZZ_SRC))
 FUZZERS       = $(addprefix build/fuzz/,$(FUZZ_NAMES))
