@@ -122,7 +122,7 @@ Test(render, two_sided) {
     wr_render_mesh(&b, &v, pos, 3, cw, 1, &s, NULL);
     cr_expect_eq(memcmp(a.rgb, b.rgb, 3 * 16 * 16), 0);
     /* lit, not the ambient term only: the light has a component along the view axis */
-    cr_expect_gt(a.rgb[3 * (4 * 16 + 4)], (int)(0.22 * 0.80 * 255 + 20));
+    cr_expect_gt(a.rgb[3 * (4 * 16 + 4)], (int)(0.35 * 0.80 * 255 + 20));
     wr_image_free(&a);
     wr_image_free(&b);
 }

@@ -62,9 +62,10 @@
  * ON SHADING
  *   Per-pixel normals interpolated from area-weighted vertex normals (style.flat: face normals),
  *   turned towards the viewer (two-sided: cloth has no inside); colour = albedo · (ambient +
- *   diffuse · max(0, n·l)) + specular · max(0, n·h)^shininess, light fixed to the camera (upper
- *   left by default) so every view is lit alike. Grazing-angle relief such as a 0.3 mm wrinkle on a
- *   25 cm sheet shows through the normals, not through the silhouette.
+ *   diffuse · max(0, n·l)) + specular · max(0, n·h)^shininess, light fixed to the camera (slightly
+ *   upper left of the viewer by default, so surfaces facing the camera are bright whatever their
+ *   orientation in the world) and every view is lit alike. Relief as shallow as a 0.3 mm wrinkle on
+ *   a 25 cm sheet barely shades: colour such results by their height (the drivers do).
  *
  * ON THREADS
  *   No global state; an image may be drawn by one thread at a time.
@@ -107,8 +108,8 @@ typedef enum wr_colormap_kind {
 } wr_colormap_kind;
 
 /* Look. Defaults: base_rgb (0.80, 0.82, 0.88) when scalar is NULL; scalar_lo = scalar_hi = 0 →
- * the scalar's min and max (diverging map: ±max |scalar|); wire_rgb (0.15, 0.15, 0.2), wire_width 0.6 px; light (-0.45, 0.55,
- * 0.70) in camera coordinates (right, up, towards the viewer); ambient 0.22, diffuse 0.78,
+ * the scalar's min and max (diverging map: ±max |scalar|); wire_rgb (0.15, 0.15, 0.2), wire_width
+ * 0.6 px; light (-0.35, 0.45, 0.82) in camera coordinates (right, up, towards the viewer); ambient 0.35, diffuse 0.70,
  * specular 0.18, shininess 40. */
 typedef struct wr_render_style {
     const double *scalar; /* nv values or NULL: colour through wr_colormap */
@@ -404,12 +405,12 @@ static void wr__rd_style_defaults(wr_render_style *s) {
     }
     if (!(s->wire_width > 0.0)) s->wire_width = 0.6;
     if (s->light[0] == 0.0 && s->light[1] == 0.0 && s->light[2] == 0.0) {
-        s->light[0] = -0.45;
-        s->light[1] = 0.55;
-        s->light[2] = 0.70;
+        s->light[0] = -0.35;
+        s->light[1] = 0.45;
+        s->light[2] = 0.82;
     }
-    if (!(s->ambient > 0.0)) s->ambient = 0.22;
-    if (!(s->diffuse > 0.0)) s->diffuse = 0.78;
+    if (!(s->ambient > 0.0)) s->ambient = 0.35;
+    if (!(s->diffuse > 0.0)) s->diffuse = 0.70;
     if (!(s->specular > 0.0)) s->specular = 0.18;
     if (!(s->shininess > 0.0)) s->shininess = 40.0;
 }
