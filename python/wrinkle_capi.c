@@ -31,9 +31,10 @@
  *   wr_py_tfw_sizes(h, &ne, &n_fine_v, &n_fine_f, &sqp_iterations, &status)
  *   wr_py_tfw_get(h, a[nv], omega[ne], phi[3nf], wfree[nf] (uint8), fine_pos, fine_faces, fine_a)
  *   wr_py_tfw_free(h)
- *   wr_py_render_png(path, n, pos[], nv[], faces[], nf[], scalar[], titles[], columns, w, h, err, n)
+ *   wr_py_render_png(path, n, pos[], nv[], faces[], nf[], scalar[], titles[], columns, w, h, az, el, err, n)
  *       n meshes side by side (render.h), scalar[i] may be NULL (plain shading) — a diverging map
- *       when the scalar takes both signs, else a sequential one; the first view gets its edges.
+ *       when the scalar takes both signs, else a sequential one; the first view gets its edges;
+ *       az, el the camera's azimuth and elevation [deg] (NaN: render.h's default three-quarter view).
  */
 #define WRINKLE_IMPLEMENTATION
 #include "wrinkle/wrinkle.h"
@@ -331,8 +332,8 @@ WR_PY_EXPORT void wr_py_tfw_free(void *hv) {
 
 WR_PY_EXPORT int wr_py_render_png(const char *path, int32_t n, const double *const *pos, const int32_t *nv,
                                   const int32_t *const *faces, const int32_t *nf, const double *const *scalar,
-                                  const char *const *titles, int32_t columns, int32_t w, int32_t h, char *err,
-                                  int errlen) {
+                                  const char *const *titles, int32_t columns, int32_t w, int32_t h,
+                                  double azimuth_deg, double elevation_deg, char *err, int errlen) {
     wr_render_panel *p = (wr_render_panel *)calloc((size_t)(n > 0 ? n : 1), sizeof *p);
     wr_view_desc vd;
     wr_image img;
@@ -341,6 +342,11 @@ WR_PY_EXPORT int wr_py_render_png(const char *path, int32_t n, const double *con
     int32_t i, v;
     memset(&d, 0, sizeof d);
     memset(&vd, 0, sizeof vd);
+    if (isfinite(azimuth_deg) && isfinite(elevation_deg)) {
+        vd.has_angles = 1;
+        vd.azimuth_deg = azimuth_deg;
+        vd.elevation_deg = elevation_deg;
+    }
     if (!p) {
         py_err(err, errlen, NULL, "out of memory");
         return (int)WR_ERR_NOMEM;

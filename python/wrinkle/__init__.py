@@ -15,7 +15,7 @@ Functions
     triangulate(points, segments, holes, min_angle, max_area)   constrained Delaunay -> (points, triangles)
     statics(scene, base_dir=".")                    equilibrium of a scene (dict, docs/scene-format.md) -> Statics
     tfw(rest_pos, faces, base_pos, young, poisson, thickness, levels=2, rest=None)   TFW wrinkles -> TFW
-    render_png(path, views, columns=None, size=(900, 500))   pictures through the kit's renderer
+    render_png(path, views, columns, size, view)    pictures through the kit's renderer (PNG)
 
 Errors from the library raise wrinkle.Error (a ValueError) with the library's one-line message.
 The library is found at $WRINKLE_LIB, else ../../build/libwrinkle.so next to this package, else on
@@ -88,7 +88,8 @@ _tfw_edges = _sig("wr_py_tfw_edges", None, _VP, _I)
 _tfw_get = _sig("wr_py_tfw_get", None, _VP, _D, _D, _D, _U8, _D, _I, _D)
 _tfw_free = _sig("wr_py_tfw_free", None, _VP)
 _render = _sig("wr_py_render_png", _C.c_int, _C.c_char_p, _i32, _C.POINTER(_D), _I, _C.POINTER(_I), _I,
-               _C.POINTER(_D), _C.POINTER(_C.c_char_p), _i32, _i32, _i32, _C.c_char_p, _C.c_int)
+               _C.POINTER(_D), _C.POINTER(_C.c_char_p), _i32, _i32, _i32, _C.c_double, _C.c_double,
+               _C.c_char_p, _C.c_int)
 
 _OK, _NOT_CONVERGED = 0, 11  # wr_status values (core.h's list order)
 
@@ -276,10 +277,12 @@ def tfw(rest_pos, faces, base_pos, young, poisson, thickness, levels=2, rest=Non
     return out
 
 
-def render_png(path, views, columns=None, size=(900, 500)):
+def render_png(path, views, columns=None, size=(900, 500), view=None):
     """Draw meshes side by side into a PNG with the kit's renderer (render.h). views: a list of
     (pos (n, 3), faces (m, 3), scalar (n,) or None, title). A scalar with both signs gets the
-    diverging blue-white-red map, else the sequential one; the first view shows its edges."""
+    diverging blue-white-red map, else the sequential one; the first view shows its edges.
+    size: pixels of each view; view: (azimuth, elevation) in degrees, e.g. (-90, 90) looks straight
+    down on a flat pattern (default: a three-quarter view from the front left)."""
     n = len(views)
     keep = []
     pos = (_D * n)()
@@ -305,6 +308,7 @@ def render_png(path, views, columns=None, size=(900, 500)):
         keep.append(t)
         titles[i] = t
     e = _err()
+    az, el = view if view is not None else (float("nan"), float("nan"))
     if _render(str(path).encode("utf-8"), n, pos, nv, faces, nf, scal, titles, int(columns or n), int(size[0]),
-               int(size[1]), e, len(e)) != _OK:
+               int(size[1]), float(az), float(el), e, len(e)) != _OK:
         _fail(e, "render_png")
