@@ -2517,528 +2517,641 @@ static double wr__wf_kkt(const double *y, const double *g, int32_t n, int32_t na
     return kkt;
 }
 
-WRDEF wr_status wr_wf_solve(const wr_wf *wf, const wr_wf_solve_desc *desc, double *a, double *omega,
-                            wr_wf_solve_stats *stats, wr_diag *diag) {
+/* The SQP's state, alive across its stages (wr_wf_solve below reads as App. E.3's loop over them).
+ * Unknowns y = (free amplitudes, closed-form coordinates z): y[0..na) are the amplitudes of the
+ * vertices with avar[v] >= 0, y[na..n) the coordinates of the null-space basis B (ω = Z z). */
+typedef struct wr__wf_sqp {
+    const wr_wf *wf;
     wr_wf_solve_desc D;
     wr_wf_solve_stats S;
     wr__wf_basis B;
-    wr_triplets T;
+    int32_t *avar, na, n;
+    uint8_t *zero, *active;
+    double *y, *yt, *d, *g, *rhs;   /* n each: iterate, trial, step, reduced gradient, right-hand side */
+    double *xa, *xo, *gx, *H;       /* full space: a (nv), ω (ne), ∇E (nv + ne), face Hessians (nf × 36) */
+    /* per-face reduction ω-local DOFs → reduced unknowns: face f's columns fcols[fstart[f] ..], the
+     * first fused[f] of them used, P (6 × used) column-major in Pm; kpos[kpstart[f] ..] the positions
+     * of its reduced block in K.val (the pattern is fixed for the whole solve) */
+    int32_t *fstart, *fcols, *fused, *kpstart, *kpos;
+    double *Pm;
     wr_csr K;
     wr_spd_solver SV;
-    wr_spd_desc sd;
-    int32_t *avar = NULL, *fstart = NULL, *fcols = NULL, *fused = NULL, *kpstart = NULL, *kpos = NULL, na = 0, n = 0, v, f,
-            i, it;
-    double *Pm = NULL, *y = NULL, *yt = NULL, *d = NULL, *g = NULL, *gx = NULL, *H = NULL, *xa = NULL, *xo = NULL,
-           *rhs = NULL, *kmodel = NULL, *mdiag = NULL, *ks = NULL, *ainit = NULL;
-    double aref = 1.0, eref = 1.0, mu, nu_up = 2.0, greg = 0.0;
-    int have_grad = 0, fresh_hess = 0, hess_true = 0;
-    double Et0 = 0.0, ebase = 0.0;
-    int rebase_kkt = 0;
-    uint8_t *zero = NULL, *active = NULL;
-    double t0 = wr_time_seconds(), E = 0.0;
-    wr_status st = WR_OK;
-    int have_solver = 0;
-    memset(&S, 0, sizeof S);
-    S.switch_iteration = -1;
-    memset(&B, 0, sizeof B);
-    memset(&T, 0, sizeof T);
-    memset(&K, 0, sizeof K);
-    memset(&SV, 0, sizeof SV);
-    if (stats) memset(stats, 0, sizeof *stats);
-    if (!wf || !a || !omega) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "wf solve: NULL argument");
+    int have_solver;
+    double *kmodel, *mdiag, *ks, *ainit; /* undamped model values (nnz), damping diagonal, K·s, scratch */
+    double aref, eref, greg, ebase;      /* scales (ON THE SQP SOLVER), regulariser weight, constant part of E */
+    double mu, nu_up;                    /* Marquardt damping and its growth factor (Nielsen 1999) */
+    double E;                            /* objective at y (E_wf without its constant part + regulariser) */
+    int hess_true;
+} wr__wf_sqp;
+
+/* One Levenberg–Marquardt trial sequence's outcome. */
+typedef struct wr__wf_trial {
+    int accepted, roundoff;
+    int32_t nact, nfail;
+    double Et, rho;
+} wr__wf_trial;
+
+static void wr__wf_sqp_free(wr__wf_sqp *Q) {
+    if (Q->have_solver) wr_spd_solver_free(&Q->SV);
+    wr_csr_free(&Q->K);
+    wr__wf_basis_free(&Q->B);
+    wr_free(Q->avar);
+    wr_free(Q->zero);
+    wr_free(Q->fstart);
+    wr_free(Q->fcols);
+    wr_free(Q->fused);
+    wr_free(Q->kpstart);
+    wr_free(Q->kpos);
+    wr_free(Q->Pm);
+    wr_free(Q->y);
+    wr_free(Q->yt);
+    wr_free(Q->d);
+    wr_free(Q->g);
+    wr_free(Q->gx);
+    wr_free(Q->H);
+    wr_free(Q->xa);
+    wr_free(Q->xo);
+    wr_free(Q->rhs);
+    wr_free(Q->active);
+    wr_free(Q->kmodel);
+    wr_free(Q->mdiag);
+    wr_free(Q->ks);
+    wr_free(Q->ainit);
+}
+
+/* Defaults of wr_wf_solve_desc (the comment above the struct lists them). */
+static wr_status wr__wf_sqp_defaults(wr_wf_solve_desc *D, const wr_wf_solve_desc *desc, wr_diag *diag) {
     if (desc)
-        D = *desc;
+        *D = *desc;
     else
-        memset(&D, 0, sizeof D);
-    if (D.max_iter <= 0) D.max_iter = WR__WF_MAX_ITER;
-    if (!(D.tol_energy > 0.0)) D.tol_energy = WR__WF_TOL_ENERGY;
-    if (!(D.tol_kkt > 0.0)) D.tol_kkt = WR__WF_TOL_KKT;
-    if (!(D.tol_step > 0.0)) D.tol_step = WR__WF_TOL_STEP;
-    if (!(D.hessian_switch > 0.0)) D.hessian_switch = WR__WF_HESSIAN_SWITCH;
-    if ((int)D.hessian < 0 || (int)D.hessian > (int)WR_WF_HESSIAN_TRUE)
-        return wr_fail(diag, WR_ERR_INVALID_ARG, (int32_t)D.hessian, "wf solve: unknown Hessian strategy %d", (int)D.hessian);
-    st = wr__wf_basis_build(wf, &B, diag);
+        memset(D, 0, sizeof *D);
+    if (D->max_iter <= 0) D->max_iter = WR__WF_MAX_ITER;
+    if (!(D->tol_energy > 0.0)) D->tol_energy = WR__WF_TOL_ENERGY;
+    if (!(D->tol_kkt > 0.0)) D->tol_kkt = WR__WF_TOL_KKT;
+    if (!(D->tol_step > 0.0)) D->tol_step = WR__WF_TOL_STEP;
+    if (!(D->hessian_switch > 0.0)) D->hessian_switch = WR__WF_HESSIAN_SWITCH;
+    if ((int)D->hessian < 0 || (int)D->hessian > (int)WR_WF_HESSIAN_TRUE)
+        return wr_fail(diag, WR_ERR_INVALID_ARG, (int32_t)D->hessian, "wf solve: unknown Hessian strategy %d",
+                       (int)D->hessian);
+    return WR_OK;
+}
+
+/* Unknowns and the feasible start: a clipped to >= 0 (0 on W vertices and clamps), ω projected to
+ * dω = 0 (least squares in the closed-form coordinates). */
+static wr_status wr__wf_sqp_start(wr__wf_sqp *Q, const double *a, const double *omega, wr_diag *diag) {
+    const wr_wf *wf = Q->wf;
+    wr_status st = wr__wf_basis_build(wf, &Q->B, diag);
+    int32_t v, n;
     if (st) return st;
-    avar = (int32_t *)wr_alloc_array((size_t)wf->nv, sizeof(int32_t));
-    zero = (uint8_t *)wr_alloc_array((size_t)wf->nv, sizeof(uint8_t));
-    fstart = (int32_t *)wr_calloc_array((size_t)wf->nf + 1, sizeof(int32_t));
-    xa = (double *)wr_alloc_array((size_t)wf->nv, sizeof(double));
-    xo = (double *)wr_alloc_array((size_t)wf->ne, sizeof(double));
-    gx = (double *)wr_alloc_array((size_t)(wf->nv + wf->ne), sizeof(double));
-    H = (double *)wr_alloc_array((size_t)wf->nf * 36, sizeof(double));
-    if (!avar || !zero || !fstart || !xa || !xo || !gx || !H) {
-        st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf solve: out of memory");
-        goto done;
-    }
-    wr__wf_zero_vertices(wf, zero);
-    for (v = 0; v < wf->nv; ++v) avar[v] = zero[v] ? -1 : na++;
-    n = na + B.ncol;
-    S.n_vars = n;
-    S.n_generators = B.ngen;
-    y = (double *)wr_calloc_array((size_t)n + 1, sizeof(double));
-    yt = (double *)wr_calloc_array((size_t)n + 1, sizeof(double));
-    d = (double *)wr_calloc_array((size_t)n + 1, sizeof(double));
-    g = (double *)wr_calloc_array((size_t)n + 1, sizeof(double));
-    rhs = (double *)wr_calloc_array((size_t)n + 1, sizeof(double));
-    active = (uint8_t *)wr_calloc_array((size_t)n + 1, sizeof(uint8_t));
-    if (!y || !yt || !d || !g || !rhs || !active) {
-        st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf solve: out of memory");
-        goto done;
-    }
-    /* feasible start: a clipped to >= 0 (0 on W vertices), ω projected to dω = 0 */
+    Q->avar = (int32_t *)wr_alloc_array((size_t)wf->nv, sizeof(int32_t));
+    Q->zero = (uint8_t *)wr_alloc_array((size_t)wf->nv, sizeof(uint8_t));
+    Q->fstart = (int32_t *)wr_calloc_array((size_t)wf->nf + 1, sizeof(int32_t));
+    Q->xa = (double *)wr_alloc_array((size_t)wf->nv, sizeof(double));
+    Q->xo = (double *)wr_alloc_array((size_t)wf->ne, sizeof(double));
+    Q->gx = (double *)wr_alloc_array((size_t)(wf->nv + wf->ne), sizeof(double));
+    Q->H = (double *)wr_alloc_array((size_t)wf->nf * 36, sizeof(double));
+    if (!Q->avar || !Q->zero || !Q->fstart || !Q->xa || !Q->xo || !Q->gx || !Q->H)
+        return wr_fail(diag, WR_ERR_NOMEM, -1, "wf solve: out of memory");
+    wr__wf_zero_vertices(wf, Q->zero);
+    for (v = 0; v < wf->nv; ++v) Q->avar[v] = Q->zero[v] ? -1 : Q->na++;
+    n = Q->n = Q->na + Q->B.ncol;
+    Q->S.n_vars = n;
+    Q->S.n_generators = Q->B.ngen;
+    Q->y = (double *)wr_calloc_array((size_t)n + 1, sizeof(double));
+    Q->yt = (double *)wr_calloc_array((size_t)n + 1, sizeof(double));
+    Q->d = (double *)wr_calloc_array((size_t)n + 1, sizeof(double));
+    Q->g = (double *)wr_calloc_array((size_t)n + 1, sizeof(double));
+    Q->rhs = (double *)wr_calloc_array((size_t)n + 1, sizeof(double));
+    Q->active = (uint8_t *)wr_calloc_array((size_t)n + 1, sizeof(uint8_t));
+    if (!Q->y || !Q->yt || !Q->d || !Q->g || !Q->rhs || !Q->active)
+        return wr_fail(diag, WR_ERR_NOMEM, -1, "wf solve: out of memory");
     for (v = 0; v < wf->nv; ++v)
-        if (avar[v] >= 0) y[avar[v]] = a[v] > 0.0 && isfinite(a[v]) ? a[v] : 0.0;
-    for (i = 0; i < wf->ne; ++i) xo[i] = omega[i];
-    st = wr__wf_lsq_closed(&B, omega, y + na, D.solver, diag);
-    if (st) goto done;
-    /* per-face maps from the 6 local DOFs to reduced unknowns: P (6 × m_f) */
-    {
-        int32_t total = 0, cap = 0;
-        for (f = 0; f < wf->nf; ++f) {
-            int k;
-            fstart[f] = total;
-            if (wf->wfree[f]) continue;
-            for (k = 0; k < 3; ++k) {
-                int32_t e = wf->mesh->face_edges[3 * f + k];
-                total += 1 + (B.zstart[e + 1] - B.zstart[e]);
-            }
-        }
-        fstart[wf->nf] = total;
-        cap = total > 0 ? total : 1;
-        fcols = (int32_t *)wr_alloc_array((size_t)cap, sizeof(int32_t));
-        Pm = (double *)wr_calloc_array((size_t)cap * 6, sizeof(double));
-        if (!fcols || !Pm) {
-            st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf solve: out of memory");
-            goto done;
-        }
-        for (f = 0; f < wf->nf; ++f) {
-            int32_t idx[6], mcount = 0, s0 = fstart[f], t;
-            double sg[6];
-            int k;
-            if (wf->wfree[f]) {
-                fstart[f + 1] = fstart[f] > fstart[f + 1] ? fstart[f] : fstart[f + 1];
-                continue;
-            }
-            wr_wf_face_dofs(wf, f, idx, sg);
-            /* unique columns: linear search is fine, m_f is small */
-            for (k = 0; k < 6; ++k) {
-                int32_t cstart = k < 3 ? 0 : B.zstart[idx[k] - wf->nv], cend = k < 3 ? 1 : B.zstart[idx[k] - wf->nv + 1];
-                for (t = cstart; t < cend; ++t) {
-                    int32_t col = k < 3 ? avar[idx[k]] : na + B.zcol[t], q;
-                    /* face_hess is already in global ω orientation (wr_wf_energy applies the
-                     * face_edge_sign), so P maps straight to global ω: no sign here. */
-                    double val = k < 3 ? 1.0 : B.zval[t];
-                    if (col < 0) continue;
-                    for (q = 0; q < mcount; ++q)
-                        if (fcols[s0 + q] == col) break;
-                    if (q == mcount) fcols[s0 + mcount++] = col;
-                    Pm[6 * (size_t)s0 + 6 * (size_t)q + k] += val; /* column-major per face: P[q][k] */
-                }
-            }
-            /* shrink this face's range to the columns used */
-            if (f + 1 <= wf->nf) {
-                /* keep fstart monotone: record the used count by marking the rest with -1 */
-                for (t = mcount; t < fstart[f + 1] - s0; ++t) fcols[s0 + t] = -1;
-            }
+        if (Q->avar[v] >= 0) Q->y[Q->avar[v]] = a[v] > 0.0 && isfinite(a[v]) ? a[v] : 0.0;
+    for (v = 0; v < wf->ne; ++v) Q->xo[v] = omega[v];
+    return wr__wf_lsq_closed(&Q->B, omega, Q->y + Q->na, Q->D.solver, diag);
+}
+
+/* Per face, the map P (6 local DOFs: 3 amplitudes, 3 edge ω → the face's reduced unknowns), with
+ * the face's unique columns in fcols; unused tail slots are marked -1 (fstart stays monotone). */
+static wr_status wr__wf_sqp_face_maps(wr__wf_sqp *Q, wr_diag *diag) {
+    const wr_wf *wf = Q->wf;
+    const wr__wf_basis *B = &Q->B;
+    int32_t total = 0, cap, f;
+    for (f = 0; f < wf->nf; ++f) {
+        int k;
+        Q->fstart[f] = total;
+        if (wf->wfree[f]) continue;
+        for (k = 0; k < 3; ++k) {
+            int32_t e = wf->mesh->face_edges[3 * f + k];
+            total += 1 + (B->zstart[e + 1] - B->zstart[e]);
         }
     }
-    /* sparsity pattern once: all face blocks + the diagonal */
+    Q->fstart[wf->nf] = total;
+    cap = total > 0 ? total : 1;
+    Q->fcols = (int32_t *)wr_alloc_array((size_t)cap, sizeof(int32_t));
+    Q->Pm = (double *)wr_calloc_array((size_t)cap * 6, sizeof(double));
+    if (!Q->fcols || !Q->Pm) return wr_fail(diag, WR_ERR_NOMEM, -1, "wf solve: out of memory");
+    for (f = 0; f < wf->nf; ++f) {
+        int32_t idx[6], mcount = 0, s0 = Q->fstart[f], t;
+        double sg[6];
+        int k;
+        if (wf->wfree[f]) {
+            Q->fstart[f + 1] = Q->fstart[f] > Q->fstart[f + 1] ? Q->fstart[f] : Q->fstart[f + 1];
+            continue;
+        }
+        wr_wf_face_dofs(wf, f, idx, sg);
+        /* unique columns: linear search is fine, m_f is small */
+        for (k = 0; k < 6; ++k) {
+            int32_t cstart = k < 3 ? 0 : B->zstart[idx[k] - wf->nv], cend = k < 3 ? 1 : B->zstart[idx[k] - wf->nv + 1];
+            for (t = cstart; t < cend; ++t) {
+                int32_t col = k < 3 ? Q->avar[idx[k]] : Q->na + B->zcol[t], q;
+                /* face_hess is already in global ω orientation (wr_wf_energy applies the
+                 * face_edge_sign), so P maps straight to global ω: no sign here. */
+                double val = k < 3 ? 1.0 : B->zval[t];
+                if (col < 0) continue;
+                for (q = 0; q < mcount; ++q)
+                    if (Q->fcols[s0 + q] == col) break;
+                if (q == mcount) Q->fcols[s0 + mcount++] = col;
+                Q->Pm[6 * (size_t)s0 + 6 * (size_t)q + k] += val; /* column-major per face: P[q][k] */
+            }
+        }
+        for (t = mcount; t < Q->fstart[f + 1] - s0; ++t) Q->fcols[s0 + t] = -1;
+    }
+    return WR_OK;
+}
+
+/* The reduced Hessian's sparsity pattern (all face blocks + the diagonal), its solver, and per face
+ * the positions of its block entries in K.val, so each assembly adds straight into K.val (no
+ * searches, no allocation). */
+static wr_status wr__wf_sqp_pattern(wr__wf_sqp *Q, wr_diag *diag) {
+    const wr_wf *wf = Q->wf;
+    wr_triplets T;
+    wr_spd_desc sd;
+    int64_t tot = 0;
+    int32_t f, n = Q->n;
+    wr_status st;
+    memset(&T, 0, sizeof T);
     st = wr_triplets_create(&T, n, (int64_t)n + 16, diag);
     for (f = 0; f < wf->nf && !st; ++f) {
-        int32_t s0 = fstart[f], m = fstart[f + 1] - s0, r, c;
+        int32_t s0 = Q->fstart[f], m = Q->fstart[f + 1] - s0, r, c;
         if (wf->wfree[f]) continue;
         for (r = 0; r < m && !st; ++r)
             for (c = 0; c < m && !st; ++c)
-                if (fcols[s0 + r] >= 0 && fcols[s0 + c] >= 0) st = wr_triplets_add(&T, fcols[s0 + r], fcols[s0 + c], 0.0, diag);
+                if (Q->fcols[s0 + r] >= 0 && Q->fcols[s0 + c] >= 0)
+                    st = wr_triplets_add(&T, Q->fcols[s0 + r], Q->fcols[s0 + c], 0.0, diag);
     }
-    if (!st) st = wr_csr_from_triplets(&K, &T, diag);
+    if (!st) st = wr_csr_from_triplets(&Q->K, &T, diag);
     wr_triplets_free(&T);
-    if (st) goto done;
+    if (st) return st;
     memset(&sd, 0, sizeof sd);
-    sd.method = D.solver;
-    st = wr_spd_solver_create(&SV, &K, &sd, diag);
-    if (st) goto done;
-    have_solver = 1;
-    kmodel = (double *)wr_alloc_array((size_t)(K.nnz > 0 ? K.nnz : 1), sizeof(double));
-    mdiag = (double *)wr_alloc_array((size_t)n + 1, sizeof(double));
-    ks = (double *)wr_alloc_array((size_t)n + 1, sizeof(double));
-    if (!kmodel || !mdiag || !ks) {
-        st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf solve: out of memory");
-        goto done;
+    sd.method = Q->D.solver;
+    st = wr_spd_solver_create(&Q->SV, &Q->K, &sd, diag);
+    if (st) return st;
+    Q->have_solver = 1;
+    Q->kmodel = (double *)wr_alloc_array((size_t)(Q->K.nnz > 0 ? Q->K.nnz : 1), sizeof(double));
+    Q->mdiag = (double *)wr_alloc_array((size_t)n + 1, sizeof(double));
+    Q->ks = (double *)wr_alloc_array((size_t)n + 1, sizeof(double));
+    Q->fused = (int32_t *)wr_calloc_array((size_t)wf->nf, sizeof(int32_t));
+    Q->kpstart = (int32_t *)wr_calloc_array((size_t)wf->nf + 1, sizeof(int32_t));
+    if (!Q->kmodel || !Q->mdiag || !Q->ks || !Q->fused || !Q->kpstart)
+        return wr_fail(diag, WR_ERR_NOMEM, -1, "wf solve: out of memory");
+    for (f = 0; f < wf->nf; ++f) {
+        int32_t s0 = Q->fstart[f], m = Q->fstart[f + 1] - s0, u = 0;
+        Q->kpstart[f] = (int32_t)tot;
+        if (wf->wfree[f]) continue;
+        while (u < m && Q->fcols[s0 + u] >= 0) ++u; /* used columns come first (wr__wf_sqp_face_maps) */
+        if (u > WR_DENSE_MAX)
+            return wr_fail(diag, WR_ERR_BUDGET, f, "wf solve: face %d couples %d unknowns (> %d)", (int)f, (int)u,
+                           WR_DENSE_MAX);
+        Q->fused[f] = u;
+        tot += (int64_t)u * u;
+        if (tot > INT32_MAX) return wr_fail(diag, WR_ERR_BUDGET, f, "wf solve: face blocks exceed 2^31 entries");
     }
-    /* The pattern is fixed for the whole solve: per face, the used column count and the position in
-     * K.val of every entry of its reduced block, so each assembly adds straight into K.val (no
-     * searches, no allocation). */
-    fused = (int32_t *)wr_calloc_array((size_t)wf->nf, sizeof(int32_t));
-    kpstart = (int32_t *)wr_calloc_array((size_t)wf->nf + 1, sizeof(int32_t));
-    if (!fused || !kpstart) {
-        st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf solve: out of memory");
-        goto done;
-    }
-    {
-        int64_t tot = 0;
-        for (f = 0; f < wf->nf; ++f) {
-            int32_t s0 = fstart[f], m = fstart[f + 1] - s0, u = 0;
-            kpstart[f] = (int32_t)tot;
-            if (wf->wfree[f]) continue;
-            while (u < m && fcols[s0 + u] >= 0) ++u; /* used columns come first (see above) */
-            if (u > WR_DENSE_MAX) {
-                st = wr_fail(diag, WR_ERR_BUDGET, f, "wf solve: face %d couples %d unknowns (> %d)", (int)f, (int)u,
-                             WR_DENSE_MAX);
-                goto done;
+    Q->kpstart[wf->nf] = (int32_t)tot;
+    Q->kpos = (int32_t *)wr_alloc_array((size_t)(tot > 0 ? tot : 1), sizeof(int32_t));
+    if (!Q->kpos) return wr_fail(diag, WR_ERR_NOMEM, -1, "wf solve: out of memory");
+    for (f = 0; f < wf->nf; ++f) {
+        int32_t s0 = Q->fstart[f], u = Q->fused[f], r, c;
+        for (r = 0; r < u; ++r)
+            for (c = 0; c < u; ++c) {
+                int32_t pk = wr_csr_find(&Q->K, Q->fcols[s0 + r], Q->fcols[s0 + c]);
+                WR_ASSERT(pk >= 0); /* every face block is in the pattern by construction */
+                Q->kpos[Q->kpstart[f] + r * u + c] = pk;
             }
-            fused[f] = u;
-            tot += (int64_t)u * u;
-            if (tot > INT32_MAX) {
-                st = wr_fail(diag, WR_ERR_BUDGET, f, "wf solve: face blocks exceed 2^31 entries");
-                goto done;
+    }
+    return WR_OK;
+}
+
+/* Nondimensionalisation (ON THE SQP SOLVER): amplitudes in units of a_ref = max a at the start (or
+ * a fraction of the bounding-box diagonal when the start is flat). */
+static wr_status wr__wf_sqp_scales(wr__wf_sqp *Q, wr_diag *diag) {
+    const wr_wf *wf = Q->wf;
+    double amax = 0.0, lo[3], hi[3], diam2 = 0.0;
+    int32_t i, v;
+    for (i = 0; i < Q->na; ++i) amax = fmax(amax, Q->y[i]);
+    for (i = 0; i < 3; ++i) lo[i] = hi[i] = wf->base[i];
+    for (v = 0; v < wf->nv; ++v)
+        for (i = 0; i < 3; ++i) {
+            lo[i] = fmin(lo[i], wf->base[3 * v + i]);
+            hi[i] = fmax(hi[i], wf->base[3 * v + i]);
+        }
+    for (i = 0; i < 3; ++i) diam2 += (hi[i] - lo[i]) * (hi[i] - lo[i]);
+    Q->aref = amax > 0.0 ? amax : WR__WF_AREF_FALLBACK * sqrt(diam2);
+    Q->ainit = (double *)wr_alloc_array((size_t)Q->na + 1, sizeof(double));
+    if (!Q->ainit) return wr_fail(diag, WR_ERR_NOMEM, -1, "wf solve: out of memory");
+    return WR_OK;
+}
+
+/* Reduced gradient g = (∂E/∂a on free amplitudes, Zᵀ ∂E/∂ω) from the full-space gradient gx. */
+static void wr__wf_sqp_reduce(const wr__wf_sqp *Q, const double *gx, double *g) {
+    int32_t v;
+    for (v = 0; v < Q->wf->nv; ++v)
+        if (Q->avar[v] >= 0) g[Q->avar[v]] = gx[v];
+    wr__wf_z_applyT(&Q->B, gx + Q->wf->nv, g + Q->na);
+}
+
+/* E, g and the face Hessians at y. The first evaluation also fixes E_ref (|E_wf| at the start), the
+ * constant part of E_wf (reported, not minimised) and the regulariser weight γ. */
+static wr_status wr__wf_sqp_evaluate(wr__wf_sqp *Q, int first, wr_diag *diag) {
+    const wr_wf *wf = Q->wf;
+    wr_status st;
+    wr__wf_sqp_tox(wf, &Q->B, Q->avar, Q->y, Q->na, Q->xa, Q->xo);
+    st = wr__wf_energy_impl(wf, Q->xa, Q->xo, 1, &Q->E, Q->gx, Q->H, NULL, diag);
+    if (st) return st;
+    if (first) {
+        int32_t i, nact_e = 0;
+        double Efull = 0.0;
+        st = wr_wf_energy(wf, Q->xa, Q->xo, &Efull, NULL, NULL, NULL, diag);
+        if (st) return st;
+        Q->ebase = Efull - Q->E;
+        Q->eref = fabs(Efull) > 0.0 ? fabs(Efull) : 1.0;
+        for (i = 0; i < wf->ne; ++i) nact_e += Q->B.eact[i];
+        Q->greg = Q->D.omega_reg > 0.0 && nact_e > 0 ? Q->D.omega_reg * Q->eref / nact_e : 0.0;
+    }
+    Q->E += wr__wf_reg(&Q->B, Q->greg, Q->xo, Q->gx + wf->nv);
+    wr__wf_sqp_reduce(Q, Q->gx, Q->g);
+    return WR_OK;
+}
+
+/* The model Hessian K = Σ_f Pᵀ He P (+ the regulariser's γ ZᵀZ), He the face's true or SPD-projected
+ * block (App. E.3), kept undamped in kmodel. */
+static wr_status wr__wf_sqp_assemble(wr__wf_sqp *Q, wr_diag *diag) {
+    const wr_wf *wf = Q->wf;
+    wr_csr *K = &Q->K;
+    int32_t f, e;
+    wr_csr_zero_values(K);
+    for (f = 0; f < wf->nf; ++f) {
+        int32_t s0 = Q->fstart[f], u = Q->fused[f], r, c, k, l;
+        const int32_t *kp = Q->kpos + Q->kpstart[f];
+        double He[36], HP[6 * WR_DENSE_MAX];
+        if (wf->wfree[f]) continue;
+        memcpy(He, Q->H + 36 * (size_t)f, sizeof He);
+        /* App. E.3 per-face projection; a positive definite block is its own projection, and a
+         * Cholesky attempt settles that far cheaper than the eigen-decomposition */
+        if (!Q->hess_true && !wr__wf_spd6(He)) wr_dense_project_spd(6, He, 0.0);
+        /* reduced block Pᵀ He P: HP = He P first (6 × u), then the upper triangle of Pᵀ HP */
+        for (c = 0; c < u; ++c) {
+            const double *pc = Q->Pm + 6 * (size_t)(s0 + c);
+            for (k = 0; k < 6; ++k) {
+                double t = 0.0;
+                for (l = 0; l < 6; ++l) t += He[6 * k + l] * pc[l];
+                HP[6 * c + k] = t;
             }
         }
-        kpstart[wf->nf] = (int32_t)tot;
-        kpos = (int32_t *)wr_alloc_array((size_t)(tot > 0 ? tot : 1), sizeof(int32_t));
-        if (!kpos) {
-            st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf solve: out of memory");
-            goto done;
+        for (r = 0; r < u; ++r) {
+            const double *pr = Q->Pm + 6 * (size_t)(s0 + r);
+            for (c = r; c < u; ++c) {
+                const double *hc = HP + 6 * c;
+                double t = pr[0] * hc[0] + pr[1] * hc[1] + pr[2] * hc[2] + pr[3] * hc[3] + pr[4] * hc[4] + pr[5] * hc[5];
+                K->val[kp[r * u + c]] += t;
+                if (c != r) K->val[kp[c * u + r]] += t;
+            }
         }
-        for (f = 0; f < wf->nf; ++f) {
-            int32_t s0 = fstart[f], u = fused[f], r, c;
-            for (r = 0; r < u; ++r)
-                for (c = 0; c < u; ++c) {
-                    int32_t pk = wr_csr_find(&K, fcols[s0 + r], fcols[s0 + c]);
-                    WR_ASSERT(pk >= 0); /* every face block is in the pattern by construction */
-                    kpos[kpstart[f] + r * u + c] = pk;
+    }
+    if (Q->greg > 0.0)
+        for (e = 0; e < wf->ne; ++e) {
+            int32_t s0 = Q->B.zstart[e], nz = Q->B.zstart[e + 1] - s0, r, c;
+            if (!Q->B.eact[e]) continue;
+            for (r = 0; r < nz; ++r)
+                for (c = 0; c < nz; ++c) {
+                    wr_status st = wr_csr_add(K, Q->na + Q->B.zcol[s0 + r], Q->na + Q->B.zcol[s0 + c],
+                                              Q->greg * Q->B.zval[s0 + r] * Q->B.zval[s0 + c], diag);
+                    if (st) return st;
                 }
         }
+    memcpy(Q->kmodel, K->val, sizeof(double) * (size_t)K->nnz);
+    return WR_OK;
+}
+
+/* Marquardt damping matrix: |diag| of the model Hessian, floored per block (a, z) so that directions
+ * the energy does not see (ω where a = 0) still get a finite, tiny step. */
+static void wr__wf_sqp_damping(wr__wf_sqp *Q) {
+    double mblock[2] = {0.0, 0.0}, mcount[2] = {0.0, 0.0};
+    int32_t i, na = Q->na;
+    for (i = 0; i < Q->n; ++i) {
+        int32_t p = wr_csr_find(&Q->K, i, i);
+        Q->mdiag[i] = p >= 0 ? fabs(Q->kmodel[p]) : 0.0;
+        mblock[i < na ? 0 : 1] += Q->mdiag[i];
+        mcount[i < na ? 0 : 1] += 1.0;
     }
-    /* Nondimensionalisation (see ON THE SQP SOLVER): amplitudes in units of a_ref, energy in units
-     * of E_ref; closed-form coordinates are already in radians. */
-    {
-        double amax = 0.0, lo[3], hi[3], diam2 = 0.0;
-        for (i = 0; i < na; ++i) amax = fmax(amax, y[i]);
-        for (i = 0; i < 3; ++i) lo[i] = hi[i] = wf->base[i];
-        for (v = 0; v < wf->nv; ++v)
-            for (i = 0; i < 3; ++i) {
-                lo[i] = fmin(lo[i], wf->base[3 * v + i]);
-                hi[i] = fmax(hi[i], wf->base[3 * v + i]);
+    for (i = 0; i < 2; ++i) mblock[i] = mcount[i] > 0.0 && mblock[i] > 0.0 ? mblock[i] / mcount[i] : 1.0;
+    for (i = 0; i < Q->n; ++i) Q->mdiag[i] = fmax(Q->mdiag[i], WR__WF_DAMP_FLOOR * mblock[i < na ? 0 : 1]);
+}
+
+/* Solve (K + μ M) d = -g on the free set of the ε-active set (Bertsekas 1982 projected Newton:
+ * amplitudes within ε of the bound whose scaled gradient pushes them down are held and moved onto
+ * it) and turn d into the projected step yt - y. Returns the factor/solve status. */
+static wr_status wr__wf_sqp_damped_step(wr__wf_sqp *Q, double epsact, int32_t *nact) {
+    wr_csr *K = &Q->K;
+    wr_spd_stats ss;
+    wr_status fs;
+    double t1 = wr_time_seconds();
+    int32_t i, n = Q->n;
+    *nact = 0;
+    for (i = 0; i < n; ++i) {
+        Q->active[i] = (uint8_t)(i < Q->na && (Q->y[i] <= 0.0 || Q->y[i] / Q->aref <= epsact) && Q->g[i] > 0.0);
+        *nact += Q->active[i];
+    }
+    memcpy(K->val, Q->kmodel, sizeof(double) * (size_t)K->nnz);
+    for (i = 0; i < n; ++i) {
+        int32_t t;
+        for (t = K->rowptr[i]; t < K->rowptr[i + 1]; ++t) {
+            if (Q->active[i] || Q->active[K->col[t]])
+                K->val[t] = (K->col[t] == i) ? 1.0 : 0.0;
+            else if (K->col[t] == i)
+                K->val[t] += Q->mu * Q->mdiag[i];
+        }
+        Q->rhs[i] = Q->active[i] ? 0.0 : -Q->g[i];
+        Q->d[i] = 0.0;
+    }
+    fs = wr_spd_solver_factor(&Q->SV, K, NULL);
+    if (!fs) fs = wr_spd_solver_solve(&Q->SV, K, Q->rhs, Q->d, &ss, NULL);
+    Q->S.n_factorizations++;
+    Q->S.seconds_solve += wr_time_seconds() - t1;
+    if (fs) return fs;
+    for (i = 0; i < n; ++i) {
+        if (Q->active[i]) Q->d[i] = -Q->y[i]; /* onto the bound */
+        Q->yt[i] = Q->y[i] + Q->d[i];
+        if (i < Q->na && Q->yt[i] < 0.0) Q->yt[i] = 0.0;
+        Q->d[i] = Q->yt[i] - Q->y[i]; /* the projected step s */
+    }
+    return WR_OK;
+}
+
+/* Model decrease of the projected step s = d: -(gᵀs + ½ sᵀ K s) with the undamped model K. */
+static double wr__wf_sqp_predicted(wr__wf_sqp *Q) {
+    const wr_csr *K = &Q->K;
+    double pred = 0.0;
+    int32_t i;
+    for (i = 0; i < Q->n; ++i) {
+        int32_t t;
+        double r = 0.0;
+        for (t = K->rowptr[i]; t < K->rowptr[i + 1]; ++t) r += Q->kmodel[t] * Q->d[K->col[t]];
+        Q->ks[i] = r;
+        pred -= Q->d[i] * (Q->g[i] + 0.5 * r);
+    }
+    return pred;
+}
+
+/* Levenberg–Marquardt trust region (Nielsen 1999): damped steps until one is accepted on sufficient
+ * actual/predicted decrease ρ, adapting μ. A step whose predicted decrease is below E's round-off
+ * is judged by the stationarity residual instead (out->roundoff when it does not lower it). */
+static wr_status wr__wf_sqp_trust_region(wr__wf_sqp *Q, double kkt, wr__wf_trial *out, wr_diag *diag) {
+    const wr_wf *wf = Q->wf;
+    double epsact = WR__WF_EPS_ACTIVE;
+    memset(out, 0, sizeof *out);
+    for (;;) {
+        double pred;
+        wr_status fs = wr__wf_sqp_damped_step(Q, epsact, &out->nact);
+        if (fs) {
+            if (fs != WR_ERR_NOT_SPD && fs != WR_ERR_NOT_CONVERGED)
+                return wr_fail(diag, fs, -1, "wf solve: linear solve failed (%s)", wr_status_string(fs));
+            Q->mu = fmax(WR__WF_MU_MIN, Q->mu) * WR__WF_MU_UP;
+            if (Q->mu > WR__WF_MU_MAX) return WR_OK;
+            continue;
+        }
+        pred = wr__wf_sqp_predicted(Q);
+        wr__wf_sqp_tox(wf, &Q->B, Q->avar, Q->yt, Q->na, Q->xa, Q->xo);
+        fs = wr__wf_energy_impl(wf, Q->xa, Q->xo, 1, &out->Et, NULL, NULL, NULL, NULL);
+        out->Et += wr__wf_reg(&Q->B, Q->greg, Q->xo, NULL);
+        out->rho = (fs == WR_OK && pred > 0.0) ? (Q->E - out->Et) / pred : -1.0;
+        /* the model promises less than the energy's round-off: E - Et is noise and ρ a coin flip
+         * (whether the last Newton step was taken used to depend on the last bits of E). Decide
+         * by the stationarity residual instead: take the step when it lowers it (a Newton step
+         * near a minimiser does), else no evaluation can confirm a decrease any more and rule 1
+         * (energy change below resolution) holds. */
+        if (fs == WR_OK && pred >= 0.0 && pred <= WR__WF_ROUNDOFF * fmax(fabs(Q->E), WR__WF_ROUNDOFF_FLOOR * Q->eref)) {
+            double Eg = 0.0, kt = HUGE_VAL;
+            if (wr__wf_energy_impl(wf, Q->xa, Q->xo, 1, &Eg, Q->gx, NULL, NULL, NULL) == WR_OK) {
+                wr__wf_reg(&Q->B, Q->greg, Q->xo, Q->gx + wf->nv);
+                wr__wf_sqp_reduce(Q, Q->gx, Q->ks);
+                kt = wr__wf_kkt(Q->yt, Q->ks, Q->n, Q->na, Q->aref, Q->eref);
             }
-        for (i = 0; i < 3; ++i) diam2 += (hi[i] - lo[i]) * (hi[i] - lo[i]);
-        aref = amax > 0.0 ? amax : WR__WF_AREF_FALLBACK * sqrt(diam2);
+            if (kt < kkt) {
+                out->rho = 1.0; /* for the report and rules 1/3: the model is as good as it can be checked */
+                Q->mu = fmax(WR__WF_MU_MIN, Q->mu / 3.0);
+                Q->nu_up = 2.0;
+                out->accepted = 1;
+            } else {
+                out->roundoff = 1;
+            }
+            return WR_OK;
+        }
+        if (fs == WR_OK && pred > 0.0 && out->rho > WR__WF_RHO_ACCEPT) {
+            double c3 = 2.0 * out->rho - 1.0;
+            Q->mu *= fmax(1.0 / 3.0, 1.0 - c3 * c3 * c3);
+            if (Q->mu < WR__WF_MU_MIN) Q->mu = WR__WF_MU_MIN;
+            Q->nu_up = 2.0;
+            out->accepted = 1;
+            return WR_OK;
+        }
+        ++Q->S.n_rejected;
+        ++out->nfail;
+        /* after a rejection ε shrinks ×0.1: snapping a near-bound amplitude to 0 is the one part of
+         * the step μ does not shorten */
+        epsact *= 0.1;
+        Q->mu = fmax(WR__WF_MU_MIN, Q->mu) * Q->nu_up;
+        Q->nu_up *= 2.0;
+        if (Q->mu > WR__WF_MU_MAX) return WR_OK;
     }
-    ainit = (double *)wr_alloc_array((size_t)na + 1, sizeof(double));
-    if (!ainit) {
-        st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf solve: out of memory");
-        goto done;
+}
+
+/* Take the accepted trial point, report it, and test App. E.3's rules 1 and 3. Rules 1 and 3 only
+ * count a step the quadratic model predicted well (ρ > 1/2): a heavily damped step is short and
+ * changes E little without the iterate being stationary. Returns 1 when a rule stops the solve. */
+static int wr__wf_sqp_take(wr__wf_sqp *Q, int32_t it, double kkt, const wr__wf_trial *tr) {
+    double stepa = 0.0, stepz = 0.0, norma = 0.0, normz = 0.0;
+    wr_wf_iter_info info;
+    int32_t i;
+    for (i = 0; i < Q->n; ++i) {
+        double dy = fabs(Q->yt[i] - Q->y[i]);
+        if (i < Q->na) {
+            stepa = fmax(stepa, dy);
+            norma = fmax(norma, fabs(Q->yt[i]));
+        } else {
+            stepz = fmax(stepz, dy);
+            normz = fmax(normz, fabs(Q->yt[i]));
+        }
+        Q->y[i] = Q->yt[i];
     }
-    mu = WR__WF_MU0;
-    hess_true = D.hessian == WR_WF_HESSIAN_TRUE;
+    info.iteration = it + 1;
+    info.energy = tr->Et + Q->ebase;
+    info.kkt = kkt;
+    info.step = fmax(stepa / Q->aref, stepz);
+    info.alpha_ls = tr->rho;
+    info.shift = Q->mu;
+    info.n_active = tr->nact;
+    info.n_rejected = tr->nfail;
+    info.true_hessian = Q->hess_true;
+    if (Q->D.progress) Q->D.progress(&info, Q->D.user);
+    Q->S.iterations = it + 1;
+    if (Q->hess_true && Q->S.switch_iteration < 0) Q->S.switch_iteration = it;
+    if (tr->rho > 0.5 && fabs(Q->E - tr->Et) <= Q->D.tol_energy * fabs(Q->E + Q->ebase)) {
+        Q->E = tr->Et;
+        Q->S.stop = WR_WF_STOP_ENERGY;
+        return 1;
+    }
+    if (tr->rho > 0.5 && stepa <= Q->D.tol_step * norma && stepz <= Q->D.tol_step * normz) {
+        Q->S.stop = WR_WF_STOP_STEP;
+        return 1;
+    }
+    Q->E = tr->Et;
+    return 0;
+}
+
+/* Rule 2 (stationarity) holds at y. a = 0 is a KKT point wherever it holds (E is even in a): leave it
+ * along negative curvature of E in the amplitudes at the bound before accepting it (second order,
+ * wr__wf_escape). Returns 1 when y escaped (the solve goes on from the new point). */
+static int wr__wf_sqp_try_escape(wr__wf_sqp *Q) {
+    double Et = 0.0;
+    int32_t i;
+    if (Q->S.n_escapes >= WR__WF_MAX_ESCAPES) return 0;
+    if (!wr__wf_escape(Q->wf, &Q->B, Q->avar, Q->na, Q->y, Q->H, Q->aref, Q->E, Q->yt, Q->xa, Q->xo, Q->ainit,
+                       Q->mdiag, &Et))
+        return 0;
+    ++Q->S.n_escapes;
+    for (i = 0; i < Q->n; ++i) Q->y[i] = Q->yt[i];
+    Q->E = Et;
+    return 1;
+}
+
+/* The iteration of App. E.3: evaluate, test stationarity (with the second-order escape), assemble
+ * the model, take a trust-region step, test rules 1 and 3. Leaves the stop reason in Q->S.stop. */
+static wr_status wr__wf_sqp_iterate(wr__wf_sqp *Q, wr_diag *diag) {
+    int have_grad = 0, rebase_kkt = 0;
+    int32_t it;
+    Q->mu = WR__WF_MU0;
+    Q->nu_up = 2.0;
+    Q->hess_true = Q->D.hessian == WR_WF_HESSIAN_TRUE;
     for (it = 0;; ++it) {
-        double t1 = wr_time_seconds(), kkt = 0.0, Et = 0.0, stepa = 0.0, stepz = 0.0, norma = 0.0, normz = 0.0;
-        double pred = 0.0, rho = 0.0, mblock[2] = {0.0, 0.0}, mcount[2] = {0.0, 0.0}, epsact;
-        int32_t nact = 0, nfail = 0, accepted, roundoff = 0;
-        wr_wf_iter_info info;
+        double t1 = wr_time_seconds(), kkt;
+        wr__wf_trial tr;
+        wr_status st;
+        int fresh_hess = 0;
         if (!have_grad) {
-            wr__wf_sqp_tox(wf, &B, avar, y, na, xa, xo);
-            st = wr__wf_energy_impl(wf, xa, xo, 1, &E, gx, H, NULL, diag);
-            if (st) goto done;
-            for (v = 0; v < wf->nv; ++v)
-                if (avar[v] >= 0) g[avar[v]] = gx[v];
-            if (it == 0) {
-                int32_t nact_e = 0;
-                double Efull = 0.0;
-                st = wr_wf_energy(wf, xa, xo, &Efull, NULL, NULL, NULL, diag);
-                if (st) goto done;
-                ebase = Efull - E; /* the constant part, for reporting only */
-                eref = fabs(Efull) > 0.0 ? fabs(Efull) : 1.0;
-                for (i = 0; i < wf->ne; ++i) nact_e += B.eact[i];
-                greg = D.omega_reg > 0.0 && nact_e > 0 ? D.omega_reg * eref / nact_e : 0.0;
-            }
-            E += wr__wf_reg(&B, greg, xo, gx + wf->nv);
-            wr__wf_z_applyT(&B, gx + wf->nv, g + na);
+            st = wr__wf_sqp_evaluate(Q, it == 0, diag);
+            if (st) return st;
             have_grad = 1;
             fresh_hess = 1;
         }
-        kkt = wr__wf_kkt(y, g, n, na, aref, eref);
+        kkt = wr__wf_kkt(Q->y, Q->g, Q->n, Q->na, Q->aref, Q->eref);
         if (rebase_kkt) { /* after an escape the reference residual is the escaped point's */
-            S.kkt0 = fmax(S.kkt0, kkt);
+            Q->S.kkt0 = fmax(Q->S.kkt0, kkt);
             rebase_kkt = 0;
         }
         if (it == 0) {
-            S.energy0 = E + ebase;
-            S.kkt0 = kkt;
+            Q->S.energy0 = Q->E + Q->ebase;
+            Q->S.kkt0 = kkt;
         }
-        S.energy = E + ebase;
-        S.kkt = kkt;
-        S.iterations = it;
-        if (kkt <= D.tol_kkt * S.kkt0 || kkt == 0.0) {
-            /* a = 0 is a KKT point wherever it holds (E is even in a): leave it along negative
-             * curvature of E in the amplitudes at the bound before accepting it (second order) */
-            if (S.n_escapes < WR__WF_MAX_ESCAPES &&
-                wr__wf_escape(wf, &B, avar, na, y, H, aref, E, yt, xa, xo, ainit, mdiag, &Et0)) {
-                ++S.n_escapes;
+        Q->S.energy = Q->E + Q->ebase;
+        Q->S.kkt = kkt;
+        Q->S.iterations = it;
+        if (kkt <= Q->D.tol_kkt * Q->S.kkt0 || kkt == 0.0) {
+            if (wr__wf_sqp_try_escape(Q)) {
                 rebase_kkt = 1;
-                for (i = 0; i < n; ++i) y[i] = yt[i];
-                E = Et0;
                 have_grad = 0;
                 continue;
             }
-            S.stop = WR_WF_STOP_KKT;
-            break;
+            Q->S.stop = WR_WF_STOP_KKT;
+            return WR_OK;
         }
-        if (it >= D.max_iter) {
-            S.stop = WR_WF_STOP_MAX_ITER;
-            break;
+        if (it >= Q->D.max_iter) {
+            Q->S.stop = WR_WF_STOP_MAX_ITER;
+            return WR_OK;
         }
         /* App. E.3 Hessian strategy: per-face SPD projection far from the solution, the true Hessian
          * once the relative KKT residual is below hessian_switch (AUTO), or one of them throughout. */
-        if (D.hessian == WR_WF_HESSIAN_AUTO && !hess_true && kkt <= D.hessian_switch * S.kkt0) hess_true = 1;
+        if (Q->D.hessian == WR_WF_HESSIAN_AUTO && !Q->hess_true && kkt <= Q->D.hessian_switch * Q->S.kkt0)
+            Q->hess_true = 1;
         if (fresh_hess) {
-            wr_csr_zero_values(&K);
-            for (f = 0; f < wf->nf; ++f) {
-                int32_t s0 = fstart[f], u = fused[f], r, c, k, l;
-                const int32_t *kp = kpos + kpstart[f];
-                double He[36], HP[6 * WR_DENSE_MAX];
-                if (wf->wfree[f]) continue;
-                memcpy(He, H + 36 * (size_t)f, sizeof He);
-                /* App. E.3 per-face projection; a positive definite block is its own projection, and a
-                 * Cholesky attempt settles that far cheaper than the eigen-decomposition */
-                if (!hess_true && !wr__wf_spd6(He)) wr_dense_project_spd(6, He, 0.0);
-                /* reduced block Pᵀ He P: HP = He P first (6 × u), then the upper triangle of Pᵀ HP */
-                for (c = 0; c < u; ++c) {
-                    const double *pc = Pm + 6 * (size_t)(s0 + c);
-                    for (k = 0; k < 6; ++k) {
-                        double t = 0.0;
-                        for (l = 0; l < 6; ++l) t += He[6 * k + l] * pc[l];
-                        HP[6 * c + k] = t;
-                    }
-                }
-                for (r = 0; r < u; ++r) {
-                    const double *pr = Pm + 6 * (size_t)(s0 + r);
-                    for (c = r; c < u; ++c) {
-                        const double *hc = HP + 6 * c;
-                        double t = pr[0] * hc[0] + pr[1] * hc[1] + pr[2] * hc[2] + pr[3] * hc[3] + pr[4] * hc[4] + pr[5] * hc[5];
-                        K.val[kp[r * u + c]] += t;
-                        if (c != r) K.val[kp[c * u + r]] += t;
-                    }
-                }
-            }
-            if (greg > 0.0) {
-                int32_t e;
-                for (e = 0; e < wf->ne; ++e) {
-                    int32_t s0 = B.zstart[e], nz = B.zstart[e + 1] - s0, r, c;
-                    if (!B.eact[e]) continue;
-                    for (r = 0; r < nz; ++r)
-                        for (c = 0; c < nz; ++c) {
-                            st = wr_csr_add(&K, na + B.zcol[s0 + r], na + B.zcol[s0 + c],
-                                            greg * B.zval[s0 + r] * B.zval[s0 + c], diag);
-                            if (st) goto done;
-                        }
-                }
-            }
-            memcpy(kmodel, K.val, sizeof(double) * (size_t)K.nnz);
-            fresh_hess = 0;
+            st = wr__wf_sqp_assemble(Q, diag);
+            if (st) return st;
         }
-        /* ε-active set (Bertsekas 1982 projected Newton): amplitudes within eps of the bound whose
-         * scaled gradient pushes them down are held and moved to the bound. */
-        epsact = WR__WF_EPS_ACTIVE;
-        /* Marquardt damping matrix: |diag| of the model Hessian, floored per block (a, z) so that
-         * directions the energy does not see (ω where a = 0) still get a finite, tiny step. */
-        for (i = 0; i < n; ++i) {
-            int32_t p = wr_csr_find(&K, i, i);
-            mdiag[i] = p >= 0 ? fabs(kmodel[p]) : 0.0;
-            mblock[i < na ? 0 : 1] += mdiag[i];
-            mcount[i < na ? 0 : 1] += 1.0;
+        wr__wf_sqp_damping(Q);
+        Q->S.seconds_assembly += wr_time_seconds() - t1;
+        st = wr__wf_sqp_trust_region(Q, kkt, &tr, diag);
+        if (st) return st;
+        if (tr.roundoff) {
+            Q->S.stop = WR_WF_STOP_ENERGY;
+            return WR_OK;
         }
-        for (i = 0; i < 2; ++i) mblock[i] = mcount[i] > 0.0 && mblock[i] > 0.0 ? mblock[i] / mcount[i] : 1.0;
-        for (i = 0; i < n; ++i) mdiag[i] = fmax(mdiag[i], WR__WF_DAMP_FLOOR * mblock[i < na ? 0 : 1]);
-        S.seconds_assembly += wr_time_seconds() - t1;
-        /* Levenberg–Marquardt trust region: solve (K + μ M) d = -g on the free set, try the projected
-         * point, accept on sufficient actual/predicted decrease, adapt μ (Nielsen 1999). */
-        accepted = 0;
-        for (;;) {
-            wr_spd_stats ss;
-            wr_status fs;
-            t1 = wr_time_seconds();
-            /* the ε-active set is rebuilt per trial: after a rejection ε shrinks ×0.1, because
-             * snapping a near-bound amplitude to 0 is the one part of the step μ does not shorten */
-            nact = 0;
-            for (i = 0; i < n; ++i) {
-                active[i] = (uint8_t)(i < na && (y[i] <= 0.0 || y[i] / aref <= epsact) && g[i] > 0.0);
-                nact += active[i];
-            }
-            memcpy(K.val, kmodel, sizeof(double) * (size_t)K.nnz);
-            for (i = 0; i < n; ++i) {
-                int32_t t;
-                for (t = K.rowptr[i]; t < K.rowptr[i + 1]; ++t) {
-                    if (active[i] || active[K.col[t]])
-                        K.val[t] = (K.col[t] == i) ? 1.0 : 0.0;
-                    else if (K.col[t] == i)
-                        K.val[t] += mu * mdiag[i];
-                }
-                rhs[i] = active[i] ? 0.0 : -g[i];
-                d[i] = 0.0;
-            }
-            fs = wr_spd_solver_factor(&SV, &K, NULL);
-            if (!fs) fs = wr_spd_solver_solve(&SV, &K, rhs, d, &ss, NULL);
-            S.n_factorizations++;
-            S.seconds_solve += wr_time_seconds() - t1;
-            if (fs) {
-                if (fs != WR_ERR_NOT_SPD && fs != WR_ERR_NOT_CONVERGED) {
-                    st = wr_fail(diag, fs, -1, "wf solve: linear solve failed (%s)", wr_status_string(fs));
-                    goto done;
-                }
-                mu = fmax(WR__WF_MU_MIN, mu) * WR__WF_MU_UP;
-                if (mu > WR__WF_MU_MAX) break;
-                continue;
-            }
-            for (i = 0; i < n; ++i) {
-                if (active[i]) d[i] = -y[i]; /* onto the bound */
-                yt[i] = y[i] + d[i];
-                if (i < na && yt[i] < 0.0) yt[i] = 0.0;
-                d[i] = yt[i] - y[i]; /* the projected step s */
-            }
-            /* model decrease of the projected step: -(gᵀs + ½ sᵀ K s) with the undamped model K */
-            pred = 0.0;
-            for (i = 0; i < n; ++i) {
-                int32_t t;
-                double r = 0.0;
-                for (t = K.rowptr[i]; t < K.rowptr[i + 1]; ++t) r += kmodel[t] * d[K.col[t]];
-                ks[i] = r;
-                pred -= d[i] * (g[i] + 0.5 * r);
-            }
-            wr__wf_sqp_tox(wf, &B, avar, yt, na, xa, xo);
-            fs = wr__wf_energy_impl(wf, xa, xo, 1, &Et, NULL, NULL, NULL, NULL);
-            Et += wr__wf_reg(&B, greg, xo, NULL);
-            rho = (fs == WR_OK && pred > 0.0) ? (E - Et) / pred : -1.0;
-            /* the model promises less than the energy's round-off: E - Et is noise and ρ a coin flip
-             * (whether the last Newton step was taken used to depend on the last bits of E). Decide
-             * by the stationarity residual instead: take the step when it lowers it (a Newton step
-             * near a minimiser does), else no evaluation can confirm a decrease any more and rule 1
-             * (energy change below resolution) holds. */
-            if (fs == WR_OK && pred >= 0.0 && pred <= WR__WF_ROUNDOFF * fmax(fabs(E), WR__WF_ROUNDOFF_FLOOR * eref)) {
-                double Eg = 0.0, kt = HUGE_VAL;
-                if (wr__wf_energy_impl(wf, xa, xo, 1, &Eg, gx, NULL, NULL, NULL) == WR_OK) {
-                    wr__wf_reg(&B, greg, xo, gx + wf->nv);
-                    for (v = 0; v < wf->nv; ++v)
-                        if (avar[v] >= 0) ks[avar[v]] = gx[v];
-                    wr__wf_z_applyT(&B, gx + wf->nv, ks + na);
-                    kt = wr__wf_kkt(yt, ks, n, na, aref, eref);
-                }
-                if (kt < kkt) {
-                    rho = 1.0; /* for the report and rules 1/3: the model is as good as it can be checked */
-                    mu = fmax(WR__WF_MU_MIN, mu / 3.0);
-                    nu_up = 2.0;
-                    accepted = 1;
-                    break;
-                }
-                roundoff = 1;
-                break;
-            }
-            if (fs == WR_OK && pred > 0.0 && rho > WR__WF_RHO_ACCEPT) {
-                double c3 = 2.0 * rho - 1.0;
-                mu *= fmax(1.0 / 3.0, 1.0 - c3 * c3 * c3);
-                if (mu < WR__WF_MU_MIN) mu = WR__WF_MU_MIN;
-                nu_up = 2.0;
-                accepted = 1;
-                break;
-            }
-            ++S.n_rejected;
-            ++nfail;
-            epsact *= 0.1;
-            mu = fmax(WR__WF_MU_MIN, mu) * nu_up;
-            nu_up *= 2.0;
-            if (mu > WR__WF_MU_MAX) break;
+        if (!tr.accepted) {
+            Q->S.stop = WR_WF_STOP_LINE_SEARCH;
+            return WR_OK;
         }
-        if (roundoff) {
-            S.stop = WR_WF_STOP_ENERGY;
-            break;
-        }
-        if (!accepted) {
-            S.stop = WR_WF_STOP_LINE_SEARCH;
-            break;
-        }
-        for (i = 0; i < n; ++i) {
-            double dy = fabs(yt[i] - y[i]);
-            if (i < na) {
-                stepa = fmax(stepa, dy);
-                norma = fmax(norma, fabs(yt[i]));
-            } else {
-                stepz = fmax(stepz, dy);
-                normz = fmax(normz, fabs(yt[i]));
-            }
-            y[i] = yt[i];
-        }
-        info.iteration = it + 1;
-        info.energy = Et + ebase;
-        info.kkt = kkt;
-        info.step = fmax(stepa / aref, stepz);
-        info.alpha_ls = rho;
-        info.shift = mu;
-        info.n_active = nact;
-        info.n_rejected = nfail;
-        info.true_hessian = hess_true;
-        if (D.progress) D.progress(&info, D.user);
-        S.iterations = it + 1;
-        if (hess_true && S.switch_iteration < 0) S.switch_iteration = it;
         have_grad = 0;
-        /* rules 1 and 3 only count a step the quadratic model predicted well (ρ > 1/2): a heavily
-         * damped step is short and changes E little without the iterate being stationary. */
-        if (rho > 0.5 && fabs(E - Et) <= D.tol_energy * fabs(E + ebase)) {
-            E = Et;
-            S.stop = WR_WF_STOP_ENERGY;
-            break;
-        }
-        if (rho > 0.5 && stepa <= D.tol_step * norma && stepz <= D.tol_step * normz) {
-            S.stop = WR_WF_STOP_STEP;
-            break;
-        }
-        E = Et;
+        if (wr__wf_sqp_take(Q, it, kkt, &tr)) return WR_OK;
     }
-    /* final residual at the returned iterate */
-    wr__wf_sqp_tox(wf, &B, avar, y, na, xa, xo);
-    st = wr_wf_energy(wf, xa, xo, &E, gx, NULL, NULL, diag);
-    if (st) goto done;
-    S.energy_reg = wr__wf_reg(&B, greg, xo, gx + wf->nv);
-    E += S.energy_reg;
-    for (v = 0; v < wf->nv; ++v)
-        if (avar[v] >= 0) g[avar[v]] = gx[v];
-    wr__wf_z_applyT(&B, gx + wf->nv, g + na);
-    S.kkt = wr__wf_kkt(y, g, n, na, aref, eref);
-    S.energy = E;
-    S.a_ref = aref;
-    S.e_ref = eref;
-    for (v = 0; v < wf->nv; ++v) a[v] = xa[v];
-    for (i = 0; i < wf->ne; ++i) omega[i] = xo[i];
-    if (S.stop == WR_WF_STOP_MAX_ITER || S.stop == WR_WF_STOP_LINE_SEARCH)
-        st = wr_fail(diag, WR_ERR_NOT_CONVERGED, -1, "wf solve: stopped (%s) after %d iterations, KKT %g (initial %g)",
-                     S.stop == WR_WF_STOP_MAX_ITER ? "max iterations" : "line search", (int)S.iterations, S.kkt, S.kkt0);
-done:
-    S.seconds = wr_time_seconds() - t0;
-    if (stats) *stats = S;
-    if (have_solver) wr_spd_solver_free(&SV);
-    wr_csr_free(&K);
-    wr__wf_basis_free(&B);
-    wr_free(avar);
-    wr_free(zero);
-    wr_free(fstart);
-    wr_free(fcols);
-    wr_free(fused);
-    wr_free(kpstart);
-    wr_free(kpos);
-    wr_free(Pm);
-    wr_free(y);
-    wr_free(yt);
-    wr_free(d);
-    wr_free(g);
-    wr_free(gx);
-    wr_free(H);
-    wr_free(xa);
-    wr_free(xo);
-    wr_free(rhs);
-    wr_free(active);
-    wr_free(kmodel);
-    wr_free(mdiag);
-    wr_free(ks);
-    wr_free(ainit);
+}
+
+/* The returned iterate in (a, ω), its objective and final stationarity residual. */
+static wr_status wr__wf_sqp_finish(wr__wf_sqp *Q, double *a, double *omega, wr_diag *diag) {
+    const wr_wf *wf = Q->wf;
+    double E = 0.0;
+    int32_t v, i;
+    wr_status st;
+    wr__wf_sqp_tox(wf, &Q->B, Q->avar, Q->y, Q->na, Q->xa, Q->xo);
+    st = wr_wf_energy(wf, Q->xa, Q->xo, &E, Q->gx, NULL, NULL, diag);
+    if (st) return st;
+    Q->S.energy_reg = wr__wf_reg(&Q->B, Q->greg, Q->xo, Q->gx + wf->nv);
+    E += Q->S.energy_reg;
+    wr__wf_sqp_reduce(Q, Q->gx, Q->g);
+    Q->S.kkt = wr__wf_kkt(Q->y, Q->g, Q->n, Q->na, Q->aref, Q->eref);
+    Q->S.energy = E;
+    Q->S.a_ref = Q->aref;
+    Q->S.e_ref = Q->eref;
+    for (v = 0; v < wf->nv; ++v) a[v] = Q->xa[v];
+    for (i = 0; i < wf->ne; ++i) omega[i] = Q->xo[i];
+    if (Q->S.stop == WR_WF_STOP_MAX_ITER || Q->S.stop == WR_WF_STOP_LINE_SEARCH)
+        return wr_fail(diag, WR_ERR_NOT_CONVERGED, -1, "wf solve: stopped (%s) after %d iterations, KKT %g (initial %g)",
+                       Q->S.stop == WR_WF_STOP_MAX_ITER ? "max iterations" : "line search", (int)Q->S.iterations,
+                       Q->S.kkt, Q->S.kkt0);
+    return WR_OK;
+}
+
+/* App. E.3 as a sequence of stages: unknowns and a feasible start, the reduction maps and the
+ * fixed Hessian pattern, the scales, the trust-region SQP iteration, the returned iterate. */
+WRDEF wr_status wr_wf_solve(const wr_wf *wf, const wr_wf_solve_desc *desc, double *a, double *omega,
+                            wr_wf_solve_stats *stats, wr_diag *diag) {
+    wr__wf_sqp Q;
+    double t0 = wr_time_seconds();
+    wr_status st;
+    if (stats) memset(stats, 0, sizeof *stats);
+    if (!wf || !a || !omega) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "wf solve: NULL argument");
+    memset(&Q, 0, sizeof Q);
+    Q.wf = wf;
+    Q.S.switch_iteration = -1;
+    st = wr__wf_sqp_defaults(&Q.D, desc, diag);
+    if (st) return st;
+    st = wr__wf_sqp_start(&Q, a, omega, diag);
+    if (!st) st = wr__wf_sqp_face_maps(&Q, diag);
+    if (!st) st = wr__wf_sqp_pattern(&Q, diag);
+    if (!st) st = wr__wf_sqp_scales(&Q, diag);
+    if (!st) st = wr__wf_sqp_iterate(&Q, diag);
+    if (!st) st = wr__wf_sqp_finish(&Q, a, omega, diag);
+    Q.S.seconds = wr_time_seconds() - t0;
+    if (stats) *stats = Q.S;
+    wr__wf_sqp_free(&Q);
     return st;
 }
 
