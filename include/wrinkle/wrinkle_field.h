@@ -1167,259 +1167,298 @@ static void wr__wf_basis_free(wr__wf_basis *B) {
     memset(B, 0, sizeof *B);
 }
 
-static wr_status wr__wf_basis_build(const wr_wf *wf, wr__wf_basis *B, wr_diag *diag) {
+/* Scratch of the tree–cotree construction (wr__wf_basis_build's stages). */
+typedef struct wr__wf_tc {
+    int32_t *vadj_s, *vadj;   /* vertex → active edges (CSR) */
+    int32_t *queue, *fpar;    /* BFS queue; dual-tree parent edge per face (-1: root) */
+    int32_t *order, nord;     /* faces in dual-BFS order */
+    int32_t *gcol;            /* per edge: generator column, or -1 */
+    uint8_t *intree, *cotree, *vvis, *fvis;
+    /* generator rows h(e) per edge: hcol/hval[hstart[e] .. + hlen[e]) (hstart -1: empty) */
+    int32_t *hstart, *hlen, *hcol, hcount, cap;
+    double *hval;
+    int32_t *mark, *touched;  /* sparse accumulator over generators */
+    double *acc;
+} wr__wf_tc;
+
+static void wr__wf_tc_free(wr__wf_tc *T) {
+    wr_free(T->vadj_s);
+    wr_free(T->vadj);
+    wr_free(T->queue);
+    wr_free(T->fpar);
+    wr_free(T->order);
+    wr_free(T->gcol);
+    wr_free(T->intree);
+    wr_free(T->cotree);
+    wr_free(T->vvis);
+    wr_free(T->fvis);
+    wr_free(T->hstart);
+    wr_free(T->hlen);
+    wr_free(T->hcol);
+    wr_free(T->hval);
+    wr_free(T->mark);
+    wr_free(T->touched);
+    wr_free(T->acc);
+}
+
+/* Active edges (edges of some face outside W) and the vertex → active-edge adjacency. */
+static wr_status wr__wf_tc_adjacency(const wr_wf *wf, wr__wf_basis *B, wr__wf_tc *T, wr_diag *diag) {
     const wr_mesh *m = wf->mesh;
-    int32_t nv = m->nv, ne = m->ne, nf = m->nf;
-    int32_t *vpar = NULL, *queue = NULL, *fpar = NULL, *order = NULL, *vadj_s = NULL, *vadj = NULL, *gcol = NULL;
-    int32_t *hstart = NULL, *hcol = NULL, *mark = NULL, *touched = NULL;
-    double *hval = NULL, *acc = NULL;
-    uint8_t *intree = NULL, *cotree = NULL, *vvis = NULL, *fvis = NULL;
-    int32_t i, f, e, v, qh, qt, nord = 0, nnz, cap;
-    wr_status st = WR_OK;
-    memset(B, 0, sizeof *B);
-    B->ne = ne;
+    int32_t nv = m->nv, ne = m->ne, nf = m->nf, f, e, v, i, *fill;
     B->zstart = (int32_t *)wr_calloc_array((size_t)ne + 1, sizeof(int32_t));
     B->vcol = (int32_t *)wr_alloc_array((size_t)nv, sizeof(int32_t));
     B->eact = (uint8_t *)wr_calloc_array((size_t)ne, sizeof(uint8_t));
-    vpar = (int32_t *)wr_alloc_array((size_t)nv, sizeof(int32_t));
-    queue = (int32_t *)wr_alloc_array((size_t)(nv > nf ? nv : nf) + 1, sizeof(int32_t));
-    fpar = (int32_t *)wr_alloc_array((size_t)nf, sizeof(int32_t));
-    order = (int32_t *)wr_alloc_array((size_t)nf, sizeof(int32_t));
-    vadj_s = (int32_t *)wr_calloc_array((size_t)nv + 1, sizeof(int32_t));
-    vadj = (int32_t *)wr_alloc_array((size_t)ne * 2, sizeof(int32_t));
-    gcol = (int32_t *)wr_alloc_array((size_t)ne, sizeof(int32_t));
-    intree = (uint8_t *)wr_calloc_array((size_t)ne, sizeof(uint8_t));
-    cotree = (uint8_t *)wr_calloc_array((size_t)ne, sizeof(uint8_t));
-    vvis = (uint8_t *)wr_calloc_array((size_t)nv, sizeof(uint8_t));
-    fvis = (uint8_t *)wr_calloc_array((size_t)nf, sizeof(uint8_t));
-    if (!B->zstart || !B->vcol || !B->eact || !vpar || !queue || !fpar || !order || !vadj_s || !vadj || !gcol ||
-        !intree || !cotree || !vvis || !fvis) {
-        st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf basis: out of memory");
-        goto done;
+    T->queue = (int32_t *)wr_alloc_array((size_t)(nv > nf ? nv : nf) + 1, sizeof(int32_t));
+    T->fpar = (int32_t *)wr_alloc_array((size_t)nf, sizeof(int32_t));
+    T->order = (int32_t *)wr_alloc_array((size_t)nf, sizeof(int32_t));
+    T->vadj_s = (int32_t *)wr_calloc_array((size_t)nv + 1, sizeof(int32_t));
+    T->vadj = (int32_t *)wr_alloc_array((size_t)ne * 2, sizeof(int32_t));
+    T->gcol = (int32_t *)wr_alloc_array((size_t)ne, sizeof(int32_t));
+    T->intree = (uint8_t *)wr_calloc_array((size_t)ne, sizeof(uint8_t));
+    T->cotree = (uint8_t *)wr_calloc_array((size_t)ne, sizeof(uint8_t));
+    T->vvis = (uint8_t *)wr_calloc_array((size_t)nv, sizeof(uint8_t));
+    T->fvis = (uint8_t *)wr_calloc_array((size_t)nf, sizeof(uint8_t));
+    fill = (int32_t *)wr_alloc_array((size_t)nv, sizeof(int32_t));
+    if (!B->zstart || !B->vcol || !B->eact || !T->queue || !T->fpar || !T->order || !T->vadj_s || !T->vadj ||
+        !T->gcol || !T->intree || !T->cotree || !T->vvis || !T->fvis || !fill) {
+        wr_free(fill);
+        return wr_fail(diag, WR_ERR_NOMEM, -1, "wf basis: out of memory");
     }
     for (f = 0; f < nf; ++f)
         if (!wf->wfree[f])
             for (i = 0; i < 3; ++i) B->eact[m->face_edges[3 * f + i]] = 1;
-    /* vertex -> active edges adjacency */
     for (e = 0; e < ne; ++e)
         if (B->eact[e]) {
-            vadj_s[m->edges[2 * e] + 1]++;
-            vadj_s[m->edges[2 * e + 1] + 1]++;
+            T->vadj_s[m->edges[2 * e] + 1]++;
+            T->vadj_s[m->edges[2 * e + 1] + 1]++;
         }
-    for (v = 0; v < nv; ++v) vadj_s[v + 1] += vadj_s[v];
-    {
-        int32_t *fill = vpar; /* reuse as a cursor */
-        for (v = 0; v < nv; ++v) fill[v] = vadj_s[v];
-        for (e = 0; e < ne; ++e)
-            if (B->eact[e]) {
-                vadj[fill[m->edges[2 * e]]++] = e;
-                vadj[fill[m->edges[2 * e + 1]]++] = e;
-            }
-    }
-    /* primal BFS forest over active edges */
-    for (v = 0; v < nv; ++v) B->vcol[v] = -1;
+    for (v = 0; v < nv; ++v) T->vadj_s[v + 1] += T->vadj_s[v];
+    for (v = 0; v < nv; ++v) fill[v] = T->vadj_s[v];
+    for (e = 0; e < ne; ++e)
+        if (B->eact[e]) {
+            T->vadj[fill[m->edges[2 * e]]++] = e;
+            T->vadj[fill[m->edges[2 * e + 1]]++] = e;
+        }
+    wr_free(fill);
+    return WR_OK;
+}
+
+/* Primal BFS forest over active edges: every non-root vertex gets a ψ column (roots fix the gauge). */
+static void wr__wf_tc_primal(const wr_mesh *m, wr__wf_basis *B, wr__wf_tc *T) {
+    int32_t v, qh, qt;
+    for (v = 0; v < m->nv; ++v) B->vcol[v] = -1;
     B->npsi = 0;
-    for (v = 0; v < nv; ++v) {
+    for (v = 0; v < m->nv; ++v) {
         int32_t r = v;
-        if (vvis[r] || vadj_s[r] == vadj_s[r + 1]) continue;
-        vvis[r] = 1; /* root: no ψ column (gauge) */
+        if (T->vvis[r] || T->vadj_s[r] == T->vadj_s[r + 1]) continue;
+        T->vvis[r] = 1; /* root: no ψ column (gauge) */
         qh = qt = 0;
-        queue[qt++] = r;
+        T->queue[qt++] = r;
         while (qh < qt) {
-            int32_t u = queue[qh++], k;
-            for (k = vadj_s[u]; k < vadj_s[u + 1]; ++k) {
-                int32_t ee = vadj[k], w = m->edges[2 * ee] == u ? m->edges[2 * ee + 1] : m->edges[2 * ee];
-                if (vvis[w]) continue;
-                vvis[w] = 1;
-                intree[ee] = 1;
+            int32_t u = T->queue[qh++], k;
+            for (k = T->vadj_s[u]; k < T->vadj_s[u + 1]; ++k) {
+                int32_t ee = T->vadj[k], w = m->edges[2 * ee] == u ? m->edges[2 * ee + 1] : m->edges[2 * ee];
+                if (T->vvis[w]) continue;
+                T->vvis[w] = 1;
+                T->intree[ee] = 1;
                 B->vcol[w] = B->npsi++;
-                queue[qt++] = w;
+                T->queue[qt++] = w;
             }
         }
     }
-    /* dual BFS: from the virtual outside node through boundary edges of the complex (not in the
-     * primal tree), then through interior edges not in the primal tree. */
-    for (f = 0; f < nf; ++f) fpar[f] = -1;
-    qh = qt = 0;
-    for (e = 0; e < ne; ++e) {
+}
+
+/* Dual BFS: from the virtual outside node through boundary edges of the complex (not in the primal
+ * tree), then through interior edges not in the primal tree; closed components get a real root. */
+static void wr__wf_tc_dual(const wr_wf *wf, const wr__wf_basis *B, wr__wf_tc *T) {
+    const wr_mesh *m = wf->mesh;
+    int32_t f, e, qh = 0, qt = 0;
+    for (f = 0; f < m->nf; ++f) T->fpar[f] = -1;
+    for (e = 0; e < m->ne; ++e) {
         int32_t f0 = m->edge_faces[2 * e], f1 = m->edge_faces[2 * e + 1], fin;
         int n_in = (f0 >= 0 && !wf->wfree[f0]) + (f1 >= 0 && !wf->wfree[f1]);
-        if (!B->eact[e] || n_in != 1 || intree[e]) continue;
+        if (!B->eact[e] || n_in != 1 || T->intree[e]) continue;
         fin = (f0 >= 0 && !wf->wfree[f0]) ? f0 : f1;
-        if (fvis[fin]) continue;
-        fvis[fin] = 1;
-        fpar[fin] = e;
-        cotree[e] = 1;
-        queue[qt++] = fin;
+        if (T->fvis[fin]) continue;
+        T->fvis[fin] = 1;
+        T->fpar[fin] = e;
+        T->cotree[e] = 1;
+        T->queue[qt++] = fin;
     }
-    for (f = -1; f < nf; ++f) {
+    T->nord = 0;
+    for (f = -1; f < m->nf; ++f) {
         if (f >= 0) {
-            if (fvis[f] || wf->wfree[f]) continue;
-            fvis[f] = 1; /* closed component: a real root face */
-            queue[qt++] = f;
+            if (T->fvis[f] || wf->wfree[f]) continue;
+            T->fvis[f] = 1; /* closed component: a real root face */
+            T->queue[qt++] = f;
         }
         while (qh < qt) {
-            int32_t g = queue[qh++], k;
-            order[nord++] = g;
+            int32_t g = T->queue[qh++], k;
+            T->order[T->nord++] = g;
             for (k = 0; k < 3; ++k) {
                 int32_t ee = m->face_edges[3 * g + k], h2 = wr__wf_face_neighbor(m, g, k);
-                if (h2 < 0 || wf->wfree[h2] || fvis[h2] || intree[ee]) continue;
-                fvis[h2] = 1;
-                fpar[h2] = ee;
-                cotree[ee] = 1;
-                queue[qt++] = h2;
+                if (h2 < 0 || wf->wfree[h2] || T->fvis[h2] || T->intree[ee]) continue;
+                T->fvis[h2] = 1;
+                T->fpar[h2] = ee;
+                T->cotree[ee] = 1;
+                T->queue[qt++] = h2;
             }
         }
     }
-    /* generators: active edges in neither tree */
+}
+
+/* Generators (active edges in neither tree) and their unit rows h(e) = e_g. */
+static wr_status wr__wf_tc_generators(const wr_mesh *m, wr__wf_basis *B, wr__wf_tc *T, wr_diag *diag) {
+    int32_t e, ne = m->ne, ng1;
     B->ngen = 0;
     for (e = 0; e < ne; ++e) {
-        gcol[e] = -1;
-        if (B->eact[e] && !intree[e] && !cotree[e]) gcol[e] = B->npsi + B->ngen++;
+        T->gcol[e] = -1;
+        if (B->eact[e] && !T->intree[e] && !T->cotree[e]) T->gcol[e] = B->npsi + B->ngen++;
     }
     B->ncol = B->npsi + B->ngen;
-    /* h rows (generator part) for every edge, sparse: hstart/hcol/hval built by peeling leaves first. */
-    hstart = (int32_t *)wr_alloc_array((size_t)ne, sizeof(int32_t)); /* offset into hcol, -1 = empty */
-    mark = (int32_t *)wr_alloc_array((size_t)(B->ngen > 0 ? B->ngen : 1), sizeof(int32_t));
-    touched = (int32_t *)wr_alloc_array((size_t)(B->ngen > 0 ? B->ngen : 1), sizeof(int32_t));
-    acc = (double *)wr_calloc_array((size_t)(B->ngen > 0 ? B->ngen : 1), sizeof(double));
-    {
-        int32_t *hlen = fpar == NULL ? NULL : (int32_t *)wr_calloc_array((size_t)ne, sizeof(int32_t));
-        int32_t hcount = 0;
-        cap = ne + 16;
-        hcol = (int32_t *)wr_alloc_array((size_t)cap, sizeof(int32_t));
-        hval = (double *)wr_alloc_array((size_t)cap, sizeof(double));
-        if (!hstart || !mark || !touched || !acc || !hlen || !hcol || !hval) {
-            wr_free(hlen);
-            st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf basis: out of memory");
-            goto done;
+    ng1 = B->ngen > 0 ? B->ngen : 1;
+    T->cap = ne + 16;
+    T->hstart = (int32_t *)wr_alloc_array((size_t)ne, sizeof(int32_t));
+    T->hlen = (int32_t *)wr_calloc_array((size_t)ne, sizeof(int32_t));
+    T->hcol = (int32_t *)wr_alloc_array((size_t)T->cap, sizeof(int32_t));
+    T->hval = (double *)wr_alloc_array((size_t)T->cap, sizeof(double));
+    T->mark = (int32_t *)wr_calloc_array((size_t)ng1, sizeof(int32_t));
+    T->touched = (int32_t *)wr_alloc_array((size_t)ng1, sizeof(int32_t));
+    T->acc = (double *)wr_calloc_array((size_t)ng1, sizeof(double));
+    if (!T->hstart || !T->hlen || !T->hcol || !T->hval || !T->mark || !T->touched || !T->acc)
+        return wr_fail(diag, WR_ERR_NOMEM, -1, "wf basis: out of memory");
+    T->hcount = 0;
+    for (e = 0; e < ne; ++e) {
+        T->hstart[e] = -1;
+        if (T->gcol[e] >= 0) {
+            T->hstart[e] = T->hcount;
+            T->hlen[e] = 1;
+            T->hcol[T->hcount] = T->gcol[e] - B->npsi;
+            T->hval[T->hcount++] = 1.0;
         }
-        for (i = 0; i < B->ngen; ++i) mark[i] = 0;
-        for (e = 0; e < ne; ++e) {
-            hstart[e] = -1;
-            if (gcol[e] >= 0) {
-                hstart[e] = hcount;
-                hlen[e] = 1;
-                hcol[hcount] = gcol[e] - B->npsi;
-                hval[hcount++] = 1.0;
-            }
-        }
-        for (i = nord - 1; i >= 0; --i) {
-            int32_t g = order[i], pe = fpar[g], k, nt = 0, ps = 0;
-            if (pe < 0) { /* real root (closed component): its equation must already hold */
-                for (k = 0; k < 3; ++k) {
-                    int32_t ee = m->face_edges[3 * g + k], t;
-                    for (t = 0; hstart[ee] >= 0 && t < hlen[ee]; ++t) acc[hcol[hstart[ee] + t]] += m->face_edge_sign[3 * g + k] * hval[hstart[ee] + t];
-                }
-                for (k = 0; k < B->ngen; ++k) {
-                    if (fabs(acc[k]) > 1e-9) {
-                        wr_free(hlen);
-                        st = wr_fail(diag, WR_ERR_TOPOLOGY, g,
-                                     "wf basis: dual tree root face %d cannot close its curl equation", (int)g);
-                        goto done;
-                    }
-                    acc[k] = 0.0;
-                }
-                continue;
-            }
+    }
+    return WR_OK;
+}
+
+/* Room for nt more generator entries in hcol/hval. */
+static wr_status wr__wf_tc_reserve(wr__wf_tc *T, int32_t nt, wr_diag *diag) {
+    int32_t ncap, *nc;
+    double *nvv;
+    if (T->hcount + nt <= T->cap) return WR_OK;
+    ncap = 2 * (T->hcount + nt) + 16;
+    nc = (int32_t *)wr_realloc_array(T->hcol, (size_t)ncap, sizeof(int32_t));
+    if (!nc) return wr_fail(diag, WR_ERR_NOMEM, -1, "wf basis: out of memory");
+    T->hcol = nc;
+    nvv = (double *)wr_realloc_array(T->hval, (size_t)ncap, sizeof(double));
+    if (!nvv) return wr_fail(diag, WR_ERR_NOMEM, -1, "wf basis: out of memory");
+    T->hval = nvv;
+    T->cap = ncap;
+    return WR_OK;
+}
+
+/* Generator rows of the cotree edges, peeling the dual tree from its leaves: face g's curl equation
+ * ps·h(pe) + Σ_other s·h = 0 gives its parent edge pe's row. A real root's equation must already
+ * hold (WR_ERR_TOPOLOGY otherwise). */
+static wr_status wr__wf_tc_peel(const wr_mesh *m, const wr__wf_basis *B, wr__wf_tc *T, wr_diag *diag) {
+    int32_t i;
+    for (i = T->nord - 1; i >= 0; --i) {
+        int32_t g = T->order[i], pe = T->fpar[g], k, nt = 0, ps = 0;
+        wr_status st;
+        if (pe < 0) {
             for (k = 0; k < 3; ++k) {
                 int32_t ee = m->face_edges[3 * g + k], t;
-                if (ee == pe) {
-                    ps = m->face_edge_sign[3 * g + k];
-                    continue;
-                }
-                for (t = 0; hstart[ee] >= 0 && t < hlen[ee]; ++t) {
-                    int32_t c = hcol[hstart[ee] + t];
-                    if (!mark[c]) {
-                        mark[c] = 1;
-                        touched[nt++] = c;
-                    }
-                    acc[c] += m->face_edge_sign[3 * g + k] * hval[hstart[ee] + t];
-                }
+                for (t = 0; T->hstart[ee] >= 0 && t < T->hlen[ee]; ++t)
+                    T->acc[T->hcol[T->hstart[ee] + t]] += m->face_edge_sign[3 * g + k] * T->hval[T->hstart[ee] + t];
             }
-            /* ps·h(pe) + Σ_other s·h = 0 */
-            if (hcount + nt > cap) {
-                int32_t ncap = 2 * (hcount + nt) + 16;
-                int32_t *nc = (int32_t *)wr_realloc_array(hcol, (size_t)ncap, sizeof(int32_t));
-                double *nvv;
-                if (!nc) {
-                    wr_free(hlen);
-                    st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf basis: out of memory");
-                    goto done;
-                }
-                hcol = nc;
-                nvv = (double *)wr_realloc_array(hval, (size_t)ncap, sizeof(double));
-                if (!nvv) {
-                    wr_free(hlen);
-                    st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf basis: out of memory");
-                    goto done;
-                }
-                hval = nvv;
-                cap = ncap;
+            for (k = 0; k < B->ngen; ++k) {
+                if (fabs(T->acc[k]) > 1e-9)
+                    return wr_fail(diag, WR_ERR_TOPOLOGY, g,
+                                   "wf basis: dual tree root face %d cannot close its curl equation", (int)g);
+                T->acc[k] = 0.0;
             }
-            hstart[pe] = hcount;
-            hlen[pe] = 0;
-            for (k = 0; k < nt; ++k) {
-                int32_t c = touched[k];
-                if (acc[c] != 0.0) {
-                    hcol[hcount] = c;
-                    hval[hcount++] = -ps * acc[c];
-                    hlen[pe]++;
+            continue;
+        }
+        for (k = 0; k < 3; ++k) {
+            int32_t ee = m->face_edges[3 * g + k], t;
+            if (ee == pe) {
+                ps = m->face_edge_sign[3 * g + k];
+                continue;
+            }
+            for (t = 0; T->hstart[ee] >= 0 && t < T->hlen[ee]; ++t) {
+                int32_t c = T->hcol[T->hstart[ee] + t];
+                if (!T->mark[c]) {
+                    T->mark[c] = 1;
+                    T->touched[nt++] = c;
                 }
-                acc[c] = 0.0;
-                mark[c] = 0;
+                T->acc[c] += m->face_edge_sign[3 * g + k] * T->hval[T->hstart[ee] + t];
             }
         }
-        /* assemble Z rows: d0 part (ψ_hi - ψ_lo) + generator part */
-        nnz = 0;
-        for (e = 0; e < ne; ++e) nnz += B->eact[e] ? 2 + (hstart[e] >= 0 ? hlen[e] : 0) : 0;
-        B->zcol = (int32_t *)wr_alloc_array((size_t)nnz + 1, sizeof(int32_t));
-        B->zval = (double *)wr_alloc_array((size_t)nnz + 1, sizeof(double));
-        if (!B->zcol || !B->zval) {
-            wr_free(hlen);
-            st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf basis: out of memory");
-            goto done;
-        }
-        nnz = 0;
-        for (e = 0; e < ne; ++e) {
-            B->zstart[e] = nnz;
-            if (B->eact[e]) {
-                int32_t lo = B->vcol[m->edges[2 * e]], hi = B->vcol[m->edges[2 * e + 1]], t;
-                if (hi >= 0) {
-                    B->zcol[nnz] = hi;
-                    B->zval[nnz++] = 1.0;
-                }
-                if (lo >= 0) {
-                    B->zcol[nnz] = lo;
-                    B->zval[nnz++] = -1.0;
-                }
-                for (t = 0; hstart[e] >= 0 && t < hlen[e]; ++t) {
-                    B->zcol[nnz] = B->npsi + hcol[hstart[e] + t];
-                    B->zval[nnz++] = hval[hstart[e] + t];
-                }
+        st = wr__wf_tc_reserve(T, nt, diag);
+        if (st) return st;
+        T->hstart[pe] = T->hcount;
+        T->hlen[pe] = 0;
+        for (k = 0; k < nt; ++k) {
+            int32_t c = T->touched[k];
+            if (T->acc[c] != 0.0) {
+                T->hcol[T->hcount] = c;
+                T->hval[T->hcount++] = -ps * T->acc[c];
+                T->hlen[pe]++;
             }
+            T->acc[c] = 0.0;
+            T->mark[c] = 0;
         }
-        B->zstart[ne] = nnz;
-        wr_free(hlen);
     }
-done:
-    wr_free(vpar);
-    wr_free(queue);
-    wr_free(fpar);
-    wr_free(order);
-    wr_free(vadj_s);
-    wr_free(vadj);
-    wr_free(gcol);
-    wr_free(hstart);
-    wr_free(hcol);
-    wr_free(hval);
-    wr_free(mark);
-    wr_free(touched);
-    wr_free(acc);
-    wr_free(intree);
-    wr_free(cotree);
-    wr_free(vvis);
-    wr_free(fvis);
+    return WR_OK;
+}
+
+/* Z rows: the d0 part (ψ_hi − ψ_lo) plus the generator part h(e). */
+static wr_status wr__wf_tc_assemble(const wr_mesh *m, wr__wf_basis *B, const wr__wf_tc *T, wr_diag *diag) {
+    int32_t e, nnz = 0;
+    for (e = 0; e < m->ne; ++e) nnz += B->eact[e] ? 2 + (T->hstart[e] >= 0 ? T->hlen[e] : 0) : 0;
+    B->zcol = (int32_t *)wr_alloc_array((size_t)nnz + 1, sizeof(int32_t));
+    B->zval = (double *)wr_alloc_array((size_t)nnz + 1, sizeof(double));
+    if (!B->zcol || !B->zval) return wr_fail(diag, WR_ERR_NOMEM, -1, "wf basis: out of memory");
+    nnz = 0;
+    for (e = 0; e < m->ne; ++e) {
+        B->zstart[e] = nnz;
+        if (B->eact[e]) {
+            int32_t lo = B->vcol[m->edges[2 * e]], hi = B->vcol[m->edges[2 * e + 1]], t;
+            if (hi >= 0) {
+                B->zcol[nnz] = hi;
+                B->zval[nnz++] = 1.0;
+            }
+            if (lo >= 0) {
+                B->zcol[nnz] = lo;
+                B->zval[nnz++] = -1.0;
+            }
+            for (t = 0; T->hstart[e] >= 0 && t < T->hlen[e]; ++t) {
+                B->zcol[nnz] = B->npsi + T->hcol[T->hstart[e] + t];
+                B->zval[nnz++] = T->hval[T->hstart[e] + t];
+            }
+        }
+    }
+    B->zstart[m->ne] = nnz;
+    return WR_OK;
+}
+
+/* The null-space basis Z of dω = 0 outside W by tree–cotree: ψ on a primal spanning forest, the
+ * dual forest's edges determined by the faces' curl equations, the remaining edges generators. */
+static wr_status wr__wf_basis_build(const wr_wf *wf, wr__wf_basis *B, wr_diag *diag) {
+    const wr_mesh *m = wf->mesh;
+    wr__wf_tc T;
+    wr_status st;
+    memset(B, 0, sizeof *B);
+    memset(&T, 0, sizeof T);
+    B->ne = m->ne;
+    st = wr__wf_tc_adjacency(wf, B, &T, diag);
+    if (!st) {
+        wr__wf_tc_primal(m, B, &T);
+        wr__wf_tc_dual(wf, B, &T);
+        st = wr__wf_tc_generators(m, B, &T, diag);
+    }
+    if (!st) st = wr__wf_tc_peel(m, B, &T, diag);
+    if (!st) st = wr__wf_tc_assemble(m, B, &T, diag);
+    wr__wf_tc_free(&T);
     if (st != WR_OK) wr__wf_basis_free(B);
     return st;
 }
