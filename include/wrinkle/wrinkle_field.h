@@ -1806,51 +1806,59 @@ static int32_t wr__wf_uf_find(int32_t *par, double *off, int32_t x) {
     return r;
 }
 
-WRDEF wr_status wr_wf_phase(const wr_wf *wf, const double *omega, double *phi, wr_wf_phase_stats *stats,
-                            wr_diag *diag) {
-    const wr_mesh *m;
-    int32_t nf, f, e, i, qh, qt, ncls = 0;
-    int32_t *fpar = NULL, *queue = NULL, *par = NULL, *cls = NULL, *croot = NULL;
-    uint8_t *vis = NULL, *fixed = NULL;
-    double *off = NULL, *phi0 = NULL, *rhs = NULL, *sol = NULL;
+/* State of the phase reconstruction (wr_wf_phase's stages). Corners are indexed 3f + c. */
+typedef struct wr__wf_ph {
+    const wr_wf *wf;
+    const double *omega;
+    int32_t *par, *cls, *croot, ncls; /* union–find over corners; class of each root; root of each class */
+    double *off, *phi0;               /* φ(corner) − φ(root) of the union–find; tree-integrated φ */
+    double *rhs, *sol;
+    uint8_t *fixed;
     wr_triplets T;
     wr_csr A;
-    wr_status st = WR_OK;
     wr_wf_phase_stats ps;
-    memset(&ps, 0, sizeof ps);
-    memset(&A, 0, sizeof A);
-    memset(&T, 0, sizeof T);
-    if (!wf || !omega || !phi) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "wf phase: NULL argument");
-    m = wf->mesh;
-    nf = m->nf;
-    fpar = (int32_t *)wr_alloc_array((size_t)nf, sizeof(int32_t));
-    queue = (int32_t *)wr_alloc_array((size_t)nf, sizeof(int32_t));
-    par = (int32_t *)wr_alloc_array((size_t)nf * 3, sizeof(int32_t));
-    cls = (int32_t *)wr_alloc_array((size_t)nf * 3, sizeof(int32_t));
-    croot = (int32_t *)wr_alloc_array((size_t)nf * 3, sizeof(int32_t));
-    vis = (uint8_t *)wr_calloc_array((size_t)nf, sizeof(uint8_t));
-    off = (double *)wr_calloc_array((size_t)nf * 3, sizeof(double));
-    phi0 = (double *)wr_calloc_array((size_t)nf * 3, sizeof(double));
-    if (!fpar || !queue || !par || !cls || !croot || !vis || !off || !phi0) {
-        st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf phase: out of memory");
-        goto done;
+} wr__wf_ph;
+
+static void wr__wf_ph_free(wr__wf_ph *P) {
+    wr_triplets_free(&P->T);
+    wr_csr_free(&P->A);
+    wr_free(P->par);
+    wr_free(P->cls);
+    wr_free(P->croot);
+    wr_free(P->off);
+    wr_free(P->phi0);
+    wr_free(P->rhs);
+    wr_free(P->sol);
+    wr_free(P->fixed);
+}
+
+/* 1. Integrate ω along a BFS tree of the dual graph outside W (one disk per component). */
+static wr_status wr__wf_ph_integrate(wr__wf_ph *P, wr_diag *diag) {
+    const wr_mesh *m = P->wf->mesh;
+    const uint8_t *wfree = P->wf->wfree;
+    const double *omega = P->omega;
+    int32_t nf = m->nf, f, qh, qt;
+    int32_t *queue = (int32_t *)wr_alloc_array((size_t)nf, sizeof(int32_t));
+    uint8_t *vis = (uint8_t *)wr_calloc_array((size_t)nf, sizeof(uint8_t));
+    if (!queue || !vis) {
+        wr_free(queue);
+        wr_free(vis);
+        return wr_fail(diag, WR_ERR_NOMEM, -1, "wf phase: out of memory");
     }
-    for (i = 0; i < nf * 3; ++i) phi[i] = 0.0;
-    /* 1. Integrate ω along a BFS tree of the dual graph outside W (one disk per component). */
     for (f = 0; f < nf; ++f) {
-        if (vis[f] || wf->wfree[f]) continue;
+        if (vis[f] || wfree[f]) continue;
         vis[f] = 1;
         qh = qt = 0;
         queue[qt++] = f;
         /* root: φ(corner 0) = 0, then along edge 2 (0->1) and edge 1 (2->0) */
-        phi0[3 * f] = 0.0;
-        phi0[3 * f + 1] = m->face_edge_sign[3 * f + 2] * omega[m->face_edges[3 * f + 2]];
-        phi0[3 * f + 2] = -m->face_edge_sign[3 * f + 1] * omega[m->face_edges[3 * f + 1]];
+        P->phi0[3 * f] = 0.0;
+        P->phi0[3 * f + 1] = m->face_edge_sign[3 * f + 2] * omega[m->face_edges[3 * f + 2]];
+        P->phi0[3 * f + 2] = -m->face_edge_sign[3 * f + 1] * omega[m->face_edges[3 * f + 1]];
         while (qh < qt) {
             int32_t g = queue[qh++], k;
             for (k = 0; k < 3; ++k) {
                 int32_t h2 = wr__wf_face_neighbor(m, g, k), c, d, shared = 0, third = -1;
-                if (h2 < 0 || vis[h2] || wf->wfree[h2]) continue;
+                if (h2 < 0 || vis[h2] || wfree[h2]) continue;
                 vis[h2] = 1;
                 queue[qt++] = h2;
                 /* copy the two shared corners, integrate to the third along an edge of h2 */
@@ -1858,7 +1866,7 @@ WRDEF wr_status wr_wf_phase(const wr_wf *wf, const double *omega, double *phi, w
                     int32_t vh = m->faces[3 * h2 + c], found = 0;
                     for (d = 0; d < 3; ++d)
                         if (m->faces[3 * g + d] == vh) {
-                            phi0[3 * h2 + c] = phi0[3 * g + d];
+                            P->phi0[3 * h2 + c] = P->phi0[3 * g + d];
                             found = 1;
                         }
                     if (found)
@@ -1867,164 +1875,197 @@ WRDEF wr_status wr_wf_phase(const wr_wf *wf, const double *omega, double *phi, w
                         third = c;
                 }
                 if (shared == 2 && third >= 0) {
-                    /* edge (third+2)%3 runs corner third -> (third+1)%3... use edge opposite (third+1)%3,
-                     * which runs from corner (third+2)%3 to corner third. */
+                    /* the edge opposite corner (third+1)%3 runs from corner (third+2)%3 to corner third */
                     int32_t kk = (third + 1) % 3, from = (third + 2) % 3;
-                    phi0[3 * h2 + third] =
-                        phi0[3 * h2 + from] + m->face_edge_sign[3 * h2 + kk] * omega[m->face_edges[3 * h2 + kk]];
+                    P->phi0[3 * h2 + third] =
+                        P->phi0[3 * h2 + from] + m->face_edge_sign[3 * h2 + kk] * omega[m->face_edges[3 * h2 + kk]];
                 }
             }
         }
     }
-    /* 2. Glue corners across every interior edge outside W with the rounded jump. */
-    for (i = 0; i < nf * 3; ++i) par[i] = i;
+    wr_free(queue);
+    wr_free(vis);
+    return WR_OK;
+}
+
+/* 2. Glue corners across every interior edge outside W with the rounded jump (a multiple of 2π). */
+static void wr__wf_ph_glue(wr__wf_ph *P) {
+    const wr_mesh *m = P->wf->mesh;
+    const uint8_t *wfree = P->wf->wfree;
+    int32_t i, e;
+    for (i = 0; i < m->nf * 3; ++i) P->par[i] = i;
     for (e = 0; e < m->ne; ++e) {
         int32_t f0 = m->edge_faces[2 * e], f1 = m->edge_faces[2 * e + 1], end;
         double J = 0.0, n;
         int32_t c0[2], c1[2];
-        if (f0 < 0 || f1 < 0 || wf->wfree[f0] || wf->wfree[f1]) continue;
+        if (f0 < 0 || f1 < 0 || wfree[f0] || wfree[f1]) continue;
         for (end = 0; end < 2; ++end) {
             int32_t vtx = m->edges[2 * e + end], c;
             for (c = 0; c < 3; ++c) {
                 if (m->faces[3 * f0 + c] == vtx) c0[end] = 3 * f0 + c;
                 if (m->faces[3 * f1 + c] == vtx) c1[end] = 3 * f1 + c;
             }
-            J += 0.5 * (phi0[c1[end]] - phi0[c0[end]]);
+            J += 0.5 * (P->phi0[c1[end]] - P->phi0[c0[end]]);
         }
         n = floor(J / (2.0 * WR__WF_PI) + 0.5);
-        if (fabs(J) > 1e-9 * (1.0 + fabs(phi0[c0[0]]))) ps.n_cut_edges++;
-        if (n != 0.0) ps.n_nonzero_jumps++;
+        if (fabs(J) > 1e-9 * (1.0 + fabs(P->phi0[c0[0]]))) P->ps.n_cut_edges++;
+        if (n != 0.0) P->ps.n_nonzero_jumps++;
         for (end = 0; end < 2; ++end) {
-            int32_t ra = wr__wf_uf_find(par, off, c0[end]), rb = wr__wf_uf_find(par, off, c1[end]);
+            int32_t ra = wr__wf_uf_find(P->par, P->off, c0[end]), rb = wr__wf_uf_find(P->par, P->off, c1[end]);
             double d = 2.0 * WR__WF_PI * n; /* φ(c1) - φ(c0) */
             if (ra == rb) {
-                if (fabs(off[c1[end]] - off[c0[end]] - d) > 1e-6) ps.n_conflicts++;
+                if (fabs(P->off[c1[end]] - P->off[c0[end]] - d) > 1e-6) P->ps.n_conflicts++;
                 continue;
             }
             /* φ_rb = φ_c1 - off_c1 = φ_c0 + d - off_c1 = φ_ra + off_c0 + d - off_c1 */
-            par[rb] = ra;
-            off[rb] = off[c0[end]] + d - off[c1[end]];
+            P->par[rb] = ra;
+            P->off[rb] = P->off[c0[end]] + d - P->off[c1[end]];
         }
     }
-    /* 3. Least squares over the corner classes: Σ_faces Σ_edges (φ_to - φ_from - ω̃)². */
-    for (i = 0; i < nf * 3; ++i) cls[i] = -1;
-    for (f = 0; f < nf; ++f) {
+}
+
+/* 3a. Number the corner classes (union–find roots) of faces outside W. */
+static void wr__wf_ph_classes(wr__wf_ph *P) {
+    const wr_mesh *m = P->wf->mesh;
+    int32_t i, f;
+    for (i = 0; i < m->nf * 3; ++i) P->cls[i] = -1;
+    for (f = 0; f < m->nf; ++f) {
         int c;
-        if (wf->wfree[f]) continue;
+        if (P->wf->wfree[f]) continue;
         for (c = 0; c < 3; ++c) {
-            int32_t r = wr__wf_uf_find(par, off, 3 * f + c);
-            if (cls[r] < 0) {
-                cls[r] = ncls;
-                croot[ncls++] = r;
+            int32_t r = wr__wf_uf_find(P->par, P->off, 3 * f + c);
+            if (P->cls[r] < 0) {
+                P->cls[r] = P->ncls;
+                P->croot[P->ncls++] = r;
             }
         }
     }
-    if (ncls == 0) goto done;
-    rhs = (double *)wr_calloc_array((size_t)ncls, sizeof(double));
-    sol = (double *)wr_calloc_array((size_t)ncls, sizeof(double));
-    fixed = (uint8_t *)wr_calloc_array((size_t)ncls, sizeof(uint8_t));
-    if (!rhs || !sol || !fixed) {
-        st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf phase: out of memory");
-        goto done;
-    }
-    st = wr_triplets_create(&T, ncls, (int64_t)nf * 12, diag);
-    if (st) goto done;
-    for (f = 0; f < nf && !st; ++f) {
+}
+
+/* 3b. Least squares over the classes: Σ_faces Σ_edges (φ_to − φ_from − ω̃)², a graph Laplacian. */
+static wr_status wr__wf_ph_system(wr__wf_ph *P, wr_diag *diag) {
+    const wr_mesh *m = P->wf->mesh;
+    const double *omega = P->omega;
+    int32_t f;
+    wr_status st;
+    P->rhs = (double *)wr_calloc_array((size_t)P->ncls, sizeof(double));
+    P->sol = (double *)wr_calloc_array((size_t)P->ncls, sizeof(double));
+    P->fixed = (uint8_t *)wr_calloc_array((size_t)P->ncls, sizeof(uint8_t));
+    if (!P->rhs || !P->sol || !P->fixed) return wr_fail(diag, WR_ERR_NOMEM, -1, "wf phase: out of memory");
+    st = wr_triplets_create(&P->T, P->ncls, (int64_t)m->nf * 12, diag);
+    for (f = 0; f < m->nf && !st; ++f) {
         int k;
-        if (wf->wfree[f]) continue;
+        if (P->wf->wfree[f]) continue;
         for (k = 0; k < 3 && !st; ++k) {
             int32_t ca = 3 * f + (k + 1) % 3, cb = 3 * f + (k + 2) % 3;
-            int32_t ra = wr__wf_uf_find(par, off, ca), rb = wr__wf_uf_find(par, off, cb);
-            int32_t ia = cls[ra], ib = cls[rb];
+            int32_t ia = P->cls[wr__wf_uf_find(P->par, P->off, ca)], ib = P->cls[wr__wf_uf_find(P->par, P->off, cb)];
             /* residual: (x_b + off_b) - (x_a + off_a) - ω̃ */
-            double r0 = off[cb] - off[ca] - m->face_edge_sign[3 * f + k] * omega[m->face_edges[3 * f + k]];
+            double r0 = P->off[cb] - P->off[ca] - m->face_edge_sign[3 * f + k] * omega[m->face_edges[3 * f + k]];
             if (ia == ib) continue; /* constant residual (a conflict or a degenerate loop) */
-            st = wr_triplets_add(&T, ia, ia, 1.0, diag);
-            if (!st) st = wr_triplets_add(&T, ib, ib, 1.0, diag);
-            if (!st) st = wr_triplets_add(&T, ia, ib, -1.0, diag);
-            if (!st) st = wr_triplets_add(&T, ib, ia, -1.0, diag);
-            rhs[ia] += r0;
-            rhs[ib] -= r0;
+            st = wr_triplets_add(&P->T, ia, ia, 1.0, diag);
+            if (!st) st = wr_triplets_add(&P->T, ib, ib, 1.0, diag);
+            if (!st) st = wr_triplets_add(&P->T, ia, ib, -1.0, diag);
+            if (!st) st = wr_triplets_add(&P->T, ib, ia, -1.0, diag);
+            P->rhs[ia] += r0;
+            P->rhs[ib] -= r0;
         }
     }
-    if (!st) st = wr_csr_from_triplets(&A, &T, diag);
-    if (st) goto done;
-    /* gauge: one fixed class per connected component of the class graph, at its tree-integrated value */
-    {
-        int32_t *q2 = (int32_t *)wr_alloc_array((size_t)ncls, sizeof(int32_t));
-        uint8_t *seen = (uint8_t *)wr_calloc_array((size_t)ncls, sizeof(uint8_t));
-        int32_t s;
-        if (!q2 || !seen) {
-            wr_free(q2);
-            wr_free(seen);
-            st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf phase: out of memory");
-            goto done;
-        }
-        for (s = 0; s < ncls; ++s) {
-            int32_t h0 = 0, t0 = 0;
-            if (seen[s]) continue;
-            seen[s] = 1;
-            fixed[s] = 1;
-            sol[s] = phi0[croot[s]];
-            q2[t0++] = s;
-            while (h0 < t0) {
-                int32_t u = q2[h0++], t;
-                for (t = A.rowptr[u]; t < A.rowptr[u + 1]; ++t)
-                    if (A.col[t] != u && A.val[t] != 0.0 && !seen[A.col[t]]) {
-                        seen[A.col[t]] = 1;
-                        q2[t0++] = A.col[t];
-                    }
-            }
-        }
+    if (!st) st = wr_csr_from_triplets(&P->A, &P->T, diag);
+    return st;
+}
+
+/* 3c. Gauge: one fixed class per connected component of the class graph, at its tree-integrated
+ * value; then solve the Laplacian (isolated classes get a unit diagonal). */
+static wr_status wr__wf_ph_solve(wr__wf_ph *P, wr_diag *diag) {
+    wr_csr *A = &P->A;
+    wr_spd_desc sd;
+    wr_spd_stats ss;
+    int32_t s;
+    int32_t *q2 = (int32_t *)wr_alloc_array((size_t)P->ncls, sizeof(int32_t));
+    uint8_t *seen = (uint8_t *)wr_calloc_array((size_t)P->ncls, sizeof(uint8_t));
+    if (!q2 || !seen) {
         wr_free(q2);
         wr_free(seen);
+        return wr_fail(diag, WR_ERR_NOMEM, -1, "wf phase: out of memory");
     }
-    {
-        wr_spd_desc sd;
-        wr_spd_stats ss;
-        int32_t s;
-        memset(&sd, 0, sizeof sd);
-        sd.fixed = fixed;
-        /* the Laplacian rows of isolated classes are empty: give them a unit diagonal */
-        for (s = 0; s < ncls; ++s) {
-            int32_t p = wr_csr_find(&A, s, s);
-            if (p >= 0 && A.val[p] == 0.0) A.val[p] = 1.0;
+    for (s = 0; s < P->ncls; ++s) {
+        int32_t h0 = 0, t0 = 0;
+        if (seen[s]) continue;
+        seen[s] = 1;
+        P->fixed[s] = 1;
+        P->sol[s] = P->phi0[P->croot[s]];
+        q2[t0++] = s;
+        while (h0 < t0) {
+            int32_t u = q2[h0++], t;
+            for (t = A->rowptr[u]; t < A->rowptr[u + 1]; ++t)
+                if (A->col[t] != u && A->val[t] != 0.0 && !seen[A->col[t]]) {
+                    seen[A->col[t]] = 1;
+                    q2[t0++] = A->col[t];
+                }
         }
-        st = wr_spd_solve(&A, rhs, sol, &sd, &ss, diag);
-        if (st) goto done;
     }
-    for (f = 0; f < nf; ++f) {
-        int c;
-        if (wf->wfree[f]) continue;
+    wr_free(q2);
+    wr_free(seen);
+    memset(&sd, 0, sizeof sd);
+    sd.fixed = P->fixed;
+    for (s = 0; s < P->ncls; ++s) {
+        int32_t p = wr_csr_find(A, s, s);
+        if (p >= 0 && A->val[p] == 0.0) A->val[p] = 1.0;
+    }
+    return wr_spd_solve(A, P->rhs, P->sol, &sd, &ss, diag);
+}
+
+/* Corner phases from the class solution, and the largest residual |φ_to − φ_from − ω̃| left. */
+static void wr__wf_ph_write(wr__wf_ph *P, double *phi) {
+    const wr_mesh *m = P->wf->mesh;
+    int32_t f;
+    for (f = 0; f < m->nf; ++f) {
+        int c, k;
+        if (P->wf->wfree[f]) continue;
         for (c = 0; c < 3; ++c) {
-            int32_t r = wr__wf_uf_find(par, off, 3 * f + c);
-            phi[3 * f + c] = sol[cls[r]] + off[3 * f + c];
+            int32_t r = wr__wf_uf_find(P->par, P->off, 3 * f + c);
+            phi[3 * f + c] = P->sol[P->cls[r]] + P->off[3 * f + c];
         }
-    }
-    for (f = 0; f < nf; ++f) {
-        int k;
-        if (wf->wfree[f]) continue;
         for (k = 0; k < 3; ++k) {
             double r = phi[3 * f + (k + 2) % 3] - phi[3 * f + (k + 1) % 3] -
-                       m->face_edge_sign[3 * f + k] * omega[m->face_edges[3 * f + k]];
-            ps.max_residual = fmax(ps.max_residual, fabs(r));
+                       m->face_edge_sign[3 * f + k] * P->omega[m->face_edges[3 * f + k]];
+            P->ps.max_residual = fmax(P->ps.max_residual, fabs(r));
         }
     }
-done:
-    if (stats) *stats = ps;
-    wr_triplets_free(&T);
-    wr_csr_free(&A);
-    wr_free(fpar);
-    wr_free(queue);
-    wr_free(par);
-    wr_free(cls);
-    wr_free(croot);
-    wr_free(vis);
-    wr_free(off);
-    wr_free(phi0);
-    wr_free(rhs);
-    wr_free(sol);
-    wr_free(fixed);
+}
+
+WRDEF wr_status wr_wf_phase(const wr_wf *wf, const double *omega, double *phi, wr_wf_phase_stats *stats,
+                            wr_diag *diag) {
+    wr__wf_ph P;
+    int32_t i, nf;
+    wr_status st;
+    memset(&P, 0, sizeof P);
+    if (!wf || !omega || !phi) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "wf phase: NULL argument");
+    P.wf = wf;
+    P.omega = omega;
+    nf = wf->mesh->nf;
+    P.par = (int32_t *)wr_alloc_array((size_t)nf * 3, sizeof(int32_t));
+    P.cls = (int32_t *)wr_alloc_array((size_t)nf * 3, sizeof(int32_t));
+    P.croot = (int32_t *)wr_alloc_array((size_t)nf * 3, sizeof(int32_t));
+    P.off = (double *)wr_calloc_array((size_t)nf * 3, sizeof(double));
+    P.phi0 = (double *)wr_calloc_array((size_t)nf * 3, sizeof(double));
+    if (!P.par || !P.cls || !P.croot || !P.off || !P.phi0) {
+        st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf phase: out of memory");
+    } else {
+        for (i = 0; i < nf * 3; ++i) phi[i] = 0.0;
+        st = wr__wf_ph_integrate(&P, diag);
+        if (!st) {
+            wr__wf_ph_glue(&P);
+            wr__wf_ph_classes(&P);
+        }
+        if (!st && P.ncls > 0) {
+            st = wr__wf_ph_system(&P, diag);
+            if (!st) st = wr__wf_ph_solve(&P, diag);
+            if (!st) wr__wf_ph_write(&P, phi);
+        }
+    }
+    if (stats) *stats = P.ps;
+    wr__wf_ph_free(&P);
     return st;
 }
 
