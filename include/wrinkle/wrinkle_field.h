@@ -2276,205 +2276,227 @@ static wr_status wr__wf_loop_phase(const wr_mesh *m, const uint8_t *wfree, const
     return WR_OK;
 }
 
-WRDEF wr_status wr_wf_upsample(const wr_wf *wf, const double *a, const double *phi, const wr_wf_upsample_desc *desc,
-                               wr_mesh *out, double **out_a, wr_diag *diag) {
-    int32_t levels = desc && desc->levels > 0 ? desc->levels : 2;
-    int mode = desc ? desc->boundary : WR_WF_LOOP_BOUNDARY_FIXED;
-    int inplane = !(desc && desc->no_inplane);
-    const wr_mesh *src;
+/* The upsampling's current level: mesh (base positions, rest), amplitude per vertex, phase per
+ * corner (3 per face), wrinkle-free flag per face. */
+typedef struct wr__wf_up {
     wr_mesh cur;
-    double *ca = NULL, *cphi = NULL, *fvals = NULL, *vals = NULL, *fphi = NULL, *grad = NULL, *wsum = NULL,
-           *nrm = NULL, *disp = NULL, *vphi = NULL;
-    uint8_t *cw = NULL, *fw = NULL, *vwr = NULL;
-    int32_t *ffaces = NULL;
-    int32_t lvl, v, f, c, ncomp;
-    int has_rest;
+    double *ca, *cphi;
+    uint8_t *cw;
+    int32_t ncomp; /* components Loop-subdivided per vertex: position (3), rest (2, if any), a */
+    int has_rest, mode;
+} wr__wf_up;
+
+/* The subdivided level's mesh from the Loop-averaged vertex values (nvf vertices, nf4 faces) and
+ * its amplitudes, zero on vertices touching only W faces. */
+static wr_status wr__wf_up_fine_mesh(wr__wf_up *U, int32_t nvf, const double *fvals, const int32_t *ffaces,
+                                     const uint8_t *fw, wr_mesh *fine, double **fine_a, wr_diag *diag) {
+    int32_t v, ncomp = U->ncomp;
+    double *p3 = (double *)wr_alloc_array((size_t)nvf * 3, sizeof(double));
+    double *r2 = U->has_rest ? (double *)wr_alloc_array((size_t)nvf * 2, sizeof(double)) : NULL;
+    double *na = (double *)wr_alloc_array((size_t)nvf, sizeof(double));
+    wr_status st;
+    if (!p3 || (U->has_rest && !r2) || !na) {
+        wr_free(p3);
+        wr_free(r2);
+        wr_free(na);
+        return wr_fail(diag, WR_ERR_NOMEM, -1, "wf upsample: out of memory");
+    }
+    for (v = 0; v < nvf; ++v) {
+        const double *iv = fvals + (size_t)v * ncomp;
+        p3[3 * v] = iv[0];
+        p3[3 * v + 1] = iv[1];
+        p3[3 * v + 2] = iv[2];
+        if (U->has_rest) {
+            r2[2 * v] = iv[3];
+            r2[2 * v + 1] = iv[4];
+        }
+        na[v] = iv[ncomp - 1];
+    }
+    st = wr_mesh_create(fine, nvf, p3, r2, 4 * U->cur.nf, ffaces, diag);
+    wr_free(p3);
+    wr_free(r2);
+    if (st) {
+        wr_free(na);
+        return st;
+    }
+    for (v = 0; v < nvf; ++v) {
+        int32_t t, anyk = 0;
+        for (t = fine->vf_start[v]; t < fine->vf_start[v + 1]; ++t) anyk |= !fw[fine->vf[t]];
+        if (!anyk) na[v] = 0.0;
+    }
+    *fine_a = na;
+    return WR_OK;
+}
+
+/* One Loop level (App. E.5): positions, rest coordinates and amplitude by Loop's rules, the corner
+ * phases by wr__wf_loop_phase (the phase is multivalued: it is subdivided per face), W inherited
+ * by the four children of each face. */
+static wr_status wr__wf_up_level(wr__wf_up *U, wr_diag *diag) {
+    wr_mesh *cur = &U->cur, fine;
+    wr_wf_loop_desc ld;
+    double *vals, *fvals = NULL, *fphi = NULL, *fine_a = NULL;
+    uint8_t *fw = NULL;
+    int32_t *ffaces = NULL, v, f, c, ncomp = U->ncomp;
+    wr_status st;
+    ld.boundary = U->mode;
+    vals = (double *)wr_alloc_array((size_t)cur->nv * (size_t)ncomp, sizeof(double));
+    if (!vals) return wr_fail(diag, WR_ERR_NOMEM, -1, "wf upsample: out of memory");
+    for (v = 0; v < cur->nv; ++v) {
+        double *o = vals + (size_t)v * ncomp;
+        o[0] = cur->pos[3 * v];
+        o[1] = cur->pos[3 * v + 1];
+        o[2] = cur->pos[3 * v + 2];
+        if (U->has_rest) {
+            o[3] = cur->rest[2 * v];
+            o[4] = cur->rest[2 * v + 1];
+        }
+        o[ncomp - 1] = U->ca[v];
+    }
+    st = wr_wf_loop_step(cur, ncomp, vals, &ld, &ffaces, &fvals, diag);
+    wr_free(vals);
+    if (!st) {
+        fphi = (double *)wr_alloc_array((size_t)cur->nf * 12, sizeof(double));
+        fw = (uint8_t *)wr_alloc_array((size_t)cur->nf * 4, sizeof(uint8_t));
+        if (!fphi || !fw) st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf upsample: out of memory");
+    }
+    if (!st) st = wr__wf_loop_phase(cur, U->cw, U->cphi, U->mode, fphi, diag);
+    if (!st) {
+        for (f = 0; f < cur->nf; ++f)
+            for (c = 0; c < 4; ++c) fw[4 * f + c] = U->cw[f];
+        st = wr__wf_up_fine_mesh(U, cur->nv + cur->ne, fvals, ffaces, fw, &fine, &fine_a, diag);
+    }
+    wr_free(fvals);
+    wr_free(ffaces);
+    if (st) {
+        wr_free(fphi);
+        wr_free(fw);
+        return st;
+    }
+    wr_free(U->ca);
+    U->ca = fine_a;
+    wr_free(U->cphi);
+    U->cphi = fphi;
+    wr_free(U->cw);
+    U->cw = fw;
+    wr_mesh_free(cur);
+    *cur = fine;
+    return WR_OK;
+}
+
+/* Eq. 19 without v1 (App. E.5): r = r_b + a cos φ n̂_b + (a²/8) sin 2φ ∇_b φ on the finest level,
+ * n̂_b the area-weighted vertex normal, ∇_b φ the area-weighted average of the faces' gradients. */
+static wr_status wr__wf_up_displace(const wr__wf_up *U, int inplane, double *disp, wr_diag *diag) {
+    const wr_mesh *cur = &U->cur;
+    const double *cphi = U->cphi;
+    int32_t f, v, c;
+    double *grad = (double *)wr_calloc_array((size_t)cur->nv * 3, sizeof(double));
+    double *wsum = (double *)wr_calloc_array((size_t)cur->nv, sizeof(double));
+    double *nrm = (double *)wr_calloc_array((size_t)cur->nv * 3, sizeof(double));
+    double *vphi = (double *)wr_calloc_array((size_t)cur->nv, sizeof(double));
+    uint8_t *vwr = (uint8_t *)wr_calloc_array((size_t)cur->nv, sizeof(uint8_t));
     wr_status st = WR_OK;
-    if (out) memset(out, 0, sizeof *out);
-    if (out_a) *out_a = NULL;
-    if (!wf || !a || !phi || !out) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "wf upsample: NULL argument");
-    if (levels > 8) return wr_fail(diag, WR_ERR_BUDGET, -1, "wf upsample: %d levels (> 8) would need 4^%d faces", (int)levels, (int)levels);
-    if (mode != WR_WF_LOOP_BOUNDARY_FIXED && mode != WR_WF_LOOP_BOUNDARY_SPLINE)
-        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "wf upsample: unknown boundary mode %d", mode);
-    src = wf->mesh;
-    has_rest = src->rest != NULL;
-    ncomp = 3 + (has_rest ? 2 : 0) + 1;
-    /* level 0: the coarse mesh with the base positions */
-    memset(&cur, 0, sizeof cur);
-    st = wr_mesh_create(&cur, src->nv, wf->base, src->rest, src->nf, src->faces, diag);
-    if (st) return st;
-    ca = (double *)wr_alloc_array((size_t)src->nv, sizeof(double));
-    cphi = (double *)wr_alloc_array((size_t)src->nf * 3, sizeof(double));
-    cw = (uint8_t *)wr_alloc_array((size_t)src->nf, sizeof(uint8_t));
-    if (!ca || !cphi || !cw) {
+    if (!grad || !wsum || !nrm || !vphi || !vwr) {
         st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf upsample: out of memory");
         goto done;
     }
-    memcpy(ca, a, sizeof(double) * (size_t)src->nv);
-    memcpy(cphi, phi, sizeof(double) * 3 * (size_t)src->nf);
-    memcpy(cw, wf->wfree, (size_t)src->nf);
-    for (lvl = 0; lvl < levels; ++lvl) {
-        wr_mesh fine;
-        wr_wf_loop_desc ld;
-        int32_t nvf;
-        ld.boundary = mode;
-        vals = (double *)wr_alloc_array((size_t)cur.nv * (size_t)ncomp, sizeof(double));
-        if (!vals) {
-            st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf upsample: out of memory");
-            goto done;
-        }
-        for (v = 0; v < cur.nv; ++v) {
-            double *o = vals + (size_t)v * ncomp;
-            o[0] = cur.pos[3 * v];
-            o[1] = cur.pos[3 * v + 1];
-            o[2] = cur.pos[3 * v + 2];
-            if (has_rest) {
-                o[3] = cur.rest[2 * v];
-                o[4] = cur.rest[2 * v + 1];
-            }
-            o[ncomp - 1] = ca[v];
-        }
-        st = wr_wf_loop_step(&cur, ncomp, vals, &ld, &ffaces, &fvals, diag);
-        wr_free(vals);
-        vals = NULL;
-        if (st) goto done;
-        fphi = (double *)wr_alloc_array((size_t)cur.nf * 12, sizeof(double));
-        fw = (uint8_t *)wr_alloc_array((size_t)cur.nf * 4, sizeof(uint8_t));
-        if (!fphi || !fw) {
-            st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf upsample: out of memory");
-            goto done;
-        }
-        st = wr__wf_loop_phase(&cur, cw, cphi, mode, fphi, diag);
-        if (st) goto done;
-        for (f = 0; f < cur.nf; ++f)
-            for (c = 0; c < 4; ++c) fw[4 * f + c] = cw[f];
-        nvf = cur.nv + cur.ne;
-        {
-            double *p3 = (double *)wr_alloc_array((size_t)nvf * 3, sizeof(double));
-            double *r2 = has_rest ? (double *)wr_alloc_array((size_t)nvf * 2, sizeof(double)) : NULL;
-            double *na = (double *)wr_alloc_array((size_t)nvf, sizeof(double));
-            if (!p3 || (has_rest && !r2) || !na) {
-                wr_free(p3);
-                wr_free(r2);
-                wr_free(na);
-                st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf upsample: out of memory");
-                goto done;
-            }
-            for (v = 0; v < nvf; ++v) {
-                const double *iv = fvals + (size_t)v * ncomp;
-                p3[3 * v] = iv[0];
-                p3[3 * v + 1] = iv[1];
-                p3[3 * v + 2] = iv[2];
-                if (has_rest) {
-                    r2[2 * v] = iv[3];
-                    r2[2 * v + 1] = iv[4];
-                }
-                na[v] = iv[ncomp - 1];
-            }
-            st = wr_mesh_create(&fine, nvf, p3, r2, 4 * cur.nf, ffaces, diag);
-            wr_free(p3);
-            wr_free(r2);
-            if (st) {
-                wr_free(na);
-                goto done;
-            }
-            /* vertices touching only W faces stay wrinkle-free (a = 0) */
-            for (v = 0; v < nvf; ++v) {
-                int32_t t, anyk = 0;
-                for (t = fine.vf_start[v]; t < fine.vf_start[v + 1]; ++t) anyk |= !fw[fine.vf[t]];
-                if (!anyk) na[v] = 0.0;
-            }
-            wr_free(ca);
-            ca = na;
-        }
-        wr_free(fvals);
-        fvals = NULL;
-        wr_free(ffaces);
-        ffaces = NULL;
-        wr_free(cphi);
-        cphi = fphi;
-        fphi = NULL;
-        wr_free(cw);
-        cw = fw;
-        fw = NULL;
-        wr_mesh_free(&cur);
-        cur = fine;
-    }
-    /* Eq. 19 without v1 (App. E.5): r = r_b + a cos φ n̂_b + (a²/8) sin 2φ ∇_b φ */
-    grad = (double *)wr_calloc_array((size_t)cur.nv * 3, sizeof(double));
-    wsum = (double *)wr_calloc_array((size_t)cur.nv, sizeof(double));
-    nrm = (double *)wr_calloc_array((size_t)cur.nv * 3, sizeof(double));
-    disp = (double *)wr_alloc_array((size_t)cur.nv * 3, sizeof(double));
-    vphi = (double *)wr_calloc_array((size_t)cur.nv, sizeof(double));
-    vwr = (uint8_t *)wr_calloc_array((size_t)cur.nv, sizeof(uint8_t));
-    if (!grad || !wsum || !nrm || !disp || !vphi || !vwr) {
-        st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf upsample: out of memory");
-        goto done;
-    }
-    for (f = 0; f < cur.nf; ++f) {
-        const int32_t *fv = cur.faces + 3 * f;
-        wr_vec3 P0 = wr_v3_load(cur.pos + 3 * fv[0]), P1 = wr_v3_load(cur.pos + 3 * fv[1]),
-                P2 = wr_v3_load(cur.pos + 3 * fv[2]);
-        wr_vec3 N = wr_v3_cross(wr_v3_sub(P1, P0), wr_v3_sub(P2, P0));
+    for (f = 0; f < cur->nf; ++f) {
+        const int32_t *fv = cur->faces + 3 * f;
+        wr_vec3 P0 = wr_v3_load(cur->pos + 3 * fv[0]), P1 = wr_v3_load(cur->pos + 3 * fv[1]),
+                P2 = wr_v3_load(cur->pos + 3 * fv[2]);
+        wr_vec3 N = wr_v3_cross(wr_v3_sub(P1, P0), wr_v3_sub(P2, P0)), g0, g1, g2, gp;
         double N2 = wr_v3_dot(N, N), A = 0.5 * sqrt(N2);
         for (c = 0; c < 3; ++c) {
             nrm[3 * fv[c]] += N.x;
             nrm[3 * fv[c] + 1] += N.y;
             nrm[3 * fv[c] + 2] += N.z;
         }
-        if (cw[f] || !(N2 > 0.0)) continue;
-        {
-            /* ∇λ_i = N × e_i / |N|², e_i the edge opposite corner i (CCW) */
-            wr_vec3 g0 = wr_v3_scale(wr_v3_cross(N, wr_v3_sub(P2, P1)), 1.0 / N2);
-            wr_vec3 g1 = wr_v3_scale(wr_v3_cross(N, wr_v3_sub(P0, P2)), 1.0 / N2);
-            wr_vec3 g2 = wr_v3_scale(wr_v3_cross(N, wr_v3_sub(P1, P0)), 1.0 / N2);
-            wr_vec3 gp = wr_v3_add(wr_v3_add(wr_v3_scale(g0, cphi[3 * f]), wr_v3_scale(g1, cphi[3 * f + 1])),
-                                   wr_v3_scale(g2, cphi[3 * f + 2]));
-            for (c = 0; c < 3; ++c) {
-                grad[3 * fv[c]] += A * gp.x;
-                grad[3 * fv[c] + 1] += A * gp.y;
-                grad[3 * fv[c] + 2] += A * gp.z;
-                wsum[fv[c]] += A;
-                if (!vwr[fv[c]]) {
-                    vwr[fv[c]] = 1;
-                    vphi[fv[c]] = cphi[3 * f + c]; /* any sheet: only cos φ, sin 2φ are used */
-                }
+        if (U->cw[f] || !(N2 > 0.0)) continue;
+        /* ∇λ_i = N × e_i / |N|², e_i the edge opposite corner i (CCW) */
+        g0 = wr_v3_scale(wr_v3_cross(N, wr_v3_sub(P2, P1)), 1.0 / N2);
+        g1 = wr_v3_scale(wr_v3_cross(N, wr_v3_sub(P0, P2)), 1.0 / N2);
+        g2 = wr_v3_scale(wr_v3_cross(N, wr_v3_sub(P1, P0)), 1.0 / N2);
+        gp = wr_v3_add(wr_v3_add(wr_v3_scale(g0, cphi[3 * f]), wr_v3_scale(g1, cphi[3 * f + 1])),
+                       wr_v3_scale(g2, cphi[3 * f + 2]));
+        for (c = 0; c < 3; ++c) {
+            grad[3 * fv[c]] += A * gp.x;
+            grad[3 * fv[c] + 1] += A * gp.y;
+            grad[3 * fv[c] + 2] += A * gp.z;
+            wsum[fv[c]] += A;
+            if (!vwr[fv[c]]) {
+                vwr[fv[c]] = 1;
+                vphi[fv[c]] = cphi[3 * f + c]; /* any sheet: only cos φ, sin 2φ are used */
             }
         }
     }
-    for (v = 0; v < cur.nv; ++v) {
-        wr_vec3 n = wr_v3_normalized(wr_v3_load(nrm + 3 * v)), g = wr_v3(0.0, 0.0, 0.0);
-        double av = ca[v], ph = vphi[v];
-        wr_vec3 d;
+    for (v = 0; v < cur->nv; ++v) {
+        wr_vec3 n = wr_v3_normalized(wr_v3_load(nrm + 3 * v)), g = wr_v3(0.0, 0.0, 0.0), d;
+        double av = vwr[v] ? U->ca[v] : 0.0, ph = vphi[v];
         if (wsum[v] > 0.0) g = wr_v3_scale(wr_v3_load(grad + 3 * v), 1.0 / wsum[v]);
-        if (!vwr[v]) av = 0.0;
         d = wr_v3_scale(n, av * cos(ph));
         if (inplane) d = wr_v3_add(d, wr_v3_scale(g, av * av / 8.0 * sin(2.0 * ph)));
-        disp[3 * v] = cur.pos[3 * v] + d.x;
-        disp[3 * v + 1] = cur.pos[3 * v + 1] + d.y;
-        disp[3 * v + 2] = cur.pos[3 * v + 2] + d.z;
-    }
-    st = wr_mesh_create(out, cur.nv, disp, cur.rest, cur.nf, cur.faces, diag);
-    if (!st && out_a) {
-        *out_a = ca;
-        ca = NULL;
+        disp[3 * v] = cur->pos[3 * v] + d.x;
+        disp[3 * v + 1] = cur->pos[3 * v + 1] + d.y;
+        disp[3 * v + 2] = cur->pos[3 * v + 2] + d.z;
     }
 done:
-    wr_mesh_free(&cur);
-    wr_free(ca);
-    wr_free(cphi);
-    wr_free(cw);
-    wr_free(fvals);
-    wr_free(vals);
-    wr_free(fphi);
-    wr_free(fw);
-    wr_free(ffaces);
     wr_free(grad);
     wr_free(wsum);
     wr_free(nrm);
-    wr_free(disp);
     wr_free(vphi);
     wr_free(vwr);
+    return st;
+}
+
+WRDEF wr_status wr_wf_upsample(const wr_wf *wf, const double *a, const double *phi, const wr_wf_upsample_desc *desc,
+                               wr_mesh *out, double **out_a, wr_diag *diag) {
+    int32_t levels = desc && desc->levels > 0 ? desc->levels : 2, lvl;
+    int inplane = !(desc && desc->no_inplane);
+    const wr_mesh *src;
+    double *disp = NULL;
+    wr__wf_up U;
+    wr_status st;
+    if (out) memset(out, 0, sizeof *out);
+    if (out_a) *out_a = NULL;
+    if (!wf || !a || !phi || !out) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "wf upsample: NULL argument");
+    memset(&U, 0, sizeof U);
+    U.mode = desc ? desc->boundary : WR_WF_LOOP_BOUNDARY_FIXED;
+    if (levels > 8)
+        return wr_fail(diag, WR_ERR_BUDGET, -1, "wf upsample: %d levels (> 8) would need 4^%d faces", (int)levels,
+                       (int)levels);
+    if (U.mode != WR_WF_LOOP_BOUNDARY_FIXED && U.mode != WR_WF_LOOP_BOUNDARY_SPLINE)
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "wf upsample: unknown boundary mode %d", U.mode);
+    src = wf->mesh;
+    U.has_rest = src->rest != NULL;
+    U.ncomp = 3 + (U.has_rest ? 2 : 0) + 1;
+    /* level 0: the coarse mesh with the base positions */
+    st = wr_mesh_create(&U.cur, src->nv, wf->base, src->rest, src->nf, src->faces, diag);
+    if (st) return st;
+    U.ca = (double *)wr_alloc_array((size_t)src->nv, sizeof(double));
+    U.cphi = (double *)wr_alloc_array((size_t)src->nf * 3, sizeof(double));
+    U.cw = (uint8_t *)wr_alloc_array((size_t)src->nf, sizeof(uint8_t));
+    if (!U.ca || !U.cphi || !U.cw) {
+        st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf upsample: out of memory");
+    } else {
+        memcpy(U.ca, a, sizeof(double) * (size_t)src->nv);
+        memcpy(U.cphi, phi, sizeof(double) * 3 * (size_t)src->nf);
+        memcpy(U.cw, wf->wfree, (size_t)src->nf);
+    }
+    for (lvl = 0; lvl < levels && !st; ++lvl) st = wr__wf_up_level(&U, diag);
+    if (!st) {
+        disp = (double *)wr_alloc_array((size_t)U.cur.nv * 3, sizeof(double));
+        if (!disp) st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf upsample: out of memory");
+    }
+    if (!st) st = wr__wf_up_displace(&U, inplane, disp, diag);
+    if (!st) st = wr_mesh_create(out, U.cur.nv, disp, U.cur.rest, U.cur.nf, U.cur.faces, diag);
+    if (!st && out_a) {
+        *out_a = U.ca;
+        U.ca = NULL;
+    }
+    wr_free(disp);
+    wr_mesh_free(&U.cur);
+    wr_free(U.ca);
+    wr_free(U.cphi);
+    wr_free(U.cw);
     return st;
 }
 
