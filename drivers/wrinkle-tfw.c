@@ -176,11 +176,21 @@ int main(int argc, char **argv) {
     tst = wr_tfw_fields(&run.mesh, run.x, &mat, &td, &r, &d);
     if (!quiet) fprintf(stderr, "\n");
     if (tst != WR_OK && tst != WR_ERR_NOT_CONVERGED) {
-        wr_cli_error("wrinkle field failed: %s", d.message);
+        /* a slack base is the scene's set-up, not a failure of the solver (tfw.h ON OUTCOMES) */
+        int slack = tst == WR_ERR_DOMAIN && r.outcome == WR_TFW_SLACK;
+        wr_cli_error("%s: %s", slack ? scene_path : "wrinkle field failed", d.message);
         wr_scene_run_free(&run);
         wr_scene_free(&sc);
-        return 3;
+        return slack ? WR_CLI_EXIT_USAGE : 3;
     }
+    /* say plainly when nothing wrinkles, and why (tfw.h ON OUTCOMES), even with --quiet */
+    if (r.outcome != WR_TFW_WRINKLED)
+        fprintf(stderr, "%s: note: %s (%d of %d faces compressed, %d in W)\n", wr_cli_program(),
+                wr_tfw_outcome_reason(r.outcome), (int)r.n_compressed, (int)run.mesh.nf, (int)r.n_wrinkle_free);
+    else if (r.n_slack > 0)
+        fprintf(stderr, "%s: warning: %d faces outside W are compressed in both directions; their amplitude is not "
+                        "bounded by tension (tfw.h ON OUTCOMES)\n",
+                wr_cli_program(), (int)r.n_slack);
     if (tst == WR_ERR_NOT_CONVERGED) {
         fprintf(stderr, "%s: warning: %s\n", wr_cli_program(), d.message);
         rc = 1;
@@ -251,6 +261,10 @@ int main(int argc, char **argv) {
         cJSON_AddNumberToObject(root, "wrinkled_vertices", td.no_upsample ? 0 : r.wrinkled.nv);
         cJSON_AddNumberToObject(root, "wrinkle_free_faces", r.n_wrinkle_free);
         cJSON_AddNumberToObject(root, "max_amplitude_m", amax);
+        cJSON_AddStringToObject(root, "outcome", r.outcome == WR_TFW_WRINKLED ? "wrinkled" : "nothing_wrinkles");
+        cJSON_AddStringToObject(root, "outcome_reason", wr_tfw_outcome_reason(r.outcome));
+        cJSON_AddNumberToObject(root, "compressed_faces", r.n_compressed);
+        cJSON_AddNumberToObject(root, "slack_faces", r.n_slack);
         cJSON_AddStringToObject(base, "status", wr_status_string(st));
         cJSON_AddNumberToObject(base, "newton_iterations", run.newton_iterations);
         cJSON_AddNumberToObject(base, "load_steps", run.n_steps_done);
