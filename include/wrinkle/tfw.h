@@ -87,6 +87,7 @@ typedef struct wr_tfw_desc {
     int no_upsample; /* nonzero: skip E.5 (result->wrinkled stays empty) */
     int no_unfold;   /* nonzero: keep the SQP's ω even where dφ folds (see wr_wf_count_folds) */
     int allow_slack; /* nonzero: solve a slack base anyway instead of refusing it (ON OUTCOMES) */
+    wr_wf_kappa kappa; /* κ⊥ of Eq. 22: mid-edge II (default) or the vertex quadric fit (wrinkle_field.h) */
 } wr_tfw_desc;
 
 /* What the fields say about the base (ON OUTCOMES). */
@@ -223,6 +224,10 @@ WRDEF wr_status wr_tfw_fields(const wr_mesh *m, const double *base_pos, const wr
         memset(&D, 0, sizeof D);
     st = wr_wf_create(&wf, m, base_pos, mat, diag);
     if (st) return st;
+    if (D.kappa != WR_WF_KAPPA_MIDEDGE && (st = wr_wf_set_kappa(&wf, D.kappa, diag)) != WR_OK) {
+        wr_wf_free(&wf);
+        return st;
+    }
     res->nv = m->nv;
     res->ne = m->ne;
     res->nf = m->nf;

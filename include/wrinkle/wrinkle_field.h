@@ -199,6 +199,18 @@ WRDEF void wr_wf_set_wrinkle_free(wr_wf *wf, const uint8_t *flags /* nf or NULL 
  * vanish (the clamp holds the sheet in the base surface). Faces keep their energy and curl constraint. */
 WRDEF void wr_wf_set_amplitude_zero(wr_wf *wf, const uint8_t *vflags);
 
+/* κ⊥ of Eq. 22 (ON READINGS OF THE PAPER): which curvature of the base along the crests w⊥.
+ *   WR_WF_KAPPA_MIDEDGE (default): w⊥ᵀ II_b w⊥ / w⊥ᵀ I_b w⊥ with the App. A mid-edge II_b, constant
+ *     per face; W_s^2 wherever the face is compressed (λ0 < 0).
+ *   WR_WF_KAPPA_VERTEX_FIT: the normal curvature along w⊥ from per-vertex principal curvatures of a
+ *     quadric fit over 5-rings (Panozzo et al. 2010, which the paper cites; wr_mesh_vertex_curvature),
+ *     by Euler's formula at each corner, averaged over the three corners; W_s^2 only on faces in mixed
+ *     tension/compression (λ0 <= 0 <= λ1). This is how the authors' release builds the term. */
+typedef enum wr_wf_kappa { WR_WF_KAPPA_MIDEDGE = 0, WR_WF_KAPPA_VERTEX_FIT = 1 } wr_wf_kappa;
+/* Recompute κ⊥ and the W_s^2 coefficient of every face with the given reading. WR_ERR_INVALID_ARG
+ * for an unknown reading, WR_ERR_NOMEM. */
+WRDEF wr_status wr_wf_set_kappa(wr_wf *wf, wr_wf_kappa reading, wr_diag *diag);
+
 /* E_wf of Eq. 20, 22–24, 26 summed over faces outside W (Eq. 37). a: nv [m], omega: ne [rad].
  * grad (nv+ne, or NULL): dE/dx for x = (a, ω). face_hess (nf*36, or NULL): per face the 6×6 Hessian
  * in the local order of wr_wf_face_dofs (zero for W faces). terms (WR_WF_NTERMS, or NULL).
@@ -652,6 +664,11 @@ WRDEF void wr_wf_free(wr_wf *wf) {
     memset(wf, 0, sizeof *wf);
 }
 
+/* W_s^2 coefficient of Eq. 22 from κ⊥ and the face's Eq. 29 data (ratio = w⊥ᵀI_b w⊥ / w⊥ᵀI_u w⊥). */
+static double wr__wf_c2(const wr_wf *wf, double kperp, double ratio) {
+    return 4.0 * kperp * kperp * wf->beta * (wf->alpha + wf->beta) / (wf->alpha + 2.0 * wf->beta) * ratio * ratio;
+}
+
 static wr_vec3 wr__wf_face_normal(const double *P, const int32_t *fv) {
     wr_vec3 p0 = wr_v3_load(P + 3 * fv[0]), p1 = wr_v3_load(P + 3 * fv[1]), p2 = wr_v3_load(P + 3 * fv[2]);
     return wr_v3_cross(wr_v3_sub(p1, p0), wr_v3_sub(p2, p0));
@@ -798,9 +815,7 @@ WRDEF wr_status wr_wf_create(wr_wf *wf, const wr_mesh *m, const double *base_pos
             double ratio = wIbw / wIuw;
             wf->kperp[f] = wIbw > 0.0 ? wIIw / wIbw : 0.0;
             /* Eq. 22 coefficient; W_s^2 ignored in pure tension (Sec. 4.2). */
-            wf->c2[f] = lam[0] < 0.0 ? 4.0 * wf->kperp[f] * wf->kperp[f] * wf->beta * (wf->alpha + wf->beta) /
-                                           (wf->alpha + 2.0 * wf->beta) * ratio * ratio
-                                     : 0.0;
+            wf->c2[f] = lam[0] < 0.0 ? wr__wf_c2(wf, wf->kperp[f], ratio) : 0.0;
         }
         wr__wf_qform(wf->iu_inv + 3 * f, wf->alpha, wf->beta, Qm);
         memcpy(wf->qf + 9 * (size_t)f, Qm, sizeof Qm); /* constant per face: the SQP reuses it every evaluation */
@@ -813,6 +828,56 @@ WRDEF wr_status wr_wf_create(wr_wf *wf, const wr_mesh *m, const double *base_pos
         }
     }
     return WR_OK;
+}
+
+/* w⊥ᵀ S w⊥ for a symmetric chart tensor S = (s00, s01, s11) of face f. */
+static double wr__wf_perp_form(const wr_wf *wf, int32_t f, const double *S) {
+    double px = wf->wperp[2 * f], py = wf->wperp[2 * f + 1];
+    return S[0] * px * px + 2.0 * S[1] * px * py + S[2] * py * py;
+}
+
+WRDEF wr_status wr_wf_set_kappa(wr_wf *wf, wr_wf_kappa reading, wr_diag *diag) {
+    const wr_mesh *m = wf->mesh;
+    double *k1, *k2, *d1;
+    int32_t f;
+    wr_status st;
+    if (reading == WR_WF_KAPPA_MIDEDGE) {
+        for (f = 0; f < wf->nf; ++f) {
+            double wIbw = wr__wf_perp_form(wf, f, wf->ib + 3 * f), wIuw = wr__wf_perp_form(wf, f, wf->iu + 3 * f);
+            wf->kperp[f] = wIbw > 0.0 ? wr__wf_perp_form(wf, f, wf->iib + 3 * f) / wIbw : 0.0;
+            wf->c2[f] = wf->lambda[2 * f] < 0.0 ? wr__wf_c2(wf, wf->kperp[f], wIbw / wIuw) : 0.0;
+        }
+        return WR_OK;
+    }
+    if (reading != WR_WF_KAPPA_VERTEX_FIT)
+        return wr_fail(diag, WR_ERR_INVALID_ARG, (int32_t)reading, "wf kappa: unknown reading %d", (int)reading);
+    k1 = (double *)wr_alloc_array((size_t)wf->nv, sizeof(double));
+    k2 = (double *)wr_alloc_array((size_t)wf->nv, sizeof(double));
+    d1 = (double *)wr_alloc_array((size_t)wf->nv * 3, sizeof(double));
+    st = (k1 && k2 && d1) ? wr_mesh_vertex_curvature(m, wf->base, 5, k1, k2, d1, diag)
+                          : wr_fail(diag, WR_ERR_NOMEM, -1, "wf kappa: out of memory");
+    for (f = 0; f < wf->nf && !st; ++f) {
+        const int32_t *fv = m->faces + 3 * f;
+        wr_vec3 P0 = wr_v3_load(wf->base + 3 * fv[0]), E1 = wr_v3_sub(wr_v3_load(wf->base + 3 * fv[1]), P0),
+                E2 = wr_v3_sub(wr_v3_load(wf->base + 3 * fv[2]), P0);
+        wr_vec3 n = wr_v3_normalized(wr_v3_cross(E1, E2));
+        wr_vec3 t = wr_v3_normalized(wr_v3_add(wr_v3_scale(E1, wf->wperp[2 * f]), wr_v3_scale(E2, wf->wperp[2 * f + 1])));
+        double wIbw = wr__wf_perp_form(wf, f, wf->ib + 3 * f), wIuw = wr__wf_perp_form(wf, f, wf->iu + 3 * f), kap = 0.0;
+        int c;
+        for (c = 0; c < 3; ++c) {
+            /* Euler: κ(t) = k1 cos²θ + k2 sin²θ, θ from the k1 direction projected on the face plane */
+            wr_vec3 dv = wr_v3_load(d1 + 3 * fv[c]);
+            double cs = wr_v3_dot(wr_v3_sub(dv, wr_v3_scale(n, wr_v3_dot(dv, n))), t);
+            kap += k1[fv[c]] * cs * cs + k2[fv[c]] * (1.0 - cs * cs);
+        }
+        wf->kperp[f] = kap / 3.0;
+        wf->c2[f] = wf->lambda[2 * f] <= 0.0 && wf->lambda[2 * f + 1] >= 0.0 ? wr__wf_c2(wf, wf->kperp[f], wIbw / wIuw)
+                                                                                : 0.0;
+    }
+    wr_free(k1);
+    wr_free(k2);
+    wr_free(d1);
+    return st;
 }
 
 WRDEF void wr_wf_set_wrinkle_free(wr_wf *wf, const uint8_t *flags) {
