@@ -98,10 +98,12 @@ static double *their_omega_on_our_edges(const wr_mesh *m, const double *dphi) {
 typedef struct run_out {
     wr_status st;
     double waves, amax, seconds;
+    double e_ours, e_theirs; /* this reading's E_wf at our fields and at the release's, on our W [J] */
     int32_t sqp_iters, n_w;
 } run_out;
 
-static run_out run_tfw(const wr_mesh *m, const uint8_t *a_zero, wr_wf_kappa kappa) {
+static run_out run_tfw(const wr_mesh *m, const uint8_t *a_zero, wr_wf_kappa kappa, const double *their_a,
+                       const double *their_om) {
     wr_wf_material mat;
     wr_tfw_desc td;
     wr_tfw_result r;
@@ -123,6 +125,18 @@ static run_out run_tfw(const wr_mesh *m, const uint8_t *a_zero, wr_wf_kappa kapp
         o.sqp_iters = r.sqp.iterations;
         o.n_w = r.n_wrinkle_free;
         o.seconds = r.seconds_total;
+        o.e_ours = o.e_theirs = NAN;
+        if (their_a && their_om) { /* both fields in this reading's energy, on our W */
+            wr_wf wf;
+            if (wr_wf_create(&wf, m, m->pos, &mat, &d) == WR_OK) {
+                if (wr_wf_set_kappa(&wf, kappa, &d) == WR_OK) {
+                    wr_wf_set_wrinkle_free(&wf, r.wfree);
+                    wr_wf_energy(&wf, r.a, r.omega, &o.e_ours, NULL, NULL, NULL, &d);
+                    wr_wf_energy(&wf, their_a, their_om, &o.e_theirs, NULL, NULL, NULL, &d);
+                }
+                wr_wf_free(&wf);
+            }
+        }
         wr_tfw_result_free(&r);
     } else {
         fprintf(stderr, "validate_tfw_release: TFW failed: %s\n", d.message);
@@ -130,16 +144,157 @@ static run_out run_tfw(const wr_mesh *m, const uint8_t *a_zero, wr_wf_kappa kapp
     return o;
 }
 
+/* Phase change along face f's edge from corner i to corner j (ω from edges[2e] to edges[2e+1]). */
+static double corner_dphi(const wr_mesh *m, const double *omega, int32_t f, int i, int j) {
+    int k = 3 - i - j; /* the edge opposite the third corner joins i and j */
+    int32_t e = m->face_edges[3 * f + k], vi = m->faces[3 * f + i];
+    return m->edges[2 * e] == vi ? omega[e] : -omega[e];
+}
+
+static int cmp_double(const void *a, const void *b) {
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* Median wrinkle wavelength 2π / |∇φ| [m] over the faces whose mean corner amplitude is at least
+ * 0.2 × max a (visible wrinkles; the same rule for both codes), ∇φ the face's gradient on the base
+ * surface from the phase changes along its edges 0→1 and 0→2. */
+static double median_wavelength(const wr_mesh *m, const double *a, const double *omega, int32_t *n_used) {
+    double amax = 0.0, *lam = (double *)malloc(sizeof(double) * (size_t)m->nf), med = NAN;
+    int32_t f, v, n = 0;
+    for (v = 0; v < m->nv; ++v) amax = fmax(amax, a[v]);
+    for (f = 0; lam && f < m->nf; ++f) {
+        const int32_t *fv = m->faces + 3 * f;
+        double am = (a[fv[0]] + a[fv[1]] + a[fv[2]]) / 3.0, d01, d02, e1[3], e2[3], g11, g12, g22, det, c1, c2, gg;
+        int i;
+        if (!(am >= 0.2 * amax) || !(amax > 0.0)) continue;
+        for (i = 0; i < 3; ++i) {
+            e1[i] = m->pos[3 * fv[1] + i] - m->pos[3 * fv[0] + i];
+            e2[i] = m->pos[3 * fv[2] + i] - m->pos[3 * fv[0] + i];
+        }
+        d01 = corner_dphi(m, omega, f, 0, 1);
+        d02 = corner_dphi(m, omega, f, 0, 2);
+        /* ∇φ = c1 e1 + c2 e2 with G (c1, c2) = (d01, d02), G the face's Gram matrix */
+        g11 = e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2];
+        g12 = e1[0] * e2[0] + e1[1] * e2[1] + e1[2] * e2[2];
+        g22 = e2[0] * e2[0] + e2[1] * e2[1] + e2[2] * e2[2];
+        det = g11 * g22 - g12 * g12;
+        if (!(det > 0.0)) continue;
+        c1 = (g22 * d01 - g12 * d02) / det;
+        c2 = (g11 * d02 - g12 * d01) / det;
+        gg = c1 * c1 * g11 + 2.0 * c1 * c2 * g12 + c2 * c2 * g22;
+        if (gg > 0.0) lam[n++] = 2.0 * TP_PI / sqrt(gg);
+    }
+    if (n > 0) {
+        qsort(lam, (size_t)n, sizeof(double), cmp_double);
+        med = n % 2 ? lam[n / 2] : 0.5 * (lam[n / 2 - 1] + lam[n / 2]);
+    }
+    free(lam);
+    *n_used = n;
+    return med;
+}
+
+/* The dress: their rest garment (3D, seams unwelded: more vertices, the same faces in the same order)
+ * gives each face its rest triangle, laid flat as corner_rest; their TFT base gives positions. */
+typedef struct dress_out {
+    int ok;
+    int32_t nv, nf, n_theirs, n_ours, sqp_iters;
+    double lam_theirs, lam_ours, lam_fit, amax_theirs, amax_ours, corr;
+    wr_status st;
+} dress_out;
+
+static dress_out run_dress(const char *dir, wr_wf_kappa kappa_alt) {
+    char p[4096];
+    wr_mesh rest, base, m;
+    wr_diag d;
+    dress_out o;
+    double *cr = NULL, *ta = NULL, *tdp = NULL, *tom = NULL;
+    int32_t f, k;
+    memset(&o, 0, sizeof o);
+    memset(&m, 0, sizeof m);
+    snprintf(p, sizeof p, "%s/dress2.obj", dir);
+    if (wr_mesh_read_obj(&rest, p, &d)) return o;
+    snprintf(p, sizeof p, "%s/dress2_simulated.obj", dir);
+    if (wr_mesh_read_obj(&base, p, &d)) {
+        wr_mesh_free(&rest);
+        return o;
+    }
+    if (rest.nf == base.nf && wr_mesh_create(&m, base.nv, base.pos, NULL, base.nf, base.faces, &d) == WR_OK) {
+        cr = (double *)malloc(sizeof(double) * 6 * (size_t)m.nf);
+        for (f = 0; cr && f < m.nf; ++f) {
+            /* wr_mesh_face_rest lays a 3D triangle flat isometrically (corner 0 at 0, corner 1 on +x) */
+            wr_mesh tri;
+            memset(&tri, 0, sizeof tri);
+            tri.pos = rest.pos;
+            tri.faces = rest.faces;
+            wr_mesh_face_rest(&tri, f, cr + 6 * (size_t)f);
+        }
+        snprintf(p, sizeof p, "%s/dress2_amplitude_simulated.txt", dir);
+        ta = read_column(p, m.nv);
+        snprintf(p, sizeof p, "%s/dress2_dphi_simulated.txt", dir);
+        tdp = read_column(p, m.ne);
+        tom = tdp ? their_omega_on_our_edges(&m, tdp) : NULL;
+    }
+    if (cr && ta && tom && wr_mesh_set_corner_rest(&m, cr, &d) == WR_OK) {
+        wr_wf_material mat;
+        wr_tfw_desc td;
+        wr_tfw_result r;
+        double sa = 0, sb = 0, saa = 0, sbb = 0, sab = 0;
+        mat.young = 1e5; /* their dress2_TFW.json */
+        mat.poisson = 0.3;
+        mat.thickness = 1e-3;
+        memset(&td, 0, sizeof td);
+        td.no_upsample = 1;
+        o.nv = m.nv;
+        o.nf = m.nf;
+        o.lam_theirs = median_wavelength(&m, ta, tom, &o.n_theirs);
+        for (k = 0; k < m.nv; ++k) o.amax_theirs = fmax(o.amax_theirs, ta[k]);
+        o.st = wr_tfw_fields(&m, m.pos, &mat, &td, &r, &d);
+        if (o.st == WR_OK || o.st == WR_ERR_NOT_CONVERGED) {
+            o.lam_ours = median_wavelength(&m, r.a, r.omega, &o.n_ours);
+            o.amax_ours = r.max_amplitude;
+            o.sqp_iters = r.sqp.iterations;
+            for (k = 0; k < m.nv; ++k) {
+                sa += r.a[k];
+                sb += ta[k];
+                saa += r.a[k] * r.a[k];
+                sbb += ta[k] * ta[k];
+                sab += r.a[k] * ta[k];
+            }
+            o.corr = (sab - sa * sb / m.nv) / sqrt((saa - sa * sa / m.nv) * (sbb - sb * sb / m.nv));
+            wr_tfw_result_free(&r);
+            td.kappa = kappa_alt;
+            if (wr_tfw_fields(&m, m.pos, &mat, &td, &r, &d) <= WR_ERR_NOT_CONVERGED) {
+                int32_t nn;
+                o.lam_fit = median_wavelength(&m, r.a, r.omega, &nn);
+                wr_tfw_result_free(&r);
+            }
+            o.ok = 1;
+        } else {
+            fprintf(stderr, "validate_tfw_release: dress TFW failed: %s\n", d.message);
+        }
+    }
+    free(cr);
+    free(ta);
+    free(tdp);
+    free(tom);
+    wr_mesh_free(&m);
+    wr_mesh_free(&rest);
+    wr_mesh_free(&base);
+    return o;
+}
+
 int main(void) {
     const char *dir = getenv("WR_TFW_RELEASE_DATA");
     char p_rest[4096], p_base[4096], p_clamp[4096], p_phi[4096], buf[512];
-    double *their_om;
+    double *their_om, *their_a;
     wr_mesh rest, base, m;
     wr_diag d;
     double *rest2, *their_phi, their_waves;
     uint8_t *clamped;
     int32_t v, n_clamped;
     run_out mid, fit, midc;
+    dress_out dr;
     wr_vres *vr;
     if (!dir || !*dir) {
         printf("validate_tfw_release: skipped (set WR_TFW_RELEASE_DATA to a directory with the authors' disk files; "
@@ -176,13 +331,24 @@ int main(void) {
     their_om = their_omega_on_our_edges(&m, their_phi);
     their_waves = their_om ? tp_circulation(&m, their_om, m.loop_verts + m.loop_start[0], m.loop_start[1] - m.loop_start[0])
                            : NAN;
+    snprintf(p_phi, sizeof p_phi, "%s/disk_amplitude_simulated.txt", dir);
+    their_a = read_column(p_phi, m.nv);
+    mid = run_tfw(&m, NULL, WR_WF_KAPPA_MIDEDGE, their_a, their_om);
+    fit = run_tfw(&m, NULL, WR_WF_KAPPA_VERTEX_FIT, their_a, their_om);
+    midc = run_tfw(&m, clamped, WR_WF_KAPPA_MIDEDGE, NULL, NULL);
     free(their_om);
-    mid = run_tfw(&m, NULL, WR_WF_KAPPA_MIDEDGE);
-    fit = run_tfw(&m, NULL, WR_WF_KAPPA_VERTEX_FIT);
-    midc = run_tfw(&m, clamped, WR_WF_KAPPA_MIDEDGE);
+    free(their_a);
+    fprintf(stderr, "E default: ours %.6g theirs %.6g; E release reading: ours %.6g theirs %.6g\n", mid.e_ours, mid.e_theirs,
+            fit.e_ours, fit.e_theirs);
     fprintf(stderr, "release %.2f waves; ours mid-edge %.2f (%d SQP it), vertex fit %.2f (%d SQP it), mid-edge + a = 0 "
                     "on the rim %.2f\n",
             their_waves, mid.waves, (int)mid.sqp_iters, fit.waves, (int)fit.sqp_iters, midc.waves);
+    dr = run_dress(dir, WR_WF_KAPPA_VERTEX_FIT);
+    if (dr.ok)
+        fprintf(stderr, "dress: median wavelength release %.1f mm (%d faces), ours %.1f mm (%d faces), vertex fit %.1f mm; "
+                        "max a %.2f / %.2f mm; a correlation %.3f\n",
+                1e3 * dr.lam_theirs, (int)dr.n_theirs, 1e3 * dr.lam_ours, (int)dr.n_ours, 1e3 * dr.lam_fit,
+                1e3 * dr.amax_theirs, 1e3 * dr.amax_ours, dr.corr);
     vr = wr_vres_begin("tfw_release", "TFW against the authors' release on their pressurised disk (issue 16)");
     wr_vres_info(vr, "release: waves around the rim (their shipped omega)", "waves", NAN, their_waves);
     wr_vres_check(vr, "ours, release reading (vertex quadric-fit kappa): waves around the rim", "waves", NAN, fit.waves,
@@ -190,11 +356,26 @@ int main(void) {
     wr_vres_info(vr, "ours, default reading (mid-edge II kappa): waves around the rim", "waves", NAN, mid.waves);
     wr_vres_info(vr, "ours / release, default reading", "", NAN, mid.waves / their_waves);
     wr_vres_info(vr, "ours / release, release reading", "", NAN, fit.waves / their_waves);
+    wr_vres_info(vr, "E_wf (default reading) at our fields", "J", NAN, mid.e_ours);
+    wr_vres_info(vr, "E_wf (default reading) at the release's fields", "J", NAN, mid.e_theirs);
+    wr_vres_info(vr, "E_wf (release reading) at our fields", "J", NAN, fit.e_ours);
+    wr_vres_info(vr, "E_wf (release reading) at the release's fields", "J", NAN, fit.e_theirs);
     wr_vres_info(vr, "max amplitude, default reading", "mm", NAN, 1e3 * mid.amax);
     wr_vres_info(vr, "max amplitude, release reading", "mm", NAN, 1e3 * fit.amax);
     wr_vres_info(vr, "SQP iterations, default / release reading", "", NAN, mid.sqp_iters);
     wr_vres_info(vr, "SQP iterations, release reading", "", NAN, fit.sqp_iters);
     wr_vres_info(vr, "TFW seconds, default reading", "s", NAN, mid.seconds);
+    wr_vres_info(vr, "ours, mid-edge kappa with a = 0 on the clamped rim (our former set-up): waves", "waves", NAN,
+                 midc.waves);
+    if (dr.ok) {
+        wr_vres_info(vr, "dress: release median wavelength (faces with a >= 0.2 max a)", "mm", NAN, 1e3 * dr.lam_theirs);
+        wr_vres_info(vr, "dress: ours, default reading, median wavelength", "mm", NAN, 1e3 * dr.lam_ours);
+        wr_vres_info(vr, "dress: ours, release reading (vertex fit), median wavelength", "mm", NAN, 1e3 * dr.lam_fit);
+        wr_vres_info(vr, "dress: ours / release wavelength, default reading", "", NAN, dr.lam_ours / dr.lam_theirs);
+        wr_vres_info(vr, "dress: ours / release wavelength, release reading", "", NAN, dr.lam_fit / dr.lam_theirs);
+        wr_vres_info(vr, "dress: max amplitude release / ours (default)", "mm", 1e3 * dr.amax_theirs, 1e3 * dr.amax_ours);
+        wr_vres_info(vr, "dress: amplitude correlation ours (default) vs release", "", NAN, dr.corr);
+    }
     snprintf(buf, sizeof buf,
              "Their disk: %d vertices, %d faces, %d clamped rim vertices; E 1e7 Pa, nu 0.44, h 0.1 mm (their disk_TFW.json). "
              "Files read from $WR_TFW_RELEASE_DATA, copied from a checkout of the authors' public repository; "
