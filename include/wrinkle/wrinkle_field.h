@@ -69,8 +69,10 @@
  *   - W_s^2 (Eq. 22) = 4 a² κ⊥² β(α+β)/(α+2β) ((w⊥ᵀI_b w⊥)/(w⊥ᵀI_u w⊥))², κ⊥ = w⊥ᵀII_b w⊥ / w⊥ᵀI_b w⊥;
  *     w from Eq. 29 (most negative generalised eigenvalue), w⊥ its I_u-orthogonal partner (= the
  *     other generalised eigenvector). W_s^2 = 0 where neither eigenvalue is negative (Sec. 4.2).
- *     κ⊥ uses the App. A mid-edge-normal II_b, constant per face, instead of the paper's quadratic
- *     fitting (Panozzo et al. 2010); it is fixed during the solve as in App. E.3.
+ *     κ⊥ uses the App. A mid-edge-normal II_b, constant per face, by default; the paper's quadric
+ *     fitting (Panozzo et al. 2010), as the authors' release builds it, is wr_wf_set_kappa(wf,
+ *     WR_WF_KAPPA_VERTEX_FIT) (docs/notes-tfw-release.md has the comparison); either is fixed during
+ *     the solve as in App. E.3.
  *   - W_b^1 = ||I_u⁻¹ II_b||²_SV (rest-flat: II_u = 0) is a constant of the base; it is included in
  *     E and in terms[] but has no gradient.
  *   - dφ per face: the face average of the Whitney interpolant of ω, dφ = Σ_ij ω_ij (dλ_j - dλ_i)/3.
