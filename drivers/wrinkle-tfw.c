@@ -40,6 +40,10 @@ static void usage(FILE *f) {
             "  -o, --output DIR     output directory (created if missing)\n"
             "  --levels N           Loop subdivision levels of the wrinkled mesh (default 2, 0..5)\n"
             "  --png                also DIR/wrinkles.png: the coarse base beside the wrinkled surface\n"
+            "  --clamp-amplitude    a = 0 on the scene's prescribed vertices (the TFW paper's clamp reading;\n"
+            "                       default: a clamp holds the base only, as in the authors' release)\n"
+            "  --kappa K            curvature of Eq. 22: midedge (default) or vertex-fit (quadric fit, as the\n"
+            "                       authors' release; wrinkle_field.h ON READINGS OF THE PAPER)\n"
             "  --quiet              no progress on stderr\n"
             "  -h, --help           this text\n"
             "exit status: 0 ok, 1 not converged (outputs written), 2 bad input, 3 failure\n");
@@ -110,7 +114,8 @@ static wr_status probe_wrinkled(const wr_scene_probe *pr, const wr_mesh *fine, c
 int main(int argc, char **argv) {
     const char *scene_path = NULL, *out = NULL, *inputs[2];
     double levels_d = 2.0, strain;
-    int quiet = 0, png = 0, i, rc = 0, n_pos = 0;
+    int quiet = 0, png = 0, clamp_amplitude = 0, i, rc = 0, n_pos = 0;
+    const char *kappa_name = NULL;
     wr_scene sc;
     wr_scene_run run;
     wr_diag d;
@@ -118,18 +123,24 @@ int main(int argc, char **argv) {
     wr_wf_material mat;
     wr_tfw_desc td;
     wr_tfw_result r;
-    char path[4096];
+    char path[4096], base_warning[512] = "";
     double t0;
     static const char *const outputs[] = {"base.obj",    "wrinkled.obj", "wrinkled.ply", "wrinkled.vtk",
                                           "fields.ply",  "fields.vtk",   "wrinkles.png", "summary.json"};
-    wr_cli_opt opts[5];
+    wr_cli_opt opts[6];
     memset(opts, 0, sizeof opts);
     opts[0].name = "--output", opts[0].alias = "-o", opts[0].kind = WR_CLI_STRING, opts[0].out = (void *)&out;
     opts[1].name = "--levels", opts[1].kind = WR_CLI_INTEGER, opts[1].out = &levels_d, opts[1].lo = 0, opts[1].hi = 5;
     opts[2].name = "--quiet", opts[2].alias = "-q", opts[2].kind = WR_CLI_FLAG, opts[2].out = &quiet;
     opts[3].name = "--png", opts[3].kind = WR_CLI_FLAG, opts[3].out = &png;
+    opts[4].name = "--clamp-amplitude", opts[4].kind = WR_CLI_FLAG, opts[4].out = &clamp_amplitude;
+    opts[5].name = "--kappa", opts[5].kind = WR_CLI_STRING, opts[5].out = (void *)&kappa_name;
     wr_cli_set_program(argv[0]);
-    if ((i = wr_cli_parse(argc, argv, opts, 4, &scene_path, 1, &n_pos, usage)) <= 0) return i < 0 ? WR_CLI_EXIT_USAGE : 0;
+    if ((i = wr_cli_parse(argc, argv, opts, 6, &scene_path, 1, &n_pos, usage)) <= 0) return i < 0 ? WR_CLI_EXIT_USAGE : 0;
+    if (kappa_name && strcmp(kappa_name, "midedge") != 0 && strcmp(kappa_name, "vertex-fit") != 0) {
+        wr_cli_error("--kappa: '%s' is neither midedge nor vertex-fit", kappa_name);
+        return WR_CLI_EXIT_USAGE;
+    }
     if (!wr_cli_scene_args_ok(scene_path, out)) return WR_CLI_EXIT_USAGE;
     if (strlen(out) > 3000) {
         wr_cli_error("output path too long");
@@ -172,8 +183,8 @@ int main(int argc, char **argv) {
         wr_cli_error("base solve failed: %s", d.message);
         return wr_cli_exit(WR_CLI_EXIT_FAILURE);
     }
-    if (st == WR_ERR_NOT_CONVERGED) {
-        wr_cli_warn("base: %s", d.message);
+    if (st == WR_ERR_NOT_CONVERGED) { /* said after the TFW step, unless that step refuses the base */
+        snprintf(base_warning, sizeof base_warning, "%s", d.message);
         rc = 1;
     }
     if ((strain = wr_meshout_max_strain(&run.mesh, run.x)) > 1.0)
@@ -184,6 +195,8 @@ int main(int argc, char **argv) {
     mat.thickness = sc.shell.thickness;
     memset(&td, 0, sizeof td);
     td.upsample.levels = (int32_t)levels_d;
+    if (clamp_amplitude) td.a_zero_vertices = run.fixed;
+    if (kappa_name && strcmp(kappa_name, "vertex-fit") == 0) td.kappa = WR_WF_KAPPA_VERTEX_FIT;
     if (td.upsample.levels == 0) td.no_upsample = 1;
     if (!quiet) td.solve.progress = sqp_progress;
     t0 = wr_time_seconds();
@@ -191,9 +204,21 @@ int main(int argc, char **argv) {
     tst = wr_tfw_fields(&run.mesh, run.x, &mat, &td, &r, &d);
     wr_cli_progress_end();
     if (tst != WR_OK && tst != WR_ERR_NOT_CONVERGED) {
-        wr_cli_error("wrinkle field failed: %s", d.message);
-        return wr_cli_exit(WR_CLI_EXIT_FAILURE);
+        /* a slack base is the scene's set-up, not a failure of the solver (tfw.h ON OUTCOMES) */
+        int slack = tst == WR_ERR_DOMAIN && r.outcome == WR_TFW_SLACK;
+        if (!slack && base_warning[0]) wr_cli_warn("base: %s", base_warning);
+        wr_cli_error("%s: %s", slack ? scene_path : "wrinkle field failed", d.message);
+        return wr_cli_exit(slack ? WR_CLI_EXIT_USAGE : WR_CLI_EXIT_FAILURE);
     }
+    if (base_warning[0]) wr_cli_warn("base: %s", base_warning);
+    /* say plainly when nothing wrinkles, and why (tfw.h ON OUTCOMES), even with --quiet */
+    if (r.outcome != WR_TFW_WRINKLED)
+        fprintf(stderr, "%s: note: %s (%d of %d faces compressed, %d in W)\n", wr_cli_program(),
+                wr_tfw_outcome_reason(r.outcome), (int)r.n_compressed, (int)run.mesh.nf, (int)r.n_wrinkle_free);
+    else if (r.n_slack > 0)
+        fprintf(stderr, "%s: warning: %d faces outside W are compressed in both directions; their amplitude is not "
+                        "bounded by tension (tfw.h ON OUTCOMES)\n",
+                wr_cli_program(), (int)r.n_slack);
     if (tst == WR_ERR_NOT_CONVERGED) {
         wr_cli_warn("%s", d.message);
         rc = 1;
@@ -217,6 +242,10 @@ int main(int argc, char **argv) {
         cJSON_AddNumberToObject(root, "wrinkled_vertices", td.no_upsample ? 0 : r.wrinkled.nv);
         cJSON_AddNumberToObject(root, "wrinkle_free_faces", r.n_wrinkle_free);
         cJSON_AddNumberToObject(root, "max_amplitude_m", amax);
+        cJSON_AddStringToObject(root, "outcome", r.outcome == WR_TFW_WRINKLED ? "wrinkled" : "nothing_wrinkles");
+        cJSON_AddStringToObject(root, "outcome_reason", wr_tfw_outcome_reason(r.outcome));
+        cJSON_AddNumberToObject(root, "compressed_faces", r.n_compressed);
+        cJSON_AddNumberToObject(root, "slack_faces", r.n_slack);
         cJSON_AddStringToObject(base, "status", wr_status_string(st));
         cJSON_AddNumberToObject(base, "newton_iterations", run.newton_iterations);
         cJSON_AddNumberToObject(base, "load_steps", run.n_steps_done);

@@ -6,7 +6,8 @@
  *
  * WHAT IS INCLUDED
  *   Always (libc + libm only, MIT): core, mesh, sparse, pcg (iterative solvers), resolution,
- *   transition, tft, shell, poisson, triangulate, statics, wrinkle_field, mesher, tfw, render.
+ *   transition, tft, shell, poisson, triangulate, statics, wrinkle_field, mesher, tfw, collision,
+ *   render.
  *   Link with -lm (pkg-config: wrinkle-core).
  *   Opt-in backends, each behind a macro so that a binary without them carries no GPL code:
  *     -DWR_USE_FFTW=1     also include spectrum.h (wrinkle counting; FFTW 3, GPL-2+, -lfftw3)
@@ -37,4 +38,5 @@
 #include "wrinkle_field.h"
 #include "mesher.h"
 #include "tfw.h"
+#include "collision.h"
 #include "render.h"
