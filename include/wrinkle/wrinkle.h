@@ -22,6 +22,7 @@
 #include "poisson.h"
 #include "triangulate.h"
 #include "statics.h"
+#include "dynamics.h"
 #include "wrinkle_field.h"
 #include "mesher.h"
 #include "tfw.h"

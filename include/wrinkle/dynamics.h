@@ -1,0 +1,1120 @@
+/* wrinkle/dynamics.h — dynamic cloth: backward Euler as an incremental potential minimised by the
+ * shared Newton (newton.h), with gravity, Rayleigh damping, sewing springs, IPC-style contact
+ * barriers against analytic obstacles, triangle-mesh bodies (static or moving) and the cloth
+ * itself, lagged Coulomb friction, and continuous collision detection as Newton's max-step hook.
+ * wrinkle v0.1.0 — MIT licence (see LICENSE). Needs core.h, sparse.h, pcg.h, mesh.h, shell.h,
+ * statics.h (obstacles, barrier, PSD projection), newton.h and collision.h; otherwise libc, libm.
+ *
+ * The Style3D paper's simulator (Sec. 5): "Newton's method with a 1/30 s time step for implicit
+ * integration", PCG with 3×3 block-diagonal preconditioning stopped at an L2 residual of 1e-5,
+ * Baraff–Witkin membrane, stable discrete bending, adaptive stepping for collisions. One step of
+ * size h from (x_n, v_n) minimises (Martin et al. 2011, "Example-based elastic materials"; IPC, Li
+ * et al. 2020, Eq. 3)
+ *     Φ(x) = 1/(2h²) ‖x − x̃‖²_M + E_el(x) − Σ_v m_v g·x_v + α/(2h) ‖x − x_n‖²_M
+ *            + β/(2h) (x − x_n)ᵀ K_n (x − x_n) + E_sew(x) + B(x) + D(x),     x̃ = x_n + h v_n,
+ * then v_{n+1} = (x − x_n)/h. ∇Φ = 0 is exactly backward Euler M(v_{n+1} − v_n)/h = f(x_{n+1}) −
+ * αM v_{n+1} − βK_n v_{n+1}: Rayleigh damping with mass coefficient α [1/s] and stiffness
+ * coefficient β [s], K_n the PSD-projected elastic Hessian at x_n (lagged over the step, so the
+ * damping term is an exact quadratic). B is the contact barrier, D the lagged friction potential.
+ *
+ * API (create/free pair: wr_dyn_create → wr_dyn_free)
+ *   wr_dyn_create(sim, shell, desc, diag)          masses, Hessian pattern, solver, contact set-up
+ *   wr_dyn_free(sim)                               free and zero (safe on a zeroed sim)
+ *   wr_dyn_state_init(sim, state, x, v)            point a state at caller arrays (x, v: nv*3), t = 0
+ *   wr_dyn_step(sim, state, stats, diag)           advance one frame (desc.time.dt) in place
+ *   wr_dyn_run(sim, state, t_end, progress, user, total, diag)   frames until t_end, callback per frame
+ *   wr_dyn_energy(sim, state, kinetic, potential)  ½vᵀMv and E_el − Σ m g·x [J]
+ *   wr_dyn_min_distance(sim, x)                    smallest vertex–obstacle gap at x [m]
+ *   wr_dyn_sew_gap(sim, x)                         largest distance between sewn vertex pairs [m]
+ *
+ * EXAMPLE (a sheet dropped on a ball)
+ *     wr_mesh m;  wr_shell sh;  wr_shell_desc sd;  wr_dyn_desc dd;  wr_dyn sim;  wr_dyn_state st;
+ *     wr_dyn_stats fs;  wr_obstacle ball;  wr_diag d;  double *x, *v;  int32_t i, f;
+ *     if (wr_mesh_rectangle(&m, 0.4, 0.4, 8, 8, &d) != WR_OK) { puts(d.message); return 1; }
+ *     memset(&sd, 0, sizeof sd);  memset(&dd, 0, sizeof dd);  memset(&ball, 0, sizeof ball);
+ *     sd.young = 1e5; sd.poisson = 0.3; sd.thickness = 5e-4; sd.density = 300;   // Pa, -, m, kg/m³
+ *     if (wr_shell_create(&sh, &m, &sd, &d) != WR_OK) { puts(d.message); return 1; }
+ *     ball.kind = WR_OBSTACLE_SPHERE; ball.radius = 0.1;              // centred at the origin
+ *     dd.gravity[2] = -9.81; dd.contact.analytic = &ball; dd.contact.n_analytic = 1;
+ *     if (wr_dyn_create(&sim, &sh, &dd, &d) != WR_OK) { puts(d.message); return 1; }
+ *     x = (double *)wr_alloc_array(3 * (size_t)m.nv, sizeof(double));
+ *     v = (double *)wr_calloc_array(3 * (size_t)m.nv, sizeof(double));
+ *     for (i = 0; i < 3 * m.nv; ++i) x[i] = m.pos[i] - (i % 3 == 2 ? -0.12 : 0.2);   // 2 cm above
+ *     wr_dyn_state_init(&sim, &st, x, v);
+ *     for (f = 0; f < 10; ++f)
+ *         if (wr_dyn_step(&sim, &st, &fs, &d) != WR_OK) { puts(d.message); return 1; }
+ *     printf("t %.3f s, gap %.2e m, %d Newton\n", st.t, fs.min_distance, fs.newton_iterations);
+ *     wr_dyn_free(&sim);  wr_shell_free(&sh);  wr_mesh_free(&m);  wr_free(x);  wr_free(v);
+ *
+ * ON TIME STEPPING
+ *   wr_dyn_step advances one frame of desc.time.dt (default 1/30 s, the paper's step) in
+ *   desc.time.substeps equal steps h. When a step's Newton solve does not converge (max_iter, or a
+ *   line search that cannot decrease Φ) the step is restarted from its start with h/2, and so on up
+ *   to desc.time.max_halvings times; the rest of the frame then continues with the reduced h (the
+ *   next frame starts again at the full substep). stats.halvings counts the reductions; a step that
+ *   fails at the smallest h returns WR_ERR_NOT_CONVERGED with the state at the last good step.
+ *   Newton stops when a full (uncut) step moves no vertex by more than h·velocity_tol (IPC's
+ *   velocity criterion, Li et al. 2020 Sec. 4.3: the step is then below velocity_tol in the
+ *   velocities it sets), or when ‖∇Φ‖ has fallen below grad_tol of its value at the start.
+ *
+ * ON CONTACT
+ *   IPC barrier (Li et al. 2020): κ b(d) with b(d) = −(d − d̂)² ln(d/d̂) on 0 < d < d̂ (statics.h
+ *   wr_statics_barrier), d the distance from a cloth vertex to an analytic obstacle (statics.h
+ *   wr_obstacle), or the unsigned point–triangle / edge–edge distance to a body mesh or between
+ *   cloth primitives (collision.h). Every Newton step is cut before its line search so that no
+ *   primitive comes closer than WR_DYN_CCD_KEEP of its current distance (max-step hook), so no
+ *   iterate ever penetrates. Defaults: d̂ = 1 mm; κ = WR_DYN_KAPPA_FACTOR · m̄ · max(|g|, d̂/h²) / d̂
+ *   (m̄ the mean vertex mass): the barrier holds 10× a vertex's weight, or 10× the force that stops
+ *   it within d̂ in one step, at |b'| = d̂ (d ≈ d̂/2).
+ *   Friction (lagged, IPC Sec. 5): at the start of each step every active contact k records its
+ *   normal force λ_k = κ|b'(d_k)|, tangent basis T_k and stencil weights; over the step
+ *   D = Σ_k μ λ_k f0(‖T_kᵀ Σ_i w_i (x_i − x_n,i)‖) with IPC's smoothed f0 (ε = ε_v h, ε_v =
+ *   friction_eps_v): Coulomb's law μλ above the sliding speed ε_v, a stiff viscous stick below.
+ *
+ * ON TIMING (the paper's Table 1 split)
+ *   NS (numerical solving): elastic/inertia/sewing energy, gradient and Hessian assembly, the PSD
+ *   projection, and the linear solves. CH (collision handling): contact detection (broad and narrow
+ *   phase), CCD step limits, and the contact barrier and friction terms' values, gradients and
+ *   Hessian blocks. Both are wall-clock sums over the frame's Newton iterations.
+ *
+ * ON UNITS
+ *   SI: m, s, kg (shell density), N/m (κ, sewing), 1/s (α), s (β), m/s (tolerances).
+ *
+ * ON THREADS
+ *   A created sim is used by one thread at a time; several sims may run concurrently.
+ */
+#ifndef WRINKLE_DYNAMICS_H
+#define WRINKLE_DYNAMICS_H
+
+#include "core.h"
+#include "sparse.h"
+#include "pcg.h"
+#include "mesh.h"
+#include "shell.h"
+#include "statics.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Defaults: dt 1/30 s; substeps 1; max_halvings 6 (h down to dt/64). */
+typedef struct wr_dyn_time_desc {
+    double dt;            /* frame length [s] */
+    int32_t substeps;     /* steps per frame */
+    int32_t max_halvings; /* step reductions allowed after a failed step; has_max_halvings: 0 is meaningful */
+    int32_t has_max_halvings;
+} wr_dyn_time_desc;
+
+/* Rayleigh damping C = αM + βK_n; both default 0 (only backward Euler's own numerical damping). */
+typedef struct wr_dyn_damping_desc {
+    double mass;      /* α [1/s] */
+    double stiffness; /* β [s] */
+} wr_dyn_damping_desc;
+
+/* Defaults: dhat 1e-3 m; stiffness 0 → ON CONTACT; friction μ 0; friction_eps_v 1e-3 m/s;
+ * analytic NULL / 0 obstacles (statics.h wr_obstacle, copied). */
+typedef struct wr_dyn_contact_desc {
+    double dhat;      /* barrier thickness d̂ [m] */
+    double stiffness; /* κ [N/m] */
+    double friction;  /* Coulomb coefficient μ >= 0 */
+    double friction_eps_v; /* sliding-speed threshold ε_v [m/s] */
+    const wr_obstacle *analytic;
+    int32_t n_analytic;
+} wr_dyn_contact_desc;
+
+/* Zero-rest-length springs k/2 ‖x_a − x_b‖² between vertex pairs, active while t < duration
+ * (duration 0 → always). Defaults: stiffness 0 → WR_DYN_SEW_FACTOR · m̄/dt² (pulls a seam shut
+ * over a few frames against inertia). pairs: n_pairs × 2 vertex indices, copied. */
+typedef struct wr_dyn_sewing_desc {
+    const int32_t *pairs;
+    int32_t n_pairs;
+    double stiffness; /* [N/m] */
+    double duration;  /* [s] */
+} wr_dyn_sewing_desc;
+
+/* Defaults: max_iter 50; velocity_tol 1e-4 m/s; grad_tol 1e-9 (relative to ‖∇Φ‖ at the step's
+ * start); projection WR_PROJECT_FAST (statics.h, per-element PSD projection). */
+typedef struct wr_dyn_newton_desc {
+    int32_t max_iter;
+    double velocity_tol;
+    double grad_tol;
+    wr_statics_projection projection;
+} wr_dyn_newton_desc;
+
+/* Zero means default everywhere (see each group). gravity [m/s²] default 0; fixed NULL = none, else
+ * nv flags (nonzero: the vertex keeps its position; its velocity is set to 0); linear: pcg.h options
+ * with method default WR_SOLVER_PCG_BLOCK3 and rel_tol default 1e-5 (the paper's setting); its
+ * `fixed` is set by the simulator. */
+typedef struct wr_dyn_desc {
+    wr_dyn_time_desc time;
+    double gravity[3];
+    const uint8_t *fixed;
+    wr_dyn_damping_desc damping;
+    wr_dyn_contact_desc contact;
+    wr_dyn_sewing_desc sewing;
+    wr_dyn_newton_desc newton;
+    wr_spd_desc linear;
+} wr_dyn_desc;
+
+/* Caller-owned state: x, v point at nv*3 arrays [m], [m/s] that the caller allocates and frees. */
+typedef struct wr_dyn_state {
+    double *x;
+    double *v;
+    double t; /* [s] */
+} wr_dyn_state;
+
+typedef enum wr_dyn_stop {
+    WR_DYN_STOP_NONE = 0,
+    WR_DYN_STOP_VELOCITY,    /* full Newton step below h·velocity_tol */
+    WR_DYN_STOP_GRADIENT,    /* ‖∇Φ‖ <= grad_tol · ‖∇Φ(x_start)‖ */
+    WR_DYN_STOP_MAX_ITER,    /* not converged */
+    WR_DYN_STOP_LINE_SEARCH  /* no decrease found: not converged */
+} wr_dyn_stop;
+
+/* One frame (wr_dyn_step) or, summed, a run (wr_dyn_run; min_distance the smallest, the last
+ * solve's residual/stop). Times are wall-clock seconds. */
+typedef struct wr_dyn_stats {
+    int32_t frames, steps, halvings;   /* frames done, time steps taken, step reductions */
+    int32_t newton_iterations, linear_iterations, line_search_evals;
+    double residual;      /* last solve: ‖∇Φ‖ at its end [N] */
+    double residual_rel;  /* ... relative to ‖∇Φ‖ at its start */
+    wr_dyn_stop stop;     /* why the last solve stopped */
+    double t_ns, t_ch, t_total; /* ON TIMING */
+    int32_t n_contacts;   /* active contacts (d < d̂) at the end of the frame */
+    double min_distance;  /* smallest contact distance at the end of the frame [m] (HUGE_VAL: none) */
+    double ccd_alpha_min; /* smallest CCD step cut (1 = never cut) */
+    double h_min;         /* smallest time step used [s] */
+} wr_dyn_stats;
+
+/* Called after every frame of wr_dyn_run; a nonzero return stops the run (WR_OK). */
+typedef int (*wr_dyn_progress_fn)(void *user, const wr_dyn_state *state, const wr_dyn_stats *frame);
+
+struct wr__dyn_work;
+typedef struct wr_dyn {
+    const wr_shell *shell; /* borrowed, must outlive the sim */
+    int32_t nv;            /* cloth vertices */
+    wr_dyn_desc desc;      /* resolved defaults; pointer fields point at the copies below */
+    double *mass;          /* nv lumped masses [kg] */
+    uint8_t *fixed;        /* nv */
+    int32_t *sew_pairs;    /* copy */
+    wr_obstacle *analytic; /* copy */
+    double kappa, dhat, sew_k, mean_mass;
+    struct wr__dyn_work *w; /* private work state */
+} wr_dyn;
+
+WRDEF wr_status wr_dyn_create(wr_dyn *sim, const wr_shell *shell, const wr_dyn_desc *desc, wr_diag *diag);
+WRDEF void wr_dyn_free(wr_dyn *sim);
+WRDEF void wr_dyn_state_init(const wr_dyn *sim, wr_dyn_state *state, double *x, double *v);
+/* One frame. WR_ERR_GEOMETRY (item = vertex) when a vertex starts inside an obstacle;
+ * WR_ERR_NOT_CONVERGED when a step failed at the smallest h (state at the last good step). */
+WRDEF wr_status wr_dyn_step(wr_dyn *sim, wr_dyn_state *state, wr_dyn_stats *stats, wr_diag *diag);
+/* Frames until state->t >= t_end (to 1e-9 dt). total (may be NULL) receives the sums. */
+WRDEF wr_status wr_dyn_run(wr_dyn *sim, wr_dyn_state *state, double t_end, wr_dyn_progress_fn progress, void *user,
+                           wr_dyn_stats *total, wr_diag *diag);
+WRDEF wr_status wr_dyn_energy(const wr_dyn *sim, const wr_dyn_state *state, double *kinetic, double *potential,
+                              wr_diag *diag);
+WRDEF double wr_dyn_min_distance(const wr_dyn *sim, const double *x);
+WRDEF double wr_dyn_sew_gap(const wr_dyn *sim, const double *x);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* WRINKLE_DYNAMICS_H */
+
+/* ============================================================================================ */
+#ifdef WRINKLE_IMPLEMENTATION
+#ifndef WRINKLE_DYNAMICS_IMPLEMENTATION_DONE
+#define WRINKLE_DYNAMICS_IMPLEMENTATION_DONE
+
+#include <float.h>
+#include <math.h>
+#include <string.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define WR_DYN_DEFAULT_DT (1.0 / 30.0) /* Style3D Sec. 5: "a 1/30s time step" */
+#define WR_DYN_DEFAULT_HALVINGS 6      /* h down to dt/64 before a step is given up */
+#define WR_DYN_DEFAULT_DHAT 1e-3       /* 1 mm barrier: below the 2.5 mm finest mesh of Table 1 */
+#define WR_DYN_DEFAULT_EPS_V 1e-3      /* IPC's default sliding threshold, 1 mm/s */
+#define WR_DYN_DEFAULT_VEL_TOL 1e-4    /* 0.1 mm/s: a step's positions to h·1e-4 = 3.3 µm at 1/30 s */
+#define WR_DYN_DEFAULT_GRAD_TOL 1e-9
+#define WR_DYN_DEFAULT_MAX_ITER 50
+#define WR_DYN_DEFAULT_LINEAR_TOL 1e-5 /* Style3D Sec. 5: PCG "terminating when the L2 residual norm falls below 1e-5" */
+/* κ default (ON CONTACT): the barrier force κ|b'| at |b'| = d̂ is this many times the larger of a
+ * vertex's weight and the force that stops it within d̂ in one step (statics.h uses the same 10). */
+#define WR_DYN_KAPPA_FACTOR 10.0
+/* sewing stiffness default, × m̄/dt²: the spring's period 2π/√(k/m) is dt·2π/√k_rel ≈ 0.6 dt, so a
+ * seam closes within a few frames and backward Euler damps the oscillation (ratio 1/(1+100) per step) */
+#define WR_DYN_SEW_FACTOR 100.0
+/* CCD keeps every contact at >= this fraction of its current distance per Newton step (statics.h
+ * WR_STATICS_CCD_KEEP, IPC's 0.1–0.2 safety fraction) */
+#define WR_DYN_CCD_KEEP 0.2
+#define WR__DYN_CCD_ITERS 64
+#define WR__DYN_ARMIJO 1e-4
+#define WR__DYN_MAX_HALVINGS 40
+
+/* one lagged friction contact (ON CONTACT): vertex v against analytic obstacle, normal force lam,
+ * tangent basis T (two orthonormal rows) frozen at the step's start */
+typedef struct wr__dyn_fric {
+    int32_t v;
+    double lam;
+    double T[6];
+} wr__dyn_fric;
+
+typedef struct wr__dyn_work {
+    int32_t n;          /* DOFs = 3 nv */
+    double h, t0;       /* current step and its start time */
+    double *xn, *xt;    /* step start x_n, inertial target x̃ = x_n + h v_n */
+    double *g, *dz, *zt, *zsave, *vsave;
+    double *s1, *s2;    /* scratch of the stiffness-damping term */
+    uint8_t *fixd;      /* n DOF flags */
+    /* Hessian pattern: elastic element stencils (recorded from the first stream) + sewing pairs */
+    int32_t n_el, cap_el, *el_start, *el_verts;
+    int64_t vcap_el;
+    int64_t *el_ostart;
+    int32_t *el_off;
+    int32_t el_next;    /* element expected next in the stream */
+    int32_t recording;
+    wr_csr K, Kd;       /* Newton matrix; lagged elastic Hessian for β (same pattern) */
+    int have_K, have_Kd, have_S;
+    wr_spd_solver S;
+    wr_statics_projection proj;
+    wr__dyn_fric *fr;
+    int32_t n_fr, cap_fr;
+    int sew_on;
+    double t_ns, t_ch;  /* accumulated by the stages (ON TIMING) */
+    int32_t lin_its, ls_evals;
+    double ccd_min;
+} wr__dyn_work;
+
+static double wr__dyn_now(void) { return wr_time_seconds(); }
+
+/* ---- IPC friction mollifier (Li et al. 2020 Eq. 15) ---------------------------------------- */
+
+/* f0(y) with f0' = f1: −y³/(3ε²) + y²/ε + ε/3 below ε, y above. */
+static double wr__dyn_f0(double y, double eps) {
+    return y >= eps ? y : -y * y * y / (3.0 * eps * eps) + y * y / eps + eps / 3.0;
+}
+/* f1(y)/y (finite at 0: 2/ε) */
+static double wr__dyn_f1_over_y(double y, double eps) { return y >= eps ? 1.0 / y : 2.0 / eps - y / (eps * eps); }
+
+static void wr__dyn_tangent_basis(const double n[3], double T[6]) {
+    double a[3] = {1.0, 0.0, 0.0}, t1[3], t2[3], l;
+    int i;
+    if (fabs(n[0]) > 0.8) a[0] = 0.0, a[1] = 1.0;
+    t1[0] = n[1] * a[2] - n[2] * a[1];
+    t1[1] = n[2] * a[0] - n[0] * a[2];
+    t1[2] = n[0] * a[1] - n[1] * a[0];
+    l = sqrt(t1[0] * t1[0] + t1[1] * t1[1] + t1[2] * t1[2]);
+    for (i = 0; i < 3; ++i) t1[i] /= l;
+    t2[0] = n[1] * t1[2] - n[2] * t1[1];
+    t2[1] = n[2] * t1[0] - n[0] * t1[2];
+    t2[2] = n[0] * t1[1] - n[1] * t1[0];
+    for (i = 0; i < 3; ++i) T[i] = t1[i], T[3 + i] = t2[i];
+}
+
+/* ---- the elastic Hessian stream: record stencils once, then scatter through cached offsets ---- */
+
+typedef struct wr__dyn_sink {
+    wr_dyn *sim;
+    wr_csr *A;     /* target (NULL while recording) */
+    double scale;  /* every block is multiplied by it */
+} wr__dyn_sink;
+
+static wr_status wr__dyn_record(wr__dyn_work *w, int32_t k, const int32_t *verts) {
+    if (w->n_el + 1 >= w->cap_el) {
+        int32_t cap = w->cap_el ? 2 * w->cap_el : 1024;
+        int32_t *s = (int32_t *)wr_realloc_array(w->el_start, (size_t)cap + 1, sizeof(int32_t));
+        if (!s) return WR_ERR_NOMEM;
+        w->el_start = s;
+        w->cap_el = cap;
+    }
+    if ((int64_t)w->el_start[w->n_el] + k > w->vcap_el) {
+        int64_t cap = 2 * w->vcap_el + 4 * (int64_t)k + 4096;
+        int32_t *v = (int32_t *)wr_realloc_array(w->el_verts, (size_t)cap, sizeof(int32_t));
+        if (!v) return WR_ERR_NOMEM;
+        w->el_verts = v;
+        w->vcap_el = cap;
+    }
+    memcpy(w->el_verts + w->el_start[w->n_el], verts, sizeof(int32_t) * (size_t)k);
+    w->el_start[w->n_el + 1] = w->el_start[w->n_el] + k;
+    w->n_el++;
+    return WR_OK;
+}
+
+static wr_status wr__dyn_sink_add(void *user, int32_t k, const int32_t *verts, const double *Ke) {
+    wr__dyn_sink *S = (wr__dyn_sink *)user;
+    wr__dyn_work *w = S->sim->w;
+    double buf[WR_DENSE_MAX * WR_DENSE_MAX];
+    int32_t n = 3 * k, i, e = w->el_next;
+    const double *B = Ke;
+    if (w->recording) return wr__dyn_record(w, k, verts);
+    if (n <= WR_DENSE_MAX) {
+        memcpy(buf, Ke, sizeof(double) * (size_t)(n * n));
+        if (w->proj == WR_PROJECT_FAST)
+            wr_statics_project_spd(n, buf, 0.0);
+        else if (w->proj == WR_PROJECT_JACOBI)
+            wr_dense_project_spd(n, buf, 0.0);
+        if (S->scale != 1.0)
+            for (i = 0; i < n * n; ++i) buf[i] *= S->scale;
+        B = buf;
+    }
+    /* larger stencils are quadratic bending, PSD by construction (shell.h ON ELEMENT HESSIANS); they
+     * only occur with scale 1 */
+    if (e < w->n_el && w->el_start[e + 1] - w->el_start[e] == k &&
+        !memcmp(w->el_verts + w->el_start[e], verts, sizeof(int32_t) * (size_t)k)) {
+        w->el_next = e + 1;
+        wr_csr_add_element_blocks(S->A, k, verts, w->el_off + w->el_ostart[e], B);
+        return WR_OK;
+    }
+    {
+        int32_t idx[3 * 64], a, c;
+        if (k > 64) return WR_ERR_INVALID_ARG;
+        for (a = 0; a < k; ++a)
+            for (c = 0; c < 3; ++c) idx[3 * a + c] = 3 * verts[a] + c;
+        return wr_csr_add_element(S->A, n, idx, B, NULL);
+    }
+}
+
+/* Elastic Hessian of the shell at x (projected per desc.newton.projection), times scale, added to A. */
+static wr_status wr__dyn_elastic_hessian(wr_dyn *sim, const double *x, wr_csr *A, double scale, wr_diag *diag) {
+    wr__dyn_sink S;
+    wr_hess_sink hs;
+    S.sim = sim;
+    S.A = A;
+    S.scale = scale;
+    hs.user = &S;
+    hs.add = wr__dyn_sink_add;
+    sim->w->el_next = 0;
+    return wr_shell_hessian_elements_part(sim->shell, x, 0, WR_SHELL_HESS_ALL, &hs, diag);
+}
+
+/* The fixed pattern: every elastic element stencil, every sewing pair, every diagonal block. */
+static wr_status wr__dyn_build_pattern(wr_dyn *sim, wr_diag *diag) {
+    wr__dyn_work *w = sim->w;
+    int32_t ns = w->n_el + sim->desc.sewing.n_pairs, e, p, *start = NULL, *verts = NULL;
+    int64_t nvert = (int64_t)w->el_start[w->n_el] + 2 * (int64_t)sim->desc.sewing.n_pairs, off = 0;
+    wr_status st = WR_OK;
+    start = (int32_t *)wr_alloc_array((size_t)ns + 1, sizeof(int32_t));
+    verts = (int32_t *)wr_alloc_array((size_t)nvert, sizeof(int32_t));
+    w->el_ostart = (int64_t *)wr_alloc_array((size_t)w->n_el + 1, sizeof(int64_t));
+    if (!start || !verts || !w->el_ostart) {
+        st = wr_fail(diag, WR_ERR_NOMEM, -1, "dynamics: out of memory building the Hessian pattern");
+        goto done;
+    }
+    memcpy(start, w->el_start, sizeof(int32_t) * ((size_t)w->n_el + 1));
+    if (w->n_el) memcpy(verts, w->el_verts, sizeof(int32_t) * (size_t)w->el_start[w->n_el]);
+    for (p = 0; p < sim->desc.sewing.n_pairs; ++p) {
+        verts[start[w->n_el + p]] = sim->sew_pairs[2 * p];
+        verts[start[w->n_el + p] + 1] = sim->sew_pairs[2 * p + 1];
+        start[w->n_el + p + 1] = start[w->n_el + p] + 2;
+    }
+    st = wr_csr_from_stencils(&w->K, sim->nv, ns, start, verts, diag);
+    if (st != WR_OK) goto done;
+    w->have_K = 1;
+    for (e = 0; e < w->n_el; ++e) {
+        int32_t k = w->el_start[e + 1] - w->el_start[e];
+        w->el_ostart[e] = off;
+        off += (int64_t)k * k;
+    }
+    w->el_ostart[w->n_el] = off;
+    w->el_off = (int32_t *)wr_alloc_array((size_t)off, sizeof(int32_t));
+    if (!w->el_off) {
+        st = wr_fail(diag, WR_ERR_NOMEM, -1, "dynamics: out of memory (%lld block offsets)", (long long)off);
+        goto done;
+    }
+    for (e = 0; e < w->n_el && st == WR_OK; ++e)
+        st = wr_csr_block_offsets(&w->K, w->el_start[e + 1] - w->el_start[e], w->el_verts + w->el_start[e],
+                                  w->el_off + w->el_ostart[e], diag);
+done:
+    wr_free(start);
+    wr_free(verts);
+    return st;
+}
+
+/* ---- the incremental potential Φ (file top block) -------------------------------------------- */
+
+/* Inertia, mass damping, gravity, stiffness damping, sewing: value added to *E, gradient to g. */
+static void wr__dyn_smooth_terms(const wr_dyn *sim, const double *z, double *E, double *g) {
+    const wr__dyn_work *w = sim->w;
+    double h = w->h, ci = 1.0 / (2.0 * h * h), cd = sim->desc.damping.mass / (2.0 * h), e = 0.0;
+    int32_t v, i, p;
+    for (v = 0; v < sim->nv; ++v) {
+        double m = sim->mass[v];
+        for (i = 0; i < 3; ++i) {
+            int32_t k = 3 * v + i;
+            double a = z[k] - w->xt[k], b = z[k] - w->xn[k];
+            e += m * (ci * a * a + cd * b * b - sim->desc.gravity[i] * z[k]);
+            if (g) g[k] += m * (2.0 * ci * a + 2.0 * cd * b - sim->desc.gravity[i]);
+        }
+    }
+    if (w->have_Kd) { /* β/(2h) Δᵀ K_n Δ, Δ = z − x_n; zt is free scratch outside the line search */
+        double *d = w->s1, *Kdd = w->s2, q = 0.0, c = sim->desc.damping.stiffness / h;
+        for (i = 0; i < w->n; ++i) d[i] = z[i] - w->xn[i];
+        wr_csr_spmv(&w->Kd, d, Kdd);
+        for (i = 0; i < w->n; ++i) {
+            q += d[i] * Kdd[i];
+            if (g) g[i] += c * Kdd[i];
+        }
+        e += 0.5 * c * q;
+    }
+    if (w->sew_on)
+        for (p = 0; p < sim->desc.sewing.n_pairs; ++p) {
+            int32_t a = sim->sew_pairs[2 * p], b = sim->sew_pairs[2 * p + 1];
+            for (i = 0; i < 3; ++i) {
+                double d = z[3 * a + i] - z[3 * b + i];
+                e += 0.5 * sim->sew_k * d * d;
+                if (g) {
+                    g[3 * a + i] += sim->sew_k * d;
+                    g[3 * b + i] -= sim->sew_k * d;
+                }
+            }
+        }
+    *E += e;
+}
+
+/* Analytic-obstacle barriers and lagged friction (ON CONTACT): value added to *E, gradient to g.
+ * WR_ERR_GEOMETRY (item = vertex) when a free vertex is on or inside an obstacle (Φ = +∞ there). */
+static wr_status wr__dyn_contact_terms(const wr_dyn *sim, const double *z, double *E, double *g, double *dmin,
+                                       int32_t *n_active, wr_diag *diag) {
+    const wr__dyn_work *w = sim->w;
+    double e = 0.0, dm = HUGE_VAL, mu = sim->desc.contact.friction, eps = sim->desc.contact.friction_eps_v * w->h;
+    int32_t o, v, i, k, na = 0;
+    for (o = 0; o < sim->desc.contact.n_analytic; ++o)
+        for (v = 0; v < sim->nv; ++v) {
+            double gd[3], d, b1;
+            if (sim->fixed[v]) continue;
+            d = wr_obstacle_distance(sim->analytic + o, z + 3 * v, gd);
+            if (d < dm) dm = d;
+            if (!(d > 0.0))
+                return wr_fail(diag, WR_ERR_GEOMETRY, v, "dynamics: vertex %d is %.3e m inside obstacle %d", (int)v, -d,
+                               (int)o);
+            if (d >= sim->dhat) continue;
+            na++;
+            e += wr_statics_barrier(d, sim->dhat, sim->kappa, &b1, NULL);
+            if (g)
+                for (i = 0; i < 3; ++i) g[3 * v + i] += b1 * gd[i];
+        }
+    for (k = 0; k < w->n_fr && mu > 0.0; ++k) {
+        const wr__dyn_fric *f = w->fr + k;
+        double dx[3], u[2], y, c;
+        for (i = 0; i < 3; ++i) dx[i] = z[3 * f->v + i] - w->xn[3 * f->v + i];
+        u[0] = f->T[0] * dx[0] + f->T[1] * dx[1] + f->T[2] * dx[2];
+        u[1] = f->T[3] * dx[0] + f->T[4] * dx[1] + f->T[5] * dx[2];
+        y = sqrt(u[0] * u[0] + u[1] * u[1]);
+        e += mu * f->lam * wr__dyn_f0(y, eps);
+        if (g) {
+            c = mu * f->lam * wr__dyn_f1_over_y(y, eps);
+            for (i = 0; i < 3; ++i) g[3 * f->v + i] += c * (f->T[i] * u[0] + f->T[3 + i] * u[1]);
+        }
+    }
+    *E += e;
+    if (dmin) *dmin = dm;
+    if (n_active) *n_active = na;
+    return WR_OK;
+}
+
+/* Φ(z) and ∇Φ (zeroed on fixed DOFs). Non-finite Φ or a penetrating vertex: an error status. */
+static wr_status wr__dyn_value(wr_dyn *sim, const double *z, double *Phi, double *g, wr_diag *diag) {
+    wr__dyn_work *w = sim->w;
+    double E = 0.0, t0 = wr__dyn_now(), t1;
+    int32_t i;
+    wr_status st = wr_shell_energy(sim->shell, z, &E, g, diag);
+    if (st != WR_OK) return st;
+    wr__dyn_smooth_terms(sim, z, &E, g);
+    t1 = wr__dyn_now();
+    w->t_ns += t1 - t0;
+    st = wr__dyn_contact_terms(sim, z, &E, g, NULL, NULL, diag);
+    w->t_ch += wr__dyn_now() - t1;
+    if (st != WR_OK) return st;
+    if (g)
+        for (i = 0; i < w->n; ++i)
+            if (w->fixd[i]) g[i] = 0.0;
+    if (!(E - E == 0.0)) return wr_fail(diag, WR_ERR_DOMAIN, -1, "dynamics: incremental potential is not finite");
+    *Phi = E;
+    return WR_OK;
+}
+
+/* Contact and friction Hessian blocks (vertex-diagonal for analytic obstacles). */
+static wr_status wr__dyn_contact_hessian(wr_dyn *sim, const double *z, wr_diag *diag) {
+    wr__dyn_work *w = sim->w;
+    double mu = sim->desc.contact.friction, eps = sim->desc.contact.friction_eps_v * w->h, B[9];
+    int32_t o, v, i, j, k;
+    wr_status st;
+    for (o = 0; o < sim->desc.contact.n_analytic; ++o)
+        for (v = 0; v < sim->nv; ++v) {
+            double gd[3], d, b2;
+            if (sim->fixed[v]) continue;
+            d = wr_obstacle_distance(sim->analytic + o, z + 3 * v, gd);
+            if (!(d > 0.0) || d >= sim->dhat) continue;
+            /* κ[b'' ∇d∇dᵀ + b' ∇²d]: the second term is NSD on a convex obstacle (b' < 0, ∇²d >= 0),
+             * so its PSD projection is the first alone (statics.h ON CONTACT) */
+            wr_statics_barrier(d, sim->dhat, sim->kappa, NULL, &b2);
+            for (i = 0; i < 3; ++i)
+                for (j = 0; j < 3; ++j) B[3 * i + j] = b2 * gd[i] * gd[j];
+            if ((st = wr_csr_add_block3(&w->K, v, v, B, diag)) != WR_OK) return st;
+        }
+    for (k = 0; k < w->n_fr && mu > 0.0; ++k) {
+        const wr__dyn_fric *f = w->fr + k;
+        double dx[3], u[2], y, a, c, H2[4], TH[6];
+        for (i = 0; i < 3; ++i) dx[i] = z[3 * f->v + i] - w->xn[3 * f->v + i];
+        u[0] = f->T[0] * dx[0] + f->T[1] * dx[1] + f->T[2] * dx[2];
+        u[1] = f->T[3] * dx[0] + f->T[4] * dx[1] + f->T[5] * dx[2];
+        y = sqrt(u[0] * u[0] + u[1] * u[1]);
+        /* μλ ∇²f0(‖u‖) in the tangent plane: f1/y I + (f1' y − f1)/y³ u uᵀ; below ε that is
+         * (2/ε − y/ε²) I − u uᵀ/(ε² y), PSD (eigenvalue 2(1 − y/ε)/ε along u); above ε it is
+         * (I − ûûᵀ)/y, PSD (IPC Sec. 5.2) */
+        c = mu * f->lam;
+        a = wr__dyn_f1_over_y(y, eps);
+        for (i = 0; i < 2; ++i)
+            for (j = 0; j < 2; ++j) {
+                double uu = y > 0.0 ? u[i] * u[j] : 0.0;
+                H2[2 * i + j] = c * ((i == j ? a : 0.0) - (y >= eps ? uu / (y * y * y) : (y > 0.0 ? uu / (eps * eps * y) : 0.0)));
+            }
+        for (i = 0; i < 3; ++i)
+            for (j = 0; j < 2; ++j) TH[2 * i + j] = f->T[i] * H2[j] + f->T[3 + i] * H2[2 + j];
+        for (i = 0; i < 3; ++i)
+            for (j = 0; j < 3; ++j) B[3 * i + j] = TH[2 * i] * f->T[j] + TH[2 * i + 1] * f->T[3 + j];
+        if ((st = wr_csr_add_block3(&w->K, f->v, f->v, B, diag)) != WR_OK) return st;
+    }
+    return WR_OK;
+}
+
+/* Newton matrix at z into w->K: M(1/h² + α/h) + K_el (projected) + β/h K_n + sewing + contact. */
+static wr_status wr__dyn_hessian(wr_dyn *sim, const double *z, wr_diag *diag) {
+    wr__dyn_work *w = sim->w;
+    double t0 = wr__dyn_now(), t1, c = 1.0 / (w->h * w->h) + sim->desc.damping.mass / w->h, B[9];
+    int32_t v, p, i;
+    wr_status st;
+    wr_csr_zero_values(&w->K);
+    st = wr__dyn_elastic_hessian(sim, z, &w->K, 1.0, diag);
+    if (st != WR_OK) return st;
+    if (w->have_Kd) {
+        double cb = sim->desc.damping.stiffness / w->h;
+        for (i = 0; i < w->K.nnz; ++i) w->K.val[i] += cb * w->Kd.val[i];
+    }
+    memset(B, 0, sizeof B);
+    for (v = 0; v < sim->nv; ++v) {
+        B[0] = B[4] = B[8] = c * sim->mass[v];
+        if ((st = wr_csr_add_block3(&w->K, v, v, B, diag)) != WR_OK) return st;
+    }
+    if (w->sew_on)
+        for (p = 0; p < sim->desc.sewing.n_pairs; ++p) {
+            int32_t a = sim->sew_pairs[2 * p], b = sim->sew_pairs[2 * p + 1];
+            B[0] = B[4] = B[8] = sim->sew_k;
+            if ((st = wr_csr_add_block3(&w->K, a, a, B, diag)) != WR_OK || (st = wr_csr_add_block3(&w->K, b, b, B, diag)) != WR_OK)
+                return st;
+            B[0] = B[4] = B[8] = -sim->sew_k;
+            if ((st = wr_csr_add_block3(&w->K, a, b, B, diag)) != WR_OK || (st = wr_csr_add_block3(&w->K, b, a, B, diag)) != WR_OK)
+                return st;
+        }
+    t1 = wr__dyn_now();
+    w->t_ns += t1 - t0;
+    st = wr__dyn_contact_hessian(sim, z, diag);
+    w->t_ch += wr__dyn_now() - t1;
+    return st;
+}
+
+/* Max-step hook: the largest α in (0, 1] keeping every free vertex at >= WR_DYN_CCD_KEEP of its
+ * current distance to every analytic obstacle along z + αΔz (conservative advancement: d is
+ * 1-Lipschitz, so advancing by (d − target)/|Δz| never overshoots). */
+static double wr__dyn_max_step(wr_dyn *sim, const double *z, const double *dz) {
+    double alpha = 1.0, t0 = wr__dyn_now();
+    int32_t o, v, it, i;
+    for (o = 0; o < sim->desc.contact.n_analytic; ++o)
+        for (v = 0; v < sim->nv; ++v) {
+            double d0, speed, target, t = 0.0, p[3];
+            if (sim->fixed[v]) continue;
+            speed = sqrt(dz[3 * v] * dz[3 * v] + dz[3 * v + 1] * dz[3 * v + 1] + dz[3 * v + 2] * dz[3 * v + 2]);
+            if (speed == 0.0) continue;
+            d0 = wr_obstacle_distance(sim->analytic + o, z + 3 * v, NULL);
+            if (speed <= (1.0 - WR_DYN_CCD_KEEP) * d0) continue;
+            target = WR_DYN_CCD_KEEP * d0;
+            for (it = 0; it < WR__DYN_CCD_ITERS && t < alpha; ++it) {
+                double gap;
+                for (i = 0; i < 3; ++i) p[i] = z[3 * v + i] + t * dz[3 * v + i];
+                gap = wr_obstacle_distance(sim->analytic + o, p, NULL) - target;
+                if (gap <= 1e-6 * d0) break;
+                t += gap / speed;
+            }
+            if (t < alpha) alpha = t;
+        }
+    sim->w->t_ch += wr__dyn_now() - t0;
+    if (alpha < sim->w->ccd_min) sim->w->ccd_min = alpha;
+    return alpha;
+}
+
+/* Lagged friction (ON CONTACT): contacts active at the step's start x_n, with their normal forces. */
+static wr_status wr__dyn_lag_friction(wr_dyn *sim, wr_diag *diag) {
+    wr__dyn_work *w = sim->w;
+    int32_t o, v;
+    w->n_fr = 0;
+    if (!(sim->desc.contact.friction > 0.0)) return WR_OK;
+    for (o = 0; o < sim->desc.contact.n_analytic; ++o)
+        for (v = 0; v < sim->nv; ++v) {
+            double gd[3], d, b1;
+            wr__dyn_fric *f;
+            if (sim->fixed[v]) continue;
+            d = wr_obstacle_distance(sim->analytic + o, w->xn + 3 * v, gd);
+            if (!(d > 0.0) || d >= sim->dhat) continue;
+            wr_statics_barrier(d, sim->dhat, sim->kappa, &b1, NULL);
+            if (w->n_fr == w->cap_fr) {
+                int32_t cap = w->cap_fr ? 2 * w->cap_fr : 256;
+                wr__dyn_fric *nf = (wr__dyn_fric *)wr_realloc_array(w->fr, (size_t)cap, sizeof(wr__dyn_fric));
+                if (!nf) return wr_fail(diag, WR_ERR_NOMEM, -1, "dynamics: out of memory (%d friction contacts)", (int)cap);
+                w->fr = nf;
+                w->cap_fr = cap;
+            }
+            f = w->fr + w->n_fr++;
+            f->v = v;
+            f->lam = fabs(b1);
+            wr__dyn_tangent_basis(gd, f->T);
+        }
+    return WR_OK;
+}
+
+/* ---- one time step ------------------------------------------------------------------------ */
+
+typedef struct wr__dyn_solve_stats {
+    int32_t iterations, linear_iterations, line_search_evals;
+    double residual, residual0;
+    wr_dyn_stop stop;
+} wr__dyn_solve_stats;
+
+/* TEMPORARY until newton.h lands on main: projected Newton, CCD-cut backtracking. */
+static wr_status wr__dyn_minimise(wr_dyn *sim, double *z, wr__dyn_solve_stats *ns, wr_diag *diag) {
+    wr__dyn_work *w = sim->w;
+    double Phi, Pt, gn, g0 = -1.0, slope, alpha, step, t0;
+    int32_t it, i, hv;
+    wr_status st;
+    wr_spd_stats ls;
+    memset(ns, 0, sizeof *ns);
+    for (it = 0; it < sim->desc.newton.max_iter; ++it) {
+        memset(w->g, 0, sizeof(double) * (size_t)w->n);
+        if ((st = wr__dyn_value(sim, z, &Phi, w->g, diag)) != WR_OK) return st;
+        gn = 0.0;
+        for (i = 0; i < w->n; ++i) gn += w->g[i] * w->g[i];
+        gn = sqrt(gn);
+        if (g0 < 0.0) g0 = gn;
+        ns->residual = gn;
+        ns->residual0 = g0;
+        if (gn <= sim->desc.newton.grad_tol * g0 || gn == 0.0) {
+            ns->stop = WR_DYN_STOP_GRADIENT;
+            return WR_OK;
+        }
+        if ((st = wr__dyn_hessian(sim, z, diag)) != WR_OK) return st;
+        t0 = wr__dyn_now();
+        if ((st = wr_spd_solver_factor(&w->S, &w->K, diag)) != WR_OK) return st;
+        for (i = 0; i < w->n; ++i) w->g[i] = -w->g[i], w->dz[i] = 0.0;
+        st = wr_spd_solver_solve(&w->S, &w->K, w->g, w->dz, &ls, diag);
+        w->t_ns += wr__dyn_now() - t0;
+        ns->linear_iterations += ls.iterations;
+        if (st != WR_OK && st != WR_ERR_NOT_CONVERGED) return st;
+        slope = 0.0;
+        for (i = 0; i < w->n; ++i) slope -= w->g[i] * w->dz[i];
+        if (!(slope < 0.0)) {
+            ns->stop = WR_DYN_STOP_LINE_SEARCH;
+            ns->iterations = it;
+            return WR_ERR_NOT_CONVERGED;
+        }
+        alpha = wr__dyn_max_step(sim, z, w->dz);
+        step = 0.0;
+        for (i = 0; i < w->n; ++i) step = fmax(step, fabs(w->dz[i]));
+        for (hv = 0; hv < WR__DYN_MAX_HALVINGS; ++hv, alpha *= 0.5) {
+            for (i = 0; i < w->n; ++i) w->zt[i] = z[i] + alpha * w->dz[i];
+            ns->line_search_evals++;
+            if (wr__dyn_value(sim, w->zt, &Pt, NULL, NULL) == WR_OK &&
+                Pt <= Phi + WR__DYN_ARMIJO * alpha * slope + 1e-14 * fabs(Phi))
+                break;
+        }
+        if (hv == WR__DYN_MAX_HALVINGS) {
+            ns->stop = WR_DYN_STOP_LINE_SEARCH;
+            ns->iterations = it;
+            return WR_ERR_NOT_CONVERGED;
+        }
+        memcpy(z, w->zt, sizeof(double) * (size_t)w->n);
+        ns->iterations = it + 1;
+        if (alpha == 1.0 && step <= w->h * sim->desc.newton.velocity_tol) {
+            ns->stop = WR_DYN_STOP_VELOCITY;
+            return WR_OK;
+        }
+    }
+    ns->stop = WR_DYN_STOP_MAX_ITER;
+    return WR_ERR_NOT_CONVERGED;
+}
+
+/* First step only: record the elastic stencils at x, build the pattern and the linear solver. */
+static wr_status wr__dyn_setup_pattern(wr_dyn *sim, const double *x, wr_diag *diag) {
+    wr__dyn_work *w = sim->w;
+    wr_spd_desc ld = sim->desc.linear;
+    wr_status st;
+    if (!w->el_start && !(w->el_start = (int32_t *)wr_calloc_array(1, sizeof(int32_t))))
+        return wr_fail(diag, WR_ERR_NOMEM, -1, "dynamics: out of memory");
+    w->recording = 1;
+    st = wr__dyn_elastic_hessian(sim, x, NULL, 1.0, diag);
+    w->recording = 0;
+    if (st != WR_OK) return st;
+    if ((st = wr__dyn_build_pattern(sim, diag)) != WR_OK) return st;
+    if (sim->desc.damping.stiffness > 0.0) {
+        if ((st = wr_csr_copy(&w->Kd, &w->K, diag)) != WR_OK) return st;
+        w->have_Kd = 1;
+    }
+    ld.fixed = w->fixd;
+    if ((st = wr_spd_solver_create(&w->S, &w->K, &ld, diag)) != WR_OK) return st;
+    w->have_S = 1;
+    return WR_OK;
+}
+
+/* One backward Euler step of size h from state (in place). On failure the state is unchanged. */
+static wr_status wr__dyn_one_step(wr_dyn *sim, wr_dyn_state *state, double h, wr__dyn_solve_stats *ns, wr_diag *diag) {
+    wr__dyn_work *w = sim->w;
+    int32_t i, n = w->n;
+    wr_status st;
+    double *x = state->x, *v = state->v;
+    w->h = h;
+    w->t0 = state->t;
+    w->sew_on = sim->desc.sewing.n_pairs > 0 && (sim->desc.sewing.duration == 0.0 || state->t < sim->desc.sewing.duration);
+    for (i = 0; i < n; ++i) {
+        w->xn[i] = x[i];
+        w->xt[i] = w->fixd[i] ? x[i] : x[i] + h * v[i];
+        w->zsave[i] = x[i];
+        w->vsave[i] = v[i];
+    }
+    if (w->have_Kd) {
+        double t0 = wr__dyn_now();
+        /* the lagged K_n: the elastic Hessian at x_n, same pattern as K, so the cached offsets hold */
+        wr_csr_zero_values(&w->Kd);
+        st = wr__dyn_elastic_hessian(sim, w->xn, &w->Kd, 1.0, diag);
+        w->t_ns += wr__dyn_now() - t0;
+        if (st != WR_OK) return st;
+    }
+    {
+        double t0 = wr__dyn_now();
+        st = wr__dyn_lag_friction(sim, diag);
+        w->t_ch += wr__dyn_now() - t0;
+        if (st != WR_OK) return st;
+    }
+    st = wr__dyn_minimise(sim, x, ns, diag);
+    if (st != WR_OK) {
+        memcpy(x, w->zsave, sizeof(double) * (size_t)n);
+        memcpy(v, w->vsave, sizeof(double) * (size_t)n);
+        return st;
+    }
+    for (i = 0; i < n; ++i) v[i] = w->fixd[i] ? 0.0 : (x[i] - w->xn[i]) / h;
+    state->t += h;
+    return WR_OK;
+}
+
+/* ---- public API ----------------------------------------------------------------------------- */
+
+static wr_status wr__dyn_check_desc(const wr_dyn_desc *d, int32_t nv, wr_diag *diag) {
+    int32_t i, o;
+    double gsum = d->gravity[0] + d->gravity[1] + d->gravity[2];
+    if (!(d->time.dt > 0.0) || d->time.dt - d->time.dt != 0.0)
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "dynamics: time.dt %g must be > 0 and finite", d->time.dt);
+    if (d->time.substeps < 1 || d->time.max_halvings < 0 || d->time.max_halvings > 30)
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "dynamics: time.substeps %d must be >= 1, max_halvings %d in [0, 30]",
+                       (int)d->time.substeps, (int)d->time.max_halvings);
+    if (gsum - gsum != 0.0) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "dynamics: gravity is not finite");
+    if (!(d->damping.mass >= 0.0) || !(d->damping.stiffness >= 0.0) || d->damping.mass - d->damping.mass != 0.0 ||
+        d->damping.stiffness - d->damping.stiffness != 0.0)
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "dynamics: damping mass %g, stiffness %g must be >= 0 and finite",
+                       d->damping.mass, d->damping.stiffness);
+    if (!(d->contact.dhat > 0.0) || !(d->contact.stiffness >= 0.0) || !(d->contact.friction >= 0.0) ||
+        !(d->contact.friction_eps_v > 0.0) || d->contact.dhat - d->contact.dhat != 0.0 ||
+        d->contact.stiffness - d->contact.stiffness != 0.0 || d->contact.friction - d->contact.friction != 0.0)
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1,
+                       "dynamics: contact dhat %g, stiffness %g, friction %g, friction_eps_v %g out of range", d->contact.dhat,
+                       d->contact.stiffness, d->contact.friction, d->contact.friction_eps_v);
+    if (d->contact.n_analytic < 0 || (d->contact.n_analytic > 0 && !d->contact.analytic))
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "dynamics: %d analytic obstacles with a NULL array",
+                       (int)d->contact.n_analytic);
+    for (o = 0; o < d->contact.n_analytic; ++o) {
+        const wr_obstacle *b = d->contact.analytic + o;
+        double nn = b->normal[0] * b->normal[0] + b->normal[1] * b->normal[1] + b->normal[2] * b->normal[2], fin = b->radius;
+        for (i = 0; i < 3; ++i) fin += b->p[i] + b->q[i] + b->normal[i];
+        if (fin - fin != 0.0 || (int)b->kind < 0 || (int)b->kind > (int)WR_OBSTACLE_CAPSULE ||
+            (b->kind == WR_OBSTACLE_PLANE && !(nn > 0.0)) || (b->kind != WR_OBSTACLE_PLANE && !(b->radius > 0.0)))
+            return wr_fail(diag, WR_ERR_INVALID_ARG, o, "dynamics: analytic obstacle %d is invalid (kind %d, radius %g)",
+                           (int)o, (int)b->kind, b->radius);
+    }
+    if (d->sewing.n_pairs < 0 || (d->sewing.n_pairs > 0 && !d->sewing.pairs) || !(d->sewing.stiffness >= 0.0) ||
+        !(d->sewing.duration >= 0.0) || d->sewing.stiffness - d->sewing.stiffness != 0.0)
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "dynamics: sewing (%d pairs, stiffness %g, duration %g) is invalid",
+                       (int)d->sewing.n_pairs, d->sewing.stiffness, d->sewing.duration);
+    for (i = 0; i < 2 * d->sewing.n_pairs; ++i)
+        if (d->sewing.pairs[i] < 0 || d->sewing.pairs[i] >= nv || (i % 2 && d->sewing.pairs[i] == d->sewing.pairs[i - 1]))
+            return wr_fail(diag, WR_ERR_INVALID_ARG, i / 2, "dynamics: sewing pair %d (%d, %d) is invalid", (int)(i / 2),
+                           (int)d->sewing.pairs[i - i % 2], (int)d->sewing.pairs[i - i % 2 + 1]);
+    if (d->newton.max_iter < 1 || !(d->newton.velocity_tol > 0.0) || !(d->newton.grad_tol > 0.0) ||
+        (int)d->newton.projection < 0 || (int)d->newton.projection > (int)WR_PROJECT_NONE)
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "dynamics: newton max_iter %d, velocity_tol %g, grad_tol %g invalid",
+                       (int)d->newton.max_iter, d->newton.velocity_tol, d->newton.grad_tol);
+    if (!(d->linear.rel_tol > 0.0 && d->linear.rel_tol < 1.0))
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "dynamics: linear.rel_tol %g must be in (0, 1)", d->linear.rel_tol);
+    return WR_OK;
+}
+
+static void wr__dyn_defaults(wr_dyn_desc *d) {
+    if (d->time.dt == 0.0) d->time.dt = WR_DYN_DEFAULT_DT;
+    if (d->time.substeps == 0) d->time.substeps = 1;
+    if (!d->time.has_max_halvings && d->time.max_halvings == 0) d->time.max_halvings = WR_DYN_DEFAULT_HALVINGS;
+    if (d->contact.dhat == 0.0) d->contact.dhat = WR_DYN_DEFAULT_DHAT;
+    if (d->contact.friction_eps_v == 0.0) d->contact.friction_eps_v = WR_DYN_DEFAULT_EPS_V;
+    if (d->newton.max_iter == 0) d->newton.max_iter = WR_DYN_DEFAULT_MAX_ITER;
+    if (d->newton.velocity_tol == 0.0) d->newton.velocity_tol = WR_DYN_DEFAULT_VEL_TOL;
+    if (d->newton.grad_tol == 0.0) d->newton.grad_tol = WR_DYN_DEFAULT_GRAD_TOL;
+    if (d->linear.method == WR_SOLVER_AUTO) d->linear.method = WR_SOLVER_PCG_BLOCK3;
+    if (d->linear.rel_tol == 0.0) d->linear.rel_tol = WR_DYN_DEFAULT_LINEAR_TOL;
+}
+
+WRDEF void wr_dyn_free(wr_dyn *sim) {
+    wr__dyn_work *w;
+    if (!sim) return;
+    w = sim->w;
+    if (w) {
+        wr_free(w->xn);
+        wr_free(w->xt);
+        wr_free(w->g);
+        wr_free(w->dz);
+        wr_free(w->zt);
+        wr_free(w->zsave);
+        wr_free(w->vsave);
+        wr_free(w->s1);
+        wr_free(w->s2);
+        wr_free(w->fixd);
+        wr_free(w->el_start);
+        wr_free(w->el_verts);
+        wr_free(w->el_ostart);
+        wr_free(w->el_off);
+        if (w->have_K) wr_csr_free(&w->K);
+        if (w->have_Kd) wr_csr_free(&w->Kd);
+        if (w->have_S) wr_spd_solver_free(&w->S);
+        wr_free(w->fr);
+        wr_free(w);
+    }
+    wr_free(sim->mass);
+    wr_free(sim->fixed);
+    wr_free(sim->sew_pairs);
+    wr_free(sim->analytic);
+    memset(sim, 0, sizeof *sim);
+}
+
+WRDEF wr_status wr_dyn_create(wr_dyn *sim, const wr_shell *shell, const wr_dyn_desc *desc, wr_diag *diag) {
+    wr_dyn_desc d;
+    wr__dyn_work *w;
+    int32_t v, i, n;
+    double msum = 0.0, gmag, h;
+    wr_status st;
+    if (!sim) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "dynamics: NULL sim");
+    memset(sim, 0, sizeof *sim);
+    if (!shell || !shell->faces || shell->nv < 1) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "dynamics: NULL or empty shell");
+    if (!(shell->density > 0.0))
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "dynamics: the shell has no mass (density %g)", shell->density);
+    if (desc)
+        d = *desc;
+    else
+        memset(&d, 0, sizeof d);
+    wr__dyn_defaults(&d);
+    if ((st = wr__dyn_check_desc(&d, shell->nv, diag)) != WR_OK) return st;
+    n = 3 * shell->nv;
+    sim->shell = shell;
+    sim->nv = shell->nv;
+    sim->mass = (double *)wr_alloc_array((size_t)shell->nv, sizeof(double));
+    sim->fixed = (uint8_t *)wr_calloc_array((size_t)shell->nv, 1);
+    sim->sew_pairs = (int32_t *)wr_alloc_array(2 * (size_t)d.sewing.n_pairs + 1, sizeof(int32_t));
+    sim->analytic = (wr_obstacle *)wr_alloc_array((size_t)d.contact.n_analytic + 1, sizeof(wr_obstacle));
+    w = (wr__dyn_work *)wr_calloc_array(1, sizeof(wr__dyn_work));
+    sim->w = w;
+    if (!sim->mass || !sim->fixed || !sim->sew_pairs || !sim->analytic || !w) goto nomem;
+    w->n = n;
+    w->xn = (double *)wr_alloc_array((size_t)n, sizeof(double));
+    w->xt = (double *)wr_alloc_array((size_t)n, sizeof(double));
+    w->g = (double *)wr_alloc_array((size_t)n, sizeof(double));
+    w->dz = (double *)wr_alloc_array((size_t)n, sizeof(double));
+    w->zt = (double *)wr_alloc_array((size_t)n, sizeof(double));
+    w->zsave = (double *)wr_alloc_array((size_t)n, sizeof(double));
+    w->vsave = (double *)wr_alloc_array((size_t)n, sizeof(double));
+    w->s1 = (double *)wr_alloc_array((size_t)n, sizeof(double));
+    w->s2 = (double *)wr_alloc_array((size_t)n, sizeof(double));
+    w->fixd = (uint8_t *)wr_calloc_array((size_t)n, 1);
+    if (!w->xn || !w->xt || !w->g || !w->dz || !w->zt || !w->zsave || !w->vsave || !w->s1 || !w->s2 || !w->fixd)
+        goto nomem;
+    wr_shell_vertex_masses(shell, sim->mass);
+    for (v = 0; v < shell->nv; ++v) {
+        sim->fixed[v] = d.fixed ? d.fixed[v] != 0 : 0;
+        for (i = 0; i < 3; ++i) w->fixd[3 * v + i] = sim->fixed[v];
+        msum += sim->mass[v];
+    }
+    if (d.sewing.n_pairs) memcpy(sim->sew_pairs, d.sewing.pairs, sizeof(int32_t) * 2 * (size_t)d.sewing.n_pairs);
+    if (d.contact.n_analytic) memcpy(sim->analytic, d.contact.analytic, sizeof(wr_obstacle) * (size_t)d.contact.n_analytic);
+    d.fixed = sim->fixed;
+    d.sewing.pairs = sim->sew_pairs;
+    d.contact.analytic = sim->analytic;
+    sim->desc = d;
+    sim->mean_mass = msum / shell->nv;
+    sim->dhat = d.contact.dhat;
+    h = d.time.dt / d.time.substeps;
+    gmag = sqrt(d.gravity[0] * d.gravity[0] + d.gravity[1] * d.gravity[1] + d.gravity[2] * d.gravity[2]);
+    sim->kappa = d.contact.stiffness > 0.0 ? d.contact.stiffness
+                                           : WR_DYN_KAPPA_FACTOR * sim->mean_mass * fmax(gmag, sim->dhat / (h * h)) / sim->dhat;
+    sim->sew_k = d.sewing.stiffness > 0.0 ? d.sewing.stiffness : WR_DYN_SEW_FACTOR * sim->mean_mass / (h * h);
+    w->proj = d.newton.projection;
+    w->ccd_min = 1.0;
+    return WR_OK;
+nomem:
+    wr_dyn_free(sim);
+    return wr_fail(diag, WR_ERR_NOMEM, -1, "dynamics: out of memory (%d vertices)", (int)shell->nv);
+}
+
+WRDEF void wr_dyn_state_init(const wr_dyn *sim, wr_dyn_state *state, double *x, double *v) {
+    (void)sim;
+    state->x = x;
+    state->v = v;
+    state->t = 0.0;
+}
+
+static void wr__dyn_stats_add(wr_dyn_stats *to, const wr__dyn_solve_stats *ns) {
+    to->newton_iterations += ns->iterations;
+    to->linear_iterations += ns->linear_iterations;
+    to->line_search_evals += ns->line_search_evals;
+    to->residual = ns->residual;
+    to->residual_rel = ns->residual0 > 0.0 ? ns->residual / ns->residual0 : 0.0;
+    to->stop = ns->stop;
+}
+
+WRDEF wr_status wr_dyn_step(wr_dyn *sim, wr_dyn_state *state, wr_dyn_stats *stats, wr_diag *diag) {
+    wr__dyn_work *w;
+    wr_dyn_stats fs;
+    double t_end, h, t_start = wr__dyn_now();
+    int32_t i;
+    wr_status st = WR_OK;
+    memset(&fs, 0, sizeof fs);
+    fs.min_distance = HUGE_VAL;
+    fs.ccd_alpha_min = 1.0;
+    if (stats) *stats = fs;
+    if (!sim || !sim->w || !state || !state->x || !state->v)
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "dynamics: NULL sim or state");
+    w = sim->w;
+    for (i = 0; i < w->n; ++i)
+        if (state->x[i] - state->x[i] != 0.0 || state->v[i] - state->v[i] != 0.0)
+            return wr_fail(diag, WR_ERR_DOMAIN, i / 3, "dynamics: vertex %d has a non-finite position or velocity", (int)(i / 3));
+    if (!w->have_K && (st = wr__dyn_setup_pattern(sim, state->x, diag)) != WR_OK) return st;
+    w->t_ns = w->t_ch = 0.0;
+    w->ccd_min = 1.0;
+    t_end = state->t + sim->desc.time.dt;
+    h = sim->desc.time.dt / sim->desc.time.substeps;
+    fs.h_min = h;
+    while (state->t < t_end - 1e-9 * sim->desc.time.dt) {
+        wr__dyn_solve_stats ns;
+        double hs = fmin(h, t_end - state->t);
+        memset(&ns, 0, sizeof ns);
+        st = wr__dyn_one_step(sim, state, hs, &ns, diag);
+        wr__dyn_stats_add(&fs, &ns);
+        if (st == WR_ERR_NOT_CONVERGED && fs.halvings < sim->desc.time.max_halvings) {
+            h *= 0.5; /* adaptive step reduction (ON TIME STEPPING) */
+            fs.halvings++;
+            if (h < fs.h_min) fs.h_min = h;
+            continue;
+        }
+        if (st != WR_OK) break;
+        fs.steps++;
+    }
+    fs.frames = st == WR_OK ? 1 : 0;
+    fs.t_ns = w->t_ns;
+    fs.t_ch = w->t_ch;
+    fs.ccd_alpha_min = w->ccd_min;
+    {
+        double t0 = wr__dyn_now(), dm = HUGE_VAL, E = 0.0;
+        wr__dyn_contact_terms(sim, state->x, &E, NULL, &dm, &fs.n_contacts, NULL);
+        fs.min_distance = dm;
+        fs.t_ch += wr__dyn_now() - t0;
+    }
+    fs.t_total = wr__dyn_now() - t_start;
+    if (stats) *stats = fs;
+    return st;
+}
+
+WRDEF wr_status wr_dyn_run(wr_dyn *sim, wr_dyn_state *state, double t_end, wr_dyn_progress_fn progress, void *user,
+                           wr_dyn_stats *total, wr_diag *diag) {
+    wr_dyn_stats tot, fs;
+    wr_status st = WR_OK;
+    memset(&tot, 0, sizeof tot);
+    tot.min_distance = HUGE_VAL;
+    tot.ccd_alpha_min = 1.0;
+    tot.h_min = HUGE_VAL;
+    if (total) *total = tot;
+    if (!sim || !sim->w || !state) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "dynamics: NULL sim or state");
+    if (!(t_end - t_end == 0.0)) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "dynamics: t_end is not finite");
+    while (state->t < t_end - 1e-9 * sim->desc.time.dt) {
+        st = wr_dyn_step(sim, state, &fs, diag);
+        tot.frames += fs.frames;
+        tot.steps += fs.steps;
+        tot.halvings += fs.halvings;
+        tot.newton_iterations += fs.newton_iterations;
+        tot.linear_iterations += fs.linear_iterations;
+        tot.line_search_evals += fs.line_search_evals;
+        tot.residual = fs.residual;
+        tot.residual_rel = fs.residual_rel;
+        tot.stop = fs.stop;
+        tot.t_ns += fs.t_ns;
+        tot.t_ch += fs.t_ch;
+        tot.t_total += fs.t_total;
+        tot.n_contacts = fs.n_contacts;
+        tot.min_distance = fmin(tot.min_distance, fs.min_distance);
+        tot.ccd_alpha_min = fmin(tot.ccd_alpha_min, fs.ccd_alpha_min);
+        tot.h_min = fmin(tot.h_min, fs.h_min);
+        if (st != WR_OK) break;
+        if (progress && progress(user, state, &fs)) break;
+    }
+    if (total) *total = tot;
+    return st;
+}
+
+WRDEF wr_status wr_dyn_energy(const wr_dyn *sim, const wr_dyn_state *state, double *kinetic, double *potential,
+                              wr_diag *diag) {
+    double K = 0.0, E = 0.0;
+    int32_t v, i;
+    wr_status st;
+    if (!sim || !sim->w || !state || !state->x || !state->v)
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "dynamics: NULL sim or state");
+    if ((st = wr_shell_energy(sim->shell, state->x, &E, NULL, diag)) != WR_OK) return st;
+    for (v = 0; v < sim->nv; ++v)
+        for (i = 0; i < 3; ++i) {
+            K += 0.5 * sim->mass[v] * state->v[3 * v + i] * state->v[3 * v + i];
+            E -= sim->mass[v] * sim->desc.gravity[i] * state->x[3 * v + i];
+        }
+    if (kinetic) *kinetic = K;
+    if (potential) *potential = E;
+    return WR_OK;
+}
+
+WRDEF double wr_dyn_min_distance(const wr_dyn *sim, const double *x) {
+    double dm = HUGE_VAL, E = 0.0;
+    if (!sim || !sim->w || !x) return HUGE_VAL;
+    wr__dyn_contact_terms(sim, x, &E, NULL, &dm, NULL, NULL);
+    return dm;
+}
+
+WRDEF double wr_dyn_sew_gap(const wr_dyn *sim, const double *x) {
+    double gmax = 0.0;
+    int32_t p, i;
+    if (!sim || !x) return 0.0;
+    for (p = 0; p < sim->desc.sewing.n_pairs; ++p) {
+        double s = 0.0;
+        for (i = 0; i < 3; ++i) {
+            double d = x[3 * sim->sew_pairs[2 * p] + i] - x[3 * sim->sew_pairs[2 * p + 1] + i];
+            s += d * d;
+        }
+        gmax = fmax(gmax, sqrt(s));
+    }
+    return gmax;
+}
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* WRINKLE_DYNAMICS_IMPLEMENTATION_DONE */
+#endif /* WRINKLE_IMPLEMENTATION */
