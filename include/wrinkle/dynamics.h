@@ -229,6 +229,8 @@ WRDEF double wr_dyn_sew_gap(const wr_dyn *sim, const double *x);
 #include <float.h>
 #include <math.h>
 #include <string.h>
+#include <stdio.h> /* DEBUG */
+#include <stdlib.h> /* DEBUG */
 
 #ifdef __cplusplus
 extern "C" {
@@ -238,7 +240,7 @@ extern "C" {
 #define WR_DYN_DEFAULT_HALVINGS 6      /* h down to dt/64 before a step is given up */
 #define WR_DYN_DEFAULT_DHAT 1e-3       /* 1 mm barrier: below the 2.5 mm finest mesh of Table 1 */
 #define WR_DYN_DEFAULT_EPS_V 1e-3      /* IPC's default sliding threshold, 1 mm/s */
-#define WR_DYN_DEFAULT_VEL_TOL 1e-4    /* 0.1 mm/s: a step's positions to h·1e-4 = 3.3 µm at 1/30 s */
+#define WR_DYN_DEFAULT_VEL_TOL 1e-2    /* 1 cm/s (IPC: 1e-2 × bbox diagonal per second): positions to h·1e-2 = 0.33 mm at 1/30 s */
 #define WR_DYN_DEFAULT_GRAD_TOL 1e-9
 #define WR_DYN_DEFAULT_MAX_ITER 50
 #define WR_DYN_DEFAULT_LINEAR_TOL 1e-5 /* Style3D Sec. 5: PCG "terminating when the L2 residual norm falls below 1e-5" */
@@ -736,6 +738,7 @@ static wr_status wr__dyn_minimise(wr_dyn *sim, double *z, wr__dyn_solve_stats *n
         }
         memcpy(z, w->zt, sizeof(double) * (size_t)w->n);
         ns->iterations = it + 1;
+        if (getenv("WR_DYN_DEBUG")) fprintf(stderr, "    it %d |g| %.3e alpha %.3e step %.3e lin %d res %.2e Phi %.9e\n", (int)it, gn, alpha, step, ls.iterations, ls.rel_residual, Pt);
         if (alpha == 1.0 && step <= w->h * sim->desc.newton.velocity_tol) {
             ns->stop = WR_DYN_STOP_VELOCITY;
             return WR_OK;

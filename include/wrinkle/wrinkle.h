@@ -23,6 +23,7 @@
 #include "triangulate.h"
 #include "statics.h"
 #include "dynamics.h"
+#include "body.h"
 #include "wrinkle_field.h"
 #include "mesher.h"
 #include "tfw.h"
