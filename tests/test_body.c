@@ -56,7 +56,7 @@ Test(body, mannequin_is_one_closed_outward_sphere) {
         cr_assert_eq(open, 0, "%d open edges at %d", (int)open, (int)targets[t]);
         cr_assert_eq(body_components(&m), 1);
         cr_assert_eq(q.euler, 2, "Euler characteristic %d at %d triangles", (int)q.euler, (int)targets[t]);
-        cr_assert(fabs(m.nf - targets[t]) < 0.15 * targets[t], "%d triangles for a target of %d", (int)m.nf, (int)targets[t]);
+        cr_assert(fabs((double)(m.nf - targets[t])) < 0.15 * targets[t], "%d triangles for a target of %d", (int)m.nf, (int)targets[t]);
         for (v = 0; v < m.nv; ++v) zmin = fmin(zmin, m.pos[3 * v + 2]), zmax = fmax(zmax, m.pos[3 * v + 2]);
         cr_assert(fabs(zmin) < 0.03 && fabs(zmax - 1.7) < 0.05, "z from %.3f to %.3f m", zmin, zmax);
         V = body_volume(&m);

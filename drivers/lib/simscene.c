@@ -642,16 +642,6 @@ static double ss_median(double *a, int32_t n) {
     return n % 2 ? a[n / 2] : 0.5 * (a[n / 2 - 1] + a[n / 2]);
 }
 
-static const char *ss_stop_name(wr_dyn_stop s) {
-    switch (s) {
-    case WR_DYN_STOP_VELOCITY: return "velocity";
-    case WR_DYN_STOP_GRADIENT: return "gradient";
-    case WR_DYN_STOP_MAX_ITER: return "max_iter";
-    case WR_DYN_STOP_LINE_SEARCH: return "line_search";
-    default: return "none";
-    }
-}
-
 wr_status wr_simscene_write_summary(const wr_simscene_run *run, const char *path, wr_diag *diag) {
     cJSON *root = cJSON_CreateObject(), *fr, *tot;
     double *tmp = (double *)wr_alloc_array((size_t)run->n_frames + 1, sizeof(double)), sns = 0, sch = 0, dmin = HUGE_VAL;
@@ -694,7 +684,7 @@ wr_status wr_simscene_write_summary(const wr_simscene_run *run, const char *path
         if (f->min_distance < HUGE_VAL) cJSON_AddNumberToObject(o, "min_distance", f->min_distance);
         else cJSON_AddNullToObject(o, "min_distance");
         cJSON_AddNumberToObject(o, "residual_rel", f->residual_rel);
-        cJSON_AddStringToObject(o, "stop", ss_stop_name(f->stop));
+        cJSON_AddStringToObject(o, "stop", wr_newton_stop_name(f->stop));
         cJSON_AddItemToArray(fr, o);
         sns += f->t_ns;
         sch += f->t_ch;

@@ -72,7 +72,7 @@ typedef struct wr_simscene {
 typedef struct wr_simscene_frame {
     double t, t_ns, t_ch, t_total, residual_rel, min_distance, h_min;
     int32_t newton, pcg, line_search, contacts, halvings, steps;
-    wr_dyn_stop stop;
+    wr_newton_stop stop;
 } wr_simscene_frame;
 
 typedef struct wr_simscene_run {

@@ -3,7 +3,7 @@
  * barriers against analytic obstacles, triangle-mesh bodies (static or moving) and the cloth
  * itself, lagged Coulomb friction, and continuous collision detection as Newton's max-step hook.
  * wrinkle v0.1.0 — MIT licence (see LICENSE). Needs core.h, sparse.h, pcg.h, mesh.h, shell.h,
- * statics.h (obstacles, barrier, PSD projection), newton.h and collision.h; otherwise libc, libm.
+ * statics.h (analytic obstacles, barrier) and newton.h; otherwise libc and libm.
  *
  * The Style3D paper's simulator (Sec. 5): "Newton's method with a 1/30 s time step for implicit
  * integration", PCG with 3×3 block-diagonal preconditioning stopped at an L2 residual of 1e-5,
@@ -92,6 +92,7 @@
 #include "mesh.h"
 #include "shell.h"
 #include "statics.h"
+#include "newton.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -132,13 +133,13 @@ typedef struct wr_dyn_sewing_desc {
     double duration;  /* [s] */
 } wr_dyn_sewing_desc;
 
-/* Defaults: max_iter 50; velocity_tol 1e-4 m/s; grad_tol 1e-9 (relative to ‖∇Φ‖ at the step's
- * start); projection WR_PROJECT_FAST (statics.h, per-element PSD projection). */
+/* Defaults: max_iter 50; velocity_tol 1e-2 m/s; grad_tol 1e-9 (relative to ‖∇Φ‖ at the step's
+ * start); projection WR_PROJECT_FAST (newton.h: per-element PSD projection, exact near the end). */
 typedef struct wr_dyn_newton_desc {
     int32_t max_iter;
     double velocity_tol;
     double grad_tol;
-    wr_statics_projection projection;
+    wr_projection projection;
 } wr_dyn_newton_desc;
 
 /* Zero means default everywhere (see each group). gravity [m/s²] default 0; fixed NULL = none, else
@@ -163,14 +164,6 @@ typedef struct wr_dyn_state {
     double t; /* [s] */
 } wr_dyn_state;
 
-typedef enum wr_dyn_stop {
-    WR_DYN_STOP_NONE = 0,
-    WR_DYN_STOP_VELOCITY,    /* full Newton step below h·velocity_tol */
-    WR_DYN_STOP_GRADIENT,    /* ‖∇Φ‖ <= grad_tol · ‖∇Φ(x_start)‖ */
-    WR_DYN_STOP_MAX_ITER,    /* not converged */
-    WR_DYN_STOP_LINE_SEARCH  /* no decrease found: not converged */
-} wr_dyn_stop;
-
 /* One frame (wr_dyn_step) or, summed, a run (wr_dyn_run; min_distance the smallest, the last
  * solve's residual/stop). Times are wall-clock seconds. */
 typedef struct wr_dyn_stats {
@@ -178,7 +171,7 @@ typedef struct wr_dyn_stats {
     int32_t newton_iterations, linear_iterations, line_search_evals;
     double residual;      /* last solve: ‖∇Φ‖ at its end [N] */
     double residual_rel;  /* ... relative to ‖∇Φ‖ at its start */
-    wr_dyn_stop stop;     /* why the last solve stopped */
+    wr_newton_stop stop;  /* why the last solve stopped (newton.h; STEP is the velocity criterion) */
     double t_ns, t_ch, t_total; /* ON TIMING */
     int32_t n_contacts;   /* active contacts (d < d̂) at the end of the frame */
     double min_distance;  /* smallest contact distance at the end of the frame [m] (HUGE_VAL: none) */
@@ -229,8 +222,6 @@ WRDEF double wr_dyn_sew_gap(const wr_dyn *sim, const double *x);
 #include <float.h>
 #include <math.h>
 #include <string.h>
-#include <stdio.h> /* DEBUG */
-#include <stdlib.h> /* DEBUG */
 
 #ifdef __cplusplus
 extern "C" {
@@ -254,8 +245,6 @@ extern "C" {
  * WR_STATICS_CCD_KEEP, IPC's 0.1–0.2 safety fraction) */
 #define WR_DYN_CCD_KEEP 0.2
 #define WR__DYN_CCD_ITERS 64
-#define WR__DYN_ARMIJO 1e-4
-#define WR__DYN_MAX_HALVINGS 40
 
 /* one lagged friction contact (ON CONTACT): vertex v against analytic obstacle, normal force lam,
  * tangent basis T (two orthonormal rows) frozen at the step's start */
@@ -267,28 +256,17 @@ typedef struct wr__dyn_fric {
 
 typedef struct wr__dyn_work {
     int32_t n;          /* DOFs = 3 nv */
-    double h, t0;       /* current step and its start time */
+    double h;           /* current step [s] */
     double *xn, *xt;    /* step start x_n, inertial target x̃ = x_n + h v_n */
-    double *g, *dz, *zt, *zsave, *vsave;
+    double *z;          /* Newton's iterate (a copy of x: the state stays put when a step fails) */
     double *s1, *s2;    /* scratch of the stiffness-damping term */
     uint8_t *fixd;      /* n DOF flags */
-    /* Hessian pattern: elastic element stencils (recorded from the first stream) + sewing pairs */
-    int32_t n_el, cap_el, *el_start, *el_verts;
-    int64_t vcap_el;
-    int64_t *el_ostart;
-    int32_t *el_off;
-    int32_t el_next;    /* element expected next in the stream */
-    int32_t recording;
-    wr_csr K, Kd;       /* Newton matrix; lagged elastic Hessian for β (same pattern) */
-    int have_K, have_Kd, have_S;
-    wr_spd_solver S;
-    wr_statics_projection proj;
+    wr_assembly Kd;     /* the lagged K_n of stiffness damping (ON TIME STEPPING), its own pattern */
+    int damp_stiff;     /* β > 0 */
     wr__dyn_fric *fr;
     int32_t n_fr, cap_fr;
     int sew_on;
-    double t_ns, t_ch;  /* accumulated by the stages (ON TIMING) */
-    int32_t lin_its, ls_evals;
-    double ccd_min;
+    double t_ch;        /* contact work timed by the callbacks this frame (ON TIMING) */
 } wr__dyn_work;
 
 static double wr__dyn_now(void) { return wr_time_seconds(); }
@@ -317,123 +295,60 @@ static void wr__dyn_tangent_basis(const double n[3], double T[6]) {
     for (i = 0; i < 3; ++i) T[i] = t1[i], T[3 + i] = t2[i];
 }
 
-/* ---- the elastic Hessian stream: record stencils once, then scatter through cached offsets ---- */
+/* ---- the lagged K_n of stiffness damping (file top block) ------------------------------------- */
 
-typedef struct wr__dyn_sink {
-    wr_dyn *sim;
-    wr_csr *A;     /* target (NULL while recording) */
-    double scale;  /* every block is multiplied by it */
-} wr__dyn_sink;
-
-static wr_status wr__dyn_record(wr__dyn_work *w, int32_t k, const int32_t *verts) {
-    if (w->n_el + 1 >= w->cap_el) {
-        int32_t cap = w->cap_el ? 2 * w->cap_el : 1024;
-        int32_t *s = (int32_t *)wr_realloc_array(w->el_start, (size_t)cap + 1, sizeof(int32_t));
-        if (!s) return WR_ERR_NOMEM;
-        w->el_start = s;
-        w->cap_el = cap;
-    }
-    if ((int64_t)w->el_start[w->n_el] + k > w->vcap_el) {
-        int64_t cap = 2 * w->vcap_el + 4 * (int64_t)k + 4096;
-        int32_t *v = (int32_t *)wr_realloc_array(w->el_verts, (size_t)cap, sizeof(int32_t));
-        if (!v) return WR_ERR_NOMEM;
-        w->el_verts = v;
-        w->vcap_el = cap;
-    }
-    memcpy(w->el_verts + w->el_start[w->n_el], verts, sizeof(int32_t) * (size_t)k);
-    w->el_start[w->n_el + 1] = w->el_start[w->n_el] + k;
-    w->n_el++;
-    return WR_OK;
-}
-
-static wr_status wr__dyn_sink_add(void *user, int32_t k, const int32_t *verts, const double *Ke) {
-    wr__dyn_sink *S = (wr__dyn_sink *)user;
-    wr__dyn_work *w = S->sim->w;
+/* shell.h sink into the sim's own assembly: each element block projected (wr_newton_project_spd) */
+static wr_status wr__dyn_kd_add(void *user, int32_t k, const int32_t *verts, const double *Ke) {
+    wr_assembly *a = (wr_assembly *)user;
     double buf[WR_DENSE_MAX * WR_DENSE_MAX];
-    int32_t n = 3 * k, i, e = w->el_next;
-    const double *B = Ke;
-    if (w->recording) return wr__dyn_record(w, k, verts);
-    if (n <= WR_DENSE_MAX) {
-        memcpy(buf, Ke, sizeof(double) * (size_t)(n * n));
-        if (w->proj == WR_PROJECT_FAST)
-            wr_statics_project_spd(n, buf, 0.0);
-        else if (w->proj == WR_PROJECT_JACOBI)
-            wr_dense_project_spd(n, buf, 0.0);
-        if (S->scale != 1.0)
-            for (i = 0; i < n * n; ++i) buf[i] *= S->scale;
-        B = buf;
-    }
-    /* larger stencils are quadratic bending, PSD by construction (shell.h ON ELEMENT HESSIANS); they
-     * only occur with scale 1 */
-    if (e < w->n_el && w->el_start[e + 1] - w->el_start[e] == k &&
-        !memcmp(w->el_verts + w->el_start[e], verts, sizeof(int32_t) * (size_t)k)) {
-        w->el_next = e + 1;
-        wr_csr_add_element_blocks(S->A, k, verts, w->el_off + w->el_ostart[e], B);
-        return WR_OK;
-    }
-    {
-        int32_t idx[3 * 64], a, c;
-        if (k > 64) return WR_ERR_INVALID_ARG;
-        for (a = 0; a < k; ++a)
-            for (c = 0; c < 3; ++c) idx[3 * a + c] = 3 * verts[a] + c;
-        return wr_csr_add_element(S->A, n, idx, B, NULL);
-    }
+    int32_t n = 3 * k;
+    if (n > WR_DENSE_MAX) return wr_assembly_add(a, k, verts, Ke, NULL); /* quadratic bending: PSD */
+    memcpy(buf, Ke, sizeof(double) * (size_t)(n * n));
+    wr_newton_project_spd(n, buf, 0.0);
+    return wr_assembly_add(a, k, verts, buf, NULL);
 }
 
-/* Elastic Hessian of the shell at x (projected per desc.newton.projection), times scale, added to A. */
-static wr_status wr__dyn_elastic_hessian(wr_dyn *sim, const double *x, wr_csr *A, double scale, wr_diag *diag) {
-    wr__dyn_sink S;
-    wr_hess_sink hs;
-    S.sim = sim;
-    S.A = A;
-    S.scale = scale;
-    hs.user = &S;
-    hs.add = wr__dyn_sink_add;
-    sim->w->el_next = 0;
-    return wr_shell_hessian_elements_part(sim->shell, x, 0, WR_SHELL_HESS_ALL, &hs, diag);
-}
-
-/* The fixed pattern: every elastic element stencil, every sewing pair, every diagonal block. */
-static wr_status wr__dyn_build_pattern(wr_dyn *sim, wr_diag *diag) {
+/* K_n: the projected elastic Hessian at x_n, assembled once per step (the pattern once per sim). */
+static wr_status wr__dyn_lag_stiffness(wr_dyn *sim, const double *xn, wr_diag *diag) {
     wr__dyn_work *w = sim->w;
-    int32_t ns = w->n_el + sim->desc.sewing.n_pairs, e, p, *start = NULL, *verts = NULL;
-    int64_t nvert = (int64_t)w->el_start[w->n_el] + 2 * (int64_t)sim->desc.sewing.n_pairs, off = 0;
-    wr_status st = WR_OK;
-    start = (int32_t *)wr_alloc_array((size_t)ns + 1, sizeof(int32_t));
-    verts = (int32_t *)wr_alloc_array((size_t)nvert, sizeof(int32_t));
-    w->el_ostart = (int64_t *)wr_alloc_array((size_t)w->n_el + 1, sizeof(int64_t));
-    if (!start || !verts || !w->el_ostart) {
-        st = wr_fail(diag, WR_ERR_NOMEM, -1, "dynamics: out of memory building the Hessian pattern");
-        goto done;
-    }
-    memcpy(start, w->el_start, sizeof(int32_t) * ((size_t)w->n_el + 1));
-    if (w->n_el) memcpy(verts, w->el_verts, sizeof(int32_t) * (size_t)w->el_start[w->n_el]);
-    for (p = 0; p < sim->desc.sewing.n_pairs; ++p) {
-        verts[start[w->n_el + p]] = sim->sew_pairs[2 * p];
-        verts[start[w->n_el + p] + 1] = sim->sew_pairs[2 * p + 1];
-        start[w->n_el + p + 1] = start[w->n_el + p] + 2;
-    }
-    st = wr_csr_from_stencils(&w->K, sim->nv, ns, start, verts, diag);
-    if (st != WR_OK) goto done;
-    w->have_K = 1;
-    for (e = 0; e < w->n_el; ++e) {
-        int32_t k = w->el_start[e + 1] - w->el_start[e];
-        w->el_ostart[e] = off;
-        off += (int64_t)k * k;
-    }
-    w->el_ostart[w->n_el] = off;
-    w->el_off = (int32_t *)wr_alloc_array((size_t)off, sizeof(int32_t));
-    if (!w->el_off) {
-        st = wr_fail(diag, WR_ERR_NOMEM, -1, "dynamics: out of memory (%lld block offsets)", (long long)off);
-        goto done;
-    }
-    for (e = 0; e < w->n_el && st == WR_OK; ++e)
-        st = wr_csr_block_offsets(&w->K, w->el_start[e + 1] - w->el_start[e], w->el_verts + w->el_start[e],
-                                  w->el_off + w->el_ostart[e], diag);
-done:
-    wr_free(start);
-    wr_free(verts);
+    wr_hess_sink hs;
+    wr_status st;
+    hs.user = &w->Kd;
+    hs.add = wr__dyn_kd_add;
+    do {
+        wr_assembly_begin(&w->Kd);
+        st = wr_shell_hessian_elements(sim->shell, xn, 0, &hs, diag);
+        if (st == WR_OK) st = wr_assembly_end(&w->Kd, diag);
+    } while (st == WR_OK && w->Kd.stale);
     return st;
+}
+
+/* β/h K_n into Newton's matrix: diagonal blocks as diagonal blocks, each off-diagonal pair (I < J) as
+ * a two-vertex element [[0, B], [Bᵀ, 0]] (not PSD on its own, so added unprojected: the sum is the
+ * PSD K_n) */
+static wr_status wr__dyn_stream_stiffness(const wr_dyn *sim, wr_newton_hessian *H) {
+    const wr_csr *K = &sim->w->Kd.A;
+    double c = sim->desc.damping.stiffness / sim->w->h, B[9], E[36];
+    int32_t I, J, p, i, j, v[2];
+    wr_status st;
+    for (I = 0; I < K->n / 3; ++I)
+        for (p = K->rowptr[3 * I]; p < K->rowptr[3 * I + 1]; p += 3) {
+            J = K->col[p] / 3;
+            if (J < I) continue;
+            for (i = 0; i < 3; ++i)
+                for (j = 0; j < 3; ++j) B[3 * i + j] = c * K->val[K->rowptr[3 * I + i] + (p - K->rowptr[3 * I]) + j];
+            if (J == I) {
+                if ((st = wr_newton_add_diagonal(H, I, B)) != WR_OK) return st;
+                continue;
+            }
+            memset(E, 0, sizeof E);
+            for (i = 0; i < 3; ++i)
+                for (j = 0; j < 3; ++j) E[6 * i + 3 + j] = E[6 * (3 + j) + i] = B[3 * i + j];
+            v[0] = I;
+            v[1] = J;
+            if ((st = wr_newton_add_element_psd(H, 2, v, E)) != WR_OK) return st;
+        }
+    return WR_OK;
 }
 
 /* ---- the incremental potential Φ (file top block) -------------------------------------------- */
@@ -452,10 +367,10 @@ static void wr__dyn_smooth_terms(const wr_dyn *sim, const double *z, double *E, 
             if (g) g[k] += m * (2.0 * ci * a + 2.0 * cd * b - sim->desc.gravity[i]);
         }
     }
-    if (w->have_Kd) { /* β/(2h) Δᵀ K_n Δ, Δ = z − x_n; zt is free scratch outside the line search */
+    if (w->damp_stiff) { /* β/(2h) Δᵀ K_n Δ, Δ = z − x_n */
         double *d = w->s1, *Kdd = w->s2, q = 0.0, c = sim->desc.damping.stiffness / h;
         for (i = 0; i < w->n; ++i) d[i] = z[i] - w->xn[i];
-        wr_csr_spmv(&w->Kd, d, Kdd);
+        wr_csr_spmv(&w->Kd.A, d, Kdd);
         for (i = 0; i < w->n; ++i) {
             q += d[i] * Kdd[i];
             if (g) g[i] += c * Kdd[i];
@@ -518,30 +433,28 @@ static wr_status wr__dyn_contact_terms(const wr_dyn *sim, const double *z, doubl
     return WR_OK;
 }
 
-/* Φ(z) and ∇Φ (zeroed on fixed DOFs). Non-finite Φ or a penetrating vertex: an error status. */
-static wr_status wr__dyn_value(wr_dyn *sim, const double *z, double *Phi, double *g, wr_diag *diag) {
+/* Newton's energy callback: Φ(z), ∇Φ; scale = Σ|parts| (newton.h ON STOPPING). A penetrating
+ * vertex or a degenerate face is outside Φ's domain (an error status). */
+static wr_status wr__dyn_energy_cb(void *user, const double *z, double *Phi, double *g, double *scale, wr_diag *diag) {
+    wr_dyn *sim = (wr_dyn *)user;
     wr__dyn_work *w = sim->w;
-    double E = 0.0, t0 = wr__dyn_now(), t1;
-    int32_t i;
+    double E = 0.0, Es = 0.0, Ec = 0.0, t0;
     wr_status st = wr_shell_energy(sim->shell, z, &E, g, diag);
     if (st != WR_OK) return st;
-    wr__dyn_smooth_terms(sim, z, &E, g);
-    t1 = wr__dyn_now();
-    w->t_ns += t1 - t0;
-    st = wr__dyn_contact_terms(sim, z, &E, g, NULL, NULL, diag);
-    w->t_ch += wr__dyn_now() - t1;
+    wr__dyn_smooth_terms(sim, z, &Es, g);
+    t0 = wr__dyn_now();
+    st = wr__dyn_contact_terms(sim, z, &Ec, g, NULL, NULL, diag);
+    w->t_ch += wr__dyn_now() - t0;
     if (st != WR_OK) return st;
-    if (g)
-        for (i = 0; i < w->n; ++i)
-            if (w->fixd[i]) g[i] = 0.0;
-    if (!(E - E == 0.0)) return wr_fail(diag, WR_ERR_DOMAIN, -1, "dynamics: incremental potential is not finite");
-    *Phi = E;
+    *Phi = E + Es + Ec;
+    if (scale) *scale = fabs(E) + fabs(Es) + fabs(Ec);
+    if (!(*Phi - *Phi == 0.0)) return wr_fail(diag, WR_ERR_DOMAIN, -1, "dynamics: incremental potential is not finite");
     return WR_OK;
 }
 
 /* Contact and friction Hessian blocks (vertex-diagonal for analytic obstacles). */
-static wr_status wr__dyn_contact_hessian(wr_dyn *sim, const double *z, wr_diag *diag) {
-    wr__dyn_work *w = sim->w;
+static wr_status wr__dyn_contact_hessian(const wr_dyn *sim, const double *z, wr_newton_hessian *H) {
+    const wr__dyn_work *w = sim->w;
     double mu = sim->desc.contact.friction, eps = sim->desc.contact.friction_eps_v * w->h, B[9];
     int32_t o, v, i, j, k;
     wr_status st;
@@ -556,7 +469,7 @@ static wr_status wr__dyn_contact_hessian(wr_dyn *sim, const double *z, wr_diag *
             wr_statics_barrier(d, sim->dhat, sim->kappa, NULL, &b2);
             for (i = 0; i < 3; ++i)
                 for (j = 0; j < 3; ++j) B[3 * i + j] = b2 * gd[i] * gd[j];
-            if ((st = wr_csr_add_block3(&w->K, v, v, B, diag)) != WR_OK) return st;
+            if ((st = wr_newton_add_diagonal(H, v, B)) != WR_OK) return st;
         }
     for (k = 0; k < w->n_fr && mu > 0.0; ++k) {
         const wr__dyn_fric *f = w->fr + k;
@@ -573,56 +486,58 @@ static wr_status wr__dyn_contact_hessian(wr_dyn *sim, const double *z, wr_diag *
         for (i = 0; i < 2; ++i)
             for (j = 0; j < 2; ++j) {
                 double uu = y > 0.0 ? u[i] * u[j] : 0.0;
-                H2[2 * i + j] = c * ((i == j ? a : 0.0) - (y >= eps ? uu / (y * y * y) : (y > 0.0 ? uu / (eps * eps * y) : 0.0)));
+                H2[2 * i + j] =
+                    c * ((i == j ? a : 0.0) - (y >= eps ? uu / (y * y * y) : (y > 0.0 ? uu / (eps * eps * y) : 0.0)));
             }
         for (i = 0; i < 3; ++i)
             for (j = 0; j < 2; ++j) TH[2 * i + j] = f->T[i] * H2[j] + f->T[3 + i] * H2[2 + j];
         for (i = 0; i < 3; ++i)
             for (j = 0; j < 3; ++j) B[3 * i + j] = TH[2 * i] * f->T[j] + TH[2 * i + 1] * f->T[3 + j];
-        if ((st = wr_csr_add_block3(&w->K, f->v, f->v, B, diag)) != WR_OK) return st;
+        if ((st = wr_newton_add_diagonal(H, f->v, B)) != WR_OK) return st;
     }
     return WR_OK;
 }
 
-/* Newton matrix at z into w->K: M(1/h² + α/h) + K_el (projected) + β/h K_n + sewing + contact. */
-static wr_status wr__dyn_hessian(wr_dyn *sim, const double *z, wr_diag *diag) {
+/* Newton's Hessian callback: K_el (elements, projected by Newton per its phase) + M(1/h² + α/h) +
+ * β/h K_n + sewing + contact and friction. */
+static wr_status wr__dyn_hessian_cb(void *user, const double *z, wr_newton_hessian *H, wr_diag *diag) {
+    wr_dyn *sim = (wr_dyn *)user;
     wr__dyn_work *w = sim->w;
-    double t0 = wr__dyn_now(), t1, c = 1.0 / (w->h * w->h) + sim->desc.damping.mass / w->h, B[9];
-    int32_t v, p, i;
+    double c = 1.0 / (w->h * w->h) + sim->desc.damping.mass / w->h, B[9], S[36], t0;
+    int32_t v, p, i, j, vv[2];
+    wr_hess_sink hs;
     wr_status st;
-    wr_csr_zero_values(&w->K);
-    st = wr__dyn_elastic_hessian(sim, z, &w->K, 1.0, diag);
-    if (st != WR_OK) return st;
-    if (w->have_Kd) {
-        double cb = sim->desc.damping.stiffness / w->h;
-        for (i = 0; i < w->K.nnz; ++i) w->K.val[i] += cb * w->Kd.val[i];
-    }
+    hs.user = H;
+    hs.add = wr_newton_sink_add;
+    if ((st = wr_shell_hessian_elements(sim->shell, z, 0, &hs, diag)) != WR_OK) return st;
+    if (w->damp_stiff && (st = wr__dyn_stream_stiffness(sim, H)) != WR_OK) return st;
     memset(B, 0, sizeof B);
     for (v = 0; v < sim->nv; ++v) {
         B[0] = B[4] = B[8] = c * sim->mass[v];
-        if ((st = wr_csr_add_block3(&w->K, v, v, B, diag)) != WR_OK) return st;
+        if ((st = wr_newton_add_diagonal(H, v, B)) != WR_OK) return st;
     }
-    if (w->sew_on)
+    if (w->sew_on) {
+        memset(S, 0, sizeof S);
+        for (i = 0; i < 6; ++i)
+            for (j = 0; j < 6; ++j)
+                if (i % 3 == j % 3) S[6 * i + j] = (i / 3 == j / 3 ? 1.0 : -1.0) * sim->sew_k;
         for (p = 0; p < sim->desc.sewing.n_pairs; ++p) {
-            int32_t a = sim->sew_pairs[2 * p], b = sim->sew_pairs[2 * p + 1];
-            B[0] = B[4] = B[8] = sim->sew_k;
-            if ((st = wr_csr_add_block3(&w->K, a, a, B, diag)) != WR_OK || (st = wr_csr_add_block3(&w->K, b, b, B, diag)) != WR_OK)
-                return st;
-            B[0] = B[4] = B[8] = -sim->sew_k;
-            if ((st = wr_csr_add_block3(&w->K, a, b, B, diag)) != WR_OK || (st = wr_csr_add_block3(&w->K, b, a, B, diag)) != WR_OK)
-                return st;
+            vv[0] = sim->sew_pairs[2 * p];
+            vv[1] = sim->sew_pairs[2 * p + 1];
+            if ((st = wr_newton_add_element_psd(H, 2, vv, S)) != WR_OK) return st;
         }
-    t1 = wr__dyn_now();
-    w->t_ns += t1 - t0;
-    st = wr__dyn_contact_hessian(sim, z, diag);
-    w->t_ch += wr__dyn_now() - t1;
+    }
+    t0 = wr__dyn_now();
+    st = wr__dyn_contact_hessian(sim, z, H);
+    w->t_ch += wr__dyn_now() - t0;
     return st;
 }
 
 /* Max-step hook: the largest α in (0, 1] keeping every free vertex at >= WR_DYN_CCD_KEEP of its
  * current distance to every analytic obstacle along z + αΔz (conservative advancement: d is
  * 1-Lipschitz, so advancing by (d − target)/|Δz| never overshoots). */
-static double wr__dyn_max_step(wr_dyn *sim, const double *z, const double *dz) {
+static double wr__dyn_max_step_cb(void *user, const double *z, const double *dz) {
+    wr_dyn *sim = (wr_dyn *)user;
     double alpha = 1.0, t0 = wr__dyn_now();
     int32_t o, v, it, i;
     for (o = 0; o < sim->desc.contact.n_analytic; ++o)
@@ -644,7 +559,6 @@ static double wr__dyn_max_step(wr_dyn *sim, const double *z, const double *dz) {
             if (t < alpha) alpha = t;
         }
     sim->w->t_ch += wr__dyn_now() - t0;
-    if (alpha < sim->w->ccd_min) sim->w->ccd_min = alpha;
     return alpha;
 }
 
@@ -679,132 +593,47 @@ static wr_status wr__dyn_lag_friction(wr_dyn *sim, wr_diag *diag) {
 
 /* ---- one time step ------------------------------------------------------------------------ */
 
-typedef struct wr__dyn_solve_stats {
-    int32_t iterations, linear_iterations, line_search_evals;
-    double residual, residual0;
-    wr_dyn_stop stop;
-} wr__dyn_solve_stats;
-
-/* TEMPORARY until newton.h lands on main: projected Newton, CCD-cut backtracking. */
-static wr_status wr__dyn_minimise(wr_dyn *sim, double *z, wr__dyn_solve_stats *ns, wr_diag *diag) {
+/* One backward Euler step of size h from state (in place): Φ minimised by the shared Newton from
+ * x_n. On failure the state is unchanged. */
+static wr_status wr__dyn_one_step(wr_dyn *sim, wr_dyn_state *state, double h, wr_newton_stats *ns, wr_diag *diag) {
     wr__dyn_work *w = sim->w;
-    double Phi, Pt, gn, g0 = -1.0, slope, alpha, step, t0;
-    int32_t it, i, hv;
-    wr_status st;
-    wr_spd_stats ls;
-    memset(ns, 0, sizeof *ns);
-    for (it = 0; it < sim->desc.newton.max_iter; ++it) {
-        memset(w->g, 0, sizeof(double) * (size_t)w->n);
-        if ((st = wr__dyn_value(sim, z, &Phi, w->g, diag)) != WR_OK) return st;
-        gn = 0.0;
-        for (i = 0; i < w->n; ++i) gn += w->g[i] * w->g[i];
-        gn = sqrt(gn);
-        if (g0 < 0.0) g0 = gn;
-        ns->residual = gn;
-        ns->residual0 = g0;
-        if (gn <= sim->desc.newton.grad_tol * g0 || gn == 0.0) {
-            ns->stop = WR_DYN_STOP_GRADIENT;
-            return WR_OK;
-        }
-        if ((st = wr__dyn_hessian(sim, z, diag)) != WR_OK) return st;
-        t0 = wr__dyn_now();
-        if ((st = wr_spd_solver_factor(&w->S, &w->K, diag)) != WR_OK) return st;
-        for (i = 0; i < w->n; ++i) w->g[i] = -w->g[i], w->dz[i] = 0.0;
-        st = wr_spd_solver_solve(&w->S, &w->K, w->g, w->dz, &ls, diag);
-        w->t_ns += wr__dyn_now() - t0;
-        ns->linear_iterations += ls.iterations;
-        if (st != WR_OK && st != WR_ERR_NOT_CONVERGED) return st;
-        slope = 0.0;
-        for (i = 0; i < w->n; ++i) slope -= w->g[i] * w->dz[i];
-        if (!(slope < 0.0)) {
-            ns->stop = WR_DYN_STOP_LINE_SEARCH;
-            ns->iterations = it;
-            return WR_ERR_NOT_CONVERGED;
-        }
-        alpha = wr__dyn_max_step(sim, z, w->dz);
-        step = 0.0;
-        for (i = 0; i < w->n; ++i) step = fmax(step, fabs(w->dz[i]));
-        for (hv = 0; hv < WR__DYN_MAX_HALVINGS; ++hv, alpha *= 0.5) {
-            for (i = 0; i < w->n; ++i) w->zt[i] = z[i] + alpha * w->dz[i];
-            ns->line_search_evals++;
-            if (wr__dyn_value(sim, w->zt, &Pt, NULL, NULL) == WR_OK &&
-                Pt <= Phi + WR__DYN_ARMIJO * alpha * slope + 1e-14 * fabs(Phi))
-                break;
-        }
-        if (hv == WR__DYN_MAX_HALVINGS) {
-            ns->stop = WR_DYN_STOP_LINE_SEARCH;
-            ns->iterations = it;
-            return WR_ERR_NOT_CONVERGED;
-        }
-        memcpy(z, w->zt, sizeof(double) * (size_t)w->n);
-        ns->iterations = it + 1;
-        if (getenv("WR_DYN_DEBUG")) fprintf(stderr, "    it %d |g| %.3e alpha %.3e step %.3e lin %d res %.2e Phi %.9e\n", (int)it, gn, alpha, step, ls.iterations, ls.rel_residual, Pt);
-        if (alpha == 1.0 && step <= w->h * sim->desc.newton.velocity_tol) {
-            ns->stop = WR_DYN_STOP_VELOCITY;
-            return WR_OK;
-        }
-    }
-    ns->stop = WR_DYN_STOP_MAX_ITER;
-    return WR_ERR_NOT_CONVERGED;
-}
-
-/* First step only: record the elastic stencils at x, build the pattern and the linear solver. */
-static wr_status wr__dyn_setup_pattern(wr_dyn *sim, const double *x, wr_diag *diag) {
-    wr__dyn_work *w = sim->w;
-    wr_spd_desc ld = sim->desc.linear;
-    wr_status st;
-    if (!w->el_start && !(w->el_start = (int32_t *)wr_calloc_array(1, sizeof(int32_t))))
-        return wr_fail(diag, WR_ERR_NOMEM, -1, "dynamics: out of memory");
-    w->recording = 1;
-    st = wr__dyn_elastic_hessian(sim, x, NULL, 1.0, diag);
-    w->recording = 0;
-    if (st != WR_OK) return st;
-    if ((st = wr__dyn_build_pattern(sim, diag)) != WR_OK) return st;
-    if (sim->desc.damping.stiffness > 0.0) {
-        if ((st = wr_csr_copy(&w->Kd, &w->K, diag)) != WR_OK) return st;
-        w->have_Kd = 1;
-    }
-    ld.fixed = w->fixd;
-    if ((st = wr_spd_solver_create(&w->S, &w->K, &ld, diag)) != WR_OK) return st;
-    w->have_S = 1;
-    return WR_OK;
-}
-
-/* One backward Euler step of size h from state (in place). On failure the state is unchanged. */
-static wr_status wr__dyn_one_step(wr_dyn *sim, wr_dyn_state *state, double h, wr__dyn_solve_stats *ns, wr_diag *diag) {
-    wr__dyn_work *w = sim->w;
+    wr_newton_problem pb;
+    wr_newton_desc nd;
     int32_t i, n = w->n;
     wr_status st;
-    double *x = state->x, *v = state->v;
+    double *x = state->x, *v = state->v, t0;
+    memset(ns, 0, sizeof *ns);
     w->h = h;
-    w->t0 = state->t;
     w->sew_on = sim->desc.sewing.n_pairs > 0 && (sim->desc.sewing.duration == 0.0 || state->t < sim->desc.sewing.duration);
     for (i = 0; i < n; ++i) {
         w->xn[i] = x[i];
         w->xt[i] = w->fixd[i] ? x[i] : x[i] + h * v[i];
-        w->zsave[i] = x[i];
-        w->vsave[i] = v[i];
     }
-    if (w->have_Kd) {
-        double t0 = wr__dyn_now();
-        /* the lagged K_n: the elastic Hessian at x_n, same pattern as K, so the cached offsets hold */
-        wr_csr_zero_values(&w->Kd);
-        st = wr__dyn_elastic_hessian(sim, w->xn, &w->Kd, 1.0, diag);
-        w->t_ns += wr__dyn_now() - t0;
-        if (st != WR_OK) return st;
-    }
-    {
-        double t0 = wr__dyn_now();
-        st = wr__dyn_lag_friction(sim, diag);
-        w->t_ch += wr__dyn_now() - t0;
-        if (st != WR_OK) return st;
-    }
-    st = wr__dyn_minimise(sim, x, ns, diag);
-    if (st != WR_OK) {
-        memcpy(x, w->zsave, sizeof(double) * (size_t)n);
-        memcpy(v, w->vsave, sizeof(double) * (size_t)n);
-        return st;
-    }
+    if (w->damp_stiff && (st = wr__dyn_lag_stiffness(sim, w->xn, diag)) != WR_OK) return st;
+    t0 = wr__dyn_now();
+    st = wr__dyn_lag_friction(sim, diag);
+    w->t_ch += wr__dyn_now() - t0;
+    if (st != WR_OK) return st;
+    memset(&pb, 0, sizeof pb);
+    pb.n_blocks = sim->nv;
+    pb.block = 3;
+    pb.user = sim;
+    pb.energy = wr__dyn_energy_cb;
+    pb.hessian = wr__dyn_hessian_cb;
+    pb.max_step = wr__dyn_max_step_cb;
+    memset(&nd, 0, sizeof nd);
+    nd.max_iter = sim->desc.newton.max_iter;
+    nd.fixed = w->fixd;
+    nd.stop.grad_tol = sim->desc.newton.grad_tol;
+    nd.stop.step_tol = h * sim->desc.newton.velocity_tol; /* ON TIME STEPPING: IPC's velocity criterion */
+    nd.hessian.projection = sim->desc.newton.projection;
+    nd.linear.solver = sim->desc.linear;
+    nd.name = "dynamics";
+    /* Newton keeps the lowest-Φ iterate in its x on failure: work on a copy so the state stays */
+    memcpy(w->z, x, sizeof(double) * (size_t)n);
+    st = wr_newton_solve(&pb, w->z, &nd, ns, diag);
+    if (st != WR_OK) return st;
+    memcpy(x, w->z, sizeof(double) * (size_t)n);
     for (i = 0; i < n; ++i) v[i] = w->fixd[i] ? 0.0 : (x[i] - w->xn[i]) / h;
     state->t += h;
     return WR_OK;
@@ -880,21 +709,11 @@ WRDEF void wr_dyn_free(wr_dyn *sim) {
     if (w) {
         wr_free(w->xn);
         wr_free(w->xt);
-        wr_free(w->g);
-        wr_free(w->dz);
-        wr_free(w->zt);
-        wr_free(w->zsave);
-        wr_free(w->vsave);
+        wr_free(w->z);
         wr_free(w->s1);
         wr_free(w->s2);
         wr_free(w->fixd);
-        wr_free(w->el_start);
-        wr_free(w->el_verts);
-        wr_free(w->el_ostart);
-        wr_free(w->el_off);
-        if (w->have_K) wr_csr_free(&w->K);
-        if (w->have_Kd) wr_csr_free(&w->Kd);
-        if (w->have_S) wr_spd_solver_free(&w->S);
+        wr_assembly_free(&w->Kd);
         wr_free(w->fr);
         wr_free(w);
     }
@@ -935,15 +754,11 @@ WRDEF wr_status wr_dyn_create(wr_dyn *sim, const wr_shell *shell, const wr_dyn_d
     w->n = n;
     w->xn = (double *)wr_alloc_array((size_t)n, sizeof(double));
     w->xt = (double *)wr_alloc_array((size_t)n, sizeof(double));
-    w->g = (double *)wr_alloc_array((size_t)n, sizeof(double));
-    w->dz = (double *)wr_alloc_array((size_t)n, sizeof(double));
-    w->zt = (double *)wr_alloc_array((size_t)n, sizeof(double));
-    w->zsave = (double *)wr_alloc_array((size_t)n, sizeof(double));
-    w->vsave = (double *)wr_alloc_array((size_t)n, sizeof(double));
+    w->z = (double *)wr_alloc_array((size_t)n, sizeof(double));
     w->s1 = (double *)wr_alloc_array((size_t)n, sizeof(double));
     w->s2 = (double *)wr_alloc_array((size_t)n, sizeof(double));
     w->fixd = (uint8_t *)wr_calloc_array((size_t)n, 1);
-    if (!w->xn || !w->xt || !w->g || !w->dz || !w->zt || !w->zsave || !w->vsave || !w->s1 || !w->s2 || !w->fixd)
+    if (!w->xn || !w->xt || !w->z || !w->s1 || !w->s2 || !w->fixd)
         goto nomem;
     wr_shell_vertex_masses(shell, sim->mass);
     for (v = 0; v < shell->nv; ++v) {
@@ -964,8 +779,11 @@ WRDEF wr_status wr_dyn_create(wr_dyn *sim, const wr_shell *shell, const wr_dyn_d
     sim->kappa = d.contact.stiffness > 0.0 ? d.contact.stiffness
                                            : WR_DYN_KAPPA_FACTOR * sim->mean_mass * fmax(gmag, sim->dhat / (h * h)) / sim->dhat;
     sim->sew_k = d.sewing.stiffness > 0.0 ? d.sewing.stiffness : WR_DYN_SEW_FACTOR * sim->mean_mass / (h * h);
-    w->proj = d.newton.projection;
-    w->ccd_min = 1.0;
+    w->damp_stiff = d.damping.stiffness > 0.0;
+    if (w->damp_stiff && (st = wr_assembly_init(&w->Kd, shell->nv, 3, diag)) != WR_OK) {
+        wr_dyn_free(sim);
+        return st;
+    }
     return WR_OK;
 nomem:
     wr_dyn_free(sim);
@@ -979,13 +797,17 @@ WRDEF void wr_dyn_state_init(const wr_dyn *sim, wr_dyn_state *state, double *x, 
     state->t = 0.0;
 }
 
-static void wr__dyn_stats_add(wr_dyn_stats *to, const wr__dyn_solve_stats *ns) {
+/* One solve's counters into the frame's record. NS is Newton's wall time less the contact work the
+ * callbacks timed as CH (ON TIMING). */
+static void wr__dyn_stats_add(wr_dyn_stats *to, const wr_newton_stats *ns) {
     to->newton_iterations += ns->iterations;
     to->linear_iterations += ns->linear_iterations;
     to->line_search_evals += ns->line_search_evals;
-    to->residual = ns->residual;
-    to->residual_rel = ns->residual0 > 0.0 ? ns->residual / ns->residual0 : 0.0;
+    to->residual = ns->grad_norm;
+    to->residual_rel = ns->grad_norm0 > 0.0 ? ns->grad_norm / ns->grad_norm0 : 0.0;
     to->stop = ns->stop;
+    to->t_ns += ns->t_total;
+    if (ns->iterations > 0 && ns->max_step_min < to->ccd_alpha_min) to->ccd_alpha_min = ns->max_step_min;
 }
 
 WRDEF wr_status wr_dyn_step(wr_dyn *sim, wr_dyn_state *state, wr_dyn_stats *stats, wr_diag *diag) {
@@ -1004,16 +826,13 @@ WRDEF wr_status wr_dyn_step(wr_dyn *sim, wr_dyn_state *state, wr_dyn_stats *stat
     for (i = 0; i < w->n; ++i)
         if (state->x[i] - state->x[i] != 0.0 || state->v[i] - state->v[i] != 0.0)
             return wr_fail(diag, WR_ERR_DOMAIN, i / 3, "dynamics: vertex %d has a non-finite position or velocity", (int)(i / 3));
-    if (!w->have_K && (st = wr__dyn_setup_pattern(sim, state->x, diag)) != WR_OK) return st;
-    w->t_ns = w->t_ch = 0.0;
-    w->ccd_min = 1.0;
+    w->t_ch = 0.0;
     t_end = state->t + sim->desc.time.dt;
     h = sim->desc.time.dt / sim->desc.time.substeps;
     fs.h_min = h;
     while (state->t < t_end - 1e-9 * sim->desc.time.dt) {
-        wr__dyn_solve_stats ns;
+        wr_newton_stats ns;
         double hs = fmin(h, t_end - state->t);
-        memset(&ns, 0, sizeof ns);
         st = wr__dyn_one_step(sim, state, hs, &ns, diag);
         wr__dyn_stats_add(&fs, &ns);
         if (st == WR_ERR_NOT_CONVERGED && fs.halvings < sim->desc.time.max_halvings) {
@@ -1026,15 +845,14 @@ WRDEF wr_status wr_dyn_step(wr_dyn *sim, wr_dyn_state *state, wr_dyn_stats *stat
         fs.steps++;
     }
     fs.frames = st == WR_OK ? 1 : 0;
-    fs.t_ns = w->t_ns;
-    fs.t_ch = w->t_ch;
-    fs.ccd_alpha_min = w->ccd_min;
     {
         double t0 = wr__dyn_now(), dm = HUGE_VAL, E = 0.0;
         wr__dyn_contact_terms(sim, state->x, &E, NULL, &dm, &fs.n_contacts, NULL);
         fs.min_distance = dm;
-        fs.t_ch += wr__dyn_now() - t0;
+        w->t_ch += wr__dyn_now() - t0;
     }
+    fs.t_ch = w->t_ch;
+    fs.t_ns = fmax(0.0, fs.t_ns - w->t_ch);
     fs.t_total = wr__dyn_now() - t_start;
     if (stats) *stats = fs;
     return st;
