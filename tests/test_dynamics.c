@@ -1,12 +1,15 @@
 /* tests/test_dynamics.c — dynamics.h against closed forms of backward Euler (free fall, a linear
  * oscillator with and without Rayleigh damping), the statics equilibrium (hanging sheet), contact
- * without penetration (sheet on a sphere), sewing, and bad input. */
+ * without penetration (sheet on an analytic ball, on a triangulated ball and on the mannequin,
+ * checked every frame with collision.h's exact triangle–triangle tests), a folded sheet that never
+ * self-intersects, and bad input. */
 #include <criterion/criterion.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "wrinkle/dynamics.h"
+#include "wrinkle/body.h"
 
 /* A flat nx×ny sheet of side w in z = 0 with a fabric-like shell (Y = 1e5 Pa, h = 0.5 mm, 300 kg/m³:
  * 0.15 kg/m², stiff enough that a draped sheet barely stretches). */
@@ -317,4 +320,251 @@ Test(dynamics, bad_input_is_refused) {
     free(vel);
     wr_shell_free(&s);
     wr_mesh_free(&m);
+}
+
+/* ---- triangle-mesh contact (collision.h) ------------------------------------------------------ */
+
+static double *dyn2_copy(const double *a, int32_t n) {
+    double *b = (double *)malloc(sizeof(double) * (size_t)n);
+    memcpy(b, a, sizeof(double) * (size_t)n);
+    return b;
+}
+
+static double dyn2_max_speed(const double *v, int32_t nv) {
+    double s = 0.0;
+    int32_t i;
+    for (i = 0; i < nv; ++i) s = fmax(s, sqrt(v[3 * i] * v[3 * i] + v[3 * i + 1] * v[3 * i + 1] + v[3 * i + 2] * v[3 * i + 2]));
+    return s;
+}
+
+/* UV sphere of radius R: n_lat rings × n_lon, poles shared, outward. */
+static void dyn2_sphere(wr_mesh *m, double R, int32_t nlat, int32_t nlon) {
+    int32_t nv = 2 + (nlat - 1) * nlon, nf = 2 * nlon * (nlat - 1), i, j, f = 0;
+    double *p = (double *)malloc(sizeof(double) * 3 * (size_t)nv);
+    int32_t *t = (int32_t *)malloc(sizeof(int32_t) * 3 * (size_t)nf);
+    p[0] = p[1] = 0.0, p[2] = R;
+    p[3] = p[4] = 0.0, p[5] = -R;
+    for (i = 1; i < nlat; ++i)
+        for (j = 0; j < nlon; ++j) {
+            double th = 3.14159265358979323846 * i / nlat, ph = 2.0 * 3.14159265358979323846 * j / nlon;
+            int32_t v = 2 + (i - 1) * nlon + j;
+            p[3 * v] = R * sin(th) * cos(ph);
+            p[3 * v + 1] = R * sin(th) * sin(ph);
+            p[3 * v + 2] = R * cos(th);
+        }
+    for (j = 0; j < nlon; ++j) {
+        int32_t a = 2 + j, b = 2 + (j + 1) % nlon;
+        t[3 * f] = 0, t[3 * f + 1] = a, t[3 * f + 2] = b, f++;
+        a = 2 + (nlat - 2) * nlon + j, b = 2 + (nlat - 2) * nlon + (j + 1) % nlon;
+        t[3 * f] = 1, t[3 * f + 1] = b, t[3 * f + 2] = a, f++;
+    }
+    for (i = 1; i + 1 < nlat; ++i)
+        for (j = 0; j < nlon; ++j) {
+            int32_t a = 2 + (i - 1) * nlon + j, b = 2 + (i - 1) * nlon + (j + 1) % nlon, c = a + nlon, d = b + nlon;
+            t[3 * f] = a, t[3 * f + 1] = c, t[3 * f + 2] = d, f++;
+            t[3 * f] = a, t[3 * f + 1] = d, t[3 * f + 2] = b, f++;
+        }
+    cr_assert_eq(wr_mesh_create(m, nv, p, NULL, nf, t, NULL), WR_OK);
+    free(p);
+    free(t);
+}
+
+static void dyn2_sheet(wr_mesh *m, wr_shell *s, double w, int32_t n) {
+    wr_shell_desc d;
+    cr_assert_eq(wr_mesh_rectangle(m, w, w, n, n, NULL), WR_OK);
+    memset(&d, 0, sizeof d);
+    d.young = 1e5;
+    d.poisson = 0.3;
+    d.thickness = 5e-4;
+    d.density = 300.0;
+    cr_assert_eq(wr_shell_create(s, m, &d, NULL), WR_OK);
+}
+
+/* A sheet dropped on a triangulated ball comes to rest on it, and at the end of every frame no cloth
+ * triangle meets a ball triangle (collision.h's exact closed triangle–triangle test) and the cloth
+ * does not intersect itself; the contact is real (pairs within d̂ at rest). */
+Test(dynamics_mesh, sheet_rests_on_ball_mesh_without_penetration) {
+    wr_mesh m, ball;
+    wr_shell s;
+    wr_dyn_desc dd;
+    wr_dyn_body body;
+    wr_dyn sim;
+    wr_dyn_state st;
+    wr_dyn_stats fs;
+    wr_diag dg;
+    int32_t n = 8, i, f, cnt;
+    double *x, *vel, speed;
+    dyn2_sheet(&m, &s, 0.4, n);
+    dyn2_sphere(&ball, 0.1, 10, 16);
+    x = dyn2_copy(m.pos, 3 * m.nv);
+    for (i = 0; i < m.nv; ++i) x[3 * i] -= 0.2, x[3 * i + 1] -= 0.2, x[3 * i + 2] = 0.12;
+    vel = (double *)calloc(3 * (size_t)m.nv, sizeof(double));
+    memset(&body, 0, sizeof body);
+    body.nv = ball.nv;
+    body.nf = ball.nf;
+    body.faces = ball.faces;
+    body.pos = ball.pos;
+    memset(&dd, 0, sizeof dd);
+    dd.gravity[2] = -9.81;
+    dd.contact.bodies = &body;
+    dd.contact.n_bodies = 1;
+    dd.contact.friction = 0.5; /* frictionless, the sheet slides off the faceted ball (it does: measured) */
+    dd.damping.mass = 1.0;
+    cr_assert_eq(wr_dyn_create(&sim, &s, &dd, &dg), WR_OK, "%s", dg.message);
+    wr_dyn_state_init(&sim, &st, x, vel);
+    for (f = 0; f < 45; ++f) {
+        cr_assert_eq(wr_dyn_step(&sim, &st, &fs, &dg), WR_OK, "frame %d: %s", (int)f, dg.message);
+        cr_assert_eq(wr_collision_meshes_intersect(m.nv, x, m.nf, m.faces, ball.nv, ball.pos, ball.nf, ball.faces, &cnt, &dg),
+                     WR_OK);
+        cr_assert_eq(cnt, 0, "frame %d: %d cloth-ball triangle pairs intersect", (int)f, (int)cnt);
+    }
+    {
+        wr_collision_mesh cm;
+        cr_assert_eq(wr_collision_mesh_create(&cm, m.nv, m.nf, m.faces, NULL, NULL, &dg), WR_OK);
+        cr_assert_eq(wr_collision_mesh_self_intersects(&cm, x, &cnt, NULL, &dg), WR_OK);
+        cr_assert_eq(cnt, 0);
+        wr_collision_mesh_free(&cm);
+    }
+    /* at rest to IPC friction's resolution: a stuck contact creeps below ε_v (friction_eps_v, 1 mm/s;
+     * measured 1.3 mm/s after 1 s, 1.2 mm/s after 2 s), so 2 ε_v */
+    speed = dyn2_max_speed(vel, m.nv);
+    cr_assert_lt(speed, 2e-3, "still moving at %.3e m/s", speed);
+    cr_assert_gt(fs.n_contacts, 0);
+    cr_assert_lt(fs.min_distance, sim.dhat);
+    cr_assert_lt(x[2], 0.05, "the corners drape down (z %.3f m)", x[2]);
+    wr_dyn_free(&sim);
+    free(x);
+    free(vel);
+    wr_shell_free(&s);
+    wr_mesh_free(&m);
+    wr_mesh_free(&ball);
+}
+
+/* A sheet bent into a U (two layers 2 cm apart joined by a half-cylinder fold) lying on a plane:
+ * the top layer falls onto the bottom one. Cloth–cloth contact must keep the layers apart: no two
+ * non-adjacent cloth triangles ever share a point (exact test every frame), and the layers do meet
+ * (self-contacts within d̂ at the end). */
+Test(dynamics_mesh, folded_sheet_never_self_intersects) {
+    wr_mesh m;
+    wr_shell s;
+    wr_shell_desc sd;
+    wr_dyn_desc dd;
+    wr_dyn sim;
+    wr_dyn_state st;
+    wr_dyn_stats fs;
+    wr_obstacle floor_;
+    wr_collision_mesh cm;
+    wr_diag dg;
+    int32_t nx = 24, ny = 4, i, f, cnt;
+    double L = 0.3, W = 0.1, R = 0.01, *x, *vel;
+    cr_assert_eq(wr_mesh_rectangle(&m, L, W, nx, ny, NULL), WR_OK);
+    memset(&sd, 0, sizeof sd);
+    sd.young = 1e5;
+    sd.poisson = 0.3;
+    sd.thickness = 3e-4;
+    sd.density = 300.0;
+    cr_assert_eq(wr_shell_create(&s, &m, &sd, NULL), WR_OK);
+    x = dyn2_copy(m.pos, 3 * m.nv);
+    for (i = 0; i < m.nv; ++i) { /* u along the strip: flat bottom, a half turn of radius R, flat top */
+        double u = m.pos[3 * i], a = 0.5 * (L - 3.14159265358979323846 * R);
+        double z;
+        if (u <= a) {
+            z = 0.002;
+        } else if (u <= a + 3.14159265358979323846 * R) {
+            double th = (u - a) / R;
+            u = a + R * sin(th);
+            z = 0.002 + R * (1.0 - cos(th));
+        } else {
+            u = a - (u - a - 3.14159265358979323846 * R);
+            z = 0.002 + 2.0 * R;
+        }
+        x[3 * i] = u;
+        x[3 * i + 2] = z;
+    }
+    vel = (double *)calloc(3 * (size_t)m.nv, sizeof(double));
+    memset(&floor_, 0, sizeof floor_);
+    floor_.kind = WR_OBSTACLE_PLANE;
+    floor_.normal[2] = 1.0;
+    memset(&dd, 0, sizeof dd);
+    dd.gravity[2] = -9.81;
+    dd.contact.analytic = &floor_;
+    dd.contact.n_analytic = 1;
+    dd.damping.mass = 2.0;
+    cr_assert_eq(wr_dyn_create(&sim, &s, &dd, &dg), WR_OK, "%s", dg.message);
+    cr_assert_eq(wr_collision_mesh_create(&cm, m.nv, m.nf, m.faces, NULL, NULL, &dg), WR_OK);
+    wr_dyn_state_init(&sim, &st, x, vel);
+    for (f = 0; f < 20; ++f) {
+        cr_assert_eq(wr_dyn_step(&sim, &st, &fs, &dg), WR_OK, "frame %d: %s", (int)f, dg.message);
+        cr_assert_eq(wr_collision_mesh_self_intersects(&cm, x, &cnt, NULL, &dg), WR_OK);
+        cr_assert_eq(cnt, 0, "frame %d: %d cloth triangle pairs intersect", (int)f, (int)cnt);
+    }
+    {
+        wr_contact_set cs;
+        memset(&cs, 0, sizeof cs);
+        cr_assert_eq(wr_collision_contacts(&cm, x, sim.dhat, &cs, &dg), WR_OK);
+        cr_assert_gt(cs.n, 0, "the top layer rests on the bottom one");
+        wr_contact_set_free(&cs);
+    }
+    wr_collision_mesh_free(&cm);
+    wr_dyn_free(&sim);
+    free(x);
+    free(vel);
+    wr_shell_free(&s);
+    wr_mesh_free(&m);
+}
+
+/* A sheet dropped on the procedural mannequin's head and shoulders (1e4 triangles): no cloth triangle
+ * ever meets a body triangle (exact test, every frame), the cloth never meets itself, and it ends
+ * supported (contacts within d̂, slower than it fell). */
+Test(dynamics_mesh, sheet_on_mannequin_without_penetration) {
+    wr_mesh m, bm;
+    wr_shell s;
+    wr_body_desc bd;
+    wr_dyn_desc dd;
+    wr_dyn_body body;
+    wr_dyn sim;
+    wr_dyn_state st;
+    wr_dyn_stats fs;
+    wr_collision_mesh cm;
+    wr_diag dg;
+    int32_t n = 8, i, f, cnt;
+    double *x, *vel;
+    memset(&bd, 0, sizeof bd);
+    bd.target_faces = 10000;
+    cr_assert_eq(wr_body_mannequin(&bm, &bd, &dg), WR_OK, "%s", dg.message);
+    dyn2_sheet(&m, &s, 0.36, n);
+    x = dyn2_copy(m.pos, 3 * m.nv);
+    for (i = 0; i < m.nv; ++i) x[3 * i] -= 0.18, x[3 * i + 1] -= 0.18, x[3 * i + 2] = 1.76;
+    vel = (double *)calloc(3 * (size_t)m.nv, sizeof(double));
+    memset(&body, 0, sizeof body);
+    body.nv = bm.nv;
+    body.nf = bm.nf;
+    body.faces = bm.faces;
+    body.pos = bm.pos;
+    memset(&dd, 0, sizeof dd);
+    dd.gravity[2] = -9.81;
+    dd.contact.bodies = &body;
+    dd.contact.n_bodies = 1;
+    dd.contact.friction = 0.5;
+    dd.damping.mass = 1.0;
+    cr_assert_eq(wr_dyn_create(&sim, &s, &dd, &dg), WR_OK, "%s", dg.message);
+    cr_assert_eq(wr_collision_mesh_create(&cm, m.nv, m.nf, m.faces, NULL, NULL, &dg), WR_OK);
+    wr_dyn_state_init(&sim, &st, x, vel);
+    for (f = 0; f < 15; ++f) {
+        cr_assert_eq(wr_dyn_step(&sim, &st, &fs, &dg), WR_OK, "frame %d: %s", (int)f, dg.message);
+        cr_assert_eq(wr_collision_meshes_intersect(m.nv, x, m.nf, m.faces, bm.nv, bm.pos, bm.nf, bm.faces, &cnt, &dg), WR_OK);
+        cr_assert_eq(cnt, 0, "frame %d: %d cloth-body triangle pairs intersect", (int)f, (int)cnt);
+        cr_assert_eq(wr_collision_mesh_self_intersects(&cm, x, &cnt, NULL, &dg), WR_OK);
+        cr_assert_eq(cnt, 0, "frame %d: the cloth intersects itself (%d pairs)", (int)f, (int)cnt);
+    }
+    cr_assert_gt(fs.n_contacts, 0);
+    cr_assert_lt(fs.min_distance, sim.dhat);
+    cr_assert_lt(dyn2_max_speed(vel, m.nv), 0.5, "free fall over 0.5 s would be 4.9 m/s");
+    wr_collision_mesh_free(&cm);
+    wr_dyn_free(&sim);
+    free(x);
+    free(vel);
+    wr_shell_free(&s);
+    wr_mesh_free(&m);
+    wr_mesh_free(&bm);
 }

@@ -3,7 +3,7 @@
  * barriers against analytic obstacles, triangle-mesh bodies (static or moving) and the cloth
  * itself, lagged Coulomb friction, and continuous collision detection as Newton's max-step hook.
  * wrinkle v0.1.0 — MIT licence (see LICENSE). Needs core.h, sparse.h, pcg.h, mesh.h, shell.h,
- * statics.h (analytic obstacles, barrier) and newton.h; otherwise libc and libm.
+ * statics.h (analytic obstacles, barrier), newton.h and collision.h; otherwise libc and libm.
  *
  * The Style3D paper's simulator (Sec. 5): "Newton's method with a 1/30 s time step for implicit
  * integration", PCG with 3×3 block-diagonal preconditioning stopped at an L2 residual of 1e-5,
@@ -24,7 +24,7 @@
  *   wr_dyn_step(sim, state, stats, diag)           advance one frame (desc.time.dt) in place
  *   wr_dyn_run(sim, state, t_end, progress, user, total, diag)   frames until t_end, callback per frame
  *   wr_dyn_energy(sim, state, kinetic, potential)  ½vᵀMv and E_el − Σ m g·x [J]
- *   wr_dyn_min_distance(sim, x)                    smallest vertex–obstacle gap at x [m]
+ *   wr_dyn_min_distance(sim, x)                    smallest contact distance at x [m]
  *   wr_dyn_sew_gap(sim, x)                         largest distance between sewn vertex pairs [m]
  *
  * EXAMPLE (a sheet dropped on a ball)
@@ -71,6 +71,14 @@
  *   D = Σ_k μ λ_k f0(‖T_kᵀ Σ_i w_i (x_i − x_n,i)‖) with IPC's smoothed f0 (ε = ε_v h, ε_v =
  *   friction_eps_v): Coulomb's law μλ above the sliding speed ε_v, a stiff viscous stick below.
  *
+ * ON MOVING BODIES
+ *   Body vertices are unknowns of Newton's vector after the cloth's (z = (x, body)). A body without
+ *   keys is held (fixed DOFs). A keyframed body's vertices start each step where they are and are
+ *   pulled to their positions at the step's end by springs k/2 ‖z_b − target(t + h)‖² (k =
+ *   kinematic_stiffness, default WR_DYN_KINEMATIC_FACTOR · m̄/h²), so the body's motion goes
+ *   through the same CCD-limited line search as the cloth's and can never push through it; a body
+ *   vertex ends within (cloth force)/k of its key.
+ *
  * ON TIMING (the paper's Table 1 split)
  *   NS (numerical solving): elastic/inertia/sewing energy, gradient and Hessian assembly, the PSD
  *   projection, and the linear solves. CH (collision handling): contact detection (broad and narrow
@@ -93,6 +101,7 @@
 #include "shell.h"
 #include "statics.h"
 #include "newton.h"
+#include "collision.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -112,8 +121,21 @@ typedef struct wr_dyn_damping_desc {
     double stiffness; /* β [s] */
 } wr_dyn_damping_desc;
 
+/* A triangle-mesh obstacle (a body): nf faces over nv vertices at pos (nv*3 [m]); n_keys >= 2 makes
+ * it move: key_pos (n_keys × nv × 3) at increasing key_time [s], linearly interpolated, held before
+ * the first key and after the last (an OBJ sequence is such keys at frame times). Copied. */
+typedef struct wr_dyn_body {
+    int32_t nv, nf;
+    const int32_t *faces;
+    const double *pos;
+    int32_t n_keys;
+    const double *key_time;
+    const double *key_pos;
+} wr_dyn_body;
+
 /* Defaults: dhat 1e-3 m; stiffness 0 → ON CONTACT; friction μ 0; friction_eps_v 1e-3 m/s;
- * analytic NULL / 0 obstacles (statics.h wr_obstacle, copied). */
+ * analytic NULL / 0 obstacles (statics.h wr_obstacle, copied); bodies NULL / 0 (copied);
+ * no_self 0 = cloth self-contact on (1: off); kinematic_stiffness 0 → ON MOVING BODIES. */
 typedef struct wr_dyn_contact_desc {
     double dhat;      /* barrier thickness d̂ [m] */
     double stiffness; /* κ [N/m] */
@@ -121,6 +143,10 @@ typedef struct wr_dyn_contact_desc {
     double friction_eps_v; /* sliding-speed threshold ε_v [m/s] */
     const wr_obstacle *analytic;
     int32_t n_analytic;
+    const wr_dyn_body *bodies;
+    int32_t n_bodies;
+    int32_t no_self;
+    double kinematic_stiffness; /* [N/m] per body vertex */
 } wr_dyn_contact_desc;
 
 /* Zero-rest-length springs k/2 ‖x_a − x_b‖² between vertex pairs, active while t < duration
@@ -183,6 +209,7 @@ typedef struct wr_dyn_stats {
 typedef int (*wr_dyn_progress_fn)(void *user, const wr_dyn_state *state, const wr_dyn_stats *frame);
 
 struct wr__dyn_work;
+struct wr__dyn_body;
 typedef struct wr_dyn {
     const wr_shell *shell; /* borrowed, must outlive the sim */
     int32_t nv;            /* cloth vertices */
@@ -191,7 +218,12 @@ typedef struct wr_dyn {
     uint8_t *fixed;        /* nv */
     int32_t *sew_pairs;    /* copy */
     wr_obstacle *analytic; /* copy */
-    double kappa, dhat, sew_k, mean_mass;
+    int32_t nb;            /* body vertices, all bodies (DOFs after the cloth's in Newton's vector) */
+    double *body_x;        /* nb*3 current body positions [m] (the sim's state of the bodies) */
+    int32_t *body_faces;   /* all bodies' faces, indices into body_x */
+    int32_t nbf;
+    struct wr__dyn_body *bodies; /* copies */
+    double kappa, dhat, sew_k, mean_mass, kin_k;
     struct wr__dyn_work *w; /* private work state */
 } wr_dyn;
 
@@ -206,7 +238,9 @@ WRDEF wr_status wr_dyn_run(wr_dyn *sim, wr_dyn_state *state, double t_end, wr_dy
                            wr_dyn_stats *total, wr_diag *diag);
 WRDEF wr_status wr_dyn_energy(const wr_dyn *sim, const wr_dyn_state *state, double *kinetic, double *potential,
                               wr_diag *diag);
-WRDEF double wr_dyn_min_distance(const wr_dyn *sim, const double *x);
+/* Smallest contact distance at cloth positions x (bodies where they are now) [m]; HUGE_VAL when
+ * nothing is within d̂ of anything (and no analytic obstacle exists). */
+WRDEF double wr_dyn_min_distance(wr_dyn *sim, const double *x);
 WRDEF double wr_dyn_sew_gap(const wr_dyn *sim, const double *x);
 
 #ifdef __cplusplus
@@ -241,6 +275,9 @@ extern "C" {
 /* sewing stiffness default, × m̄/dt²: the spring's period 2π/√(k/m) is dt·2π/√k_rel ≈ 0.6 dt, so a
  * seam closes within a few frames and backward Euler damps the oscillation (ratio 1/(1+100) per step) */
 #define WR_DYN_SEW_FACTOR 100.0
+/* moving-body spring default, × m̄/h²: a body vertex held like a particle 1e4 times heavier than a
+ * cloth vertex, so cloth pushing on it moves it by ~1e-4 of what it would move the cloth */
+#define WR_DYN_KINEMATIC_FACTOR 1e4
 /* CCD keeps every contact at >= this fraction of its current distance per Newton step (statics.h
  * WR_STATICS_CCD_KEEP, IPC's 0.1–0.2 safety fraction) */
 #define WR_DYN_CCD_KEEP 0.2
@@ -248,11 +285,22 @@ extern "C" {
 
 /* one lagged friction contact (ON CONTACT): vertex v against analytic obstacle, normal force lam,
  * tangent basis T (two orthonormal rows) frozen at the step's start */
+/* one lagged friction contact (ON CONTACT): the relative displacement of the contact is
+ * Σ_i w[i] (x_v[i] − x_n,v[i]) over k stencil vertices (k = 1 against an analytic obstacle, 4 for a
+ * point–triangle or edge–edge pair), normal force lam and tangent basis T (two orthonormal rows),
+ * all frozen at the step's start */
 typedef struct wr__dyn_fric {
-    int32_t v;
+    int32_t k, v[4];
+    double w[4];
     double lam;
     double T[6];
 } wr__dyn_fric;
+
+/* a copied body */
+typedef struct wr__dyn_body {
+    int32_t nv, nf, off, n_keys; /* off: its first vertex in body_x */
+    double *pos, *key_time, *key_pos;
+} wr__dyn_body;
 
 typedef struct wr__dyn_work {
     int32_t n;          /* DOFs = 3 nv */
@@ -267,6 +315,10 @@ typedef struct wr__dyn_work {
     int32_t n_fr, cap_fr;
     int sew_on;
     double t_ch;        /* contact work timed by the callbacks this frame (ON TIMING) */
+    int have_cm, moving;       /* a collision mesh (bodies or self-contact); a body moves */
+    wr_collision_mesh cm;      /* cloth faces + body faces over Newton's vector */
+    wr_contact_set cs;         /* the contact set at the last evaluated point */
+    double *target;            /* nb*3 body positions at the step's end (moving bodies) */
 } wr__dyn_work;
 
 static double wr__dyn_now(void) { return wr_time_seconds(); }
@@ -377,6 +429,12 @@ static void wr__dyn_smooth_terms(const wr_dyn *sim, const double *z, double *E, 
         }
         e += 0.5 * c * q;
     }
+    if (w->moving) /* moving bodies: stiff springs to their keyframed positions (ON MOVING BODIES) */
+        for (i = 0; i < 3 * sim->nb; ++i) {
+            double d = z[3 * sim->nv + i] - w->target[i];
+            e += 0.5 * sim->kin_k * d * d;
+            if (g) g[3 * sim->nv + i] += sim->kin_k * d;
+        }
     if (w->sew_on)
         for (p = 0; p < sim->desc.sewing.n_pairs; ++p) {
             int32_t a = sim->sew_pairs[2 * p], b = sim->sew_pairs[2 * p + 1];
@@ -392,13 +450,34 @@ static void wr__dyn_smooth_terms(const wr_dyn *sim, const double *z, double *E, 
     *E += e;
 }
 
-/* Analytic-obstacle barriers and lagged friction (ON CONTACT): value added to *E, gradient to g.
- * WR_ERR_GEOMETRY (item = vertex) when a free vertex is on or inside an obstacle (Φ = +∞ there). */
-static wr_status wr__dyn_contact_terms(const wr_dyn *sim, const double *z, double *E, double *g, double *dmin,
+/* Friction potential of one lagged contact at z: y = |Tᵀ Σ w_i (z_i − x_n,i)|; value μλ f0(y);
+ * gradient (when g) added per stencil vertex; u (2) returned for the Hessian. */
+static double wr__dyn_fric_eval(const wr__dyn_fric *f, const double *z, const double *xn, double mu, double eps,
+                                double *g, double u[2], double *y) {
+    double r[3] = {0, 0, 0}, c;
+    int32_t a, i;
+    for (a = 0; a < f->k; ++a)
+        for (i = 0; i < 3; ++i) r[i] += f->w[a] * (z[3 * f->v[a] + i] - xn[3 * f->v[a] + i]);
+    u[0] = f->T[0] * r[0] + f->T[1] * r[1] + f->T[2] * r[2];
+    u[1] = f->T[3] * r[0] + f->T[4] * r[1] + f->T[5] * r[2];
+    *y = sqrt(u[0] * u[0] + u[1] * u[1]);
+    if (g) {
+        c = mu * f->lam * wr__dyn_f1_over_y(*y, eps);
+        for (a = 0; a < f->k; ++a)
+            for (i = 0; i < 3; ++i) g[3 * f->v[a] + i] += f->w[a] * c * (f->T[i] * u[0] + f->T[3 + i] * u[1]);
+    }
+    return mu * f->lam * wr__dyn_f0(*y, eps);
+}
+
+/* Barriers (analytic obstacles; body and self pairs through collision.h) and lagged friction
+ * (ON CONTACT): value added to *E, gradient to g; the mesh contact set at z is left in w->cs.
+ * WR_ERR_GEOMETRY when a vertex is on or inside an obstacle, or a pair touches (Φ = +∞ there). */
+static wr_status wr__dyn_contact_terms(wr_dyn *sim, const double *z, double *E, double *g, double *dmin,
                                        int32_t *n_active, wr_diag *diag) {
-    const wr__dyn_work *w = sim->w;
-    double e = 0.0, dm = HUGE_VAL, mu = sim->desc.contact.friction, eps = sim->desc.contact.friction_eps_v * w->h;
+    wr__dyn_work *w = sim->w;
+    double e = 0.0, dm = HUGE_VAL, mu = sim->desc.contact.friction, eps = sim->desc.contact.friction_eps_v * w->h, u[2], y;
     int32_t o, v, i, k, na = 0;
+    wr_status st;
     for (o = 0; o < sim->desc.contact.n_analytic; ++o)
         for (v = 0; v < sim->nv; ++v) {
             double gd[3], d, b1;
@@ -414,19 +493,15 @@ static wr_status wr__dyn_contact_terms(const wr_dyn *sim, const double *z, doubl
             if (g)
                 for (i = 0; i < 3; ++i) g[3 * v + i] += b1 * gd[i];
         }
-    for (k = 0; k < w->n_fr && mu > 0.0; ++k) {
-        const wr__dyn_fric *f = w->fr + k;
-        double dx[3], u[2], y, c;
-        for (i = 0; i < 3; ++i) dx[i] = z[3 * f->v + i] - w->xn[3 * f->v + i];
-        u[0] = f->T[0] * dx[0] + f->T[1] * dx[1] + f->T[2] * dx[2];
-        u[1] = f->T[3] * dx[0] + f->T[4] * dx[1] + f->T[5] * dx[2];
-        y = sqrt(u[0] * u[0] + u[1] * u[1]);
-        e += mu * f->lam * wr__dyn_f0(y, eps);
-        if (g) {
-            c = mu * f->lam * wr__dyn_f1_over_y(y, eps);
-            for (i = 0; i < 3; ++i) g[3 * f->v + i] += c * (f->T[i] * u[0] + f->T[3 + i] * u[1]);
-        }
+    if (w->have_cm) {
+        double Ec = 0.0;
+        if ((st = wr_collision_contacts(&w->cm, z, sim->dhat, &w->cs, diag)) != WR_OK) return st;
+        if ((st = wr_collision_contact_energy(&w->cs, z, sim->dhat, sim->kappa, 0, &Ec, g, NULL, diag)) != WR_OK) return st;
+        e += Ec;
+        na += w->cs.n;
+        if (w->cs.min_distance < dm) dm = w->cs.min_distance;
     }
+    for (k = 0; k < w->n_fr && mu > 0.0; ++k) e += wr__dyn_fric_eval(w->fr + k, z, w->xn, mu, eps, g, u, &y);
     *E += e;
     if (dmin) *dmin = dm;
     if (n_active) *n_active = na;
@@ -441,6 +516,7 @@ static wr_status wr__dyn_energy_cb(void *user, const double *z, double *Phi, dou
     double E = 0.0, Es = 0.0, Ec = 0.0, t0;
     wr_status st = wr_shell_energy(sim->shell, z, &E, g, diag);
     if (st != WR_OK) return st;
+    if (g && sim->nb) memset(g + 3 * sim->nv, 0, sizeof(double) * 3 * (size_t)sim->nb);
     wr__dyn_smooth_terms(sim, z, &Es, g);
     t0 = wr__dyn_now();
     st = wr__dyn_contact_terms(sim, z, &Ec, g, NULL, NULL, diag);
@@ -452,9 +528,37 @@ static wr_status wr__dyn_energy_cb(void *user, const double *z, double *Phi, dou
     return WR_OK;
 }
 
-/* Contact and friction Hessian blocks (vertex-diagonal for analytic obstacles). */
-static wr_status wr__dyn_contact_hessian(const wr_dyn *sim, const double *z, wr_newton_hessian *H) {
-    const wr__dyn_work *w = sim->w;
+/* One friction contact's Hessian μλ ∇²f0 as a k-vertex element: in the tangent plane
+ * f1/y I + (f1' y − f1)/y³ u uᵀ; below ε that is (2/ε − y/ε²) I − u uᵀ/(ε² y), PSD (eigenvalue
+ * 2(1 − y/ε)/ε along u); above ε it is (I − ûûᵀ)/y, PSD (IPC Sec. 5.2); block (a, b) = w_a w_b T H2 Tᵀ. */
+static wr_status wr__dyn_fric_hessian(const wr__dyn_fric *f, const double *z, const double *xn, double mu, double eps,
+                                      wr_newton_hessian *H) {
+    double u[2], y, a, c, H2[4], TH[6], B[9], K[144];
+    int32_t i, j, p, q;
+    wr__dyn_fric_eval(f, z, xn, mu, eps, NULL, u, &y);
+    c = mu * f->lam;
+    a = wr__dyn_f1_over_y(y, eps);
+    for (i = 0; i < 2; ++i)
+        for (j = 0; j < 2; ++j) {
+            double uu = y > 0.0 ? u[i] * u[j] : 0.0;
+            H2[2 * i + j] = c * ((i == j ? a : 0.0) - (y >= eps ? uu / (y * y * y) : (y > 0.0 ? uu / (eps * eps * y) : 0.0)));
+        }
+    for (i = 0; i < 3; ++i)
+        for (j = 0; j < 2; ++j) TH[2 * i + j] = f->T[i] * H2[j] + f->T[3 + i] * H2[2 + j];
+    for (i = 0; i < 3; ++i)
+        for (j = 0; j < 3; ++j) B[3 * i + j] = TH[2 * i] * f->T[j] + TH[2 * i + 1] * f->T[3 + j];
+    if (f->k == 1) return wr_newton_add_diagonal(H, f->v[0], B);
+    for (p = 0; p < f->k; ++p)
+        for (q = 0; q < f->k; ++q)
+            for (i = 0; i < 3; ++i)
+                for (j = 0; j < 3; ++j) K[(3 * p + i) * 3 * f->k + 3 * q + j] = f->w[p] * f->w[q] * B[3 * i + j];
+    return wr_newton_add_element_psd(H, f->k, f->v, K);
+}
+
+/* Contact and friction Hessian blocks: analytic obstacles vertex-diagonal, mesh pairs 4-vertex
+ * elements (projected or exact by Newton's phase, like the elastic ones), friction elements PSD. */
+static wr_status wr__dyn_contact_hessian(wr_dyn *sim, const double *z, wr_newton_hessian *H, wr_diag *diag) {
+    wr__dyn_work *w = sim->w;
     double mu = sim->desc.contact.friction, eps = sim->desc.contact.friction_eps_v * w->h, B[9];
     int32_t o, v, i, j, k;
     wr_status st;
@@ -471,35 +575,22 @@ static wr_status wr__dyn_contact_hessian(const wr_dyn *sim, const double *z, wr_
                 for (j = 0; j < 3; ++j) B[3 * i + j] = b2 * gd[i] * gd[j];
             if ((st = wr_newton_add_diagonal(H, v, B)) != WR_OK) return st;
         }
-    for (k = 0; k < w->n_fr && mu > 0.0; ++k) {
-        const wr__dyn_fric *f = w->fr + k;
-        double dx[3], u[2], y, a, c, H2[4], TH[6];
-        for (i = 0; i < 3; ++i) dx[i] = z[3 * f->v + i] - w->xn[3 * f->v + i];
-        u[0] = f->T[0] * dx[0] + f->T[1] * dx[1] + f->T[2] * dx[2];
-        u[1] = f->T[3] * dx[0] + f->T[4] * dx[1] + f->T[5] * dx[2];
-        y = sqrt(u[0] * u[0] + u[1] * u[1]);
-        /* μλ ∇²f0(‖u‖) in the tangent plane: f1/y I + (f1' y − f1)/y³ u uᵀ; below ε that is
-         * (2/ε − y/ε²) I − u uᵀ/(ε² y), PSD (eigenvalue 2(1 − y/ε)/ε along u); above ε it is
-         * (I − ûûᵀ)/y, PSD (IPC Sec. 5.2) */
-        c = mu * f->lam;
-        a = wr__dyn_f1_over_y(y, eps);
-        for (i = 0; i < 2; ++i)
-            for (j = 0; j < 2; ++j) {
-                double uu = y > 0.0 ? u[i] * u[j] : 0.0;
-                H2[2 * i + j] =
-                    c * ((i == j ? a : 0.0) - (y >= eps ? uu / (y * y * y) : (y > 0.0 ? uu / (eps * eps * y) : 0.0)));
-            }
-        for (i = 0; i < 3; ++i)
-            for (j = 0; j < 2; ++j) TH[2 * i + j] = f->T[i] * H2[j] + f->T[3 + i] * H2[2 + j];
-        for (i = 0; i < 3; ++i)
-            for (j = 0; j < 3; ++j) B[3 * i + j] = TH[2 * i] * f->T[j] + TH[2 * i + 1] * f->T[3 + j];
-        if ((st = wr_newton_add_diagonal(H, f->v, B)) != WR_OK) return st;
+    if (w->have_cm) {
+        wr_hess_sink hs;
+        double Ec = 0.0;
+        hs.user = H;
+        hs.add = wr_newton_sink_add;
+        if ((st = wr_collision_contacts(&w->cm, z, sim->dhat, &w->cs, diag)) != WR_OK) return st;
+        if ((st = wr_collision_contact_energy(&w->cs, z, sim->dhat, sim->kappa, 0, &Ec, NULL, &hs, diag)) != WR_OK)
+            return st;
     }
+    for (k = 0; k < w->n_fr && mu > 0.0; ++k)
+        if ((st = wr__dyn_fric_hessian(w->fr + k, z, w->xn, mu, eps, H)) != WR_OK) return st;
     return WR_OK;
 }
 
 /* Newton's Hessian callback: K_el (elements, projected by Newton per its phase) + M(1/h² + α/h) +
- * β/h K_n + sewing + contact and friction. */
+ * β/h K_n + sewing + moving-body springs + contact and friction. */
 static wr_status wr__dyn_hessian_cb(void *user, const double *z, wr_newton_hessian *H, wr_diag *diag) {
     wr_dyn *sim = (wr_dyn *)user;
     wr__dyn_work *w = sim->w;
@@ -516,6 +607,11 @@ static wr_status wr__dyn_hessian_cb(void *user, const double *z, wr_newton_hessi
         B[0] = B[4] = B[8] = c * sim->mass[v];
         if ((st = wr_newton_add_diagonal(H, v, B)) != WR_OK) return st;
     }
+    if (w->moving)
+        for (v = 0; v < sim->nb; ++v) {
+            B[0] = B[4] = B[8] = sim->kin_k;
+            if ((st = wr_newton_add_diagonal(H, sim->nv + v, B)) != WR_OK) return st;
+        }
     if (w->sew_on) {
         memset(S, 0, sizeof S);
         for (i = 0; i < 6; ++i)
@@ -528,14 +624,15 @@ static wr_status wr__dyn_hessian_cb(void *user, const double *z, wr_newton_hessi
         }
     }
     t0 = wr__dyn_now();
-    st = wr__dyn_contact_hessian(sim, z, H);
+    st = wr__dyn_contact_hessian(sim, z, H, diag);
     w->t_ch += wr__dyn_now() - t0;
     return st;
 }
 
-/* Max-step hook: the largest α in (0, 1] keeping every free vertex at >= WR_DYN_CCD_KEEP of its
- * current distance to every analytic obstacle along z + αΔz (conservative advancement: d is
- * 1-Lipschitz, so advancing by (d − target)/|Δz| never overshoots). */
+/* Max-step hook (CCD): the largest α in (0, 1] keeping every free vertex at >= WR_DYN_CCD_KEEP of
+ * its current distance to every analytic obstacle along z + αΔz (conservative advancement: d is
+ * 1-Lipschitz, so advancing by (d − target)/|Δz| never overshoots), and every mesh pair
+ * intersection-free (collision.h's additive CCD, keep 0.1). */
 static double wr__dyn_max_step_cb(void *user, const double *z, const double *dz) {
     wr_dyn *sim = (wr_dyn *)user;
     double alpha = 1.0, t0 = wr__dyn_now();
@@ -558,64 +655,126 @@ static double wr__dyn_max_step_cb(void *user, const double *z, const double *dz)
             }
             if (t < alpha) alpha = t;
         }
+    if (sim->w->have_cm) {
+        double a = 1.0;
+        /* a failure here (out of memory) can only be reported as "no safe step" */
+        if (wr_collision_max_step(&sim->w->cm, z, dz, &a, NULL, NULL) != WR_OK) a = 0.0;
+        if (a < alpha) alpha = a;
+    }
     sim->w->t_ch += wr__dyn_now() - t0;
     return alpha;
 }
 
-/* Lagged friction (ON CONTACT): contacts active at the step's start x_n, with their normal forces. */
+static wr_status wr__dyn_fric_push(wr__dyn_work *w, wr__dyn_fric **f, wr_diag *diag) {
+    if (w->n_fr == w->cap_fr) {
+        int32_t cap = w->cap_fr ? 2 * w->cap_fr : 256;
+        wr__dyn_fric *nf = (wr__dyn_fric *)wr_realloc_array(w->fr, (size_t)cap, sizeof(wr__dyn_fric));
+        if (!nf) return wr_fail(diag, WR_ERR_NOMEM, -1, "dynamics: out of memory (%d friction contacts)", (int)cap);
+        w->fr = nf;
+        w->cap_fr = cap;
+    }
+    *f = w->fr + w->n_fr++;
+    return WR_OK;
+}
+
+/* Lagged friction (ON CONTACT): contacts active at the step's start x_n, with their normal forces
+ * λ = κ|b'(d)|, their normals and stencil weights (collision.h's closest-point coefficients). */
 static wr_status wr__dyn_lag_friction(wr_dyn *sim, wr_diag *diag) {
     wr__dyn_work *w = sim->w;
-    int32_t o, v;
+    int32_t o, v, c, a;
+    wr__dyn_fric *f;
+    wr_status st;
     w->n_fr = 0;
     if (!(sim->desc.contact.friction > 0.0)) return WR_OK;
     for (o = 0; o < sim->desc.contact.n_analytic; ++o)
         for (v = 0; v < sim->nv; ++v) {
             double gd[3], d, b1;
-            wr__dyn_fric *f;
             if (sim->fixed[v]) continue;
             d = wr_obstacle_distance(sim->analytic + o, w->xn + 3 * v, gd);
             if (!(d > 0.0) || d >= sim->dhat) continue;
             wr_statics_barrier(d, sim->dhat, sim->kappa, &b1, NULL);
-            if (w->n_fr == w->cap_fr) {
-                int32_t cap = w->cap_fr ? 2 * w->cap_fr : 256;
-                wr__dyn_fric *nf = (wr__dyn_fric *)wr_realloc_array(w->fr, (size_t)cap, sizeof(wr__dyn_fric));
-                if (!nf) return wr_fail(diag, WR_ERR_NOMEM, -1, "dynamics: out of memory (%d friction contacts)", (int)cap);
-                w->fr = nf;
-                w->cap_fr = cap;
-            }
-            f = w->fr + w->n_fr++;
-            f->v = v;
+            if ((st = wr__dyn_fric_push(w, &f, diag)) != WR_OK) return st;
+            f->k = 1;
+            f->v[0] = v;
+            f->w[0] = 1.0;
             f->lam = fabs(b1);
             wr__dyn_tangent_basis(gd, f->T);
         }
+    if (!w->have_cm) return WR_OK;
+    if ((st = wr_collision_contacts(&w->cm, w->xn, sim->dhat, &w->cs, diag)) != WR_OK) return st;
+    for (c = 0; c < w->cs.n; ++c) {
+        const wr_contact *ct = w->cs.c + c;
+        const double *p0 = w->xn + 3 * ct->v[0], *p1 = w->xn + 3 * ct->v[1], *p2 = w->xn + 3 * ct->v[2],
+                     *p3 = w->xn + 3 * ct->v[3];
+        double wt[4], r[3] = {0, 0, 0}, d, b1, nrm[3];
+        int i;
+        if (ct->kind == WR_CONTACT_PT)
+            wr_collision_point_triangle_dist2(p0, p1, p2, p3, NULL, NULL, wt, NULL);
+        else
+            wr_collision_edge_edge_dist2(p0, p1, p2, p3, NULL, NULL, wt, NULL);
+        for (a = 0; a < 4; ++a)
+            for (i = 0; i < 3; ++i) r[i] += wt[a] * w->xn[3 * ct->v[a] + i];
+        d = sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
+        if (!(d > 0.0) || d >= sim->dhat) continue;
+        wr_collision_barrier(d, sim->dhat, sim->kappa, &b1, NULL);
+        if ((st = wr__dyn_fric_push(w, &f, diag)) != WR_OK) return st;
+        f->k = 4;
+        for (a = 0; a < 4; ++a) f->v[a] = ct->v[a], f->w[a] = wt[a];
+        f->lam = fabs(b1);
+        for (i = 0; i < 3; ++i) nrm[i] = r[i] / d;
+        wr__dyn_tangent_basis(nrm, f->T);
+    }
     return WR_OK;
+}
+
+/* Body positions at time t (keyframes linearly interpolated, held outside their range). */
+static void wr__dyn_body_at(const wr_dyn *sim, double t, double *out) {
+    int32_t b, k, i;
+    for (b = 0; b < sim->desc.contact.n_bodies; ++b) {
+        const wr__dyn_body *bd = sim->bodies + b;
+        double *o = out + 3 * (size_t)bd->off;
+        if (bd->n_keys < 2) {
+            memcpy(o, bd->pos, sizeof(double) * 3 * (size_t)bd->nv);
+            continue;
+        }
+        for (k = 0; k + 2 < bd->n_keys && t > bd->key_time[k + 1]; ++k) {
+        }
+        {
+            double t0 = bd->key_time[k], t1 = bd->key_time[k + 1], s = (t - t0) / (t1 - t0);
+            const double *a = bd->key_pos + 3 * (size_t)bd->nv * k, *c = a + 3 * (size_t)bd->nv;
+            s = fmin(1.0, fmax(0.0, s));
+            for (i = 0; i < 3 * bd->nv; ++i) o[i] = (1.0 - s) * a[i] + s * c[i];
+        }
+    }
 }
 
 /* ---- one time step ------------------------------------------------------------------------ */
 
-/* One backward Euler step of size h from state (in place): Φ minimised by the shared Newton from
- * x_n. On failure the state is unchanged. */
+/* One backward Euler step of size h from state (in place): Φ minimised by the shared Newton over
+ * z = (cloth x, body vertices) from z_n. On failure the state is unchanged. */
 static wr_status wr__dyn_one_step(wr_dyn *sim, wr_dyn_state *state, double h, wr_newton_stats *ns, wr_diag *diag) {
     wr__dyn_work *w = sim->w;
     wr_newton_problem pb;
     wr_newton_desc nd;
-    int32_t i, n = w->n;
+    int32_t i, n = w->n, nc = 3 * sim->nv;
     wr_status st;
     double *x = state->x, *v = state->v, t0;
     memset(ns, 0, sizeof *ns);
     w->h = h;
     w->sew_on = sim->desc.sewing.n_pairs > 0 && (sim->desc.sewing.duration == 0.0 || state->t < sim->desc.sewing.duration);
-    for (i = 0; i < n; ++i) {
+    for (i = 0; i < nc; ++i) {
         w->xn[i] = x[i];
         w->xt[i] = w->fixd[i] ? x[i] : x[i] + h * v[i];
     }
+    for (i = nc; i < n; ++i) w->xn[i] = w->xt[i] = sim->body_x[i - nc];
+    if (w->moving) wr__dyn_body_at(sim, state->t + h, w->target);
     if (w->damp_stiff && (st = wr__dyn_lag_stiffness(sim, w->xn, diag)) != WR_OK) return st;
     t0 = wr__dyn_now();
     st = wr__dyn_lag_friction(sim, diag);
     w->t_ch += wr__dyn_now() - t0;
     if (st != WR_OK) return st;
     memset(&pb, 0, sizeof pb);
-    pb.n_blocks = sim->nv;
+    pb.n_blocks = sim->nv + sim->nb;
     pb.block = 3;
     pb.user = sim;
     pb.energy = wr__dyn_energy_cb;
@@ -630,11 +789,12 @@ static wr_status wr__dyn_one_step(wr_dyn *sim, wr_dyn_state *state, double h, wr
     nd.linear.solver = sim->desc.linear;
     nd.name = "dynamics";
     /* Newton keeps the lowest-Φ iterate in its x on failure: work on a copy so the state stays */
-    memcpy(w->z, x, sizeof(double) * (size_t)n);
+    memcpy(w->z, w->xn, sizeof(double) * (size_t)n);
     st = wr_newton_solve(&pb, w->z, &nd, ns, diag);
     if (st != WR_OK) return st;
-    memcpy(x, w->z, sizeof(double) * (size_t)n);
-    for (i = 0; i < n; ++i) v[i] = w->fixd[i] ? 0.0 : (x[i] - w->xn[i]) / h;
+    memcpy(x, w->z, sizeof(double) * (size_t)nc);
+    if (sim->nb) memcpy(sim->body_x, w->z + nc, sizeof(double) * 3 * (size_t)sim->nb);
+    for (i = 0; i < nc; ++i) v[i] = w->fixd[i] ? 0.0 : (x[i] - w->xn[i]) / h;
     state->t += h;
     return WR_OK;
 }
@@ -671,6 +831,26 @@ static wr_status wr__dyn_check_desc(const wr_dyn_desc *d, int32_t nv, wr_diag *d
             (b->kind == WR_OBSTACLE_PLANE && !(nn > 0.0)) || (b->kind != WR_OBSTACLE_PLANE && !(b->radius > 0.0)))
             return wr_fail(diag, WR_ERR_INVALID_ARG, o, "dynamics: analytic obstacle %d is invalid (kind %d, radius %g)",
                            (int)o, (int)b->kind, b->radius);
+    }
+    if (d->contact.n_bodies < 0 || (d->contact.n_bodies > 0 && !d->contact.bodies) || !(d->contact.kinematic_stiffness >= 0.0))
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "dynamics: %d bodies with a NULL array, or kinematic_stiffness %g < 0",
+                       (int)d->contact.n_bodies, d->contact.kinematic_stiffness);
+    for (o = 0; o < d->contact.n_bodies; ++o) {
+        const wr_dyn_body *b = d->contact.bodies + o;
+        int32_t k;
+        if (b->nv < 3 || b->nf < 1 || !b->faces || !b->pos || b->n_keys < 0 || (b->n_keys >= 2 && (!b->key_time || !b->key_pos)))
+            return wr_fail(diag, WR_ERR_INVALID_ARG, o, "dynamics: body %d is invalid (%d vertices, %d faces, %d keys)",
+                           (int)o, (int)b->nv, (int)b->nf, (int)b->n_keys);
+        for (i = 0; i < 3 * b->nf; ++i)
+            if (b->faces[i] < 0 || b->faces[i] >= b->nv)
+                return wr_fail(diag, WR_ERR_INVALID_ARG, o, "dynamics: body %d face %d has vertex %d outside [0, %d)", (int)o,
+                               (int)(i / 3), (int)b->faces[i], (int)b->nv);
+        for (i = 0; i < 3 * b->nv; ++i)
+            if (b->pos[i] - b->pos[i] != 0.0)
+                return wr_fail(diag, WR_ERR_INVALID_ARG, o, "dynamics: body %d vertex %d is not finite", (int)o, (int)(i / 3));
+        for (k = 1; k < b->n_keys; ++k)
+            if (!(b->key_time[k] > b->key_time[k - 1]))
+                return wr_fail(diag, WR_ERR_INVALID_ARG, o, "dynamics: body %d key times must increase (key %d)", (int)o, (int)k);
     }
     if (d->sewing.n_pairs < 0 || (d->sewing.n_pairs > 0 && !d->sewing.pairs) || !(d->sewing.stiffness >= 0.0) ||
         !(d->sewing.duration >= 0.0) || d->sewing.stiffness - d->sewing.stiffness != 0.0)
@@ -714,6 +894,9 @@ WRDEF void wr_dyn_free(wr_dyn *sim) {
         wr_free(w->s2);
         wr_free(w->fixd);
         wr_assembly_free(&w->Kd);
+        if (w->have_cm) wr_collision_mesh_free(&w->cm);
+        wr_contact_set_free(&w->cs);
+        wr_free(w->target);
         wr_free(w->fr);
         wr_free(w);
     }
@@ -721,13 +904,87 @@ WRDEF void wr_dyn_free(wr_dyn *sim) {
     wr_free(sim->fixed);
     wr_free(sim->sew_pairs);
     wr_free(sim->analytic);
+    if (sim->bodies) {
+        int32_t b;
+        for (b = 0; b < sim->desc.contact.n_bodies; ++b) {
+            wr_free(sim->bodies[b].pos);
+            wr_free(sim->bodies[b].key_time);
+            wr_free(sim->bodies[b].key_pos);
+        }
+    }
+    wr_free(sim->bodies);
+    wr_free(sim->body_x);
+    wr_free(sim->body_faces);
     memset(sim, 0, sizeof *sim);
+}
+
+/* Copies of the bodies, their vertices in one array after each other (sim->body_x at t = 0). */
+static wr_status wr__dyn_copy_bodies(wr_dyn *sim, const wr_dyn_desc *d, wr_diag *diag) {
+    int32_t b, nb = 0, nbf = 0, i;
+    for (b = 0; b < d->contact.n_bodies; ++b) nb += d->contact.bodies[b].nv, nbf += d->contact.bodies[b].nf;
+    sim->bodies = (wr__dyn_body *)wr_calloc_array((size_t)d->contact.n_bodies + 1, sizeof(wr__dyn_body));
+    sim->body_x = (double *)wr_alloc_array(3 * (size_t)nb + 1, sizeof(double));
+    sim->body_faces = (int32_t *)wr_alloc_array(3 * (size_t)nbf + 1, sizeof(int32_t));
+    if (!sim->bodies || !sim->body_x || !sim->body_faces)
+        return wr_fail(diag, WR_ERR_NOMEM, -1, "dynamics: out of memory (%d body vertices)", (int)nb);
+    sim->nb = 0;
+    sim->nbf = 0;
+    for (b = 0; b < d->contact.n_bodies; ++b) {
+        const wr_dyn_body *in = d->contact.bodies + b;
+        wr__dyn_body *bd = sim->bodies + b;
+        int32_t nk = in->n_keys >= 2 ? in->n_keys : 0;
+        bd->nv = in->nv;
+        bd->nf = in->nf;
+        bd->off = sim->nb;
+        bd->n_keys = nk;
+        bd->pos = (double *)wr_alloc_array(3 * (size_t)in->nv, sizeof(double));
+        bd->key_time = (double *)wr_alloc_array((size_t)nk + 1, sizeof(double));
+        bd->key_pos = (double *)wr_alloc_array(3 * (size_t)in->nv * (size_t)nk + 1, sizeof(double));
+        if (!bd->pos || !bd->key_time || !bd->key_pos)
+            return wr_fail(diag, WR_ERR_NOMEM, b, "dynamics: out of memory (body %d)", (int)b);
+        memcpy(bd->pos, in->pos, sizeof(double) * 3 * (size_t)in->nv);
+        if (nk) {
+            memcpy(bd->key_time, in->key_time, sizeof(double) * (size_t)nk);
+            memcpy(bd->key_pos, in->key_pos, sizeof(double) * 3 * (size_t)in->nv * (size_t)nk);
+        }
+        for (i = 0; i < 3 * in->nf; ++i) sim->body_faces[3 * sim->nbf + i] = in->faces[i] + bd->off;
+        sim->nb += in->nv;
+        sim->nbf += in->nf;
+    }
+    wr__dyn_body_at(sim, 0.0, sim->body_x);
+    return WR_OK;
+}
+
+/* The collision mesh over Newton's vector: cloth faces, then body faces (offset past the cloth),
+ * body vertices flagged as obstacle (collision.h ON PAIRS). */
+static wr_status wr__dyn_collision_setup(wr_dyn *sim, wr_diag *diag) {
+    wr__dyn_work *w = sim->w;
+    int32_t nf = sim->shell->nf + sim->nbf, i;
+    int32_t *faces = (int32_t *)wr_alloc_array(3 * (size_t)nf, sizeof(int32_t));
+    uint8_t *obst = (uint8_t *)wr_calloc_array((size_t)(sim->nv + sim->nb), 1);
+    wr_collision_desc cd;
+    wr_status st;
+    if (!faces || !obst) {
+        wr_free(faces);
+        wr_free(obst);
+        return wr_fail(diag, WR_ERR_NOMEM, -1, "dynamics: out of memory (%d contact faces)", (int)nf);
+    }
+    memcpy(faces, sim->shell->faces, sizeof(int32_t) * 3 * (size_t)sim->shell->nf);
+    for (i = 0; i < 3 * sim->nbf; ++i) faces[3 * sim->shell->nf + i] = sim->body_faces[i] + sim->nv;
+    for (i = sim->nv; i < sim->nv + sim->nb; ++i) obst[i] = 1;
+    memset(&cd, 0, sizeof cd);
+    cd.no_self = sim->desc.contact.no_self;
+    st = wr_collision_mesh_create(&w->cm, sim->nv + sim->nb, nf, faces, obst, &cd, diag);
+    wr_free(faces);
+    wr_free(obst);
+    if (st == WR_OK) w->have_cm = 1;
+    return st;
 }
 
 WRDEF wr_status wr_dyn_create(wr_dyn *sim, const wr_shell *shell, const wr_dyn_desc *desc, wr_diag *diag) {
     wr_dyn_desc d;
     wr__dyn_work *w;
-    int32_t v, i, n;
+    int32_t v, i, n, b;
     double msum = 0.0, gmag, h;
     wr_status st;
     if (!sim) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "dynamics: NULL sim");
@@ -741,9 +998,9 @@ WRDEF wr_status wr_dyn_create(wr_dyn *sim, const wr_shell *shell, const wr_dyn_d
         memset(&d, 0, sizeof d);
     wr__dyn_defaults(&d);
     if ((st = wr__dyn_check_desc(&d, shell->nv, diag)) != WR_OK) return st;
-    n = 3 * shell->nv;
     sim->shell = shell;
     sim->nv = shell->nv;
+    sim->desc = d; /* pointer fields redirected to the copies below */
     sim->mass = (double *)wr_alloc_array((size_t)shell->nv, sizeof(double));
     sim->fixed = (uint8_t *)wr_calloc_array((size_t)shell->nv, 1);
     sim->sew_pairs = (int32_t *)wr_alloc_array(2 * (size_t)d.sewing.n_pairs + 1, sizeof(int32_t));
@@ -751,6 +1008,8 @@ WRDEF wr_status wr_dyn_create(wr_dyn *sim, const wr_shell *shell, const wr_dyn_d
     w = (wr__dyn_work *)wr_calloc_array(1, sizeof(wr__dyn_work));
     sim->w = w;
     if (!sim->mass || !sim->fixed || !sim->sew_pairs || !sim->analytic || !w) goto nomem;
+    if ((st = wr__dyn_copy_bodies(sim, &d, diag)) != WR_OK) goto fail;
+    n = 3 * (shell->nv + sim->nb);
     w->n = n;
     w->xn = (double *)wr_alloc_array((size_t)n, sizeof(double));
     w->xt = (double *)wr_alloc_array((size_t)n, sizeof(double));
@@ -758,20 +1017,26 @@ WRDEF wr_status wr_dyn_create(wr_dyn *sim, const wr_shell *shell, const wr_dyn_d
     w->s1 = (double *)wr_alloc_array((size_t)n, sizeof(double));
     w->s2 = (double *)wr_alloc_array((size_t)n, sizeof(double));
     w->fixd = (uint8_t *)wr_calloc_array((size_t)n, 1);
-    if (!w->xn || !w->xt || !w->z || !w->s1 || !w->s2 || !w->fixd)
-        goto nomem;
+    w->target = (double *)wr_alloc_array(3 * (size_t)sim->nb + 1, sizeof(double));
+    if (!w->xn || !w->xt || !w->z || !w->s1 || !w->s2 || !w->fixd || !w->target) goto nomem;
     wr_shell_vertex_masses(shell, sim->mass);
     for (v = 0; v < shell->nv; ++v) {
         sim->fixed[v] = d.fixed ? d.fixed[v] != 0 : 0;
         for (i = 0; i < 3; ++i) w->fixd[3 * v + i] = sim->fixed[v];
         msum += sim->mass[v];
     }
+    /* a body that never moves is held (Dirichlet); moving ones follow their keys through springs */
+    for (b = 0; b < d.contact.n_bodies; ++b) {
+        const wr__dyn_body *bd = sim->bodies + b;
+        if (bd->n_keys >= 2) w->moving = 1;
+        for (i = 0; i < 3 * bd->nv; ++i) w->fixd[3 * (shell->nv + bd->off) + i] = bd->n_keys < 2;
+    }
     if (d.sewing.n_pairs) memcpy(sim->sew_pairs, d.sewing.pairs, sizeof(int32_t) * 2 * (size_t)d.sewing.n_pairs);
     if (d.contact.n_analytic) memcpy(sim->analytic, d.contact.analytic, sizeof(wr_obstacle) * (size_t)d.contact.n_analytic);
-    d.fixed = sim->fixed;
-    d.sewing.pairs = sim->sew_pairs;
-    d.contact.analytic = sim->analytic;
-    sim->desc = d;
+    sim->desc.fixed = sim->fixed;
+    sim->desc.sewing.pairs = sim->sew_pairs;
+    sim->desc.contact.analytic = sim->analytic;
+    sim->desc.contact.bodies = NULL; /* copied into sim->bodies */
     sim->mean_mass = msum / shell->nv;
     sim->dhat = d.contact.dhat;
     h = d.time.dt / d.time.substeps;
@@ -779,15 +1044,17 @@ WRDEF wr_status wr_dyn_create(wr_dyn *sim, const wr_shell *shell, const wr_dyn_d
     sim->kappa = d.contact.stiffness > 0.0 ? d.contact.stiffness
                                            : WR_DYN_KAPPA_FACTOR * sim->mean_mass * fmax(gmag, sim->dhat / (h * h)) / sim->dhat;
     sim->sew_k = d.sewing.stiffness > 0.0 ? d.sewing.stiffness : WR_DYN_SEW_FACTOR * sim->mean_mass / (h * h);
+    sim->kin_k = d.contact.kinematic_stiffness > 0.0 ? d.contact.kinematic_stiffness
+                                                     : WR_DYN_KINEMATIC_FACTOR * sim->mean_mass / (h * h);
     w->damp_stiff = d.damping.stiffness > 0.0;
-    if (w->damp_stiff && (st = wr_assembly_init(&w->Kd, shell->nv, 3, diag)) != WR_OK) {
-        wr_dyn_free(sim);
-        return st;
-    }
+    if (w->damp_stiff && (st = wr_assembly_init(&w->Kd, shell->nv, 3, diag)) != WR_OK) goto fail;
+    if ((d.contact.n_bodies > 0 || !d.contact.no_self) && (st = wr__dyn_collision_setup(sim, diag)) != WR_OK) goto fail;
     return WR_OK;
 nomem:
+    st = wr_fail(diag, WR_ERR_NOMEM, -1, "dynamics: out of memory (%d vertices)", (int)shell->nv);
+fail:
     wr_dyn_free(sim);
-    return wr_fail(diag, WR_ERR_NOMEM, -1, "dynamics: out of memory (%d vertices)", (int)shell->nv);
+    return st;
 }
 
 WRDEF void wr_dyn_state_init(const wr_dyn *sim, wr_dyn_state *state, double *x, double *v) {
@@ -795,6 +1062,20 @@ WRDEF void wr_dyn_state_init(const wr_dyn *sim, wr_dyn_state *state, double *x, 
     state->x = x;
     state->v = v;
     state->t = 0.0;
+}
+
+/* Smallest contact distance and the number of active contacts at cloth positions x, bodies where
+ * they are (friction left out: only the barriers' distances are wanted). */
+static double wr__dyn_gap(wr_dyn *sim, const double *x, int32_t *n_active) {
+    wr__dyn_work *w = sim->w;
+    double dm = HUGE_VAL, E = 0.0;
+    int32_t nfr = w->n_fr;
+    memcpy(w->z, x, sizeof(double) * 3 * (size_t)sim->nv);
+    if (sim->nb) memcpy(w->z + 3 * sim->nv, sim->body_x, sizeof(double) * 3 * (size_t)sim->nb);
+    w->n_fr = 0;
+    if (wr__dyn_contact_terms(sim, w->z, &E, NULL, &dm, n_active, NULL) != WR_OK) dm = 0.0;
+    w->n_fr = nfr;
+    return dm;
 }
 
 /* One solve's counters into the frame's record. NS is Newton's wall time less the contact work the
@@ -823,7 +1104,7 @@ WRDEF wr_status wr_dyn_step(wr_dyn *sim, wr_dyn_state *state, wr_dyn_stats *stat
     if (!sim || !sim->w || !state || !state->x || !state->v)
         return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "dynamics: NULL sim or state");
     w = sim->w;
-    for (i = 0; i < w->n; ++i)
+    for (i = 0; i < 3 * sim->nv; ++i)
         if (state->x[i] - state->x[i] != 0.0 || state->v[i] - state->v[i] != 0.0)
             return wr_fail(diag, WR_ERR_DOMAIN, i / 3, "dynamics: vertex %d has a non-finite position or velocity", (int)(i / 3));
     w->t_ch = 0.0;
@@ -846,9 +1127,8 @@ WRDEF wr_status wr_dyn_step(wr_dyn *sim, wr_dyn_state *state, wr_dyn_stats *stat
     }
     fs.frames = st == WR_OK ? 1 : 0;
     {
-        double t0 = wr__dyn_now(), dm = HUGE_VAL, E = 0.0;
-        wr__dyn_contact_terms(sim, state->x, &E, NULL, &dm, &fs.n_contacts, NULL);
-        fs.min_distance = dm;
+        double t0 = wr__dyn_now();
+        fs.min_distance = wr__dyn_gap(sim, state->x, &fs.n_contacts);
         w->t_ch += wr__dyn_now() - t0;
     }
     fs.t_ch = w->t_ch;
@@ -912,11 +1192,9 @@ WRDEF wr_status wr_dyn_energy(const wr_dyn *sim, const wr_dyn_state *state, doub
     return WR_OK;
 }
 
-WRDEF double wr_dyn_min_distance(const wr_dyn *sim, const double *x) {
-    double dm = HUGE_VAL, E = 0.0;
+WRDEF double wr_dyn_min_distance(wr_dyn *sim, const double *x) {
     if (!sim || !sim->w || !x) return HUGE_VAL;
-    wr__dyn_contact_terms(sim, x, &E, NULL, &dm, NULL, NULL);
-    return dm;
+    return wr__dyn_gap(sim, x, NULL);
 }
 
 WRDEF double wr_dyn_sew_gap(const wr_dyn *sim, const double *x) {
