@@ -27,6 +27,8 @@
  *   wr_mesh_write_obj(m, path, desc, diag)                OBJ out (vt = rest, g = panels), atomic
  *   wr_mesh_write_ply(m, path, nprops, names, values, diag)   ASCII PLY with per-vertex doubles, atomic
  *   wr_mesh_write_vtk(m, path, np, pnames, pvals, nc, cnames, cvals, diag)   legacy VTK POLYDATA, atomic
+ *   wr_mesh_weld(out, in, n_pairs, pairs, vmap, diag)     sew: merge vertex pairs, keep each face's rest
+ *   wr_mesh_pillow(out, panel, lift, diag)                two copies of a flat panel sewn along the boundary
  *
  * EXAMPLE
  *     wr_mesh m;  wr_diag d;  double *omega, worst = 0.0;  int32_t e, f;  int k;
@@ -78,6 +80,17 @@
  *   Text I/O uses strtod / fprintf, so it assumes the "C" numeric locale (a program that switched
  *   LC_NUMERIC to a comma-decimal locale must switch back around these calls). Writers print 17
  *   significant digits: a write → read round trip reproduces every double exactly.
+ *
+ * ON SEWING
+ *   wr_mesh_weld merges the vertices of each pair (transitively), averages their positions and gives
+ *   every face its own rest corners (corner_rest) from the input, so each panel keeps its flat
+ *   pattern shape (TFW: two annuli → torus, two disks → Mylar balloon, two rectangles → teabag).
+ *   wr_mesh_pillow builds that two-panel case from one flat panel: the top copy keeps the panel's
+ *   orientation and is lifted by +lift·s(v), the bottom copy is mirrored in the rest domain (u → −u,
+ *   corners 1 and 2 swapped, so it is CCW in its own pattern and faces outward below) and lowered by
+ *   −lift·s(v); s = hop distance to the boundary / the largest such distance (0 on the seam, 1 at the
+ *   middle), a tent that keeps the seam faces non-degenerate. The closed result has outward normals,
+ *   so an enclosed volume is positive and a positive pressure (statics.h) inflates it.
  *
  * ON THREADS
  *   No global state. Read-only functions may run concurrently on one mesh.
@@ -221,6 +234,19 @@ WRDEF wr_status wr_mesh_write_vtk(const wr_mesh *m, const char *path, int32_t n_
                                   const char *const *point_names, const double *const *point_values,
                                   int32_t n_cell, const char *const *cell_names, const double *const *cell_values,
                                   wr_diag *diag);
+
+/* Sewing (ON SEWING). pairs: n_pairs × 2 vertex indices of `in`; vmap (in->nv) receives the new index
+ * of every input vertex when non-NULL. out gets corner_rest (and face_panel copied). Free with
+ * wr_mesh_free. Errors: WR_ERR_INVALID_ARG (index outside [0, nv), item = pair), WR_ERR_TOPOLOGY from
+ * wr_mesh_create (a face with two merged corners, an edge in more than two faces, inconsistent
+ * orientation across a seam). */
+WRDEF wr_status wr_mesh_weld(wr_mesh *out, const wr_mesh *in, int32_t n_pairs, const int32_t *pairs, int32_t *vmap,
+                             wr_diag *diag);
+/* Two copies of a flat panel (pos z = 0, at least one boundary loop) sewn along all its boundary
+ * loops; lift > 0 [m]. Top copy vertices keep their indices 0..nv−1 (face_panel 0, faces 0..nf−1),
+ * the bottom's interior vertices follow (face_panel 1). WR_ERR_INVALID_ARG for lift <= 0 or a panel
+ * without boundary. */
+WRDEF wr_status wr_mesh_pillow(wr_mesh *out, const wr_mesh *panel, double lift, wr_diag *diag);
 
 #ifdef __cplusplus
 }
@@ -1490,6 +1516,164 @@ WRDEF wr_status wr_mesh_write_vtk(const wr_mesh *m, const char *path, int32_t n_
         return st;
     }
     return wr_afile_commit(&f, diag);
+}
+
+/* ---- sewing ------------------------------------------------------------------------------------ */
+
+static int32_t wr__mesh_find_root(int32_t *par, int32_t v) {
+    while (par[v] != v) {
+        par[v] = par[par[v]];
+        v = par[v];
+    }
+    return v;
+}
+
+WRDEF wr_status wr_mesh_weld(wr_mesh *out, const wr_mesh *in, int32_t n_pairs, const int32_t *pairs, int32_t *vmap,
+                             wr_diag *diag) {
+    int32_t *par = NULL, *nid = NULL, *faces = NULL, *cnt = NULL, nn = 0, v, f, k, i;
+    double *pos = NULL, *cr = NULL;
+    wr_status rs = WR_OK;
+    if (out) memset(out, 0, sizeof *out);
+    if (!out || !in || !in->faces || n_pairs < 0 || (n_pairs > 0 && !pairs))
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "weld: NULL mesh or pairs, or n_pairs %d < 0", (int)n_pairs);
+    par = (int32_t *)wr_alloc_array((size_t)in->nv, sizeof(int32_t));
+    nid = (int32_t *)wr_alloc_array((size_t)in->nv, sizeof(int32_t));
+    cnt = (int32_t *)wr_calloc_array((size_t)in->nv, sizeof(int32_t));
+    faces = (int32_t *)wr_alloc_array((size_t)in->nf * 3, sizeof(int32_t));
+    pos = (double *)wr_calloc_array((size_t)in->nv * 3, sizeof(double));
+    cr = (double *)wr_alloc_array((size_t)in->nf * 6, sizeof(double));
+    if (!par || !nid || !cnt || !faces || !pos || !cr) {
+        rs = wr_fail(diag, WR_ERR_NOMEM, -1, "weld: out of memory");
+        goto done;
+    }
+    for (v = 0; v < in->nv; ++v) par[v] = v;
+    for (k = 0; k < n_pairs; ++k) {
+        int32_t a = pairs[2 * k], b = pairs[2 * k + 1];
+        if (a < 0 || a >= in->nv || b < 0 || b >= in->nv) {
+            rs = wr_fail(diag, WR_ERR_INVALID_ARG, k, "weld: pair %d (%d, %d) outside [0, %d)", (int)k, (int)a, (int)b,
+                         (int)in->nv);
+            goto done;
+        }
+        a = wr__mesh_find_root(par, a);
+        b = wr__mesh_find_root(par, b);
+        /* the smaller index is the root, so an unpaired prefix keeps its numbering */
+        if (a < b)
+            par[b] = a;
+        else
+            par[a] = b;
+    }
+    for (v = 0; v < in->nv; ++v) {
+        int32_t r = wr__mesh_find_root(par, v);
+        if (r == v) nid[v] = nn++;
+    }
+    for (v = 0; v < in->nv; ++v) {
+        int32_t j = nid[wr__mesh_find_root(par, v)];
+        if (vmap) vmap[v] = j;
+        for (i = 0; i < 3; ++i) pos[3 * j + i] += in->pos[3 * v + i];
+        cnt[j]++;
+    }
+    for (v = 0; v < nn; ++v)
+        for (i = 0; i < 3; ++i) pos[3 * v + i] /= cnt[v];
+    for (f = 0; f < in->nf; ++f) {
+        for (k = 0; k < 3; ++k) faces[3 * f + k] = nid[wr__mesh_find_root(par, in->faces[3 * f + k])];
+        wr_mesh_face_rest(in, f, cr + 6 * f);
+    }
+    rs = wr_mesh_create(out, nn, pos, NULL, in->nf, faces, diag);
+    if (rs != WR_OK) goto done;
+    rs = wr_mesh_set_corner_rest(out, cr, diag);
+    if (rs == WR_OK && in->face_panel) rs = wr_mesh_set_face_panel(out, in->face_panel, diag);
+    if (rs != WR_OK) wr_mesh_free(out);
+done:
+    wr_free(par);
+    wr_free(nid);
+    wr_free(cnt);
+    wr_free(faces);
+    wr_free(pos);
+    wr_free(cr);
+    return rs;
+}
+
+WRDEF wr_status wr_mesh_pillow(wr_mesh *out, const wr_mesh *panel, double lift, wr_diag *diag) {
+    int32_t nv, nf, *faces = NULL, *hop = NULL, *pairs = NULL, *fp = NULL, np = 0, v, f, k, e, maxhop = 0, changed;
+    double *pos = NULL, *cr = NULL;
+    wr_mesh two;
+    wr_status rs = WR_OK;
+    memset(&two, 0, sizeof two);
+    if (out) memset(out, 0, sizeof *out);
+    if (!out || !panel || !panel->faces || !(lift > 0.0) || lift - lift != 0.0)
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "pillow: NULL mesh or lift %g not > 0", lift);
+    if (panel->n_loops < 1)
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "pillow: the panel has no boundary to sew");
+    nv = panel->nv;
+    nf = panel->nf;
+    faces = (int32_t *)wr_alloc_array((size_t)nf * 6, sizeof(int32_t));
+    fp = (int32_t *)wr_alloc_array((size_t)nf * 2, sizeof(int32_t));
+    hop = (int32_t *)wr_alloc_array((size_t)nv, sizeof(int32_t));
+    pairs = (int32_t *)wr_alloc_array((size_t)panel->loop_start[panel->n_loops] * 2, sizeof(int32_t));
+    pos = (double *)wr_alloc_array((size_t)nv * 6, sizeof(double));
+    cr = (double *)wr_alloc_array((size_t)nf * 12, sizeof(double));
+    if (!faces || !fp || !hop || !pairs || !pos || !cr) {
+        rs = wr_fail(diag, WR_ERR_NOMEM, -1, "pillow: out of memory");
+        goto done;
+    }
+    /* hop distance to the boundary (Bellman–Ford sweeps over the edges; O(ne · depth)) */
+    for (v = 0; v < nv; ++v) hop[v] = INT32_MAX;
+    for (k = 0; k < panel->loop_start[panel->n_loops]; ++k) {
+        hop[panel->loop_verts[k]] = 0;
+        pairs[2 * np] = panel->loop_verts[k];
+        pairs[2 * np + 1] = nv + panel->loop_verts[k];
+        np++;
+    }
+    do {
+        changed = 0;
+        for (e = 0; e < panel->ne; ++e) {
+            int32_t a = panel->edges[2 * e], b = panel->edges[2 * e + 1];
+            if (hop[a] != INT32_MAX && hop[a] + 1 < hop[b]) hop[b] = hop[a] + 1, changed = 1;
+            if (hop[b] != INT32_MAX && hop[b] + 1 < hop[a]) hop[a] = hop[b] + 1, changed = 1;
+        }
+    } while (changed);
+    for (v = 0; v < nv; ++v) {
+        if (hop[v] == INT32_MAX) hop[v] = 0; /* a component without boundary stays flat */
+        if (hop[v] > maxhop) maxhop = hop[v];
+    }
+    for (v = 0; v < nv; ++v) {
+        double z = maxhop > 0 ? lift * (double)hop[v] / (double)maxhop : 0.0;
+        pos[3 * v] = pos[3 * (nv + v)] = panel->pos[3 * v];
+        pos[3 * v + 1] = pos[3 * (nv + v) + 1] = panel->pos[3 * v + 1];
+        pos[3 * v + 2] = panel->pos[3 * v + 2] + z;
+        pos[3 * (nv + v) + 2] = panel->pos[3 * v + 2] - z;
+    }
+    for (f = 0; f < nf; ++f) {
+        double uv[6], *b = cr + 6 * (nf + f);
+        const int32_t *t = panel->faces + 3 * f;
+        wr_mesh_face_rest(panel, f, uv);
+        memcpy(cr + 6 * f, uv, sizeof uv);
+        faces[3 * f] = t[0];
+        faces[3 * f + 1] = t[1];
+        faces[3 * f + 2] = t[2];
+        /* bottom: mirrored pattern u → −u with corners 1 and 2 swapped (CCW again, normal flipped) */
+        faces[3 * (nf + f)] = nv + t[0];
+        faces[3 * (nf + f) + 1] = nv + t[2];
+        faces[3 * (nf + f) + 2] = nv + t[1];
+        b[0] = -uv[0], b[1] = uv[1];
+        b[2] = -uv[4], b[3] = uv[5];
+        b[4] = -uv[2], b[5] = uv[3];
+        fp[f] = 0;
+        fp[nf + f] = 1;
+    }
+    rs = wr_mesh_create(&two, 2 * nv, pos, NULL, 2 * nf, faces, diag);
+    if (rs == WR_OK) rs = wr_mesh_set_corner_rest(&two, cr, diag);
+    if (rs == WR_OK) rs = wr_mesh_set_face_panel(&two, fp, diag);
+    if (rs == WR_OK) rs = wr_mesh_weld(out, &two, np, pairs, NULL, diag);
+done:
+    wr_mesh_free(&two);
+    wr_free(faces);
+    wr_free(fp);
+    wr_free(hop);
+    wr_free(pairs);
+    wr_free(pos);
+    wr_free(cr);
+    return rs;
 }
 
 #ifdef __cplusplus
