@@ -1,9 +1,9 @@
 /* wrinkle/statics.h — static equilibrium of a shell (shell.h): gravity, prescribed vertices and
  * prescribed motions (stretch, shear, twist) with load increments, uniform pressure on closed or
  * sewn surfaces, frictionless contact with analytic obstacles (plane, sphere, capsule), solved by
- * newton.h's projected Newton with linear solves through pcg.h.
- * wrinkle v0.1.0 — MIT licence (see LICENSE). Needs core.h, sparse.h, pcg.h (CHOLMOD when built
- * with WR_USE_CHOLMOD=1, see pcg.h), newton.h, mesh.h, tft.h, shell.h; otherwise only libc and libm.
+ * newton.h's projected Newton with linear solves through spd.h.
+ * wrinkle v0.1.0 — MIT licence (see LICENSE). Needs core.h, sparse.h, spd.h (CHOLMOD when built
+ * with WR_USE_CHOLMOD=1, see spd.h), newton.h, mesh.h, tft.h, shell.h; otherwise only libc and libm.
  *
  * Minimises Π(x) = E_shell(x) − Σ_v m_v g·x_v − p·V(x) + Σ_{free v, obstacles o} κ·b(d_o(x_v))
  * over the free vertices: the TFW Sec. 4.1 base surface (TFT membrane + quadratic bending), and the
@@ -83,7 +83,7 @@
  * ON INEXACT NEWTON (linear.forcing)
  *   Far from the solution a Newton direction needs no 1e-8 linear accuracy. With linear.forcing =
  *   η_max > 0 each PCG solve stops at the relative residual η_k = min(η_max, max(tol, √(‖∇Π‖ /
- *   reference))) (tol = linear.solver.rel_tol or pcg.h's default): the forcing sequence η_k → 0 with
+ *   reference))) (tol = linear.solver.rel_tol or spd.h's default): the forcing sequence η_k → 0 with
  *   the gradient keeps Newton's local convergence superlinear (Dembo, Eisenstat & Steihaug 1982;
  *   Eisenstat & Walker 1996 use the same √ scaling). CHOLMOD solves exactly whatever η_k.
  *
@@ -153,7 +153,7 @@
 
 #include "core.h"
 #include "sparse.h"
-#include "pcg.h"
+#include "spd.h"
 #include "newton.h"
 #include "shell.h"
 
@@ -217,7 +217,7 @@ typedef struct wr_obstacle {
  *                 exact_retry 0 = off, else q in (0, 1) (ON PROJECTION)
  *   shift         newton.h: rel 1e-8 (μ relative to the mean diagonal); raise 0 = off, else r > 1
  *                 applied after a backtracked step (ON SHIFT)
- *   linear        newton.h: solver = pcg.h options (its fixed is set here); forcing 0 = every PCG
+ *   linear        newton.h: solver = spd.h options (its fixed is set here); forcing 0 = every PCG
  *                 solve to solver.rel_tol, else η_max in (0, 1) (ON INEXACT NEWTON; not for CHOLMOD)
  *   continuation  membrane_ramp 0 = off, else the first stage's membrane scale s0 in (0, 1); factor
  *                 0 → 1e3 (> 1) (ON MEMBRANE CONTINUATION)
