@@ -217,6 +217,7 @@ JSON
         "$B/wrinkle-sim" "$tmp/sim.json" -o "$tmp/simout" --quiet
     keep_on_failure "wrinkle-sim invalid scene" "$tmp/simout/frame_0003.obj" "$tmp/simout/summary.json" -- \
         "$B/wrinkle-sim" "$tmp/badsim.json" -o "$tmp/simout"
+fi
 # ---- 4. behaviour shared through cli.c ------------------------------------------------------------
 # full_stdout NAME DRIVER ARGS... : stdout on /dev/full -> exit 3 and a message naming the failure
 full_stdout() {
