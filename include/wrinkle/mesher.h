@@ -508,8 +508,7 @@ static wr_status wr__msh_budget(wr__msh_ctx *c) {
         if (total > (double)c->desc.max_vertices)
             return wr_fail(c->diag, WR_ERR_BUDGET, p,
                            "vertex budget of %d exceeded at panels[%d] '%s': its area %.4g m^2 and perimeter %.4g m "
-                           "need at least %.3g vertices at a %.3g mm size (%.3g with the panels before it); raise "
-                           "max_vertices or coarsen the sizing",
+                           "need at least %.3g vertices at a %.3g mm size (%.3g with the panels before it)",
                            (int)c->desc.max_vertices, (int)p, wr__msh_pname(c, p), m->area, m->perimeter, need,
                            1e3 * m->r0, total);
     }

@@ -18,7 +18,7 @@
  *   wr_sizing_map_free(&map)                         free and zero (safe on a zeroed map)
  *   wr_sizing_map_eval(&map, panel, x, y)            target edge length [m] (fine direction)
  *   wr_sizing_map_eval_metric(&map, panel, x, y)     2×2 metric M: an edge e is on target when eᵀMe = 1
- *   wr_sizing_map_raster(&map, panel, box, nx, ny, out)   the map on a grid (NaN outside the panel)
+ *   wr_sizing_map_raster(&map, panel, box, nx, ny, out, diag)   the map on a grid (NaN outside the panel)
  *   wr_sizing_map_vertex_estimate(&map, panel, radius_factor)   vertices a mesh of the panel needs, low side
  *   wr_sizing_panel_eval(pn, x, y) / _eval_stretched(pn, X, Y)   one panel, pattern / stretched coordinates
  *   wr_sizing_panel_to_stretched(pn, p, q) / _to_pattern(pn, q, p)   the panel's affine metric map T, T⁻¹
@@ -43,7 +43,8 @@
  *     printf("r_f %.2f mm, on the line %.2f mm\n", 1e3 * map.panels[0].r0,
  *            1e3 * wr_sizing_map_eval(&map, 0, 0.1, 0.125));
  *     box[0] = 0; box[1] = 0; box[2] = 0.25; box[3] = 0.25;      // x0 y0 x1 y1 [m]
- *     wr_sizing_map_raster(&map, 0, box, 4, 4, img);            // 4×4 cell centres, row-major
+ *     if (wr_sizing_map_raster(&map, 0, box, 4, 4, img, &d) != WR_OK) { puts(d.message); return 1; }
+ *     printf("cell (1, 1): %.2f mm\n", 1e3 * img[4 * 1 + 1]);   // 4×4 cell centres, row-major
  *     wr_sizing_map_free(&map);
  *
  * ON UNITS
