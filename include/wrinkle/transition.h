@@ -88,9 +88,8 @@ typedef struct wr_transition_desc {
  * wrinklon of amplitude A ~ λ sqrt(δ) and length L pays bending B A²/λ⁴ against stretching T (A/L)²
  * (heavy, this form) or E h (A/L)⁴ (light, the compression form below)): this form holds only when
  * T/(E h) ≫ (A/L)². A fabric-like sheet (E h ~ 300 N/m) gathered at cm scale under its own weight is
- * on the light side: validation/validate_curtain finds 4x T lengthening the transition by 0-5 %, not
- * 2x, and even a tension-dominated one (42x T) only 1.6x, not 6.5x. Style3D writes both forms with
- * "~" and gives no O(1) prefactor. */
+ * on the light side (measured by validation/validate_curtain: docs/notes-sizing.md). Style3D writes
+ * both forms with "~" and gives no O(1) prefactor. */
 WRDEF wr_status wr_wrinklon_size_tension(double lambda, double T, double B, double *L_w, wr_diag *diag);
 /* Sec. 4.2.1, compression form: L_w = λ^{3/2} (δ h⁻²)^{1/4} (prefactor 1). λ, h [m] > 0, δ > 0. */
 WRDEF wr_status wr_wrinklon_size_compression(double lambda, double delta, double h, double *L_w, wr_diag *diag);
