@@ -95,15 +95,15 @@ static void drape(wr_mesh *m, int32_t n, wr_membrane_model mem, wr_bending_model
     }
     for (k = init ? GRAVITY_STEPS : 1; k <= GRAVITY_STEPS; ++k) {
         memset(&st, 0, sizeof st);
-        st.fixed = fixed;
-        st.gravity[2] = -9.81 * k / GRAVITY_STEPS;
-        st.obstacles = &ball;
-        st.n_obstacles = 1;
-        st.contact_dhat = 2e-3;
-        st.max_iter = init ? REF_MAX_ITER : 300;
+        st.loads.fixed = fixed;
+        st.loads.gravity[2] = -9.81 * k / GRAVITY_STEPS;
+        st.contact.obstacles = &ball;
+        st.contact.n_obstacles = 1;
+        st.contact.dhat = 2e-3;
+        st.stop.max_iter = init ? REF_MAX_ITER : 300;
         if (k == 1 || init) {
-            st.perturb = 1e-4; /* seeded kick off the flat start / the symmetric TFT base */
-            st.seed = 11;
+            st.start.perturb = 1e-4; /* seeded kick off the flat start / the symmetric TFT base */
+            st.start.seed = 11;
         }
         o->st = wr_statics_solve(&sh, x, &st, &ss, &d);
         o->iters += ss.iterations;
