@@ -107,6 +107,7 @@
  * ON CONTACT
  *   Frictionless, vertex against analytic obstacle, one-sided (the obstacle is where d < 0): an
  *   IPC-style log barrier (Li et al. 2020) b(d) = −(d − d̂)² ln(d/d̂) for 0 < d < d̂, 0 for d >= d̂
+ *   (wr_collision_barrier of collision.h; wr_statics_barrier is the same function)
  *   (C², so Newton sees a smooth energy), scaled by κ [N/m]. Only free vertices feel it; a free
  *   vertex with d <= 0 at the start (after the perturbation) is WR_ERR_GEOMETRY (item = vertex).
  *   Every Newton step is cut, before the line search, to the largest α <= 1 such that no free vertex
@@ -156,6 +157,7 @@
 #include "spd.h"
 #include "newton.h"
 #include "shell.h"
+#include "collision.h" /* wr_collision_barrier */
 
 #ifdef __cplusplus
 extern "C" {
@@ -456,17 +458,9 @@ WRDEF double wr_obstacle_distance(const wr_obstacle *o, const double x[3], doubl
     return n - o->radius;
 }
 
+/* the IPC barrier lives in collision.h (one concept, one place); kept here under its old name */
 WRDEF double wr_statics_barrier(double d, double dhat, double kappa, double *b1, double *b2) {
-    double t, L;
-    if (b1) *b1 = 0.0;
-    if (b2) *b2 = 0.0;
-    if (!(d > 0.0)) return HUGE_VAL;
-    if (d >= dhat) return 0.0;
-    t = d - dhat;
-    L = log(d / dhat);
-    if (b1) *b1 = kappa * (-2.0 * t * L - t * t / d);
-    if (b2) *b2 = kappa * (-2.0 * L - 4.0 * t / d + t * t / (d * d));
-    return -kappa * t * t * L;
+    return wr_collision_barrier(d, dhat, kappa, b1, b2);
 }
 
 /* ---- the solver: Π as a newton.h problem ----------------------------------------------------- */
