@@ -10,16 +10,16 @@ CXX     ?= c++
 # double arithmetic, and -ffp-contract=off keeps FMA contraction from changing their results.
 OPT     ?= -O2
 CFLAGS_COMMON = -g $(OPT) -Wall -Wextra -pedantic -ffp-contract=off -Iinclude -Idrivers/lib \
-                -I/usr/include/suitesparse -DWR_USE_CHOLMOD=1
+                -I/usr/include/suitesparse -DWR_USE_CHOLMOD=1 -DWR_USE_FFTW=1 -DWR_USE_LIBPNG=1
 CFLAGS  ?=
 ALL_CFLAGS   = -std=c11 $(CFLAGS_COMMON) $(CFLAGS)
 ALL_CXXFLAGS = -std=c++17 $(CFLAGS_COMMON) $(CFLAGS)
-LIBS    = -lcjson -lcholmod -lfftw3 -lgsl -lgslcblas -lm
+LIBS    = -lcjson -lcholmod -lfftw3 -lpng -lgsl -lgslcblas -lm
 
 # Debian packages the kit builds against. libopenblas0 gives CHOLMOD an optimized BLAS
 # (through the libblas.so.3 alternative) instead of the reference one.
 DEB_PACKAGES = libgsl-dev libfftw3-dev libsuitesparse-dev libopenblas0 libcjson-dev \
-               libcriterion-dev gnuplot-nox pkg-config universal-ctags
+               libcriterion-dev gnuplot-nox pkg-config universal-ctags libpng-dev python3 python3-numpy
 BENCH_PACKAGES = libcgal-dev
 
 SAN = -fsanitize=address,undefined,float-cast-overflow -fno-omit-frame-pointer -fno-sanitize-recover=all
@@ -38,9 +38,17 @@ BENCHES     = $(patsubst bench/%.c,bin/%,$(BENCH_SRC)) $(patsubst bench/%.cpp,bi
 EXTRA_HDR   = $(wildcard drivers/lib/*.h)
 
 .SECONDARY: $(LIB_OBJ)
-.PHONY: all deps deps-bench demo test validate bench install uninstall clean check-headers check-examples
+.PHONY: all deps deps-bench demo test python-test validate bench install uninstall clean check-headers check-examples
 
-all: $(DRIVERS) $(VALIDATORS)
+all: $(DRIVERS) $(VALIDATORS) build/libwrinkle.so
+
+# The shared library of the Python binding (python/wrinkle): one implementation unit
+# (python/wrinkle_capi.c, a flat C interface) plus the pattern and scene readers. Only wr_py_*
+# symbols are exported (-fvisibility=hidden), so it never clashes with a program's own wrinkle.
+build/libwrinkle.so: python/wrinkle_capi.c drivers/lib/pattern.c drivers/lib/scene.c drivers/lib/jsonout.c $(HEADERS) $(EXTRA_HDR)
+	@mkdir -p build
+	$(CC) $(ALL_CFLAGS) -fPIC -shared -fvisibility=hidden python/wrinkle_capi.c drivers/lib/pattern.c \
+	    drivers/lib/scene.c drivers/lib/jsonout.c -o $@ -lcjson -lcholmod -lfftw3 -lpng -lm
 
 deps:
 	@sh tools/deps.sh $(DEB_PACKAGES)
@@ -88,6 +96,14 @@ test: deps
 	@sh tests/check_headers.sh
 	@sh tests/check_examples.sh
 	@sh tests/run_tests.sh
+	@$(MAKE) --no-print-directory python-test
+
+# The Python binding's tests (python/tests, unittest) against build/libwrinkle.so. Debian's python3
+# (with python3-numpy from DEB_PACKAGES) unless PYTHON says otherwise; a failure fails `make test`.
+PYTHON ?= $(shell [ -x /usr/bin/python3 ] && echo /usr/bin/python3 || echo python3)
+python-test: build/libwrinkle.so
+	@echo "python binding tests ($(PYTHON)):"
+	@PYTHONPATH=python OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1 $(PYTHON) -m unittest discover -s python/tests
 
 demo: deps
 	@$(MAKE) --no-print-directory all
@@ -101,16 +117,28 @@ bench: deps-bench
 	@$(MAKE) --no-print-directory $(BENCHES)
 	@sh bench/run_all.sh
 
-install: all
-	install -d $(DESTDIR)$(PREFIX)/include/wrinkle $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/lib/pkgconfig
+# The pattern and scene readers for engines (drivers/lib/pattern.c, scene.c and the JSON writer
+# scene.c uses): a static library without wrinkle code (link it with your WRINKLE_IMPLEMENTATION
+# unit) plus cJSON. Installed with its headers under include/wrinkle/formats/.
+FORMATS_SRC = drivers/lib/pattern.c drivers/lib/scene.c drivers/lib/jsonout.c
+FORMATS_HDR = drivers/lib/pattern.h drivers/lib/scene.h drivers/lib/jsonout.h
+build/libwrinkle-formats.a: $(patsubst drivers/lib/%.c,build/obj/%.o,$(FORMATS_SRC))
+	@mkdir -p build
+	rm -f $@ && ar rcs $@ $^
+
+PC_FILES = wrinkle wrinkle-core wrinkle-formats
+install: all build/libwrinkle-formats.a
+	install -d $(DESTDIR)$(PREFIX)/include/wrinkle/formats $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/lib/pkgconfig
 	install -m 644 $(HEADERS) $(DESTDIR)$(PREFIX)/include/wrinkle/
+	install -m 644 $(FORMATS_HDR) $(DESTDIR)$(PREFIX)/include/wrinkle/formats/
+	install -m 644 build/libwrinkle-formats.a $(DESTDIR)$(PREFIX)/lib/
 	install -m 755 $(DRIVERS) $(DESTDIR)$(PREFIX)/bin/
-	sed -e 's|@PREFIX@|$(PREFIX)|g' tools/wrinkle.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/wrinkle.pc
+	for p in $(PC_FILES); do sed -e 's|@PREFIX@|$(PREFIX)|g' tools/$$p.pc.in > $(DESTDIR)$(PREFIX)/lib/pkgconfig/$$p.pc; done
 
 uninstall:
 	rm -rf $(DESTDIR)$(PREFIX)/include/wrinkle
-	rm -f $(patsubst bin/%,$(DESTDIR)$(PREFIX)/bin/%,$(DRIVERS))
-	rm -f $(DESTDIR)$(PREFIX)/lib/pkgconfig/wrinkle.pc
+	rm -f $(patsubst bin/%,$(DESTDIR)$(PREFIX)/bin/%,$(DRIVERS)) $(DESTDIR)$(PREFIX)/lib/libwrinkle-formats.a
+	rm -f $(patsubst %,$(DESTDIR)$(PREFIX)/lib/pkgconfig/%.pc,$(PC_FILES))
 
 clean:
 	rm -rf bin build
@@ -123,7 +151,7 @@ FUZZ_CC      ?= clang
 FUZZ_SECONDS ?= 600
 FUZZ_FLAGS    = -g -O1 -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined \
                 -fno-omit-frame-pointer -ffp-contract=off -Iinclude -Idrivers/lib \
-                -I/usr/include/suitesparse -DWR_USE_CHOLMOD=1
+                -I/usr/include/suitesparse -DWR_USE_CHOLMOD=1 -DWR_USE_FFTW=1
 FUZZ_SRC      = $(wildcard tests/fuzz/fuzz_*.c)
 FUZZ_NAMES    = $(patsubst tests/fuzz/%.c,%,$(FUZZ_SRC))
 FUZZERS       = $(addprefix build/fuzz/,$(FUZZ_NAMES))

@@ -1,5 +1,6 @@
 /* wrinkle-mesh — garment pattern (JSON, millimetres) → one optimally resolved simulation mesh
  * (Style3D Sec. 4.1–4.3). See --help and docs/pattern-format.md. */
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -20,8 +21,10 @@ static void usage(FILE *f) {
             "the paper's Fig. 14 square (250 mm, Table 1 Green fabric) with curved shirring lines.\n"
             "\n"
             "Outputs (all written whole or not at all):\n"
-            "  DIR/mesh.obj      vertices, vt = 2D rest (pattern) positions, one group per panel\n"
+            "  DIR/mesh.obj      vertices, vt = 2D rest (pattern) positions, vn, one group per panel\n"
+            "                    named after it\n"
             "  DIR/mesh.ply      per-vertex sizing, sizing_warp, sizing_weft [m] and panel id\n"
+            "  DIR/mesh.vtk      the same fields for ParaView (with normals, texture coordinates)\n"
             "  DIR/sizing.png    the sizing map with the mesh over it (needs gnuplot; skipped with a\n"
             "                    warning when gnuplot is missing)\n"
             "  DIR/seams.csv     vertex pairs to sew, in order along each seam (only with seams)\n"
@@ -37,89 +40,87 @@ static void usage(FILE *f) {
             "  -q, --quiet             no summary line on stdout\n"
             "  -h, --help              this text\n"
             "\n"
-            "Exit status: 0 success, 1 the pattern could not be meshed or written, 2 usage error.\n");
+            "Warnings (stderr, the mesh is still written): a panel smaller than one edge (coordinates in\n"
+            "metres in a millimetre file?), a base resolution outside the 2.5-50 mm band Eq. 4 was\n"
+            "calibrated on.\n"
+            "\n"
+            "Exit status: 0 success, 2 bad input (command line, pattern file, or geometry the mesher\n"
+            "refuses), 3 the mesh could not be computed (memory) or written.\n");
+}
+
+/* The slips people make, caught before they cost a simulation (Style3D's r comes from Eq. 4 in
+ * metres; pattern files are in millimetres). */
+static void plausibility(const wr_pattern_file *pf, const wr_mesher_result *res) {
+    int32_t p, k;
+    for (p = 0; p < res->n_panels && p < pf->pattern.n_panels; ++p) {
+        const wr_pattern_curve *c = &pf->pattern.panels[p].outer;
+        const char *nm = pf->panel_names && pf->panel_names[p][0] ? pf->panel_names[p] : NULL;
+        double lo[2] = {HUGE_VAL, HUGE_VAL}, hi[2] = {-HUGE_VAL, -HUGE_VAL}, r = res->panels[p].r0, ext;
+        for (k = 0; k < c->n; ++k) {
+            lo[0] = fmin(lo[0], c->xy[2 * k]), hi[0] = fmax(hi[0], c->xy[2 * k]);
+            lo[1] = fmin(lo[1], c->xy[2 * k + 1]), hi[1] = fmax(hi[1], c->xy[2 * k + 1]);
+        }
+        ext = fmax(hi[0] - lo[0], hi[1] - lo[1]);
+        if (ext < r)
+            wr_cli_warn("panel %d%s%s%s is %.3g mm across, smaller than one edge (%.3g mm): coordinates in metres in a "
+                        "millimetre file?", (int)p, nm ? " '" : "", nm ? nm : "", nm ? "'" : "", 1e3 * ext, 1e3 * r);
+        for (k = 0; k < 2; ++k) {
+            double rr = k ? res->panels[p].r_weft : res->panels[p].r_warp;
+            if (pf->desc.uniform_resolution > 0.0) break;
+            if (rr < WR_RESOLUTION_PAPER_R_MIN * (1.0 - 1e-9) || rr > WR_RESOLUTION_PAPER_R_MAX * (1.0 + 1e-9)) {
+                wr_cli_warn("panel %d%s%s%s: base resolution %.4g mm is outside the %g-%g mm band Eq. 4 was calibrated "
+                            "on", (int)p, nm ? " '" : "", nm ? nm : "", nm ? "'" : "", 1e3 * rr,
+                            1e3 * WR_RESOLUTION_PAPER_R_MIN, 1e3 * WR_RESOLUTION_PAPER_R_MAX);
+                break;
+            }
+        }
+    }
+}
+
+static void free_pattern(void *p) { wr_pattern_file_free((wr_pattern_file *)p); }
+static void free_result(void *p) { wr_mesher_free((wr_mesher_result *)p); }
+
+/* Mesher failures caused by the pattern (geometry, values, budget) are bad input; the rest is ours. */
+static int mesher_exit(wr_status st) {
+    return st == WR_ERR_NOMEM || st == WR_ERR_IO || st == WR_ERR_BACKEND ? WR_CLI_EXIT_FAILURE : WR_CLI_EXIT_USAGE;
 }
 
 int main(int argc, char **argv) {
     const char *in = NULL, *out = NULL;
+    static const char *const outputs[] = {"mesh.obj", "mesh.ply", "mesh.vtk", "seams.csv", "sizing.png", "summary.json"};
     double seed = -1.0, uniform = 0.0, maxv = 0.0;
-    int sew = 0, no_png = 0, quiet = 0, i, png = 0;
+    int sew = 0, no_png = 0, quiet = 0, png = 0, n_pos = 0, k;
     wr_pattern_file pf;
     wr_mesher_result res;
     wr_diag d;
     wr_status st;
+    wr_cli_opt opts[8];
+    memset(opts, 0, sizeof opts);
+    opts[0].name = "--output", opts[0].alias = "-o", opts[0].kind = WR_CLI_STRING, opts[0].out = (void *)&out;
+    opts[1].name = "--seed", opts[1].kind = WR_CLI_INTEGER, opts[1].out = &seed, opts[1].hi = 9007199254740992.0;
+    opts[2].name = "--uniform", opts[2].kind = WR_CLI_NUMBER, opts[2].out = &uniform, opts[2].lo = 1e-6,
+    opts[2].hi = 1e9;
+    opts[3].name = "--max-vertices", opts[3].kind = WR_CLI_INTEGER, opts[3].out = &maxv, opts[3].lo = 1,
+    opts[3].hi = 2147483647.0;
+    opts[4].name = "--sew", opts[4].kind = WR_CLI_FLAG, opts[4].out = &sew;
+    opts[5].name = "--no-png", opts[5].kind = WR_CLI_FLAG, opts[5].out = &no_png;
+    opts[6].name = "--quiet", opts[6].alias = "-q", opts[6].kind = WR_CLI_FLAG, opts[6].out = &quiet;
     wr_cli_set_program(argv[0]);
-    for (i = 1; i < argc; ++i) {
-        int k;
-        const char *v;
-        if (!strcmp(argv[i], "-h") || !strcmp(argv[i], "--help")) {
-            usage(stdout);
-            return 0;
-        }
-        if (!strcmp(argv[i], "-o")) {
-            if (i + 1 >= argc) {
-                wr_cli_error("-o needs a directory");
-                return WR_CLI_EXIT_USAGE;
-            }
-            out = argv[++i];
-            continue;
-        }
-        if ((k = wr_cli_value(argc, argv, &i, "--output", &v)) != 0) {
-            if (k < 0) return WR_CLI_EXIT_USAGE;
-            out = v;
-            continue;
-        }
-        if ((k = wr_cli_double(argc, argv, &i, "--seed", &seed)) != 0) {
-            if (k < 0) return WR_CLI_EXIT_USAGE;
-            if (seed < 0 || seed != (double)(long long)seed || seed > 9007199254740992.0) {
-                wr_cli_error("--seed must be a non-negative integer");
-                return WR_CLI_EXIT_USAGE;
-            }
-            continue;
-        }
-        if ((k = wr_cli_double(argc, argv, &i, "--uniform", &uniform)) != 0) {
-            if (k < 0) return WR_CLI_EXIT_USAGE;
-            if (!(uniform > 0.0)) {
-                wr_cli_error("--uniform must be a positive length in mm");
-                return WR_CLI_EXIT_USAGE;
-            }
-            continue;
-        }
-        if ((k = wr_cli_integer(argc, argv, &i, "--max-vertices", 1.0, 2147483647.0, &maxv)) != 0) {
-            if (k < 0) return WR_CLI_EXIT_USAGE;
-            continue;
-        }
-        if (wr_cli_is_flag(argv[i], "--sew")) {
-            sew = 1;
-            continue;
-        }
-        if (wr_cli_is_flag(argv[i], "--no-png")) {
-            no_png = 1;
-            continue;
-        }
-        if (!strcmp(argv[i], "-q") || wr_cli_is_flag(argv[i], "--quiet")) {
-            quiet = 1;
-            continue;
-        }
-        if (argv[i][0] == '-' && argv[i][1] != 0) {
-            wr_cli_error("unknown option '%s' (see --help)", argv[i]);
-            return WR_CLI_EXIT_USAGE;
-        }
-        if (in) {
-            wr_cli_error("more than one pattern file ('%s' and '%s')", in, argv[i]);
-            return WR_CLI_EXIT_USAGE;
-        }
-        in = argv[i];
-    }
+    if ((k = wr_cli_parse(argc, argv, opts, 7, &in, 1, &n_pos, usage)) <= 0) return k < 0 ? WR_CLI_EXIT_USAGE : 0;
     if (!out) {
         wr_cli_error("no output directory (use -o DIR; see --help)");
         return WR_CLI_EXIT_USAGE;
     }
+    if (!wr_cli_dir_outputs_ok(out, outputs, (int)(sizeof outputs / sizeof outputs[0]), &in, in ? 1 : 0))
+        return WR_CLI_EXIT_USAGE;
+    memset(&pf, 0, sizeof pf);
+    memset(&res, 0, sizeof res);
     st = in ? wr_pattern_load(in, &pf, &d) : wr_pattern_builtin_fig14(&pf, &d);
     if (st != WR_OK) {
         wr_cli_error("%s", d.message);
-        return 1;
+        return st == WR_ERR_NOMEM ? WR_CLI_EXIT_FAILURE : WR_CLI_EXIT_USAGE;
     }
+    wr_cli_defer(free_pattern, &pf);
     if (seed >= 0) pf.desc.seed = (uint64_t)seed;
     if (uniform > 0.0) pf.desc.uniform_resolution = uniform * 1e-3;
     if (maxv > 0) pf.desc.max_vertices = (int32_t)maxv;
@@ -129,22 +130,22 @@ int main(int argc, char **argv) {
         /* the library names its option (max_vertices); the user's lever here is the CLI flag */
         wr_cli_error("%s: %s%s", in ? in : "built-in example", d.message,
                      st == WR_ERR_BUDGET ? "; raise the budget with --max-vertices N or coarsen the mesh with --uniform MM" : "");
-        wr_pattern_file_free(&pf);
-        return 1;
+        return wr_cli_exit(mesher_exit(st));
     }
+    wr_cli_defer(free_result, &res);
+    plausibility(&pf, &res);
     st = wr_meshout_write_dir(&res, &pf, out, !no_png, &png, &d);
     if (st != WR_OK) {
         wr_cli_error("%s", d.message);
-        wr_mesher_free(&res);
-        wr_pattern_file_free(&pf);
-        return 1;
+        return wr_cli_exit(WR_CLI_EXIT_FAILURE);
     }
-    if (!no_png && !png) fprintf(stderr, "%s: warning: gnuplot not found, sizing.png skipped\n", wr_cli_program());
-    if (!quiet)
-        printf("%s: %d vertices, %d triangles, %d seam pairs; min angle %.1f deg, mean edge/sizing %.3f; %.2f s -> %s/\n",
+    if (!no_png && !png) wr_cli_warn("gnuplot not found, sizing.png skipped");
+    if (!quiet) {
+        char b1[32], b2[32];
+        printf("%s: %d vertices, %d triangles, %d seam pairs; min angle %s deg, mean edge/sizing %s; %.2f s -> %s/\n",
                pf.name[0] ? pf.name : (in ? in : "pattern"), (int)res.mesh.nv, (int)res.mesh.nf, (int)res.n_seam_pairs,
-               res.report.min_angle_deg, res.report.ratio_mean, res.report.t_total, out);
-    wr_mesher_free(&res);
-    wr_pattern_file_free(&pf);
-    return 0;
+               wr_cli_num(b1, sizeof b1, "%.1f", res.report.min_angle_deg),
+               wr_cli_num(b2, sizeof b2, "%.3f", res.report.ratio_mean), res.report.t_total, out);
+    }
+    return wr_cli_exit(0);
 }

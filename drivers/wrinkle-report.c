@@ -3,7 +3,9 @@
  * One job: read every result file written by a validation driver (schema in drivers/lib/vresult.h)
  * and write a Markdown report with a summary table, then per case its quantities (paper vs ours,
  * tolerance, pass), notes, extra tables and figures. Benchmarks: bench/RESULTS.md is appended
- * when present. Exit status: 0 when every case passed, 1 when any quantity failed, 2 on errors.
+ * when present. Exit status: 0 when every case passed, 1 when any quantity failed, 2 on bad input
+ * (options, unreadable or malformed result files, an output that is one of the inputs), 3 when the
+ * report could not be written.
  */
 #define _POSIX_C_SOURCE 200809L
 #include <cjson/cJSON.h>
@@ -13,6 +15,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cli.h"
 #include "wrinkle/core.h"
 
 static void usage(FILE *to) {
@@ -20,7 +23,7 @@ static void usage(FILE *to) {
             "usage: wrinkle-report [RESULTS_DIR] [-o REPORT.md] [--bench BENCH.md]\n"
             "  Reads RESULTS_DIR/*.json (default validation/results) written by the validation\n"
             "  drivers and writes a Markdown report (default validation/REPORT.md).\n"
-            "  Exit: 0 all pass, 1 some quantity failed, 2 error.\n");
+            "  Exit: 0 all pass, 1 some quantity failed, 2 bad input, 3 write failure.\n");
 }
 
 static int cmp_str(const void *a, const void *b) { return strcmp(*(char *const *)a, *(char *const *)b); }
@@ -49,25 +52,21 @@ int main(int argc, char **argv) {
     wr_afile f;
     wr_diag d;
 
-    for (a = 1; a < argc; ++a) {
-        if (!strcmp(argv[a], "-h") || !strcmp(argv[a], "--help")) {
-            usage(stdout);
-            return 0;
-        } else if (!strcmp(argv[a], "-o") && a + 1 < argc) {
-            out = argv[++a];
-        } else if (!strcmp(argv[a], "--bench") && a + 1 < argc) {
-            bench = argv[++a];
-        } else if (argv[a][0] == '-') {
-            fprintf(stderr, "wrinkle-report: unknown option '%s' (see --help)\n", argv[a]);
-            return 2;
-        } else {
-            dir = argv[a];
-        }
+    {
+        wr_cli_opt opts[2];
+        const char *pos = NULL;
+        int npos = 0;
+        memset(opts, 0, sizeof opts);
+        opts[0].name = "--output", opts[0].alias = "-o", opts[0].kind = WR_CLI_STRING, opts[0].out = (void *)&out;
+        opts[1].name = "--bench", opts[1].kind = WR_CLI_STRING, opts[1].out = (void *)&bench;
+        wr_cli_set_program(argv[0]);
+        if ((a = wr_cli_parse(argc, argv, opts, 2, &pos, 1, &npos, usage)) <= 0) return a < 0 ? WR_CLI_EXIT_USAGE : 0;
+        if (pos) dir = pos;
     }
     dp = opendir(dir);
     if (!dp) {
-        fprintf(stderr, "wrinkle-report: cannot open results directory '%s'\n", dir);
-        return 2;
+        wr_cli_error("cannot open results directory '%s'", dir);
+        return WR_CLI_EXIT_USAGE;
     }
     while ((de = readdir(dp)) != NULL) {
         size_t k = strlen(de->d_name);
@@ -75,10 +74,10 @@ int main(int argc, char **argv) {
             if (ncase == cap) {
                 cap = cap ? 2 * cap : 16;
                 names = (char **)realloc(names, cap * sizeof *names);
-                if (!names) return 2;
+                if (!names) return WR_CLI_EXIT_FAILURE;
             }
             names[ncase] = (char *)malloc(strlen(dir) + k + 2);
-            if (!names[ncase]) return 2;
+            if (!names[ncase]) return WR_CLI_EXIT_FAILURE;
             sprintf(names[ncase], "%s/%s", dir, de->d_name);
             ++ncase;
         }
@@ -89,19 +88,29 @@ int main(int argc, char **argv) {
     for (i = 0; i < ncase; ++i) {
         char *text = NULL;
         if (wr_file_read(names[i], &text, NULL, &d) != WR_OK) {
-            fprintf(stderr, "wrinkle-report: %s\n", d.message);
-            return 2;
+            wr_cli_error("%s", d.message);
+            return WR_CLI_EXIT_USAGE;
         }
         cases[i] = cJSON_Parse(text);
         wr_free(text);
         if (!cases[i]) {
-            fprintf(stderr, "wrinkle-report: '%s' is not valid JSON\n", names[i]);
-            return 2;
+            wr_cli_error("'%s' is not valid JSON", names[i]);
+            return WR_CLI_EXIT_USAGE;
         }
     }
+    {
+        const char **ins = (const char **)calloc(ncase + 1, sizeof *ins);
+        int ok;
+        if (!ins) return WR_CLI_EXIT_FAILURE;
+        for (i = 0; i < ncase; ++i) ins[i] = names[i];
+        ins[ncase] = bench;
+        ok = wr_cli_output_ok(out, ins, (int)ncase + 1);
+        free(ins);
+        if (!ok) return WR_CLI_EXIT_USAGE;
+    }
     if (wr_afile_open(&f, out, &d) != WR_OK) {
-        fprintf(stderr, "wrinkle-report: %s\n", d.message);
-        return 2;
+        wr_cli_error("%s", d.message);
+        return WR_CLI_EXIT_FAILURE;
     }
     fprintf(f.fp,
             "# wrinkle — validation report\n\n"
@@ -163,8 +172,8 @@ int main(int argc, char **argv) {
         }
     }
     if (wr_afile_commit(&f, &d) != WR_OK) {
-        fprintf(stderr, "wrinkle-report: %s\n", d.message);
-        return 2;
+        wr_cli_error("%s", d.message);
+        return WR_CLI_EXIT_FAILURE;
     }
     for (i = 0; i < ncase; ++i) {
         cJSON_Delete(cases[i]);
@@ -173,5 +182,5 @@ int main(int argc, char **argv) {
     free(cases);
     free(names);
     printf("wrinkle-report: %zu cases -> %s%s\n", ncase, out, any_fail ? " (some quantities missed)" : "");
-    return any_fail ? 1 : 0;
+    return wr_cli_exit(any_fail ? 1 : 0);
 }

@@ -48,7 +48,9 @@ static void usage(FILE *to) {
             "  --help                   this text\n"
             "\n"
             "Output: text mode prints the inputs and the model, then the answer (mm) as the LAST line.\n"
-            "Exit: 0 ok; 2 invalid input (one-line reason on stderr); 1 output failure.\n");
+            "Warnings (stderr, the answer is still printed): --thickness above 1 cm (it is in metres:\n"
+            "0.3 mm is 3e-4), a resolution outside the 2.5-50 mm band Eq. 4 was calibrated on.\n"
+            "Exit: 0 ok; 2 invalid input (one-line reason on stderr); 3 output failure.\n");
 }
 
 typedef struct opts {
@@ -74,7 +76,14 @@ static int print_json(cJSON *o) {
     wr_status st = wr_json_write(o, "-", &d);
     cJSON_Delete(o);
     if (st != WR_OK) wr_cli_error("%s", d.message);
-    return st == WR_OK ? 0 : 1;
+    return st == WR_OK ? 0 : WR_CLI_EXIT_FAILURE;
+}
+
+/* Style3D calibrated Eq. 4 on r in [2.5, 50] mm (Sec. 4.1): outside it the law is extrapolated. */
+static void warn_band(const char *what, double r) {
+    if (r < WR_RESOLUTION_PAPER_R_MIN * (1.0 - 1e-9) || r > WR_RESOLUTION_PAPER_R_MAX * (1.0 + 1e-9))
+        wr_cli_warn("%s = %.4g mm is outside the %g-%g mm band Eq. 4 was calibrated on (extrapolated)", what, 1e3 * r,
+                    1e3 * WR_RESOLUTION_PAPER_R_MIN, 1e3 * WR_RESOLUTION_PAPER_R_MAX);
 }
 
 static int fail_status(const char *what, const wr_diag *d) {
@@ -188,9 +197,9 @@ static int run_csv(const opts *o, const wr_resolution_model *m, const wr_resolut
     /* all input is good: now write the whole table */
     rc = fputs("name,B,E,r_mm\n", stdout) == EOF || (out.n && fwrite(out.p, 1, out.n, stdout) != out.n) ||
                  fflush(stdout) != 0
-             ? 1
+             ? WR_CLI_EXIT_FAILURE
              : 0;
-    if (rc) wr_cli_error("--csv: writing the output failed");
+    if (rc) wr_cli_error("--csv: writing the output failed (disk full or closed pipe?)");
     wr_free(out.p);
     return rc;
 bad:
@@ -214,60 +223,40 @@ int main(int argc, char **argv) {
     o.r_min_mm = 1e3 * WR_RESOLUTION_PAPER_R_MIN;
     o.r_max_mm = 1e3 * WR_RESOLUTION_PAPER_R_MAX;
 
-    for (i = 1; i < argc; ++i) {
-        const char *a = argv[i];
-#define DBL(name, field, flag)                                     \
-    if ((k = wr_cli_double(argc, argv, &i, name, &o.field)) != 0) { \
-        if (k < 0) return WR_CLI_EXIT_USAGE;                       \
-        flag = 1;                                                  \
-        continue;                                                  \
-    }
-        if (wr_cli_is_flag(a, "--help") || wr_cli_is_flag(a, "-h")) {
-            usage(stdout);
-            return 0;
-        }
-        if (wr_cli_is_flag(a, "--json")) {
-            o.json = 1;
-            continue;
-        }
-        if (wr_cli_is_flag(a, "--calibrate")) {
-            o.calibrate = 1;
-            continue;
-        }
-        if (wr_cli_is_flag(a, "--clamp")) {
-            o.clamp = 1;
-            continue;
-        }
-        if ((k = wr_cli_value(argc, argv, &i, "--csv", &o.csv)) != 0) {
-            if (k < 0) return WR_CLI_EXIT_USAGE;
-            if (!*o.csv) {
-                wr_cli_error("--csv needs a file name or '-'");
-                return WR_CLI_EXIT_USAGE;
-            }
-            continue;
-        }
-        DBL("--bending", B, o.has_B)
-        DBL("--young", E, o.has_E)
-        DBL("--thickness", h, o.has_h)
-        DBL("--poisson", nu, o.has_nu)
-        DBL("--warp-bending", Bw, o.has_Bw)
-        DBL("--warp-young", Ew, o.has_Ew)
-        DBL("--weft-bending", Bf, o.has_Bf)
-        DBL("--weft-young", Ef, o.has_Ef)
-        DBL("--E-min", E_min, has_range)
-        DBL("--E-max", E_max, has_range)
-        DBL("--B-min", B_min, has_range)
-        DBL("--B-max", B_max, has_range)
-        DBL("--r-min-mm", r_min_mm, has_range)
-        DBL("--r-max-mm", r_max_mm, has_range)
-        DBL("--inverse-mm", inverse_mm, o.has_inverse)
-        DBL("--c1", c1, o.has_c1)
-        DBL("--c2", c2, o.has_c2)
-        DBL("--r-lo-mm", r_lo_mm, o.has_lo)
-        DBL("--r-hi-mm", r_hi_mm, o.has_hi)
-#undef DBL
-        wr_cli_error("unknown option '%s' (see --help)", a);
-        return WR_CLI_EXIT_USAGE;
+    {
+        /* one table, the shared loop (cli.h): name, kind, destination, range, "given" flag */
+#define OPT(nm, kd, dst, flag)                                                                   \
+    opts[n].name = nm, opts[n].kind = kd, opts[n].out = (void *)(dst), opts[n].lo = 1.0, opts[n].hi = 0.0, \
+    opts[n].given = flag, ++n
+        wr_cli_opt opts[32];
+        int n = 0, npos = 0;
+        memset(opts, 0, sizeof opts);
+        OPT("--json", WR_CLI_FLAG, &o.json, NULL);
+        OPT("--calibrate", WR_CLI_FLAG, &o.calibrate, NULL);
+        OPT("--clamp", WR_CLI_FLAG, &o.clamp, NULL);
+        OPT("--csv", WR_CLI_STRING, &o.csv, NULL);
+        OPT("--bending", WR_CLI_NUMBER, &o.B, &o.has_B);
+        OPT("--young", WR_CLI_NUMBER, &o.E, &o.has_E);
+        OPT("--thickness", WR_CLI_NUMBER, &o.h, &o.has_h);
+        OPT("--poisson", WR_CLI_NUMBER, &o.nu, &o.has_nu);
+        OPT("--warp-bending", WR_CLI_NUMBER, &o.Bw, &o.has_Bw);
+        OPT("--warp-young", WR_CLI_NUMBER, &o.Ew, &o.has_Ew);
+        OPT("--weft-bending", WR_CLI_NUMBER, &o.Bf, &o.has_Bf);
+        OPT("--weft-young", WR_CLI_NUMBER, &o.Ef, &o.has_Ef);
+        OPT("--E-min", WR_CLI_NUMBER, &o.E_min, &has_range);
+        OPT("--E-max", WR_CLI_NUMBER, &o.E_max, &has_range);
+        OPT("--B-min", WR_CLI_NUMBER, &o.B_min, &has_range);
+        OPT("--B-max", WR_CLI_NUMBER, &o.B_max, &has_range);
+        OPT("--r-min-mm", WR_CLI_NUMBER, &o.r_min_mm, &has_range);
+        OPT("--r-max-mm", WR_CLI_NUMBER, &o.r_max_mm, &has_range);
+        OPT("--inverse-mm", WR_CLI_NUMBER, &o.inverse_mm, &o.has_inverse);
+        OPT("--c1", WR_CLI_NUMBER, &o.c1, &o.has_c1);
+        OPT("--c2", WR_CLI_NUMBER, &o.c2, &o.has_c2);
+        OPT("--r-lo-mm", WR_CLI_NUMBER, &o.r_lo_mm, &o.has_lo);
+        OPT("--r-hi-mm", WR_CLI_NUMBER, &o.r_hi_mm, &o.has_hi);
+#undef OPT
+        if ((k = wr_cli_parse(argc, argv, opts, n, NULL, 0, &npos, usage)) <= 0) return k < 0 ? WR_CLI_EXIT_USAGE : 0;
+        (void)i;
     }
 
     /* exactly one mode */
@@ -306,7 +295,7 @@ int main(int argc, char **argv) {
                o.B_max / o.E_min);
         printf("c1 = %.6g m^-3\nc2 = %.6g m^-1\n", m.c1, m.c2);
         printf("%.10g %.10g\n", m.c1, m.c2);
-        return fflush(stdout) == 0 ? 0 : 1;
+        return wr_cli_exit(0);
     }
 
     /* the model */
@@ -359,7 +348,7 @@ int main(int argc, char **argv) {
         }
         printf("r = %g mm, c1 = %.6g m^-3, c2 = %.6g m^-1\n", o.inverse_mm, m.c1, m.c2);
         printf("y = B/E [m^3]:\n%.10g\n", y);
-        return fflush(stdout) == 0 ? 0 : 1;
+        return wr_cli_exit(0);
     }
 
     if (o.has_Bw || o.has_Ew || o.has_Bf || o.has_Ef) {
@@ -370,6 +359,8 @@ int main(int argc, char **argv) {
         }
         if (wr_resolution_orthotropic(&m, o.Bw, o.Ew, o.Bf, o.Ef, &desc, &rw, &rf, &d) != WR_OK)
             return fail_status(d.item == 0 ? "warp" : "weft", &d);
+        warn_band("r_warp", rw);
+        warn_band("r_weft", rf);
         if (o.json) {
             cJSON *j = cJSON_CreateObject();
             cJSON_AddNumberToObject(j, "r_warp_mm", 1e3 * rw);
@@ -387,7 +378,7 @@ int main(int argc, char **argv) {
         printf("weft: B = %g N*m, E = %g N/m^2 -> r_weft = %.4f mm (edge length along the weft)\n", o.Bf, o.Ef,
                1e3 * rf);
         printf("%.4f %.4f\n", 1e3 * rw, 1e3 * rf);
-        return fflush(stdout) == 0 ? 0 : 1;
+        return wr_cli_exit(0);
     }
 
     /* single fabric */
@@ -410,11 +401,14 @@ int main(int argc, char **argv) {
             return WR_CLI_EXIT_USAGE;
         }
         if (o.has_h) {
+            if (o.h > 0.01)
+                wr_cli_warn("--thickness %g m is over 1 cm: the option is in metres (0.3 mm is 3e-4)", o.h);
             if (wr_kl_bending(o.E, o.h, o.nu, &B, &d) != WR_OK) return fail_status(NULL, &d);
         } else {
             B = o.B;
         }
         if (wr_resolution_from_BE(&m, B, o.E, &desc, &r, &d) != WR_OK) return fail_status(NULL, &d);
+        warn_band("r", r);
         if (o.json) {
             cJSON *j = cJSON_CreateObject();
             wr_resolution_domain_info dom;
@@ -439,6 +433,6 @@ int main(int argc, char **argv) {
         printf("B = %g N*m, E = %g N/m^2, y = B/E = %.6g m^3\n", B, o.E, B / o.E);
         printf("model (Eq. 4): c1 = %.6g m^-3, c2 = %.6g m^-1%s\n", m.c1, m.c2, o.has_c1 ? "" : " (paper)");
         printf("optimal resolution [mm]:\n%.4f\n", 1e3 * r);
-        return fflush(stdout) == 0 ? 0 : 1;
+        return wr_cli_exit(0);
     }
 }

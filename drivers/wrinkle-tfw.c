@@ -1,17 +1,20 @@
 /* wrinkle-tfw — TFW wrinkles end to end on a JSON scene (docs/scene-format.md).
  *
- *   wrinkle-tfw SCENE.json -o DIR [--levels N] [--quiet]
+ *   wrinkle-tfw SCENE.json -o DIR [--levels N] [--png] [--quiet]
  *
  * The scene's mesh, material, boundary conditions, gravity and load steps give the base surface,
  * solved with the TFW Sec. 4.1 model whatever the scene's shell section says (TFT membrane +
  * quadratic bending, statics.h through the scene library). Then tfw.h: wrinkle-free set W, App. E.2
  * initial guess, App. E.3 SQP, App. E.4 phase, App. E.5 Loop upsampling (N levels, default 2).
- * Writes DIR/base.obj, DIR/wrinkled.obj, DIR/fields.ply (per base vertex: a [m], |ω| mean over
- * incident edges [rad], W = 1 when every incident face is wrinkle-free) and DIR/summary.json
+ * Writes DIR/base.obj, DIR/wrinkled.obj (vt, vn), DIR/fields.ply + fields.vtk (per base vertex: a
+ * [m], |ω| mean over incident edges [rad], W = 1 when every incident face is wrinkle-free, phase
+ * [rad]), DIR/wrinkled.ply + wrinkled.vtk (per fine vertex: a, height [m]), with --png
+ * DIR/wrinkles.png (render.h: the coarse base beside the wrinkled surface) and DIR/summary.json
  * (TFT and SQP iterations, residuals, timings, wrinkle counts per scene probe measured on the
  * wrinkled surface). Every file is written to a temporary name and renamed. Progress on stderr.
  * Exit: 0 done; 1 outputs written but the base or the SQP did not converge; 2 bad input (one line);
- * 3 solver or output failure.
+ * 3 solver or output failure. Warnings (stderr, the run goes on): a thickness above 1 cm (metres
+ * meant as millimetres?), an edge strained by more than 100 %.
  */
 #define _POSIX_C_SOURCE 200809L
 #include <cjson/cJSON.h>
@@ -23,6 +26,7 @@
 
 #include "cli.h"
 #include "jsonout.h"
+#include "meshout.h"
 #include "scene.h"
 #include "wrinkle/tfw.h"
 
@@ -30,10 +34,12 @@ static void usage(FILE *f) {
     fprintf(f,
             "usage: wrinkle-tfw SCENE.json -o DIR [options]\n"
             "  TFW wrinkles (Chen et al. 2021) on the scene's TFT base surface (format: docs/scene-format.md).\n"
-            "  Writes DIR/base.obj, DIR/wrinkled.obj, DIR/fields.ply (a, |omega|, W), DIR/summary.json.\n"
+            "  Writes DIR/base.obj, DIR/wrinkled.obj (vt, vn), DIR/fields.ply + .vtk (a, |omega|, W, phase\n"
+            "  per base vertex), DIR/wrinkled.ply + .vtk (a, height per fine vertex), DIR/summary.json.\n"
             "options:\n"
             "  -o, --output DIR     output directory (created if missing)\n"
             "  --levels N           Loop subdivision levels of the wrinkled mesh (default 2, 0..5)\n"
+            "  --png                also DIR/wrinkles.png: the coarse base beside the wrinkled surface\n"
             "  --clamp-amplitude    a = 0 on the scene's prescribed vertices (the TFW paper's clamp reading;\n"
             "                       default: a clamp holds the base only, as in the authors' release)\n"
             "  --kappa K            curvature of Eq. 22: midedge (default) or vertex-fit (quadric fit, as the\n"
@@ -45,15 +51,19 @@ static void usage(FILE *f) {
 
 static void base_progress(void *user, int32_t step, int32_t n, const wr_statics_stats *st) {
     (void)user;
-    fprintf(stderr, "\r  TFT base: step %d/%d  Newton %3d  |g|/ref %.2e  %.1f s   ", (int)step, (int)n,
-            (int)st->iterations, st->grad_ref > 0 ? st->grad_norm / st->grad_ref : 0.0, st->t_total);
+    wr_cli_progress("  TFT base: step %d/%d  Newton %3d  |g|/ref %.2e  %.1f s", (int)step, (int)n, (int)st->iterations,
+                    st->grad_ref > 0 ? st->grad_norm / st->grad_ref : 0.0, st->t_total);
 }
 
 static void sqp_progress(const wr_wf_iter_info *info, void *user) {
     (void)user;
-    fprintf(stderr, "\r  SQP: iteration %4d  E %.8e J  KKT %.2e  mu %.1e  active %d   ", (int)info->iteration,
-            info->energy, info->kkt, info->shift, (int)info->n_active);
+    wr_cli_progress("  SQP: iteration %4d  E %.8e J  KKT %.2e  mu %.1e  active %d", (int)info->iteration, info->energy,
+                    info->kkt, info->shift, (int)info->n_active);
 }
+
+static void free_scene(void *p) { wr_scene_free((wr_scene *)p); }
+static void free_run(void *p) { wr_scene_run_free((wr_scene_run *)p); }
+static void free_tfw(void *p) { wr_tfw_result_free((wr_tfw_result *)p); }
 
 /* Probe i of the scene on the wrinkled surface: displacement from the smooth (a = 0) subdivided base
  * along the probe direction. */
@@ -102,9 +112,9 @@ static wr_status probe_wrinkled(const wr_scene_probe *pr, const wr_mesh *fine, c
 }
 
 int main(int argc, char **argv) {
-    const char *scene_path = NULL, *out = NULL;
-    double levels_d = 2.0;
-    int quiet = 0, clamp_amplitude = 0, i, k, rc = 0;
+    const char *scene_path = NULL, *out = NULL, *inputs[2];
+    double levels_d = 2.0, strain;
+    int quiet = 0, png = 0, clamp_amplitude = 0, i, rc = 0, n_pos = 0;
     const char *kappa_name = NULL;
     wr_scene sc;
     wr_scene_run run;
@@ -115,73 +125,71 @@ int main(int argc, char **argv) {
     wr_tfw_result r;
     char path[4096], base_warning[512] = "";
     double t0;
+    static const char *const outputs[] = {"base.obj",    "wrinkled.obj", "wrinkled.ply", "wrinkled.vtk",
+                                          "fields.ply",  "fields.vtk",   "wrinkles.png", "summary.json"};
+    wr_cli_opt opts[6];
+    memset(opts, 0, sizeof opts);
+    opts[0].name = "--output", opts[0].alias = "-o", opts[0].kind = WR_CLI_STRING, opts[0].out = (void *)&out;
+    opts[1].name = "--levels", opts[1].kind = WR_CLI_INTEGER, opts[1].out = &levels_d, opts[1].lo = 0, opts[1].hi = 5;
+    opts[2].name = "--quiet", opts[2].alias = "-q", opts[2].kind = WR_CLI_FLAG, opts[2].out = &quiet;
+    opts[3].name = "--png", opts[3].kind = WR_CLI_FLAG, opts[3].out = &png;
+    opts[4].name = "--clamp-amplitude", opts[4].kind = WR_CLI_FLAG, opts[4].out = &clamp_amplitude;
+    opts[5].name = "--kappa", opts[5].kind = WR_CLI_STRING, opts[5].out = (void *)&kappa_name;
     wr_cli_set_program(argv[0]);
-    for (i = 1; i < argc; ++i) {
-        if (wr_cli_is_flag(argv[i], "--help") || wr_cli_is_flag(argv[i], "-h")) {
-            usage(stdout);
-            return 0;
-        }
-        if (wr_cli_is_flag(argv[i], "--quiet")) {
-            quiet = 1;
-            continue;
-        }
-        if (wr_cli_is_flag(argv[i], "--clamp-amplitude")) {
-            clamp_amplitude = 1;
-            continue;
-        }
-        if ((k = wr_cli_value(argc, argv, &i, "--kappa", &kappa_name)) != 0) {
-            if (k < 0) return WR_CLI_EXIT_USAGE;
-            if (strcmp(kappa_name, "midedge") != 0 && strcmp(kappa_name, "vertex-fit") != 0) {
-                wr_cli_error("--kappa: '%s' is neither midedge nor vertex-fit", kappa_name);
-                return WR_CLI_EXIT_USAGE;
-            }
-            continue;
-        }
-        if ((k = wr_cli_integer(argc, argv, &i, "--levels", 0.0, 5.0, &levels_d)) != 0) {
-            if (k < 0) return WR_CLI_EXIT_USAGE;
-            continue;
-        }
-        /* -o/--output DIR, the SCENE.json positional, or an unknown option */
-        if (wr_cli_scene_arg(argc, argv, &i, &scene_path, &out) < 0) return WR_CLI_EXIT_USAGE;
+    if ((i = wr_cli_parse(argc, argv, opts, 6, &scene_path, 1, &n_pos, usage)) <= 0) return i < 0 ? WR_CLI_EXIT_USAGE : 0;
+    if (kappa_name && strcmp(kappa_name, "midedge") != 0 && strcmp(kappa_name, "vertex-fit") != 0) {
+        wr_cli_error("--kappa: '%s' is neither midedge nor vertex-fit", kappa_name);
+        return WR_CLI_EXIT_USAGE;
     }
     if (!wr_cli_scene_args_ok(scene_path, out)) return WR_CLI_EXIT_USAGE;
     if (strlen(out) > 3000) {
         wr_cli_error("output path too long");
         return WR_CLI_EXIT_USAGE;
     }
+    memset(&sc, 0, sizeof sc);
+    memset(&run, 0, sizeof run);
+    memset(&r, 0, sizeof r);
     if (wr_scene_load(&sc, scene_path, &d) != WR_OK) {
         wr_cli_error("%s: %s", scene_path, d.message);
         return WR_CLI_EXIT_USAGE;
     }
+    wr_cli_defer(free_scene, &sc);
+    inputs[0] = scene_path;
+    inputs[1] = sc.mesh.kind == WR_SCENE_MESH_OBJ ? sc.mesh.path : NULL;
+    if (!wr_cli_dir_outputs_ok(out, outputs, (int)(sizeof outputs / sizeof outputs[0]), inputs, 2))
+        return wr_cli_exit(WR_CLI_EXIT_USAGE);
     if (sc.shell.orthotropic) {
         wr_cli_error("%s: $.material: TFW needs an isotropic material (orthotropic given)", scene_path);
-        wr_scene_free(&sc);
-        return WR_CLI_EXIT_USAGE;
+        return wr_cli_exit(WR_CLI_EXIT_USAGE);
     }
+    if (sc.shell.thickness > 0.01)
+        wr_cli_warn("%s: $.material.thickness = %g m (over 1 cm): a value in millimetres read as metres?", scene_path,
+                    sc.shell.thickness);
     /* TFW Sec. 4.1 base model, whatever the scene asked for */
     sc.shell.membrane = WR_MEMBRANE_TFT;
     sc.shell.bending = WR_BENDING_QUADRATIC;
     st = wr_scene_run_create(&run, &sc, &d);
     if (st != WR_OK) {
         wr_cli_error("%s: %s", scene_path, d.message);
-        wr_scene_free(&sc);
-        return st == WR_ERR_NOMEM ? 3 : WR_CLI_EXIT_USAGE;
+        return wr_cli_exit(st == WR_ERR_NOMEM ? WR_CLI_EXIT_FAILURE : WR_CLI_EXIT_USAGE);
     }
+    wr_cli_defer(free_run, &run);
     if (!quiet)
         fprintf(stderr, "%s: %d vertices, %d faces, %d prescribed, %d load step(s)\n", sc.name, (int)run.mesh.nv,
                 (int)run.mesh.nf, (int)run.n_fixed, (int)sc.load_steps);
     st = wr_scene_run_solve(&run, quiet ? NULL : base_progress, NULL, &d);
-    if (!quiet) fprintf(stderr, "\n");
+    wr_cli_progress_end();
     if (st != WR_OK && st != WR_ERR_NOT_CONVERGED) {
         wr_cli_error("base solve failed: %s", d.message);
-        wr_scene_run_free(&run);
-        wr_scene_free(&sc);
-        return 3;
+        return wr_cli_exit(WR_CLI_EXIT_FAILURE);
     }
     if (st == WR_ERR_NOT_CONVERGED) { /* said after the TFW step, unless that step refuses the base */
         snprintf(base_warning, sizeof base_warning, "%s", d.message);
         rc = 1;
     }
+    if ((strain = wr_meshout_max_strain(&run.mesh, run.x)) > 1.0)
+        wr_cli_warn("an edge of the base is strained by %.0f %% (over 100 %%): check the scene's units and motions",
+                    100.0 * strain);
     mat.young = sc.shell.young;
     mat.poisson = sc.shell.poisson;
     mat.thickness = sc.shell.thickness;
@@ -192,18 +200,17 @@ int main(int argc, char **argv) {
     if (td.upsample.levels == 0) td.no_upsample = 1;
     if (!quiet) td.solve.progress = sqp_progress;
     t0 = wr_time_seconds();
+    wr_cli_defer(free_tfw, &r);
     tst = wr_tfw_fields(&run.mesh, run.x, &mat, &td, &r, &d);
-    if (!quiet) fprintf(stderr, "\n");
+    wr_cli_progress_end();
     if (tst != WR_OK && tst != WR_ERR_NOT_CONVERGED) {
         /* a slack base is the scene's set-up, not a failure of the solver (tfw.h ON OUTCOMES) */
         int slack = tst == WR_ERR_DOMAIN && r.outcome == WR_TFW_SLACK;
-        if (!slack && base_warning[0]) fprintf(stderr, "%s: warning: base: %s\n", wr_cli_program(), base_warning);
+        if (!slack && base_warning[0]) wr_cli_warn("base: %s", base_warning);
         wr_cli_error("%s: %s", slack ? scene_path : "wrinkle field failed", d.message);
-        wr_scene_run_free(&run);
-        wr_scene_free(&sc);
-        return slack ? WR_CLI_EXIT_USAGE : 3;
+        return wr_cli_exit(slack ? WR_CLI_EXIT_USAGE : WR_CLI_EXIT_FAILURE);
     }
-    if (base_warning[0]) fprintf(stderr, "%s: warning: base: %s\n", wr_cli_program(), base_warning);
+    if (base_warning[0]) wr_cli_warn("base: %s", base_warning);
     /* say plainly when nothing wrinkles, and why (tfw.h ON OUTCOMES), even with --quiet */
     if (r.outcome != WR_TFW_WRINKLED)
         fprintf(stderr, "%s: note: %s (%d of %d faces compressed, %d in W)\n", wr_cli_program(),
@@ -213,60 +220,13 @@ int main(int argc, char **argv) {
                         "bounded by tension (tfw.h ON OUTCOMES)\n",
                 wr_cli_program(), (int)r.n_slack);
     if (tst == WR_ERR_NOT_CONVERGED) {
-        fprintf(stderr, "%s: warning: %s\n", wr_cli_program(), d.message);
+        wr_cli_warn("%s", d.message);
         rc = 1;
     }
     mkdir(out, 0777); /* may exist; real failures show up when the files are opened */
-    {
-        wr_mesh bm = run.mesh; /* shallow view with pos = base */
-        double *amp = (double *)calloc((size_t)run.mesh.nv, sizeof(double));
-        double *wmag = (double *)calloc((size_t)run.mesh.nv, sizeof(double));
-        double *wcnt = (double *)calloc((size_t)run.mesh.nv, sizeof(double));
-        double *wfl = (double *)malloc(sizeof(double) * (size_t)run.mesh.nv);
-        const char *names[3] = {"a", "omega_abs", "W"};
-        const double *vals[3];
-        wr_status ws = WR_OK;
-        int32_t v, e, f;
-        if (!amp || !wmag || !wcnt || !wfl) ws = wr_fail(&d, WR_ERR_NOMEM, -1, "out of memory");
-        bm.pos = run.x;
-        snprintf(path, sizeof path, "%s/base.obj", out);
-        if (!ws) ws = wr_mesh_write_obj(&bm, path, NULL, &d);
-        if (!ws && !td.no_upsample) {
-            snprintf(path, sizeof path, "%s/wrinkled.obj", out);
-            ws = wr_mesh_write_obj(&r.wrinkled, path, NULL, &d);
-        }
-        if (!ws) {
-            for (v = 0; v < run.mesh.nv; ++v) {
-                amp[v] = r.a[v];
-                wfl[v] = 1.0;
-            }
-            for (e = 0; e < run.mesh.ne; ++e)
-                for (k = 0; k < 2; ++k) {
-                    wmag[run.mesh.edges[2 * e + k]] += fabs(r.omega[e]);
-                    wcnt[run.mesh.edges[2 * e + k]] += 1.0;
-                }
-            for (v = 0; v < run.mesh.nv; ++v) wmag[v] = wcnt[v] > 0 ? wmag[v] / wcnt[v] : 0.0;
-            for (v = 0; v < run.mesh.nv; ++v) wcnt[v] = 0.0;
-            for (f = 0; f < run.mesh.nf; ++f)
-                for (k = 0; k < 3; ++k)
-                    if (!r.wfree[f]) wfl[run.mesh.faces[3 * f + k]] = 0.0;
-            vals[0] = amp;
-            vals[1] = wmag;
-            vals[2] = wfl;
-            snprintf(path, sizeof path, "%s/fields.ply", out);
-            ws = wr_mesh_write_ply(&bm, path, 3, names, vals, &d);
-        }
-        free(amp);
-        free(wmag);
-        free(wcnt);
-        free(wfl);
-        if (ws) {
-            wr_cli_error("writing %s: %s", out, d.message);
-            wr_tfw_result_free(&r);
-            wr_scene_run_free(&run);
-            wr_scene_free(&sc);
-            return 3;
-        }
+    if (wr_meshout_tfw(out, &run.mesh, run.x, &mat, &td, &r, png, &d) != WR_OK) {
+        wr_cli_error("writing %s: %s", out, d.message);
+        return wr_cli_exit(WR_CLI_EXIT_FAILURE);
     }
     /* summary.json */
     {
@@ -334,9 +294,13 @@ int main(int argc, char **argv) {
                     cJSON_AddNumberToObject(o, "zero_crossing_waves", pr.zc_waves);
                     cJSON_AddNumberToObject(o, "wavelength_m", pr.wavelength);
                     cJSON_AddNumberToObject(o, "amplitude_m", pr.amplitude_p2p);
-                    if (!quiet)
-                        fprintf(stderr, "  probe %s: %.2f wrinkles, wavelength %.3f mm, amplitude %.3f mm\n",
-                                sc.probe[i].name, pr.count, 1e3 * pr.wavelength, 1e3 * pr.amplitude_p2p);
+                    if (!quiet) {
+                        char b1[32], b2[32], b3[32];
+                        fprintf(stderr, "  probe %s: %s wrinkles, wavelength %s mm, amplitude %s mm\n", sc.probe[i].name,
+                                wr_cli_num(b1, sizeof b1, "%.2f", pr.count),
+                                wr_cli_num(b2, sizeof b2, "%.3f", 1e3 * pr.wavelength),
+                                wr_cli_num(b3, sizeof b3, "%.3f", 1e3 * pr.amplitude_p2p));
+                    }
                 } else {
                     cJSON_AddStringToObject(o, "error", d.message);
                 }
@@ -348,16 +312,16 @@ int main(int argc, char **argv) {
         snprintf(path, sizeof path, "%s/summary.json", out);
         if (wr_json_write(root, path, &d) != WR_OK) {
             wr_cli_error("writing %s: %s", path, d.message);
-            rc = 3;
+            rc = WR_CLI_EXIT_FAILURE;
         }
         cJSON_Delete(root);
     }
-    if (!quiet)
+    if (!quiet) {
         fprintf(stderr, "  TFT %.2f s (%d Newton steps); TFW %.2f s: SQP %d iterations %.2f s, KKT %.2e of %.2e\n",
                 run.t_solve, (int)run.newton_iterations, wr_time_seconds() - t0, (int)r.sqp.iterations, r.seconds_sqp,
                 r.sqp.kkt, r.sqp.kkt0);
-    wr_tfw_result_free(&r);
-    wr_scene_run_free(&run);
-    wr_scene_free(&sc);
-    return rc;
+        fprintf(stderr, "  outputs in %s/ (base.obj, wrinkled.obj/.ply/.vtk, fields.ply/.vtk%s, summary.json)\n", out,
+                png ? ", wrinkles.png" : "");
+    }
+    return wr_cli_exit(rc);
 }

@@ -19,8 +19,11 @@
  *
  * Output (as Triangle): name.1.node, name.1.ele and, with -p, name.1.poly (segments; its node section
  * is empty and refers to the .node file). An input named name.1.poly gives name.2.*. Files are
- * written atomically. Exit status: 0 ok, 1 bad input or failure (one line "file:line: reason" on
- * stderr), 2 bad command line. */
+ * written atomically; an output that is the input file is refused. Exit status (as every wrinkle
+ * driver): 0 ok; 1 the Steiner budget stopped refinement without -S (mesh written); 2 bad input —
+ * command line or input file (one line "file:line: reason" on stderr); 3 the outputs could not be
+ * written. The Triangle-style switch string is parsed here (it is not the --name VALUE form the
+ * other drivers share through cli.h). */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -40,7 +43,8 @@ static void usage(FILE *f) {
             "  -z         number output items from zero\n"
             "  -Q / -V    quiet / verbose (adds a full wr_cdt_check verification)\n"
             "  --split-intersections  split crossing segments instead of rejecting them\n"
-            "writes name.1.node, name.1.ele (and name.1.poly with -p), like Triangle\n");
+            "writes name.1.node, name.1.ele (and name.1.poly with -p), like Triangle\n"
+            "exit status: 0 ok, 1 Steiner budget reached (mesh written), 2 bad input, 3 write failure\n");
 }
 
 /* numeric run after a switch letter, e.g. the "30" of "-pq30a.2"; *k advanced past it */
@@ -231,7 +235,7 @@ int main(int argc, char **argv) {
     st = wr_cdt_poly_read(src, &P, &dg);
     if (st != WR_OK) {
         wr_cli_error("%s", dg.message);
-        return 1;
+        return st == WR_ERR_NOMEM ? WR_CLI_EXIT_FAILURE : WR_CLI_EXIT_USAGE;
     }
     memset(&in, 0, sizeof in);
     in.points = P.points;
@@ -247,7 +251,7 @@ int main(int argc, char **argv) {
     if (st != WR_OK && st != WR_ERR_BUDGET) {
         wr_cli_error("%s: %s", src, dg.message);
         wr_cdt_poly_free(&P);
-        return 1;
+        return st == WR_ERR_NOMEM ? WR_CLI_EXIT_FAILURE : WR_CLI_EXIT_USAGE;
     }
     if (st == WR_ERR_BUDGET) {
         /* Triangle's -S semantics: stop at the limit and write what was reached */
@@ -260,11 +264,29 @@ int main(int argc, char **argv) {
         wr_cdt_poly_free(&P);
         return WR_CLI_EXIT_USAGE;
     }
+    {
+        char o[WR_PATH_MAX + 8];
+        const char *ins[2];
+        const char *ext[3] = {"node", "ele", "poly"};
+        int k;
+        char sib[WR_PATH_MAX + 8];
+        ins[0] = src;
+        snprintf(sib, sizeof sib, "%s.node", stem); /* a .poly with an empty node section reads it */
+        ins[1] = sib;
+        for (k = 0; k < (poly ? 3 : 2); ++k) {
+            snprintf(o, sizeof o, "%s.%s", base, ext[k]);
+            if (!wr_cli_output_ok(o, ins, 2)) {
+                wr_cdt_free(&r);
+                wr_cdt_poly_free(&P);
+                return WR_CLI_EXIT_USAGE;
+            }
+        }
+    }
     if (!write_outputs(base, &P, &r, poly, zero ? 0 : 1, &dg)) {
         wr_cli_error("%s", dg.message);
         wr_cdt_free(&r);
         wr_cdt_poly_free(&P);
-        return 1;
+        return WR_CLI_EXIT_FAILURE;
     }
     if (!quiet)
         printf("%s: %d vertices (%d Steiner), %d triangles, %d subsegments, min angle %.2f deg -> %s.node/.ele%s\n",
@@ -280,5 +302,5 @@ int main(int argc, char **argv) {
     }
     wr_cdt_free(&r);
     wr_cdt_poly_free(&P);
-    return rc;
+    return wr_cli_exit(rc);
 }

@@ -1,8 +1,13 @@
 #!/bin/sh
 # `make driver-check`: the command-line contract of every bin/wrinkle-* driver.
 #   1. --help (and -h) exit 0 and print a usage text on stdout.
-#   2. Bad input — an unknown option, a missing input file, a malformed input — exits non-zero with
-#      exactly ONE line on stderr (the reason) and nothing on stdout.
+#   2. Bad input — an unknown option, a missing input file, a malformed input — exits 2 (every
+#      driver: cli.h's WR_CLI_EXIT_USAGE) with exactly ONE line on stderr (the reason) and nothing on
+#      stdout. An output path that is an input file, or a FIFO/device, is bad input too.
+#   4. Behaviour shared through drivers/lib/cli.c: a failed write to standard output (/dev/full)
+#      gives a message and exit 3; progress on a redirected stderr is plain lines (no '\r'); no
+#      'inf'/'nan' printed; plausibility warnings for the usual unit slips (metres in a millimetre
+#      pattern, --thickness in mm, a resolution outside 2.5-50 mm, strains over 100 %).
 #   3. Outputs are atomic: traced with strace, no final output file is ever opened for writing
 #      directly (only temporaries, which are renamed over it); no temporaries are left behind; a
 #      failing run leaves the outputs of an earlier good run byte-identical; a run killed part-way
@@ -28,6 +33,7 @@ expect_fail() {
     n=$(grep -c . "$tmp/err")
     if [ $rc = 0 ]; then bad "$name: exit 0 on bad input"
     elif [ $rc -ge 126 ]; then bad "$name: exit $rc (crash or signal)"; head -n 3 "$tmp/err"
+    elif [ $rc != 2 ]; then bad "$name: exit $rc on bad input, want 2"; head -n 3 "$tmp/err"
     elif [ "$n" != 1 ]; then bad "$name: $n lines on stderr, want 1"; head -n 5 "$tmp/err"
     elif [ -s "$tmp/out" ]; then bad "$name: output on stdout with an error"
     else ok; fi
@@ -211,6 +217,91 @@ JSON
         "$B/wrinkle-sim" "$tmp/sim.json" -o "$tmp/simout" --quiet
     keep_on_failure "wrinkle-sim invalid scene" "$tmp/simout/frame_0003.obj" "$tmp/simout/summary.json" -- \
         "$B/wrinkle-sim" "$tmp/badsim.json" -o "$tmp/simout"
+fi
+# ---- 4. behaviour shared through cli.c ------------------------------------------------------------
+# full_stdout NAME DRIVER ARGS... : stdout on /dev/full -> exit 3 and a message naming the failure
+full_stdout() {
+    name=$1; shift
+    [ -c /dev/full ] || { note="$note $name(no /dev/full)"; return; }
+    (cd "$tmp/cwd" && "$@") >/dev/full 2>"$tmp/err" </dev/null
+    rc=$?
+    if [ $rc != 3 ]; then bad "$name: exit $rc with stdout on /dev/full, want 3"
+    elif ! grep -qi "fail" "$tmp/err"; then bad "$name: no message when stdout is full"; cat "$tmp/err"
+    else ok; fi
+}
+# warns NAME PATTERN DRIVER ARGS... : exit 0 and a warning line matching PATTERN on stderr
+warns() {
+    name=$1; pat=$2; shift 2
+    (cd "$tmp/cwd" && "$@") >"$tmp/out" 2>"$tmp/err" </dev/null
+    rc=$?
+    if [ $rc != 0 ] && [ $rc != 1 ]; then bad "$name: exit $rc"; head -n 3 "$tmp/err"
+    elif ! grep "warning:" "$tmp/err" | grep -qi "$pat"; then bad "$name: no warning matching '$pat'"; head -n 5 "$tmp/err"
+    else ok; fi
+}
+no_inf() {
+    if cat "$@" | tr -c 'A-Za-z\n' ' ' | grep -qwiE 'inf|nan|infinity'; then bad "inf/nan printed in $*"; else ok; fi
+}
+mkfifo "$tmp/fifo" 2>/dev/null
+if [ -x "$B/wrinkle-resolution" ]; then
+    full_stdout "wrinkle-resolution text" "$B/wrinkle-resolution" --bending 2e-6 --young 1e6
+    full_stdout "wrinkle-resolution json" "$B/wrinkle-resolution" --bending 2e-6 --young 1e6 --json
+    full_stdout "wrinkle-resolution csv" "$B/wrinkle-resolution" --csv "$tmp/good.csv"
+    warns "wrinkle-resolution thickness in mm" "metres" "$B/wrinkle-resolution" --thickness 0.3 --poisson 0.3 --young 1e6
+    warns "wrinkle-resolution outside the band" "band" "$B/wrinkle-resolution" --bending 1e-2 --young 2e3
+    warns "wrinkle-resolution warp outside the band" "band" "$B/wrinkle-resolution" --warp-bending 1e-2 \
+        --warp-young 2e3 --weft-bending 2e-6 --weft-young 1e6
+fi
+if [ -x "$B/wrinkle-mesh" ]; then
+    full_stdout "wrinkle-mesh summary line" "$B/wrinkle-mesh" -o "$tmp/mfull" --no-png
+    printf '{"name": "metres", "fabrics": {"f": {"B": 2e-6, "E": 1e6}}, "panels": [{"fabric": "f", "outer": [[0, 0], [0.25, 0], [0.25, 0.1], [0, 0.1]]}]}' > "$tmp/metres.json"
+    warns "wrinkle-mesh panel smaller than one edge" "smaller than one edge" "$B/wrinkle-mesh" "$tmp/metres.json" -o "$tmp/mm" --no-png -q
+    printf '{"name": "stiff", "fabrics": {"f": {"B": 1e-2, "E": 2e3}}, "panels": [{"fabric": "f", "outer": [[0, 0], [900, 0], [900, 900], [0, 900]]}]}' > "$tmp/stiff.json"
+    warns "wrinkle-mesh resolution outside the band" "band" "$B/wrinkle-mesh" "$tmp/stiff.json" -o "$tmp/mm" --no-png -q
+    mkdir -p "$tmp/mself"; cp "$root/examples/demo/sheet.json" "$tmp/mself/mesh.obj"
+    expect_fail "wrinkle-mesh output is the input" "$B/wrinkle-mesh" "$tmp/mself/mesh.obj" -o "$tmp/mself"
+    expect_fail "wrinkle-mesh output dir is a FIFO" "$B/wrinkle-mesh" -o "$tmp/fifo"
+fi
+if [ -x "$B/wrinkle-triangulate" ]; then
+    full_stdout "wrinkle-triangulate summary line" "$B/wrinkle-triangulate" -pq30 "$tmp/tri/sq.poly"
+    cp "$tmp/tri/sq.poly" "$tmp/tri/sq.1.poly"; cp "$tmp/tri/sq.1.poly" "$tmp/tri/sq.2.poly"
+    ln -sf "$tmp/tri/sq.1.poly" "$tmp/tri/sq.2.poly"
+    expect_fail "wrinkle-triangulate output is the input" "$B/wrinkle-triangulate" -pQ "$tmp/tri/sq.1.poly"
+fi
+if [ -x "$B/wrinkle-report" ] && [ -x "$B/validate_table1" ]; then
+    expect_fail "wrinkle-report output is an input" "$B/wrinkle-report" "$tmp/results" -o "$(ls "$tmp"/results/*.json | head -n 1)"
+    expect_fail "wrinkle-report output is a FIFO" "$B/wrinkle-report" "$tmp/results" -o "$tmp/fifo"
+    full_stdout "wrinkle-report summary line" "$B/wrinkle-report" "$tmp/results" -o "$tmp/REPORT3.md"
+fi
+if [ -x "$B/wrinkle-tfw" ]; then
+    # progress redirected to a file: several plain lines, no carriage return; no inf/nan
+    (cd "$tmp/cwd" && "$B/wrinkle-tfw" "$tmp/tfw.json" -o "$tmp/tfwp" --levels 1) >"$tmp/out" 2>"$tmp/err" </dev/null
+    if grep -q "$(printf '\r')" "$tmp/err"; then bad "wrinkle-tfw: carriage return in redirected progress"
+    elif [ "$(grep -c . "$tmp/err")" -lt 5 ]; then bad "wrinkle-tfw: progress is not one line per step"; head -c 400 "$tmp/err"
+    else ok; fi
+    no_inf "$tmp/err" "$tmp/out"
+    sed 's/"stretch": \[1.1, 1, 1\]/"stretch": [2.5, 1, 1]/' "$tmp/tfw.json" > "$tmp/tfw_big.json"
+    warns "wrinkle-tfw strain over 100 %" "100 %" "$B/wrinkle-tfw" "$tmp/tfw_big.json" -o "$tmp/tfwb" --levels 1 --quiet
+    sed 's/"thickness": 1.0e-4/"thickness": 0.3/' "$tmp/tfw.json" > "$tmp/tfw_thick.json"
+    warns "wrinkle-tfw thickness in mm" "metres" "$B/wrinkle-tfw" "$tmp/tfw_thick.json" -o "$tmp/tfwt" --levels 0 --quiet
+    # --png renders the picture (a PNG signature)
+    (cd "$tmp/cwd" && "$B/wrinkle-tfw" "$tmp/tfw.json" -o "$tmp/tfwpng" --levels 1 --quiet --png) >/dev/null 2>&1 </dev/null
+    if [ "$(head -c 4 "$tmp/tfwpng/wrinkles.png" 2>/dev/null | tail -c 3)" = PNG ]; then ok; else bad "wrinkle-tfw --png: no PNG"; fi
+    for f in wrinkled.ply wrinkled.vtk fields.vtk; do
+        [ -s "$tmp/tfwpng/$f" ] && ok || bad "wrinkle-tfw: $f not written"
+    done
+    grep -q '^vn ' "$tmp/tfwpng/wrinkled.obj" && grep -q '^vt ' "$tmp/tfwpng/wrinkled.obj" && ok ||
+        bad "wrinkle-tfw: wrinkled.obj without vt/vn"
+fi
+if [ -x "$B/wrinkle-statics" ]; then
+    (cd "$tmp/cwd" && "$B/wrinkle-statics" "$root/examples/scenes/cantilever.json" -o "$tmp/stp" --load-steps 2) \
+        >"$tmp/out" 2>"$tmp/err" </dev/null
+    if grep -q "$(printf '\r')" "$tmp/err"; then bad "wrinkle-statics: carriage return in redirected progress"; else ok; fi
+    no_inf "$tmp/err" "$tmp/out"
+    mkdir -p "$tmp/stself"
+    "$B/wrinkle-mesh" -o "$tmp/stmesh" -q --no-png --uniform 20 >/dev/null 2>&1
+    cp "$tmp/stmesh/mesh.obj" "$tmp/stself/deformed.obj"
+    printf '{"mesh": {"type": "obj", "path": "deformed.obj"}, "material": {"young": 1e6, "poisson": 0.3, "thickness": 1e-4}}' > "$tmp/stself/scene.json"
+    expect_fail "wrinkle-statics output is the scene's mesh" "$B/wrinkle-statics" "$tmp/stself/scene.json" -o "$tmp/stself"
 fi
 echo "driver-check: $pass passed, $fail failed, $found drivers${note:+; skipped:$note}"
 [ $fail = 0 ]

@@ -73,13 +73,13 @@ if have wrinkle-triangulate; then
 POLY
     run 0 triangulate_pq -- bin/wrinkle-triangulate -pq30 -a0.05 -Q "$tmp/sq.poly"
     printf '3 2 0 0\n1 0 0\n2 1 0\n' > "$tmp/bad.node"
-    run 1 triangulate_bad -- bin/wrinkle-triangulate -Q "$tmp/bad.node"
+    run 2 triangulate_bad -- bin/wrinkle-triangulate -Q "$tmp/bad.node"
 fi
 if have wrinkle-mesh; then
     run 0 mesh_builtin -- bin/wrinkle-mesh -o "$tmp/mesh" --no-png -q
     run 0 mesh_seams_sew -- bin/wrinkle-mesh tests/fuzz/corpus/fuzz_pattern/two_panels_seam.json -o "$tmp/mesh3" \
         --no-png -q --sew
-    run 1 mesh_bad -- bin/wrinkle-mesh "$tmp/no-such.json" -o "$tmp/mesh2"
+    run 2 mesh_bad -- bin/wrinkle-mesh "$tmp/no-such.json" -o "$tmp/mesh2"
 fi
 if have wrinkle-statics; then
     run 0 statics_cantilever -- bin/wrinkle-statics examples/scenes/cantilever.json -o "$tmp/cant" --quiet --load-steps 2
@@ -95,7 +95,7 @@ if have wrinkle-tfw; then
  "solver": {"load_steps": 2, "hessian": "projected"},
  "probes": [{"name": "mid", "from": [0.125, 0.0], "to": [0.125, 0.1], "samples": 64}]}
 JSON
-    run 0 tfw_small -- bin/wrinkle-tfw "$tmp/tfw.json" -o "$tmp/tfw" --quiet --levels 1
+    run 0 tfw_small -- bin/wrinkle-tfw "$tmp/tfw.json" -o "$tmp/tfw" --quiet --levels 1 --png
     run 2 tfw_bad -- bin/wrinkle-tfw "$tmp/no-such.json" -o "$tmp/tfw2" --quiet
 fi
 echo "memcheck: $pass passed, $fail failed, $skip skipped"

@@ -819,9 +819,10 @@ Test(meshout, writes_whole_directory_or_nothing) {
     cr_expect(strstr(d.message, "not a directory") != NULL, "%s", d.message);
     /* cleanup */
     {
-        static const char *const names[] = {"mesh.obj", "mesh.ply", "seams.csv", "sizing.png", "summary.json"};
+        static const char *const names[] = {"mesh.obj", "mesh.ply", "mesh.vtk", "seams.csv", "sizing.png",
+                                            "summary.json"};
         int k;
-        for (k = 0; k < 5; ++k) {
+        for (k = 0; k < 6; ++k) {
             snprintf(p, sizeof p, "%s/%s", tmpl, names[k]);
             remove(p);
         }

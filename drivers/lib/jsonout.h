@@ -1,5 +1,6 @@
-/* jsonout.h — write one cJSON document, the way every wrinkle driver does (driver-side helper, not a
- * public wrinkle header; compiled once as drivers/lib/jsonout.c and linked into every program).
+/* jsonout.h — write one cJSON document, the way every wrinkle driver does (compiled once as
+ * drivers/lib/jsonout.c and linked into every program; installed with the format readers as
+ * <wrinkle/formats/jsonout.h> in libwrinkle-formats.a, which scene.c uses).
  *
  *   wr_json_write(root, path, diag)   indented JSON + newline; path "-" (or NULL) = stdout, any other
  *                                     path through wr_afile (temporary + rename: the file appears whole

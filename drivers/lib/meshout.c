@@ -284,6 +284,7 @@ static wr_status write_summary(const wr_mesher_result *res, const wr_pattern_fil
     files = cJSON_AddArrayToObject(root, "files");
     cJSON_AddItemToArray(files, cJSON_CreateString("mesh.obj"));
     cJSON_AddItemToArray(files, cJSON_CreateString("mesh.ply"));
+    cJSON_AddItemToArray(files, cJSON_CreateString("mesh.vtk"));
     if (res->n_seam_pairs) cJSON_AddItemToArray(files, cJSON_CreateString("seams.csv"));
     if (png_written) cJSON_AddItemToArray(files, cJSON_CreateString("sizing.png"));
     cJSON_AddItemToArray(files, cJSON_CreateString("summary.json"));
@@ -294,14 +295,13 @@ static wr_status write_summary(const wr_mesher_result *res, const wr_pattern_fil
 
 wr_status wr_meshout_write_dir(const wr_mesher_result *res, const wr_pattern_file *pf, const char *dir, int want_png,
                                int *png_written, wr_diag *diag) {
-    static const char *const names[] = {"mesh.obj", "mesh.ply", "seams.csv", "sizing.png", "summary.json"};
-    char stage[WR_PATH_MAX], p[WR_PATH_MAX + 64], q[WR_PATH_MAX + 64], comment[512];
+    static const char *const names[] = {"mesh.obj", "mesh.ply", "mesh.vtk", "seams.csv", "sizing.png", "summary.json"};
+    char stage[WR_PATH_MAX], p[WR_PATH_MAX + 64], q[WR_PATH_MAX + 64];
     const char *pn[4];
     const double *pv[4];
     double *panel_id = NULL;
-    wr_obj_desc od;
     wr_status st;
-    int png = 0, k, n;
+    int png = 0, k;
     struct stat sb;
     wr_diag d2;
     int32_t f, c;
@@ -316,15 +316,11 @@ wr_status wr_meshout_write_dir(const wr_mesher_result *res, const wr_pattern_fil
     }
     snprintf(stage, sizeof stage, "%s/.wrinkle-mesh-XXXXXX", dir);
     if (!mkdtemp(stage)) return wr_fail(diag, WR_ERR_IO, -1, "cannot create a staging directory in '%s'", dir);
-    /* mesh.obj */
-    memset(&od, 0, sizeof od);
-    snprintf(comment, sizeof comment, "wrinkle-mesh: %s; groups panel<i> are, in order:", pf && pf->name[0] ? pf->name : "pattern");
-    n = (int)strlen(comment);
-    for (k = 0; pf && pf->panel_names && k < res->n_panels && n < (int)sizeof comment - 40; ++k)
-        n += snprintf(comment + n, sizeof comment - (size_t)n, " %d=%s", k, pf->panel_names[k][0] ? pf->panel_names[k] : "(unnamed)");
-    od.comment = comment;
-    snprintf(p, sizeof p, "%s/mesh.obj", stage);
-    if ((st = wr_mesh_write_obj(&res->mesh, p, &od, diag)) != WR_OK) goto fail;
+    /* mesh.obj: vt = pattern coordinates, vn, one group per panel named after it */
+    snprintf(p, sizeof p, "%s/mesh", stage);
+    if ((st = wr_meshout_write_viewer(&res->mesh, NULL, NULL, 0, pf ? (const char *const *)pf->panel_names : NULL,
+                                      pf && pf->panel_names ? res->n_panels : 0, p, WR_MESHOUT_OBJ, diag)) != WR_OK)
+        goto fail;
     /* mesh.ply: per-vertex sizing (and the panel of the vertex) */
     panel_id = (double *)malloc((size_t)(res->mesh.nv > 0 ? res->mesh.nv : 1) * sizeof(double));
     if (!panel_id) {
@@ -346,6 +342,15 @@ wr_status wr_meshout_write_dir(const wr_mesher_result *res, const wr_pattern_fil
     pv[3] = panel_id;
     snprintf(p, sizeof p, "%s/mesh.ply", stage);
     st = wr_mesh_write_ply(&res->mesh, p, 4, pn, pv, diag);
+    if (st == WR_OK) { /* the same fields for ParaView, with normals and texture coordinates */
+        wr_meshout_field fl[4];
+        for (k = 0; k < 4; ++k) {
+            fl[k].name = pn[k];
+            fl[k].values = pv[k];
+        }
+        snprintf(p, sizeof p, "%s/mesh", stage);
+        st = wr_meshout_write_viewer(&res->mesh, NULL, fl, 4, NULL, 0, p, WR_MESHOUT_VTK, diag);
+    }
     free(panel_id);
     if (st != WR_OK) goto fail;
     if (res->n_seam_pairs > 0) {
@@ -368,7 +373,7 @@ wr_status wr_meshout_write_dir(const wr_mesher_result *res, const wr_pattern_fil
     snprintf(p, sizeof p, "%s/summary.json", stage);
     if ((st = write_summary(res, pf, p, png, diag)) != WR_OK) goto fail;
     /* commit: rename every finished file into place, then drop the stale picture/seams of a previous run */
-    for (k = 0; k < 5; ++k) {
+    for (k = 0; k < (int)(sizeof names / sizeof names[0]); ++k) {
         snprintf(p, sizeof p, "%s/%s", stage, names[k]);
         snprintf(q, sizeof q, "%s/%s", dir, names[k]);
         if (stat(p, &sb) == 0 && rename(p, q) != 0) {
@@ -391,4 +396,363 @@ wr_status wr_meshout_write_dir(const wr_mesher_result *res, const wr_pattern_fil
 fail:
     remove_tree(stage);
     return st;
+}
+
+/* ---- viewer-ready files ------------------------------------------------------------------------ */
+
+static void viewer_normals(const wr_mesh *m, const double *pos, double *vn) {
+    int32_t f, v;
+    int c, k;
+    memset(vn, 0, sizeof(double) * 3 * (size_t)m->nv);
+    for (f = 0; f < m->nf; ++f) { /* area-weighted: the unnormalised cross product per face */
+        const int32_t *t = m->faces + 3 * f;
+        double u[3], w[3];
+        for (k = 0; k < 3; ++k) {
+            u[k] = pos[3 * t[1] + k] - pos[3 * t[0] + k];
+            w[k] = pos[3 * t[2] + k] - pos[3 * t[0] + k];
+        }
+        for (c = 0; c < 3; ++c) {
+            vn[3 * t[c]] += u[1] * w[2] - u[2] * w[1];
+            vn[3 * t[c] + 1] += u[2] * w[0] - u[0] * w[2];
+            vn[3 * t[c] + 2] += u[0] * w[1] - u[1] * w[0];
+        }
+    }
+    for (v = 0; v < m->nv; ++v) {
+        double n = sqrt(vn[3 * v] * vn[3 * v] + vn[3 * v + 1] * vn[3 * v + 1] + vn[3 * v + 2] * vn[3 * v + 2]);
+        if (n > 0.0)
+            for (k = 0; k < 3; ++k) vn[3 * v + k] /= n;
+        else
+            vn[3 * v + 2] = 1.0; /* isolated vertex */
+    }
+}
+
+/* Texture coordinate of vertex v: rest, else (x, y) of pos. */
+static void viewer_uv(const wr_mesh *m, const double *pos, int32_t v, double uv[2]) {
+    if (m->rest) {
+        uv[0] = m->rest[2 * v];
+        uv[1] = m->rest[2 * v + 1];
+    } else {
+        uv[0] = pos[3 * v];
+        uv[1] = pos[3 * v + 1];
+    }
+}
+
+static void obj_group_name(FILE *fp, const char *const *names, int32_t n_names, int32_t g) {
+    const char *s = names && g >= 0 && g < n_names ? names[g] : NULL;
+    if (!s || !*s) {
+        fprintf(fp, "g panel%d\n", (int)g);
+        return;
+    }
+    fputs("g ", fp);
+    for (; *s; ++s) fputc(*s == ' ' || *s == '\t' || *s == '\n' || *s == '\r' ? '_' : *s, fp);
+    fputc('\n', fp);
+}
+
+static wr_status viewer_obj(const wr_mesh *m, const double *pos, const double *vn, const char *const *names,
+                            int32_t n_names, const char *path, wr_diag *diag) {
+    wr_afile f;
+    wr_status st = wr_afile_open(&f, path, diag);
+    int32_t v, t, cur = -1, k;
+    int corner = m->corner_rest != NULL;
+    double uv[2];
+    if (st != WR_OK) return st;
+    fprintf(f.fp, "# wrinkle: %d vertices, %d faces; vt = rest (pattern) coordinates [m]%s; vn = vertex normals\n",
+            (int)m->nv, (int)m->nf, corner ? " per face corner" : "");
+    for (v = 0; v < m->nv; ++v) fprintf(f.fp, "v %.17g %.17g %.17g\n", pos[3 * v], pos[3 * v + 1], pos[3 * v + 2]);
+    if (corner)
+        for (k = 0; k < 3 * m->nf; ++k) fprintf(f.fp, "vt %.17g %.17g\n", m->corner_rest[2 * k], m->corner_rest[2 * k + 1]);
+    else
+        for (v = 0; v < m->nv; ++v) {
+            viewer_uv(m, pos, v, uv);
+            fprintf(f.fp, "vt %.17g %.17g\n", uv[0], uv[1]);
+        }
+    for (v = 0; v < m->nv; ++v) fprintf(f.fp, "vn %.6f %.6f %.6f\n", vn[3 * v], vn[3 * v + 1], vn[3 * v + 2]);
+    for (t = 0; t < m->nf; ++t) {
+        const int32_t *c = m->faces + 3 * t;
+        int32_t g = m->face_panel ? m->face_panel[t] : 0;
+        if (t == 0 || g != cur) {
+            cur = g;
+            obj_group_name(f.fp, names, n_names, g);
+        }
+        for (k = 0; k < 3; ++k) fprintf(f.fp, "%s%d/%d/%d", k ? " " : "f ", (int)c[k] + 1, corner ? (int)(3 * t + k + 1) : (int)c[k] + 1, (int)c[k] + 1);
+        fputc('\n', f.fp);
+    }
+    return wr_afile_commit(&f, diag);
+}
+
+static wr_status viewer_ply(const wr_mesh *m, const double *pos, const double *vn, const wr_meshout_field *fl,
+                            int32_t nfl, const char *path, wr_diag *diag) {
+    wr_afile f;
+    wr_status st = wr_afile_open(&f, path, diag);
+    int32_t v, t, k;
+    double uv[2];
+    if (st != WR_OK) return st;
+    fprintf(f.fp, "ply\nformat ascii 1.0\ncomment wrinkle: positions [m], s t = rest coordinates [m]\n"
+                  "element vertex %d\n", (int)m->nv);
+    fputs("property float x\nproperty float y\nproperty float z\nproperty float nx\nproperty float ny\n"
+          "property float nz\nproperty float s\nproperty float t\n", f.fp);
+    for (k = 0; k < nfl; ++k) fprintf(f.fp, "property float %s\n", fl[k].name);
+    fprintf(f.fp, "element face %d\nproperty list uchar int vertex_indices\nend_header\n", (int)m->nf);
+    for (v = 0; v < m->nv; ++v) {
+        viewer_uv(m, pos, v, uv);
+        fprintf(f.fp, "%.9g %.9g %.9g %.6f %.6f %.6f %.9g %.9g", pos[3 * v], pos[3 * v + 1], pos[3 * v + 2], vn[3 * v],
+                vn[3 * v + 1], vn[3 * v + 2], uv[0], uv[1]);
+        for (k = 0; k < nfl; ++k) fprintf(f.fp, " %.9g", isfinite(fl[k].values[v]) ? fl[k].values[v] : 0.0);
+        fputc('\n', f.fp);
+    }
+    for (t = 0; t < m->nf; ++t) fprintf(f.fp, "3 %d %d %d\n", (int)m->faces[3 * t], (int)m->faces[3 * t + 1], (int)m->faces[3 * t + 2]);
+    return wr_afile_commit(&f, diag);
+}
+
+static wr_status viewer_vtk(const wr_mesh *m, const double *pos, const double *vn, const wr_meshout_field *fl,
+                            int32_t nfl, const char *path, wr_diag *diag) {
+    wr_afile f;
+    wr_status st = wr_afile_open(&f, path, diag);
+    int32_t v, t, k;
+    double uv[2];
+    if (st != WR_OK) return st;
+    fprintf(f.fp, "# vtk DataFile Version 3.0\nwrinkle mesh [m]\nASCII\nDATASET POLYDATA\nPOINTS %d double\n", (int)m->nv);
+    for (v = 0; v < m->nv; ++v) fprintf(f.fp, "%.9g %.9g %.9g\n", pos[3 * v], pos[3 * v + 1], pos[3 * v + 2]);
+    fprintf(f.fp, "POLYGONS %d %lld\n", (int)m->nf, 4LL * m->nf);
+    for (t = 0; t < m->nf; ++t) fprintf(f.fp, "3 %d %d %d\n", (int)m->faces[3 * t], (int)m->faces[3 * t + 1], (int)m->faces[3 * t + 2]);
+    fprintf(f.fp, "POINT_DATA %d\nNORMALS normals float\n", (int)m->nv);
+    for (v = 0; v < m->nv; ++v) fprintf(f.fp, "%.6f %.6f %.6f\n", vn[3 * v], vn[3 * v + 1], vn[3 * v + 2]);
+    fputs("TEXTURE_COORDINATES rest 2 float\n", f.fp);
+    for (v = 0; v < m->nv; ++v) {
+        viewer_uv(m, pos, v, uv);
+        fprintf(f.fp, "%.9g %.9g\n", uv[0], uv[1]);
+    }
+    for (k = 0; k < nfl; ++k) {
+        fprintf(f.fp, "SCALARS %s double 1\nLOOKUP_TABLE default\n", fl[k].name);
+        for (v = 0; v < m->nv; ++v) {
+            if (isfinite(fl[k].values[v]))
+                fprintf(f.fp, "%.9g\n", fl[k].values[v]);
+            else
+                fputs("nan\n", f.fp);
+        }
+    }
+    return wr_afile_commit(&f, diag);
+}
+
+wr_status wr_meshout_write_viewer(const wr_mesh *m, const double *pos, const wr_meshout_field *fields, int32_t n_fields,
+                                  const char *const *group_names, int32_t n_groups, const char *stem, unsigned formats,
+                                  wr_diag *diag) {
+    char path[WR_PATH_MAX];
+    double *vn;
+    wr_status st = WR_OK;
+    int32_t k;
+    const char *c;
+    if (!m || !m->faces || m->nv < 1) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "viewer output: empty mesh");
+    if (!stem || strlen(stem) > WR_PATH_MAX - 8) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "viewer output: bad path");
+    for (k = 0; k < n_fields; ++k) {
+        if (!fields[k].name || !*fields[k].name || !fields[k].values)
+            return wr_fail(diag, WR_ERR_INVALID_ARG, k, "viewer output: field %d has no name or values", (int)k);
+        for (c = fields[k].name; *c; ++c)
+            if (!((*c >= 'a' && *c <= 'z') || (*c >= 'A' && *c <= 'Z') || (*c >= '0' && *c <= '9') || *c == '_'))
+                return wr_fail(diag, WR_ERR_INVALID_ARG, k, "viewer output: field name '%s' (letters, digits, _)",
+                               fields[k].name);
+    }
+    if (!pos) pos = m->pos;
+    vn = (double *)malloc(sizeof(double) * 3 * (size_t)m->nv);
+    if (!vn) return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
+    viewer_normals(m, pos, vn);
+    if (formats & WR_MESHOUT_OBJ) {
+        snprintf(path, sizeof path, "%s.obj", stem);
+        st = viewer_obj(m, pos, vn, group_names, n_groups, path, diag);
+    }
+    if (st == WR_OK && (formats & WR_MESHOUT_PLY)) {
+        snprintf(path, sizeof path, "%s.ply", stem);
+        st = viewer_ply(m, pos, vn, fields, n_fields, path, diag);
+    }
+    if (st == WR_OK && (formats & WR_MESHOUT_VTK)) {
+        snprintf(path, sizeof path, "%s.vtk", stem);
+        st = viewer_vtk(m, pos, vn, fields, n_fields, path, diag);
+    }
+    free(vn);
+    return st;
+}
+
+wr_status wr_meshout_png(const char *path, const wr_render_panel *panels, int32_t n, int32_t columns, int32_t panel_w,
+                         int32_t panel_h, const wr_view_desc *view, wr_diag *diag) {
+    wr_image img;
+    wr_status st = wr_render_panels(&img, panels, n, columns, view, panel_w, panel_h, diag);
+    if (st != WR_OK) return st;
+    st = wr_image_write_png(&img, path, diag);
+    wr_image_free(&img);
+    return st;
+}
+
+/* Offset of the wrinkled surface from the smooth subdivided base (a = 0, same phase and levels)
+ * along the smooth surface's vertex normal: the wrinkle "height" a newcomer reads in a picture. */
+static wr_status tfw_height(const wr_mesh *base, const double *base_pos, const wr_wf_material *mat,
+                            const wr_tfw_desc *td, const wr_tfw_result *r, double *height, wr_diag *diag) {
+    wr_wf wf;
+    wr_mesh sm;
+    double *zero = (double *)calloc((size_t)base->nv, sizeof(double)), *vn = NULL;
+    wr_status st;
+    int32_t v;
+    int k;
+    memset(&sm, 0, sizeof sm);
+    if (!zero) return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
+    st = wr_wf_create(&wf, base, base_pos, mat, diag);
+    if (st == WR_OK) {
+        wr_wf_set_wrinkle_free(&wf, r->wfree);
+        st = wr_wf_upsample(&wf, zero, r->phi, &td->upsample, &sm, NULL, diag);
+        wr_wf_free(&wf);
+    }
+    if (st == WR_OK && sm.nv != r->wrinkled.nv)
+        st = wr_fail(diag, WR_ERR_TOPOLOGY, -1, "smooth and wrinkled meshes differ (%d vs %d vertices)", (int)sm.nv,
+                     (int)r->wrinkled.nv);
+    if (st == WR_OK && !(vn = (double *)malloc(sizeof(double) * 3 * (size_t)sm.nv)))
+        st = wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
+    if (st == WR_OK) {
+        viewer_normals(&sm, sm.pos, vn);
+        for (v = 0; v < sm.nv; ++v) {
+            height[v] = 0.0;
+            for (k = 0; k < 3; ++k) height[v] += (r->wrinkled.pos[3 * v + k] - sm.pos[3 * v + k]) * vn[3 * v + k];
+        }
+    }
+    free(vn);
+    free(zero);
+    wr_mesh_free(&sm);
+    return st;
+}
+
+static wr_status tfw_picture(const char *path, const wr_mesh *base, const double *base_pos, const wr_tfw_result *r,
+                             const double *height, wr_diag *diag) {
+    wr_render_panel pn[2];
+    wr_view_desc vd;
+    wr_view v;
+    char t0[160], t1[160];
+    double *hmm = (double *)malloc(sizeof(double) * (size_t)r->wrinkled.nv), lo[2] = {HUGE_VAL, HUGE_VAL},
+           hi[2] = {-HUGE_VAL, -HUGE_VAL}, q[3], amax = 0.0, aspect;
+    int32_t i, columns, pw = 1000, ph;
+    wr_status st;
+    if (!hmm) return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
+    for (i = 0; i < r->wrinkled.nv; ++i) hmm[i] = 1e3 * height[i];
+    for (i = 0; i < base->nv; ++i) amax = fmax(amax, r->a[i]);
+    memset(&vd, 0, sizeof vd);
+    vd.has_angles = 1;
+    vd.azimuth_deg = -70.0; /* a three-quarter view from the front left, 40° above the cloth */
+    vd.elevation_deg = 40.0;
+    /* stack the two views for a long piece, put them side by side otherwise */
+    wr_view_fit(&v, base_pos, base->nv, &vd, 0, 0, 1000, 1000);
+    for (i = 0; i < base->nv; ++i) {
+        wr_view_project(&v, base_pos + 3 * i, q);
+        lo[0] = fmin(lo[0], q[0]), hi[0] = fmax(hi[0], q[0]);
+        lo[1] = fmin(lo[1], q[1]), hi[1] = fmax(hi[1], q[1]);
+    }
+    aspect = hi[0] > lo[0] ? (hi[1] - lo[1]) / (hi[0] - lo[0]) : 1.0;
+    columns = aspect < 0.75 ? 1 : 2;
+    if (columns == 2) pw = 700;
+    ph = (int32_t)(pw * fmin(1.1, fmax(0.3, aspect * 1.12)));
+    memset(pn, 0, sizeof pn);
+    snprintf(t0, sizeof t0, "coarse base: %d vertices (TFT)", (int)base->nv);
+    snprintf(t1, sizeof t1, "TFW wrinkles: %d vertices, max amplitude %.2f mm", (int)r->wrinkled.nv, 1e3 * amax);
+    pn[0].pos = base_pos;
+    pn[0].nv = base->nv;
+    pn[0].faces = base->faces;
+    pn[0].nf = base->nf;
+    pn[0].title = t0;
+    pn[0].style.wireframe = 1;
+    pn[1].pos = r->wrinkled.pos;
+    pn[1].nv = r->wrinkled.nv;
+    pn[1].faces = r->wrinkled.faces;
+    pn[1].nf = r->wrinkled.nf;
+    pn[1].title = t1;
+    pn[1].style.scalar = hmm;
+    pn[1].style.colormap = WR_COLORMAP_DIVERGING;
+    pn[1].colorbar_label = "wrinkle height mm";
+    st = wr_meshout_png(path, pn, 2, columns, pw, ph, &vd, diag);
+    free(hmm);
+    return st;
+}
+
+wr_status wr_meshout_tfw(const char *dir, const wr_mesh *base, const double *base_pos, const wr_wf_material *mat,
+                         const wr_tfw_desc *td, const wr_tfw_result *r, int png, wr_diag *diag) {
+    char stem[WR_PATH_MAX];
+    double *amp = NULL, *phase = NULL, *wmag = NULL, *wcnt = NULL, *wfl = NULL, *height = NULL;
+    wr_mesh bm = *base; /* shallow view with pos = the base surface */
+    wr_meshout_field fl[4];
+    wr_status st = WR_OK;
+    int32_t v, e, f, nv = base->nv;
+    int k;
+    const char *names[4] = {"a", "omega_abs", "W", "phase"};
+    const double *vals[4];
+    if (strlen(dir) > WR_PATH_MAX - 32) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "output path too long");
+    bm.pos = (double *)base_pos;
+    amp = (double *)malloc(sizeof(double) * (size_t)nv);
+    phase = (double *)calloc((size_t)nv, sizeof(double));
+    wmag = (double *)calloc((size_t)nv, sizeof(double));
+    wcnt = (double *)calloc((size_t)nv, sizeof(double));
+    wfl = (double *)malloc(sizeof(double) * (size_t)nv);
+    if (!amp || !phase || !wmag || !wcnt || !wfl) st = wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
+    if (st == WR_OK) {
+        for (v = 0; v < nv; ++v) amp[v] = r->a[v], wfl[v] = 1.0, wcnt[v] = -1.0;
+        for (e = 0; e < base->ne; ++e)
+            for (k = 0; k < 2; ++k) wmag[base->edges[2 * e + k]] += fabs(r->omega[e]);
+        for (f = 0; f < base->nf; ++f)
+            for (k = 0; k < 3; ++k) {
+                int32_t w = base->faces[3 * f + k];
+                if (!r->wfree[f]) wfl[w] = 0.0;
+                if (wcnt[w] < 0.0) { /* phase: the first incident face's corner value, wrapped */
+                    phase[w] = atan2(sin(r->phi[3 * f + k]), cos(r->phi[3 * f + k]));
+                    wcnt[w] = 0.0;
+                }
+            }
+        for (v = 0; v < nv; ++v) wcnt[v] = 0.0;
+        for (e = 0; e < base->ne; ++e)
+            for (k = 0; k < 2; ++k) wcnt[base->edges[2 * e + k]] += 1.0;
+        for (v = 0; v < nv; ++v) wmag[v] = wcnt[v] > 0 ? wmag[v] / wcnt[v] : 0.0;
+        vals[0] = amp, vals[1] = wmag, vals[2] = wfl, vals[3] = phase;
+        snprintf(stem, sizeof stem, "%s/base", dir);
+        st = wr_meshout_write_viewer(&bm, NULL, NULL, 0, NULL, 0, stem, WR_MESHOUT_OBJ, diag);
+    }
+    if (st == WR_OK) {
+        snprintf(stem, sizeof stem, "%s/fields.ply", dir);
+        st = wr_mesh_write_ply(&bm, stem, 4, names, vals, diag);
+    }
+    if (st == WR_OK) {
+        for (k = 0; k < 4; ++k) fl[k].name = names[k], fl[k].values = vals[k];
+        snprintf(stem, sizeof stem, "%s/fields", dir);
+        st = wr_meshout_write_viewer(&bm, NULL, fl, 4, NULL, 0, stem, WR_MESHOUT_VTK, diag);
+    }
+    if (st == WR_OK && r->wrinkled.nv > 0) {
+        height = (double *)malloc(sizeof(double) * (size_t)r->wrinkled.nv);
+        st = height ? tfw_height(base, base_pos, mat, td, r, height, diag)
+                    : wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
+        if (st == WR_OK) {
+            int32_t n = 0;
+            if (r->wrinkled_a) fl[n].name = "a", fl[n++].values = r->wrinkled_a;
+            fl[n].name = "height", fl[n++].values = height;
+            snprintf(stem, sizeof stem, "%s/wrinkled", dir);
+            st = wr_meshout_write_viewer(&r->wrinkled, NULL, fl, n, NULL, 0, stem,
+                                         WR_MESHOUT_OBJ | WR_MESHOUT_PLY | WR_MESHOUT_VTK, diag);
+        }
+        if (st == WR_OK && png) {
+            snprintf(stem, sizeof stem, "%s/wrinkles.png", dir);
+            st = tfw_picture(stem, base, base_pos, r, height, diag);
+        }
+    }
+    free(amp);
+    free(phase);
+    free(wmag);
+    free(wcnt);
+    free(wfl);
+    free(height);
+    return st;
+}
+
+double wr_meshout_max_strain(const wr_mesh *m, const double *pos) {
+    double *L = (double *)malloc(sizeof(double) * (size_t)(m->ne > 0 ? m->ne : 1)), worst = 0.0;
+    int32_t e;
+    if (!L) return 0.0;
+    wr_mesh_edge_lengths(m, 1, L);
+    for (e = 0; e < m->ne; ++e) {
+        const double *a = pos + 3 * m->edges[2 * e], *b = pos + 3 * m->edges[2 * e + 1];
+        double l = sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
+        if (L[e] > 0.0) worst = fmax(worst, fabs(l / L[e] - 1.0));
+    }
+    free(L);
+    return worst;
 }

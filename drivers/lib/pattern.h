@@ -1,5 +1,8 @@
-/* pattern.h — the garment pattern JSON format (driver-side helper, not a public wrinkle header;
- * compiled once as drivers/lib/pattern.c with cJSON and linked into every program).
+/* pattern.h — the garment pattern JSON format (compiled once as drivers/lib/pattern.c with cJSON and
+ * linked into every program). Installed by `make install` for engines as
+ * <wrinkle/formats/pattern.h> with libwrinkle-formats.a (pkg-config wrinkle-formats); needs cJSON
+ * (Debian libcjson-dev, MIT, -lcjson). Link it after the translation unit that defines
+ * WRINKLE_IMPLEMENTATION: the library holds no wrinkle code, only the reader.
  *
  * Format: docs/pattern-format.md. Lengths in the file are MILLIMETRES (converted to metres here);
  * stiffnesses are SI (B in N·m, E in N/m²); angles in degrees. Validation is strict: unknown keys,

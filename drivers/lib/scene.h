@@ -1,5 +1,8 @@
-/* scene.h — the JSON scene format of the wrinkle statics drivers (driver-side helper, not a public
- * wrinkle header; compiled once as drivers/lib/scene.c, linked into every program, needs cJSON).
+/* scene.h — the JSON scene format of the wrinkle statics drivers (compiled once as
+ * drivers/lib/scene.c and linked into every program). Installed by `make install` for engines as
+ * <wrinkle/formats/scene.h> with libwrinkle-formats.a (pkg-config wrinkle-formats); needs cJSON
+ * (Debian libcjson-dev, MIT, -lcjson) and, for probes, FFTW through spectrum.h. Link it after the
+ * translation unit that defines WRINKLE_IMPLEMENTATION: the library holds no wrinkle code.
  * The format is documented in docs/scene-format.md; examples in examples/scenes/.
  *
  * Pipeline (each step fallible, errors as wr_status + wr_diag like the library):
@@ -24,6 +27,7 @@
 #define WRINKLE_SCENE_H
 
 #include "wrinkle/wrinkle.h"
+#include "wrinkle/spectrum.h" /* probes (wr_spectrum_result); the umbrella includes it only with WR_USE_FFTW */
 
 #define WR_SCENE_NAME_LEN 64
 #define WR_SCENE_PATH_LEN 1024

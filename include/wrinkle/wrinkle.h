@@ -1,10 +1,21 @@
-/* wrinkle/wrinkle.h — includes every wrinkle module.
+/* wrinkle/wrinkle.h — includes the wrinkle modules: the dependency-free core always, the modules
+ * that need a GPL library only when asked for.
  * wrinkle v0.1.0 — MIT licence (see LICENSE).
  *
  * Define WRINKLE_IMPLEMENTATION in exactly one .c/.cpp file before including this header.
- * Modules that need a Debian library say so at their top: spectrum.h needs FFTW (-lfftw3);
- * the CHOLMOD backend in pcg.h is compiled only with -DWR_USE_CHOLMOD=1 (-lcholmod).
- * Everything else needs only libc and libm.
+ *
+ * WHAT IS INCLUDED
+ *   Always (libc + libm only, MIT): core, mesh, sparse, pcg (iterative solvers), resolution,
+ *   transition, tft, shell, poisson, triangulate, statics, wrinkle_field, mesher, tfw, collision,
+ *   render.
+ *   Link with -lm (pkg-config: wrinkle-core).
+ *   Opt-in backends, each behind a macro so that a binary without them carries no GPL code:
+ *     -DWR_USE_FFTW=1     also include spectrum.h (wrinkle counting; FFTW 3, GPL-2+, -lfftw3)
+ *     -DWR_USE_CHOLMOD=1  pcg.h's direct solver backend (SuiteSparse CHOLMOD, -lcholmod,
+ *                         -I/usr/include/suitesparse on Debian)
+ *     -DWR_USE_LIBPNG=1   render.h's PNG writer (libpng, zlib licence, -lpng)
+ *   pkg-config `wrinkle` sets all three (the configuration the kit's own programs use).
+ *   spectrum.h may always be included directly; the macro only decides what this umbrella pulls in.
  *
  * This file deliberately has no include guard: every module guards its declarations and, separately,
  * its implementation, so including this file again after defining WRINKLE_IMPLEMENTATION works.
@@ -14,7 +25,9 @@
 #include "mesh.h"
 #include "sparse.h"
 #include "pcg.h"
+#if defined(WR_USE_FFTW) && WR_USE_FFTW
 #include "spectrum.h"
+#endif
 #include "resolution.h"
 #include "transition.h"
 #include "tft.h"
@@ -28,3 +41,4 @@
 #include "mesher.h"
 #include "tfw.h"
 #include "collision.h"
+#include "render.h"
