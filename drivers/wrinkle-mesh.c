@@ -127,7 +127,9 @@ int main(int argc, char **argv) {
     if (sew) pf.desc.sew = 1;
     st = wr_mesher_run(&pf.pattern, &pf.desc, &res, &d);
     if (st != WR_OK) {
-        wr_cli_error("%s: %s", in ? in : "built-in example", d.message);
+        /* the library names its option (max_vertices); the user's lever here is the CLI flag */
+        wr_cli_error("%s: %s%s", in ? in : "built-in example", d.message,
+                     st == WR_ERR_BUDGET ? "; raise the budget with --max-vertices N or coarsen the mesh with --uniform MM" : "");
         return wr_cli_exit(mesher_exit(st));
     }
     wr_cli_defer(free_result, &res);

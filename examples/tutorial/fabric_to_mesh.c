@@ -8,6 +8,7 @@
 #include "wrinkle/mesh.h"
 #include "wrinkle/resolution.h"
 #include "wrinkle/transition.h"
+#include "wrinkle/sizing.h"
 #include "wrinkle/poisson.h"
 #include "wrinkle/triangulate.h"
 #include "wrinkle/mesher.h"
