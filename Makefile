@@ -19,7 +19,7 @@ LIBS    = -lcjson -lcholmod -lfftw3 -lgsl -lgslcblas -lm
 # Debian packages the kit builds against. libopenblas0 gives CHOLMOD an optimized BLAS
 # (through the libblas.so.3 alternative) instead of the reference one.
 DEB_PACKAGES = libgsl-dev libfftw3-dev libsuitesparse-dev libopenblas0 libcjson-dev \
-               libcriterion-dev gnuplot-nox pkg-config
+               libcriterion-dev gnuplot-nox pkg-config universal-ctags
 BENCH_PACKAGES = libcgal-dev
 
 SAN = -fsanitize=address,undefined,float-cast-overflow -fno-omit-frame-pointer -fno-sanitize-recover=all

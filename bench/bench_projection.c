@@ -95,7 +95,7 @@ static void projection_only(const wr_shell *s, const double *x) {
             for (i = 0; i < b.n; ++i) {
                 int r;
                 memcpy(A, b.K + 324 * (size_t)i, sizeof A);
-                r = mi == 0 ? wr_dense_project_spd(18, A, 0.0) : wr_statics_project_spd(18, A, 0.0);
+                r = mi == 0 ? wr_dense_project_spd(18, A, 0.0) : wr_newton_project_spd(18, A, 0.0);
                 if (mi == 1 && k == 0 && r > 0) neg++;
             }
             t[mi][k] = (double)(clock() - c0) / CLOCKS_PER_SEC / b.n * 1e6;
@@ -105,7 +105,7 @@ static void projection_only(const wr_shell *s, const double *x) {
         memcpy(A, b.K + 324 * (size_t)i, sizeof A);
         memcpy(B, A, sizeof B);
         wr_dense_project_spd(18, A, 0.0);
-        wr_statics_project_spd(18, B, 0.0);
+        wr_newton_project_spd(18, B, 0.0);
         for (q = 0; q < 324; ++q) {
             nrm = fmax(nrm, fabs(b.K[324 * (size_t)i + q]));
             e = fmax(e, fabs(A[q] - B[q]));
@@ -126,7 +126,7 @@ typedef struct run_result {
     int32_t projected, assembled, iters;
 } run_result;
 
-static int run_once(const wr_mesh *m, const wr_shell *s, wr_statics_projection proj, run_result *r, double *xout) {
+static int run_once(const wr_mesh *m, const wr_shell *s, wr_projection proj, run_result *r, double *xout) {
     wr_statics_desc sd;
     wr_statics_stats st;
     wr_diag dg;
@@ -148,11 +148,11 @@ static int run_once(const wr_mesh *m, const wr_shell *s, wr_statics_projection p
         fixed[v] = u < 1e-12 || u > 0.25 - 1e-12;
     }
     memset(&sd, 0, sizeof sd);
-    sd.fixed = fixed;
-    sd.perturb = 1e-5;
-    sd.seed = 1;
-    sd.max_iter = WR_BENCH_ITERS;
-    sd.projection = proj;
+    sd.loads.fixed = fixed;
+    sd.start.perturb = 1e-5;
+    sd.start.seed = 1;
+    sd.stop.max_iter = WR_BENCH_ITERS;
+    sd.hessian.projection = proj;
     c0 = clock();
     rs = wr_statics_solve(s, x, &sd, &st, &dg);
     r->cpu = (double)(clock() - c0) / CLOCKS_PER_SEC;
@@ -177,7 +177,7 @@ static int run_once(const wr_mesh *m, const wr_shell *s, wr_statics_projection p
 
 int main(int argc, char **argv) {
     const int32_t grids[3][2] = {{50, 20}, {100, 40}, {160, 64}};
-    const wr_statics_projection methods[2] = {WR_PROJECT_JACOBI, WR_PROJECT_FAST};
+    const wr_projection methods[2] = {WR_PROJECT_JACOBI, WR_PROJECT_FAST};
     const char *names[2] = {"jacobi", "fast"};
     long max_vertices = argc > 1 ? atol(argv[1]) : 11000;
     int gi, mi, k;

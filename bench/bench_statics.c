@@ -12,7 +12,7 @@
  * relative gradient g_C = |g|/ref is the target. Every PCG variant then runs Newton with grad_tol =
  * g_C (1 + TARGET_SLACK) and up to MAX_ITER_FACTOR × NEWTON_ITERS iterations, and the time it takes
  * to get there is compared with CHOLMOD's time for its NEWTON_ITERS iterations: an inexact linear
- * solve (the "+EW" rows: statics.h linear_forcing η_max, PCG relative tolerance
+ * solve (the "+EW" rows: statics.h linear.forcing η_max, PCG relative tolerance
  * min(η_max, max(1e-8, sqrt(|g|/ref))) per step) is cheaper per iteration but may need more Newton
  * iterations, and this protocol charges it for them. The other rows solve every Newton system to
  * relative residual 1e-8. TARGET_SLACK (1 %) only absorbs round-off: with linear solves to 1e-8 the
@@ -46,7 +46,7 @@
 #define SLOW 30.0 /* s per run above which one run only */
 
 /* CHOLMOD first (it sets the target); the "+EW" rows use statics.h's inexact Newton forcing
- * (linear_forcing = mforcing) */
+ * (linear.forcing = mforcing) */
 static const wr_solver_method methods[] = {WR_SOLVER_CHOLMOD,  WR_SOLVER_PCG_BLOCK3, WR_SOLVER_PCG_IC0, WR_SOLVER_PCG_AMG,
                                            WR_SOLVER_PCG_IC0,  WR_SOLVER_PCG_IC0,    WR_SOLVER_PCG_AMG};
 static const double mforcing[] = {0.0, 0.0, 0.0, 0.0, 0.1, 0.01, 0.1};
@@ -116,16 +116,16 @@ static int one_run(const wr_scene *base, double r, int mi, double target_g, samp
         if (!run.fixed[v]) memcpy(run.x + 3 * v, target + 3 * v, sizeof(double) * 3);
     }
     memset(&sd, 0, sizeof sd);
-    sd.fixed = run.fixed;
-    sd.target = target;
-    sd.max_iter = target_g > 0.0 ? MAX_ITER_FACTOR * NEWTON_ITERS : NEWTON_ITERS;
-    sd.grad_tol = target_g > 0.0 ? target_g : 1e-8;
-    sd.perturb = 1e-5;
-    sd.seed = sc.seed;
-    sd.projection = WR_PROJECT_FAST;
-    sd.linear.method = m;
-    sd.linear.rel_tol = 1e-8;
-    sd.linear_forcing = mforcing[mi];
+    sd.loads.fixed = run.fixed;
+    sd.loads.target = target;
+    sd.stop.max_iter = target_g > 0.0 ? MAX_ITER_FACTOR * NEWTON_ITERS : NEWTON_ITERS;
+    sd.stop.grad_tol = target_g > 0.0 ? target_g : 1e-8;
+    sd.start.perturb = 1e-5;
+    sd.start.seed = sc.seed;
+    sd.hessian.projection = WR_PROJECT_FAST;
+    sd.linear.solver.method = m;
+    sd.linear.solver.rel_tol = 1e-8;
+    sd.linear.forcing = mforcing[mi];
     c0 = cpu_seconds();
     rs = wr_statics_solve(&run.shell, run.x, &sd, &st, &d);
     s->cpu = cpu_seconds() - c0;

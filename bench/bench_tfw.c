@@ -33,7 +33,7 @@
  * so the supernodal default stays. The sheared base's step count is path-sensitive: round-off-level
  * changes (assembly order, -O2/-O3) give 296–358 steps and bases up to 3.6e-5 m apart (Π equal to
  * 1.4e-10 J of 0.245 J), see statics.h ON SHIFT.
- * --shift-raise=R sets statics desc.shift_raise = R for the TFT bases (μ ×R after backtracked
+ * --shift-raise=R sets statics desc.shift.raise = R for the TFT bases (μ ×R after backtracked
  * steps, statics.h ON SHIFT; off by default). Measured on the sheared-rectangle base (one
  * increment, default grad_tol): R = 10 313 → 175 Newton steps (CPU 11.4–13.8 → 6.3–6.7 s), R = 100 → 126
  * (3.3–4.7 s); sheet, cylinder and teabag never backtrack, same iterates. Not the default because the
@@ -178,13 +178,13 @@ static int solve_base(int kind, wr_mesh *m, double **xout, base_timing *bt, wr_w
     }
     wr_tfw_base_shell_desc(mat->young, mat->poisson, mat->thickness, 0.0, &sd);
     if (wr_shell_create(&sh, m, &sd, &d)) return 0;
-    st.projection = WR_PROJECT_NONE; /* exact Hessians, see the top comment */
-    st.shift_raise = g_shift_raise;  /* off unless --shift-raise=R, see the top comment */
+    st.hessian.projection = WR_PROJECT_NONE; /* exact Hessians, see the top comment */
+    st.shift.raise = g_shift_raise;  /* off unless --shift-raise=R, see the top comment */
     x = (double *)malloc(sizeof(double) * 3 * m->nv);
     memcpy(x, m->pos, sizeof(double) * 3 * m->nv);
     if (kind == 3) {
-        st.pressure = 10.0;
-        st.max_iter = 300;
+        st.loads.pressure = 10.0;
+        st.stop.max_iter = 300;
         c0 = cpu_seconds();
         t0 = wr_time_seconds();
         s = wr_statics_solve(&sh, x, &st, &ss, &d);
@@ -218,7 +218,7 @@ static int solve_base(int kind, wr_mesh *m, double **xout, base_timing *bt, wr_w
             mo[1].amount = 10.0 * PI_ / 180.0;
         }
         /* one increment: the TFT + quadratic-bending problem is convex (see the top comment) */
-        st.max_iter = 1000;
+        st.stop.max_iter = 1000;
         c0 = cpu_seconds();
         t0 = wr_time_seconds();
         s = wr_statics_solve_incremental(&sh, x, &st, mo, 2, 1, &ss, &d);

@@ -192,5 +192,25 @@ JSON
     keep_on_failure "wrinkle-tfw invalid scene" "$tmp/tfw/wrinkled.obj" "$tmp/tfw/summary.json" -- \
         "$B/wrinkle-tfw" "$tmp/badscene.json" -o "$tmp/tfw"
 fi
+if [ -x "$B/wrinkle-sim" ]; then
+    expect_fail "wrinkle-sim missing scene" "$B/wrinkle-sim" "$tmp/none.json" -o "$tmp/sim0"
+    printf '{"cloth": {"mesh": {"type": "rectangle", "width": 0.1, "height": 0.1, "nx": 2, "ny": 2}, "material": {"young": 1e5, "thickness": 1e-3, "density": 100}}, "time": {"dt": -1}}' > "$tmp/badsim.json"
+    expect_fail "wrinkle-sim invalid scene" "$B/wrinkle-sim" "$tmp/badsim.json" -o "$tmp/sim0"
+    expect_fail "wrinkle-sim bad --every" "$B/wrinkle-sim" "$root/examples/sim/drape_ball.json" -o "$tmp/sim0" --every 0
+    cat > "$tmp/sim.json" <<'JSON'
+{"name": "sim_small", "cloth": {"mesh": {"type": "rectangle", "width": 0.2, "height": 0.2, "nx": 4, "ny": 4},
+  "material": {"young": 1e5, "poisson": 0.3, "thickness": 5e-4, "areal_density": 0.15},
+  "placement": {"translate": [-0.1, -0.1, 0.06]}},
+ "obstacles": [{"type": "sphere", "center": [0, 0, 0], "radius": 0.05}],
+ "gravity": [0, 0, -9.81], "time": {"duration": 0.1}}
+JSON
+    # an output that would overwrite the input scene is refused
+    mkdir -p "$tmp/simin"; cp "$tmp/sim.json" "$tmp/simin/summary.json"
+    expect_fail "wrinkle-sim output over input" "$B/wrinkle-sim" "$tmp/simin/summary.json" -o "$tmp/simin"
+    atomic wrinkle-sim "$tmp/simout/frame_0000.obj" "$tmp/simout/frame_0003.obj" "$tmp/simout/summary.json" -- \
+        "$B/wrinkle-sim" "$tmp/sim.json" -o "$tmp/simout" --quiet
+    keep_on_failure "wrinkle-sim invalid scene" "$tmp/simout/frame_0003.obj" "$tmp/simout/summary.json" -- \
+        "$B/wrinkle-sim" "$tmp/badsim.json" -o "$tmp/simout"
+fi
 echo "driver-check: $pass passed, $fail failed, $found drivers${note:+; skipped:$note}"
 [ $fail = 0 ]

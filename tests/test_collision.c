@@ -425,7 +425,13 @@ Test(collision, contacts_and_ccd_between_sheets) {
     cr_expect(cs.n > 0);
     cr_expect_float_eq(cs.min_distance, 1e-3, 1e-15);
     for (i = 0; i < cs.n; ++i) {
+        double r[3] = {0, 0, 0};
+        int k, q;
         cr_expect(cs.c[i].d < 2e-3);
+        /* the stored closest-point coefficients reproduce the distance */
+        for (k = 0; k < 4; ++k)
+            for (q = 0; q < 3; ++q) r[q] += cs.c[i].w[k] * x[3 * cs.c[i].v[k] + q];
+        cr_expect(fabs(sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]) - cs.c[i].d) < 1e-15, "contact %d", i);
         /* no obstacle–obstacle and (both sheets flat, 1 mm apart) no cloth–cloth pair */
         if (cs.c[i].kind == WR_CONTACT_PT) cr_expect(!ob[cs.c[i].v[0]] || !ob[cs.c[i].v[1]]);
     }

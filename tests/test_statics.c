@@ -52,17 +52,17 @@ Test(statics, prescribed_boundary_homogeneous_stretch) {
                 x[3 * v + 2] = 0.0;
             }
         memset(&sd, 0, sizeof sd);
-        sd.fixed = fixed;
-        sd.target = target;
-        sd.perturb = 1e-3;
-        sd.seed = 3;
+        sd.loads.fixed = fixed;
+        sd.loads.target = target;
+        sd.start.perturb = 1e-3;
+        sd.start.seed = 3;
         sd.progress = st_progress;
         st_progress_calls = 0;
         cr_assert_eq(wr_statics_solve(&s, x, &sd, &st, &dg), WR_OK, "%s", dg.message);
         err = 0.0;
         for (i = 0; i < 3 * m.nv; ++i) err = fmax(err, fabs(x[i] - target[i]));
         cr_expect(err < 1e-9, "model %d: max deviation from F·X %.3e after %d steps", mm, err, st.iterations);
-        cr_expect_eq(st.stop, WR_STATICS_STOP_GRADIENT);
+        cr_expect_eq(st.stop, WR_NEWTON_STOP_GRADIENT);
         cr_expect(st.iterations < 30, "model %d: %d Newton steps", mm, st.iterations);
         cr_expect_eq(st_progress_calls, st.iterations);
         cr_expect(st.t_total >= st.t_linear && st.t_linear >= 0.0);
@@ -110,13 +110,13 @@ Test(statics, hanging_sheet_under_gravity) {
         }
         memcpy(x0, x, sizeof(double) * 3 * m.nv);
         memset(&sd, 0, sizeof sd);
-        sd.gravity[2] = -9.81;
-        sd.fixed = fixed;
-        sd.perturb = 1e-4;
-        sd.seed = 1;
-        sd.grad_tol = 1e-7;
+        sd.loads.gravity[2] = -9.81;
+        sd.loads.fixed = fixed;
+        sd.start.perturb = 1e-4;
+        sd.start.seed = 1;
+        sd.stop.grad_tol = 1e-7;
         cr_assert_eq(wr_statics_solve(&s, x, &sd, &st, &dg), WR_OK, "model %d: %s", mm, dg.message);
-        cr_expect(st.grad_norm <= 1e-7 * st.grad_ref || st.stop == WR_STATICS_STOP_STEP, "model %d: |g| %.3e ref %.3e",
+        cr_expect(st.grad_norm <= 1e-7 * st.grad_ref || st.stop == WR_NEWTON_STOP_STEP, "model %d: |g| %.3e ref %.3e",
                   mm, st.grad_norm, st.grad_ref);
         E0 = 0.0;
         for (v = 0; v < m.nv; ++v) {
@@ -165,7 +165,7 @@ Test(statics, error_paths_and_not_converged) {
     cr_expect_eq(wr_statics_solve(NULL, x, NULL, &st, &dg), WR_ERR_INVALID_ARG);
     cr_expect_eq(wr_statics_solve(&s, NULL, NULL, &st, &dg), WR_ERR_INVALID_ARG);
     memset(&sd, 0, sizeof sd);
-    sd.grad_tol = -1.0;
+    sd.stop.grad_tol = -1.0;
     cr_expect_eq(wr_statics_solve(&s, x, &sd, &st, &dg), WR_ERR_INVALID_ARG);
     memset(&sd, 0, sizeof sd);
     x[5] = NAN;
@@ -173,12 +173,12 @@ Test(statics, error_paths_and_not_converged) {
     cr_expect_eq(dg.item, 1);
     memcpy(x, m.pos, sizeof(double) * 3 * m.nv);
     /* two Newton steps are not enough to hang a sheet: NOT_CONVERGED, best iterate kept */
-    sd.fixed = fixed;
-    sd.gravity[2] = -9.81;
-    sd.max_iter = 2;
-    sd.perturb = 1e-4;
+    sd.loads.fixed = fixed;
+    sd.loads.gravity[2] = -9.81;
+    sd.stop.max_iter = 2;
+    sd.start.perturb = 1e-4;
     cr_expect_eq(wr_statics_solve(&s, x, &sd, &st, &dg), WR_ERR_NOT_CONVERGED);
-    cr_expect_eq(st.stop, WR_STATICS_STOP_MAX_ITER);
+    cr_expect_eq(st.stop, WR_NEWTON_STOP_MAX_ITER);
     cr_expect_eq(st.iterations, 2);
     for (v = 0; v < 3 * m.nv; ++v) cr_expect(isfinite(x[v]));
     cr_expect(st.energy < 0.0);
@@ -190,7 +190,7 @@ Test(statics, error_paths_and_not_converged) {
 
 /* ---- fast PSD projection ------------------------------------------------------------------------ */
 
-/* wr_statics_project_spd against core's Jacobi projection on random symmetric matrices of the sizes
+/* wr_newton_project_spd against core's Jacobi projection on random symmetric matrices of the sizes
  * the solver sees (9 = membrane face, 18 = mid-edge stencil, 30 = large); PSD input kept as is. */
 Test(statics, fast_projection_matches_jacobi) {
     wr_rng r;
@@ -209,7 +209,7 @@ Test(statics, fast_projection_matches_jacobi) {
             memcpy(B, A, sizeof(double) * n * n);
             memcpy(C, A, sizeof(double) * n * n);
             wr_dense_project_spd(n, B, 0.0);
-            raised = wr_statics_project_spd(n, C, 0.0);
+            raised = wr_newton_project_spd(n, C, 0.0);
             for (i = 0; i < n * n; ++i) {
                 nrm = fmax(nrm, fabs(A[i]));
                 err = fmax(err, fabs(B[i] - C[i]));
@@ -246,7 +246,7 @@ Test(statics, fast_projection_matches_jacobi) {
                 for (k = 0; k < n; ++k) sum += Q[i * n + k] * d[k] * Q[j * n + k];
                 A[i * n + j] = sum;
             }
-        cr_expect_eq(wr_statics_project_spd(n, A, 0.0), 4);
+        cr_expect_eq(wr_newton_project_spd(n, A, 0.0), 4);
         wr_dense_sym_eig(n, A, lam, NULL);
         /* sorted: four zeros, then 1..14 */
         for (k = 0; k < n; ++k) {
@@ -257,7 +257,7 @@ Test(statics, fast_projection_matches_jacobi) {
     {
         /* floor > 0 raises every eigenvalue below it */
         double A[4] = {1.0, 0.0, 0.0, -2.0}, lam[2];
-        cr_expect_eq(wr_statics_project_spd(2, A, 0.5), 1);
+        cr_expect_eq(wr_newton_project_spd(2, A, 0.5), 1);
         wr_dense_sym_eig(2, A, lam, NULL);
         cr_expect(fabs(lam[0] - 0.5) < 1e-14 && fabs(lam[1] - 1.0) < 1e-14);
     }
@@ -381,8 +381,8 @@ Test(statics, sewn_disks_inflate_monotonically) {
         Vprev = 0.0;
         for (k = 0; k < 3; ++k) {
             memset(&sd, 0, sizeof sd);
-            sd.pressure = ps[k];
-            sd.grad_tol = 1e-8;
+            sd.loads.pressure = ps[k];
+            sd.stop.grad_tol = 1e-8;
             cr_assert_eq(wr_statics_solve(&s, x, &sd, &st, &dg), WR_OK, "model %d p %g: %s", mm, ps[k], dg.message);
             cr_expect(st.volume > Vprev, "model %d: V(%g Pa) = %.6e must exceed %.6e", mm, ps[k], st.volume, Vprev);
             Vprev = st.volume;
@@ -476,11 +476,11 @@ Test(statics, sheet_on_sphere_and_plane) {
     fixed[(n / 2) * (n + 1) + n / 2] = 1;
     x[3 * ((n / 2) * (n + 1) + n / 2) + 2] = 0.101;
     memset(&sd, 0, sizeof sd);
-    sd.fixed = fixed;
-    sd.gravity[2] = -9.81;
-    sd.obstacles = &ball;
-    sd.n_obstacles = 1;
-    sd.contact_dhat = 2e-3;
+    sd.loads.fixed = fixed;
+    sd.loads.gravity[2] = -9.81;
+    sd.contact.obstacles = &ball;
+    sd.contact.n_obstacles = 1;
+    sd.contact.dhat = 2e-3;
     cr_assert_eq(wr_statics_solve(&s, x, &sd, &st, &dg), WR_OK, "sphere: %s", dg.message);
     dmin = 1e300;
     zmin = 1e300;
@@ -506,7 +506,7 @@ Test(statics, sheet_on_sphere_and_plane) {
             x[3 * v + 2] = 0.055;
         }
         x[3 * ((n / 2) * (n + 1) + n / 2) + 2] = 0.051;
-        sd.obstacles = &bar;
+        sd.contact.obstacles = &bar;
         cr_assert_eq(wr_statics_solve(&s, x, &sd, &st, &dg), WR_OK, "capsule: %s", dg.message);
         dmin = 1e300;
         zmin = 1e300;
@@ -526,11 +526,11 @@ Test(statics, sheet_on_sphere_and_plane) {
         x[3 * v + 1] = m.rest[2 * v + 1];
         x[3 * v + 2] = 0.01;
     }
-    sd.obstacles = &floor_;
-    sd.fixed = NULL;
-    sd.contact_dhat = 0.0; /* default: 1e-3 × bbox diagonal */
-    sd.perturb = 1e-3;
-    sd.seed = 4;
+    sd.contact.obstacles = &floor_;
+    sd.loads.fixed = NULL;
+    sd.contact.dhat = 0.0; /* default: 1e-3 × bbox diagonal */
+    sd.start.perturb = 1e-3;
+    sd.start.seed = 4;
     cr_assert_eq(wr_statics_solve(&s, x, &sd, &st, &dg), WR_OK, "plane: %s", dg.message);
     zmin = 1e300;
     zmax = -1e300;
@@ -547,7 +547,7 @@ Test(statics, sheet_on_sphere_and_plane) {
     {
         double *x0 = (double *)malloc(sizeof(double) * 3 * m.nv), moved = 0.0;
         memcpy(x0, x, sizeof(double) * 3 * m.nv);
-        sd.perturb = 0.0;
+        sd.start.perturb = 0.0;
         cr_assert_eq(wr_statics_solve(&s, x, &sd, &st, &dg), WR_OK, "plane restart: %s", dg.message);
         for (v = 0; v < 3 * m.nv; ++v) moved = fmax(moved, fabs(x[v] - x0[v]));
         cr_expect(moved < 0.1 * st.contact_dhat, "plane restart moved %g m", moved);
@@ -605,12 +605,12 @@ Test(statics, twisted_cylinder_converges) {
     memcpy(x, m.pos, sizeof(double) * 3 * m.nv);
     memcpy(x0, m.pos, sizeof(double) * 3 * m.nv);
     memset(&sd, 0, sizeof sd);
-    sd.perturb = 1e-5;
-    sd.seed = 2;
+    sd.start.perturb = 1e-5;
+    sd.start.seed = 2;
     cr_assert_eq(wr_statics_solve_incremental(&s, x, &sd, mo, 2, 2, &st, &dg), WR_OK, "%s", dg.message);
     cr_expect_eq(st.increments, 2);
     cr_expect_eq(st.increments_failed, 0);
-    cr_expect(st.total_iterations >= st.iterations && st.stop == WR_STATICS_STOP_GRADIENT);
+    cr_expect(st.total_iterations >= st.iterations && st.stop == WR_NEWTON_STOP_GRADIENT);
     for (i = 0; i < nu; ++i) {
         const double *p = x + 3 * top[i], *q = x0 + 3 * top[i];
         double a0 = atan2(q[1], q[0]), a1 = atan2(p[1], p[0]), da = remainder(a1 - a0, 2 * 3.14159265358979323846);
@@ -660,8 +660,8 @@ Test(statics, incremental_stretch_matches_direct) {
     memcpy(x1, m.pos, sizeof(double) * 3 * m.nv);
     memcpy(x4, m.pos, sizeof(double) * 3 * m.nv);
     memset(&sd, 0, sizeof sd);
-    sd.grad_tol = 1e-10;
-    sd.inc_grad_tol = 1e-4;
+    sd.stop.grad_tol = 1e-10;
+    sd.increments.grad_tol = 1e-4;
     cr_assert_eq(wr_statics_solve_incremental(&s, x1, &sd, mo, 2, 1, &st1, &dg), WR_OK, "%s", dg.message);
     cr_assert_eq(wr_statics_solve_incremental(&s, x4, &sd, mo, 2, 4, &st4, &dg), WR_OK, "%s", dg.message);
     cr_expect_eq(st4.increments, 4);
@@ -669,7 +669,7 @@ Test(statics, incremental_stretch_matches_direct) {
     cr_expect(err < 1e-9, "direct vs 4 increments differ by %.3e m", err);
     /* the same with the secant predictor between increments */
     memcpy(x4, m.pos, sizeof(double) * 3 * m.nv);
-    sd.inc_predictor = 1;
+    sd.increments.predictor = 1;
     cr_assert_eq(wr_statics_solve_incremental(&s, x4, &sd, mo, 2, 4, &st4, &dg), WR_OK, "%s", dg.message);
     err = 0.0;
     for (j = 0; j < 3 * m.nv; ++j) err = fmax(err, fabs(x1[j] - x4[j]));
@@ -723,14 +723,14 @@ Test(statics, motions_and_new_error_paths) {
     x = (double *)malloc(sizeof(double) * 3 * m.nv);
     memcpy(x, m.pos, sizeof(double) * 3 * m.nv);
     memset(&sd, 0, sizeof sd);
-    sd.pressure = 10.0;
+    sd.loads.pressure = 10.0;
     cr_expect_eq(wr_statics_solve(&s, x, &sd, &st, &dg), WR_ERR_UNSUPPORTED);
     memset(&sd, 0, sizeof sd);
     memset(&ob, 0, sizeof ob);
     ob.kind = WR_OBSTACLE_SPHERE;
     ob.p[0] = 0.1, ob.p[1] = 0.1, ob.radius = 0.05; /* vertex 5 at (0.1, 0.1, 0) is inside */
-    sd.obstacles = &ob;
-    sd.n_obstacles = 1;
+    sd.contact.obstacles = &ob;
+    sd.contact.n_obstacles = 1;
     cr_expect_eq(wr_statics_solve(&s, x, &sd, &st, &dg), WR_ERR_GEOMETRY);
     cr_expect_eq(dg.item, 5);
     ob.radius = 0.0;
@@ -739,13 +739,13 @@ Test(statics, motions_and_new_error_paths) {
     cr_expect_eq(wr_statics_solve(&s, x, &sd, &st, &dg), WR_ERR_INVALID_ARG); /* zero normal */
     ob.kind = (wr_obstacle_kind)7;
     cr_expect_eq(wr_statics_solve(&s, x, &sd, &st, &dg), WR_ERR_INVALID_ARG);
-    sd.n_obstacles = 0;
-    sd.contact_dhat = -1.0;
+    sd.contact.n_obstacles = 0;
+    sd.contact.dhat = -1.0;
     cr_expect_eq(wr_statics_solve(&s, x, &sd, &st, &dg), WR_ERR_INVALID_ARG);
-    sd.contact_dhat = 0.0;
-    sd.projection = (wr_statics_projection)9;
+    sd.contact.dhat = 0.0;
+    sd.hessian.projection = (wr_projection)9;
     cr_expect_eq(wr_statics_solve(&s, x, &sd, &st, &dg), WR_ERR_INVALID_ARG);
-    sd.projection = WR_PROJECT_FAST;
+    sd.hessian.projection = WR_PROJECT_FAST;
     cr_expect_eq(wr_statics_solve_incremental(&s, x, &sd, NULL, 0, 0, &st, &dg), WR_ERR_INVALID_ARG);
     mo.verts = vs;
     mo.n_verts = 2;
@@ -803,24 +803,24 @@ Test(statics, heavy_cantilever_converges_in_bounded_steps) {
     memcpy(x0, m.pos, sizeof(double) * 3 * m.nv);
     memcpy(x1, m.pos, sizeof(double) * 3 * m.nv);
     memset(&sd, 0, sizeof sd);
-    sd.gravity[2] = -9.81;
-    sd.fixed = fixed;
-    sd.grad_tol = 1e-10;
-    sd.max_iter = 300;
-    sd.projection = WR_PROJECT_NONE;
-    sd.linear.method = WR_SOLVER_CHOLMOD;
-    sd.membrane_ramp = 1e-3;
+    sd.loads.gravity[2] = -9.81;
+    sd.loads.fixed = fixed;
+    sd.stop.grad_tol = 1e-10;
+    sd.stop.max_iter = 300;
+    sd.hessian.projection = WR_PROJECT_NONE;
+    sd.linear.solver.method = WR_SOLVER_CHOLMOD;
+    sd.continuation.membrane_ramp = 1e-3;
     cr_assert_eq(wr_statics_solve(&s, x, &sd, &st, &dg), WR_OK, "%s", dg.message);
     cr_expect(st.iterations <= 40, "continuation: %d Newton steps", (int)st.iterations);
     cr_expect(st.ramp_stages == 1 && st.ramp_iterations > 0 && st.ramp_iterations < st.iterations);
-    cr_expect(st.grad_norm <= 1e-10 * st.grad_ref || st.stop == WR_STATICS_STOP_ROUNDOFF ||
-                  st.stop == WR_STATICS_STOP_STEP,
+    cr_expect(st.grad_norm <= 1e-10 * st.grad_ref || st.stop == WR_NEWTON_STOP_ROUNDOFF ||
+                  st.stop == WR_NEWTON_STOP_STEP,
               "stop %d |g| %.3e ref %.3e", (int)st.stop, st.grad_norm, st.grad_ref);
-    sd.membrane_ramp = 0.0;
+    sd.continuation.membrane_ramp = 0.0;
     cr_assert_eq(wr_statics_solve(&s, x0, &sd, &st0, &dg), WR_OK, "%s", dg.message);
     cr_expect(st0.iterations > 2 * st.iterations, "without continuation %d, with %d", (int)st0.iterations,
               (int)st.iterations);
-    sd.projection = WR_PROJECT_FAST;
+    sd.hessian.projection = WR_PROJECT_FAST;
     cr_assert_eq(wr_statics_solve(&s, x1, &sd, &st1, &dg), WR_OK, "%s", dg.message);
     cr_expect(st1.exact_steps > 0);
     for (v = 0; v < m.nv; ++v)
@@ -847,12 +847,12 @@ Test(statics, heavy_cantilever_converges_in_bounded_steps) {
         double ta = 0.0, tb = 0.0;
         memcpy(x0, m.pos, sizeof(double) * 3 * m.nv);
         memcpy(x1, m.pos, sizeof(double) * 3 * m.nv);
-        sd.projection = WR_PROJECT_NONE;
-        sd.membrane_ramp = 1e-3;
-        sd.linear.method = WR_SOLVER_PCG_IC0;
-        sd.linear.rel_tol = 1e-10;
+        sd.hessian.projection = WR_PROJECT_NONE;
+        sd.continuation.membrane_ramp = 1e-3;
+        sd.linear.solver.method = WR_SOLVER_PCG_IC0;
+        sd.linear.solver.rel_tol = 1e-10;
         cr_assert_eq(wr_statics_solve(&s, x0, &sd, &sa, &dg), WR_OK, "%s", dg.message);
-        sd.linear_forcing = 0.1;
+        sd.linear.forcing = 0.1;
         cr_assert_eq(wr_statics_solve(&s, x1, &sd, &sb, &dg), WR_OK, "%s", dg.message);
         for (v = 0; v < m.nv; ++v)
             if (m.pos[3 * v] > L + c - 1e-9) ta += -x0[3 * v + 2] / cnt, tb += -x1[3 * v + 2] / cnt;
@@ -861,16 +861,16 @@ Test(statics, heavy_cantilever_converges_in_bounded_steps) {
                   (int)sb.linear_iterations, (int)sa.linear_iterations);
         cr_log_info("forcing: %d Newton / %d PCG iterations, without: %d / %d", (int)sb.iterations,
                     (int)sb.linear_iterations, (int)sa.iterations, (int)sa.linear_iterations);
-        sd.linear_forcing = 1.0;
+        sd.linear.forcing = 1.0;
         cr_expect_eq(wr_statics_solve(&s, x1, &sd, &sb, &dg), WR_ERR_INVALID_ARG);
-        sd.linear_forcing = 0.0;
-        sd.linear.method = WR_SOLVER_CHOLMOD;
+        sd.linear.forcing = 0.0;
+        sd.linear.solver.method = WR_SOLVER_CHOLMOD;
     }
     /* option errors */
-    sd.membrane_ramp = 1.5;
+    sd.continuation.membrane_ramp = 1.5;
     cr_expect_eq(wr_statics_solve(&s, x, &sd, &st, &dg), WR_ERR_INVALID_ARG);
-    sd.membrane_ramp = 1e-3;
-    sd.membrane_ramp_factor = 0.5;
+    sd.continuation.membrane_ramp = 1e-3;
+    sd.continuation.factor = 0.5;
     cr_expect_eq(wr_statics_solve(&s, x, &sd, &st, &dg), WR_ERR_INVALID_ARG);
     wr_shell_free(&s);
     wr_mesh_free(&m);
@@ -911,16 +911,16 @@ Test(statics, shift_raise_same_state_and_errors) {
     memcpy(x0, m.pos, sizeof(double) * 3 * m.nv);
     memcpy(x1, m.pos, sizeof(double) * 3 * m.nv);
     memset(&sd, 0, sizeof sd);
-    sd.gravity[2] = -9.81;
-    sd.fixed = fixed;
-    sd.grad_tol = 1e-10;
-    sd.max_iter = 300;
-    sd.projection = WR_PROJECT_NONE;
+    sd.loads.gravity[2] = -9.81;
+    sd.loads.fixed = fixed;
+    sd.stop.grad_tol = 1e-10;
+    sd.stop.max_iter = 300;
+    sd.hessian.projection = WR_PROJECT_NONE;
     cr_assert_eq(wr_statics_solve(&s, x0, &sd, &st0, &dg), WR_OK, "%s", dg.message);
     /* the default path backtracks here, so the option has something to act on */
     cr_expect(st0.line_search_evals > st0.iterations, "%d evals in %d steps", (int)st0.line_search_evals,
               (int)st0.iterations);
-    sd.shift_raise = 10.0;
+    sd.shift.raise = 10.0;
     cr_assert_eq(wr_statics_solve(&s, x1, &sd, &st1, &dg), WR_OK, "%s", dg.message);
     for (i = 0; i < 3 * m.nv; ++i) err = fmax(err, fabs(x0[i] - x1[i]));
     cr_log_info("shift_raise: %d Newton steps (%d energy evals) with x10, %d (%d) without; max |dx| %.3e m",
@@ -934,7 +934,7 @@ Test(statics, shift_raise_same_state_and_errors) {
     /* 0 = off, else > 1: anything else is rejected before x is touched */
     for (i = 0; i < 4; ++i) {
         memcpy(x1, m.pos, sizeof(double) * 3 * m.nv);
-        sd.shift_raise = bad[i];
+        sd.shift.raise = bad[i];
         cr_expect_eq(wr_statics_solve(&s, x1, &sd, &st1, &dg), WR_ERR_INVALID_ARG, "shift_raise %g", bad[i]);
         cr_expect(strstr(dg.message, "shift_raise") != NULL, "%s", dg.message);
         cr_expect_eq(memcmp(x1, m.pos, sizeof(double) * 3 * m.nv), 0);
@@ -1006,8 +1006,8 @@ Test(statics, tft_cached_assembly_quadratic_rate_and_same_minimiser) {
     memcpy(x, m.pos, sizeof(double) * 3 * m.nv);
     memcpy(xj, m.pos, sizeof(double) * 3 * m.nv);
     memset(&sd, 0, sizeof sd);
-    sd.projection = WR_PROJECT_NONE;
-    sd.grad_tol = 1e-10;
+    sd.hessian.projection = WR_PROJECT_NONE;
+    sd.stop.grad_tol = 1e-10;
     sd.progress = st_record_grad;
     st_gcount = 0;
     cr_assert_eq(wr_statics_solve_incremental(&s, x, &sd, mo, 2, 1, &st, &dg), WR_OK, "%s", dg.message);
@@ -1018,7 +1018,7 @@ Test(statics, tft_cached_assembly_quadratic_rate_and_same_minimiser) {
         if (st_gnorm[i - 1] < 1e-3) best = fmin(best, st_gnorm[i] / st_gnorm[i - 1]);
     cr_expect(best < 1e-3, "best gradient reduction per step near the solution %.3e (linear rate?)", best);
     cr_expect_eq(st.elements_assembled % st.iterations, 0); /* the same element count every assembly */
-    sd.projection = WR_PROJECT_JACOBI; /* quadratic bending streamed every step, no cache of it */
+    sd.hessian.projection = WR_PROJECT_JACOBI; /* quadratic bending streamed every step, no cache of it */
     sd.progress = NULL;
     cr_assert_eq(wr_statics_solve_incremental(&s, xj, &sd, mo, 2, 1, &sj, &dg), WR_OK, "%s", dg.message);
     cr_expect_eq(sj.elements_assembled / sj.iterations, st.elements_assembled / st.iterations);
@@ -1051,9 +1051,9 @@ Test(statics, tft_cached_assembly_quadratic_rate_and_same_minimiser) {
             fix[i] = m.pos[3 * i] < 1e-9 || m.pos[3 * i] > 0.2 - 1e-9 || m.pos[3 * i + 1] < 1e-9 ||
                      m.pos[3 * i + 1] > 0.1 - 1e-9;
         memset(&sd, 0, sizeof sd);
-        sd.projection = WR_PROJECT_NONE;
-        sd.gravity[2] = -9.81;
-        sd.fixed = fix;
+        sd.hessian.projection = WR_PROJECT_NONE;
+        sd.loads.gravity[2] = -9.81;
+        sd.loads.fixed = fix;
         cr_assert_eq(wr_statics_solve(&s, x, &sd, &st, &dg), WR_OK, "%s", dg.message);
         cr_expect(st.iterations <= 3, "quadratic energy took %d Newton steps", (int)st.iterations);
         cr_expect(st.line_search_evals == st.iterations, "%d line-search evaluations in %d steps",
@@ -1081,8 +1081,8 @@ Test(statics, tft_sheared_rectangle_small_mesh_bounded_steps) {
     x = (double *)malloc(sizeof(double) * 3 * m.nv);
     memcpy(x, m.pos, sizeof(double) * 3 * m.nv);
     memset(&sd, 0, sizeof sd);
-    sd.projection = WR_PROJECT_NONE;
-    sd.max_iter = 1000;
+    sd.hessian.projection = WR_PROJECT_NONE;
+    sd.stop.max_iter = 1000;
     cr_assert_eq(wr_statics_solve_incremental(&s, x, &sd, mo, 2, 1, &st, &dg), WR_OK, "%s", dg.message);
     cr_expect(st.iterations <= 60, "sheared TFT base on 12 x 4 took %d Newton steps", (int)st.iterations);
     cr_expect(st.grad_norm <= 1e-7 * st.grad_ref, "relative gradient %.3e", st.grad_norm / st.grad_ref);
@@ -1124,11 +1124,11 @@ Test(statics, exact_retry_resumes_exact_phase_and_errors) {
     memcpy(x0, m.pos, sizeof(double) * 3 * m.nv);
     memcpy(x1, m.pos, sizeof(double) * 3 * m.nv);
     memset(&sd, 0, sizeof sd);
-    sd.perturb = 1e-5;
-    sd.seed = 5;
-    sd.max_iter = 300;
+    sd.start.perturb = 1e-5;
+    sd.start.seed = 5;
+    sd.stop.max_iter = 300;
     cr_assert_eq(wr_statics_solve_incremental(&s, x0, &sd, mo, 2, 1, &st0, &dg), WR_OK, "%s", dg.message);
-    sd.exact_retry = 0.1;
+    sd.hessian.exact_retry = 0.1;
     cr_assert_eq(wr_statics_solve_incremental(&s, x1, &sd, mo, 2, 1, &st1, &dg), WR_OK, "%s", dg.message);
     for (i = 0; i < 3 * m.nv; ++i) err = fmax(err, fabs(x1[i] - x0[i]));
     cr_log_info("exact_retry: %d Newton steps (%d exact) with q = 0.1, %d (%d) without; energy %.12e / %.12e J; max |dx| %.3e m",
@@ -1138,12 +1138,110 @@ Test(statics, exact_retry_resumes_exact_phase_and_errors) {
     cr_expect(fabs(st1.energy - st0.energy) <= 1e-9 * fabs(st0.energy), "energies %.12e / %.12e J", st1.energy, st0.energy);
     cr_expect(err < 1e-5, "with and without exact_retry differ by %.3e m", err);
     for (i = 0; i < 3; ++i) {
-        sd.exact_retry = bad[i];
+        sd.hessian.exact_retry = bad[i];
         cr_expect_eq(wr_statics_solve(&s, x1, &sd, &st1, &dg), WR_ERR_INVALID_ARG, "exact_retry %g", bad[i]);
         cr_expect(strstr(dg.message, "exact_retry") != NULL, "%s", dg.message);
     }
     wr_shell_free(&s);
     free(x0);
     free(x1);
+    wr_mesh_free(&m);
+}
+
+/* WR_MOTION_AFFINE against its formula at one point: x = o + R(t·θ)(I + t·G)(X − o) + t·v + t·wave */
+Test(statics, affine_motion_formula) {
+    wr_motion mo;
+    double X[3] = {0.3, -0.2, 0.1}, tgt[3], F[9], d[3], q[3], y[3], th = 0.25 * 0.6, c = cos(th), sn = sin(th);
+    int32_t v = 0;
+    int i, k;
+    memset(&mo, 0, sizeof mo);
+    mo.kind = WR_MOTION_AFFINE;
+    mo.verts = &v;
+    mo.n_verts = 1;
+    mo.origin[0] = 0.1, mo.origin[1] = 0.05;
+    mo.grad[0] = 0.2, mo.grad[1] = 0.1, mo.grad[8] = -0.3;
+    mo.axis[2] = 2.0; /* normalised: rotation about +z */
+    mo.amount = 0.6;
+    mo.vec[1] = 0.4;
+    mo.wave_amplitude = 0.02, mo.wave_length = 0.5, mo.wave_along[0] = 1.0, mo.wave_dir[2] = 3.0;
+    cr_assert_eq(wr_motion_apply(&mo, 1, X, 0.25, tgt, NULL, NULL), WR_OK);
+    for (k = 0; k < 9; ++k) F[k] = (k % 4 == 0) + 0.25 * mo.grad[k];
+    for (k = 0; k < 3; ++k) d[k] = X[k] - mo.origin[k];
+    for (k = 0; k < 3; ++k) q[k] = F[3 * k] * d[0] + F[3 * k + 1] * d[1] + F[3 * k + 2] * d[2];
+    y[0] = mo.origin[0] + c * q[0] - sn * q[1];
+    y[1] = mo.origin[1] + sn * q[0] + c * q[1] + 0.25 * 0.4;
+    y[2] = q[2] + 0.25 * 0.02 * sin(2.0 * 3.14159265358979323846 * X[0] / 0.5);
+    for (i = 0; i < 3; ++i) cr_expect_float_eq(tgt[i], y[i], 1e-15, "component %d: %.17g vs %.17g", i, tgt[i], y[i]);
+    mo.axis[2] = 0.0; /* a twist without an axis, a wave without a length: refused */
+    cr_expect_eq(wr_motion_apply(&mo, 1, X, 0.25, tgt, NULL, NULL), WR_ERR_INVALID_ARG);
+    mo.axis[2] = 1.0;
+    mo.wave_length = 0.0;
+    cr_expect_eq(wr_motion_apply(&mo, 1, X, 0.25, tgt, NULL, NULL), WR_ERR_INVALID_ARG);
+}
+
+static int inc_done_calls, inc_done_last;
+static void inc_done(void *user, int32_t k, int32_t n, wr_status status, const wr_statics_stats *st, const wr_diag *d) {
+    (void)user, (void)n, (void)st, (void)d;
+    cr_expect_eq(k, inc_done_last + 1, "increments reported in order");
+    cr_expect_eq(status, WR_OK);
+    inc_done_last = k;
+    inc_done_calls++;
+}
+
+/* The scene format's load stepping in the library: a homogeneous stretch of a sheet whose whole
+ * boundary follows one affine motion. The affine predictor puts every free vertex at F_k·X exactly,
+ * so each increment starts at its equilibrium; the absolute reference and the hybrid path must keep
+ * the result at F·X (the unique equilibrium) and report every increment. */
+Test(statics, affine_predictor_absolute_reference_hybrid) {
+    wr_mesh m;
+    wr_shell s;
+    wr_shell_desc d;
+    wr_statics_desc sd;
+    wr_statics_stats st, st0;
+    wr_motion mo;
+    wr_diag dg;
+    int32_t nx = 6, ny = 5, i, j, nb = 0, *bnd;
+    double *x, *x0, err = 0.0;
+    cr_assert_eq(wr_mesh_rectangle(&m, 1.0, 0.8, nx, ny, NULL), WR_OK);
+    memset(&d, 0, sizeof d);
+    d.young = 1e5, d.poisson = 0.3, d.thickness = 1e-3;
+    cr_assert_eq(wr_shell_create(&s, &m, &d, NULL), WR_OK);
+    bnd = (int32_t *)malloc(sizeof(int32_t) * m.nv);
+    x = (double *)malloc(sizeof(double) * 3 * m.nv);
+    x0 = (double *)malloc(sizeof(double) * 3 * m.nv);
+    for (j = 0; j <= ny; ++j)
+        for (i = 0; i <= nx; ++i)
+            if (i == 0 || j == 0 || i == nx || j == ny) bnd[nb++] = j * (nx + 1) + i;
+    memset(&mo, 0, sizeof mo);
+    mo.kind = WR_MOTION_AFFINE, mo.verts = bnd, mo.n_verts = nb;
+    mo.grad[0] = 0.1, mo.grad[1] = 0.05, mo.grad[4] = 0.05;
+    memcpy(x, m.pos, sizeof(double) * 3 * m.nv);
+    memcpy(x0, m.pos, sizeof(double) * 3 * m.nv);
+    memset(&sd, 0, sizeof sd);
+    sd.hessian.projection = WR_PROJECT_FAST;
+    /* the plain path first: the last equilibrium as the start */
+    cr_assert_eq(wr_statics_solve_incremental(&s, x0, &sd, &mo, 1, 3, &st0, &dg), WR_OK, "%s", dg.message);
+    sd.increments.predictor = WR_STATICS_PREDICT_AFFINE;
+    sd.increments.absolute_reference = 1;
+    sd.increments.hybrid_switch = 1e-3;
+    sd.increments.done = inc_done;
+    inc_done_calls = inc_done_last = 0;
+    cr_assert_eq(wr_statics_solve_incremental(&s, x, &sd, &mo, 1, 3, &st, &dg), WR_OK, "%s", dg.message);
+    cr_expect_eq(inc_done_calls, 3);
+    for (i = 0; i < m.nv; ++i) {
+        const double *X = m.pos + 3 * i;
+        err = fmax(err, fabs(x[3 * i] - (1.1 * X[0] + 0.05 * X[1])));
+        err = fmax(err, fabs(x[3 * i + 1] - 1.05 * X[1]));
+        err = fmax(err, fabs(x[3 * i + 2]));
+    }
+    /* grad_tol 1e-8 of a ~1e2 N force scale over a 1e5 Pa·mm membrane: 1e-9 m */
+    cr_expect_lt(err, 1e-9, "max deviation from F·X %.3e", err);
+    /* an exact prediction leaves nothing to do: fewer Newton steps than warm-starting at the last state */
+    cr_expect_lt(st.total_iterations, st0.total_iterations, "affine %d vs last-equilibrium %d Newton steps",
+                 (int)st.total_iterations, (int)st0.total_iterations);
+    sd.increments.predictor = (wr_statics_predictor)7;
+    cr_expect_eq(wr_statics_solve_incremental(&s, x, &sd, &mo, 1, 3, &st, &dg), WR_ERR_INVALID_ARG);
+    free(bnd), free(x), free(x0);
+    wr_shell_free(&s);
     wr_mesh_free(&m);
 }

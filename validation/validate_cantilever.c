@@ -71,7 +71,7 @@ typedef struct cant_case {
 typedef struct cant_row {
     double r, tip, shape, t_solve;
     int32_t nv, newton;
-    int stop; /* wr_statics_stop */
+    int stop; /* wr_newton_stop */
     wr_status st;
 } cant_row;
 
@@ -110,13 +110,13 @@ static int cant_solve(const wr_scene *base, const cant_case *cc, double r, int o
         wr_statics_desc sd;
         wr_statics_stats st;
         memset(&sd, 0, sizeof sd);
-        for (k = 0; k < 3; ++k) sd.gravity[k] = s2.gravity[k];
-        sd.fixed = run.fixed;
-        sd.grad_tol = s2.grad_tol;
-        sd.max_iter = s2.max_iter;
-        sd.projection = s2.hessian == WR_SCENE_HESSIAN_EXACT ? WR_PROJECT_NONE : WR_PROJECT_FAST;
-        sd.linear.method = s2.linear;
-        sd.membrane_ramp = fmin(0.1, cc->rhoA * fabs(s2.gravity[2]) * cc->L /
+        for (k = 0; k < 3; ++k) sd.loads.gravity[k] = s2.gravity[k];
+        sd.loads.fixed = run.fixed;
+        sd.stop.grad_tol = s2.grad_tol;
+        sd.stop.max_iter = s2.max_iter;
+        sd.hessian.projection = s2.hessian == WR_SCENE_HESSIAN_EXACT ? WR_PROJECT_NONE : WR_PROJECT_FAST;
+        sd.linear.solver.method = s2.linear;
+        sd.continuation.membrane_ramp = fmin(0.1, cc->rhoA * fabs(s2.gravity[2]) * cc->L /
                                          (s2.shell.young * s2.shell.thickness * CANT_SOFT_STRAIN));
         out->st = wr_statics_solve(&run.shell, run.x, &sd, &st, &d);
         out->t_solve = st.t_total;

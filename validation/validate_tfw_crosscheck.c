@@ -112,9 +112,9 @@ static void sheet(res *o) {
     mo[1].axis[0] = 1.0;
     mo[1].amount = 0.1278;
     memset(&st, 0, sizeof st);
-    st.perturb = 1e-6;
-    st.seed = 3;
-    st.max_iter = 300;
+    st.start.perturb = 1e-6;
+    st.start.seed = 3;
+    st.stop.max_iter = 300;
     memcpy(x, m.pos, sizeof(double) * 3 * m.nv);
     o->st = wr_statics_solve_incremental(&sh, x, &st, mo, 2, 4, &ss, &d);
     o->iters = ss.total_iterations;
@@ -186,14 +186,14 @@ static void cylinder(res *o) {
     mo[1].axis[2] = 1.0;
     mo[1].amount = 10.0 * TP_PI / 180.0;
     memset(&st, 0, sizeof st);
-    st.perturb = 1e-5;
-    st.seed = 5;
-    st.max_iter = 300;
+    st.start.perturb = 1e-5;
+    st.start.seed = 5;
+    st.stop.max_iter = 300;
     /* statics.h ON PROJECTION, exact_retry: the exact Hessian is tried again after the gradient has
      * fallen 10x below its first (indefinite) attempt. Without it the 56x44 cylinder crawled on a
      * nearly flat mode with projected Newton and 3 of its 4 increments stopped at max_iter (see the
      * notes); same minimiser, same tolerances, only the Newton matrix near the end differs. */
-    st.exact_retry = 0.1;
+    st.hessian.exact_retry = 0.1;
     memcpy(x, m.pos, sizeof(double) * 3 * m.nv);
     o->st = wr_statics_solve_incremental(&sh, x, &st, mo, 2, 4, &ss, &d);
     o->iters = ss.total_iterations;

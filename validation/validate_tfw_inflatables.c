@@ -142,17 +142,17 @@ static void run(infl *c, const wr_mesh *panel, double rho_split_rel) {
     t0 = wr_time_seconds();
     for (k = 0; k < 1; ++k) { /* full pressure from the lifted pillow (a ramp cost more Newton steps) */
         memset(&st, 0, sizeof st);
-        st.pressure = c->pressure;
-        st.max_iter = 300;
+        st.loads.pressure = c->pressure;
+        st.stop.max_iter = 300;
         /* exact element Hessians: the per-face PSD projection discards each face's indefinite −p∇²V
          * block and turns Newton linear near the inflated equilibrium, where the exact Hessian is
          * SPD (measured: Mylar balloon 18 rings 103 → 12 Newton steps, teabag 24 → 11, same volume);
          * away from it the statics' shift raise keeps the steps descent directions */
-        st.projection = WR_PROJECT_NONE;
+        st.hessian.projection = WR_PROJECT_NONE;
         c->s_base = wr_statics_solve(&sh, x, &st, &ss, &d);
         c->base_iters += ss.iterations;
         if (c->s_base) ++c->fails;
-        fprintf(stderr, "  %s p = %g Pa: %s, %d Newton, V %.4e, %.1f s\n", c->name, st.pressure, wr_status_string(c->s_base),
+        fprintf(stderr, "  %s p = %g Pa: %s, %d Newton, V %.4e, %.1f s\n", c->name, st.loads.pressure, wr_status_string(c->s_base),
                 (int)ss.iterations, ss.volume, wr_time_seconds() - t0);
     }
     c->t_base = wr_time_seconds() - t0;

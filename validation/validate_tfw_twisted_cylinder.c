@@ -255,7 +255,7 @@ static void run_case(row *rw, int keep_profile, double *profile) {
     /* TFT + quadratic bending is convex (TFW Sec. 6.5): one increment reaches the same equilibrium
      * (696 vertices: 14 Newton steps against 33 in 4 increments, positions equal to 1e-9 m), and its
      * element Hessians are PSD already, so they are assembled exactly (no projection pass) */
-    st.projection = WR_PROJECT_NONE;
+    st.hessian.projection = WR_PROJECT_NONE;
     memcpy(x, m.pos, sizeof(double) * 3 * m.nv);
     t0 = wr_time_seconds();
     rw->s_base = wr_statics_solve_incremental(&sh, x, &st, mo, 2, 1, &ss, &d);

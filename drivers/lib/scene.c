@@ -16,9 +16,6 @@
 /* Largest mesh a scene may request from a generator: keeps a typo ("resolution": 1e-6) from
  * allocating gigabytes before anything is solved. 2e6 vertices is ~20× the benchmark's top size. */
 #define SC_MAX_VERTICES 2000000
-/* Regularisation of the affine warm-start fit, relative to the prescribed set's spread: pulls the
- * fitted linear part towards the identity when the prescribed vertices are collinear (one clamp). */
-#define SC_AFFINE_REG 1e-6
 /* Hybrid Newton: gradient, relative to the scene's force scale G (see wr_scene_run_solve), at which the
  * projected phase hands over to the exact Hessian. 1e-3: past the saddle-escape phase, far from the
  * final tolerance. */
@@ -620,7 +617,6 @@ void wr_scene_run_free(wr_scene_run *run) {
     free(run->fixed);
     free(run->bc_of);
     free(run->x);
-    free(run->target);
     free(run->steps);
     memset(run, 0, sizeof *run);
 }
@@ -639,9 +635,8 @@ wr_status wr_scene_run_create(wr_scene_run *run, const wr_scene *sc, wr_diag *di
     run->fixed = (uint8_t *)calloc((size_t)nv, 1);
     run->bc_of = (int32_t *)malloc(sizeof(int32_t) * (size_t)nv);
     run->x = (double *)malloc(sizeof(double) * 3 * (size_t)nv);
-    run->target = (double *)malloc(sizeof(double) * 3 * (size_t)nv);
     run->steps = (wr_scene_step_stats *)calloc((size_t)sc->load_steps, sizeof(wr_scene_step_stats));
-    if (!run->fixed || !run->bc_of || !run->x || !run->target || !run->steps) {
+    if (!run->fixed || !run->bc_of || !run->x || !run->steps) {
         st = wr_fail(diag, WR_ERR_NOMEM, -1, "scene: out of memory (%d vertices)", (int)nv);
         goto fail;
     }
@@ -688,245 +683,125 @@ fail:
     return st;
 }
 
-/* Prescribed position of vertex i (set B) at load fraction s (scene.h formula). */
-static void sc_motion(const wr_scene_bc *B, const double *X, double s, double *out) {
-    double d[3], q[3], F[9];
+/* The library motion (statics.h WR_MOTION_AFFINE) of prescribed set B (scene.h formula). */
+static void sc_motion(const wr_scene_bc *B, wr_motion *m) {
     int k;
-    F[0] = 1.0 + s * (B->stretch[0] - 1.0), F[1] = s * B->shear[0], F[2] = s * B->shear[1];
-    F[3] = 0.0, F[4] = 1.0 + s * (B->stretch[1] - 1.0), F[5] = s * B->shear[2];
-    F[6] = 0.0, F[7] = 0.0, F[8] = 1.0 + s * (B->stretch[2] - 1.0);
-    for (k = 0; k < 3; ++k) d[k] = X[k] - B->center[k];
-    for (k = 0; k < 3; ++k) q[k] = F[3 * k] * d[0] + F[3 * k + 1] * d[1] + F[3 * k + 2] * d[2];
-    if (B->twist_angle != 0.0) { /* Rodrigues rotation by s·angle about the unit axis */
-        wr_vec3 a = wr_v3_normalized(wr_v3_load(B->twist_axis)), v = wr_v3_load(q);
-        double th = s * B->twist_angle, c = cos(th), sn = sin(th);
-        wr_vec3 r = wr_v3_add(wr_v3_add(wr_v3_scale(v, c), wr_v3_scale(wr_v3_cross(a, v), sn)),
-                              wr_v3_scale(a, wr_v3_dot(a, v) * (1.0 - c)));
-        wr_v3_store(r, q);
-    }
-    for (k = 0; k < 3; ++k) out[k] = B->center[k] + q[k] + s * B->translate[k];
-    if (B->wave_amplitude != 0.0) {
-        double ph = 2.0 * SC_PI * (X[0] * B->wave_along[0] + X[1] * B->wave_along[1] + X[2] * B->wave_along[2]) /
-                        B->wave_length + B->wave_phase;
-        wr_vec3 dir = wr_v3_normalized(wr_v3_load(B->wave_dir));
-        double a = s * B->wave_amplitude * sin(ph);
-        out[0] += a * dir.x, out[1] += a * dir.y, out[2] += a * dir.z;
-    }
-}
-
-/* Solve a small dense system in place (Gaussian elimination, partial pivoting); 0 when singular. */
-static int sc_solve4(double M[16], double r[4]) {
-    int i, j, k;
-    for (k = 0; k < 4; ++k) {
-        int p = k;
-        for (i = k + 1; i < 4; ++i)
-            if (fabs(M[4 * i + k]) > fabs(M[4 * p + k])) p = i;
-        if (!(fabs(M[4 * p + k]) > 0.0)) return 0;
-        if (p != k) {
-            double t;
-            for (j = 0; j < 4; ++j) t = M[4 * k + j], M[4 * k + j] = M[4 * p + j], M[4 * p + j] = t;
-            t = r[k], r[k] = r[p], r[p] = t;
-        }
-        for (i = k + 1; i < 4; ++i) {
-            double f = M[4 * i + k] / M[4 * k + k];
-            for (j = k; j < 4; ++j) M[4 * i + j] -= f * M[4 * k + j];
-            r[i] -= f * r[k];
-        }
-    }
-    for (k = 3; k >= 0; --k) {
-        for (j = k + 1; j < 4; ++j) r[k] -= M[4 * k + j] * r[j];
-        r[k] /= M[4 * k + k];
-    }
-    return 1;
-}
-
-/* Warm start for the next load step: the least-squares affine map taking the prescribed vertices'
- * current positions to their new targets (regularised towards the identity, SC_AFFINE_REG), applied to
- * the free vertices. A uniform stretch is then exact for the free interior, so Newton starts close
- * instead of having to propagate a boundary jump through the whole mesh. */
-static void sc_warm_start(wr_scene_run *run) {
-    int32_t i, nv = run->mesh.nv, k;
-    double M[16], rhs[3][4], spread = 0.0, mean[3] = {0, 0, 0}, cnt = 0.0;
-    for (i = 0; i < nv; ++i)
-        if (run->fixed[i]) {
-            for (k = 0; k < 3; ++k) mean[k] += run->x[3 * i + k];
-            cnt += 1.0;
-        }
-    if (cnt < 1.0) return;
-    for (k = 0; k < 3; ++k) mean[k] /= cnt;
-    for (i = 0; i < nv; ++i)
-        if (run->fixed[i])
-            for (k = 0; k < 3; ++k) spread += (run->x[3 * i + k] - mean[k]) * (run->x[3 * i + k] - mean[k]);
-    spread = fmax(spread, 1e-300);
+    memset(m, 0, sizeof *m);
+    m->kind = WR_MOTION_AFFINE;
     for (k = 0; k < 3; ++k) {
-        int a, b;
-        memset(M, 0, sizeof M);
-        memset(rhs[k], 0, sizeof rhs[k]);
-        for (i = 0; i < nv; ++i)
-            if (run->fixed[i]) {
-                double z[4];
-                z[0] = run->x[3 * i] - mean[0], z[1] = run->x[3 * i + 1] - mean[1], z[2] = run->x[3 * i + 2] - mean[2];
-                z[3] = 1.0;
-                for (a = 0; a < 4; ++a) {
-                    for (b = 0; b < 4; ++b) M[4 * a + b] += z[a] * z[b];
-                    rhs[k][a] += z[a] * (run->target[3 * i + k] - mean[k]);
-                }
-            }
-        for (a = 0; a < 3; ++a) {
-            M[4 * a + a] += SC_AFFINE_REG * spread;
-            rhs[k][a] += SC_AFFINE_REG * spread * (a == k ? 1.0 : 0.0);
-        }
-        if (!sc_solve4(M, rhs[k])) return;
+        m->origin[k] = B->center[k];
+        m->vec[k] = B->translate[k];
+        m->axis[k] = B->twist_axis[k];
+        m->grad[4 * k] = B->stretch[k] - 1.0;
+        m->wave_along[k] = B->wave_along[k];
+        m->wave_dir[k] = B->wave_dir[k];
     }
-    for (i = 0; i < nv; ++i)
-        if (!run->fixed[i]) {
-            double z[3], y[3];
-            for (k = 0; k < 3; ++k) z[k] = run->x[3 * i + k] - mean[k];
-            for (k = 0; k < 3; ++k) y[k] = mean[k] + rhs[k][0] * z[0] + rhs[k][1] * z[1] + rhs[k][2] * z[2] + rhs[k][3];
-            for (k = 0; k < 3; ++k) run->x[3 * i + k] = y[k];
-        }
+    m->grad[1] = B->shear[0], m->grad[2] = B->shear[1], m->grad[5] = B->shear[2];
+    m->amount = B->twist_angle;
+    m->wave_amplitude = B->wave_amplitude;
+    m->wave_length = B->wave_length;
+    m->wave_phase = B->wave_phase;
 }
 
 typedef struct sc_prog {
+    wr_scene_run *run;
     wr_scene_progress_fn fn;
     void *user;
-    int32_t step, n;
+    wr_status worst;
+    wr_diag *diag;
 } sc_prog;
 
 static void sc_progress(void *user, const wr_statics_stats *st) {
     sc_prog *p = (sc_prog *)user;
-    p->fn(p->user, p->step, p->n, st);
+    if (p->fn) p->fn(p->user, st->increment, p->run->sc->load_steps, st);
 }
 
-/* ‖∇Π_free‖ at x with gravity gs [N] (NaN when the energy is undefined) and ‖f_ext,free‖ in *fe. */
-static double sc_free_grad(const wr_scene_run *run, const double *x, const double gs[3], double *g, double *mass,
-                           double *fe, double *freact) {
-    double E, s = 0.0, f2 = 0.0, r2 = 0.0;
-    int32_t i, nv = run->mesh.nv;
-    if (wr_shell_energy(&run->shell, x, &E, g, NULL) != WR_OK) return NAN;
-    wr_shell_vertex_masses(&run->shell, mass);
-    for (i = 0; i < 3 * nv; ++i)
-        if (!run->fixed[i / 3]) {
-            double f = mass[i / 3] * gs[i % 3];
-            s += (g[i] - f) * (g[i] - f);
-            f2 += f * f;
-        } else
-            r2 += g[i] * g[i];
-    *fe = sqrt(f2);
-    *freact = sqrt(r2);
-    return sqrt(s);
+/* statics.h increments.done: one load step's figures into the run */
+static void sc_step_done(void *user, int32_t k, int32_t n, wr_status status, const wr_statics_stats *st,
+                         const wr_diag *dd) {
+    sc_prog *p = (sc_prog *)user;
+    wr_scene_run *run = p->run;
+    wr_scene_step_stats *ss = &run->steps[k - 1];
+    ss->fraction = (double)k / n;
+    ss->st = *st;
+    ss->status = status;
+    run->n_steps_done = k;
+    run->newton_iterations += st->iterations;
+    run->linear_iterations += st->linear_iterations;
+    run->t_assembly += st->t_assembly;
+    run->t_projection += st->t_projection;
+    run->t_linear += st->t_linear;
+    run->t_line_search += st->t_line_search;
+    /* keep going after NOT_CONVERGED (later steps often recover); the run reports the first one */
+    if (status == WR_ERR_NOT_CONVERGED && p->worst == WR_OK) {
+        p->worst = status;
+        if (p->diag && dd) *p->diag = *dd;
+    }
 }
 
+/* Load stepping through statics.h's incremental solve: step k of N applies fraction k/N of every
+ * prescribed motion (and of gravity unless ramp_gravity is false), starting each step from the
+ * affine prediction, with one absolute force scale for every step (increments.absolute_reference),
+ * hybrid Newton when asked (increments.hybrid_switch = SC_HYBRID_SWITCH). */
 wr_status wr_scene_run_solve(wr_scene_run *run, wr_scene_progress_fn progress, void *user, wr_diag *diag) {
     const wr_scene *sc = run->sc;
-    int32_t k, i, nv = run->mesh.nv, N = sc->load_steps;
-    wr_status worst = WR_OK;
+    int32_t b, i, nv = run->mesh.nv, *verts = NULL, *start = NULL;
+    wr_motion *motions = NULL;
+    wr_statics_desc d;
+    wr_statics_stats st;
+    wr_diag dd;
     sc_prog pg;
-    double t0 = wr_time_seconds(), G = 0.0, *gbuf, *mbuf;
-    double gtol = sc->grad_tol > 0.0 ? sc->grad_tol : 1e-8;
-    /* One absolute force scale G for every load step: the larger of statics.h's reference (ON STOPPING)
-     * and the norm of the elastic forces on the prescribed vertices, at the start of the FIRST step. statics.h measures its tolerance relative to each call's own start, which after
-     * a good warm start of a later step is tiny and would ask for a gradient below round-off (measured:
-     * the 2.5 mm stretch test hit max_iter at |g| 7e-9 N against a target of 7e-14 N); we rescale
-     * grad_tol per step so that every step stops at ‖∇Π_free‖ <= grad_tol · G. */
-    gbuf = (double *)malloc(sizeof(double) * 3 * (size_t)nv);
-    mbuf = (double *)malloc(sizeof(double) * (size_t)nv);
-    if (!gbuf || !mbuf) {
-        free(gbuf);
-        free(mbuf);
+    wr_status rs;
+    double t0 = wr_time_seconds();
+    memset(&dd, 0, sizeof dd);
+    motions = (wr_motion *)calloc((size_t)sc->n_bc + 1, sizeof(wr_motion));
+    verts = (int32_t *)malloc(sizeof(int32_t) * ((size_t)nv + 1));
+    start = (int32_t *)calloc((size_t)sc->n_bc + 2, sizeof(int32_t));
+    if (!motions || !verts || !start) {
+        free(motions), free(verts), free(start);
         return wr_fail(diag, WR_ERR_NOMEM, -1, "scene: out of memory");
     }
-    for (k = 1; k <= N; ++k) {
-        double s = (double)k / N;
-        wr_statics_desc d;
-        wr_scene_step_stats *ss = &run->steps[k - 1];
-        wr_diag dd;
-        memcpy(run->target, run->x, sizeof(double) * 3 * (size_t)nv);
-        for (i = 0; i < nv; ++i)
-            if (run->fixed[i]) sc_motion(&sc->bc[run->bc_of[i]], run->mesh.pos + 3 * i, s, run->target + 3 * i);
-        sc_warm_start(run);
-        memset(&d, 0, sizeof d);
-        d.max_iter = sc->max_iter;
-        for (i = 0; i < 3; ++i) d.gravity[i] = sc->gravity[i] * (sc->ramp_gravity ? s : 1.0);
-        {
-            double fs = 0.0, fr = 0.0, g0, ref;
-            /* the start state statics.h will see (prescribed rows moved to their targets) */
-            memcpy(gbuf, run->x, sizeof(double) * 3 * (size_t)nv);
-            for (i = 0; i < nv; ++i)
-                if (run->fixed[i]) memcpy(gbuf + 3 * i, run->target + 3 * i, sizeof(double) * 3);
-            {
-                double *xs = (double *)malloc(sizeof(double) * 3 * (size_t)nv);
-                g0 = NAN;
-                if (xs) {
-                    memcpy(xs, gbuf, sizeof(double) * 3 * (size_t)nv);
-                    g0 = sc_free_grad(run, xs, d.gravity, gbuf, mbuf, &fs, &fr);
-                    free(xs);
-                }
-            }
-            ref = (g0 == g0) ? fmax(g0, fs) : 0.0;
-            /* the elastic reaction on the prescribed vertices is the problem's force scale; the start
-             * residual alone can be tiny after the affine warm start */
-            if (k == 1) G = fmax(ref, fr);
-            d.grad_tol = (ref > 0.0 && G > 0.0) ? fmin(1.0, gtol * G / ref) : gtol;
-        }
-        d.fixed = run->fixed;
-        d.target = run->target;
-        d.perturb = k == 1 ? sc->perturb : 0.0;
-        d.seed = sc->seed;
-        d.no_projection = sc->hessian == WR_SCENE_HESSIAN_EXACT;
-        d.linear.method = sc->linear;
-        d.linear.rel_tol = sc->linear_tol;
-        if (progress) {
-            pg.fn = progress, pg.user = user, pg.step = k, pg.n = N;
-            d.progress = sc_progress;
-            d.progress_user = &pg;
-        }
-        ss->fraction = s;
-        if (sc->hessian == WR_SCENE_HESSIAN_HYBRID) {
-            /* projected Newton (robust descent away from the flat saddle) to a loose tolerance, then the
-             * exact Hessian (quadratic convergence near the minimum, no per-element eigen-solves) */
-            wr_statics_desc d1 = d;
-            wr_statics_stats s1;
-            d1.no_projection = 0;
-            d1.grad_tol = fmin(1.0, fmax(d.grad_tol, d.grad_tol * SC_HYBRID_SWITCH / gtol));
-            ss->status = wr_statics_solve(&run->shell, run->x, &d1, &s1, &dd);
-            d.perturb = 0.0;
-            d.no_projection = 1;
-            ss->status = wr_statics_solve(&run->shell, run->x, &d, &ss->st, &dd);
-            ss->st.iterations += s1.iterations;
-            ss->st.linear_iterations += s1.linear_iterations;
-            ss->st.line_search_evals += s1.line_search_evals;
-            ss->st.t_assembly += s1.t_assembly, ss->st.t_projection += s1.t_projection;
-            ss->st.t_linear += s1.t_linear, ss->st.t_line_search += s1.t_line_search, ss->st.t_total += s1.t_total;
-        } else
-            ss->status = wr_statics_solve(&run->shell, run->x, &d, &ss->st, &dd);
-        run->n_steps_done = k;
-        run->newton_iterations += ss->st.iterations;
-        run->linear_iterations += ss->st.linear_iterations;
-        run->t_assembly += ss->st.t_assembly;
-        run->t_projection += ss->st.t_projection;
-        run->t_linear += ss->st.t_linear;
-        run->t_line_search += ss->st.t_line_search;
-        if (ss->status == WR_ERR_NOT_CONVERGED) {
-            /* keep going: later steps often recover; the run reports the status */
-            if (worst == WR_OK) {
-                worst = ss->status;
-                if (diag) *diag = dd;
-            }
-        } else if (ss->status != WR_OK) {
-            if (diag) *diag = dd;
-            run->t_solve = wr_time_seconds() - t0;
-            run->solve_status = ss->status;
-            free(gbuf);
-            free(mbuf);
-            return ss->status;
-        }
+    /* each set's vertices (later sets win where they overlap: bc_of) */
+    for (i = 0; i < nv; ++i)
+        if (run->bc_of[i] >= 0) start[run->bc_of[i] + 1]++;
+    for (b = 0; b < sc->n_bc; ++b) start[b + 1] += start[b];
+    for (i = 0; i < nv; ++i)
+        if (run->bc_of[i] >= 0) verts[start[run->bc_of[i]]++] = i;
+    for (b = sc->n_bc; b > 0; --b) start[b] = start[b - 1];
+    start[0] = 0;
+    for (b = 0; b < sc->n_bc; ++b) {
+        sc_motion(&sc->bc[b], motions + b);
+        motions[b].verts = verts + start[b];
+        motions[b].n_verts = start[b + 1] - start[b];
     }
+    memset(&d, 0, sizeof d);
+    d.stop.max_iter = sc->max_iter;
+    d.stop.grad_tol = sc->grad_tol;
+    for (i = 0; i < 3; ++i) d.loads.gravity[i] = sc->gravity[i];
+    d.start.perturb = sc->perturb;
+    d.start.seed = sc->seed;
+    d.hessian.projection = sc->hessian == WR_SCENE_HESSIAN_EXACT ? WR_PROJECT_NONE : WR_PROJECT_FAST;
+    d.linear.solver.method = sc->linear;
+    d.linear.solver.rel_tol = sc->linear_tol;
+    d.increments.predictor = WR_STATICS_PREDICT_AFFINE;
+    d.increments.ramp_gravity = sc->ramp_gravity;
+    d.increments.absolute_reference = 1;
+    d.increments.hybrid_switch = sc->hessian == WR_SCENE_HESSIAN_HYBRID ? SC_HYBRID_SWITCH : 0.0;
+    d.increments.done = sc_step_done;
+    memset(&pg, 0, sizeof pg);
+    pg.run = run, pg.fn = progress, pg.user = user, pg.worst = WR_OK, pg.diag = diag;
+    d.progress = progress ? sc_progress : NULL;
+    d.progress_user = &pg;
+    rs = wr_statics_solve_incremental(&run->shell, run->x, &d, motions, sc->n_bc, sc->load_steps, &st, &dd);
+    free(motions), free(verts), free(start);
     run->t_solve = wr_time_seconds() - t0;
-    run->solve_status = worst;
-    free(gbuf);
-    free(mbuf);
-    return worst;
+    if (rs != WR_OK && rs != WR_ERR_NOT_CONVERGED) {
+        if (diag) *diag = dd;
+        run->solve_status = rs;
+        return rs;
+    }
+    run->solve_status = pg.worst;
+    return pg.worst;
 }
 
 wr_status wr_scene_run_probe_samples(const wr_scene_run *run, int32_t i, double *pts, double *vals, double *ds,

@@ -9,9 +9,10 @@
  *                                                  "$.material.young: must be a number > 0".
  *   wr_scene_load(sc, path, diag)                  read a file, then parse (base_dir = its directory)
  *   wr_scene_run_create(run, sc, diag)             rest mesh, shell, prescribed vertex sets
- *   wr_scene_run_solve(run, progress, user, diag)  load stepping: step k of N applies fraction k/N of
- *                                                  every prescribed motion (and of gravity unless
- *                                                  ramp_gravity is false), Newton to equilibrium
+ *   wr_scene_run_solve(run, progress, user, diag)  load stepping through statics.h's incremental
+ *                                                  solve (each set a WR_MOTION_AFFINE): step k of N
+ *                                                  applies fraction k/N of every prescribed motion
+ *                                                  (and of gravity unless ramp_gravity is false)
  *   wr_scene_run_probe(run, i, res, diag)          spectrum of probe i on the current state
  *   wr_scene_run_write(run, dir, diag)             deformed.obj, fields.ply, summary.json (atomic)
  *   wr_scene_run_free(run) / wr_scene_free(sc)
@@ -81,8 +82,8 @@ typedef struct wr_scene_probe {
     int closed;
 } wr_scene_probe;
 
-/* exact: statics.h no_projection (shifted until SPD); projected: per-element PSD projection;
- * hybrid: projected to a loose tolerance, then exact */
+/* exact: statics.h hessian.projection = WR_PROJECT_NONE (shifted until SPD); projected: per-element
+ * PSD projection; hybrid: projected to a loose tolerance, then exact (statics.h increments.hybrid_switch) */
 typedef enum wr_scene_hessian {
     WR_SCENE_HESSIAN_EXACT = 0,
     WR_SCENE_HESSIAN_PROJECTED,
@@ -125,7 +126,6 @@ typedef struct wr_scene_run {
     uint8_t *fixed;       /* nv */
     int32_t *bc_of;       /* nv: prescribed set of each vertex, -1 = free */
     double *x;            /* nv*3 current positions */
-    double *target;       /* nv*3 scratch */
     int32_t n_fixed;
     wr_scene_step_stats *steps; /* load_steps */
     int32_t n_steps_done;

@@ -223,9 +223,12 @@ typedef struct wr_collision_mesh {
 } wr_collision_mesh;
 
 typedef struct wr_contact {
-    int32_t kind; /* wr_contact_kind */
-    int32_t v[4]; /* vertex ids, layout of the kind */
-    double d;     /* distance at detection [m] */
+    int32_t kind;  /* wr_contact_kind */
+    int32_t v[4];  /* vertex ids, layout of the kind */
+    int32_t piece; /* wr_dist_piece active at detection */
+    double d;      /* distance at detection [m] */
+    double w[4];   /* closest-point coefficients at detection, r = Σ w_k x_k (ON DISTANCES): the lagged
+                      contact point and normal r/d a friction model needs */
 } wr_contact;
 
 typedef struct wr_contact_set {
@@ -1183,12 +1186,14 @@ static int wr__coll_pair(const wr_collision_mesh *cm, int kind, int32_t i, int32
 }
 
 static wr_status wr__coll_add_contact(wr__coll_ctx *c, int kind, int32_t i, int32_t j) {
-    int32_t v[4];
-    double x12[12], d;
+    int32_t v[4], piece = 0;
+    double x12[12], d, w[4];
     wr_contact_set *s = c->set;
     if (!wr__coll_pair(c->cm, kind, i, j, v)) return WR_OK;
     wr__coll_gather(c->x, v, x12);
-    d = sqrt(wr__pair_dist2((wr_contact_kind)kind, x12));
+    d = sqrt(kind == WR_CONTACT_PT
+                 ? wr_collision_point_triangle_dist2(x12, x12 + 3, x12 + 6, x12 + 9, NULL, NULL, w, &piece)
+                 : wr_collision_edge_edge_dist2(x12, x12 + 3, x12 + 6, x12 + 9, NULL, NULL, w, &piece));
     if (!(d < c->dhat)) return WR_OK;
     if (!(d > 0.0))
         return wr_fail(c->diag, WR_ERR_GEOMETRY, v[0], "collision: %s pair (%d %d %d %d) touches (distance 0)",
@@ -1203,6 +1208,8 @@ static wr_status wr__coll_add_contact(wr__coll_ctx *c, int kind, int32_t i, int3
     }
     s->c[s->n].kind = kind;
     memcpy(s->c[s->n].v, v, sizeof v);
+    memcpy(s->c[s->n].w, w, sizeof w);
+    s->c[s->n].piece = piece;
     s->c[s->n].d = d;
     s->n++;
     if (d < s->min_distance) s->min_distance = d;

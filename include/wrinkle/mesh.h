@@ -27,6 +27,8 @@
  *   wr_mesh_write_obj(m, path, desc, diag)                OBJ out (vt = rest, g = panels), atomic
  *   wr_mesh_write_ply(m, path, nprops, names, values, diag)   ASCII PLY with per-vertex doubles, atomic
  *   wr_mesh_write_vtk(m, path, np, pnames, pvals, nc, cnames, cvals, diag)   legacy VTK POLYDATA, atomic
+ *   wr_mesh_weld(out, in, n_pairs, pairs, vmap, diag)     sew: merge vertex pairs, keep each face's rest
+ *   wr_mesh_pillow(out, panel, lift, diag)                two copies of a flat panel sewn along the boundary
  *
  * EXAMPLE
  *     wr_mesh m;  wr_diag d;  double *omega, worst = 0.0;  int32_t e, f;  int k;
@@ -78,6 +80,17 @@
  *   Text I/O uses strtod / fprintf, so it assumes the "C" numeric locale (a program that switched
  *   LC_NUMERIC to a comma-decimal locale must switch back around these calls). Writers print 17
  *   significant digits: a write → read round trip reproduces every double exactly.
+ *
+ * ON SEWING
+ *   wr_mesh_weld merges the vertices of each pair (transitively), averages their positions and gives
+ *   every face its own rest corners (corner_rest) from the input, so each panel keeps its flat
+ *   pattern shape (TFW: two annuli → torus, two disks → Mylar balloon, two rectangles → teabag).
+ *   wr_mesh_pillow builds that two-panel case from one flat panel: the top copy keeps the panel's
+ *   orientation and is lifted by +lift·s(v), the bottom copy is mirrored in the rest domain (u → −u,
+ *   corners 1 and 2 swapped, so it is CCW in its own pattern and faces outward below) and lowered by
+ *   −lift·s(v); s = hop distance to the boundary / the largest such distance (0 on the seam, 1 at the
+ *   middle), a tent that keeps the seam faces non-degenerate. The closed result has outward normals,
+ *   so an enclosed volume is positive and a positive pressure (statics.h) inflates it.
  *
  * ON THREADS
  *   No global state. Read-only functions may run concurrently on one mesh.
@@ -232,6 +245,19 @@ WRDEF wr_status wr_mesh_write_vtk(const wr_mesh *m, const char *path, int32_t n_
                                   int32_t n_cell, const char *const *cell_names, const double *const *cell_values,
                                   wr_diag *diag);
 
+/* Sewing (ON SEWING). pairs: n_pairs × 2 vertex indices of `in`; vmap (in->nv) receives the new index
+ * of every input vertex when non-NULL. out gets corner_rest (and face_panel copied). Free with
+ * wr_mesh_free. Errors: WR_ERR_INVALID_ARG (index outside [0, nv), item = pair), WR_ERR_TOPOLOGY from
+ * wr_mesh_create (a face with two merged corners, an edge in more than two faces, inconsistent
+ * orientation across a seam). */
+WRDEF wr_status wr_mesh_weld(wr_mesh *out, const wr_mesh *in, int32_t n_pairs, const int32_t *pairs, int32_t *vmap,
+                             wr_diag *diag);
+/* Two copies of a flat panel (pos z = 0, at least one boundary loop) sewn along all its boundary
+ * loops; lift > 0 [m]. Top copy vertices keep their indices 0..nv−1 (face_panel 0, faces 0..nf−1),
+ * the bottom's interior vertices follow (face_panel 1). WR_ERR_INVALID_ARG for lift <= 0 or a panel
+ * without boundary. */
+WRDEF wr_status wr_mesh_pillow(wr_mesh *out, const wr_mesh *panel, double lift, wr_diag *diag);
+
 #ifdef __cplusplus
 }
 #endif
@@ -277,85 +303,66 @@ WRDEF void wr_mesh_free(wr_mesh *m) {
     memset(m, 0, sizeof *m);
 }
 
-/* Builds edges, face_edges, face_edge_sign, edge_faces, vf CSR and boundary loops from nv, nf,
- * faces (already range-checked). O(nf + nv): two stable counting-sort passes order the 3nf
- * half-edges by (low vertex, high vertex); equal keys are then adjacent. */
-static wr_status wr__mesh_build_topology(wr_mesh *m, wr_diag *diag) {
-    const int32_t nv = m->nv, nf = m->nf;
-    const size_t nh = (size_t)3 * (size_t)nf;
-    int32_t *cnt = NULL, *tmp = NULL, *ord = NULL, *bnext = NULL;
-    uint8_t *seen = NULL;
-    wr_status st = WR_OK;
-    size_t i, ne = 0;
+/* Half-edge h (corner h % 3 of face h / 3) runs from WR__HE_A to WR__HE_B, the corners after it. */
+#define WR__HE_A(m, h) ((m)->faces[3 * ((h) / 3) + ((h) % 3 + 1) % 3])
+#define WR__HE_B(m, h) ((m)->faces[3 * ((h) / 3) + ((h) % 3 + 2) % 3])
+#define WR__HE_LO(m, h) (WR__HE_A(m, h) < WR__HE_B(m, h) ? WR__HE_A(m, h) : WR__HE_B(m, h))
+#define WR__HE_HI(m, h) (WR__HE_A(m, h) < WR__HE_B(m, h) ? WR__HE_B(m, h) : WR__HE_A(m, h))
+
+/* ord ← the 3nf half-edges ordered by (low vertex, high vertex, half-edge): two stable counting
+ * sorts, by the high vertex into tmp, then by the low vertex */
+static void wr__mesh_sort_halfedges(const wr_mesh *m, int32_t *cnt, int32_t *tmp, int32_t *ord) {
+    const int32_t nv = m->nv;
+    const size_t nh = (size_t)3 * (size_t)m->nf;
+    size_t i;
     int32_t v;
-
-    cnt = (int32_t *)wr_alloc_array((size_t)nv + 1, sizeof(int32_t));
-    tmp = (int32_t *)wr_alloc_array(nh, sizeof(int32_t));
-    ord = (int32_t *)wr_alloc_array(nh, sizeof(int32_t));
-    if (!cnt || !tmp || !ord) {
-        st = wr_fail(diag, WR_ERR_NOMEM, -1, "mesh topology: out of memory (%d faces)", nf);
-        goto done;
-    }
-#define WR__HE_A(h) (m->faces[3 * ((h) / 3) + ((h) % 3 + 1) % 3])
-#define WR__HE_B(h) (m->faces[3 * ((h) / 3) + ((h) % 3 + 2) % 3])
-#define WR__HE_LO(h) (WR__HE_A(h) < WR__HE_B(h) ? WR__HE_A(h) : WR__HE_B(h))
-#define WR__HE_HI(h) (WR__HE_A(h) < WR__HE_B(h) ? WR__HE_B(h) : WR__HE_A(h))
-    /* pass 1: stable counting sort by high vertex into tmp */
     memset(cnt, 0, sizeof(int32_t) * ((size_t)nv + 1));
-    for (i = 0; i < nh; ++i) cnt[WR__HE_HI((int32_t)i) + 1]++;
+    for (i = 0; i < nh; ++i) cnt[WR__HE_HI(m, (int32_t)i) + 1]++;
     for (v = 0; v < nv; ++v) cnt[v + 1] += cnt[v];
-    for (i = 0; i < nh; ++i) tmp[cnt[WR__HE_HI((int32_t)i)]++] = (int32_t)i;
-    /* pass 2: stable counting sort by low vertex into ord → ordered by (lo, hi, half-edge) */
+    for (i = 0; i < nh; ++i) tmp[cnt[WR__HE_HI(m, (int32_t)i)]++] = (int32_t)i;
     memset(cnt, 0, sizeof(int32_t) * ((size_t)nv + 1));
-    for (i = 0; i < nh; ++i) cnt[WR__HE_LO(tmp[i]) + 1]++;
+    for (i = 0; i < nh; ++i) cnt[WR__HE_LO(m, tmp[i]) + 1]++;
     for (v = 0; v < nv; ++v) cnt[v + 1] += cnt[v];
-    for (i = 0; i < nh; ++i) ord[cnt[WR__HE_LO(tmp[i])]++] = tmp[i];
+    for (i = 0; i < nh; ++i) ord[cnt[WR__HE_LO(m, tmp[i])]++] = tmp[i];
+}
 
-    /* group equal keys: count edges and validate manifoldness / orientation */
+/* groups of equal keys in ord: the edge count, each edge in at most two faces traversing it in
+ * opposite directions */
+static wr_status wr__mesh_count_edges(const wr_mesh *m, const int32_t *ord, size_t *ne_out, wr_diag *diag) {
+    const size_t nh = (size_t)3 * (size_t)m->nf;
+    size_t i, ne = 0;
     for (i = 0; i < nh;) {
         size_t j = i + 1;
-        int32_t h0 = ord[i], lo = WR__HE_LO(h0), hi = WR__HE_HI(h0);
-        while (j < nh && WR__HE_LO(ord[j]) == lo && WR__HE_HI(ord[j]) == hi) ++j;
-        if (j - i > 2) {
-            st = wr_fail(diag, WR_ERR_TOPOLOGY, ord[i + 2] / 3,
-                         "non-manifold edge (%d,%d): shared by faces %d, %d and %d", lo, hi, ord[i] / 3,
-                         ord[i + 1] / 3, ord[i + 2] / 3);
-            goto done;
-        }
-        if (j - i == 2 && (WR__HE_A(ord[i]) == lo) == (WR__HE_A(ord[i + 1]) == lo)) {
-            st = wr_fail(diag, WR_ERR_TOPOLOGY, ord[i + 1] / 3,
-                         "inconsistent orientation: faces %d and %d both traverse edge %d->%d", ord[i] / 3,
-                         ord[i + 1] / 3, WR__HE_A(ord[i]), WR__HE_B(ord[i]));
-            goto done;
-        }
+        int32_t h0 = ord[i], lo = WR__HE_LO(m, h0), hi = WR__HE_HI(m, h0);
+        while (j < nh && WR__HE_LO(m, ord[j]) == lo && WR__HE_HI(m, ord[j]) == hi) ++j;
+        if (j - i > 2)
+            return wr_fail(diag, WR_ERR_TOPOLOGY, ord[i + 2] / 3, "non-manifold edge (%d,%d): shared by faces %d, %d and %d",
+                           lo, hi, ord[i] / 3, ord[i + 1] / 3, ord[i + 2] / 3);
+        if (j - i == 2 && (WR__HE_A(m, ord[i]) == lo) == (WR__HE_A(m, ord[i + 1]) == lo))
+            return wr_fail(diag, WR_ERR_TOPOLOGY, ord[i + 1] / 3,
+                           "inconsistent orientation: faces %d and %d both traverse edge %d->%d", ord[i] / 3,
+                           ord[i + 1] / 3, WR__HE_A(m, ord[i]), WR__HE_B(m, ord[i]));
         ++ne;
         i = j;
     }
-    if (ne > (size_t)INT32_MAX / 2) {
-        st = wr_fail(diag, WR_ERR_OVERFLOW, -1, "mesh has too many edges (%zu)", ne);
-        goto done;
-    }
-    m->ne = (int32_t)ne;
-    m->edges = (int32_t *)wr_alloc_array(2 * ne, sizeof(int32_t));
-    m->edge_faces = (int32_t *)wr_alloc_array(2 * ne, sizeof(int32_t));
-    m->face_edges = (int32_t *)wr_alloc_array(nh, sizeof(int32_t));
-    m->face_edge_sign = (int8_t *)wr_alloc_array(nh, sizeof(int8_t));
-    m->vf_start = (int32_t *)wr_alloc_array((size_t)nv + 1, sizeof(int32_t));
-    m->vf = (int32_t *)wr_alloc_array(nh, sizeof(int32_t));
-    if (!m->edges || !m->edge_faces || !m->face_edges || !m->face_edge_sign || !m->vf_start || !m->vf) {
-        st = wr_fail(diag, WR_ERR_NOMEM, -1, "mesh topology: out of memory (%zu edges)", ne);
-        goto done;
-    }
-    ne = 0;
+    if (ne > (size_t)INT32_MAX / 2) return wr_fail(diag, WR_ERR_OVERFLOW, -1, "mesh has too many edges (%zu)", ne);
+    *ne_out = ne;
+    return WR_OK;
+}
+
+/* edges (low, high), face_edges, face_edge_sign, edge_faces from the ordered half-edges */
+static void wr__mesh_fill_edges(wr_mesh *m, const int32_t *ord) {
+    const size_t nh = (size_t)3 * (size_t)m->nf;
+    size_t i, ne = 0;
     for (i = 0; i < nh;) {
         size_t j = i;
-        int32_t h0 = ord[i], lo = WR__HE_LO(h0), hi = WR__HE_HI(h0);
+        int32_t h0 = ord[i], lo = WR__HE_LO(m, h0), hi = WR__HE_HI(m, h0);
         m->edges[2 * ne] = lo;
         m->edges[2 * ne + 1] = hi;
         m->edge_faces[2 * ne] = m->edge_faces[2 * ne + 1] = -1;
-        while (j < nh && WR__HE_LO(ord[j]) == lo && WR__HE_HI(ord[j]) == hi) {
+        while (j < nh && WR__HE_LO(m, ord[j]) == lo && WR__HE_HI(m, ord[j]) == hi) {
             int32_t h = ord[j];
-            int plus = WR__HE_A(h) == lo;
+            int plus = WR__HE_A(m, h) == lo;
             m->face_edges[h] = (int32_t)ne;
             m->face_edge_sign[h] = (int8_t)(plus ? 1 : -1);
             m->edge_faces[2 * ne + (plus ? 0 : 1)] = h / 3;
@@ -364,18 +371,26 @@ static wr_status wr__mesh_build_topology(wr_mesh *m, wr_diag *diag) {
         ++ne;
         i = j;
     }
+}
 
-    /* vertex → faces CSR, faces ascending per vertex */
-    memset(m->vf_start, 0, sizeof(int32_t) * ((size_t)nv + 1));
+/* vertex → faces CSR (faces ascending per vertex); cnt (nv + 1) is scratch */
+static void wr__mesh_vertex_faces(wr_mesh *m, int32_t *cnt) {
+    const size_t nh = (size_t)3 * (size_t)m->nf;
+    size_t i;
+    int32_t v;
+    memset(m->vf_start, 0, sizeof(int32_t) * ((size_t)m->nv + 1));
     for (i = 0; i < nh; ++i) m->vf_start[m->faces[i] + 1]++;
-    for (v = 0; v < nv; ++v) m->vf_start[v + 1] += m->vf_start[v];
-    memcpy(cnt, m->vf_start, sizeof(int32_t) * ((size_t)nv + 1));
+    for (v = 0; v < m->nv; ++v) m->vf_start[v + 1] += m->vf_start[v];
+    memcpy(cnt, m->vf_start, sizeof(int32_t) * ((size_t)m->nv + 1));
     for (i = 0; i < nh; ++i) m->vf[cnt[m->faces[i]]++] = (int32_t)(i / 3);
+}
 
-    /* Manifold vertices: the faces around v must form one fan. Walking across the edge (v, next)
-     * of each face is an injective map on v's faces (consistent orientation), so the walk from
-     * the first face either returns or stops at the boundary; then walk the other way. */
-    for (v = 0; v < nv; ++v) {
+/* Manifold vertices: the faces around v must form one fan. Walking across the edge (v, next) of each
+ * face is an injective map on v's faces (consistent orientation), so the walk from the first face
+ * either returns or stops at the boundary; then walk the other way. */
+static wr_status wr__mesh_check_fans(const wr_mesh *m, wr_diag *diag) {
+    int32_t v;
+    for (v = 0; v < m->nv; ++v) {
         int32_t deg = m->vf_start[v + 1] - m->vf_start[v], f0, f, count = 1;
         int dir;
         if (deg == 0) continue;
@@ -395,76 +410,111 @@ static wr_status wr__mesh_build_topology(wr_mesh *m, wr_diag *diag) {
             }
             if (closed) break; /* closed fan: nothing on the other side */
         }
-        if (count != deg) {
-            st = wr_fail(diag, WR_ERR_TOPOLOGY, v,
-                         "non-manifold vertex %d: its %d faces form more than one fan (one fan has %d)", v,
-                         deg, count);
-            goto done;
-        }
+        if (count != deg)
+            return wr_fail(diag, WR_ERR_TOPOLOGY, v, "non-manifold vertex %d: its %d faces form more than one fan (one fan has %d)",
+                           v, deg, count);
     }
+    return WR_OK;
+}
 
-    /* Boundary loops: boundary half-edges a→b in face traversal order; bnext[a] = b is unique at
-     * a manifold vertex (one open fan has exactly one outgoing boundary half-edge). */
-    {
-        int32_t nb = 0, l = 0, pos = 0;
-        bnext = (int32_t *)wr_alloc_array((size_t)nv, sizeof(int32_t));
-        seen = (uint8_t *)wr_calloc_array((size_t)nv, 1);
-        if (!bnext || !seen) {
-            st = wr_fail(diag, WR_ERR_NOMEM, -1, "mesh topology: out of memory");
-            goto done;
-        }
-        for (v = 0; v < nv; ++v) bnext[v] = -1;
-        for (i = 0; i < nh; ++i) {
-            int32_t e = m->face_edges[i];
-            if (m->edge_faces[2 * e] >= 0 && m->edge_faces[2 * e + 1] >= 0) continue;
-            bnext[WR__HE_A((int32_t)i)] = WR__HE_B((int32_t)i);
-            ++nb;
-        }
-        /* count loops */
-        for (v = 0; v < nv; ++v) {
-            int32_t u = v, steps = 0;
-            if (bnext[v] < 0 || seen[v]) continue;
-            while (!seen[u] && steps <= nb) {
-                seen[u] = 1;
-                u = bnext[u];
-                ++steps;
-            }
-            ++l;
-        }
-        m->n_loops = l;
-        m->loop_start = (int32_t *)wr_alloc_array((size_t)l + 1, sizeof(int32_t));
-        m->loop_verts = (int32_t *)wr_alloc_array((size_t)nb, sizeof(int32_t));
-        if (!m->loop_start || !m->loop_verts) {
-            st = wr_fail(diag, WR_ERR_NOMEM, -1, "mesh topology: out of memory (%d boundary edges)", nb);
-            goto done;
-        }
-        memset(seen, 0, (size_t)nv);
-        l = 0;
-        for (v = 0; v < nv; ++v) {
-            int32_t u = v;
-            if (bnext[v] < 0 || seen[v]) continue;
-            m->loop_start[l++] = pos;
-            while (!seen[u] && pos < nb) {
-                seen[u] = 1;
-                m->loop_verts[pos++] = u;
-                u = bnext[u];
-            }
-        }
-        m->loop_start[l] = pos;
+/* Boundary loops: boundary half-edges a→b in face traversal order; bnext[a] = b is unique at a
+ * manifold vertex (one open fan has exactly one outgoing boundary half-edge). */
+static wr_status wr__mesh_boundary_loops(wr_mesh *m, wr_diag *diag) {
+    const int32_t nv = m->nv;
+    const size_t nh = (size_t)3 * (size_t)m->nf;
+    int32_t nb = 0, l = 0, pos = 0, v, *bnext = (int32_t *)wr_alloc_array((size_t)nv + 1, sizeof(int32_t));
+    uint8_t *seen = (uint8_t *)wr_calloc_array((size_t)nv + 1, 1);
+    wr_status st = WR_OK;
+    size_t i;
+    if (!bnext || !seen) {
+        st = wr_fail(diag, WR_ERR_NOMEM, -1, "mesh topology: out of memory");
+        goto done;
     }
-#undef WR__HE_A
-#undef WR__HE_B
-#undef WR__HE_LO
-#undef WR__HE_HI
+    for (v = 0; v < nv; ++v) bnext[v] = -1;
+    for (i = 0; i < nh; ++i) {
+        int32_t e = m->face_edges[i];
+        if (m->edge_faces[2 * e] >= 0 && m->edge_faces[2 * e + 1] >= 0) continue;
+        bnext[WR__HE_A(m, (int32_t)i)] = WR__HE_B(m, (int32_t)i);
+        ++nb;
+    }
+    for (v = 0; v < nv; ++v) { /* count loops */
+        int32_t u = v, steps = 0;
+        if (bnext[v] < 0 || seen[v]) continue;
+        while (!seen[u] && steps <= nb) {
+            seen[u] = 1;
+            u = bnext[u];
+            ++steps;
+        }
+        ++l;
+    }
+    m->n_loops = l;
+    m->loop_start = (int32_t *)wr_alloc_array((size_t)l + 1, sizeof(int32_t));
+    m->loop_verts = (int32_t *)wr_alloc_array((size_t)nb, sizeof(int32_t));
+    if (!m->loop_start || !m->loop_verts) {
+        st = wr_fail(diag, WR_ERR_NOMEM, -1, "mesh topology: out of memory (%d boundary edges)", nb);
+        goto done;
+    }
+    memset(seen, 0, (size_t)nv);
+    l = 0;
+    for (v = 0; v < nv; ++v) {
+        int32_t u = v;
+        if (bnext[v] < 0 || seen[v]) continue;
+        m->loop_start[l++] = pos;
+        while (!seen[u] && pos < nb) {
+            seen[u] = 1;
+            m->loop_verts[pos++] = u;
+            u = bnext[u];
+        }
+    }
+    m->loop_start[l] = pos;
+done:
+    wr_free(bnext);
+    wr_free(seen);
+    return st;
+}
+
+/* Builds edges, face_edges, face_edge_sign, edge_faces, vf CSR and boundary loops from nv, nf,
+ * faces (already range-checked). O(nf + nv): two stable counting-sort passes order the 3nf
+ * half-edges by (low vertex, high vertex); equal keys are then adjacent. */
+static wr_status wr__mesh_build_topology(wr_mesh *m, wr_diag *diag) {
+    const int32_t nv = m->nv, nf = m->nf;
+    const size_t nh = (size_t)3 * (size_t)nf;
+    int32_t *cnt = (int32_t *)wr_alloc_array((size_t)nv + 1, sizeof(int32_t));
+    int32_t *tmp = (int32_t *)wr_alloc_array(nh, sizeof(int32_t)), *ord = (int32_t *)wr_alloc_array(nh, sizeof(int32_t));
+    wr_status st = WR_OK;
+    size_t ne = 0;
+    if (!cnt || !tmp || !ord) {
+        st = wr_fail(diag, WR_ERR_NOMEM, -1, "mesh topology: out of memory (%d faces)", nf);
+        goto done;
+    }
+    wr__mesh_sort_halfedges(m, cnt, tmp, ord);
+    if ((st = wr__mesh_count_edges(m, ord, &ne, diag)) != WR_OK) goto done;
+    m->ne = (int32_t)ne;
+    m->edges = (int32_t *)wr_alloc_array(2 * ne, sizeof(int32_t));
+    m->edge_faces = (int32_t *)wr_alloc_array(2 * ne, sizeof(int32_t));
+    m->face_edges = (int32_t *)wr_alloc_array(nh, sizeof(int32_t));
+    m->face_edge_sign = (int8_t *)wr_alloc_array(nh, sizeof(int8_t));
+    m->vf_start = (int32_t *)wr_alloc_array((size_t)nv + 1, sizeof(int32_t));
+    m->vf = (int32_t *)wr_alloc_array(nh, sizeof(int32_t));
+    if (!m->edges || !m->edge_faces || !m->face_edges || !m->face_edge_sign || !m->vf_start || !m->vf) {
+        st = wr_fail(diag, WR_ERR_NOMEM, -1, "mesh topology: out of memory (%zu edges)", ne);
+        goto done;
+    }
+    wr__mesh_fill_edges(m, ord);
+    wr__mesh_vertex_faces(m, cnt);
+    if ((st = wr__mesh_check_fans(m, diag)) != WR_OK) goto done;
+    st = wr__mesh_boundary_loops(m, diag);
 done:
     wr_free(cnt);
     wr_free(tmp);
     wr_free(ord);
-    wr_free(bnext);
-    wr_free(seen);
     if (st != WR_OK) wr__mesh_free_topology(m);
     return st;
 }
+#undef WR__HE_A
+#undef WR__HE_B
+#undef WR__HE_LO
+#undef WR__HE_HI
 
 WRDEF wr_status wr_mesh_create(wr_mesh *m, int32_t nv, const double *pos3, const double *rest2, int32_t nf,
                                const int32_t *faces, wr_diag *diag) {
@@ -1263,51 +1313,140 @@ static void wr__obj_groups_free(wr__obj_groups *g) {
     wr_free(g->slot);
 }
 
-WRDEF wr_status wr_mesh_parse_obj(wr_mesh *m, const char *text, size_t len, wr_diag *diag) {
+/* The state of one OBJ parse (wr_mesh_parse_obj): growing arrays, the current line and group. */
+typedef struct wr__obj_parse {
     wr__obj_grow V, T, FV, FT, FP, FL, CV, CT; /* FL: OBJ line of each triangle, for topology errors */
     wr__obj_groups groups;
-    char *buf = NULL, *s, *end;
-    long line = 0;
-    int have_groups = 0, vt_mode = -1; /* -1 unknown, 0 faces without vt, 1 faces with vt */
-    int32_t panel = -1;
+    long line;
+    int have_groups, vt_mode; /* vt_mode -1 unknown, 0 faces without vt, 1 faces with vt */
+    int32_t panel;
+    wr_diag *diag;
+} wr__obj_parse;
+
+#define WR__OBJ_ERR(P, ...) wr_fail((P)->diag, WR_ERR_PARSE, (int32_t)((P)->line > INT32_MAX ? INT32_MAX : (P)->line), __VA_ARGS__)
+#define WR__OBJ_NOMEM(P) wr_fail((P)->diag, WR_ERR_NOMEM, -1, "OBJ: out of memory at line %ld", (P)->line)
+
+/* "v x y z [w …]" */
+static wr_status wr__obj_vertex(wr__obj_parse *P, char *p) {
+    double x[3], extra;
+    int k, r;
+    long line = P->line;
+    for (k = 0; k < 3; ++k) {
+        r = wr__obj_number(&p, &x[k]);
+        if (r == 0) return WR__OBJ_ERR(P, "OBJ line %ld: vertex needs 3 coordinates, got %d", line, k);
+        if (r < 0) return WR__OBJ_ERR(P, "OBJ line %ld: vertex coordinate %d is not a finite number", line, k + 1);
+    }
+    while ((r = wr__obj_number(&p, &extra)) > 0) {
+    } /* w or per-vertex colour: ignored */
+    if (r < 0) return WR__OBJ_ERR(P, "OBJ line %ld: junk after vertex coordinates", line);
+    if (P->V.n / 3 >= (size_t)WR__OBJ_MAX_V) return WR__OBJ_ERR(P, "OBJ line %ld: too many vertices", line);
+    if (!wr__obj_reserve(&P->V, 3)) return WR__OBJ_NOMEM(P);
+    memcpy((double *)P->V.p + P->V.n, x, sizeof x);
+    P->V.n += 3;
+    return WR_OK;
+}
+
+/* "vt u v [w]" */
+static wr_status wr__obj_texcoord(wr__obj_parse *P, char *p) {
+    double x[2], extra;
+    int k, r;
+    long line = P->line;
+    for (k = 0; k < 2; ++k) {
+        r = wr__obj_number(&p, &x[k]);
+        if (r == 0) return WR__OBJ_ERR(P, "OBJ line %ld: texture coordinate needs u and v, got %d numbers", line, k);
+        if (r < 0) return WR__OBJ_ERR(P, "OBJ line %ld: texture coordinate %d is not a finite number", line, k + 1);
+    }
+    while ((r = wr__obj_number(&p, &extra)) > 0) {
+    }
+    if (r < 0) return WR__OBJ_ERR(P, "OBJ line %ld: junk after texture coordinates", line);
+    if (P->T.n / 2 >= (size_t)WR__OBJ_MAX_V) return WR__OBJ_ERR(P, "OBJ line %ld: too many texture coordinates", line);
+    if (!wr__obj_reserve(&P->T, 2)) return WR__OBJ_NOMEM(P);
+    memcpy((double *)P->T.p + P->T.n, x, sizeof x);
+    P->T.n += 2;
+    return WR_OK;
+}
+
+/* one corner "v", "v/t", "v//n" or "v/t/n" of a face into CV / CT */
+static wr_status wr__obj_corner(wr__obj_parse *P, char **pp, int32_t ncorner) {
+    char *p = *pp;
+    int32_t vi, ti = -1, ni;
+    int r, has_t = 0;
+    long line = P->line;
+    r = wr__obj_index(&p, (int64_t)(P->V.n / 3), &vi);
+    if (r == 0 || r == -1) return WR__OBJ_ERR(P, "OBJ line %ld: corner %d: malformed vertex index", line, ncorner + 1);
+    if (r == -2)
+        return WR__OBJ_ERR(P, "OBJ line %ld: corner %d: vertex index out of range (index 0, or beyond the %zu vertices defined so far)",
+                           line, ncorner + 1, P->V.n / 3);
+    if (*p == '/') {
+        ++p;
+        r = wr__obj_index(&p, (int64_t)(P->T.n / 2), &ti);
+        if (r == -1 || (r == 0 && *p != '/'))
+            return WR__OBJ_ERR(P, "OBJ line %ld: corner %d: malformed texture index", line, ncorner + 1);
+        if (r == -2)
+            return WR__OBJ_ERR(P, "OBJ line %ld: corner %d: texture index out of range (%zu defined so far)", line,
+                               ncorner + 1, P->T.n / 2);
+        has_t = r == 1;
+        if (*p == '/') {
+            /* normals are not stored, but their index must still be well formed */
+            ++p;
+            r = wr__obj_index(&p, INT32_MAX, &ni);
+            if (r != 1) return WR__OBJ_ERR(P, "OBJ line %ld: corner %d: malformed normal index", line, ncorner + 1);
+        }
+    }
+    if (*p && !wr__obj_space(*p)) return WR__OBJ_ERR(P, "OBJ line %ld: corner %d: junk after indices", line, ncorner + 1);
+    if (P->vt_mode < 0) P->vt_mode = has_t;
+    if (P->vt_mode != has_t)
+        return WR__OBJ_ERR(P, "OBJ line %ld: corner %d %s a texture index while earlier corners %s", line, ncorner + 1,
+                           has_t ? "has" : "lacks", has_t ? "lack one" : "have one");
+    if (ncorner >= WR__OBJ_MAX_F) return WR__OBJ_ERR(P, "OBJ line %ld: polygon too large", line);
+    if (!wr__obj_reserve(&P->CV, 1) || !wr__obj_reserve(&P->CT, 1)) return WR__OBJ_NOMEM(P);
+    ((int32_t *)P->CV.p)[P->CV.n++] = vi;
+    ((int32_t *)P->CT.p)[P->CT.n++] = ti;
+    *pp = p;
+    return WR_OK;
+}
+
+/* "f c1 c2 c3 …": a polygon, fanned into triangles from corner 0 (keeps its orientation) */
+static wr_status wr__obj_face(wr__obj_parse *P, char *p) {
+    int32_t ncorner = 0, i;
+    long line = P->line;
+    wr_status st;
+    P->CV.n = P->CT.n = 0;
+    for (;;) {
+        p = wr__obj_skip(p);
+        if (!*p) break;
+        if ((st = wr__obj_corner(P, &p, ncorner)) != WR_OK) return st;
+        ++ncorner;
+    }
+    if (ncorner < 3) return WR__OBJ_ERR(P, "OBJ line %ld: face needs at least 3 corners, got %d", line, ncorner);
+    if (P->FV.n / 3 + (size_t)(ncorner - 2) > (size_t)WR__OBJ_MAX_F) return WR__OBJ_ERR(P, "OBJ line %ld: too many faces", line);
+    if (!wr__obj_reserve(&P->FV, 3 * (size_t)(ncorner - 2)) || !wr__obj_reserve(&P->FT, 3 * (size_t)(ncorner - 2)) ||
+        !wr__obj_reserve(&P->FP, (size_t)(ncorner - 2)) || !wr__obj_reserve(&P->FL, (size_t)(ncorner - 2)))
+        return WR__OBJ_NOMEM(P);
+    for (i = 1; i + 1 < ncorner; ++i) {
+        int32_t c[3];
+        int k;
+        c[0] = 0, c[1] = i, c[2] = i + 1;
+        for (k = 0; k < 3; ++k) {
+            ((int32_t *)P->FV.p)[P->FV.n++] = ((int32_t *)P->CV.p)[c[k]];
+            ((int32_t *)P->FT.p)[P->FT.n++] = ((int32_t *)P->CT.p)[c[k]];
+        }
+        ((int32_t *)P->FP.p)[P->FP.n++] = P->panel;
+        ((long *)P->FL.p)[P->FL.n++] = line;
+    }
+    return WR_OK;
+}
+
+/* every line of buf[0 .. end): keyword dispatch (unknown keywords are skipped) */
+static wr_status wr__obj_lines(wr__obj_parse *P, char *buf, char *end) {
+    char *s;
     wr_status st = WR_OK;
-    double *rest = NULL, *cr = NULL;
-    int32_t nv, nf, i;
-
-    if (!m) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "wr_mesh_parse_obj: NULL mesh");
-    memset(m, 0, sizeof *m);
-    if (!text && len) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "wr_mesh_parse_obj: NULL text");
-    memset(&V, 0, sizeof V);
-    T = FV = FT = FP = FL = CV = CT = V;
-    V.size = T.size = sizeof(double);
-    FV.size = FT.size = FP.size = CV.size = CT.size = sizeof(int32_t);
-    FL.size = sizeof(long);
-    memset(&groups, 0, sizeof groups);
-
-    /* A private NUL-terminated copy: strtod needs a terminator and the caller's text may lack one. */
-    buf = (char *)wr_alloc_array(len + 1, 1);
-    if (!buf) return wr_fail(diag, WR_ERR_NOMEM, -1, "OBJ: out of memory for %zu bytes", len);
-    if (len) memcpy(buf, text, len);
-    buf[len] = 0;
-    end = buf + len;
-
-#define WR__OBJ_FAIL(...)                                   \
-    do {                                                    \
-        st = wr_fail(diag, WR_ERR_PARSE, (int32_t)(line > INT32_MAX ? INT32_MAX : line), __VA_ARGS__); \
-        goto done;                                          \
-    } while (0)
-#define WR__OBJ_NOMEM()                                                         \
-    do {                                                                        \
-        st = wr_fail(diag, WR_ERR_NOMEM, -1, "OBJ: out of memory at line %ld", line); \
-        goto done;                                                              \
-    } while (0)
-
-    for (s = buf; s < end || line == 0;) {
+    for (s = buf; s < end || P->line == 0;) {
         char *eol = (char *)memchr(s, '\n', (size_t)(end - s)), *p, *kw;
         size_t kwlen;
         if (!eol) eol = end;
-        ++line;
-        if (memchr(s, 0, (size_t)(eol - s))) WR__OBJ_FAIL("OBJ line %ld: NUL byte", line);
+        ++P->line;
+        if (memchr(s, 0, (size_t)(eol - s))) return WR__OBJ_ERR(P, "OBJ line %ld: NUL byte", P->line);
         *eol = 0;
         {
             char *hash = strchr(s, '#'); /* comments run to the end of the line */
@@ -1317,192 +1456,152 @@ WRDEF wr_status wr_mesh_parse_obj(wr_mesh *m, const char *text, size_t len, wr_d
         kw = p;
         while (*p && !wr__obj_space(*p)) ++p;
         kwlen = (size_t)(p - kw);
-        if (kwlen == 0) {
-            /* blank line */
-        } else if (kwlen == 1 && kw[0] == 'v') {
-            double x[3], extra;
-            int k, r;
-            for (k = 0; k < 3; ++k) {
-                r = wr__obj_number(&p, &x[k]);
-                if (r == 0) WR__OBJ_FAIL("OBJ line %ld: vertex needs 3 coordinates, got %d", line, k);
-                if (r < 0) WR__OBJ_FAIL("OBJ line %ld: vertex coordinate %d is not a finite number", line, k + 1);
-            }
-            while ((r = wr__obj_number(&p, &extra)) > 0) {
-            } /* w or per-vertex colour: ignored */
-            if (r < 0) WR__OBJ_FAIL("OBJ line %ld: junk after vertex coordinates", line);
-            if (V.n / 3 >= (size_t)WR__OBJ_MAX_V) WR__OBJ_FAIL("OBJ line %ld: too many vertices", line);
-            if (!wr__obj_reserve(&V, 3)) WR__OBJ_NOMEM();
-            memcpy((double *)V.p + V.n, x, sizeof x);
-            V.n += 3;
-        } else if (kwlen == 2 && kw[0] == 'v' && kw[1] == 't') {
-            double x[2], extra;
-            int k, r;
-            for (k = 0; k < 2; ++k) {
-                r = wr__obj_number(&p, &x[k]);
-                if (r == 0) WR__OBJ_FAIL("OBJ line %ld: texture coordinate needs u and v, got %d numbers", line, k);
-                if (r < 0) WR__OBJ_FAIL("OBJ line %ld: texture coordinate %d is not a finite number", line, k + 1);
-            }
-            while ((r = wr__obj_number(&p, &extra)) > 0) {
-            }
-            if (r < 0) WR__OBJ_FAIL("OBJ line %ld: junk after texture coordinates", line);
-            if (T.n / 2 >= (size_t)WR__OBJ_MAX_V) WR__OBJ_FAIL("OBJ line %ld: too many texture coordinates", line);
-            if (!wr__obj_reserve(&T, 2)) WR__OBJ_NOMEM();
-            memcpy((double *)T.p + T.n, x, sizeof x);
-            T.n += 2;
-        } else if (kwlen == 1 && kw[0] == 'f') {
-            int32_t ncorner = 0;
-            CV.n = CT.n = 0;
-            for (;;) {
-                int32_t vi, ti = -1, ni;
-                int r, has_t;
-                p = wr__obj_skip(p);
-                if (!*p) break;
-                r = wr__obj_index(&p, (int64_t)(V.n / 3), &vi);
-                if (r == 0 || r == -1) WR__OBJ_FAIL("OBJ line %ld: corner %d: malformed vertex index", line, ncorner + 1);
-                if (r == -2)
-                    WR__OBJ_FAIL("OBJ line %ld: corner %d: vertex index out of range (index 0, or beyond the %zu vertices defined so far)",
-                                 line, ncorner + 1, V.n / 3);
-                has_t = 0;
-                if (*p == '/') {
-                    ++p;
-                    r = wr__obj_index(&p, (int64_t)(T.n / 2), &ti);
-                    if (r == -1 || (r == 0 && *p != '/'))
-                        WR__OBJ_FAIL("OBJ line %ld: corner %d: malformed texture index", line, ncorner + 1);
-                    if (r == -2)
-                        WR__OBJ_FAIL("OBJ line %ld: corner %d: texture index out of range (%zu defined so far)", line,
-                                     ncorner + 1, T.n / 2);
-                    has_t = r == 1;
-                    if (*p == '/') {
-                        /* normals are not stored, but their index must still be well formed */
-                        ++p;
-                        r = wr__obj_index(&p, INT32_MAX, &ni);
-                        if (r != 1) WR__OBJ_FAIL("OBJ line %ld: corner %d: malformed normal index", line, ncorner + 1);
-                    }
-                }
-                if (*p && !wr__obj_space(*p)) WR__OBJ_FAIL("OBJ line %ld: corner %d: junk after indices", line, ncorner + 1);
-                if (vt_mode < 0) vt_mode = has_t;
-                if (vt_mode != has_t)
-                    WR__OBJ_FAIL("OBJ line %ld: corner %d %s a texture index while earlier corners %s", line,
-                                 ncorner + 1, has_t ? "has" : "lacks", has_t ? "lack one" : "have one");
-                if (ncorner >= WR__OBJ_MAX_F) WR__OBJ_FAIL("OBJ line %ld: polygon too large", line);
-                if (!wr__obj_reserve(&CV, 1) || !wr__obj_reserve(&CT, 1)) WR__OBJ_NOMEM();
-                ((int32_t *)CV.p)[CV.n++] = vi;
-                ((int32_t *)CT.p)[CT.n++] = ti;
-                ++ncorner;
-            }
-            if (ncorner < 3) WR__OBJ_FAIL("OBJ line %ld: face needs at least 3 corners, got %d", line, ncorner);
-            if (FV.n / 3 + (size_t)(ncorner - 2) > (size_t)WR__OBJ_MAX_F) WR__OBJ_FAIL("OBJ line %ld: too many faces", line);
-            if (!wr__obj_reserve(&FV, 3 * (size_t)(ncorner - 2)) || !wr__obj_reserve(&FT, 3 * (size_t)(ncorner - 2)) ||
-                !wr__obj_reserve(&FP, (size_t)(ncorner - 2)) || !wr__obj_reserve(&FL, (size_t)(ncorner - 2)))
-                WR__OBJ_NOMEM();
-            for (i = 1; i + 1 < ncorner; ++i) { /* fan from corner 0 keeps the polygon's orientation */
-                int32_t c[3];
-                int k;
-                c[0] = 0, c[1] = i, c[2] = i + 1;
-                for (k = 0; k < 3; ++k) {
-                    ((int32_t *)FV.p)[FV.n++] = ((int32_t *)CV.p)[c[k]];
-                    ((int32_t *)FT.p)[FT.n++] = ((int32_t *)CT.p)[c[k]];
-                }
-                ((int32_t *)FP.p)[FP.n++] = panel;
-                ((long *)FL.p)[FL.n++] = line;
-            }
-        } else if (kwlen == 1 && (kw[0] == 'g' || kw[0] == 'o')) {
+        if (kwlen == 1 && kw[0] == 'v')
+            st = wr__obj_vertex(P, p);
+        else if (kwlen == 2 && kw[0] == 'v' && kw[1] == 't')
+            st = wr__obj_texcoord(P, p);
+        else if (kwlen == 1 && kw[0] == 'f')
+            st = wr__obj_face(P, p);
+        else if (kwlen == 1 && (kw[0] == 'g' || kw[0] == 'o')) {
             char *name = wr__obj_skip(p), *t = name + strlen(name);
             while (t > name && wr__obj_space(t[-1])) *--t = 0;
-            panel = wr__obj_group_id(&groups, name);
-            if (panel < 0) WR__OBJ_NOMEM();
-            have_groups = 1;
-        } else {
-            /* vn, vp, usemtl, mtllib, s, l, p, curves…: not needed for a triangle mesh */
-        }
+            P->panel = wr__obj_group_id(&P->groups, name);
+            if (P->panel < 0) return WR__OBJ_NOMEM(P);
+            P->have_groups = 1;
+        } /* else blank, or vn, vp, usemtl, mtllib, s, l, p, curves…: not needed for a triangle mesh */
+        if (st != WR_OK) return st;
         s = eol + 1;
         if (eol == end) break;
     }
+    return WR_OK;
+}
 
-    nv = (int32_t)(V.n / 3);
-    nf = (int32_t)(FV.n / 3);
-    if (nv == 0) WR__OBJ_FAIL("OBJ: no vertices (%ld lines)", line);
-    if (nf == 0) WR__OBJ_FAIL("OBJ: no faces (%ld lines)", line);
-
-    if (vt_mode == 1) {
-        /* one vt per vertex if every vertex sees a single (u, v) value; else per-corner rest */
-        uint8_t *set = (uint8_t *)wr_calloc_array((size_t)nv, 1);
-        int consistent = 1;
-        const int32_t *fv = (const int32_t *)FV.p, *ft = (const int32_t *)FT.p;
-        const double *tv = (const double *)T.p;
-        rest = (double *)wr_alloc_array((size_t)nv * 2, sizeof(double));
-        if (!set || !rest) {
-            wr_free(set);
-            WR__OBJ_NOMEM();
-        }
-        for (i = 0; i < 3 * nf && consistent; ++i) {
-            int32_t v = fv[i];
-            const double *uv = tv + 2 * ft[i];
-            if (!set[v]) {
-                rest[2 * v] = uv[0];
-                rest[2 * v + 1] = uv[1];
-                set[v] = 1;
-            } else if (rest[2 * v] != uv[0] || rest[2 * v + 1] != uv[1]) {
-                consistent = 0;
-            }
-        }
-        for (i = 0; i < nv && consistent; ++i)
-            if (!set[i]) {
-                rest[2 * i] = ((const double *)V.p)[3 * i];
-                rest[2 * i + 1] = ((const double *)V.p)[3 * i + 1];
-            }
+/* faces with vt: one (u, v) per vertex if every vertex sees a single value (rest), else per-corner
+ * rest positions (cr) */
+static wr_status wr__obj_rest(wr__obj_parse *P, int32_t nv, int32_t nf, double **rest_out, double **cr_out) {
+    uint8_t *set = (uint8_t *)wr_calloc_array((size_t)nv, 1);
+    int consistent = 1;
+    const int32_t *fv = (const int32_t *)P->FV.p, *ft = (const int32_t *)P->FT.p;
+    const double *tv = (const double *)P->T.p;
+    double *rest = (double *)wr_alloc_array((size_t)nv * 2, sizeof(double)), *cr;
+    int32_t i;
+    if (!set || !rest) {
         wr_free(set);
-        if (!consistent) {
-            wr_free(rest);
-            rest = NULL;
-            cr = (double *)wr_alloc_array((size_t)nf * 6, sizeof(double));
-            if (!cr) WR__OBJ_NOMEM();
-            for (i = 0; i < 3 * nf; ++i) {
-                cr[2 * i] = tv[2 * ft[i]];
-                cr[2 * i + 1] = tv[2 * ft[i] + 1];
-            }
+        wr_free(rest);
+        return WR__OBJ_NOMEM(P);
+    }
+    for (i = 0; i < 3 * nf && consistent; ++i) {
+        int32_t v = fv[i];
+        const double *uv = tv + 2 * ft[i];
+        if (!set[v]) {
+            rest[2 * v] = uv[0];
+            rest[2 * v + 1] = uv[1];
+            set[v] = 1;
+        } else if (rest[2 * v] != uv[0] || rest[2 * v + 1] != uv[1]) {
+            consistent = 0;
         }
     }
-    st = wr_mesh_create(m, nv, (const double *)V.p, rest, nf, (const int32_t *)FV.p, diag);
+    for (i = 0; i < nv && consistent; ++i)
+        if (!set[i]) {
+            rest[2 * i] = ((const double *)P->V.p)[3 * i];
+            rest[2 * i + 1] = ((const double *)P->V.p)[3 * i + 1];
+        }
+    wr_free(set);
+    if (consistent) {
+        *rest_out = rest;
+        return WR_OK;
+    }
+    wr_free(rest);
+    cr = (double *)wr_alloc_array((size_t)nf * 6, sizeof(double));
+    if (!cr) return WR__OBJ_NOMEM(P);
+    for (i = 0; i < 3 * nf; ++i) {
+        cr[2 * i] = tv[2 * ft[i]];
+        cr[2 * i + 1] = tv[2 * ft[i] + 1];
+    }
+    *cr_out = cr;
+    return WR_OK;
+}
+
+static void wr__obj_parse_free(wr__obj_parse *P) {
+    wr_free(P->V.p);
+    wr_free(P->T.p);
+    wr_free(P->FV.p);
+    wr_free(P->FT.p);
+    wr_free(P->FP.p);
+    wr_free(P->FL.p);
+    wr_free(P->CV.p);
+    wr_free(P->CT.p);
+    wr__obj_groups_free(&P->groups);
+}
+
+WRDEF wr_status wr_mesh_parse_obj(wr_mesh *m, const char *text, size_t len, wr_diag *diag) {
+    wr__obj_parse P;
+    char *buf = NULL;
+    wr_status st = WR_OK;
+    double *rest = NULL, *cr = NULL;
+    int32_t nv, nf, i;
+
+    if (!m) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "wr_mesh_parse_obj: NULL mesh");
+    memset(m, 0, sizeof *m);
+    if (!text && len) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "wr_mesh_parse_obj: NULL text");
+    memset(&P, 0, sizeof P);
+    P.V.size = P.T.size = sizeof(double);
+    P.FV.size = P.FT.size = P.FP.size = P.CV.size = P.CT.size = sizeof(int32_t);
+    P.FL.size = sizeof(long);
+    P.vt_mode = -1;
+    P.panel = -1;
+    P.diag = diag;
+
+    /* A private NUL-terminated copy: strtod needs a terminator and the caller's text may lack one. */
+    buf = (char *)wr_alloc_array(len + 1, 1);
+    if (!buf) return wr_fail(diag, WR_ERR_NOMEM, -1, "OBJ: out of memory for %zu bytes", len);
+    if (len) memcpy(buf, text, len);
+    buf[len] = 0;
+    if ((st = wr__obj_lines(&P, buf, buf + len)) != WR_OK) goto done;
+
+    nv = (int32_t)(P.V.n / 3);
+    nf = (int32_t)(P.FV.n / 3);
+    if (nv == 0) {
+        st = WR__OBJ_ERR(&P, "OBJ: no vertices (%ld lines)", P.line);
+        goto done;
+    }
+    if (nf == 0) {
+        st = WR__OBJ_ERR(&P, "OBJ: no faces (%ld lines)", P.line);
+        goto done;
+    }
+    if (P.vt_mode == 1 && (st = wr__obj_rest(&P, nv, nf, &rest, &cr)) != WR_OK) goto done;
+    st = wr_mesh_create(m, nv, (const double *)P.V.p, rest, nf, (const int32_t *)P.FV.p, diag);
     if (st == WR_ERR_TOPOLOGY && diag && diag->item >= 0 && diag->item < nf &&
         strncmp(diag->message, "non-manifold vertex", 19) != 0) {
         /* the item is a (triangulated) face: say where it came from */
         size_t ml = strlen(diag->message);
         snprintf(diag->message + ml, sizeof diag->message - ml, " (face %d is from OBJ line %ld)", diag->item,
-                 ((const long *)FL.p)[diag->item]);
+                 ((const long *)P.FL.p)[diag->item]);
     }
     if (st != WR_OK) goto done;
     if (cr) {
         m->corner_rest = cr;
         cr = NULL;
     }
-    if (have_groups) {
-        int32_t *fp = (int32_t *)FP.p;
+    if (P.have_groups) {
+        int32_t *fp = (int32_t *)P.FP.p;
         int any_none = 0;
         for (i = 0; i < nf; ++i) any_none |= fp[i] < 0;
         if (any_none) /* faces before the first g/o form panel 0 */
             for (i = 0; i < nf; ++i) fp[i] += 1;
         m->face_panel = fp;
-        FP.p = NULL;
+        P.FP.p = NULL;
     }
-#undef WR__OBJ_FAIL
-#undef WR__OBJ_NOMEM
 done:
     wr_free(buf);
-    wr_free(V.p);
-    wr_free(T.p);
-    wr_free(FV.p);
-    wr_free(FT.p);
-    wr_free(FP.p);
-    wr_free(FL.p);
-    wr_free(CV.p);
-    wr_free(CT.p);
     wr_free(rest);
     wr_free(cr);
-    wr__obj_groups_free(&groups);
+    wr__obj_parse_free(&P);
     if (st != WR_OK) wr_mesh_free(m);
     return st;
 }
+#undef WR__OBJ_ERR
+#undef WR__OBJ_NOMEM
 
 WRDEF wr_status wr_mesh_read_obj(wr_mesh *m, const char *path, wr_diag *diag) {
     char *data = NULL;
@@ -1654,6 +1753,164 @@ WRDEF wr_status wr_mesh_write_vtk(const wr_mesh *m, const char *path, int32_t n_
         return st;
     }
     return wr_afile_commit(&f, diag);
+}
+
+/* ---- sewing ------------------------------------------------------------------------------------ */
+
+static int32_t wr__mesh_find_root(int32_t *par, int32_t v) {
+    while (par[v] != v) {
+        par[v] = par[par[v]];
+        v = par[v];
+    }
+    return v;
+}
+
+WRDEF wr_status wr_mesh_weld(wr_mesh *out, const wr_mesh *in, int32_t n_pairs, const int32_t *pairs, int32_t *vmap,
+                             wr_diag *diag) {
+    int32_t *par = NULL, *nid = NULL, *faces = NULL, *cnt = NULL, nn = 0, v, f, k, i;
+    double *pos = NULL, *cr = NULL;
+    wr_status rs = WR_OK;
+    if (out) memset(out, 0, sizeof *out);
+    if (!out || !in || !in->faces || n_pairs < 0 || (n_pairs > 0 && !pairs))
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "weld: NULL mesh or pairs, or n_pairs %d < 0", (int)n_pairs);
+    par = (int32_t *)wr_alloc_array((size_t)in->nv, sizeof(int32_t));
+    nid = (int32_t *)wr_alloc_array((size_t)in->nv, sizeof(int32_t));
+    cnt = (int32_t *)wr_calloc_array((size_t)in->nv, sizeof(int32_t));
+    faces = (int32_t *)wr_alloc_array((size_t)in->nf * 3, sizeof(int32_t));
+    pos = (double *)wr_calloc_array((size_t)in->nv * 3, sizeof(double));
+    cr = (double *)wr_alloc_array((size_t)in->nf * 6, sizeof(double));
+    if (!par || !nid || !cnt || !faces || !pos || !cr) {
+        rs = wr_fail(diag, WR_ERR_NOMEM, -1, "weld: out of memory");
+        goto done;
+    }
+    for (v = 0; v < in->nv; ++v) par[v] = v;
+    for (k = 0; k < n_pairs; ++k) {
+        int32_t a = pairs[2 * k], b = pairs[2 * k + 1];
+        if (a < 0 || a >= in->nv || b < 0 || b >= in->nv) {
+            rs = wr_fail(diag, WR_ERR_INVALID_ARG, k, "weld: pair %d (%d, %d) outside [0, %d)", (int)k, (int)a, (int)b,
+                         (int)in->nv);
+            goto done;
+        }
+        a = wr__mesh_find_root(par, a);
+        b = wr__mesh_find_root(par, b);
+        /* the smaller index is the root, so an unpaired prefix keeps its numbering */
+        if (a < b)
+            par[b] = a;
+        else
+            par[a] = b;
+    }
+    for (v = 0; v < in->nv; ++v) {
+        int32_t r = wr__mesh_find_root(par, v);
+        if (r == v) nid[v] = nn++;
+    }
+    for (v = 0; v < in->nv; ++v) {
+        int32_t j = nid[wr__mesh_find_root(par, v)];
+        if (vmap) vmap[v] = j;
+        for (i = 0; i < 3; ++i) pos[3 * j + i] += in->pos[3 * v + i];
+        cnt[j]++;
+    }
+    for (v = 0; v < nn; ++v)
+        for (i = 0; i < 3; ++i) pos[3 * v + i] /= cnt[v];
+    for (f = 0; f < in->nf; ++f) {
+        for (k = 0; k < 3; ++k) faces[3 * f + k] = nid[wr__mesh_find_root(par, in->faces[3 * f + k])];
+        wr_mesh_face_rest(in, f, cr + 6 * f);
+    }
+    rs = wr_mesh_create(out, nn, pos, NULL, in->nf, faces, diag);
+    if (rs != WR_OK) goto done;
+    rs = wr_mesh_set_corner_rest(out, cr, diag);
+    if (rs == WR_OK && in->face_panel) rs = wr_mesh_set_face_panel(out, in->face_panel, diag);
+    if (rs != WR_OK) wr_mesh_free(out);
+done:
+    wr_free(par);
+    wr_free(nid);
+    wr_free(cnt);
+    wr_free(faces);
+    wr_free(pos);
+    wr_free(cr);
+    return rs;
+}
+
+WRDEF wr_status wr_mesh_pillow(wr_mesh *out, const wr_mesh *panel, double lift, wr_diag *diag) {
+    int32_t nv, nf, *faces = NULL, *hop = NULL, *pairs = NULL, *fp = NULL, np = 0, v, f, k, e, maxhop = 0, changed;
+    double *pos = NULL, *cr = NULL;
+    wr_mesh two;
+    wr_status rs = WR_OK;
+    memset(&two, 0, sizeof two);
+    if (out) memset(out, 0, sizeof *out);
+    if (!out || !panel || !panel->faces || !(lift > 0.0) || lift - lift != 0.0)
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "pillow: NULL mesh or lift %g not > 0", lift);
+    if (panel->n_loops < 1)
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "pillow: the panel has no boundary to sew");
+    nv = panel->nv;
+    nf = panel->nf;
+    faces = (int32_t *)wr_alloc_array((size_t)nf * 6, sizeof(int32_t));
+    fp = (int32_t *)wr_alloc_array((size_t)nf * 2, sizeof(int32_t));
+    hop = (int32_t *)wr_alloc_array((size_t)nv, sizeof(int32_t));
+    pairs = (int32_t *)wr_alloc_array((size_t)panel->loop_start[panel->n_loops] * 2, sizeof(int32_t));
+    pos = (double *)wr_alloc_array((size_t)nv * 6, sizeof(double));
+    cr = (double *)wr_alloc_array((size_t)nf * 12, sizeof(double));
+    if (!faces || !fp || !hop || !pairs || !pos || !cr) {
+        rs = wr_fail(diag, WR_ERR_NOMEM, -1, "pillow: out of memory");
+        goto done;
+    }
+    /* hop distance to the boundary (Bellman–Ford sweeps over the edges; O(ne · depth)) */
+    for (v = 0; v < nv; ++v) hop[v] = INT32_MAX;
+    for (k = 0; k < panel->loop_start[panel->n_loops]; ++k) {
+        hop[panel->loop_verts[k]] = 0;
+        pairs[2 * np] = panel->loop_verts[k];
+        pairs[2 * np + 1] = nv + panel->loop_verts[k];
+        np++;
+    }
+    do {
+        changed = 0;
+        for (e = 0; e < panel->ne; ++e) {
+            int32_t a = panel->edges[2 * e], b = panel->edges[2 * e + 1];
+            if (hop[a] != INT32_MAX && hop[a] + 1 < hop[b]) hop[b] = hop[a] + 1, changed = 1;
+            if (hop[b] != INT32_MAX && hop[b] + 1 < hop[a]) hop[a] = hop[b] + 1, changed = 1;
+        }
+    } while (changed);
+    for (v = 0; v < nv; ++v) {
+        if (hop[v] == INT32_MAX) hop[v] = 0; /* a component without boundary stays flat */
+        if (hop[v] > maxhop) maxhop = hop[v];
+    }
+    for (v = 0; v < nv; ++v) {
+        double z = maxhop > 0 ? lift * (double)hop[v] / (double)maxhop : 0.0;
+        pos[3 * v] = pos[3 * (nv + v)] = panel->pos[3 * v];
+        pos[3 * v + 1] = pos[3 * (nv + v) + 1] = panel->pos[3 * v + 1];
+        pos[3 * v + 2] = panel->pos[3 * v + 2] + z;
+        pos[3 * (nv + v) + 2] = panel->pos[3 * v + 2] - z;
+    }
+    for (f = 0; f < nf; ++f) {
+        double uv[6], *b = cr + 6 * (nf + f);
+        const int32_t *t = panel->faces + 3 * f;
+        wr_mesh_face_rest(panel, f, uv);
+        memcpy(cr + 6 * f, uv, sizeof uv);
+        faces[3 * f] = t[0];
+        faces[3 * f + 1] = t[1];
+        faces[3 * f + 2] = t[2];
+        /* bottom: mirrored pattern u → −u with corners 1 and 2 swapped (CCW again, normal flipped) */
+        faces[3 * (nf + f)] = nv + t[0];
+        faces[3 * (nf + f) + 1] = nv + t[2];
+        faces[3 * (nf + f) + 2] = nv + t[1];
+        b[0] = -uv[0], b[1] = uv[1];
+        b[2] = -uv[4], b[3] = uv[5];
+        b[4] = -uv[2], b[5] = uv[3];
+        fp[f] = 0;
+        fp[nf + f] = 1;
+    }
+    rs = wr_mesh_create(&two, 2 * nv, pos, NULL, 2 * nf, faces, diag);
+    if (rs == WR_OK) rs = wr_mesh_set_corner_rest(&two, cr, diag);
+    if (rs == WR_OK) rs = wr_mesh_set_face_panel(&two, fp, diag);
+    if (rs == WR_OK) rs = wr_mesh_weld(out, &two, np, pairs, NULL, diag);
+done:
+    wr_mesh_free(&two);
+    wr_free(faces);
+    wr_free(fp);
+    wr_free(hop);
+    wr_free(pairs);
+    wr_free(pos);
+    wr_free(cr);
+    return rs;
 }
 
 #ifdef __cplusplus

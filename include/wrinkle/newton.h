@@ -1,11 +1,11 @@
 /* wrinkle/newton.h — one Newton method for every energy of the kit: the shell statics (statics.h),
  * the TFW Sec. 4.1 TFT base surface (tfw.h through statics.h) and backward-Euler incremental
  * potentials of a dynamic simulation. The energy comes in as callbacks; the method is projected
- * Newton with a diagonal shift, a linear solve through pcg.h's wr_spd solvers and a backtracking
+ * Newton with a diagonal shift, a linear solve through spd.h's wr_spd solvers and a backtracking
  * Armijo line search that starts from the largest safe step a caller hook allows (continuous
  * collision detection plugs in there), as the TFW authors' newtonSolver(objective, x0, …, findMaxStep)
  * separates the energy from the method. wrinkle v0.1.0 — MIT licence (see LICENSE).
- * Needs core.h, sparse.h, pcg.h (CHOLMOD with WR_USE_CHOLMOD=1, see pcg.h); otherwise libc and libm.
+ * Needs core.h, sparse.h, spd.h (CHOLMOD with WR_USE_CHOLMOD=1, see spd.h); otherwise libc and libm.
  *
  * Minimises E(x) over the free DOFs of x (n = block · n_blocks, blocks of 3 DOFs — vertices — or 1).
  * Each step: the problem streams its element Hessians (wr_newton_add_element), each made positive
@@ -109,7 +109,7 @@
 
 #include "core.h"
 #include "sparse.h"
-#include "pcg.h"
+#include "spd.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -186,7 +186,7 @@ typedef struct wr_newton_shift_desc {
     double rel, raise;
 } wr_newton_shift_desc;
 
-/* solver: pcg.h options (its fixed is set by Newton from desc.fixed); forcing 0 = every solve to
+/* solver: spd.h options (its fixed is set by Newton from desc.fixed); forcing 0 = every solve to
  * solver.rel_tol, else η_max in (0, 1) (ON LINE SEARCH) */
 typedef struct wr_newton_linear_desc {
     wr_spd_desc solver;

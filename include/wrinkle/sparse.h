@@ -49,7 +49,7 @@
  *   wr_csr keeps exactly the entries it was given, summed: for a symmetric matrix store BOTH
  *   triangles (full symmetric storage; dense element matrices already do this). Columns are sorted
  *   ascending inside each row, no duplicates, and every diagonal entry (i, i) is in the pattern
- *   (value 0 when never given) because the preconditioners and the Dirichlet masking in pcg.h need
+ *   (value 0 when never given) because the preconditioners and the Dirichlet masking in spd.h need
  *   it. Explicit zeros are kept, so a pattern assembled from zero element matrices stays valid for
  *   later value updates. Indices are int32_t; nnz must fit in int32_t (WR_ERR_OVERFLOW otherwise),
  *   which holds for 3-DOF triangle meshes far beyond 10^7 vertices.

@@ -22,6 +22,8 @@
 #include "poisson.h"
 #include "triangulate.h"
 #include "statics.h"
+#include "dynamics.h"
+#include "body.h"
 #include "wrinkle_field.h"
 #include "mesher.h"
 #include "tfw.h"

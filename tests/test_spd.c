@@ -1,11 +1,11 @@
-/* Tests for wrinkle/pcg.h: every method on a 2D Laplacian, random SPD matrices and a 3-DOF
+/* Tests for wrinkle/spd.h (formerly pcg.h): every method on a 2D Laplacian, random SPD matrices and a 3-DOF
  * membrane stiffness with clamped DOFs; agreement with CHOLMOD; pattern reuse; error paths. */
 #include <criterion/criterion.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "wrinkle/pcg.h"
+#include "wrinkle/spd.h"
 #include "membrane_fixture.h"
 
 /* CHOLMOD last: it is the reference the others are compared with. */
