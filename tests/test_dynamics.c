@@ -202,9 +202,9 @@ Test(dynamics, hanging_sheet_rests_at_statics_equilibrium) {
     }
     cr_assert_leq(speed, 1e-7, "still moving at %.3e m/s after %d frames", speed, (int)f);
     memset(&sd, 0, sizeof sd);
-    sd.gravity[2] = -9.81;
-    sd.fixed = fixed;
-    sd.grad_tol = 1e-10;
+    sd.loads.gravity[2] = -9.81;
+    sd.loads.fixed = fixed;
+    sd.stop.grad_tol = 1e-10;
     cr_assert_eq(wr_statics_solve(&s, xs, &sd, &ss, &dg), WR_OK, "%s", dg.message);
     for (v = 0; v < 3 * m.nv; ++v) err = fmax(err, fabs(x[v] - xs[v]));
     cr_assert_lt(err, 1e-6, "dynamic rest vs statics: %.3e m (after %d frames)", err, (int)f);

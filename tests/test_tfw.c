@@ -147,7 +147,9 @@ Test(tfw, compressed_strip_amplitude_from_excess_length) {
 /* ---- the fold re-solve (ON CLAMPS AND FOLDS) ------------------------------------------------------------
  * An isotropically compressed disk (3 %, 8 rings, rim clamped) has no preferred wrinkle direction and
  * its first SQP leaves phase folds (measured 84 fold edges). wr_tfw_fields must re-orient ω, solve
- * again and keep the re-solve only with fewer folds (measured 63); no_unfold keeps the first solve. */
+ * again and keep the re-solve only with fewer folds (measured 63); no_unfold keeps the first solve.
+ * The base is slack (compressed in every direction), which wr_tfw_fields refuses by default (ON
+ * OUTCOMES, checked below); allow_slack solves it: the fold machinery is what is tested. */
 static void disk_case(wr_mesh *m, double **x, uint8_t **rim) {
     int32_t v;
     cr_assert_eq(wr_mesh_disk(m, 0.1, 8, NULL), WR_OK);
@@ -176,8 +178,11 @@ Test(tfw, fold_resolve_kept_only_with_fewer_folds) {
     td.a_zero_vertices = rim;
     td.no_upsample = 1;
     td.solve.max_iter = 200;
-    /* an isotropically compressed disk is a slack base (tfw.h ON OUTCOMES: no tension sets a
-     * wavelength), refused by default; the fold machinery is what this test is about */
+    td.allow_slack = 1; /* isotropic compression is a slack base (tfw.h ON OUTCOMES): solved on purpose here */
+    td.allow_slack = 0;
+    cr_assert_eq(wr_tfw_fields(&m, x, &mat, &td, &r, &d), WR_ERR_DOMAIN, "a slack base must be refused by default");
+    cr_assert_eq(r.outcome, WR_TFW_SLACK);
+    wr_tfw_result_free(&r);
     td.allow_slack = 1;
     cr_assert_eq(wr_tfw_fields(&m, x, &mat, &td, &r, &d), WR_OK, "%s", d.message);
     td.no_unfold = 1;
