@@ -178,7 +178,6 @@ Test(tfw, fold_resolve_kept_only_with_fewer_folds) {
     td.a_zero_vertices = rim;
     td.no_upsample = 1;
     td.solve.max_iter = 200;
-    td.allow_slack = 1; /* isotropic compression is a slack base (tfw.h ON OUTCOMES): solved on purpose here */
     td.allow_slack = 0;
     cr_assert_eq(wr_tfw_fields(&m, x, &mat, &td, &r, &d), WR_ERR_DOMAIN, "a slack base must be refused by default");
     cr_assert_eq(r.outcome, WR_TFW_SLACK);
