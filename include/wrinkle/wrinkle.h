@@ -21,6 +21,7 @@
 #include "shell.h"
 #include "poisson.h"
 #include "triangulate.h"
+#include "polyfile.h"
 #include "statics.h"
 #include "wrinkle_field.h"
 #include "mesher.h"
