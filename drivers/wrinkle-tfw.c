@@ -34,6 +34,10 @@ static void usage(FILE *f) {
             "options:\n"
             "  -o, --output DIR     output directory (created if missing)\n"
             "  --levels N           Loop subdivision levels of the wrinkled mesh (default 2, 0..5)\n"
+            "  --clamp-amplitude    a = 0 on the scene's prescribed vertices (the TFW paper's clamp reading;\n"
+            "                       default: a clamp holds the base only, as in the authors' release)\n"
+            "  --kappa K            curvature of Eq. 22: midedge (default) or vertex-fit (quadric fit, as the\n"
+            "                       authors' release; wrinkle_field.h ON READINGS OF THE PAPER)\n"
             "  --quiet              no progress on stderr\n"
             "  -h, --help           this text\n"
             "exit status: 0 ok, 1 not converged (outputs written), 2 bad input, 3 failure\n");
@@ -100,7 +104,8 @@ static wr_status probe_wrinkled(const wr_scene_probe *pr, const wr_mesh *fine, c
 int main(int argc, char **argv) {
     const char *scene_path = NULL, *out = NULL;
     double levels_d = 2.0;
-    int quiet = 0, i, k, rc = 0;
+    int quiet = 0, clamp_amplitude = 0, i, k, rc = 0;
+    const char *kappa_name = NULL;
     wr_scene sc;
     wr_scene_run run;
     wr_diag d;
@@ -108,7 +113,7 @@ int main(int argc, char **argv) {
     wr_wf_material mat;
     wr_tfw_desc td;
     wr_tfw_result r;
-    char path[4096];
+    char path[4096], base_warning[512] = "";
     double t0;
     wr_cli_set_program(argv[0]);
     for (i = 1; i < argc; ++i) {
@@ -118,6 +123,18 @@ int main(int argc, char **argv) {
         }
         if (wr_cli_is_flag(argv[i], "--quiet")) {
             quiet = 1;
+            continue;
+        }
+        if (wr_cli_is_flag(argv[i], "--clamp-amplitude")) {
+            clamp_amplitude = 1;
+            continue;
+        }
+        if ((k = wr_cli_value(argc, argv, &i, "--kappa", &kappa_name)) != 0) {
+            if (k < 0) return WR_CLI_EXIT_USAGE;
+            if (strcmp(kappa_name, "midedge") != 0 && strcmp(kappa_name, "vertex-fit") != 0) {
+                wr_cli_error("--kappa: '%s' is neither midedge nor vertex-fit", kappa_name);
+                return WR_CLI_EXIT_USAGE;
+            }
             continue;
         }
         if ((k = wr_cli_integer(argc, argv, &i, "--levels", 0.0, 5.0, &levels_d)) != 0) {
@@ -161,8 +178,8 @@ int main(int argc, char **argv) {
         wr_scene_free(&sc);
         return 3;
     }
-    if (st == WR_ERR_NOT_CONVERGED) {
-        fprintf(stderr, "%s: warning: base: %s\n", wr_cli_program(), d.message);
+    if (st == WR_ERR_NOT_CONVERGED) { /* said after the TFW step, unless that step refuses the base */
+        snprintf(base_warning, sizeof base_warning, "%s", d.message);
         rc = 1;
     }
     mat.young = sc.shell.young;
@@ -170,17 +187,31 @@ int main(int argc, char **argv) {
     mat.thickness = sc.shell.thickness;
     memset(&td, 0, sizeof td);
     td.upsample.levels = (int32_t)levels_d;
+    if (clamp_amplitude) td.a_zero_vertices = run.fixed;
+    if (kappa_name && strcmp(kappa_name, "vertex-fit") == 0) td.kappa = WR_WF_KAPPA_VERTEX_FIT;
     if (td.upsample.levels == 0) td.no_upsample = 1;
     if (!quiet) td.solve.progress = sqp_progress;
     t0 = wr_time_seconds();
     tst = wr_tfw_fields(&run.mesh, run.x, &mat, &td, &r, &d);
     if (!quiet) fprintf(stderr, "\n");
     if (tst != WR_OK && tst != WR_ERR_NOT_CONVERGED) {
-        wr_cli_error("wrinkle field failed: %s", d.message);
+        /* a slack base is the scene's set-up, not a failure of the solver (tfw.h ON OUTCOMES) */
+        int slack = tst == WR_ERR_DOMAIN && r.outcome == WR_TFW_SLACK;
+        if (!slack && base_warning[0]) fprintf(stderr, "%s: warning: base: %s\n", wr_cli_program(), base_warning);
+        wr_cli_error("%s: %s", slack ? scene_path : "wrinkle field failed", d.message);
         wr_scene_run_free(&run);
         wr_scene_free(&sc);
-        return 3;
+        return slack ? WR_CLI_EXIT_USAGE : 3;
     }
+    if (base_warning[0]) fprintf(stderr, "%s: warning: base: %s\n", wr_cli_program(), base_warning);
+    /* say plainly when nothing wrinkles, and why (tfw.h ON OUTCOMES), even with --quiet */
+    if (r.outcome != WR_TFW_WRINKLED)
+        fprintf(stderr, "%s: note: %s (%d of %d faces compressed, %d in W)\n", wr_cli_program(),
+                wr_tfw_outcome_reason(r.outcome), (int)r.n_compressed, (int)run.mesh.nf, (int)r.n_wrinkle_free);
+    else if (r.n_slack > 0)
+        fprintf(stderr, "%s: warning: %d faces outside W are compressed in both directions; their amplitude is not "
+                        "bounded by tension (tfw.h ON OUTCOMES)\n",
+                wr_cli_program(), (int)r.n_slack);
     if (tst == WR_ERR_NOT_CONVERGED) {
         fprintf(stderr, "%s: warning: %s\n", wr_cli_program(), d.message);
         rc = 1;
@@ -251,6 +282,10 @@ int main(int argc, char **argv) {
         cJSON_AddNumberToObject(root, "wrinkled_vertices", td.no_upsample ? 0 : r.wrinkled.nv);
         cJSON_AddNumberToObject(root, "wrinkle_free_faces", r.n_wrinkle_free);
         cJSON_AddNumberToObject(root, "max_amplitude_m", amax);
+        cJSON_AddStringToObject(root, "outcome", r.outcome == WR_TFW_WRINKLED ? "wrinkled" : "nothing_wrinkles");
+        cJSON_AddStringToObject(root, "outcome_reason", wr_tfw_outcome_reason(r.outcome));
+        cJSON_AddNumberToObject(root, "compressed_faces", r.n_compressed);
+        cJSON_AddNumberToObject(root, "slack_faces", r.n_slack);
         cJSON_AddStringToObject(base, "status", wr_status_string(st));
         cJSON_AddNumberToObject(base, "newton_iterations", run.newton_iterations);
         cJSON_AddNumberToObject(base, "load_steps", run.n_steps_done);

@@ -169,6 +169,17 @@ if [ -x "$B/wrinkle-tfw" ]; then
     expect_fail "wrinkle-tfw invalid scene" "$B/wrinkle-tfw" "$tmp/badscene.json" -o "$tmp/t0"
     expect_fail "wrinkle-tfw bad --levels" "$B/wrinkle-tfw" "$root/examples/scenes/tfw_stretched_sheet.json" \
         -o "$tmp/t0" --levels 9
+    expect_fail "wrinkle-tfw bad --kappa" "$B/wrinkle-tfw" "$root/examples/scenes/tfw_stretched_sheet.json" \
+        -o "$tmp/t0" --kappa bogus
+    # a slack base (pushed in from one end, free sides: no tension anywhere) is refused with the reason
+    cat > "$tmp/slack.json" <<'JSON'
+{"name": "tfw_slack", "mesh": {"type": "rectangle", "width": 0.25, "height": 0.1, "nx": 10, "ny": 5},
+ "material": {"young": 1.0e6, "poisson": 0.5, "thickness": 1.0e-4},
+ "boundary": [{"name": "left", "box": {"min": [-1e-9, -1, -1], "max": [1e-9, 1, 1]}},
+  {"name": "right", "box": {"min": [0.249999999, -1, -1], "max": [1, 1, 1]}, "stretch": [0.9, 1, 1]}],
+ "solver": {"load_steps": 2, "hessian": "projected"}}
+JSON
+    expect_fail "wrinkle-tfw slack base" "$B/wrinkle-tfw" "$tmp/slack.json" -o "$tmp/t0" --quiet
     cat > "$tmp/tfw.json" <<'JSON'
 {"name": "tfw_small", "mesh": {"type": "rectangle", "width": 0.25, "height": 0.1, "nx": 10, "ny": 5},
  "material": {"young": 1.0e6, "poisson": 0.5, "thickness": 1.0e-4},

@@ -297,3 +297,113 @@ Test(sparse, stencil_pattern_and_cached_block_offsets) {
     wr_csr_free(&B);
     wr_csr_free(&A);
 }
+
+/* ---- the assembly cache (ON ASSEMBLY CACHE) ---------------------------------------------------- */
+
+/* element e of a small made-up stream: k blocks, values depending on (e, scale) */
+static void asm_element(int32_t e, int32_t bs, double scale, int32_t *k, int32_t *blocks, double *Ke) {
+    static const int32_t conn[4][3] = {{0, 1, 2}, {2, 3, -1}, {3, 4, 1}, {4, 0, -1}};
+    int32_t i, j, n;
+    *k = conn[e][2] < 0 ? 2 : 3;
+    for (i = 0; i < *k; ++i) blocks[i] = conn[e][i];
+    n = bs * *k;
+    for (i = 0; i < n; ++i)
+        for (j = 0; j < n; ++j) Ke[i * n + j] = scale * (1.0 + e + 0.1 * i + 0.01 * j);
+}
+
+/* the same stream through triplets: the reference matrix */
+static void asm_reference(wr_csr *R, int32_t bs, double scale, double scale_const, int extra) {
+    wr_triplets t;
+    int32_t e, k, blocks[3], idx[9], a, i;
+    double Ke[81], D[9];
+    cr_assert_eq(wr_triplets_create(&t, 5 * bs, 64, NULL), WR_OK);
+    for (e = 0; e < 4 + (extra != 0); ++e) {
+        asm_element(e < 4 ? e : 3, bs, e == 1 ? scale_const : scale, &k, blocks, Ke);
+        if (e == 4) blocks[1] = 2; /* the extra element couples 4 with 2: outside the first pattern */
+        for (a = 0; a < k; ++a)
+            for (i = 0; i < bs; ++i) idx[bs * a + i] = bs * blocks[a] + i;
+        cr_assert_eq(wr_triplets_add_element(&t, bs * k, idx, Ke, NULL), WR_OK);
+    }
+    for (i = 0; i < bs * bs; ++i) D[i] = scale * (i + 1);
+    for (i = 0; i < bs; ++i)
+        for (a = 0; a < bs; ++a) cr_assert_eq(wr_triplets_add(&t, 3 * bs + i, 3 * bs + a, D[bs * i + a], NULL), WR_OK);
+    cr_assert_eq(wr_csr_from_triplets(R, &t, NULL), WR_OK);
+    wr_triplets_free(&t);
+}
+
+static void asm_run(wr_assembly *A, int32_t bs, double scale, int extra) {
+    int32_t e, k, blocks[3];
+    double Ke[81], D[9];
+    int i;
+    wr_assembly_begin(A);
+    for (e = 0; e < 4; ++e) {
+        if (e == 1) {
+            /* element 1 is the constant segment: streamed only when asked */
+            if (wr_assembly_constant_begin(A)) {
+                asm_element(1, bs, 1.0, &k, blocks, Ke);
+                cr_assert_eq(wr_assembly_add(A, k, blocks, Ke, NULL), WR_OK);
+            }
+            wr_assembly_constant_end(A);
+            continue;
+        }
+        asm_element(e, bs, scale, &k, blocks, Ke);
+        cr_assert_eq(wr_assembly_add(A, k, blocks, Ke, NULL), WR_OK);
+    }
+    if (extra) {
+        asm_element(3, bs, scale, &k, blocks, Ke);
+        blocks[1] = 2;
+        cr_assert_eq(wr_assembly_add(A, k, blocks, Ke, NULL), WR_OK);
+    }
+    for (i = 0; i < bs * bs; ++i) D[i] = scale * (i + 1);
+    cr_assert_eq(wr_assembly_add_diagonal(A, 3, D, NULL), WR_OK);
+    cr_assert_eq(wr_assembly_end(A, NULL), WR_OK);
+}
+
+/* every entry of R equals A's (absent entries of A must be zero in R) */
+static void asm_expect_equal(const wr_csr *A, const wr_csr *R, const char *what) {
+    int32_t i, p;
+    cr_assert_eq(A->n, R->n, "%s", what);
+    for (i = 0; i < R->n; ++i)
+        for (p = R->rowptr[i]; p < R->rowptr[i + 1]; ++p) {
+            int32_t q = wr_csr_find(A, i, R->col[p]);
+            double v = q >= 0 ? A->val[q] : 0.0;
+            /* same additions, possibly in another order: a few ulps of the entry */
+            cr_expect_float_eq(v, R->val[p], 1e-14 * fmax(1.0, fabs(R->val[p])), "%s: (%d, %d) %g vs %g", what, (int)i,
+                               (int)R->col[p], v, R->val[p]);
+        }
+}
+
+Test(sparse, assembly_cache_blocks_of_3_and_1) {
+    int32_t bs;
+    for (bs = 1; bs <= 3; bs += 2) {
+        wr_assembly A;
+        wr_csr R;
+        cr_assert_eq(wr_assembly_init(&A, 5, bs, NULL), WR_OK);
+        asm_run(&A, bs, 1.0, 0); /* records, builds the pattern */
+        asm_reference(&R, bs, 1.0, 1.0, 0);
+        asm_expect_equal(&A.A, &R, "first assembly");
+        wr_csr_free(&R);
+        cr_expect_eq(A.builds, 1);
+        asm_run(&A, bs, 2.5, 0); /* cached offsets; the constant element from its cached sum */
+        asm_reference(&R, bs, 2.5, 1.0, 0);
+        asm_expect_equal(&A.A, &R, "cached assembly");
+        wr_csr_free(&R);
+        cr_expect_eq(A.misses, 0);
+        cr_expect_eq(A.builds, 1);
+        cr_expect_eq(A.stale, 0);
+        /* an element coupling two blocks the pattern does not couple: stale, then a new pattern */
+        asm_run(&A, bs, 3.0, 1);
+        cr_expect_eq(A.stale, 1, "bs %d: the new coupling must make the assembly stale", (int)bs);
+        asm_run(&A, bs, 3.0, 1);
+        cr_expect_eq(A.stale, 0);
+        cr_expect_eq(A.builds, 2);
+        asm_reference(&R, bs, 3.0, 1.0, 1);
+        asm_expect_equal(&A.A, &R, "rebuilt pattern");
+        wr_csr_free(&R);
+        wr_assembly_free(&A);
+    }
+    {
+        wr_assembly A;
+        cr_expect_eq(wr_assembly_init(&A, 5, 2, NULL), WR_ERR_INVALID_ARG);
+    }
+}

@@ -160,6 +160,16 @@ WRDEF void wr_mesh_face_normals(const wr_mesh *m, double *out);
 /* out[nv*3]: unit vertex normals, area-weighted (sum of the unnormalised face cross products over
  * incident faces, then normalised); zero vector for an isolated vertex or a cancelling sum. */
 WRDEF void wr_mesh_vertex_normals(const wr_mesh *m, double *out);
+/* Principal curvatures at every vertex of the surface `pos` (nv*3 [m]; NULL = m->pos) by a least-
+ * squares quadric height field over the vertex's k-ring (k = rings, 0 → 5), the estimator of
+ * Panozzo et al. 2010 that the TFW paper cites for κ⊥ (Eq. 22): in a frame (e1, e2, n̂) at the vertex,
+ * n̂ the area-weighted vertex normal, fit z = a x² + b xy + c y² + d x + e y to the ring's vertices;
+ * the shape operator of that height field at 0 gives k1 >= k2 [1/m] (signed: positive when the
+ * surface bends towards n̂) and the unit direction of k1 (d1, nv*3). A vertex with fewer than five
+ * ring neighbours, or a singular fit, gets k1 = k2 = 0 and d1 = e1. k1, k2, d1 may each be NULL.
+ * WR_ERR_NOMEM. */
+WRDEF wr_status wr_mesh_vertex_curvature(const wr_mesh *m, const double *pos, int32_t rings, double *k1, double *k2,
+                                         double *d1, wr_diag *diag);
 
 /* Relative area below which a rest face counts as zero-area: |A| <= WR_MESH_ZERO_AREA_REL * l_max²
  * (l_max its longest rest edge). 1e-12 is ~1e4 ulps of the area scale: clearly degenerate, yet far
@@ -884,6 +894,160 @@ static double wr__mesh_angle_deg(double adj1, double adj2, double opp) {
     if (c > 1.0) c = 1.0;
     if (c < -1.0) c = -1.0;
     return acos(c) * (180.0 / 3.14159265358979323846);
+}
+
+/* Vertices within `rings` edge hops of v (v excluded), by breadth-first search over the vertex→face
+ * CSR; mark[] is scratch (nv, zero on entry and on return). Returns the count written to out. */
+static int32_t wr__mesh_kring(const wr_mesh *m, int32_t v, int32_t rings, uint8_t *mark, int32_t *out) {
+    int32_t n = 0, head = 0, level_end, r, i;
+    mark[v] = 1;
+    out[n++] = v;
+    for (r = 0; r < rings; ++r) {
+        level_end = n;
+        for (; head < level_end; ++head) {
+            int32_t u = out[head], t;
+            for (t = m->vf_start[u]; t < m->vf_start[u + 1]; ++t) {
+                const int32_t *fv = m->faces + 3 * m->vf[t];
+                int c;
+                for (c = 0; c < 3; ++c)
+                    if (!mark[fv[c]]) {
+                        mark[fv[c]] = 1;
+                        out[n++] = fv[c];
+                    }
+            }
+        }
+    }
+    for (i = 0; i < n; ++i) mark[out[i]] = 0;
+    for (i = 1; i < n; ++i) out[i - 1] = out[i]; /* drop v itself */
+    return n - 1;
+}
+
+/* Least-squares quadric z = q0 x² + q1 xy + q2 y² + q3 x + q4 y through the points (normal
+ * equations, 5×5 Cholesky). Returns 0 when the system is singular. */
+static int wr__mesh_fit_quadric(const double *xyz, int32_t n, double q[5]) {
+    double A[25], b[5], L[25];
+    int32_t i, j, k, p;
+    memset(A, 0, sizeof A);
+    memset(b, 0, sizeof b);
+    for (p = 0; p < n; ++p) {
+        double x = xyz[3 * p], y = xyz[3 * p + 1], z = xyz[3 * p + 2];
+        double r[5];
+        r[0] = x * x;
+        r[1] = x * y;
+        r[2] = y * y;
+        r[3] = x;
+        r[4] = y;
+        for (i = 0; i < 5; ++i) {
+            b[i] += r[i] * z;
+            for (j = 0; j < 5; ++j) A[5 * i + j] += r[i] * r[j];
+        }
+    }
+    for (j = 0; j < 5; ++j) {
+        double d = A[6 * j];
+        for (k = 0; k < j; ++k) d -= L[5 * j + k] * L[5 * j + k];
+        if (!(d > 1e-14 * (A[6 * j] > 0.0 ? A[6 * j] : 1.0))) return 0;
+        L[6 * j] = sqrt(d);
+        for (i = j + 1; i < 5; ++i) {
+            double t = A[5 * i + j];
+            for (k = 0; k < j; ++k) t -= L[5 * i + k] * L[5 * j + k];
+            L[5 * i + j] = t / L[6 * j];
+        }
+    }
+    for (i = 0; i < 5; ++i) { /* L y = b, then Lᵀ q = y */
+        double t = b[i];
+        for (k = 0; k < i; ++k) t -= L[5 * i + k] * q[k];
+        q[i] = t / L[6 * i];
+    }
+    for (i = 4; i >= 0; --i) {
+        double t = q[i];
+        for (k = i + 1; k < 5; ++k) t -= L[5 * k + i] * q[k];
+        q[i] = t / L[6 * i];
+    }
+    return 1;
+}
+
+/* Principal curvatures of the height field z = f(x, y) = q0 x² + q1 xy + q2 y² + q3 x + q4 y at the
+ * origin: I = [[1 + fx², fx fy], [fx fy, 1 + fy²]], II = [[2 q0, q1], [q1, 2 q2]] / sqrt(1 + fx² + fy²),
+ * S = I⁻¹ II; k1 >= k2 its eigenvalues, (c0, c1) the parameter vector of k1's direction. */
+static void wr__mesh_quadric_curvature(const double q[5], double *k1, double *k2, double c[2]) {
+    double fx = q[3], fy = q[4], w = sqrt(1.0 + fx * fx + fy * fy);
+    double E = 1.0 + fx * fx, F = fx * fy, G = 1.0 + fy * fy, det = E * G - F * F;
+    double L = 2.0 * q[0] / w, M = q[1] / w, N = 2.0 * q[2] / w;
+    /* S = I⁻¹ II */
+    double s00 = (G * L - F * M) / det, s01 = (G * M - F * N) / det, s10 = (E * M - F * L) / det,
+           s11 = (E * N - F * M) / det;
+    double tr = s00 + s11, dd = s00 * s11 - s01 * s10, disc = sqrt(fmax(0.0, 0.25 * tr * tr - dd));
+    *k1 = 0.5 * tr + disc;
+    *k2 = 0.5 * tr - disc;
+    /* eigenvector of k1: (s01, k1 - s00) or (k1 - s11, s10), the better conditioned one */
+    if (fabs(s01) + fabs(*k1 - s00) >= fabs(*k1 - s11) + fabs(s10)) {
+        c[0] = s01;
+        c[1] = *k1 - s00;
+    } else {
+        c[0] = *k1 - s11;
+        c[1] = s10;
+    }
+    if (!(fabs(c[0]) + fabs(c[1]) > 0.0)) {
+        c[0] = 1.0;
+        c[1] = 0.0;
+    }
+}
+
+WRDEF wr_status wr_mesh_vertex_curvature(const wr_mesh *m, const double *pos, int32_t rings, double *k1, double *k2,
+                                         double *d1, wr_diag *diag) {
+    wr_mesh view;
+    uint8_t *mark;
+    int32_t *ring, v;
+    double *nrm, *xyz;
+    if (!m) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "vertex curvature: NULL mesh");
+    if (rings <= 0) rings = 5;
+    view = *m;
+    if (pos) view.pos = (double *)pos; /* read only: wr_mesh_vertex_normals does not write pos */
+    mark = (uint8_t *)wr_calloc_array((size_t)m->nv, sizeof(uint8_t));
+    ring = (int32_t *)wr_alloc_array((size_t)m->nv + 1, sizeof(int32_t));
+    nrm = (double *)wr_alloc_array((size_t)m->nv * 3, sizeof(double));
+    xyz = (double *)wr_alloc_array((size_t)m->nv * 3, sizeof(double));
+    if (!mark || !ring || !nrm || !xyz) {
+        wr_free(mark);
+        wr_free(ring);
+        wr_free(nrm);
+        wr_free(xyz);
+        return wr_fail(diag, WR_ERR_NOMEM, -1, "vertex curvature: out of memory for %d vertices", (int)m->nv);
+    }
+    wr_mesh_vertex_normals(&view, nrm);
+    for (v = 0; v < m->nv; ++v) {
+        wr_vec3 P = wr_v3_load(view.pos + 3 * v), n = wr_v3_load(nrm + 3 * v), e1, e2, dir;
+        double q[5] = {0.0, 0.0, 0.0, 0.0, 0.0}, a1 = 0.0, a2 = 0.0, c[2] = {1.0, 0.0};
+        int32_t nr = wr__mesh_kring(m, v, rings, mark, ring), i;
+        /* e1: the tangent direction of the longest axis of the world frame not along n (stable) */
+        e1 = fabs(n.x) < 0.9 ? wr_v3(1.0, 0.0, 0.0) : wr_v3(0.0, 1.0, 0.0);
+        e1 = wr_v3_normalized(wr_v3_sub(e1, wr_v3_scale(n, wr_v3_dot(e1, n))));
+        e2 = wr_v3_cross(n, e1);
+        for (i = 0; i < nr; ++i) {
+            wr_vec3 p = wr_v3_sub(wr_v3_load(view.pos + 3 * ring[i]), P);
+            xyz[3 * i] = wr_v3_dot(p, e1);
+            xyz[3 * i + 1] = wr_v3_dot(p, e2);
+            xyz[3 * i + 2] = wr_v3_dot(p, n);
+        }
+        if (nr >= 5 && wr__mesh_fit_quadric(xyz, nr, q)) wr__mesh_quadric_curvature(q, &a1, &a2, c);
+        if (k1) k1[v] = a1;
+        if (k2) k2[v] = a2;
+        if (d1) {
+            /* (c0, c1) in the height field's tangent basis r_x = e1 + fx n, r_y = e2 + fy n */
+            dir = wr_v3_add(wr_v3_scale(wr_v3_add(e1, wr_v3_scale(n, q[3])), c[0]),
+                            wr_v3_scale(wr_v3_add(e2, wr_v3_scale(n, q[4])), c[1]));
+            if (!(nr >= 5 && a1 != a2)) dir = e1;
+            dir = wr_v3_normalized(dir);
+            d1[3 * v] = dir.x;
+            d1[3 * v + 1] = dir.y;
+            d1[3 * v + 2] = dir.z;
+        }
+    }
+    wr_free(mark);
+    wr_free(ring);
+    wr_free(nrm);
+    wr_free(xyz);
+    return WR_OK;
 }
 
 WRDEF void wr_mesh_quality(const wr_mesh *m, int use_rest, wr_mesh_quality_stats *q) {

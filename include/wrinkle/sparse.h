@@ -27,6 +27,10 @@
  *   wr_csr_spmv(A, x, y)                         y = A x (x and y must not overlap)
  *   wr_csr_diagonal(A, d)                        d[i] = A(i,i)
  *   wr_csr_asymmetry(A)                          max |A(i,j) - A(j,i)| / max |A(i,j)| (0 = symmetric)
+ *   wr_assembly_init(a, nb, bs, diag) / wr_assembly_free(a)   assembly cache for nb blocks of bs DOFs
+ *   wr_assembly_begin(a) … wr_assembly_add(a, k, blocks, Ke, diag) / _add_diagonal(a, v, B, diag)
+ *       … wr_assembly_end(a, diag)                one assembly into a.A (ON ASSEMBLY CACHE)
+ *   wr_assembly_constant_begin(a) / _end(a)       elements whose values never change, summed once
  *
  * EXAMPLE (Newton: build the pattern once, reassemble values every iteration)
  *     wr_triplets t;  wr_csr K;  wr_diag d;  int32_t e, idx[2];
@@ -65,6 +69,23 @@
  *   pattern directly from the vertex stencils (vertex sets of the elements, CSR-like start/verts
  *   arrays), without a triplet list of every scalar entry: the union of the full 3×3 blocks of all
  *   vertex pairs in each stencil, plus every diagonal block, all values 0.
+ *
+ * ON ASSEMBLY CACHE (wr_assembly: the Newton and SQP loops)
+ *   One object does the above for a caller that streams the same elements every iteration: the first
+ *   assembly (between wr_assembly_begin and wr_assembly_end) records each element's blocks and values,
+ *   _end builds the pattern from the recorded stencils (wr_csr_from_stencils; scalar blocks with
+ *   bs = 1 too), caches every element's block offsets and adds the recorded values in stream order;
+ *   later assemblies zero the values and add element e through its offsets while the stream matches
+ *   the record (same block list at the same position), by search otherwise (a.misses). A block the
+ *   pattern lacks (a new contact pair) sets a.stale: that assembly is incomplete, and the next
+ *   wr_assembly_begin records a new pattern (a.builds counts them), so the caller assembles again.
+ *   Diagonal blocks (wr_assembly_add_diagonal) are always in the pattern and never recorded.
+ *   Elements between wr_assembly_constant_begin and _end (x-independent ones: the TFW Eq. 28
+ *   quadratic bending) are summed once into a separate value array; later constant_begin calls add
+ *   that sum and return 0, so the caller skips streaming them. Floating-point sums follow the stream
+ *   order, so repeated assemblies of the same values give bit-identical matrices. Memory: the record
+ *   ((bs·k)² doubles per element) lives only until the first _end; afterwards k² ints per element.
+ *   Ownership: a.A belongs to the cache (wr_assembly_free).
  *
  * ON THREADS
  *   No global state. wr_csr_spmv reads A only, so several threads may multiply with one matrix.
@@ -129,6 +150,38 @@ WRDEF void wr_csr_block3_diagonal(const wr_csr *A, double *D);
 WRDEF void wr_csr_spmv(const wr_csr *A, const double *x, double *y);
 WRDEF void wr_csr_diagonal(const wr_csr *A, double *d);
 WRDEF double wr_csr_asymmetry(const wr_csr *A);
+
+/* ON ASSEMBLY CACHE. One Newton (or SQP) matrix assembled again and again from the same elements:
+ * the first assembly records the element stencils and values and builds the pattern from them, later
+ * ones add each element through its cached block offsets. Fields above "private" may be read. */
+typedef struct wr_assembly {
+    wr_csr A;        /* the matrix: pattern of the recorded elements (+ every diagonal block), last values */
+    int32_t nb, bs;  /* blocks (vertices) and DOFs per block (1 or 3): A is (bs·nb) × (bs·nb) */
+    int32_t builds;  /* patterns built so far (a rebuild follows an element outside the pattern) */
+    int32_t misses;  /* elements of the last assembly that did not match the record (added by search) */
+    int32_t stale;   /* 1: the last assembly met a block outside the pattern; assemble again */
+    /* private */
+    int32_t rec_mode, n_el, cap_el, e, c_begin, c_end, n_pend, cap_pend;
+    int32_t *vstart, *verts, *off, *doff, *pend_v;
+    int64_t vcap, rn, rcap, *ostart;
+    double *rec, *Kc, *pend_B;
+} wr_assembly;
+
+/* Empty cache for nb blocks of bs (1 or 3) DOFs; nothing allocated until the first assembly. */
+WRDEF wr_status wr_assembly_init(wr_assembly *a, int32_t nb, int32_t bs, wr_diag *diag);
+WRDEF void wr_assembly_free(wr_assembly *a);
+/* Start an assembly: values zeroed (the first one, or after a stale one, records a new pattern). */
+WRDEF void wr_assembly_begin(wr_assembly *a);
+/* Add a dense (bs·k)² row-major element over blocks[0..k) (negative entries dropped). */
+WRDEF wr_status wr_assembly_add(wr_assembly *a, int32_t k, const int32_t *blocks, const double *Ke, wr_diag *diag);
+/* Add a bs×bs block at diagonal block v (always in the pattern: contact, mass, shift terms). */
+WRDEF wr_status wr_assembly_add_diagonal(wr_assembly *a, int32_t v, const double *B, wr_diag *diag);
+/* Constant elements (same values every assembly): returns 1 when the caller must add them now (first
+ * assembly, between this call and wr_assembly_constant_end), 0 when their cached sum was added. */
+WRDEF int wr_assembly_constant_begin(wr_assembly *a);
+WRDEF void wr_assembly_constant_end(wr_assembly *a);
+/* Finish an assembly (after a recording one: builds the pattern and adds the recorded values). */
+WRDEF wr_status wr_assembly_end(wr_assembly *a, wr_diag *diag);
 
 #ifdef __cplusplus
 }
@@ -485,14 +538,15 @@ static int wr__sparse_cmp_i32(const void *a, const void *b) {
     return x < y ? -1 : x > y;
 }
 
-WRDEF wr_status wr_csr_from_stencils(wr_csr *A, int32_t nb, int32_t n_stencils, const int32_t *start,
-                                     const int32_t *verts, wr_diag *diag) {
+/* the pattern of ON CACHED ASSEMBLY for blocks of bs (1 or 3) DOFs */
+static wr_status wr__csr_from_stencils_bs(wr_csr *A, int32_t nb, int32_t bs, int32_t n_stencils, const int32_t *start,
+                                          const int32_t *verts, wr_diag *diag) {
     int64_t *cnt = NULL, total = 0, nnz;
-    int32_t *adj = NULL, *fill = NULL, *deg = NULL, t, v, a, b, i;
+    int32_t *adj = NULL, *fill = NULL, *deg = NULL, t, v, a, b, i, j;
     wr_status rs = WR_OK;
     if (!A) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "csr_from_stencils: NULL output");
     memset(A, 0, sizeof *A);
-    if (nb < 0 || nb > (INT32_MAX - 3) / 3 || n_stencils < 0 || (n_stencils > 0 && (!start || !verts)))
+    if (bs < 1 || nb < 0 || nb > (INT32_MAX - 3) / 3 || n_stencils < 0 || (n_stencils > 0 && (!start || !verts)))
         return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "csr_from_stencils: nb = %d, %d stencils", (int)nb, (int)n_stencils);
     for (t = 0; t < n_stencils; ++t) {
         if (start[t + 1] < start[t] || start[t] < 0)
@@ -538,13 +592,13 @@ WRDEF wr_status wr_csr_from_stencils(wr_csr *A, int32_t nb, int32_t n_stencils, 
         for (i = 0; i < m; ++i)
             if (u == 0 || r[i] != r[u - 1]) r[u++] = r[i];
         deg[v] = u;
-        nnz += 9 * (int64_t)u;
+        nnz += (int64_t)bs * bs * u;
     }
     if (nnz > INT32_MAX) {
         rs = wr_fail(diag, WR_ERR_OVERFLOW, -1, "csr_from_stencils: %lld entries exceed int32", (long long)nnz);
         goto done;
     }
-    A->n = 3 * nb;
+    A->n = bs * nb;
     A->nnz = (int32_t)nnz;
     A->rowptr = (int32_t *)wr_alloc_array((size_t)A->n + 1, sizeof(int32_t));
     A->col = (int32_t *)wr_alloc_array(nnz > 0 ? (size_t)nnz : 1, sizeof(int32_t));
@@ -556,15 +610,13 @@ WRDEF wr_status wr_csr_from_stencils(wr_csr *A, int32_t nb, int32_t n_stencils, 
     }
     A->rowptr[0] = 0;
     for (v = 0; v < nb; ++v)
-        for (i = 0; i < 3; ++i) {
-            int32_t p = A->rowptr[3 * v + i], q;
+        for (i = 0; i < bs; ++i) {
+            int32_t p = A->rowptr[bs * v + i], q;
             for (q = 0; q < deg[v]; ++q) {
-                int32_t c = 3 * adj[cnt[v] + q];
-                A->col[p++] = c;
-                A->col[p++] = c + 1;
-                A->col[p++] = c + 2;
+                int32_t c = bs * adj[cnt[v] + q];
+                for (j = 0; j < bs; ++j) A->col[p++] = c + j;
             }
-            A->rowptr[3 * v + i + 1] = p;
+            A->rowptr[bs * v + i + 1] = p;
         }
 done:
     wr_free(cnt);
@@ -574,53 +626,67 @@ done:
     return rs;
 }
 
-WRDEF wr_status wr_csr_block_offsets(const wr_csr *A, int32_t k, const int32_t *verts, int32_t *off, wr_diag *diag) {
+WRDEF wr_status wr_csr_from_stencils(wr_csr *A, int32_t nb, int32_t n_stencils, const int32_t *start,
+                                     const int32_t *verts, wr_diag *diag) {
+    return wr__csr_from_stencils_bs(A, nb, 3, n_stencils, start, verts, diag);
+}
+
+static wr_status wr__csr_block_offsets_bs(const wr_csr *A, int32_t bs, int32_t k, const int32_t *verts, int32_t *off,
+                                          wr_diag *diag) {
     int32_t a, b, i, j;
-    if (!A || !A->rowptr || k < 0 || (k > 0 && (!verts || !off)) || A->n % 3 != 0)
-        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "csr_block_offsets: NULL argument, k = %d or n not 3-DOF", (int)k);
+    if (!A || !A->rowptr || bs < 1 || k < 0 || (k > 0 && (!verts || !off)) || A->n % bs != 0)
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "csr_block_offsets: NULL argument, k = %d or n not %d-DOF", (int)k,
+                       (int)bs);
     for (a = 0; a < k; ++a)
         for (b = 0; b < k; ++b) {
             int32_t va = verts[a], vb = verts[b], p;
             off[a * k + b] = -1;
             if (va < 0 || vb < 0) continue;
-            if (3 * va >= A->n || 3 * vb >= A->n)
+            if (bs * va >= A->n || bs * vb >= A->n)
                 return wr_fail(diag, WR_ERR_INVALID_ARG, a, "csr_block_offsets: vertex %d outside n = %d",
-                               (int)(3 * va >= A->n ? va : vb), (int)A->n);
-            p = wr_csr_find(A, 3 * va, 3 * vb);
+                               (int)(bs * va >= A->n ? va : vb), (int)A->n);
+            p = wr_csr_find(A, bs * va, bs * vb);
             if (p < 0)
                 return wr_fail(diag, WR_ERR_INVALID_ARG, a, "csr_block_offsets: block (%d, %d) not in the pattern", (int)va,
                                (int)vb);
-            p -= A->rowptr[3 * va];
-            /* the same offset must address the whole block in all three rows (ON CACHED ASSEMBLY) */
-            for (i = 0; i < 3; ++i)
-                for (j = 0; j < 3; ++j) {
-                    int32_t q = A->rowptr[3 * va + i] + p + j;
-                    if (q >= A->rowptr[3 * va + i + 1] || A->col[q] != 3 * vb + j)
+            p -= A->rowptr[bs * va];
+            /* the same offset must address the whole block in all its rows (ON CACHED ASSEMBLY) */
+            for (i = 0; i < bs; ++i)
+                for (j = 0; j < bs; ++j) {
+                    int32_t q = A->rowptr[bs * va + i] + p + j;
+                    if (q >= A->rowptr[bs * va + i + 1] || A->col[q] != bs * vb + j)
                         return wr_fail(diag, WR_ERR_INVALID_ARG, a,
-                                       "csr_block_offsets: block (%d, %d) is not a contiguous 3x3 block of the pattern",
-                                       (int)va, (int)vb);
+                                       "csr_block_offsets: block (%d, %d) is not a contiguous %dx%d block of the pattern",
+                                       (int)va, (int)vb, (int)bs, (int)bs);
                 }
             off[a * k + b] = p;
         }
     return WR_OK;
 }
 
-WRDEF void wr_csr_add_element_blocks(wr_csr *A, int32_t k, const int32_t *verts, const int32_t *off, const double *Ke) {
-    int32_t a, b, i, n = 3 * k;
+WRDEF wr_status wr_csr_block_offsets(const wr_csr *A, int32_t k, const int32_t *verts, int32_t *off, wr_diag *diag) {
+    return wr__csr_block_offsets_bs(A, 3, k, verts, off, diag);
+}
+
+static void wr__csr_add_element_blocks_bs(wr_csr *A, int32_t bs, int32_t k, const int32_t *verts, const int32_t *off,
+                                          const double *Ke) {
+    int32_t a, b, i, j, n = bs * k;
     for (a = 0; a < k; ++a) {
         if (verts[a] < 0) continue;
-        for (i = 0; i < 3; ++i) {
-            double *row = A->val + A->rowptr[3 * verts[a] + i];
-            const double *ke = Ke + (size_t)(3 * a + i) * (size_t)n;
+        for (i = 0; i < bs; ++i) {
+            double *row = A->val + A->rowptr[bs * verts[a] + i];
+            const double *ke = Ke + (size_t)(bs * a + i) * (size_t)n;
             for (b = 0; b < k; ++b) {
                 int32_t p = off[a * k + b];
                 if (p < 0) continue;
-                row[p] += ke[3 * b];
-                row[p + 1] += ke[3 * b + 1];
-                row[p + 2] += ke[3 * b + 2];
+                for (j = 0; j < bs; ++j) row[p + j] += ke[bs * b + j];
             }
         }
     }
+}
+
+WRDEF void wr_csr_add_element_blocks(wr_csr *A, int32_t k, const int32_t *verts, const int32_t *off, const double *Ke) {
+    wr__csr_add_element_blocks_bs(A, 3, k, verts, off, Ke);
 }
 
 WRDEF int wr_csr_block3(const wr_csr *A, int32_t I, int32_t J, double B[9]) {
@@ -682,6 +748,239 @@ WRDEF double wr_csr_asymmetry(const wr_csr *A) {
             if (fabs(A->val[p]) > amax) amax = fabs(A->val[p]);
         }
     return amax > 0.0 ? worst / amax : 0.0;
+}
+
+/* ---- assembly cache (ON ASSEMBLY CACHE) ------------------------------------------------------- */
+
+WRDEF wr_status wr_assembly_init(wr_assembly *a, int32_t nb, int32_t bs, wr_diag *diag) {
+    if (!a) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "assembly: NULL cache");
+    memset(a, 0, sizeof *a);
+    if (nb < 0 || (bs != 1 && bs != 3) || nb > (INT32_MAX - 3) / 3)
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "assembly: %d blocks of %d DOFs (block size must be 1 or 3)",
+                       (int)nb, (int)bs);
+    a->nb = nb;
+    a->bs = bs;
+    a->c_begin = a->c_end = -1;
+    return WR_OK;
+}
+
+static void wr__assembly_drop_record(wr_assembly *a) {
+    wr_free(a->rec);
+    a->rec = NULL;
+    a->rn = a->rcap = 0;
+    a->n_pend = 0;
+}
+
+WRDEF void wr_assembly_free(wr_assembly *a) {
+    if (!a) return;
+    wr_csr_free(&a->A);
+    wr_free(a->vstart);
+    wr_free(a->verts);
+    wr_free(a->off);
+    wr_free(a->doff);
+    wr_free(a->pend_v);
+    wr_free(a->ostart);
+    wr_free(a->rec);
+    wr_free(a->Kc);
+    wr_free(a->pend_B);
+    {
+        int32_t nb = a->nb, bs = a->bs, builds = a->builds;
+        memset(a, 0, sizeof *a);
+        a->nb = nb;
+        a->bs = bs;
+        a->builds = builds;
+        a->c_begin = a->c_end = -1;
+    }
+}
+
+WRDEF void wr_assembly_begin(wr_assembly *a) {
+    a->e = 0;
+    a->misses = 0;
+    if (!a->A.rowptr || a->stale) {
+        wr_assembly_free(a); /* keeps nb, bs, builds */
+        a->rec_mode = 1;
+        return;
+    }
+    a->rec_mode = 0;
+    wr_csr_zero_values(&a->A);
+}
+
+static wr_status wr__assembly_grow(void **p, int64_t *cap, int64_t need, size_t size, int64_t minimum) {
+    void *q;
+    int64_t c;
+    if (need <= *cap) return WR_OK;
+    c = 2 * *cap + need + minimum;
+    q = wr_realloc_array(*p, (size_t)c, size);
+    if (!q) return WR_ERR_NOMEM;
+    *p = q;
+    *cap = c;
+    return WR_OK;
+}
+
+/* first assembly: append the element's stencil and its (bs·k)² block to the record */
+static wr_status wr__assembly_record(wr_assembly *a, int32_t k, const int32_t *blocks, const double *Ke) {
+    int64_t nn = (int64_t)a->bs * a->bs * k * k, cap_el = a->cap_el;
+    if (a->n_el + 1 >= a->cap_el) {
+        if (wr__assembly_grow((void **)&a->vstart, &cap_el, (int64_t)a->n_el + 2, sizeof(int32_t), 1024) != WR_OK)
+            return WR_ERR_NOMEM;
+        if (cap_el > INT32_MAX - 1) return WR_ERR_OVERFLOW;
+        a->cap_el = (int32_t)cap_el;
+        if (a->n_el == 0) a->vstart[0] = 0;
+    }
+    if (wr__assembly_grow((void **)&a->verts, &a->vcap, (int64_t)a->vstart[a->n_el] + k, sizeof(int32_t), 4096) != WR_OK ||
+        wr__assembly_grow((void **)&a->rec, &a->rcap, a->rn + nn, sizeof(double), 65536) != WR_OK)
+        return WR_ERR_NOMEM;
+    memcpy(a->verts + a->vstart[a->n_el], blocks, sizeof(int32_t) * (size_t)k);
+    memcpy(a->rec + a->rn, Ke, sizeof(double) * (size_t)nn);
+    a->rn += nn;
+    a->vstart[a->n_el + 1] = a->vstart[a->n_el] + k;
+    a->n_el++;
+    return WR_OK;
+}
+
+/* an element that does not match the record: its offsets by search; a block outside the pattern
+ * makes the assembly stale (the caller assembles again, recording a new pattern) */
+static wr_status wr__assembly_search_add(wr_assembly *a, int32_t k, const int32_t *blocks, const double *Ke,
+                                         wr_diag *diag) {
+    int32_t *off = (int32_t *)wr_alloc_array((size_t)k * (size_t)k + 1, sizeof(int32_t)), b;
+    a->misses++;
+    if (!off) return wr_fail(diag, WR_ERR_NOMEM, -1, "assembly: out of memory (element of %d blocks)", (int)k);
+    for (b = 0; b < k; ++b)
+        if (blocks[b] >= a->nb) {
+            wr_free(off);
+            return wr_fail(diag, WR_ERR_INVALID_ARG, blocks[b], "assembly: block %d outside [0, %d)", (int)blocks[b],
+                           (int)a->nb);
+        }
+    if (wr__csr_block_offsets_bs(&a->A, a->bs, k, blocks, off, NULL) == WR_OK)
+        wr__csr_add_element_blocks_bs(&a->A, a->bs, k, blocks, off, Ke);
+    else
+        a->stale = 1;
+    wr_free(off);
+    return WR_OK;
+}
+
+WRDEF wr_status wr_assembly_add(wr_assembly *a, int32_t k, const int32_t *blocks, const double *Ke, wr_diag *diag) {
+    int32_t e = a->e;
+    if (k < 0 || (k > 0 && (!blocks || !Ke))) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "assembly: element of %d blocks", (int)k);
+    if (a->rec_mode) {
+        int32_t b;
+        for (b = 0; b < k; ++b)
+            if (blocks[b] >= a->nb)
+                return wr_fail(diag, WR_ERR_INVALID_ARG, blocks[b], "assembly: block %d outside [0, %d)",
+                               (int)blocks[b], (int)a->nb);
+        if (wr__assembly_record(a, k, blocks, Ke) != WR_OK)
+            return wr_fail(diag, WR_ERR_NOMEM, -1, "assembly: out of memory (%d elements recorded)", (int)a->n_el);
+        return WR_OK;
+    }
+    /* later assemblies: the recorded element e when the stream still matches the record */
+    if (e < a->n_el && a->vstart[e + 1] - a->vstart[e] == k &&
+        !memcmp(a->verts + a->vstart[e], blocks, sizeof(int32_t) * (size_t)k)) {
+        a->e = e + 1;
+        wr__csr_add_element_blocks_bs(&a->A, a->bs, k, blocks, a->off + a->ostart[e], Ke);
+        return WR_OK;
+    }
+    return wr__assembly_search_add(a, k, blocks, Ke, diag);
+}
+
+static void wr__assembly_diag_add(wr_assembly *a, int32_t v, const double *B) {
+    int32_t i, j, bs = a->bs;
+    for (i = 0; i < bs; ++i) {
+        double *row = a->A.val + a->A.rowptr[bs * v + i] + a->doff[v];
+        for (j = 0; j < bs; ++j) row[j] += B[bs * i + j];
+    }
+}
+
+WRDEF wr_status wr_assembly_add_diagonal(wr_assembly *a, int32_t v, const double *B, wr_diag *diag) {
+    int32_t bb = a->bs * a->bs;
+    if (v < 0 || v >= a->nb || !B) return wr_fail(diag, WR_ERR_INVALID_ARG, v, "assembly: diagonal block %d outside [0, %d)", (int)v, (int)a->nb);
+    if (!a->rec_mode) {
+        wr__assembly_diag_add(a, v, B);
+        return WR_OK;
+    }
+    /* recording: kept until the pattern exists, then added in the order given */
+    if (a->n_pend >= a->cap_pend) {
+        int32_t cap = a->cap_pend ? 2 * a->cap_pend : 256;
+        int32_t *pv = (int32_t *)wr_realloc_array(a->pend_v, (size_t)cap, sizeof(int32_t));
+        double *pb;
+        if (!pv) return wr_fail(diag, WR_ERR_NOMEM, -1, "assembly: out of memory (%d diagonal blocks)", (int)cap);
+        a->pend_v = pv;
+        pb = (double *)wr_realloc_array(a->pend_B, (size_t)cap * (size_t)bb, sizeof(double));
+        if (!pb) return wr_fail(diag, WR_ERR_NOMEM, -1, "assembly: out of memory (%d diagonal blocks)", (int)cap);
+        a->pend_B = pb;
+        a->cap_pend = cap;
+    }
+    a->pend_v[a->n_pend] = v;
+    memcpy(a->pend_B + (size_t)a->n_pend * (size_t)bb, B, sizeof(double) * (size_t)bb);
+    a->n_pend++;
+    return WR_OK;
+}
+
+WRDEF int wr_assembly_constant_begin(wr_assembly *a) {
+    int32_t i;
+    if (a->rec_mode) {
+        a->c_begin = a->n_el;
+        return 1;
+    }
+    if (a->c_begin < 0) return 1; /* none recorded: streamed like the rest */
+    if (a->Kc)
+        for (i = 0; i < a->A.nnz; ++i) a->A.val[i] += a->Kc[i];
+    a->e = a->c_end;
+    return 0;
+}
+
+WRDEF void wr_assembly_constant_end(wr_assembly *a) {
+    if (a->rec_mode) a->c_end = a->n_el;
+}
+
+/* after the recording assembly: the pattern, each element's block offsets, the recorded values in
+ * stream order (and the constant segment's sum apart), then the diagonal blocks given meanwhile */
+static wr_status wr__assembly_build(wr_assembly *a, wr_diag *diag) {
+    int32_t e, v, bs = a->bs, zero = 0;
+    int64_t r = 0;
+    wr_status rs;
+    if ((rs = wr__csr_from_stencils_bs(&a->A, a->nb, bs, a->n_el, a->n_el ? a->vstart : &zero, a->verts, diag)) != WR_OK)
+        return rs;
+    a->builds++;
+    a->ostart = (int64_t *)wr_alloc_array((size_t)a->n_el + 1, sizeof(int64_t));
+    a->doff = (int32_t *)wr_alloc_array((size_t)a->nb + 1, sizeof(int32_t));
+    if (!a->ostart || !a->doff) return wr_fail(diag, WR_ERR_NOMEM, -1, "assembly: out of memory (%d elements)", (int)a->n_el);
+    a->ostart[0] = 0;
+    for (e = 0; e < a->n_el; ++e) {
+        int64_t k = a->vstart[e + 1] - a->vstart[e];
+        a->ostart[e + 1] = a->ostart[e] + k * k;
+    }
+    a->off = (int32_t *)wr_alloc_array((size_t)a->ostart[a->n_el] + 1, sizeof(int32_t));
+    if (a->c_end > a->c_begin && a->c_begin >= 0) a->Kc = (double *)wr_calloc_array((size_t)a->A.nnz + 1, sizeof(double));
+    if (!a->off || (a->c_end > a->c_begin && a->c_begin >= 0 && !a->Kc))
+        return wr_fail(diag, WR_ERR_NOMEM, -1, "assembly: out of memory (%d elements)", (int)a->n_el);
+    for (e = 0; e < a->n_el; ++e) {
+        int32_t k = a->vstart[e + 1] - a->vstart[e];
+        const int32_t *ev = a->verts + a->vstart[e];
+        int32_t *off = a->off + a->ostart[e];
+        if ((rs = wr__csr_block_offsets_bs(&a->A, bs, k, ev, off, diag)) != WR_OK) return rs;
+        wr__csr_add_element_blocks_bs(&a->A, bs, k, ev, off, a->rec + r);
+        if (a->Kc && e >= a->c_begin && e < a->c_end) {
+            wr_csr kc = a->A;
+            kc.val = a->Kc;
+            wr__csr_add_element_blocks_bs(&kc, bs, k, ev, off, a->rec + r);
+        }
+        r += (int64_t)bs * bs * k * k;
+    }
+    for (v = 0; v < a->nb; ++v) a->doff[v] = wr_csr_find(&a->A, bs * v, bs * v) - a->A.rowptr[bs * v];
+    for (e = 0; e < a->n_pend; ++e) wr__assembly_diag_add(a, a->pend_v[e], a->pend_B + (size_t)e * (size_t)(bs * bs));
+    return WR_OK;
+}
+
+WRDEF wr_status wr_assembly_end(wr_assembly *a, wr_diag *diag) {
+    wr_status rs = WR_OK;
+    if (a->rec_mode) {
+        rs = wr__assembly_build(a, diag);
+        wr__assembly_drop_record(a);
+        a->rec_mode = 0;
+        a->stale = 0;
+        if (rs != WR_OK) wr_assembly_free(a);
+    }
+    return rs;
 }
 
 #ifdef __cplusplus

@@ -260,6 +260,7 @@
 #include "core.h"
 #include "sparse.h"
 #include "pcg.h"
+#include "newton.h"
 #include "shell.h"
 
 #ifdef __cplusplus
@@ -299,11 +300,7 @@ typedef struct wr_statics_stats {
     int32_t ramp_fallback;      /* 1: the continuation's last stage did not converge, solved again without it */
 } wr_statics_stats;
 
-typedef enum wr_statics_projection {
-    WR_PROJECT_FAST = 0,   /* PSD test, then Householder + QL (ON PROJECTION) */
-    WR_PROJECT_JACOBI = 1, /* wr_dense_project_spd (cyclic Jacobi) on every block */
-    WR_PROJECT_NONE = 2    /* exact element Hessians */
-} wr_statics_projection;
+typedef wr_projection wr_statics_projection; /* newton.h (kept for compatibility) */
 
 typedef enum wr_obstacle_kind {
     WR_OBSTACLE_PLANE = 0,  /* half-space n·(x − p) < 0 is solid */
@@ -460,7 +457,6 @@ extern "C" {
  * a similar safety fraction, 0.1–0.2, so iterates approach contact geometrically, never touching). */
 #define WR_STATICS_CCD_KEEP 0.2
 #define WR__STATICS_CCD_ITERS 64 /* conservative-advancement iterations; the result is safe at any count */
-#define WR__STATICS_QL_ITERS 60  /* implicit-QL iterations per eigenvalue before falling back to Jacobi */
 #define WR__STATICS_DHAT_REL 1e-3
 /* Π is a sum of O(n) terms; a change below this fraction of the sum of their magnitudes is not
  * resolvable in double precision (√n·ε for n up to 1e6 is ~2e-13), so near convergence the line
@@ -483,222 +479,8 @@ extern "C" {
 #define WR_STATICS_RAMP_TOL 1e-6
 #define WR__STATICS_RAMP_FACTOR 1e3
 
-/* ---- dense PSD projection (ON PROJECTION) ----------------------------------------------------- */
-
-/* Cholesky of A + τI; 1 when every pivot is positive (A has no eigenvalue below −τ). */
-static int wr__statics_psd_test(int n, const double *A) {
-    double L[WR_DENSE_MAX * WR_DENSE_MAX], dmax = 0.0, tau;
-    int i, j, k;
-    for (i = 0; i < n; ++i) dmax = fmax(dmax, fabs(A[i * n + i]));
-    if (!(dmax > 0.0)) return 0;
-    tau = WR_STATICS_PSD_TEST_REL * dmax;
-    for (j = 0; j < n; ++j) {
-        double s = A[j * n + j] + tau;
-        for (k = 0; k < j; ++k) s -= L[j * n + k] * L[j * n + k];
-        if (!(s > 0.0)) return 0;
-        s = sqrt(s);
-        L[j * n + j] = s;
-        for (i = j + 1; i < n; ++i) {
-            double t = 0.5 * (A[i * n + j] + A[j * n + i]);
-            for (k = 0; k < j; ++k) t -= L[i * n + k] * L[j * n + k];
-            L[i * n + j] = t / s;
-        }
-    }
-    return 1;
-}
-
-/* Householder reduction of symmetric a (destroyed) to tridiagonal T = Qᵀ a Q with Q = H_0 H_1 ⋯,
- * H_k = I − β_k v_k v_kᵀ: d diagonal, e[i] = T(i, i+1) (e[n−1] = 0); v_k stored in row k of V
- * (entries k+1..n−1), β_k in beta[k] (0 = no reflection). */
-static void wr__statics_tridiag(int n, double *a, double *V, double *beta, double *d, double *e) {
-    double p[WR_DENSE_MAX];
-    int i, j, k;
-    for (k = 0; k < n; ++k) beta[k] = 0.0;
-    for (k = 0; k + 2 < n; ++k) {
-        double xn = 0.0, alpha, vv = 0.0, bk, K = 0.0, *v = V + k * n;
-        for (i = k + 1; i < n; ++i) xn += a[i * n + k] * a[i * n + k];
-        xn = sqrt(xn);
-        if (xn == 0.0) continue;
-        /* reflect x = a[k+1.., k] onto alpha·e1 with the sign that avoids cancellation */
-        alpha = a[(k + 1) * n + k] > 0.0 ? -xn : xn;
-        for (i = k + 1; i < n; ++i) v[i] = a[i * n + k];
-        v[k + 1] -= alpha;
-        for (i = k + 1; i < n; ++i) vv += v[i] * v[i];
-        if (vv == 0.0) continue;
-        bk = beta[k] = 2.0 / vv;
-        /* H A H = A − v wᵀ − w vᵀ with p = βAv, w = p − (β vᵀp / 2) v, on the trailing block */
-        for (i = k + 1; i < n; ++i) {
-            double sum = 0.0;
-            for (j = k + 1; j < n; ++j) sum += a[i * n + j] * v[j];
-            p[i] = bk * sum;
-            K += v[i] * p[i];
-        }
-        K *= 0.5 * bk;
-        for (i = k + 1; i < n; ++i) p[i] -= K * v[i];
-        for (i = k + 1; i < n; ++i)
-            for (j = k + 1; j < n; ++j) a[i * n + j] -= v[i] * p[j] + p[i] * v[j];
-        a[(k + 1) * n + k] = a[k * n + k + 1] = alpha;
-        for (i = k + 2; i < n; ++i) a[i * n + k] = a[k * n + i] = 0.0;
-    }
-    for (i = 0; i < n; ++i) {
-        d[i] = a[i * n + i];
-        e[i] = i + 1 < n ? a[(i + 1) * n + i] : 0.0;
-    }
-}
-
-/* Eigenvalues of the tridiagonal (d, e) by implicit QL with Wilkinson shifts (d overwritten, e
- * destroyed). Returns 0, or −1 when an eigenvalue needs more than WR__STATICS_QL_ITERS sweeps. */
-static int wr__statics_ql(int n, double *d, double *e) {
-    int l, m, i;
-    for (l = 0; l < n; ++l) {
-        int iter = 0;
-        for (;;) {
-            double g, r, s, c, pp;
-            for (m = l; m + 1 < n; ++m)
-                if (fabs(e[m]) <= DBL_EPSILON * (fabs(d[m]) + fabs(d[m + 1]))) break;
-            if (m == l) break;
-            if (++iter > WR__STATICS_QL_ITERS) return -1;
-            /* shift: the eigenvalue of the leading 2×2 of the unreduced block closer to d[l] */
-            g = (d[l + 1] - d[l]) / (2.0 * e[l]);
-            r = sqrt(g * g + 1.0);
-            g = d[m] - d[l] + e[l] / (g + (g >= 0.0 ? r : -r));
-            s = c = 1.0;
-            pp = 0.0;
-            r = 1.0;
-            for (i = m - 1; i >= l; --i) {
-                double f = s * e[i], b = c * e[i];
-                r = sqrt(f * f + g * g);
-                e[i + 1] = r;
-                if (r == 0.0) { /* split: the bulge vanished, deflate */
-                    d[i + 1] -= pp;
-                    e[m] = 0.0;
-                    break;
-                }
-                s = f / r;
-                c = g / r;
-                g = d[i + 1] - pp;
-                r = (d[i] - g) * s + 2.0 * c * b;
-                pp = s * r;
-                d[i + 1] = g + pp;
-                g = c * r - b;
-            }
-            if (r == 0.0 && i >= l) continue;
-            d[l] -= pp;
-            e[l] = g;
-            e[m] = 0.0;
-        }
-    }
-    return 0;
-}
-
-/* b ← (T − σI)⁻¹ b for the tridiagonal (d, e): Gaussian elimination with partial pivoting (row
- * swaps give a second superdiagonal); a zero pivot is replaced by `tiny`, as inverse iteration
- * wants (T − σI is singular to working precision when σ is an eigenvalue). */
-static void wr__statics_tri_solve(int n, const double *d, const double *e, double sigma, double tiny, double *b) {
-    double u0[WR_DENSE_MAX], u1[WR_DENSE_MAX], u2[WR_DENSE_MAX], l[WR_DENSE_MAX], a, bb, cc;
-    int piv[WR_DENSE_MAX], i;
-    a = d[0] - sigma;
-    bb = n > 1 ? e[0] : 0.0;
-    cc = 0.0;
-    for (i = 0; i + 1 < n; ++i) {
-        double na = e[i], nb = d[i + 1] - sigma, nc = i + 2 < n ? e[i + 1] : 0.0, m;
-        if (fabs(a) >= fabs(na)) {
-            if (a == 0.0) a = tiny;
-            m = na / a;
-            u0[i] = a, u1[i] = bb, u2[i] = cc, piv[i] = 0, l[i] = m;
-            a = nb - m * bb;
-            bb = nc - m * cc;
-        } else {
-            m = a / na;
-            u0[i] = na, u1[i] = nb, u2[i] = nc, piv[i] = 1, l[i] = m;
-            a = bb - m * nb;
-            bb = cc - m * nc;
-        }
-        cc = 0.0;
-    }
-    u0[n - 1] = a == 0.0 ? tiny : a;
-    for (i = 0; i + 1 < n; ++i) {
-        if (piv[i]) {
-            double t = b[i];
-            b[i] = b[i + 1];
-            b[i + 1] = t;
-        }
-        b[i + 1] -= l[i] * b[i];
-    }
-    for (i = n - 1; i >= 0; --i) {
-        double t = b[i];
-        if (i + 1 < n) t -= u1[i] * b[i + 1];
-        if (i + 2 < n) t -= u2[i] * b[i + 2];
-        b[i] = t / u0[i];
-    }
-}
-
-WRDEF int wr_statics_project_spd(int n, double *A, double floor) {
-    double a[WR_DENSE_MAX * WR_DENSE_MAX], V[WR_DENSE_MAX * WR_DENSE_MAX], Y[WR_DENSE_MAX * WR_DENSE_MAX];
-    double lam[WR_DENSE_MAX], d[WR_DENSE_MAX], e[WR_DENSE_MAX], e2[WR_DENSE_MAX], beta[WR_DENSE_MAX], tn = 0.0;
-    double dmax = 0.0, tau;
-    int i, j, k, it, raised = 0;
-    WR_ASSERT(n > 0 && n <= WR_DENSE_MAX);
-    if (floor == 0.0 && wr__statics_psd_test(n, A)) return 0;
-    for (i = 0; i < n; ++i)
-        for (j = 0; j < n; ++j) a[i * n + j] = 0.5 * (A[i * n + j] + A[j * n + i]);
-    wr__statics_tridiag(n, a, V, beta, d, e);
-    memcpy(lam, d, sizeof(double) * (size_t)n);
-    memcpy(e2, e, sizeof(double) * (size_t)n);
-    if (wr__statics_ql(n, lam, e2) != 0) return wr_dense_project_spd(n, A, floor);
-    for (i = 0; i < n; ++i) {
-        tn = fmax(tn, fabs(d[i]) + 2.0 * fabs(e[i]));
-        dmax = fmax(dmax, fabs(A[i * n + i]));
-    }
-    /* eigenvalues within τ below the floor are left alone, as in the Cholesky test */
-    tau = WR_STATICS_PSD_TEST_REL * dmax;
-    for (k = 0; k < n; ++k) {
-        double *y = Y + raised * n, nrm;
-        if (!(lam[k] < floor - tau)) continue;
-        /* eigenvector of T by inverse iteration at the computed eigenvalue (converges in 1–2 solves
-         * since σ is accurate to ε‖T‖), re-orthogonalised against the eigenvectors already found so
-         * a cluster of negative eigenvalues yields an orthonormal set */
-        for (i = 0; i < n; ++i) y[i] = 1.0 + 0.1 * (double)((i * 7 + k * 3) % 11);
-        for (it = 0; it < 3; ++it) {
-            int q;
-            wr__statics_tri_solve(n, d, e, lam[k], DBL_EPSILON * (tn > 0.0 ? tn : 1.0), y);
-            for (q = 0; q < raised; ++q) {
-                double dot = 0.0;
-                for (i = 0; i < n; ++i) dot += Y[q * n + i] * y[i];
-                for (i = 0; i < n; ++i) y[i] -= dot * Y[q * n + i];
-            }
-            nrm = 0.0;
-            for (i = 0; i < n; ++i) nrm += y[i] * y[i];
-            nrm = sqrt(nrm);
-            if (!(nrm > 0.0) || nrm - nrm != 0.0) return wr_dense_project_spd(n, A, floor);
-            for (i = 0; i < n; ++i) y[i] /= nrm;
-        }
-        lam[raised] = lam[k];
-        ++raised;
-    }
-    if (!raised) return 0;
-    for (i = 0; i < n; ++i)
-        for (j = 0; j < i; ++j) A[i * n + j] = A[j * n + i] = 0.5 * (A[i * n + j] + A[j * n + i]);
-    for (k = 0; k < raised; ++k) {
-        double *y = Y + k * n, z[WR_DENSE_MAX], c = lam[k] - floor;
-        int q;
-        /* back to A's basis: z = Q y = H_0 (H_1 (⋯ H_{n−3} y)) */
-        memcpy(z, y, sizeof(double) * (size_t)n);
-        for (q = n - 3; q >= 0; --q) {
-            double dot = 0.0;
-            if (beta[q] == 0.0) continue;
-            for (i = q + 1; i < n; ++i) dot += V[q * n + i] * z[i];
-            dot *= beta[q];
-            for (i = q + 1; i < n; ++i) z[i] -= dot * V[q * n + i];
-        }
-        /* remove the offending eigenpair: A ← A − (λ − floor) z zᵀ */
-        for (i = 0; i < n; ++i) {
-            double zi = c * z[i];
-            for (j = 0; j < n; ++j) A[i * n + j] -= zi * z[j];
-        }
-    }
-    return raised;
-}
+/* the per-element projection lives in newton.h (ON PROJECTION AND THE EXACT PHASE there) */
+WRDEF int wr_statics_project_spd(int n, double *A, double floor) { return wr_newton_project_spd(n, A, floor); }
 
 /* ---- pressure, obstacles, barrier --------------------------------------------------------------- */
 

@@ -43,6 +43,23 @@
  *   when it has fewer folds. result->sqp_first / n_folds_first describe the first solve; result->sqp
  *   the returned one (energy, KKT, stop rule) with the work of both summed (iterations, rejected
  *   steps, factorisations, seconds); n_folds the returned fields; result->unfolded says which.
+ * ON OUTCOMES
+ *   TFW's fields are meaningful only where the base is compressed in one direction and stretched
+ *   across it: the tension term of Eq. 21 is what bounds the wave number, so a face compressed in
+ *   both principal directions (Eq. 29: both eigenvalues <= compress_tol) has no wavelength and, with
+ *   the a ≥ 0 bound alone, an unbounded amplitude (a 20 cm square pulled in 10 % on all sides gives
+ *   "a = 0.67 m" with no guard). result->outcome classifies every run:
+ *     WR_TFW_SLACK          every face outside W is slack: refused with WR_ERR_DOMAIN before the
+ *                           SQP (desc->allow_slack solves it anyway); n_slack counts partly slack bases
+ *     WR_TFW_NO_COMPRESSION W is every face: no face is compressed, nothing can wrinkle (WR_OK)
+ *     WR_TFW_FILTERED       compressed faces exist but Sec. 5.1's averaging and outlier filter put
+ *                           them all in W: the compressed region is a few isolated faces, i.e. the
+ *                           base mesh is too coarse for it (WR_OK)
+ *     WR_TFW_FLAT           the SQP drove a to ≈ 0 (max a <= 1 % of the thickness): the compression
+ *                           is below the threshold the bending and tension allow at wavelengths
+ *                           this base can carry (WR_OK)
+ *     WR_TFW_WRINKLED       otherwise.
+ *   wr_tfw_outcome_reason(outcome) gives the one-line reason drivers print.
  * ON THREADS
  *   No global state.
  */
@@ -69,7 +86,21 @@ typedef struct wr_tfw_desc {
     const uint8_t *a_zero_vertices; /* nv flags or NULL: a held at 0 there (clamped edges, wr_wf_set_amplitude_zero) */
     int no_upsample; /* nonzero: skip E.5 (result->wrinkled stays empty) */
     int no_unfold;   /* nonzero: keep the SQP's ω even where dφ folds (see wr_wf_count_folds) */
+    int allow_slack; /* nonzero: solve a slack base anyway instead of refusing it (ON OUTCOMES) */
+    wr_wf_kappa kappa; /* κ⊥ of Eq. 22: mid-edge II (default) or the vertex quadric fit (wrinkle_field.h) */
 } wr_tfw_desc;
+
+/* What the fields say about the base (ON OUTCOMES). */
+typedef enum wr_tfw_outcome {
+    WR_TFW_WRINKLED = 0,       /* faces outside W and a visible amplitude somewhere */
+    WR_TFW_NO_COMPRESSION = 1, /* W is every face: no face of the base is compressed (Sec. 5.1) */
+    WR_TFW_FILTERED = 2,       /* compressed faces exist, but too few together for Sec. 5.1: the base
+                                * mesh is too coarse for the compressed region */
+    WR_TFW_FLAT = 3,           /* faces outside W, but the SQP returned a ≈ 0: compression below the
+                                * wrinkling threshold, or wavelengths shorter than the base resolves */
+    WR_TFW_SLACK = 4           /* every face outside W is compressed in both principal directions: no
+                                * tension sets a wavelength (Eq. 21), the amplitude is unbounded */
+} wr_tfw_outcome;
 
 typedef struct wr_tfw_result {
     int32_t nv, ne, nf;
@@ -84,6 +115,10 @@ typedef struct wr_tfw_result {
     int32_t n_folds_first, n_folds; /* fold edges after the first SQP and in the returned ω */
     int32_t unfolded;               /* 1: the returned fields come from wr_wf_unfold + a second SQP */
     wr_wf_phase_stats phase;
+    wr_tfw_outcome outcome;         /* ON OUTCOMES */
+    int32_t n_compressed;           /* faces whose Eq. 29 strain has a negative eigenvalue (< -compress_tol) */
+    int32_t n_slack;                /* faces outside W with both eigenvalues <= compress_tol (no tension) */
+    double max_amplitude;           /* max a over vertices [m] */
     double seconds_setup, seconds_init, seconds_sqp, seconds_phase, seconds_upsample, seconds_total;
 } wr_tfw_result;
 
@@ -91,6 +126,8 @@ WRDEF void wr_tfw_base_shell_desc(double young, double poisson, double thickness
 WRDEF wr_status wr_tfw_fields(const wr_mesh *m, const double *base_pos, const wr_wf_material *mat,
                               const wr_tfw_desc *desc, wr_tfw_result *res, wr_diag *diag);
 WRDEF void wr_tfw_result_free(wr_tfw_result *res);
+/* One line naming the outcome and its likely cause ("nothing wrinkles: ..."), for messages. */
+WRDEF const char *wr_tfw_outcome_reason(wr_tfw_outcome outcome);
 
 #ifdef __cplusplus
 }
@@ -115,6 +152,49 @@ WRDEF void wr_tfw_base_shell_desc(double young, double poisson, double thickness
     out->poisson = poisson;
     out->thickness = thickness;
     out->density = density;
+}
+
+/* max a at or below this fraction of the thickness counts as flat (ON OUTCOMES): an out-of-plane
+ * wave of 1 % of h is no visible wrinkle (the paper's stretched sheet has a ≈ 3.5 h), and the SQP's
+ * near-zero returns on sheets that do not wrinkle are nanometres (3e-9 m on a 0.1 mm sheet). */
+#define WR_TFW_FLAT_REL 1e-2
+
+WRDEF const char *wr_tfw_outcome_reason(wr_tfw_outcome outcome) {
+    switch (outcome) {
+    case WR_TFW_WRINKLED: return "wrinkled";
+    case WR_TFW_NO_COMPRESSION:
+        return "nothing wrinkles: no face of the base is compressed (TFW Sec. 5.1 puts every face in W)";
+    case WR_TFW_FILTERED:
+        return "nothing wrinkles: the compressed faces are too few or isolated for Sec. 5.1's averaging and "
+               "outlier filter (base mesh too coarse for the compressed region)";
+    case WR_TFW_FLAT:
+        return "nothing wrinkles: the SQP returned a = 0 (compression below the wrinkling threshold, or a "
+               "wavelength shorter than the base mesh resolves)";
+    case WR_TFW_SLACK:
+        return "slack base: every face outside W is compressed in both principal directions, so no tension "
+               "sets a wavelength (TFW Eq. 21) and the amplitude is unbounded";
+    }
+    return "unknown outcome";
+}
+
+/* Counts of compressed faces and of slack faces outside W (Eq. 29 eigenvalues, ON OUTCOMES). */
+static void wr__tfw_count_strain(const wr_wf *wf, double tol, wr_tfw_result *res) {
+    int32_t f;
+    res->n_compressed = res->n_slack = 0;
+    for (f = 0; f < wf->nf; ++f) {
+        res->n_compressed += wf->lambda[2 * f] < -tol;
+        res->n_slack += !wf->wfree[f] && wf->lambda[2 * f + 1] <= tol;
+    }
+}
+
+/* The outcome after the SQP from W, the counts and the amplitude (ON OUTCOMES). */
+static wr_tfw_outcome wr__tfw_outcome(const wr_mesh *m, double thickness, wr_tfw_result *res) {
+    int32_t v;
+    res->max_amplitude = 0.0;
+    for (v = 0; v < m->nv; ++v) res->max_amplitude = fmax(res->max_amplitude, res->a[v]);
+    if (res->n_wrinkle_free == m->nf) return res->n_compressed > 0 ? WR_TFW_FILTERED : WR_TFW_NO_COMPRESSION;
+    if (res->n_slack == m->nf - res->n_wrinkle_free) return WR_TFW_SLACK;
+    return res->max_amplitude <= WR_TFW_FLAT_REL * thickness ? WR_TFW_FLAT : WR_TFW_WRINKLED;
 }
 
 WRDEF void wr_tfw_result_free(wr_tfw_result *res) {
@@ -144,6 +224,10 @@ WRDEF wr_status wr_tfw_fields(const wr_mesh *m, const double *base_pos, const wr
         memset(&D, 0, sizeof D);
     st = wr_wf_create(&wf, m, base_pos, mat, diag);
     if (st) return st;
+    if (D.kappa != WR_WF_KAPPA_MIDEDGE && (st = wr_wf_set_kappa(&wf, D.kappa, diag)) != WR_OK) {
+        wr_wf_free(&wf);
+        return st;
+    }
     res->nv = m->nv;
     res->ne = m->ne;
     res->nf = m->nf;
@@ -163,6 +247,12 @@ WRDEF wr_status wr_tfw_fields(const wr_mesh *m, const double *base_pos, const wr
     for (f = 0; f < m->nf; ++f) {
         res->wfree[f] = wf.wfree[f];
         res->n_wrinkle_free += wf.wfree[f];
+    }
+    wr__tfw_count_strain(&wf, D.classify.compress_tol > 0.0 ? D.classify.compress_tol : WR__WF_COMPRESS_TOL, res);
+    if (!D.allow_slack && res->n_slack > 0 && res->n_slack == m->nf - res->n_wrinkle_free) {
+        st = wr_fail(diag, WR_ERR_DOMAIN, -1, "tfw: %s (%d faces; allow_slack solves it anyway)",
+                     wr_tfw_outcome_reason(WR_TFW_SLACK), (int)res->n_slack);
+        goto fail;
     }
     t1 = wr_time_seconds();
     res->seconds_setup = t1 - t0;
@@ -223,6 +313,7 @@ WRDEF wr_status wr_tfw_fields(const wr_mesh *m, const double *base_pos, const wr
         }
     }
     res->seconds_sqp = wr_time_seconds() - t1;
+    res->outcome = wr__tfw_outcome(m, mat->thickness, res);
     t1 = wr_time_seconds();
     st = wr_wf_phase(&wf, res->omega, res->phi, &res->phase, diag); /* App. E.4 */
     res->seconds_phase = wr_time_seconds() - t1;
@@ -241,10 +332,15 @@ WRDEF wr_status wr_tfw_fields(const wr_mesh *m, const double *base_pos, const wr
     return WR_OK;
 fail:
     wr_wf_free(&wf);
-    {
+    { /* the statistics and the ON OUTCOMES counts survive a failure; the arrays do not */
         wr_wf_solve_stats keep = res->sqp;
+        int32_t n_comp = res->n_compressed, n_slack = res->n_slack, n_w = res->n_wrinkle_free;
         wr_tfw_result_free(res);
         res->sqp = keep;
+        res->n_compressed = n_comp;
+        res->n_slack = n_slack;
+        res->n_wrinkle_free = n_w;
+        if (st == WR_ERR_DOMAIN && n_slack > 0) res->outcome = WR_TFW_SLACK;
     }
     return st;
 }

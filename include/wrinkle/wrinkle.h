@@ -26,3 +26,4 @@
 #include "wrinkle_field.h"
 #include "mesher.h"
 #include "tfw.h"
+#include "collision.h"

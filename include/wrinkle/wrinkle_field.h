@@ -69,8 +69,10 @@
  *   - W_s^2 (Eq. 22) = 4 a² κ⊥² β(α+β)/(α+2β) ((w⊥ᵀI_b w⊥)/(w⊥ᵀI_u w⊥))², κ⊥ = w⊥ᵀII_b w⊥ / w⊥ᵀI_b w⊥;
  *     w from Eq. 29 (most negative generalised eigenvalue), w⊥ its I_u-orthogonal partner (= the
  *     other generalised eigenvector). W_s^2 = 0 where neither eigenvalue is negative (Sec. 4.2).
- *     κ⊥ uses the App. A mid-edge-normal II_b, constant per face, instead of the paper's quadratic
- *     fitting (Panozzo et al. 2010); it is fixed during the solve as in App. E.3.
+ *     κ⊥ uses the App. A mid-edge-normal II_b, constant per face, by default; the paper's quadric
+ *     fitting (Panozzo et al. 2010), as the authors' release builds it, is wr_wf_set_kappa(wf,
+ *     WR_WF_KAPPA_VERTEX_FIT) (docs/notes-tfw-release.md has the comparison); either is fixed during
+ *     the solve as in App. E.3.
  *   - W_b^1 = ||I_u⁻¹ II_b||²_SV (rest-flat: II_u = 0) is a constant of the base; it is included in
  *     E and in terms[] but has no gradient.
  *   - dφ per face: the face average of the Whitney interpolant of ω, dφ = Σ_ij ω_ij (dλ_j - dλ_i)/3.
@@ -198,6 +200,18 @@ WRDEF void wr_wf_set_wrinkle_free(wr_wf *wf, const uint8_t *flags /* nf or NULL 
  * boundary condition of a clamped edge, where the out-of-plane displacement a cos φ of Eq. 19 must
  * vanish (the clamp holds the sheet in the base surface). Faces keep their energy and curl constraint. */
 WRDEF void wr_wf_set_amplitude_zero(wr_wf *wf, const uint8_t *vflags);
+
+/* κ⊥ of Eq. 22 (ON READINGS OF THE PAPER): which curvature of the base along the crests w⊥.
+ *   WR_WF_KAPPA_MIDEDGE (default): w⊥ᵀ II_b w⊥ / w⊥ᵀ I_b w⊥ with the App. A mid-edge II_b, constant
+ *     per face; W_s^2 wherever the face is compressed (λ0 < 0).
+ *   WR_WF_KAPPA_VERTEX_FIT: the normal curvature along w⊥ from per-vertex principal curvatures of a
+ *     quadric fit over 5-rings (Panozzo et al. 2010, which the paper cites; wr_mesh_vertex_curvature),
+ *     by Euler's formula at each corner, averaged over the three corners; W_s^2 only on faces in mixed
+ *     tension/compression (λ0 <= 0 <= λ1). This is how the authors' release builds the term. */
+typedef enum wr_wf_kappa { WR_WF_KAPPA_MIDEDGE = 0, WR_WF_KAPPA_VERTEX_FIT = 1 } wr_wf_kappa;
+/* Recompute κ⊥ and the W_s^2 coefficient of every face with the given reading. WR_ERR_INVALID_ARG
+ * for an unknown reading, WR_ERR_NOMEM. */
+WRDEF wr_status wr_wf_set_kappa(wr_wf *wf, wr_wf_kappa reading, wr_diag *diag);
 
 /* E_wf of Eq. 20, 22–24, 26 summed over faces outside W (Eq. 37). a: nv [m], omega: ne [rad].
  * grad (nv+ne, or NULL): dE/dx for x = (a, ω). face_hess (nf*36, or NULL): per face the 6×6 Hessian
@@ -652,6 +666,11 @@ WRDEF void wr_wf_free(wr_wf *wf) {
     memset(wf, 0, sizeof *wf);
 }
 
+/* W_s^2 coefficient of Eq. 22 from κ⊥ and the face's Eq. 29 data (ratio = w⊥ᵀI_b w⊥ / w⊥ᵀI_u w⊥). */
+static double wr__wf_c2(const wr_wf *wf, double kperp, double ratio) {
+    return 4.0 * kperp * kperp * wf->beta * (wf->alpha + wf->beta) / (wf->alpha + 2.0 * wf->beta) * ratio * ratio;
+}
+
 static wr_vec3 wr__wf_face_normal(const double *P, const int32_t *fv) {
     wr_vec3 p0 = wr_v3_load(P + 3 * fv[0]), p1 = wr_v3_load(P + 3 * fv[1]), p2 = wr_v3_load(P + 3 * fv[2]);
     return wr_v3_cross(wr_v3_sub(p1, p0), wr_v3_sub(p2, p0));
@@ -798,9 +817,7 @@ WRDEF wr_status wr_wf_create(wr_wf *wf, const wr_mesh *m, const double *base_pos
             double ratio = wIbw / wIuw;
             wf->kperp[f] = wIbw > 0.0 ? wIIw / wIbw : 0.0;
             /* Eq. 22 coefficient; W_s^2 ignored in pure tension (Sec. 4.2). */
-            wf->c2[f] = lam[0] < 0.0 ? 4.0 * wf->kperp[f] * wf->kperp[f] * wf->beta * (wf->alpha + wf->beta) /
-                                           (wf->alpha + 2.0 * wf->beta) * ratio * ratio
-                                     : 0.0;
+            wf->c2[f] = lam[0] < 0.0 ? wr__wf_c2(wf, wf->kperp[f], ratio) : 0.0;
         }
         wr__wf_qform(wf->iu_inv + 3 * f, wf->alpha, wf->beta, Qm);
         memcpy(wf->qf + 9 * (size_t)f, Qm, sizeof Qm); /* constant per face: the SQP reuses it every evaluation */
@@ -813,6 +830,56 @@ WRDEF wr_status wr_wf_create(wr_wf *wf, const wr_mesh *m, const double *base_pos
         }
     }
     return WR_OK;
+}
+
+/* w⊥ᵀ S w⊥ for a symmetric chart tensor S = (s00, s01, s11) of face f. */
+static double wr__wf_perp_form(const wr_wf *wf, int32_t f, const double *S) {
+    double px = wf->wperp[2 * f], py = wf->wperp[2 * f + 1];
+    return S[0] * px * px + 2.0 * S[1] * px * py + S[2] * py * py;
+}
+
+WRDEF wr_status wr_wf_set_kappa(wr_wf *wf, wr_wf_kappa reading, wr_diag *diag) {
+    const wr_mesh *m = wf->mesh;
+    double *k1, *k2, *d1;
+    int32_t f;
+    wr_status st;
+    if (reading == WR_WF_KAPPA_MIDEDGE) {
+        for (f = 0; f < wf->nf; ++f) {
+            double wIbw = wr__wf_perp_form(wf, f, wf->ib + 3 * f), wIuw = wr__wf_perp_form(wf, f, wf->iu + 3 * f);
+            wf->kperp[f] = wIbw > 0.0 ? wr__wf_perp_form(wf, f, wf->iib + 3 * f) / wIbw : 0.0;
+            wf->c2[f] = wf->lambda[2 * f] < 0.0 ? wr__wf_c2(wf, wf->kperp[f], wIbw / wIuw) : 0.0;
+        }
+        return WR_OK;
+    }
+    if (reading != WR_WF_KAPPA_VERTEX_FIT)
+        return wr_fail(diag, WR_ERR_INVALID_ARG, (int32_t)reading, "wf kappa: unknown reading %d", (int)reading);
+    k1 = (double *)wr_alloc_array((size_t)wf->nv, sizeof(double));
+    k2 = (double *)wr_alloc_array((size_t)wf->nv, sizeof(double));
+    d1 = (double *)wr_alloc_array((size_t)wf->nv * 3, sizeof(double));
+    st = (k1 && k2 && d1) ? wr_mesh_vertex_curvature(m, wf->base, 5, k1, k2, d1, diag)
+                          : wr_fail(diag, WR_ERR_NOMEM, -1, "wf kappa: out of memory");
+    for (f = 0; f < wf->nf && !st; ++f) {
+        const int32_t *fv = m->faces + 3 * f;
+        wr_vec3 P0 = wr_v3_load(wf->base + 3 * fv[0]), E1 = wr_v3_sub(wr_v3_load(wf->base + 3 * fv[1]), P0),
+                E2 = wr_v3_sub(wr_v3_load(wf->base + 3 * fv[2]), P0);
+        wr_vec3 n = wr_v3_normalized(wr_v3_cross(E1, E2));
+        wr_vec3 t = wr_v3_normalized(wr_v3_add(wr_v3_scale(E1, wf->wperp[2 * f]), wr_v3_scale(E2, wf->wperp[2 * f + 1])));
+        double wIbw = wr__wf_perp_form(wf, f, wf->ib + 3 * f), wIuw = wr__wf_perp_form(wf, f, wf->iu + 3 * f), kap = 0.0;
+        int c;
+        for (c = 0; c < 3; ++c) {
+            /* Euler: κ(t) = k1 cos²θ + k2 sin²θ, θ from the k1 direction projected on the face plane */
+            wr_vec3 dv = wr_v3_load(d1 + 3 * fv[c]);
+            double cs = wr_v3_dot(wr_v3_sub(dv, wr_v3_scale(n, wr_v3_dot(dv, n))), t);
+            kap += k1[fv[c]] * cs * cs + k2[fv[c]] * (1.0 - cs * cs);
+        }
+        wf->kperp[f] = kap / 3.0;
+        wf->c2[f] = wf->lambda[2 * f] <= 0.0 && wf->lambda[2 * f + 1] >= 0.0 ? wr__wf_c2(wf, wf->kperp[f], wIbw / wIuw)
+                                                                                : 0.0;
+    }
+    wr_free(k1);
+    wr_free(k2);
+    wr_free(d1);
+    return st;
 }
 
 WRDEF void wr_wf_set_wrinkle_free(wr_wf *wf, const uint8_t *flags) {
@@ -1167,259 +1234,298 @@ static void wr__wf_basis_free(wr__wf_basis *B) {
     memset(B, 0, sizeof *B);
 }
 
-static wr_status wr__wf_basis_build(const wr_wf *wf, wr__wf_basis *B, wr_diag *diag) {
+/* Scratch of the tree–cotree construction (wr__wf_basis_build's stages). */
+typedef struct wr__wf_tc {
+    int32_t *vadj_s, *vadj;   /* vertex → active edges (CSR) */
+    int32_t *queue, *fpar;    /* BFS queue; dual-tree parent edge per face (-1: root) */
+    int32_t *order, nord;     /* faces in dual-BFS order */
+    int32_t *gcol;            /* per edge: generator column, or -1 */
+    uint8_t *intree, *cotree, *vvis, *fvis;
+    /* generator rows h(e) per edge: hcol/hval[hstart[e] .. + hlen[e]) (hstart -1: empty) */
+    int32_t *hstart, *hlen, *hcol, hcount, cap;
+    double *hval;
+    int32_t *mark, *touched;  /* sparse accumulator over generators */
+    double *acc;
+} wr__wf_tc;
+
+static void wr__wf_tc_free(wr__wf_tc *T) {
+    wr_free(T->vadj_s);
+    wr_free(T->vadj);
+    wr_free(T->queue);
+    wr_free(T->fpar);
+    wr_free(T->order);
+    wr_free(T->gcol);
+    wr_free(T->intree);
+    wr_free(T->cotree);
+    wr_free(T->vvis);
+    wr_free(T->fvis);
+    wr_free(T->hstart);
+    wr_free(T->hlen);
+    wr_free(T->hcol);
+    wr_free(T->hval);
+    wr_free(T->mark);
+    wr_free(T->touched);
+    wr_free(T->acc);
+}
+
+/* Active edges (edges of some face outside W) and the vertex → active-edge adjacency. */
+static wr_status wr__wf_tc_adjacency(const wr_wf *wf, wr__wf_basis *B, wr__wf_tc *T, wr_diag *diag) {
     const wr_mesh *m = wf->mesh;
-    int32_t nv = m->nv, ne = m->ne, nf = m->nf;
-    int32_t *vpar = NULL, *queue = NULL, *fpar = NULL, *order = NULL, *vadj_s = NULL, *vadj = NULL, *gcol = NULL;
-    int32_t *hstart = NULL, *hcol = NULL, *mark = NULL, *touched = NULL;
-    double *hval = NULL, *acc = NULL;
-    uint8_t *intree = NULL, *cotree = NULL, *vvis = NULL, *fvis = NULL;
-    int32_t i, f, e, v, qh, qt, nord = 0, nnz, cap;
-    wr_status st = WR_OK;
-    memset(B, 0, sizeof *B);
-    B->ne = ne;
+    int32_t nv = m->nv, ne = m->ne, nf = m->nf, f, e, v, i, *fill;
     B->zstart = (int32_t *)wr_calloc_array((size_t)ne + 1, sizeof(int32_t));
     B->vcol = (int32_t *)wr_alloc_array((size_t)nv, sizeof(int32_t));
     B->eact = (uint8_t *)wr_calloc_array((size_t)ne, sizeof(uint8_t));
-    vpar = (int32_t *)wr_alloc_array((size_t)nv, sizeof(int32_t));
-    queue = (int32_t *)wr_alloc_array((size_t)(nv > nf ? nv : nf) + 1, sizeof(int32_t));
-    fpar = (int32_t *)wr_alloc_array((size_t)nf, sizeof(int32_t));
-    order = (int32_t *)wr_alloc_array((size_t)nf, sizeof(int32_t));
-    vadj_s = (int32_t *)wr_calloc_array((size_t)nv + 1, sizeof(int32_t));
-    vadj = (int32_t *)wr_alloc_array((size_t)ne * 2, sizeof(int32_t));
-    gcol = (int32_t *)wr_alloc_array((size_t)ne, sizeof(int32_t));
-    intree = (uint8_t *)wr_calloc_array((size_t)ne, sizeof(uint8_t));
-    cotree = (uint8_t *)wr_calloc_array((size_t)ne, sizeof(uint8_t));
-    vvis = (uint8_t *)wr_calloc_array((size_t)nv, sizeof(uint8_t));
-    fvis = (uint8_t *)wr_calloc_array((size_t)nf, sizeof(uint8_t));
-    if (!B->zstart || !B->vcol || !B->eact || !vpar || !queue || !fpar || !order || !vadj_s || !vadj || !gcol ||
-        !intree || !cotree || !vvis || !fvis) {
-        st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf basis: out of memory");
-        goto done;
+    T->queue = (int32_t *)wr_alloc_array((size_t)(nv > nf ? nv : nf) + 1, sizeof(int32_t));
+    T->fpar = (int32_t *)wr_alloc_array((size_t)nf, sizeof(int32_t));
+    T->order = (int32_t *)wr_alloc_array((size_t)nf, sizeof(int32_t));
+    T->vadj_s = (int32_t *)wr_calloc_array((size_t)nv + 1, sizeof(int32_t));
+    T->vadj = (int32_t *)wr_alloc_array((size_t)ne * 2, sizeof(int32_t));
+    T->gcol = (int32_t *)wr_alloc_array((size_t)ne, sizeof(int32_t));
+    T->intree = (uint8_t *)wr_calloc_array((size_t)ne, sizeof(uint8_t));
+    T->cotree = (uint8_t *)wr_calloc_array((size_t)ne, sizeof(uint8_t));
+    T->vvis = (uint8_t *)wr_calloc_array((size_t)nv, sizeof(uint8_t));
+    T->fvis = (uint8_t *)wr_calloc_array((size_t)nf, sizeof(uint8_t));
+    fill = (int32_t *)wr_alloc_array((size_t)nv, sizeof(int32_t));
+    if (!B->zstart || !B->vcol || !B->eact || !T->queue || !T->fpar || !T->order || !T->vadj_s || !T->vadj ||
+        !T->gcol || !T->intree || !T->cotree || !T->vvis || !T->fvis || !fill) {
+        wr_free(fill);
+        return wr_fail(diag, WR_ERR_NOMEM, -1, "wf basis: out of memory");
     }
     for (f = 0; f < nf; ++f)
         if (!wf->wfree[f])
             for (i = 0; i < 3; ++i) B->eact[m->face_edges[3 * f + i]] = 1;
-    /* vertex -> active edges adjacency */
     for (e = 0; e < ne; ++e)
         if (B->eact[e]) {
-            vadj_s[m->edges[2 * e] + 1]++;
-            vadj_s[m->edges[2 * e + 1] + 1]++;
+            T->vadj_s[m->edges[2 * e] + 1]++;
+            T->vadj_s[m->edges[2 * e + 1] + 1]++;
         }
-    for (v = 0; v < nv; ++v) vadj_s[v + 1] += vadj_s[v];
-    {
-        int32_t *fill = vpar; /* reuse as a cursor */
-        for (v = 0; v < nv; ++v) fill[v] = vadj_s[v];
-        for (e = 0; e < ne; ++e)
-            if (B->eact[e]) {
-                vadj[fill[m->edges[2 * e]]++] = e;
-                vadj[fill[m->edges[2 * e + 1]]++] = e;
-            }
-    }
-    /* primal BFS forest over active edges */
-    for (v = 0; v < nv; ++v) B->vcol[v] = -1;
+    for (v = 0; v < nv; ++v) T->vadj_s[v + 1] += T->vadj_s[v];
+    for (v = 0; v < nv; ++v) fill[v] = T->vadj_s[v];
+    for (e = 0; e < ne; ++e)
+        if (B->eact[e]) {
+            T->vadj[fill[m->edges[2 * e]]++] = e;
+            T->vadj[fill[m->edges[2 * e + 1]]++] = e;
+        }
+    wr_free(fill);
+    return WR_OK;
+}
+
+/* Primal BFS forest over active edges: every non-root vertex gets a ψ column (roots fix the gauge). */
+static void wr__wf_tc_primal(const wr_mesh *m, wr__wf_basis *B, wr__wf_tc *T) {
+    int32_t v, qh, qt;
+    for (v = 0; v < m->nv; ++v) B->vcol[v] = -1;
     B->npsi = 0;
-    for (v = 0; v < nv; ++v) {
+    for (v = 0; v < m->nv; ++v) {
         int32_t r = v;
-        if (vvis[r] || vadj_s[r] == vadj_s[r + 1]) continue;
-        vvis[r] = 1; /* root: no ψ column (gauge) */
+        if (T->vvis[r] || T->vadj_s[r] == T->vadj_s[r + 1]) continue;
+        T->vvis[r] = 1; /* root: no ψ column (gauge) */
         qh = qt = 0;
-        queue[qt++] = r;
+        T->queue[qt++] = r;
         while (qh < qt) {
-            int32_t u = queue[qh++], k;
-            for (k = vadj_s[u]; k < vadj_s[u + 1]; ++k) {
-                int32_t ee = vadj[k], w = m->edges[2 * ee] == u ? m->edges[2 * ee + 1] : m->edges[2 * ee];
-                if (vvis[w]) continue;
-                vvis[w] = 1;
-                intree[ee] = 1;
+            int32_t u = T->queue[qh++], k;
+            for (k = T->vadj_s[u]; k < T->vadj_s[u + 1]; ++k) {
+                int32_t ee = T->vadj[k], w = m->edges[2 * ee] == u ? m->edges[2 * ee + 1] : m->edges[2 * ee];
+                if (T->vvis[w]) continue;
+                T->vvis[w] = 1;
+                T->intree[ee] = 1;
                 B->vcol[w] = B->npsi++;
-                queue[qt++] = w;
+                T->queue[qt++] = w;
             }
         }
     }
-    /* dual BFS: from the virtual outside node through boundary edges of the complex (not in the
-     * primal tree), then through interior edges not in the primal tree. */
-    for (f = 0; f < nf; ++f) fpar[f] = -1;
-    qh = qt = 0;
-    for (e = 0; e < ne; ++e) {
+}
+
+/* Dual BFS: from the virtual outside node through boundary edges of the complex (not in the primal
+ * tree), then through interior edges not in the primal tree; closed components get a real root. */
+static void wr__wf_tc_dual(const wr_wf *wf, const wr__wf_basis *B, wr__wf_tc *T) {
+    const wr_mesh *m = wf->mesh;
+    int32_t f, e, qh = 0, qt = 0;
+    for (f = 0; f < m->nf; ++f) T->fpar[f] = -1;
+    for (e = 0; e < m->ne; ++e) {
         int32_t f0 = m->edge_faces[2 * e], f1 = m->edge_faces[2 * e + 1], fin;
         int n_in = (f0 >= 0 && !wf->wfree[f0]) + (f1 >= 0 && !wf->wfree[f1]);
-        if (!B->eact[e] || n_in != 1 || intree[e]) continue;
+        if (!B->eact[e] || n_in != 1 || T->intree[e]) continue;
         fin = (f0 >= 0 && !wf->wfree[f0]) ? f0 : f1;
-        if (fvis[fin]) continue;
-        fvis[fin] = 1;
-        fpar[fin] = e;
-        cotree[e] = 1;
-        queue[qt++] = fin;
+        if (T->fvis[fin]) continue;
+        T->fvis[fin] = 1;
+        T->fpar[fin] = e;
+        T->cotree[e] = 1;
+        T->queue[qt++] = fin;
     }
-    for (f = -1; f < nf; ++f) {
+    T->nord = 0;
+    for (f = -1; f < m->nf; ++f) {
         if (f >= 0) {
-            if (fvis[f] || wf->wfree[f]) continue;
-            fvis[f] = 1; /* closed component: a real root face */
-            queue[qt++] = f;
+            if (T->fvis[f] || wf->wfree[f]) continue;
+            T->fvis[f] = 1; /* closed component: a real root face */
+            T->queue[qt++] = f;
         }
         while (qh < qt) {
-            int32_t g = queue[qh++], k;
-            order[nord++] = g;
+            int32_t g = T->queue[qh++], k;
+            T->order[T->nord++] = g;
             for (k = 0; k < 3; ++k) {
                 int32_t ee = m->face_edges[3 * g + k], h2 = wr__wf_face_neighbor(m, g, k);
-                if (h2 < 0 || wf->wfree[h2] || fvis[h2] || intree[ee]) continue;
-                fvis[h2] = 1;
-                fpar[h2] = ee;
-                cotree[ee] = 1;
-                queue[qt++] = h2;
+                if (h2 < 0 || wf->wfree[h2] || T->fvis[h2] || T->intree[ee]) continue;
+                T->fvis[h2] = 1;
+                T->fpar[h2] = ee;
+                T->cotree[ee] = 1;
+                T->queue[qt++] = h2;
             }
         }
     }
-    /* generators: active edges in neither tree */
+}
+
+/* Generators (active edges in neither tree) and their unit rows h(e) = e_g. */
+static wr_status wr__wf_tc_generators(const wr_mesh *m, wr__wf_basis *B, wr__wf_tc *T, wr_diag *diag) {
+    int32_t e, ne = m->ne, ng1;
     B->ngen = 0;
     for (e = 0; e < ne; ++e) {
-        gcol[e] = -1;
-        if (B->eact[e] && !intree[e] && !cotree[e]) gcol[e] = B->npsi + B->ngen++;
+        T->gcol[e] = -1;
+        if (B->eact[e] && !T->intree[e] && !T->cotree[e]) T->gcol[e] = B->npsi + B->ngen++;
     }
     B->ncol = B->npsi + B->ngen;
-    /* h rows (generator part) for every edge, sparse: hstart/hcol/hval built by peeling leaves first. */
-    hstart = (int32_t *)wr_alloc_array((size_t)ne, sizeof(int32_t)); /* offset into hcol, -1 = empty */
-    mark = (int32_t *)wr_alloc_array((size_t)(B->ngen > 0 ? B->ngen : 1), sizeof(int32_t));
-    touched = (int32_t *)wr_alloc_array((size_t)(B->ngen > 0 ? B->ngen : 1), sizeof(int32_t));
-    acc = (double *)wr_calloc_array((size_t)(B->ngen > 0 ? B->ngen : 1), sizeof(double));
-    {
-        int32_t *hlen = fpar == NULL ? NULL : (int32_t *)wr_calloc_array((size_t)ne, sizeof(int32_t));
-        int32_t hcount = 0;
-        cap = ne + 16;
-        hcol = (int32_t *)wr_alloc_array((size_t)cap, sizeof(int32_t));
-        hval = (double *)wr_alloc_array((size_t)cap, sizeof(double));
-        if (!hstart || !mark || !touched || !acc || !hlen || !hcol || !hval) {
-            wr_free(hlen);
-            st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf basis: out of memory");
-            goto done;
+    ng1 = B->ngen > 0 ? B->ngen : 1;
+    T->cap = ne + 16;
+    T->hstart = (int32_t *)wr_alloc_array((size_t)ne, sizeof(int32_t));
+    T->hlen = (int32_t *)wr_calloc_array((size_t)ne, sizeof(int32_t));
+    T->hcol = (int32_t *)wr_alloc_array((size_t)T->cap, sizeof(int32_t));
+    T->hval = (double *)wr_alloc_array((size_t)T->cap, sizeof(double));
+    T->mark = (int32_t *)wr_calloc_array((size_t)ng1, sizeof(int32_t));
+    T->touched = (int32_t *)wr_alloc_array((size_t)ng1, sizeof(int32_t));
+    T->acc = (double *)wr_calloc_array((size_t)ng1, sizeof(double));
+    if (!T->hstart || !T->hlen || !T->hcol || !T->hval || !T->mark || !T->touched || !T->acc)
+        return wr_fail(diag, WR_ERR_NOMEM, -1, "wf basis: out of memory");
+    T->hcount = 0;
+    for (e = 0; e < ne; ++e) {
+        T->hstart[e] = -1;
+        if (T->gcol[e] >= 0) {
+            T->hstart[e] = T->hcount;
+            T->hlen[e] = 1;
+            T->hcol[T->hcount] = T->gcol[e] - B->npsi;
+            T->hval[T->hcount++] = 1.0;
         }
-        for (i = 0; i < B->ngen; ++i) mark[i] = 0;
-        for (e = 0; e < ne; ++e) {
-            hstart[e] = -1;
-            if (gcol[e] >= 0) {
-                hstart[e] = hcount;
-                hlen[e] = 1;
-                hcol[hcount] = gcol[e] - B->npsi;
-                hval[hcount++] = 1.0;
-            }
-        }
-        for (i = nord - 1; i >= 0; --i) {
-            int32_t g = order[i], pe = fpar[g], k, nt = 0, ps = 0;
-            if (pe < 0) { /* real root (closed component): its equation must already hold */
-                for (k = 0; k < 3; ++k) {
-                    int32_t ee = m->face_edges[3 * g + k], t;
-                    for (t = 0; hstart[ee] >= 0 && t < hlen[ee]; ++t) acc[hcol[hstart[ee] + t]] += m->face_edge_sign[3 * g + k] * hval[hstart[ee] + t];
-                }
-                for (k = 0; k < B->ngen; ++k) {
-                    if (fabs(acc[k]) > 1e-9) {
-                        wr_free(hlen);
-                        st = wr_fail(diag, WR_ERR_TOPOLOGY, g,
-                                     "wf basis: dual tree root face %d cannot close its curl equation", (int)g);
-                        goto done;
-                    }
-                    acc[k] = 0.0;
-                }
-                continue;
-            }
+    }
+    return WR_OK;
+}
+
+/* Room for nt more generator entries in hcol/hval. */
+static wr_status wr__wf_tc_reserve(wr__wf_tc *T, int32_t nt, wr_diag *diag) {
+    int32_t ncap, *nc;
+    double *nvv;
+    if (T->hcount + nt <= T->cap) return WR_OK;
+    ncap = 2 * (T->hcount + nt) + 16;
+    nc = (int32_t *)wr_realloc_array(T->hcol, (size_t)ncap, sizeof(int32_t));
+    if (!nc) return wr_fail(diag, WR_ERR_NOMEM, -1, "wf basis: out of memory");
+    T->hcol = nc;
+    nvv = (double *)wr_realloc_array(T->hval, (size_t)ncap, sizeof(double));
+    if (!nvv) return wr_fail(diag, WR_ERR_NOMEM, -1, "wf basis: out of memory");
+    T->hval = nvv;
+    T->cap = ncap;
+    return WR_OK;
+}
+
+/* Generator rows of the cotree edges, peeling the dual tree from its leaves: face g's curl equation
+ * ps·h(pe) + Σ_other s·h = 0 gives its parent edge pe's row. A real root's equation must already
+ * hold (WR_ERR_TOPOLOGY otherwise). */
+static wr_status wr__wf_tc_peel(const wr_mesh *m, const wr__wf_basis *B, wr__wf_tc *T, wr_diag *diag) {
+    int32_t i;
+    for (i = T->nord - 1; i >= 0; --i) {
+        int32_t g = T->order[i], pe = T->fpar[g], k, nt = 0, ps = 0;
+        wr_status st;
+        if (pe < 0) {
             for (k = 0; k < 3; ++k) {
                 int32_t ee = m->face_edges[3 * g + k], t;
-                if (ee == pe) {
-                    ps = m->face_edge_sign[3 * g + k];
-                    continue;
-                }
-                for (t = 0; hstart[ee] >= 0 && t < hlen[ee]; ++t) {
-                    int32_t c = hcol[hstart[ee] + t];
-                    if (!mark[c]) {
-                        mark[c] = 1;
-                        touched[nt++] = c;
-                    }
-                    acc[c] += m->face_edge_sign[3 * g + k] * hval[hstart[ee] + t];
-                }
+                for (t = 0; T->hstart[ee] >= 0 && t < T->hlen[ee]; ++t)
+                    T->acc[T->hcol[T->hstart[ee] + t]] += m->face_edge_sign[3 * g + k] * T->hval[T->hstart[ee] + t];
             }
-            /* ps·h(pe) + Σ_other s·h = 0 */
-            if (hcount + nt > cap) {
-                int32_t ncap = 2 * (hcount + nt) + 16;
-                int32_t *nc = (int32_t *)wr_realloc_array(hcol, (size_t)ncap, sizeof(int32_t));
-                double *nvv;
-                if (!nc) {
-                    wr_free(hlen);
-                    st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf basis: out of memory");
-                    goto done;
-                }
-                hcol = nc;
-                nvv = (double *)wr_realloc_array(hval, (size_t)ncap, sizeof(double));
-                if (!nvv) {
-                    wr_free(hlen);
-                    st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf basis: out of memory");
-                    goto done;
-                }
-                hval = nvv;
-                cap = ncap;
+            for (k = 0; k < B->ngen; ++k) {
+                if (fabs(T->acc[k]) > 1e-9)
+                    return wr_fail(diag, WR_ERR_TOPOLOGY, g,
+                                   "wf basis: dual tree root face %d cannot close its curl equation", (int)g);
+                T->acc[k] = 0.0;
             }
-            hstart[pe] = hcount;
-            hlen[pe] = 0;
-            for (k = 0; k < nt; ++k) {
-                int32_t c = touched[k];
-                if (acc[c] != 0.0) {
-                    hcol[hcount] = c;
-                    hval[hcount++] = -ps * acc[c];
-                    hlen[pe]++;
+            continue;
+        }
+        for (k = 0; k < 3; ++k) {
+            int32_t ee = m->face_edges[3 * g + k], t;
+            if (ee == pe) {
+                ps = m->face_edge_sign[3 * g + k];
+                continue;
+            }
+            for (t = 0; T->hstart[ee] >= 0 && t < T->hlen[ee]; ++t) {
+                int32_t c = T->hcol[T->hstart[ee] + t];
+                if (!T->mark[c]) {
+                    T->mark[c] = 1;
+                    T->touched[nt++] = c;
                 }
-                acc[c] = 0.0;
-                mark[c] = 0;
+                T->acc[c] += m->face_edge_sign[3 * g + k] * T->hval[T->hstart[ee] + t];
             }
         }
-        /* assemble Z rows: d0 part (ψ_hi - ψ_lo) + generator part */
-        nnz = 0;
-        for (e = 0; e < ne; ++e) nnz += B->eact[e] ? 2 + (hstart[e] >= 0 ? hlen[e] : 0) : 0;
-        B->zcol = (int32_t *)wr_alloc_array((size_t)nnz + 1, sizeof(int32_t));
-        B->zval = (double *)wr_alloc_array((size_t)nnz + 1, sizeof(double));
-        if (!B->zcol || !B->zval) {
-            wr_free(hlen);
-            st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf basis: out of memory");
-            goto done;
-        }
-        nnz = 0;
-        for (e = 0; e < ne; ++e) {
-            B->zstart[e] = nnz;
-            if (B->eact[e]) {
-                int32_t lo = B->vcol[m->edges[2 * e]], hi = B->vcol[m->edges[2 * e + 1]], t;
-                if (hi >= 0) {
-                    B->zcol[nnz] = hi;
-                    B->zval[nnz++] = 1.0;
-                }
-                if (lo >= 0) {
-                    B->zcol[nnz] = lo;
-                    B->zval[nnz++] = -1.0;
-                }
-                for (t = 0; hstart[e] >= 0 && t < hlen[e]; ++t) {
-                    B->zcol[nnz] = B->npsi + hcol[hstart[e] + t];
-                    B->zval[nnz++] = hval[hstart[e] + t];
-                }
+        st = wr__wf_tc_reserve(T, nt, diag);
+        if (st) return st;
+        T->hstart[pe] = T->hcount;
+        T->hlen[pe] = 0;
+        for (k = 0; k < nt; ++k) {
+            int32_t c = T->touched[k];
+            if (T->acc[c] != 0.0) {
+                T->hcol[T->hcount] = c;
+                T->hval[T->hcount++] = -ps * T->acc[c];
+                T->hlen[pe]++;
             }
+            T->acc[c] = 0.0;
+            T->mark[c] = 0;
         }
-        B->zstart[ne] = nnz;
-        wr_free(hlen);
     }
-done:
-    wr_free(vpar);
-    wr_free(queue);
-    wr_free(fpar);
-    wr_free(order);
-    wr_free(vadj_s);
-    wr_free(vadj);
-    wr_free(gcol);
-    wr_free(hstart);
-    wr_free(hcol);
-    wr_free(hval);
-    wr_free(mark);
-    wr_free(touched);
-    wr_free(acc);
-    wr_free(intree);
-    wr_free(cotree);
-    wr_free(vvis);
-    wr_free(fvis);
+    return WR_OK;
+}
+
+/* Z rows: the d0 part (ψ_hi − ψ_lo) plus the generator part h(e). */
+static wr_status wr__wf_tc_assemble(const wr_mesh *m, wr__wf_basis *B, const wr__wf_tc *T, wr_diag *diag) {
+    int32_t e, nnz = 0;
+    for (e = 0; e < m->ne; ++e) nnz += B->eact[e] ? 2 + (T->hstart[e] >= 0 ? T->hlen[e] : 0) : 0;
+    B->zcol = (int32_t *)wr_alloc_array((size_t)nnz + 1, sizeof(int32_t));
+    B->zval = (double *)wr_alloc_array((size_t)nnz + 1, sizeof(double));
+    if (!B->zcol || !B->zval) return wr_fail(diag, WR_ERR_NOMEM, -1, "wf basis: out of memory");
+    nnz = 0;
+    for (e = 0; e < m->ne; ++e) {
+        B->zstart[e] = nnz;
+        if (B->eact[e]) {
+            int32_t lo = B->vcol[m->edges[2 * e]], hi = B->vcol[m->edges[2 * e + 1]], t;
+            if (hi >= 0) {
+                B->zcol[nnz] = hi;
+                B->zval[nnz++] = 1.0;
+            }
+            if (lo >= 0) {
+                B->zcol[nnz] = lo;
+                B->zval[nnz++] = -1.0;
+            }
+            for (t = 0; T->hstart[e] >= 0 && t < T->hlen[e]; ++t) {
+                B->zcol[nnz] = B->npsi + T->hcol[T->hstart[e] + t];
+                B->zval[nnz++] = T->hval[T->hstart[e] + t];
+            }
+        }
+    }
+    B->zstart[m->ne] = nnz;
+    return WR_OK;
+}
+
+/* The null-space basis Z of dω = 0 outside W by tree–cotree: ψ on a primal spanning forest, the
+ * dual forest's edges determined by the faces' curl equations, the remaining edges generators. */
+static wr_status wr__wf_basis_build(const wr_wf *wf, wr__wf_basis *B, wr_diag *diag) {
+    const wr_mesh *m = wf->mesh;
+    wr__wf_tc T;
+    wr_status st;
+    memset(B, 0, sizeof *B);
+    memset(&T, 0, sizeof T);
+    B->ne = m->ne;
+    st = wr__wf_tc_adjacency(wf, B, &T, diag);
+    if (!st) {
+        wr__wf_tc_primal(m, B, &T);
+        wr__wf_tc_dual(wf, B, &T);
+        st = wr__wf_tc_generators(m, B, &T, diag);
+    }
+    if (!st) st = wr__wf_tc_peel(m, B, &T, diag);
+    if (!st) st = wr__wf_tc_assemble(m, B, &T, diag);
+    wr__wf_tc_free(&T);
     if (st != WR_OK) wr__wf_basis_free(B);
     return st;
 }
@@ -1767,51 +1873,59 @@ static int32_t wr__wf_uf_find(int32_t *par, double *off, int32_t x) {
     return r;
 }
 
-WRDEF wr_status wr_wf_phase(const wr_wf *wf, const double *omega, double *phi, wr_wf_phase_stats *stats,
-                            wr_diag *diag) {
-    const wr_mesh *m;
-    int32_t nf, f, e, i, qh, qt, ncls = 0;
-    int32_t *fpar = NULL, *queue = NULL, *par = NULL, *cls = NULL, *croot = NULL;
-    uint8_t *vis = NULL, *fixed = NULL;
-    double *off = NULL, *phi0 = NULL, *rhs = NULL, *sol = NULL;
+/* State of the phase reconstruction (wr_wf_phase's stages). Corners are indexed 3f + c. */
+typedef struct wr__wf_ph {
+    const wr_wf *wf;
+    const double *omega;
+    int32_t *par, *cls, *croot, ncls; /* union–find over corners; class of each root; root of each class */
+    double *off, *phi0;               /* φ(corner) − φ(root) of the union–find; tree-integrated φ */
+    double *rhs, *sol;
+    uint8_t *fixed;
     wr_triplets T;
     wr_csr A;
-    wr_status st = WR_OK;
     wr_wf_phase_stats ps;
-    memset(&ps, 0, sizeof ps);
-    memset(&A, 0, sizeof A);
-    memset(&T, 0, sizeof T);
-    if (!wf || !omega || !phi) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "wf phase: NULL argument");
-    m = wf->mesh;
-    nf = m->nf;
-    fpar = (int32_t *)wr_alloc_array((size_t)nf, sizeof(int32_t));
-    queue = (int32_t *)wr_alloc_array((size_t)nf, sizeof(int32_t));
-    par = (int32_t *)wr_alloc_array((size_t)nf * 3, sizeof(int32_t));
-    cls = (int32_t *)wr_alloc_array((size_t)nf * 3, sizeof(int32_t));
-    croot = (int32_t *)wr_alloc_array((size_t)nf * 3, sizeof(int32_t));
-    vis = (uint8_t *)wr_calloc_array((size_t)nf, sizeof(uint8_t));
-    off = (double *)wr_calloc_array((size_t)nf * 3, sizeof(double));
-    phi0 = (double *)wr_calloc_array((size_t)nf * 3, sizeof(double));
-    if (!fpar || !queue || !par || !cls || !croot || !vis || !off || !phi0) {
-        st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf phase: out of memory");
-        goto done;
+} wr__wf_ph;
+
+static void wr__wf_ph_free(wr__wf_ph *P) {
+    wr_triplets_free(&P->T);
+    wr_csr_free(&P->A);
+    wr_free(P->par);
+    wr_free(P->cls);
+    wr_free(P->croot);
+    wr_free(P->off);
+    wr_free(P->phi0);
+    wr_free(P->rhs);
+    wr_free(P->sol);
+    wr_free(P->fixed);
+}
+
+/* 1. Integrate ω along a BFS tree of the dual graph outside W (one disk per component). */
+static wr_status wr__wf_ph_integrate(wr__wf_ph *P, wr_diag *diag) {
+    const wr_mesh *m = P->wf->mesh;
+    const uint8_t *wfree = P->wf->wfree;
+    const double *omega = P->omega;
+    int32_t nf = m->nf, f, qh, qt;
+    int32_t *queue = (int32_t *)wr_alloc_array((size_t)nf, sizeof(int32_t));
+    uint8_t *vis = (uint8_t *)wr_calloc_array((size_t)nf, sizeof(uint8_t));
+    if (!queue || !vis) {
+        wr_free(queue);
+        wr_free(vis);
+        return wr_fail(diag, WR_ERR_NOMEM, -1, "wf phase: out of memory");
     }
-    for (i = 0; i < nf * 3; ++i) phi[i] = 0.0;
-    /* 1. Integrate ω along a BFS tree of the dual graph outside W (one disk per component). */
     for (f = 0; f < nf; ++f) {
-        if (vis[f] || wf->wfree[f]) continue;
+        if (vis[f] || wfree[f]) continue;
         vis[f] = 1;
         qh = qt = 0;
         queue[qt++] = f;
         /* root: φ(corner 0) = 0, then along edge 2 (0->1) and edge 1 (2->0) */
-        phi0[3 * f] = 0.0;
-        phi0[3 * f + 1] = m->face_edge_sign[3 * f + 2] * omega[m->face_edges[3 * f + 2]];
-        phi0[3 * f + 2] = -m->face_edge_sign[3 * f + 1] * omega[m->face_edges[3 * f + 1]];
+        P->phi0[3 * f] = 0.0;
+        P->phi0[3 * f + 1] = m->face_edge_sign[3 * f + 2] * omega[m->face_edges[3 * f + 2]];
+        P->phi0[3 * f + 2] = -m->face_edge_sign[3 * f + 1] * omega[m->face_edges[3 * f + 1]];
         while (qh < qt) {
             int32_t g = queue[qh++], k;
             for (k = 0; k < 3; ++k) {
                 int32_t h2 = wr__wf_face_neighbor(m, g, k), c, d, shared = 0, third = -1;
-                if (h2 < 0 || vis[h2] || wf->wfree[h2]) continue;
+                if (h2 < 0 || vis[h2] || wfree[h2]) continue;
                 vis[h2] = 1;
                 queue[qt++] = h2;
                 /* copy the two shared corners, integrate to the third along an edge of h2 */
@@ -1819,7 +1933,7 @@ WRDEF wr_status wr_wf_phase(const wr_wf *wf, const double *omega, double *phi, w
                     int32_t vh = m->faces[3 * h2 + c], found = 0;
                     for (d = 0; d < 3; ++d)
                         if (m->faces[3 * g + d] == vh) {
-                            phi0[3 * h2 + c] = phi0[3 * g + d];
+                            P->phi0[3 * h2 + c] = P->phi0[3 * g + d];
                             found = 1;
                         }
                     if (found)
@@ -1828,164 +1942,197 @@ WRDEF wr_status wr_wf_phase(const wr_wf *wf, const double *omega, double *phi, w
                         third = c;
                 }
                 if (shared == 2 && third >= 0) {
-                    /* edge (third+2)%3 runs corner third -> (third+1)%3... use edge opposite (third+1)%3,
-                     * which runs from corner (third+2)%3 to corner third. */
+                    /* the edge opposite corner (third+1)%3 runs from corner (third+2)%3 to corner third */
                     int32_t kk = (third + 1) % 3, from = (third + 2) % 3;
-                    phi0[3 * h2 + third] =
-                        phi0[3 * h2 + from] + m->face_edge_sign[3 * h2 + kk] * omega[m->face_edges[3 * h2 + kk]];
+                    P->phi0[3 * h2 + third] =
+                        P->phi0[3 * h2 + from] + m->face_edge_sign[3 * h2 + kk] * omega[m->face_edges[3 * h2 + kk]];
                 }
             }
         }
     }
-    /* 2. Glue corners across every interior edge outside W with the rounded jump. */
-    for (i = 0; i < nf * 3; ++i) par[i] = i;
+    wr_free(queue);
+    wr_free(vis);
+    return WR_OK;
+}
+
+/* 2. Glue corners across every interior edge outside W with the rounded jump (a multiple of 2π). */
+static void wr__wf_ph_glue(wr__wf_ph *P) {
+    const wr_mesh *m = P->wf->mesh;
+    const uint8_t *wfree = P->wf->wfree;
+    int32_t i, e;
+    for (i = 0; i < m->nf * 3; ++i) P->par[i] = i;
     for (e = 0; e < m->ne; ++e) {
         int32_t f0 = m->edge_faces[2 * e], f1 = m->edge_faces[2 * e + 1], end;
         double J = 0.0, n;
         int32_t c0[2], c1[2];
-        if (f0 < 0 || f1 < 0 || wf->wfree[f0] || wf->wfree[f1]) continue;
+        if (f0 < 0 || f1 < 0 || wfree[f0] || wfree[f1]) continue;
         for (end = 0; end < 2; ++end) {
             int32_t vtx = m->edges[2 * e + end], c;
             for (c = 0; c < 3; ++c) {
                 if (m->faces[3 * f0 + c] == vtx) c0[end] = 3 * f0 + c;
                 if (m->faces[3 * f1 + c] == vtx) c1[end] = 3 * f1 + c;
             }
-            J += 0.5 * (phi0[c1[end]] - phi0[c0[end]]);
+            J += 0.5 * (P->phi0[c1[end]] - P->phi0[c0[end]]);
         }
         n = floor(J / (2.0 * WR__WF_PI) + 0.5);
-        if (fabs(J) > 1e-9 * (1.0 + fabs(phi0[c0[0]]))) ps.n_cut_edges++;
-        if (n != 0.0) ps.n_nonzero_jumps++;
+        if (fabs(J) > 1e-9 * (1.0 + fabs(P->phi0[c0[0]]))) P->ps.n_cut_edges++;
+        if (n != 0.0) P->ps.n_nonzero_jumps++;
         for (end = 0; end < 2; ++end) {
-            int32_t ra = wr__wf_uf_find(par, off, c0[end]), rb = wr__wf_uf_find(par, off, c1[end]);
+            int32_t ra = wr__wf_uf_find(P->par, P->off, c0[end]), rb = wr__wf_uf_find(P->par, P->off, c1[end]);
             double d = 2.0 * WR__WF_PI * n; /* φ(c1) - φ(c0) */
             if (ra == rb) {
-                if (fabs(off[c1[end]] - off[c0[end]] - d) > 1e-6) ps.n_conflicts++;
+                if (fabs(P->off[c1[end]] - P->off[c0[end]] - d) > 1e-6) P->ps.n_conflicts++;
                 continue;
             }
             /* φ_rb = φ_c1 - off_c1 = φ_c0 + d - off_c1 = φ_ra + off_c0 + d - off_c1 */
-            par[rb] = ra;
-            off[rb] = off[c0[end]] + d - off[c1[end]];
+            P->par[rb] = ra;
+            P->off[rb] = P->off[c0[end]] + d - P->off[c1[end]];
         }
     }
-    /* 3. Least squares over the corner classes: Σ_faces Σ_edges (φ_to - φ_from - ω̃)². */
-    for (i = 0; i < nf * 3; ++i) cls[i] = -1;
-    for (f = 0; f < nf; ++f) {
+}
+
+/* 3a. Number the corner classes (union–find roots) of faces outside W. */
+static void wr__wf_ph_classes(wr__wf_ph *P) {
+    const wr_mesh *m = P->wf->mesh;
+    int32_t i, f;
+    for (i = 0; i < m->nf * 3; ++i) P->cls[i] = -1;
+    for (f = 0; f < m->nf; ++f) {
         int c;
-        if (wf->wfree[f]) continue;
+        if (P->wf->wfree[f]) continue;
         for (c = 0; c < 3; ++c) {
-            int32_t r = wr__wf_uf_find(par, off, 3 * f + c);
-            if (cls[r] < 0) {
-                cls[r] = ncls;
-                croot[ncls++] = r;
+            int32_t r = wr__wf_uf_find(P->par, P->off, 3 * f + c);
+            if (P->cls[r] < 0) {
+                P->cls[r] = P->ncls;
+                P->croot[P->ncls++] = r;
             }
         }
     }
-    if (ncls == 0) goto done;
-    rhs = (double *)wr_calloc_array((size_t)ncls, sizeof(double));
-    sol = (double *)wr_calloc_array((size_t)ncls, sizeof(double));
-    fixed = (uint8_t *)wr_calloc_array((size_t)ncls, sizeof(uint8_t));
-    if (!rhs || !sol || !fixed) {
-        st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf phase: out of memory");
-        goto done;
-    }
-    st = wr_triplets_create(&T, ncls, (int64_t)nf * 12, diag);
-    if (st) goto done;
-    for (f = 0; f < nf && !st; ++f) {
+}
+
+/* 3b. Least squares over the classes: Σ_faces Σ_edges (φ_to − φ_from − ω̃)², a graph Laplacian. */
+static wr_status wr__wf_ph_system(wr__wf_ph *P, wr_diag *diag) {
+    const wr_mesh *m = P->wf->mesh;
+    const double *omega = P->omega;
+    int32_t f;
+    wr_status st;
+    P->rhs = (double *)wr_calloc_array((size_t)P->ncls, sizeof(double));
+    P->sol = (double *)wr_calloc_array((size_t)P->ncls, sizeof(double));
+    P->fixed = (uint8_t *)wr_calloc_array((size_t)P->ncls, sizeof(uint8_t));
+    if (!P->rhs || !P->sol || !P->fixed) return wr_fail(diag, WR_ERR_NOMEM, -1, "wf phase: out of memory");
+    st = wr_triplets_create(&P->T, P->ncls, (int64_t)m->nf * 12, diag);
+    for (f = 0; f < m->nf && !st; ++f) {
         int k;
-        if (wf->wfree[f]) continue;
+        if (P->wf->wfree[f]) continue;
         for (k = 0; k < 3 && !st; ++k) {
             int32_t ca = 3 * f + (k + 1) % 3, cb = 3 * f + (k + 2) % 3;
-            int32_t ra = wr__wf_uf_find(par, off, ca), rb = wr__wf_uf_find(par, off, cb);
-            int32_t ia = cls[ra], ib = cls[rb];
+            int32_t ia = P->cls[wr__wf_uf_find(P->par, P->off, ca)], ib = P->cls[wr__wf_uf_find(P->par, P->off, cb)];
             /* residual: (x_b + off_b) - (x_a + off_a) - ω̃ */
-            double r0 = off[cb] - off[ca] - m->face_edge_sign[3 * f + k] * omega[m->face_edges[3 * f + k]];
+            double r0 = P->off[cb] - P->off[ca] - m->face_edge_sign[3 * f + k] * omega[m->face_edges[3 * f + k]];
             if (ia == ib) continue; /* constant residual (a conflict or a degenerate loop) */
-            st = wr_triplets_add(&T, ia, ia, 1.0, diag);
-            if (!st) st = wr_triplets_add(&T, ib, ib, 1.0, diag);
-            if (!st) st = wr_triplets_add(&T, ia, ib, -1.0, diag);
-            if (!st) st = wr_triplets_add(&T, ib, ia, -1.0, diag);
-            rhs[ia] += r0;
-            rhs[ib] -= r0;
+            st = wr_triplets_add(&P->T, ia, ia, 1.0, diag);
+            if (!st) st = wr_triplets_add(&P->T, ib, ib, 1.0, diag);
+            if (!st) st = wr_triplets_add(&P->T, ia, ib, -1.0, diag);
+            if (!st) st = wr_triplets_add(&P->T, ib, ia, -1.0, diag);
+            P->rhs[ia] += r0;
+            P->rhs[ib] -= r0;
         }
     }
-    if (!st) st = wr_csr_from_triplets(&A, &T, diag);
-    if (st) goto done;
-    /* gauge: one fixed class per connected component of the class graph, at its tree-integrated value */
-    {
-        int32_t *q2 = (int32_t *)wr_alloc_array((size_t)ncls, sizeof(int32_t));
-        uint8_t *seen = (uint8_t *)wr_calloc_array((size_t)ncls, sizeof(uint8_t));
-        int32_t s;
-        if (!q2 || !seen) {
-            wr_free(q2);
-            wr_free(seen);
-            st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf phase: out of memory");
-            goto done;
-        }
-        for (s = 0; s < ncls; ++s) {
-            int32_t h0 = 0, t0 = 0;
-            if (seen[s]) continue;
-            seen[s] = 1;
-            fixed[s] = 1;
-            sol[s] = phi0[croot[s]];
-            q2[t0++] = s;
-            while (h0 < t0) {
-                int32_t u = q2[h0++], t;
-                for (t = A.rowptr[u]; t < A.rowptr[u + 1]; ++t)
-                    if (A.col[t] != u && A.val[t] != 0.0 && !seen[A.col[t]]) {
-                        seen[A.col[t]] = 1;
-                        q2[t0++] = A.col[t];
-                    }
-            }
-        }
+    if (!st) st = wr_csr_from_triplets(&P->A, &P->T, diag);
+    return st;
+}
+
+/* 3c. Gauge: one fixed class per connected component of the class graph, at its tree-integrated
+ * value; then solve the Laplacian (isolated classes get a unit diagonal). */
+static wr_status wr__wf_ph_solve(wr__wf_ph *P, wr_diag *diag) {
+    wr_csr *A = &P->A;
+    wr_spd_desc sd;
+    wr_spd_stats ss;
+    int32_t s;
+    int32_t *q2 = (int32_t *)wr_alloc_array((size_t)P->ncls, sizeof(int32_t));
+    uint8_t *seen = (uint8_t *)wr_calloc_array((size_t)P->ncls, sizeof(uint8_t));
+    if (!q2 || !seen) {
         wr_free(q2);
         wr_free(seen);
+        return wr_fail(diag, WR_ERR_NOMEM, -1, "wf phase: out of memory");
     }
-    {
-        wr_spd_desc sd;
-        wr_spd_stats ss;
-        int32_t s;
-        memset(&sd, 0, sizeof sd);
-        sd.fixed = fixed;
-        /* the Laplacian rows of isolated classes are empty: give them a unit diagonal */
-        for (s = 0; s < ncls; ++s) {
-            int32_t p = wr_csr_find(&A, s, s);
-            if (p >= 0 && A.val[p] == 0.0) A.val[p] = 1.0;
+    for (s = 0; s < P->ncls; ++s) {
+        int32_t h0 = 0, t0 = 0;
+        if (seen[s]) continue;
+        seen[s] = 1;
+        P->fixed[s] = 1;
+        P->sol[s] = P->phi0[P->croot[s]];
+        q2[t0++] = s;
+        while (h0 < t0) {
+            int32_t u = q2[h0++], t;
+            for (t = A->rowptr[u]; t < A->rowptr[u + 1]; ++t)
+                if (A->col[t] != u && A->val[t] != 0.0 && !seen[A->col[t]]) {
+                    seen[A->col[t]] = 1;
+                    q2[t0++] = A->col[t];
+                }
         }
-        st = wr_spd_solve(&A, rhs, sol, &sd, &ss, diag);
-        if (st) goto done;
     }
-    for (f = 0; f < nf; ++f) {
-        int c;
-        if (wf->wfree[f]) continue;
+    wr_free(q2);
+    wr_free(seen);
+    memset(&sd, 0, sizeof sd);
+    sd.fixed = P->fixed;
+    for (s = 0; s < P->ncls; ++s) {
+        int32_t p = wr_csr_find(A, s, s);
+        if (p >= 0 && A->val[p] == 0.0) A->val[p] = 1.0;
+    }
+    return wr_spd_solve(A, P->rhs, P->sol, &sd, &ss, diag);
+}
+
+/* Corner phases from the class solution, and the largest residual |φ_to − φ_from − ω̃| left. */
+static void wr__wf_ph_write(wr__wf_ph *P, double *phi) {
+    const wr_mesh *m = P->wf->mesh;
+    int32_t f;
+    for (f = 0; f < m->nf; ++f) {
+        int c, k;
+        if (P->wf->wfree[f]) continue;
         for (c = 0; c < 3; ++c) {
-            int32_t r = wr__wf_uf_find(par, off, 3 * f + c);
-            phi[3 * f + c] = sol[cls[r]] + off[3 * f + c];
+            int32_t r = wr__wf_uf_find(P->par, P->off, 3 * f + c);
+            phi[3 * f + c] = P->sol[P->cls[r]] + P->off[3 * f + c];
         }
-    }
-    for (f = 0; f < nf; ++f) {
-        int k;
-        if (wf->wfree[f]) continue;
         for (k = 0; k < 3; ++k) {
             double r = phi[3 * f + (k + 2) % 3] - phi[3 * f + (k + 1) % 3] -
-                       m->face_edge_sign[3 * f + k] * omega[m->face_edges[3 * f + k]];
-            ps.max_residual = fmax(ps.max_residual, fabs(r));
+                       m->face_edge_sign[3 * f + k] * P->omega[m->face_edges[3 * f + k]];
+            P->ps.max_residual = fmax(P->ps.max_residual, fabs(r));
         }
     }
-done:
-    if (stats) *stats = ps;
-    wr_triplets_free(&T);
-    wr_csr_free(&A);
-    wr_free(fpar);
-    wr_free(queue);
-    wr_free(par);
-    wr_free(cls);
-    wr_free(croot);
-    wr_free(vis);
-    wr_free(off);
-    wr_free(phi0);
-    wr_free(rhs);
-    wr_free(sol);
-    wr_free(fixed);
+}
+
+WRDEF wr_status wr_wf_phase(const wr_wf *wf, const double *omega, double *phi, wr_wf_phase_stats *stats,
+                            wr_diag *diag) {
+    wr__wf_ph P;
+    int32_t i, nf;
+    wr_status st;
+    memset(&P, 0, sizeof P);
+    if (!wf || !omega || !phi) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "wf phase: NULL argument");
+    P.wf = wf;
+    P.omega = omega;
+    nf = wf->mesh->nf;
+    P.par = (int32_t *)wr_alloc_array((size_t)nf * 3, sizeof(int32_t));
+    P.cls = (int32_t *)wr_alloc_array((size_t)nf * 3, sizeof(int32_t));
+    P.croot = (int32_t *)wr_alloc_array((size_t)nf * 3, sizeof(int32_t));
+    P.off = (double *)wr_calloc_array((size_t)nf * 3, sizeof(double));
+    P.phi0 = (double *)wr_calloc_array((size_t)nf * 3, sizeof(double));
+    if (!P.par || !P.cls || !P.croot || !P.off || !P.phi0) {
+        st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf phase: out of memory");
+    } else {
+        for (i = 0; i < nf * 3; ++i) phi[i] = 0.0;
+        st = wr__wf_ph_integrate(&P, diag);
+        if (!st) {
+            wr__wf_ph_glue(&P);
+            wr__wf_ph_classes(&P);
+        }
+        if (!st && P.ncls > 0) {
+            st = wr__wf_ph_system(&P, diag);
+            if (!st) st = wr__wf_ph_solve(&P, diag);
+            if (!st) wr__wf_ph_write(&P, phi);
+        }
+    }
+    if (stats) *stats = P.ps;
+    wr__wf_ph_free(&P);
     return st;
 }
 
@@ -2196,205 +2343,227 @@ static wr_status wr__wf_loop_phase(const wr_mesh *m, const uint8_t *wfree, const
     return WR_OK;
 }
 
-WRDEF wr_status wr_wf_upsample(const wr_wf *wf, const double *a, const double *phi, const wr_wf_upsample_desc *desc,
-                               wr_mesh *out, double **out_a, wr_diag *diag) {
-    int32_t levels = desc && desc->levels > 0 ? desc->levels : 2;
-    int mode = desc ? desc->boundary : WR_WF_LOOP_BOUNDARY_FIXED;
-    int inplane = !(desc && desc->no_inplane);
-    const wr_mesh *src;
+/* The upsampling's current level: mesh (base positions, rest), amplitude per vertex, phase per
+ * corner (3 per face), wrinkle-free flag per face. */
+typedef struct wr__wf_up {
     wr_mesh cur;
-    double *ca = NULL, *cphi = NULL, *fvals = NULL, *vals = NULL, *fphi = NULL, *grad = NULL, *wsum = NULL,
-           *nrm = NULL, *disp = NULL, *vphi = NULL;
-    uint8_t *cw = NULL, *fw = NULL, *vwr = NULL;
-    int32_t *ffaces = NULL;
-    int32_t lvl, v, f, c, ncomp;
-    int has_rest;
+    double *ca, *cphi;
+    uint8_t *cw;
+    int32_t ncomp; /* components Loop-subdivided per vertex: position (3), rest (2, if any), a */
+    int has_rest, mode;
+} wr__wf_up;
+
+/* The subdivided level's mesh from the Loop-averaged vertex values (nvf vertices, nf4 faces) and
+ * its amplitudes, zero on vertices touching only W faces. */
+static wr_status wr__wf_up_fine_mesh(wr__wf_up *U, int32_t nvf, const double *fvals, const int32_t *ffaces,
+                                     const uint8_t *fw, wr_mesh *fine, double **fine_a, wr_diag *diag) {
+    int32_t v, ncomp = U->ncomp;
+    double *p3 = (double *)wr_alloc_array((size_t)nvf * 3, sizeof(double));
+    double *r2 = U->has_rest ? (double *)wr_alloc_array((size_t)nvf * 2, sizeof(double)) : NULL;
+    double *na = (double *)wr_alloc_array((size_t)nvf, sizeof(double));
+    wr_status st;
+    if (!p3 || (U->has_rest && !r2) || !na) {
+        wr_free(p3);
+        wr_free(r2);
+        wr_free(na);
+        return wr_fail(diag, WR_ERR_NOMEM, -1, "wf upsample: out of memory");
+    }
+    for (v = 0; v < nvf; ++v) {
+        const double *iv = fvals + (size_t)v * ncomp;
+        p3[3 * v] = iv[0];
+        p3[3 * v + 1] = iv[1];
+        p3[3 * v + 2] = iv[2];
+        if (U->has_rest) {
+            r2[2 * v] = iv[3];
+            r2[2 * v + 1] = iv[4];
+        }
+        na[v] = iv[ncomp - 1];
+    }
+    st = wr_mesh_create(fine, nvf, p3, r2, 4 * U->cur.nf, ffaces, diag);
+    wr_free(p3);
+    wr_free(r2);
+    if (st) {
+        wr_free(na);
+        return st;
+    }
+    for (v = 0; v < nvf; ++v) {
+        int32_t t, anyk = 0;
+        for (t = fine->vf_start[v]; t < fine->vf_start[v + 1]; ++t) anyk |= !fw[fine->vf[t]];
+        if (!anyk) na[v] = 0.0;
+    }
+    *fine_a = na;
+    return WR_OK;
+}
+
+/* One Loop level (App. E.5): positions, rest coordinates and amplitude by Loop's rules, the corner
+ * phases by wr__wf_loop_phase (the phase is multivalued: it is subdivided per face), W inherited
+ * by the four children of each face. */
+static wr_status wr__wf_up_level(wr__wf_up *U, wr_diag *diag) {
+    wr_mesh *cur = &U->cur, fine;
+    wr_wf_loop_desc ld;
+    double *vals, *fvals = NULL, *fphi = NULL, *fine_a = NULL;
+    uint8_t *fw = NULL;
+    int32_t *ffaces = NULL, v, f, c, ncomp = U->ncomp;
+    wr_status st;
+    ld.boundary = U->mode;
+    vals = (double *)wr_alloc_array((size_t)cur->nv * (size_t)ncomp, sizeof(double));
+    if (!vals) return wr_fail(diag, WR_ERR_NOMEM, -1, "wf upsample: out of memory");
+    for (v = 0; v < cur->nv; ++v) {
+        double *o = vals + (size_t)v * ncomp;
+        o[0] = cur->pos[3 * v];
+        o[1] = cur->pos[3 * v + 1];
+        o[2] = cur->pos[3 * v + 2];
+        if (U->has_rest) {
+            o[3] = cur->rest[2 * v];
+            o[4] = cur->rest[2 * v + 1];
+        }
+        o[ncomp - 1] = U->ca[v];
+    }
+    st = wr_wf_loop_step(cur, ncomp, vals, &ld, &ffaces, &fvals, diag);
+    wr_free(vals);
+    if (!st) {
+        fphi = (double *)wr_alloc_array((size_t)cur->nf * 12, sizeof(double));
+        fw = (uint8_t *)wr_alloc_array((size_t)cur->nf * 4, sizeof(uint8_t));
+        if (!fphi || !fw) st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf upsample: out of memory");
+    }
+    if (!st) st = wr__wf_loop_phase(cur, U->cw, U->cphi, U->mode, fphi, diag);
+    if (!st) {
+        for (f = 0; f < cur->nf; ++f)
+            for (c = 0; c < 4; ++c) fw[4 * f + c] = U->cw[f];
+        st = wr__wf_up_fine_mesh(U, cur->nv + cur->ne, fvals, ffaces, fw, &fine, &fine_a, diag);
+    }
+    wr_free(fvals);
+    wr_free(ffaces);
+    if (st) {
+        wr_free(fphi);
+        wr_free(fw);
+        return st;
+    }
+    wr_free(U->ca);
+    U->ca = fine_a;
+    wr_free(U->cphi);
+    U->cphi = fphi;
+    wr_free(U->cw);
+    U->cw = fw;
+    wr_mesh_free(cur);
+    *cur = fine;
+    return WR_OK;
+}
+
+/* Eq. 19 without v1 (App. E.5): r = r_b + a cos φ n̂_b + (a²/8) sin 2φ ∇_b φ on the finest level,
+ * n̂_b the area-weighted vertex normal, ∇_b φ the area-weighted average of the faces' gradients. */
+static wr_status wr__wf_up_displace(const wr__wf_up *U, int inplane, double *disp, wr_diag *diag) {
+    const wr_mesh *cur = &U->cur;
+    const double *cphi = U->cphi;
+    int32_t f, v, c;
+    double *grad = (double *)wr_calloc_array((size_t)cur->nv * 3, sizeof(double));
+    double *wsum = (double *)wr_calloc_array((size_t)cur->nv, sizeof(double));
+    double *nrm = (double *)wr_calloc_array((size_t)cur->nv * 3, sizeof(double));
+    double *vphi = (double *)wr_calloc_array((size_t)cur->nv, sizeof(double));
+    uint8_t *vwr = (uint8_t *)wr_calloc_array((size_t)cur->nv, sizeof(uint8_t));
     wr_status st = WR_OK;
-    if (out) memset(out, 0, sizeof *out);
-    if (out_a) *out_a = NULL;
-    if (!wf || !a || !phi || !out) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "wf upsample: NULL argument");
-    if (levels > 8) return wr_fail(diag, WR_ERR_BUDGET, -1, "wf upsample: %d levels (> 8) would need 4^%d faces", (int)levels, (int)levels);
-    if (mode != WR_WF_LOOP_BOUNDARY_FIXED && mode != WR_WF_LOOP_BOUNDARY_SPLINE)
-        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "wf upsample: unknown boundary mode %d", mode);
-    src = wf->mesh;
-    has_rest = src->rest != NULL;
-    ncomp = 3 + (has_rest ? 2 : 0) + 1;
-    /* level 0: the coarse mesh with the base positions */
-    memset(&cur, 0, sizeof cur);
-    st = wr_mesh_create(&cur, src->nv, wf->base, src->rest, src->nf, src->faces, diag);
-    if (st) return st;
-    ca = (double *)wr_alloc_array((size_t)src->nv, sizeof(double));
-    cphi = (double *)wr_alloc_array((size_t)src->nf * 3, sizeof(double));
-    cw = (uint8_t *)wr_alloc_array((size_t)src->nf, sizeof(uint8_t));
-    if (!ca || !cphi || !cw) {
+    if (!grad || !wsum || !nrm || !vphi || !vwr) {
         st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf upsample: out of memory");
         goto done;
     }
-    memcpy(ca, a, sizeof(double) * (size_t)src->nv);
-    memcpy(cphi, phi, sizeof(double) * 3 * (size_t)src->nf);
-    memcpy(cw, wf->wfree, (size_t)src->nf);
-    for (lvl = 0; lvl < levels; ++lvl) {
-        wr_mesh fine;
-        wr_wf_loop_desc ld;
-        int32_t nvf;
-        ld.boundary = mode;
-        vals = (double *)wr_alloc_array((size_t)cur.nv * (size_t)ncomp, sizeof(double));
-        if (!vals) {
-            st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf upsample: out of memory");
-            goto done;
-        }
-        for (v = 0; v < cur.nv; ++v) {
-            double *o = vals + (size_t)v * ncomp;
-            o[0] = cur.pos[3 * v];
-            o[1] = cur.pos[3 * v + 1];
-            o[2] = cur.pos[3 * v + 2];
-            if (has_rest) {
-                o[3] = cur.rest[2 * v];
-                o[4] = cur.rest[2 * v + 1];
-            }
-            o[ncomp - 1] = ca[v];
-        }
-        st = wr_wf_loop_step(&cur, ncomp, vals, &ld, &ffaces, &fvals, diag);
-        wr_free(vals);
-        vals = NULL;
-        if (st) goto done;
-        fphi = (double *)wr_alloc_array((size_t)cur.nf * 12, sizeof(double));
-        fw = (uint8_t *)wr_alloc_array((size_t)cur.nf * 4, sizeof(uint8_t));
-        if (!fphi || !fw) {
-            st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf upsample: out of memory");
-            goto done;
-        }
-        st = wr__wf_loop_phase(&cur, cw, cphi, mode, fphi, diag);
-        if (st) goto done;
-        for (f = 0; f < cur.nf; ++f)
-            for (c = 0; c < 4; ++c) fw[4 * f + c] = cw[f];
-        nvf = cur.nv + cur.ne;
-        {
-            double *p3 = (double *)wr_alloc_array((size_t)nvf * 3, sizeof(double));
-            double *r2 = has_rest ? (double *)wr_alloc_array((size_t)nvf * 2, sizeof(double)) : NULL;
-            double *na = (double *)wr_alloc_array((size_t)nvf, sizeof(double));
-            if (!p3 || (has_rest && !r2) || !na) {
-                wr_free(p3);
-                wr_free(r2);
-                wr_free(na);
-                st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf upsample: out of memory");
-                goto done;
-            }
-            for (v = 0; v < nvf; ++v) {
-                const double *iv = fvals + (size_t)v * ncomp;
-                p3[3 * v] = iv[0];
-                p3[3 * v + 1] = iv[1];
-                p3[3 * v + 2] = iv[2];
-                if (has_rest) {
-                    r2[2 * v] = iv[3];
-                    r2[2 * v + 1] = iv[4];
-                }
-                na[v] = iv[ncomp - 1];
-            }
-            st = wr_mesh_create(&fine, nvf, p3, r2, 4 * cur.nf, ffaces, diag);
-            wr_free(p3);
-            wr_free(r2);
-            if (st) {
-                wr_free(na);
-                goto done;
-            }
-            /* vertices touching only W faces stay wrinkle-free (a = 0) */
-            for (v = 0; v < nvf; ++v) {
-                int32_t t, anyk = 0;
-                for (t = fine.vf_start[v]; t < fine.vf_start[v + 1]; ++t) anyk |= !fw[fine.vf[t]];
-                if (!anyk) na[v] = 0.0;
-            }
-            wr_free(ca);
-            ca = na;
-        }
-        wr_free(fvals);
-        fvals = NULL;
-        wr_free(ffaces);
-        ffaces = NULL;
-        wr_free(cphi);
-        cphi = fphi;
-        fphi = NULL;
-        wr_free(cw);
-        cw = fw;
-        fw = NULL;
-        wr_mesh_free(&cur);
-        cur = fine;
-    }
-    /* Eq. 19 without v1 (App. E.5): r = r_b + a cos φ n̂_b + (a²/8) sin 2φ ∇_b φ */
-    grad = (double *)wr_calloc_array((size_t)cur.nv * 3, sizeof(double));
-    wsum = (double *)wr_calloc_array((size_t)cur.nv, sizeof(double));
-    nrm = (double *)wr_calloc_array((size_t)cur.nv * 3, sizeof(double));
-    disp = (double *)wr_alloc_array((size_t)cur.nv * 3, sizeof(double));
-    vphi = (double *)wr_calloc_array((size_t)cur.nv, sizeof(double));
-    vwr = (uint8_t *)wr_calloc_array((size_t)cur.nv, sizeof(uint8_t));
-    if (!grad || !wsum || !nrm || !disp || !vphi || !vwr) {
-        st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf upsample: out of memory");
-        goto done;
-    }
-    for (f = 0; f < cur.nf; ++f) {
-        const int32_t *fv = cur.faces + 3 * f;
-        wr_vec3 P0 = wr_v3_load(cur.pos + 3 * fv[0]), P1 = wr_v3_load(cur.pos + 3 * fv[1]),
-                P2 = wr_v3_load(cur.pos + 3 * fv[2]);
-        wr_vec3 N = wr_v3_cross(wr_v3_sub(P1, P0), wr_v3_sub(P2, P0));
+    for (f = 0; f < cur->nf; ++f) {
+        const int32_t *fv = cur->faces + 3 * f;
+        wr_vec3 P0 = wr_v3_load(cur->pos + 3 * fv[0]), P1 = wr_v3_load(cur->pos + 3 * fv[1]),
+                P2 = wr_v3_load(cur->pos + 3 * fv[2]);
+        wr_vec3 N = wr_v3_cross(wr_v3_sub(P1, P0), wr_v3_sub(P2, P0)), g0, g1, g2, gp;
         double N2 = wr_v3_dot(N, N), A = 0.5 * sqrt(N2);
         for (c = 0; c < 3; ++c) {
             nrm[3 * fv[c]] += N.x;
             nrm[3 * fv[c] + 1] += N.y;
             nrm[3 * fv[c] + 2] += N.z;
         }
-        if (cw[f] || !(N2 > 0.0)) continue;
-        {
-            /* ∇λ_i = N × e_i / |N|², e_i the edge opposite corner i (CCW) */
-            wr_vec3 g0 = wr_v3_scale(wr_v3_cross(N, wr_v3_sub(P2, P1)), 1.0 / N2);
-            wr_vec3 g1 = wr_v3_scale(wr_v3_cross(N, wr_v3_sub(P0, P2)), 1.0 / N2);
-            wr_vec3 g2 = wr_v3_scale(wr_v3_cross(N, wr_v3_sub(P1, P0)), 1.0 / N2);
-            wr_vec3 gp = wr_v3_add(wr_v3_add(wr_v3_scale(g0, cphi[3 * f]), wr_v3_scale(g1, cphi[3 * f + 1])),
-                                   wr_v3_scale(g2, cphi[3 * f + 2]));
-            for (c = 0; c < 3; ++c) {
-                grad[3 * fv[c]] += A * gp.x;
-                grad[3 * fv[c] + 1] += A * gp.y;
-                grad[3 * fv[c] + 2] += A * gp.z;
-                wsum[fv[c]] += A;
-                if (!vwr[fv[c]]) {
-                    vwr[fv[c]] = 1;
-                    vphi[fv[c]] = cphi[3 * f + c]; /* any sheet: only cos φ, sin 2φ are used */
-                }
+        if (U->cw[f] || !(N2 > 0.0)) continue;
+        /* ∇λ_i = N × e_i / |N|², e_i the edge opposite corner i (CCW) */
+        g0 = wr_v3_scale(wr_v3_cross(N, wr_v3_sub(P2, P1)), 1.0 / N2);
+        g1 = wr_v3_scale(wr_v3_cross(N, wr_v3_sub(P0, P2)), 1.0 / N2);
+        g2 = wr_v3_scale(wr_v3_cross(N, wr_v3_sub(P1, P0)), 1.0 / N2);
+        gp = wr_v3_add(wr_v3_add(wr_v3_scale(g0, cphi[3 * f]), wr_v3_scale(g1, cphi[3 * f + 1])),
+                       wr_v3_scale(g2, cphi[3 * f + 2]));
+        for (c = 0; c < 3; ++c) {
+            grad[3 * fv[c]] += A * gp.x;
+            grad[3 * fv[c] + 1] += A * gp.y;
+            grad[3 * fv[c] + 2] += A * gp.z;
+            wsum[fv[c]] += A;
+            if (!vwr[fv[c]]) {
+                vwr[fv[c]] = 1;
+                vphi[fv[c]] = cphi[3 * f + c]; /* any sheet: only cos φ, sin 2φ are used */
             }
         }
     }
-    for (v = 0; v < cur.nv; ++v) {
-        wr_vec3 n = wr_v3_normalized(wr_v3_load(nrm + 3 * v)), g = wr_v3(0.0, 0.0, 0.0);
-        double av = ca[v], ph = vphi[v];
-        wr_vec3 d;
+    for (v = 0; v < cur->nv; ++v) {
+        wr_vec3 n = wr_v3_normalized(wr_v3_load(nrm + 3 * v)), g = wr_v3(0.0, 0.0, 0.0), d;
+        double av = vwr[v] ? U->ca[v] : 0.0, ph = vphi[v];
         if (wsum[v] > 0.0) g = wr_v3_scale(wr_v3_load(grad + 3 * v), 1.0 / wsum[v]);
-        if (!vwr[v]) av = 0.0;
         d = wr_v3_scale(n, av * cos(ph));
         if (inplane) d = wr_v3_add(d, wr_v3_scale(g, av * av / 8.0 * sin(2.0 * ph)));
-        disp[3 * v] = cur.pos[3 * v] + d.x;
-        disp[3 * v + 1] = cur.pos[3 * v + 1] + d.y;
-        disp[3 * v + 2] = cur.pos[3 * v + 2] + d.z;
-    }
-    st = wr_mesh_create(out, cur.nv, disp, cur.rest, cur.nf, cur.faces, diag);
-    if (!st && out_a) {
-        *out_a = ca;
-        ca = NULL;
+        disp[3 * v] = cur->pos[3 * v] + d.x;
+        disp[3 * v + 1] = cur->pos[3 * v + 1] + d.y;
+        disp[3 * v + 2] = cur->pos[3 * v + 2] + d.z;
     }
 done:
-    wr_mesh_free(&cur);
-    wr_free(ca);
-    wr_free(cphi);
-    wr_free(cw);
-    wr_free(fvals);
-    wr_free(vals);
-    wr_free(fphi);
-    wr_free(fw);
-    wr_free(ffaces);
     wr_free(grad);
     wr_free(wsum);
     wr_free(nrm);
-    wr_free(disp);
     wr_free(vphi);
     wr_free(vwr);
+    return st;
+}
+
+WRDEF wr_status wr_wf_upsample(const wr_wf *wf, const double *a, const double *phi, const wr_wf_upsample_desc *desc,
+                               wr_mesh *out, double **out_a, wr_diag *diag) {
+    int32_t levels = desc && desc->levels > 0 ? desc->levels : 2, lvl;
+    int inplane = !(desc && desc->no_inplane);
+    const wr_mesh *src;
+    double *disp = NULL;
+    wr__wf_up U;
+    wr_status st;
+    if (out) memset(out, 0, sizeof *out);
+    if (out_a) *out_a = NULL;
+    if (!wf || !a || !phi || !out) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "wf upsample: NULL argument");
+    memset(&U, 0, sizeof U);
+    U.mode = desc ? desc->boundary : WR_WF_LOOP_BOUNDARY_FIXED;
+    if (levels > 8)
+        return wr_fail(diag, WR_ERR_BUDGET, -1, "wf upsample: %d levels (> 8) would need 4^%d faces", (int)levels,
+                       (int)levels);
+    if (U.mode != WR_WF_LOOP_BOUNDARY_FIXED && U.mode != WR_WF_LOOP_BOUNDARY_SPLINE)
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "wf upsample: unknown boundary mode %d", U.mode);
+    src = wf->mesh;
+    U.has_rest = src->rest != NULL;
+    U.ncomp = 3 + (U.has_rest ? 2 : 0) + 1;
+    /* level 0: the coarse mesh with the base positions */
+    st = wr_mesh_create(&U.cur, src->nv, wf->base, src->rest, src->nf, src->faces, diag);
+    if (st) return st;
+    U.ca = (double *)wr_alloc_array((size_t)src->nv, sizeof(double));
+    U.cphi = (double *)wr_alloc_array((size_t)src->nf * 3, sizeof(double));
+    U.cw = (uint8_t *)wr_alloc_array((size_t)src->nf, sizeof(uint8_t));
+    if (!U.ca || !U.cphi || !U.cw) {
+        st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf upsample: out of memory");
+    } else {
+        memcpy(U.ca, a, sizeof(double) * (size_t)src->nv);
+        memcpy(U.cphi, phi, sizeof(double) * 3 * (size_t)src->nf);
+        memcpy(U.cw, wf->wfree, (size_t)src->nf);
+    }
+    for (lvl = 0; lvl < levels && !st; ++lvl) st = wr__wf_up_level(&U, diag);
+    if (!st) {
+        disp = (double *)wr_alloc_array((size_t)U.cur.nv * 3, sizeof(double));
+        if (!disp) st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf upsample: out of memory");
+    }
+    if (!st) st = wr__wf_up_displace(&U, inplane, disp, diag);
+    if (!st) st = wr_mesh_create(out, U.cur.nv, disp, U.cur.rest, U.cur.nf, U.cur.faces, diag);
+    if (!st && out_a) {
+        *out_a = U.ca;
+        U.ca = NULL;
+    }
+    wr_free(disp);
+    wr_mesh_free(&U.cur);
+    wr_free(U.ca);
+    wr_free(U.cphi);
+    wr_free(U.cw);
     return st;
 }
 
@@ -2443,10 +2612,12 @@ static void wr__wf_sqp_tox(const wr_wf *wf, const wr__wf_basis *B, const int32_t
  * curvature of the a²|dφ|² terms alone: negative where the base stress is compressive along dφ
  * (Eq. 21). Vertices at 0 whose incident faces average a negative value form the escape profile
  * p_v = -avg / max(-avg); trial points a = s·a_ref·p_v for s = 0.1, 0.01, ..., 1e-6 (ω unchanged),
- * the first that lowers E is taken. hd: scratch of na. Returns 1 with the point in yt, E in *Enew. */
+ * the first that lowers E is taken. "At 0" is a <= abound (0: exactly at the bound; the flat-stop
+ * test of wr__wf_sqp_flat passes ε a_ref). hd: scratch of na. Returns 1 with the point in yt, E in
+ * *Enew. */
 static int wr__wf_escape(const wr_wf *wf, const wr__wf_basis *B, const int32_t *avar, int32_t na, const double *y,
-                         const double *H, double aref, double E, double *yt, double *xa, double *xo, double *hd,
-                         double *cnt, double *Enew) {
+                         const double *H, double aref, double abound, double E, double *yt, double *xa, double *xo,
+                         double *hd, double *cnt, double *Enew) {
     int32_t f, i, v, n = na + B->ncol;
     double pmax = 0.0, s;
     for (i = 0; i < na; ++i) hd[i] = cnt[i] = 0.0;
@@ -2465,7 +2636,7 @@ static int wr__wf_escape(const wr_wf *wf, const wr__wf_basis *B, const int32_t *
         }
     }
     for (i = 0; i < na; ++i) {
-        hd[i] = (y[i] == 0.0 && cnt[i] > 0.0 && hd[i] < 0.0) ? -hd[i] / cnt[i] : 0.0;
+        hd[i] = (y[i] <= abound && cnt[i] > 0.0 && hd[i] < 0.0) ? -hd[i] / cnt[i] : 0.0;
         pmax = fmax(pmax, hd[i]);
     }
     if (!(pmax > 0.0)) return 0;
@@ -2517,528 +2688,669 @@ static double wr__wf_kkt(const double *y, const double *g, int32_t n, int32_t na
     return kkt;
 }
 
-WRDEF wr_status wr_wf_solve(const wr_wf *wf, const wr_wf_solve_desc *desc, double *a, double *omega,
-                            wr_wf_solve_stats *stats, wr_diag *diag) {
+/* The SQP's state, alive across its stages (wr_wf_solve below reads as App. E.3's loop over them).
+ * Unknowns y = (free amplitudes, closed-form coordinates z): y[0..na) are the amplitudes of the
+ * vertices with avar[v] >= 0, y[na..n) the coordinates of the null-space basis B (ω = Z z). */
+typedef struct wr__wf_sqp {
+    const wr_wf *wf;
     wr_wf_solve_desc D;
     wr_wf_solve_stats S;
     wr__wf_basis B;
-    wr_triplets T;
+    int32_t *avar, na, n;
+    uint8_t *zero, *active;
+    double *y, *yt, *d, *g, *rhs;   /* n each: iterate, trial, step, reduced gradient, right-hand side */
+    double *xa, *xo, *gx, *H;       /* full space: a (nv), ω (ne), ∇E (nv + ne), face Hessians (nf × 36) */
+    /* per-face reduction ω-local DOFs → reduced unknowns: face f's columns fcols[fstart[f] ..], the
+     * first fused[f] of them used, P (6 × used) column-major in Pm; kpos[kpstart[f] ..] the positions
+     * of its reduced block in K.val (the pattern is fixed for the whole solve) */
+    int32_t *fstart, *fcols, *fused, *kpstart, *kpos;
+    double *Pm;
     wr_csr K;
     wr_spd_solver SV;
-    wr_spd_desc sd;
-    int32_t *avar = NULL, *fstart = NULL, *fcols = NULL, *fused = NULL, *kpstart = NULL, *kpos = NULL, na = 0, n = 0, v, f,
-            i, it;
-    double *Pm = NULL, *y = NULL, *yt = NULL, *d = NULL, *g = NULL, *gx = NULL, *H = NULL, *xa = NULL, *xo = NULL,
-           *rhs = NULL, *kmodel = NULL, *mdiag = NULL, *ks = NULL, *ainit = NULL;
-    double aref = 1.0, eref = 1.0, mu, nu_up = 2.0, greg = 0.0;
-    int have_grad = 0, fresh_hess = 0, hess_true = 0;
-    double Et0 = 0.0, ebase = 0.0;
-    int rebase_kkt = 0;
-    uint8_t *zero = NULL, *active = NULL;
-    double t0 = wr_time_seconds(), E = 0.0;
-    wr_status st = WR_OK;
-    int have_solver = 0;
-    memset(&S, 0, sizeof S);
-    S.switch_iteration = -1;
-    memset(&B, 0, sizeof B);
-    memset(&T, 0, sizeof T);
-    memset(&K, 0, sizeof K);
-    memset(&SV, 0, sizeof SV);
-    if (stats) memset(stats, 0, sizeof *stats);
-    if (!wf || !a || !omega) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "wf solve: NULL argument");
+    int have_solver;
+    double *kmodel, *mdiag, *ks, *ainit; /* undamped model values (nnz), damping diagonal, K·s, scratch */
+    double aref, eref, greg, ebase;      /* scales (ON THE SQP SOLVER), regulariser weight, constant part of E */
+    double mu, nu_up;                    /* Marquardt damping and its growth factor (Nielsen 1999) */
+    double E;                            /* objective at y (E_wf without its constant part + regulariser) */
+    int hess_true;
+} wr__wf_sqp;
+
+/* One Levenberg–Marquardt trial sequence's outcome. */
+typedef struct wr__wf_trial {
+    int accepted, roundoff;
+    int32_t nact, nfail;
+    double Et, rho;
+} wr__wf_trial;
+
+static void wr__wf_sqp_free(wr__wf_sqp *Q) {
+    if (Q->have_solver) wr_spd_solver_free(&Q->SV);
+    wr_csr_free(&Q->K);
+    wr__wf_basis_free(&Q->B);
+    wr_free(Q->avar);
+    wr_free(Q->zero);
+    wr_free(Q->fstart);
+    wr_free(Q->fcols);
+    wr_free(Q->fused);
+    wr_free(Q->kpstart);
+    wr_free(Q->kpos);
+    wr_free(Q->Pm);
+    wr_free(Q->y);
+    wr_free(Q->yt);
+    wr_free(Q->d);
+    wr_free(Q->g);
+    wr_free(Q->gx);
+    wr_free(Q->H);
+    wr_free(Q->xa);
+    wr_free(Q->xo);
+    wr_free(Q->rhs);
+    wr_free(Q->active);
+    wr_free(Q->kmodel);
+    wr_free(Q->mdiag);
+    wr_free(Q->ks);
+    wr_free(Q->ainit);
+}
+
+/* Defaults of wr_wf_solve_desc (the comment above the struct lists them). */
+static wr_status wr__wf_sqp_defaults(wr_wf_solve_desc *D, const wr_wf_solve_desc *desc, wr_diag *diag) {
     if (desc)
-        D = *desc;
+        *D = *desc;
     else
-        memset(&D, 0, sizeof D);
-    if (D.max_iter <= 0) D.max_iter = WR__WF_MAX_ITER;
-    if (!(D.tol_energy > 0.0)) D.tol_energy = WR__WF_TOL_ENERGY;
-    if (!(D.tol_kkt > 0.0)) D.tol_kkt = WR__WF_TOL_KKT;
-    if (!(D.tol_step > 0.0)) D.tol_step = WR__WF_TOL_STEP;
-    if (!(D.hessian_switch > 0.0)) D.hessian_switch = WR__WF_HESSIAN_SWITCH;
-    if ((int)D.hessian < 0 || (int)D.hessian > (int)WR_WF_HESSIAN_TRUE)
-        return wr_fail(diag, WR_ERR_INVALID_ARG, (int32_t)D.hessian, "wf solve: unknown Hessian strategy %d", (int)D.hessian);
-    st = wr__wf_basis_build(wf, &B, diag);
+        memset(D, 0, sizeof *D);
+    if (D->max_iter <= 0) D->max_iter = WR__WF_MAX_ITER;
+    if (!(D->tol_energy > 0.0)) D->tol_energy = WR__WF_TOL_ENERGY;
+    if (!(D->tol_kkt > 0.0)) D->tol_kkt = WR__WF_TOL_KKT;
+    if (!(D->tol_step > 0.0)) D->tol_step = WR__WF_TOL_STEP;
+    if (!(D->hessian_switch > 0.0)) D->hessian_switch = WR__WF_HESSIAN_SWITCH;
+    if ((int)D->hessian < 0 || (int)D->hessian > (int)WR_WF_HESSIAN_TRUE)
+        return wr_fail(diag, WR_ERR_INVALID_ARG, (int32_t)D->hessian, "wf solve: unknown Hessian strategy %d",
+                       (int)D->hessian);
+    return WR_OK;
+}
+
+/* Unknowns and the feasible start: a clipped to >= 0 (0 on W vertices and clamps), ω projected to
+ * dω = 0 (least squares in the closed-form coordinates). */
+static wr_status wr__wf_sqp_start(wr__wf_sqp *Q, const double *a, const double *omega, wr_diag *diag) {
+    const wr_wf *wf = Q->wf;
+    wr_status st = wr__wf_basis_build(wf, &Q->B, diag);
+    int32_t v, n;
     if (st) return st;
-    avar = (int32_t *)wr_alloc_array((size_t)wf->nv, sizeof(int32_t));
-    zero = (uint8_t *)wr_alloc_array((size_t)wf->nv, sizeof(uint8_t));
-    fstart = (int32_t *)wr_calloc_array((size_t)wf->nf + 1, sizeof(int32_t));
-    xa = (double *)wr_alloc_array((size_t)wf->nv, sizeof(double));
-    xo = (double *)wr_alloc_array((size_t)wf->ne, sizeof(double));
-    gx = (double *)wr_alloc_array((size_t)(wf->nv + wf->ne), sizeof(double));
-    H = (double *)wr_alloc_array((size_t)wf->nf * 36, sizeof(double));
-    if (!avar || !zero || !fstart || !xa || !xo || !gx || !H) {
-        st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf solve: out of memory");
-        goto done;
-    }
-    wr__wf_zero_vertices(wf, zero);
-    for (v = 0; v < wf->nv; ++v) avar[v] = zero[v] ? -1 : na++;
-    n = na + B.ncol;
-    S.n_vars = n;
-    S.n_generators = B.ngen;
-    y = (double *)wr_calloc_array((size_t)n + 1, sizeof(double));
-    yt = (double *)wr_calloc_array((size_t)n + 1, sizeof(double));
-    d = (double *)wr_calloc_array((size_t)n + 1, sizeof(double));
-    g = (double *)wr_calloc_array((size_t)n + 1, sizeof(double));
-    rhs = (double *)wr_calloc_array((size_t)n + 1, sizeof(double));
-    active = (uint8_t *)wr_calloc_array((size_t)n + 1, sizeof(uint8_t));
-    if (!y || !yt || !d || !g || !rhs || !active) {
-        st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf solve: out of memory");
-        goto done;
-    }
-    /* feasible start: a clipped to >= 0 (0 on W vertices), ω projected to dω = 0 */
+    Q->avar = (int32_t *)wr_alloc_array((size_t)wf->nv, sizeof(int32_t));
+    Q->zero = (uint8_t *)wr_alloc_array((size_t)wf->nv, sizeof(uint8_t));
+    Q->fstart = (int32_t *)wr_calloc_array((size_t)wf->nf + 1, sizeof(int32_t));
+    Q->xa = (double *)wr_alloc_array((size_t)wf->nv, sizeof(double));
+    Q->xo = (double *)wr_alloc_array((size_t)wf->ne, sizeof(double));
+    Q->gx = (double *)wr_alloc_array((size_t)(wf->nv + wf->ne), sizeof(double));
+    Q->H = (double *)wr_alloc_array((size_t)wf->nf * 36, sizeof(double));
+    if (!Q->avar || !Q->zero || !Q->fstart || !Q->xa || !Q->xo || !Q->gx || !Q->H)
+        return wr_fail(diag, WR_ERR_NOMEM, -1, "wf solve: out of memory");
+    wr__wf_zero_vertices(wf, Q->zero);
+    for (v = 0; v < wf->nv; ++v) Q->avar[v] = Q->zero[v] ? -1 : Q->na++;
+    n = Q->n = Q->na + Q->B.ncol;
+    Q->S.n_vars = n;
+    Q->S.n_generators = Q->B.ngen;
+    Q->y = (double *)wr_calloc_array((size_t)n + 1, sizeof(double));
+    Q->yt = (double *)wr_calloc_array((size_t)n + 1, sizeof(double));
+    Q->d = (double *)wr_calloc_array((size_t)n + 1, sizeof(double));
+    Q->g = (double *)wr_calloc_array((size_t)n + 1, sizeof(double));
+    Q->rhs = (double *)wr_calloc_array((size_t)n + 1, sizeof(double));
+    Q->active = (uint8_t *)wr_calloc_array((size_t)n + 1, sizeof(uint8_t));
+    if (!Q->y || !Q->yt || !Q->d || !Q->g || !Q->rhs || !Q->active)
+        return wr_fail(diag, WR_ERR_NOMEM, -1, "wf solve: out of memory");
     for (v = 0; v < wf->nv; ++v)
-        if (avar[v] >= 0) y[avar[v]] = a[v] > 0.0 && isfinite(a[v]) ? a[v] : 0.0;
-    for (i = 0; i < wf->ne; ++i) xo[i] = omega[i];
-    st = wr__wf_lsq_closed(&B, omega, y + na, D.solver, diag);
-    if (st) goto done;
-    /* per-face maps from the 6 local DOFs to reduced unknowns: P (6 × m_f) */
-    {
-        int32_t total = 0, cap = 0;
-        for (f = 0; f < wf->nf; ++f) {
-            int k;
-            fstart[f] = total;
-            if (wf->wfree[f]) continue;
-            for (k = 0; k < 3; ++k) {
-                int32_t e = wf->mesh->face_edges[3 * f + k];
-                total += 1 + (B.zstart[e + 1] - B.zstart[e]);
-            }
-        }
-        fstart[wf->nf] = total;
-        cap = total > 0 ? total : 1;
-        fcols = (int32_t *)wr_alloc_array((size_t)cap, sizeof(int32_t));
-        Pm = (double *)wr_calloc_array((size_t)cap * 6, sizeof(double));
-        if (!fcols || !Pm) {
-            st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf solve: out of memory");
-            goto done;
-        }
-        for (f = 0; f < wf->nf; ++f) {
-            int32_t idx[6], mcount = 0, s0 = fstart[f], t;
-            double sg[6];
-            int k;
-            if (wf->wfree[f]) {
-                fstart[f + 1] = fstart[f] > fstart[f + 1] ? fstart[f] : fstart[f + 1];
-                continue;
-            }
-            wr_wf_face_dofs(wf, f, idx, sg);
-            /* unique columns: linear search is fine, m_f is small */
-            for (k = 0; k < 6; ++k) {
-                int32_t cstart = k < 3 ? 0 : B.zstart[idx[k] - wf->nv], cend = k < 3 ? 1 : B.zstart[idx[k] - wf->nv + 1];
-                for (t = cstart; t < cend; ++t) {
-                    int32_t col = k < 3 ? avar[idx[k]] : na + B.zcol[t], q;
-                    /* face_hess is already in global ω orientation (wr_wf_energy applies the
-                     * face_edge_sign), so P maps straight to global ω: no sign here. */
-                    double val = k < 3 ? 1.0 : B.zval[t];
-                    if (col < 0) continue;
-                    for (q = 0; q < mcount; ++q)
-                        if (fcols[s0 + q] == col) break;
-                    if (q == mcount) fcols[s0 + mcount++] = col;
-                    Pm[6 * (size_t)s0 + 6 * (size_t)q + k] += val; /* column-major per face: P[q][k] */
-                }
-            }
-            /* shrink this face's range to the columns used */
-            if (f + 1 <= wf->nf) {
-                /* keep fstart monotone: record the used count by marking the rest with -1 */
-                for (t = mcount; t < fstart[f + 1] - s0; ++t) fcols[s0 + t] = -1;
-            }
+        if (Q->avar[v] >= 0) Q->y[Q->avar[v]] = a[v] > 0.0 && isfinite(a[v]) ? a[v] : 0.0;
+    for (v = 0; v < wf->ne; ++v) Q->xo[v] = omega[v];
+    return wr__wf_lsq_closed(&Q->B, omega, Q->y + Q->na, Q->D.solver, diag);
+}
+
+/* Per face, the map P (6 local DOFs: 3 amplitudes, 3 edge ω → the face's reduced unknowns), with
+ * the face's unique columns in fcols; unused tail slots are marked -1 (fstart stays monotone). */
+static wr_status wr__wf_sqp_face_maps(wr__wf_sqp *Q, wr_diag *diag) {
+    const wr_wf *wf = Q->wf;
+    const wr__wf_basis *B = &Q->B;
+    int32_t total = 0, cap, f;
+    for (f = 0; f < wf->nf; ++f) {
+        int k;
+        Q->fstart[f] = total;
+        if (wf->wfree[f]) continue;
+        for (k = 0; k < 3; ++k) {
+            int32_t e = wf->mesh->face_edges[3 * f + k];
+            total += 1 + (B->zstart[e + 1] - B->zstart[e]);
         }
     }
-    /* sparsity pattern once: all face blocks + the diagonal */
+    Q->fstart[wf->nf] = total;
+    cap = total > 0 ? total : 1;
+    Q->fcols = (int32_t *)wr_alloc_array((size_t)cap, sizeof(int32_t));
+    Q->Pm = (double *)wr_calloc_array((size_t)cap * 6, sizeof(double));
+    if (!Q->fcols || !Q->Pm) return wr_fail(diag, WR_ERR_NOMEM, -1, "wf solve: out of memory");
+    for (f = 0; f < wf->nf; ++f) {
+        int32_t idx[6], mcount = 0, s0 = Q->fstart[f], t;
+        double sg[6];
+        int k;
+        if (wf->wfree[f]) {
+            Q->fstart[f + 1] = Q->fstart[f] > Q->fstart[f + 1] ? Q->fstart[f] : Q->fstart[f + 1];
+            continue;
+        }
+        wr_wf_face_dofs(wf, f, idx, sg);
+        /* unique columns: linear search is fine, m_f is small */
+        for (k = 0; k < 6; ++k) {
+            int32_t cstart = k < 3 ? 0 : B->zstart[idx[k] - wf->nv], cend = k < 3 ? 1 : B->zstart[idx[k] - wf->nv + 1];
+            for (t = cstart; t < cend; ++t) {
+                int32_t col = k < 3 ? Q->avar[idx[k]] : Q->na + B->zcol[t], q;
+                /* face_hess is already in global ω orientation (wr_wf_energy applies the
+                 * face_edge_sign), so P maps straight to global ω: no sign here. */
+                double val = k < 3 ? 1.0 : B->zval[t];
+                if (col < 0) continue;
+                for (q = 0; q < mcount; ++q)
+                    if (Q->fcols[s0 + q] == col) break;
+                if (q == mcount) Q->fcols[s0 + mcount++] = col;
+                Q->Pm[6 * (size_t)s0 + 6 * (size_t)q + k] += val; /* column-major per face: P[q][k] */
+            }
+        }
+        for (t = mcount; t < Q->fstart[f + 1] - s0; ++t) Q->fcols[s0 + t] = -1;
+    }
+    return WR_OK;
+}
+
+/* The reduced Hessian's sparsity pattern (all face blocks + the diagonal), its solver, and per face
+ * the positions of its block entries in K.val, so each assembly adds straight into K.val (no
+ * searches, no allocation). */
+static wr_status wr__wf_sqp_pattern(wr__wf_sqp *Q, wr_diag *diag) {
+    const wr_wf *wf = Q->wf;
+    wr_triplets T;
+    wr_spd_desc sd;
+    int64_t tot = 0;
+    int32_t f, n = Q->n;
+    wr_status st;
+    memset(&T, 0, sizeof T);
     st = wr_triplets_create(&T, n, (int64_t)n + 16, diag);
     for (f = 0; f < wf->nf && !st; ++f) {
-        int32_t s0 = fstart[f], m = fstart[f + 1] - s0, r, c;
+        int32_t s0 = Q->fstart[f], m = Q->fstart[f + 1] - s0, r, c;
         if (wf->wfree[f]) continue;
         for (r = 0; r < m && !st; ++r)
             for (c = 0; c < m && !st; ++c)
-                if (fcols[s0 + r] >= 0 && fcols[s0 + c] >= 0) st = wr_triplets_add(&T, fcols[s0 + r], fcols[s0 + c], 0.0, diag);
+                if (Q->fcols[s0 + r] >= 0 && Q->fcols[s0 + c] >= 0)
+                    st = wr_triplets_add(&T, Q->fcols[s0 + r], Q->fcols[s0 + c], 0.0, diag);
     }
-    if (!st) st = wr_csr_from_triplets(&K, &T, diag);
+    if (!st) st = wr_csr_from_triplets(&Q->K, &T, diag);
     wr_triplets_free(&T);
-    if (st) goto done;
+    if (st) return st;
     memset(&sd, 0, sizeof sd);
-    sd.method = D.solver;
-    st = wr_spd_solver_create(&SV, &K, &sd, diag);
-    if (st) goto done;
-    have_solver = 1;
-    kmodel = (double *)wr_alloc_array((size_t)(K.nnz > 0 ? K.nnz : 1), sizeof(double));
-    mdiag = (double *)wr_alloc_array((size_t)n + 1, sizeof(double));
-    ks = (double *)wr_alloc_array((size_t)n + 1, sizeof(double));
-    if (!kmodel || !mdiag || !ks) {
-        st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf solve: out of memory");
-        goto done;
+    sd.method = Q->D.solver;
+    st = wr_spd_solver_create(&Q->SV, &Q->K, &sd, diag);
+    if (st) return st;
+    Q->have_solver = 1;
+    Q->kmodel = (double *)wr_alloc_array((size_t)(Q->K.nnz > 0 ? Q->K.nnz : 1), sizeof(double));
+    Q->mdiag = (double *)wr_alloc_array((size_t)n + 1, sizeof(double));
+    Q->ks = (double *)wr_alloc_array((size_t)n + 1, sizeof(double));
+    Q->fused = (int32_t *)wr_calloc_array((size_t)wf->nf, sizeof(int32_t));
+    Q->kpstart = (int32_t *)wr_calloc_array((size_t)wf->nf + 1, sizeof(int32_t));
+    if (!Q->kmodel || !Q->mdiag || !Q->ks || !Q->fused || !Q->kpstart)
+        return wr_fail(diag, WR_ERR_NOMEM, -1, "wf solve: out of memory");
+    for (f = 0; f < wf->nf; ++f) {
+        int32_t s0 = Q->fstart[f], m = Q->fstart[f + 1] - s0, u = 0;
+        Q->kpstart[f] = (int32_t)tot;
+        if (wf->wfree[f]) continue;
+        while (u < m && Q->fcols[s0 + u] >= 0) ++u; /* used columns come first (wr__wf_sqp_face_maps) */
+        if (u > WR_DENSE_MAX)
+            return wr_fail(diag, WR_ERR_BUDGET, f, "wf solve: face %d couples %d unknowns (> %d)", (int)f, (int)u,
+                           WR_DENSE_MAX);
+        Q->fused[f] = u;
+        tot += (int64_t)u * u;
+        if (tot > INT32_MAX) return wr_fail(diag, WR_ERR_BUDGET, f, "wf solve: face blocks exceed 2^31 entries");
     }
-    /* The pattern is fixed for the whole solve: per face, the used column count and the position in
-     * K.val of every entry of its reduced block, so each assembly adds straight into K.val (no
-     * searches, no allocation). */
-    fused = (int32_t *)wr_calloc_array((size_t)wf->nf, sizeof(int32_t));
-    kpstart = (int32_t *)wr_calloc_array((size_t)wf->nf + 1, sizeof(int32_t));
-    if (!fused || !kpstart) {
-        st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf solve: out of memory");
-        goto done;
-    }
-    {
-        int64_t tot = 0;
-        for (f = 0; f < wf->nf; ++f) {
-            int32_t s0 = fstart[f], m = fstart[f + 1] - s0, u = 0;
-            kpstart[f] = (int32_t)tot;
-            if (wf->wfree[f]) continue;
-            while (u < m && fcols[s0 + u] >= 0) ++u; /* used columns come first (see above) */
-            if (u > WR_DENSE_MAX) {
-                st = wr_fail(diag, WR_ERR_BUDGET, f, "wf solve: face %d couples %d unknowns (> %d)", (int)f, (int)u,
-                             WR_DENSE_MAX);
-                goto done;
+    Q->kpstart[wf->nf] = (int32_t)tot;
+    Q->kpos = (int32_t *)wr_alloc_array((size_t)(tot > 0 ? tot : 1), sizeof(int32_t));
+    if (!Q->kpos) return wr_fail(diag, WR_ERR_NOMEM, -1, "wf solve: out of memory");
+    for (f = 0; f < wf->nf; ++f) {
+        int32_t s0 = Q->fstart[f], u = Q->fused[f], r, c;
+        for (r = 0; r < u; ++r)
+            for (c = 0; c < u; ++c) {
+                int32_t pk = wr_csr_find(&Q->K, Q->fcols[s0 + r], Q->fcols[s0 + c]);
+                WR_ASSERT(pk >= 0); /* every face block is in the pattern by construction */
+                Q->kpos[Q->kpstart[f] + r * u + c] = pk;
             }
-            fused[f] = u;
-            tot += (int64_t)u * u;
-            if (tot > INT32_MAX) {
-                st = wr_fail(diag, WR_ERR_BUDGET, f, "wf solve: face blocks exceed 2^31 entries");
-                goto done;
+    }
+    return WR_OK;
+}
+
+/* Nondimensionalisation (ON THE SQP SOLVER): amplitudes in units of a_ref = max a at the start (or
+ * a fraction of the bounding-box diagonal when the start is flat). */
+static wr_status wr__wf_sqp_scales(wr__wf_sqp *Q, wr_diag *diag) {
+    const wr_wf *wf = Q->wf;
+    double amax = 0.0, lo[3], hi[3], diam2 = 0.0;
+    int32_t i, v;
+    for (i = 0; i < Q->na; ++i) amax = fmax(amax, Q->y[i]);
+    for (i = 0; i < 3; ++i) lo[i] = hi[i] = wf->base[i];
+    for (v = 0; v < wf->nv; ++v)
+        for (i = 0; i < 3; ++i) {
+            lo[i] = fmin(lo[i], wf->base[3 * v + i]);
+            hi[i] = fmax(hi[i], wf->base[3 * v + i]);
+        }
+    for (i = 0; i < 3; ++i) diam2 += (hi[i] - lo[i]) * (hi[i] - lo[i]);
+    Q->aref = amax > 0.0 ? amax : WR__WF_AREF_FALLBACK * sqrt(diam2);
+    Q->ainit = (double *)wr_alloc_array((size_t)Q->na + 1, sizeof(double));
+    if (!Q->ainit) return wr_fail(diag, WR_ERR_NOMEM, -1, "wf solve: out of memory");
+    return WR_OK;
+}
+
+/* Reduced gradient g = (∂E/∂a on free amplitudes, Zᵀ ∂E/∂ω) from the full-space gradient gx. */
+static void wr__wf_sqp_reduce(const wr__wf_sqp *Q, const double *gx, double *g) {
+    int32_t v;
+    for (v = 0; v < Q->wf->nv; ++v)
+        if (Q->avar[v] >= 0) g[Q->avar[v]] = gx[v];
+    wr__wf_z_applyT(&Q->B, gx + Q->wf->nv, g + Q->na);
+}
+
+/* E, g and the face Hessians at y. The first evaluation also fixes E_ref (|E_wf| at the start), the
+ * constant part of E_wf (reported, not minimised) and the regulariser weight γ. */
+static wr_status wr__wf_sqp_evaluate(wr__wf_sqp *Q, int first, wr_diag *diag) {
+    const wr_wf *wf = Q->wf;
+    wr_status st;
+    wr__wf_sqp_tox(wf, &Q->B, Q->avar, Q->y, Q->na, Q->xa, Q->xo);
+    st = wr__wf_energy_impl(wf, Q->xa, Q->xo, 1, &Q->E, Q->gx, Q->H, NULL, diag);
+    if (st) return st;
+    if (first) {
+        int32_t i, nact_e = 0;
+        double Efull = 0.0;
+        st = wr_wf_energy(wf, Q->xa, Q->xo, &Efull, NULL, NULL, NULL, diag);
+        if (st) return st;
+        Q->ebase = Efull - Q->E;
+        Q->eref = fabs(Efull) > 0.0 ? fabs(Efull) : 1.0;
+        for (i = 0; i < wf->ne; ++i) nact_e += Q->B.eact[i];
+        Q->greg = Q->D.omega_reg > 0.0 && nact_e > 0 ? Q->D.omega_reg * Q->eref / nact_e : 0.0;
+    }
+    Q->E += wr__wf_reg(&Q->B, Q->greg, Q->xo, Q->gx + wf->nv);
+    wr__wf_sqp_reduce(Q, Q->gx, Q->g);
+    return WR_OK;
+}
+
+/* The model Hessian K = Σ_f Pᵀ He P (+ the regulariser's γ ZᵀZ), He the face's true or SPD-projected
+ * block (App. E.3), kept undamped in kmodel. */
+static wr_status wr__wf_sqp_assemble(wr__wf_sqp *Q, wr_diag *diag) {
+    const wr_wf *wf = Q->wf;
+    wr_csr *K = &Q->K;
+    int32_t f, e;
+    wr_csr_zero_values(K);
+    for (f = 0; f < wf->nf; ++f) {
+        int32_t s0 = Q->fstart[f], u = Q->fused[f], r, c, k, l;
+        const int32_t *kp = Q->kpos + Q->kpstart[f];
+        double He[36], HP[6 * WR_DENSE_MAX];
+        if (wf->wfree[f]) continue;
+        memcpy(He, Q->H + 36 * (size_t)f, sizeof He);
+        /* App. E.3 per-face projection; a positive definite block is its own projection, and a
+         * Cholesky attempt settles that far cheaper than the eigen-decomposition */
+        if (!Q->hess_true && !wr__wf_spd6(He)) wr_dense_project_spd(6, He, 0.0);
+        /* reduced block Pᵀ He P: HP = He P first (6 × u), then the upper triangle of Pᵀ HP */
+        for (c = 0; c < u; ++c) {
+            const double *pc = Q->Pm + 6 * (size_t)(s0 + c);
+            for (k = 0; k < 6; ++k) {
+                double t = 0.0;
+                for (l = 0; l < 6; ++l) t += He[6 * k + l] * pc[l];
+                HP[6 * c + k] = t;
             }
         }
-        kpstart[wf->nf] = (int32_t)tot;
-        kpos = (int32_t *)wr_alloc_array((size_t)(tot > 0 ? tot : 1), sizeof(int32_t));
-        if (!kpos) {
-            st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf solve: out of memory");
-            goto done;
+        for (r = 0; r < u; ++r) {
+            const double *pr = Q->Pm + 6 * (size_t)(s0 + r);
+            for (c = r; c < u; ++c) {
+                const double *hc = HP + 6 * c;
+                double t = pr[0] * hc[0] + pr[1] * hc[1] + pr[2] * hc[2] + pr[3] * hc[3] + pr[4] * hc[4] + pr[5] * hc[5];
+                K->val[kp[r * u + c]] += t;
+                if (c != r) K->val[kp[c * u + r]] += t;
+            }
         }
-        for (f = 0; f < wf->nf; ++f) {
-            int32_t s0 = fstart[f], u = fused[f], r, c;
-            for (r = 0; r < u; ++r)
-                for (c = 0; c < u; ++c) {
-                    int32_t pk = wr_csr_find(&K, fcols[s0 + r], fcols[s0 + c]);
-                    WR_ASSERT(pk >= 0); /* every face block is in the pattern by construction */
-                    kpos[kpstart[f] + r * u + c] = pk;
+    }
+    if (Q->greg > 0.0)
+        for (e = 0; e < wf->ne; ++e) {
+            int32_t s0 = Q->B.zstart[e], nz = Q->B.zstart[e + 1] - s0, r, c;
+            if (!Q->B.eact[e]) continue;
+            for (r = 0; r < nz; ++r)
+                for (c = 0; c < nz; ++c) {
+                    wr_status st = wr_csr_add(K, Q->na + Q->B.zcol[s0 + r], Q->na + Q->B.zcol[s0 + c],
+                                              Q->greg * Q->B.zval[s0 + r] * Q->B.zval[s0 + c], diag);
+                    if (st) return st;
                 }
         }
+    memcpy(Q->kmodel, K->val, sizeof(double) * (size_t)K->nnz);
+    return WR_OK;
+}
+
+/* Marquardt damping matrix: |diag| of the model Hessian, floored per block (a, z) so that directions
+ * the energy does not see (ω where a = 0) still get a finite, tiny step. */
+static void wr__wf_sqp_damping(wr__wf_sqp *Q) {
+    double mblock[2] = {0.0, 0.0}, mcount[2] = {0.0, 0.0};
+    int32_t i, na = Q->na;
+    for (i = 0; i < Q->n; ++i) {
+        int32_t p = wr_csr_find(&Q->K, i, i);
+        Q->mdiag[i] = p >= 0 ? fabs(Q->kmodel[p]) : 0.0;
+        mblock[i < na ? 0 : 1] += Q->mdiag[i];
+        mcount[i < na ? 0 : 1] += 1.0;
     }
-    /* Nondimensionalisation (see ON THE SQP SOLVER): amplitudes in units of a_ref, energy in units
-     * of E_ref; closed-form coordinates are already in radians. */
-    {
-        double amax = 0.0, lo[3], hi[3], diam2 = 0.0;
-        for (i = 0; i < na; ++i) amax = fmax(amax, y[i]);
-        for (i = 0; i < 3; ++i) lo[i] = hi[i] = wf->base[i];
-        for (v = 0; v < wf->nv; ++v)
-            for (i = 0; i < 3; ++i) {
-                lo[i] = fmin(lo[i], wf->base[3 * v + i]);
-                hi[i] = fmax(hi[i], wf->base[3 * v + i]);
+    for (i = 0; i < 2; ++i) mblock[i] = mcount[i] > 0.0 && mblock[i] > 0.0 ? mblock[i] / mcount[i] : 1.0;
+    for (i = 0; i < Q->n; ++i) Q->mdiag[i] = fmax(Q->mdiag[i], WR__WF_DAMP_FLOOR * mblock[i < na ? 0 : 1]);
+}
+
+/* Solve (K + μ M) d = -g on the free set of the ε-active set (Bertsekas 1982 projected Newton:
+ * amplitudes within ε of the bound whose scaled gradient pushes them down are held and moved onto
+ * it) and turn d into the projected step yt - y. Returns the factor/solve status. */
+static wr_status wr__wf_sqp_damped_step(wr__wf_sqp *Q, double epsact, int32_t *nact) {
+    wr_csr *K = &Q->K;
+    wr_spd_stats ss;
+    wr_status fs;
+    double t1 = wr_time_seconds();
+    int32_t i, n = Q->n;
+    *nact = 0;
+    for (i = 0; i < n; ++i) {
+        Q->active[i] = (uint8_t)(i < Q->na && (Q->y[i] <= 0.0 || Q->y[i] / Q->aref <= epsact) && Q->g[i] > 0.0);
+        *nact += Q->active[i];
+    }
+    memcpy(K->val, Q->kmodel, sizeof(double) * (size_t)K->nnz);
+    for (i = 0; i < n; ++i) {
+        int32_t t;
+        for (t = K->rowptr[i]; t < K->rowptr[i + 1]; ++t) {
+            if (Q->active[i] || Q->active[K->col[t]])
+                K->val[t] = (K->col[t] == i) ? 1.0 : 0.0;
+            else if (K->col[t] == i)
+                K->val[t] += Q->mu * Q->mdiag[i];
+        }
+        Q->rhs[i] = Q->active[i] ? 0.0 : -Q->g[i];
+        Q->d[i] = 0.0;
+    }
+    fs = wr_spd_solver_factor(&Q->SV, K, NULL);
+    if (!fs) fs = wr_spd_solver_solve(&Q->SV, K, Q->rhs, Q->d, &ss, NULL);
+    Q->S.n_factorizations++;
+    Q->S.seconds_solve += wr_time_seconds() - t1;
+    if (fs) return fs;
+    for (i = 0; i < n; ++i) {
+        if (Q->active[i]) Q->d[i] = -Q->y[i]; /* onto the bound */
+        Q->yt[i] = Q->y[i] + Q->d[i];
+        if (i < Q->na && Q->yt[i] < 0.0) Q->yt[i] = 0.0;
+        Q->d[i] = Q->yt[i] - Q->y[i]; /* the projected step s */
+    }
+    return WR_OK;
+}
+
+/* Model decrease of the projected step s = d: -(gᵀs + ½ sᵀ K s) with the undamped model K. */
+static double wr__wf_sqp_predicted(wr__wf_sqp *Q) {
+    const wr_csr *K = &Q->K;
+    double pred = 0.0;
+    int32_t i;
+    for (i = 0; i < Q->n; ++i) {
+        int32_t t;
+        double r = 0.0;
+        for (t = K->rowptr[i]; t < K->rowptr[i + 1]; ++t) r += Q->kmodel[t] * Q->d[K->col[t]];
+        Q->ks[i] = r;
+        pred -= Q->d[i] * (Q->g[i] + 0.5 * r);
+    }
+    return pred;
+}
+
+/* Levenberg–Marquardt trust region (Nielsen 1999): damped steps until one is accepted on sufficient
+ * actual/predicted decrease ρ, adapting μ. A step whose predicted decrease is below E's round-off
+ * is judged by the stationarity residual instead (out->roundoff when it does not lower it). */
+static wr_status wr__wf_sqp_trust_region(wr__wf_sqp *Q, double kkt, wr__wf_trial *out, wr_diag *diag) {
+    const wr_wf *wf = Q->wf;
+    double epsact = WR__WF_EPS_ACTIVE;
+    memset(out, 0, sizeof *out);
+    for (;;) {
+        double pred;
+        wr_status fs = wr__wf_sqp_damped_step(Q, epsact, &out->nact);
+        if (fs) {
+            if (fs != WR_ERR_NOT_SPD && fs != WR_ERR_NOT_CONVERGED)
+                return wr_fail(diag, fs, -1, "wf solve: linear solve failed (%s)", wr_status_string(fs));
+            Q->mu = fmax(WR__WF_MU_MIN, Q->mu) * WR__WF_MU_UP;
+            if (Q->mu > WR__WF_MU_MAX) return WR_OK;
+            continue;
+        }
+        pred = wr__wf_sqp_predicted(Q);
+        wr__wf_sqp_tox(wf, &Q->B, Q->avar, Q->yt, Q->na, Q->xa, Q->xo);
+        fs = wr__wf_energy_impl(wf, Q->xa, Q->xo, 1, &out->Et, NULL, NULL, NULL, NULL);
+        out->Et += wr__wf_reg(&Q->B, Q->greg, Q->xo, NULL);
+        out->rho = (fs == WR_OK && pred > 0.0) ? (Q->E - out->Et) / pred : -1.0;
+        /* the model promises less than the energy's round-off: E - Et is noise and ρ a coin flip
+         * (whether the last Newton step was taken used to depend on the last bits of E). Decide
+         * by the stationarity residual instead: take the step when it lowers it (a Newton step
+         * near a minimiser does), else no evaluation can confirm a decrease any more and rule 1
+         * (energy change below resolution) holds. */
+        if (fs == WR_OK && pred >= 0.0 && pred <= WR__WF_ROUNDOFF * fmax(fabs(Q->E), WR__WF_ROUNDOFF_FLOOR * Q->eref)) {
+            double Eg = 0.0, kt = HUGE_VAL;
+            if (wr__wf_energy_impl(wf, Q->xa, Q->xo, 1, &Eg, Q->gx, NULL, NULL, NULL) == WR_OK) {
+                wr__wf_reg(&Q->B, Q->greg, Q->xo, Q->gx + wf->nv);
+                wr__wf_sqp_reduce(Q, Q->gx, Q->ks);
+                kt = wr__wf_kkt(Q->yt, Q->ks, Q->n, Q->na, Q->aref, Q->eref);
             }
-        for (i = 0; i < 3; ++i) diam2 += (hi[i] - lo[i]) * (hi[i] - lo[i]);
-        aref = amax > 0.0 ? amax : WR__WF_AREF_FALLBACK * sqrt(diam2);
+            if (kt < kkt) {
+                out->rho = 1.0; /* for the report and rules 1/3: the model is as good as it can be checked */
+                Q->mu = fmax(WR__WF_MU_MIN, Q->mu / 3.0);
+                Q->nu_up = 2.0;
+                out->accepted = 1;
+            } else {
+                out->roundoff = 1;
+            }
+            return WR_OK;
+        }
+        if (fs == WR_OK && pred > 0.0 && out->rho > WR__WF_RHO_ACCEPT) {
+            double c3 = 2.0 * out->rho - 1.0;
+            Q->mu *= fmax(1.0 / 3.0, 1.0 - c3 * c3 * c3);
+            if (Q->mu < WR__WF_MU_MIN) Q->mu = WR__WF_MU_MIN;
+            Q->nu_up = 2.0;
+            out->accepted = 1;
+            return WR_OK;
+        }
+        ++Q->S.n_rejected;
+        ++out->nfail;
+        /* after a rejection ε shrinks ×0.1: snapping a near-bound amplitude to 0 is the one part of
+         * the step μ does not shorten */
+        epsact *= 0.1;
+        Q->mu = fmax(WR__WF_MU_MIN, Q->mu) * Q->nu_up;
+        Q->nu_up *= 2.0;
+        if (Q->mu > WR__WF_MU_MAX) return WR_OK;
     }
-    ainit = (double *)wr_alloc_array((size_t)na + 1, sizeof(double));
-    if (!ainit) {
-        st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf solve: out of memory");
-        goto done;
+}
+
+/* Take the accepted trial point, report it, and test App. E.3's rules 1 and 3. Rules 1 and 3 only
+ * count a step the quadratic model predicted well (ρ > 1/2): a heavily damped step is short and
+ * changes E little without the iterate being stationary. Returns 1 when a rule stops the solve. */
+static int wr__wf_sqp_take(wr__wf_sqp *Q, int32_t it, double kkt, const wr__wf_trial *tr) {
+    double stepa = 0.0, stepz = 0.0, norma = 0.0, normz = 0.0;
+    wr_wf_iter_info info;
+    int32_t i;
+    for (i = 0; i < Q->n; ++i) {
+        double dy = fabs(Q->yt[i] - Q->y[i]);
+        if (i < Q->na) {
+            stepa = fmax(stepa, dy);
+            norma = fmax(norma, fabs(Q->yt[i]));
+        } else {
+            stepz = fmax(stepz, dy);
+            normz = fmax(normz, fabs(Q->yt[i]));
+        }
+        Q->y[i] = Q->yt[i];
     }
-    mu = WR__WF_MU0;
-    hess_true = D.hessian == WR_WF_HESSIAN_TRUE;
+    info.iteration = it + 1;
+    info.energy = tr->Et + Q->ebase;
+    info.kkt = kkt;
+    info.step = fmax(stepa / Q->aref, stepz);
+    info.alpha_ls = tr->rho;
+    info.shift = Q->mu;
+    info.n_active = tr->nact;
+    info.n_rejected = tr->nfail;
+    info.true_hessian = Q->hess_true;
+    if (Q->D.progress) Q->D.progress(&info, Q->D.user);
+    Q->S.iterations = it + 1;
+    if (Q->hess_true && Q->S.switch_iteration < 0) Q->S.switch_iteration = it;
+    if (tr->rho > 0.5 && fabs(Q->E - tr->Et) <= Q->D.tol_energy * fabs(Q->E + Q->ebase)) {
+        Q->E = tr->Et;
+        Q->S.stop = WR_WF_STOP_ENERGY;
+        return 1;
+    }
+    if (tr->rho > 0.5 && stepa <= Q->D.tol_step * norma && stepz <= Q->D.tol_step * normz) {
+        Q->S.stop = WR_WF_STOP_STEP;
+        return 1;
+    }
+    Q->E = tr->Et;
+    return 0;
+}
+
+/* Rule 2 (stationarity) holds at y. a = 0 is a KKT point wherever it holds (E is even in a): leave it
+ * along negative curvature of E in the amplitudes at the bound before accepting it (second order,
+ * wr__wf_escape). Returns 1 when y escaped (the solve goes on from the new point). */
+static int wr__wf_sqp_try_escape(wr__wf_sqp *Q, double abound) {
+    double Et = 0.0;
+    int32_t i;
+    if (Q->S.n_escapes >= WR__WF_MAX_ESCAPES) return 0;
+    if (!wr__wf_escape(Q->wf, &Q->B, Q->avar, Q->na, Q->y, Q->H, Q->aref, abound, Q->E, Q->yt, Q->xa, Q->xo,
+                       Q->ainit, Q->mdiag, &Et))
+        return 0;
+    ++Q->S.n_escapes;
+    for (i = 0; i < Q->n; ++i) Q->y[i] = Q->yt[i];
+    Q->E = Et;
+    return 1;
+}
+
+/* 1 when every free amplitude is within the ε-active band of the bound (a <= ε a_ref): the SQP has
+ * collapsed onto the flat state. Rules 1 and 3 can stop there on small steps near the saddle (a
+ * Poisson–Delaunay stretched sheet at 6.5 mm stopped after 3 iterations with max a = 0.14 µm, E
+ * 0.0318 J, where the wrinkled minimum has 0.0240 J), so the escape is tried before such a stop. */
+static int wr__wf_sqp_flat(const wr__wf_sqp *Q) {
+    int32_t i;
+    for (i = 0; i < Q->na; ++i)
+        if (Q->y[i] > WR__WF_EPS_ACTIVE * Q->aref) return 0;
+    return Q->na > 0;
+}
+
+/* A stop by rule 1 or 3 on a flat iterate: evaluate there (fresh face Hessians for the escape's
+ * curvature test) and escape if E has negative curvature along the amplitudes. Returns 1 when the
+ * solve goes on, 0 to stop, -1 on an evaluation error (status in *st). */
+static int wr__wf_sqp_escape_flat_stop(wr__wf_sqp *Q, wr_status *st, wr_diag *diag) {
+    if (!wr__wf_sqp_flat(Q) || Q->S.n_escapes >= WR__WF_MAX_ESCAPES) return 0;
+    *st = wr__wf_sqp_evaluate(Q, 0, diag);
+    if (*st) return -1;
+    return wr__wf_sqp_try_escape(Q, WR__WF_EPS_ACTIVE * Q->aref);
+}
+
+/* The iteration of App. E.3: evaluate, test stationarity (with the second-order escape), assemble
+ * the model, take a trust-region step, test rules 1 and 3 (with the escape when the iterate is
+ * flat). Leaves the stop reason in Q->S.stop. */
+static wr_status wr__wf_sqp_iterate(wr__wf_sqp *Q, wr_diag *diag) {
+    int have_grad = 0, rebase_kkt = 0;
+    int32_t it;
+    Q->mu = WR__WF_MU0;
+    Q->nu_up = 2.0;
+    Q->hess_true = Q->D.hessian == WR_WF_HESSIAN_TRUE;
     for (it = 0;; ++it) {
-        double t1 = wr_time_seconds(), kkt = 0.0, Et = 0.0, stepa = 0.0, stepz = 0.0, norma = 0.0, normz = 0.0;
-        double pred = 0.0, rho = 0.0, mblock[2] = {0.0, 0.0}, mcount[2] = {0.0, 0.0}, epsact;
-        int32_t nact = 0, nfail = 0, accepted, roundoff = 0;
-        wr_wf_iter_info info;
+        double t1 = wr_time_seconds(), kkt;
+        wr__wf_trial tr;
+        wr_status st;
+        int fresh_hess = 0;
         if (!have_grad) {
-            wr__wf_sqp_tox(wf, &B, avar, y, na, xa, xo);
-            st = wr__wf_energy_impl(wf, xa, xo, 1, &E, gx, H, NULL, diag);
-            if (st) goto done;
-            for (v = 0; v < wf->nv; ++v)
-                if (avar[v] >= 0) g[avar[v]] = gx[v];
-            if (it == 0) {
-                int32_t nact_e = 0;
-                double Efull = 0.0;
-                st = wr_wf_energy(wf, xa, xo, &Efull, NULL, NULL, NULL, diag);
-                if (st) goto done;
-                ebase = Efull - E; /* the constant part, for reporting only */
-                eref = fabs(Efull) > 0.0 ? fabs(Efull) : 1.0;
-                for (i = 0; i < wf->ne; ++i) nact_e += B.eact[i];
-                greg = D.omega_reg > 0.0 && nact_e > 0 ? D.omega_reg * eref / nact_e : 0.0;
-            }
-            E += wr__wf_reg(&B, greg, xo, gx + wf->nv);
-            wr__wf_z_applyT(&B, gx + wf->nv, g + na);
+            st = wr__wf_sqp_evaluate(Q, it == 0, diag);
+            if (st) return st;
             have_grad = 1;
             fresh_hess = 1;
         }
-        kkt = wr__wf_kkt(y, g, n, na, aref, eref);
+        kkt = wr__wf_kkt(Q->y, Q->g, Q->n, Q->na, Q->aref, Q->eref);
         if (rebase_kkt) { /* after an escape the reference residual is the escaped point's */
-            S.kkt0 = fmax(S.kkt0, kkt);
+            Q->S.kkt0 = fmax(Q->S.kkt0, kkt);
             rebase_kkt = 0;
         }
         if (it == 0) {
-            S.energy0 = E + ebase;
-            S.kkt0 = kkt;
+            Q->S.energy0 = Q->E + Q->ebase;
+            Q->S.kkt0 = kkt;
         }
-        S.energy = E + ebase;
-        S.kkt = kkt;
-        S.iterations = it;
-        if (kkt <= D.tol_kkt * S.kkt0 || kkt == 0.0) {
-            /* a = 0 is a KKT point wherever it holds (E is even in a): leave it along negative
-             * curvature of E in the amplitudes at the bound before accepting it (second order) */
-            if (S.n_escapes < WR__WF_MAX_ESCAPES &&
-                wr__wf_escape(wf, &B, avar, na, y, H, aref, E, yt, xa, xo, ainit, mdiag, &Et0)) {
-                ++S.n_escapes;
+        Q->S.energy = Q->E + Q->ebase;
+        Q->S.kkt = kkt;
+        Q->S.iterations = it;
+        if (kkt <= Q->D.tol_kkt * Q->S.kkt0 || kkt == 0.0) {
+            if (wr__wf_sqp_try_escape(Q, 0.0)) {
                 rebase_kkt = 1;
-                for (i = 0; i < n; ++i) y[i] = yt[i];
-                E = Et0;
                 have_grad = 0;
                 continue;
             }
-            S.stop = WR_WF_STOP_KKT;
-            break;
+            Q->S.stop = WR_WF_STOP_KKT;
+            return WR_OK;
         }
-        if (it >= D.max_iter) {
-            S.stop = WR_WF_STOP_MAX_ITER;
-            break;
+        if (it >= Q->D.max_iter) {
+            Q->S.stop = WR_WF_STOP_MAX_ITER;
+            return WR_OK;
         }
         /* App. E.3 Hessian strategy: per-face SPD projection far from the solution, the true Hessian
          * once the relative KKT residual is below hessian_switch (AUTO), or one of them throughout. */
-        if (D.hessian == WR_WF_HESSIAN_AUTO && !hess_true && kkt <= D.hessian_switch * S.kkt0) hess_true = 1;
+        if (Q->D.hessian == WR_WF_HESSIAN_AUTO && !Q->hess_true && kkt <= Q->D.hessian_switch * Q->S.kkt0)
+            Q->hess_true = 1;
         if (fresh_hess) {
-            wr_csr_zero_values(&K);
-            for (f = 0; f < wf->nf; ++f) {
-                int32_t s0 = fstart[f], u = fused[f], r, c, k, l;
-                const int32_t *kp = kpos + kpstart[f];
-                double He[36], HP[6 * WR_DENSE_MAX];
-                if (wf->wfree[f]) continue;
-                memcpy(He, H + 36 * (size_t)f, sizeof He);
-                /* App. E.3 per-face projection; a positive definite block is its own projection, and a
-                 * Cholesky attempt settles that far cheaper than the eigen-decomposition */
-                if (!hess_true && !wr__wf_spd6(He)) wr_dense_project_spd(6, He, 0.0);
-                /* reduced block Pᵀ He P: HP = He P first (6 × u), then the upper triangle of Pᵀ HP */
-                for (c = 0; c < u; ++c) {
-                    const double *pc = Pm + 6 * (size_t)(s0 + c);
-                    for (k = 0; k < 6; ++k) {
-                        double t = 0.0;
-                        for (l = 0; l < 6; ++l) t += He[6 * k + l] * pc[l];
-                        HP[6 * c + k] = t;
-                    }
-                }
-                for (r = 0; r < u; ++r) {
-                    const double *pr = Pm + 6 * (size_t)(s0 + r);
-                    for (c = r; c < u; ++c) {
-                        const double *hc = HP + 6 * c;
-                        double t = pr[0] * hc[0] + pr[1] * hc[1] + pr[2] * hc[2] + pr[3] * hc[3] + pr[4] * hc[4] + pr[5] * hc[5];
-                        K.val[kp[r * u + c]] += t;
-                        if (c != r) K.val[kp[c * u + r]] += t;
-                    }
-                }
-            }
-            if (greg > 0.0) {
-                int32_t e;
-                for (e = 0; e < wf->ne; ++e) {
-                    int32_t s0 = B.zstart[e], nz = B.zstart[e + 1] - s0, r, c;
-                    if (!B.eact[e]) continue;
-                    for (r = 0; r < nz; ++r)
-                        for (c = 0; c < nz; ++c) {
-                            st = wr_csr_add(&K, na + B.zcol[s0 + r], na + B.zcol[s0 + c],
-                                            greg * B.zval[s0 + r] * B.zval[s0 + c], diag);
-                            if (st) goto done;
-                        }
-                }
-            }
-            memcpy(kmodel, K.val, sizeof(double) * (size_t)K.nnz);
-            fresh_hess = 0;
+            st = wr__wf_sqp_assemble(Q, diag);
+            if (st) return st;
         }
-        /* ε-active set (Bertsekas 1982 projected Newton): amplitudes within eps of the bound whose
-         * scaled gradient pushes them down are held and moved to the bound. */
-        epsact = WR__WF_EPS_ACTIVE;
-        /* Marquardt damping matrix: |diag| of the model Hessian, floored per block (a, z) so that
-         * directions the energy does not see (ω where a = 0) still get a finite, tiny step. */
-        for (i = 0; i < n; ++i) {
-            int32_t p = wr_csr_find(&K, i, i);
-            mdiag[i] = p >= 0 ? fabs(kmodel[p]) : 0.0;
-            mblock[i < na ? 0 : 1] += mdiag[i];
-            mcount[i < na ? 0 : 1] += 1.0;
+        wr__wf_sqp_damping(Q);
+        Q->S.seconds_assembly += wr_time_seconds() - t1;
+        st = wr__wf_sqp_trust_region(Q, kkt, &tr, diag);
+        if (st) return st;
+        if (tr.roundoff) {
+            Q->S.stop = WR_WF_STOP_ENERGY;
+            return WR_OK;
         }
-        for (i = 0; i < 2; ++i) mblock[i] = mcount[i] > 0.0 && mblock[i] > 0.0 ? mblock[i] / mcount[i] : 1.0;
-        for (i = 0; i < n; ++i) mdiag[i] = fmax(mdiag[i], WR__WF_DAMP_FLOOR * mblock[i < na ? 0 : 1]);
-        S.seconds_assembly += wr_time_seconds() - t1;
-        /* Levenberg–Marquardt trust region: solve (K + μ M) d = -g on the free set, try the projected
-         * point, accept on sufficient actual/predicted decrease, adapt μ (Nielsen 1999). */
-        accepted = 0;
-        for (;;) {
-            wr_spd_stats ss;
-            wr_status fs;
-            t1 = wr_time_seconds();
-            /* the ε-active set is rebuilt per trial: after a rejection ε shrinks ×0.1, because
-             * snapping a near-bound amplitude to 0 is the one part of the step μ does not shorten */
-            nact = 0;
-            for (i = 0; i < n; ++i) {
-                active[i] = (uint8_t)(i < na && (y[i] <= 0.0 || y[i] / aref <= epsact) && g[i] > 0.0);
-                nact += active[i];
-            }
-            memcpy(K.val, kmodel, sizeof(double) * (size_t)K.nnz);
-            for (i = 0; i < n; ++i) {
-                int32_t t;
-                for (t = K.rowptr[i]; t < K.rowptr[i + 1]; ++t) {
-                    if (active[i] || active[K.col[t]])
-                        K.val[t] = (K.col[t] == i) ? 1.0 : 0.0;
-                    else if (K.col[t] == i)
-                        K.val[t] += mu * mdiag[i];
-                }
-                rhs[i] = active[i] ? 0.0 : -g[i];
-                d[i] = 0.0;
-            }
-            fs = wr_spd_solver_factor(&SV, &K, NULL);
-            if (!fs) fs = wr_spd_solver_solve(&SV, &K, rhs, d, &ss, NULL);
-            S.n_factorizations++;
-            S.seconds_solve += wr_time_seconds() - t1;
-            if (fs) {
-                if (fs != WR_ERR_NOT_SPD && fs != WR_ERR_NOT_CONVERGED) {
-                    st = wr_fail(diag, fs, -1, "wf solve: linear solve failed (%s)", wr_status_string(fs));
-                    goto done;
-                }
-                mu = fmax(WR__WF_MU_MIN, mu) * WR__WF_MU_UP;
-                if (mu > WR__WF_MU_MAX) break;
-                continue;
-            }
-            for (i = 0; i < n; ++i) {
-                if (active[i]) d[i] = -y[i]; /* onto the bound */
-                yt[i] = y[i] + d[i];
-                if (i < na && yt[i] < 0.0) yt[i] = 0.0;
-                d[i] = yt[i] - y[i]; /* the projected step s */
-            }
-            /* model decrease of the projected step: -(gᵀs + ½ sᵀ K s) with the undamped model K */
-            pred = 0.0;
-            for (i = 0; i < n; ++i) {
-                int32_t t;
-                double r = 0.0;
-                for (t = K.rowptr[i]; t < K.rowptr[i + 1]; ++t) r += kmodel[t] * d[K.col[t]];
-                ks[i] = r;
-                pred -= d[i] * (g[i] + 0.5 * r);
-            }
-            wr__wf_sqp_tox(wf, &B, avar, yt, na, xa, xo);
-            fs = wr__wf_energy_impl(wf, xa, xo, 1, &Et, NULL, NULL, NULL, NULL);
-            Et += wr__wf_reg(&B, greg, xo, NULL);
-            rho = (fs == WR_OK && pred > 0.0) ? (E - Et) / pred : -1.0;
-            /* the model promises less than the energy's round-off: E - Et is noise and ρ a coin flip
-             * (whether the last Newton step was taken used to depend on the last bits of E). Decide
-             * by the stationarity residual instead: take the step when it lowers it (a Newton step
-             * near a minimiser does), else no evaluation can confirm a decrease any more and rule 1
-             * (energy change below resolution) holds. */
-            if (fs == WR_OK && pred >= 0.0 && pred <= WR__WF_ROUNDOFF * fmax(fabs(E), WR__WF_ROUNDOFF_FLOOR * eref)) {
-                double Eg = 0.0, kt = HUGE_VAL;
-                if (wr__wf_energy_impl(wf, xa, xo, 1, &Eg, gx, NULL, NULL, NULL) == WR_OK) {
-                    wr__wf_reg(&B, greg, xo, gx + wf->nv);
-                    for (v = 0; v < wf->nv; ++v)
-                        if (avar[v] >= 0) ks[avar[v]] = gx[v];
-                    wr__wf_z_applyT(&B, gx + wf->nv, ks + na);
-                    kt = wr__wf_kkt(yt, ks, n, na, aref, eref);
-                }
-                if (kt < kkt) {
-                    rho = 1.0; /* for the report and rules 1/3: the model is as good as it can be checked */
-                    mu = fmax(WR__WF_MU_MIN, mu / 3.0);
-                    nu_up = 2.0;
-                    accepted = 1;
-                    break;
-                }
-                roundoff = 1;
-                break;
-            }
-            if (fs == WR_OK && pred > 0.0 && rho > WR__WF_RHO_ACCEPT) {
-                double c3 = 2.0 * rho - 1.0;
-                mu *= fmax(1.0 / 3.0, 1.0 - c3 * c3 * c3);
-                if (mu < WR__WF_MU_MIN) mu = WR__WF_MU_MIN;
-                nu_up = 2.0;
-                accepted = 1;
-                break;
-            }
-            ++S.n_rejected;
-            ++nfail;
-            epsact *= 0.1;
-            mu = fmax(WR__WF_MU_MIN, mu) * nu_up;
-            nu_up *= 2.0;
-            if (mu > WR__WF_MU_MAX) break;
+        if (!tr.accepted) {
+            Q->S.stop = WR_WF_STOP_LINE_SEARCH;
+            return WR_OK;
         }
-        if (roundoff) {
-            S.stop = WR_WF_STOP_ENERGY;
-            break;
-        }
-        if (!accepted) {
-            S.stop = WR_WF_STOP_LINE_SEARCH;
-            break;
-        }
-        for (i = 0; i < n; ++i) {
-            double dy = fabs(yt[i] - y[i]);
-            if (i < na) {
-                stepa = fmax(stepa, dy);
-                norma = fmax(norma, fabs(yt[i]));
-            } else {
-                stepz = fmax(stepz, dy);
-                normz = fmax(normz, fabs(yt[i]));
-            }
-            y[i] = yt[i];
-        }
-        info.iteration = it + 1;
-        info.energy = Et + ebase;
-        info.kkt = kkt;
-        info.step = fmax(stepa / aref, stepz);
-        info.alpha_ls = rho;
-        info.shift = mu;
-        info.n_active = nact;
-        info.n_rejected = nfail;
-        info.true_hessian = hess_true;
-        if (D.progress) D.progress(&info, D.user);
-        S.iterations = it + 1;
-        if (hess_true && S.switch_iteration < 0) S.switch_iteration = it;
         have_grad = 0;
-        /* rules 1 and 3 only count a step the quadratic model predicted well (ρ > 1/2): a heavily
-         * damped step is short and changes E little without the iterate being stationary. */
-        if (rho > 0.5 && fabs(E - Et) <= D.tol_energy * fabs(E + ebase)) {
-            E = Et;
-            S.stop = WR_WF_STOP_ENERGY;
-            break;
+        if (wr__wf_sqp_take(Q, it, kkt, &tr)) {
+            int go_on = wr__wf_sqp_escape_flat_stop(Q, &st, diag);
+            if (go_on < 0) return st;
+            if (!go_on) return WR_OK;
+            Q->S.stop = WR_WF_STOP_NONE;
+            rebase_kkt = 1;
         }
-        if (rho > 0.5 && stepa <= D.tol_step * norma && stepz <= D.tol_step * normz) {
-            S.stop = WR_WF_STOP_STEP;
-            break;
-        }
-        E = Et;
     }
-    /* final residual at the returned iterate */
-    wr__wf_sqp_tox(wf, &B, avar, y, na, xa, xo);
-    st = wr_wf_energy(wf, xa, xo, &E, gx, NULL, NULL, diag);
-    if (st) goto done;
-    S.energy_reg = wr__wf_reg(&B, greg, xo, gx + wf->nv);
-    E += S.energy_reg;
-    for (v = 0; v < wf->nv; ++v)
-        if (avar[v] >= 0) g[avar[v]] = gx[v];
-    wr__wf_z_applyT(&B, gx + wf->nv, g + na);
-    S.kkt = wr__wf_kkt(y, g, n, na, aref, eref);
-    S.energy = E;
-    S.a_ref = aref;
-    S.e_ref = eref;
-    for (v = 0; v < wf->nv; ++v) a[v] = xa[v];
-    for (i = 0; i < wf->ne; ++i) omega[i] = xo[i];
-    if (S.stop == WR_WF_STOP_MAX_ITER || S.stop == WR_WF_STOP_LINE_SEARCH)
-        st = wr_fail(diag, WR_ERR_NOT_CONVERGED, -1, "wf solve: stopped (%s) after %d iterations, KKT %g (initial %g)",
-                     S.stop == WR_WF_STOP_MAX_ITER ? "max iterations" : "line search", (int)S.iterations, S.kkt, S.kkt0);
-done:
-    S.seconds = wr_time_seconds() - t0;
-    if (stats) *stats = S;
-    if (have_solver) wr_spd_solver_free(&SV);
-    wr_csr_free(&K);
-    wr__wf_basis_free(&B);
-    wr_free(avar);
-    wr_free(zero);
-    wr_free(fstart);
-    wr_free(fcols);
-    wr_free(fused);
-    wr_free(kpstart);
-    wr_free(kpos);
-    wr_free(Pm);
-    wr_free(y);
-    wr_free(yt);
-    wr_free(d);
-    wr_free(g);
-    wr_free(gx);
-    wr_free(H);
-    wr_free(xa);
-    wr_free(xo);
-    wr_free(rhs);
-    wr_free(active);
-    wr_free(kmodel);
-    wr_free(mdiag);
-    wr_free(ks);
-    wr_free(ainit);
+}
+
+/* The returned iterate in (a, ω), its objective and final stationarity residual. */
+static wr_status wr__wf_sqp_finish(wr__wf_sqp *Q, double *a, double *omega, wr_diag *diag) {
+    const wr_wf *wf = Q->wf;
+    double E = 0.0;
+    int32_t v, i;
+    wr_status st;
+    wr__wf_sqp_tox(wf, &Q->B, Q->avar, Q->y, Q->na, Q->xa, Q->xo);
+    st = wr_wf_energy(wf, Q->xa, Q->xo, &E, Q->gx, NULL, NULL, diag);
+    if (st) return st;
+    Q->S.energy_reg = wr__wf_reg(&Q->B, Q->greg, Q->xo, Q->gx + wf->nv);
+    E += Q->S.energy_reg;
+    wr__wf_sqp_reduce(Q, Q->gx, Q->g);
+    Q->S.kkt = wr__wf_kkt(Q->y, Q->g, Q->n, Q->na, Q->aref, Q->eref);
+    Q->S.energy = E;
+    Q->S.a_ref = Q->aref;
+    Q->S.e_ref = Q->eref;
+    for (v = 0; v < wf->nv; ++v) a[v] = Q->xa[v];
+    for (i = 0; i < wf->ne; ++i) omega[i] = Q->xo[i];
+    if (Q->S.stop == WR_WF_STOP_MAX_ITER || Q->S.stop == WR_WF_STOP_LINE_SEARCH)
+        return wr_fail(diag, WR_ERR_NOT_CONVERGED, -1, "wf solve: stopped (%s) after %d iterations, KKT %g (initial %g)",
+                       Q->S.stop == WR_WF_STOP_MAX_ITER ? "max iterations" : "line search", (int)Q->S.iterations,
+                       Q->S.kkt, Q->S.kkt0);
+    return WR_OK;
+}
+
+/* App. E.3 as a sequence of stages: unknowns and a feasible start, the reduction maps and the
+ * fixed Hessian pattern, the scales, the trust-region SQP iteration, the returned iterate. */
+WRDEF wr_status wr_wf_solve(const wr_wf *wf, const wr_wf_solve_desc *desc, double *a, double *omega,
+                            wr_wf_solve_stats *stats, wr_diag *diag) {
+    wr__wf_sqp Q;
+    double t0 = wr_time_seconds();
+    wr_status st;
+    if (stats) memset(stats, 0, sizeof *stats);
+    if (!wf || !a || !omega) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "wf solve: NULL argument");
+    memset(&Q, 0, sizeof Q);
+    Q.wf = wf;
+    Q.S.switch_iteration = -1;
+    st = wr__wf_sqp_defaults(&Q.D, desc, diag);
+    if (st) return st;
+    st = wr__wf_sqp_start(&Q, a, omega, diag);
+    if (!st) st = wr__wf_sqp_face_maps(&Q, diag);
+    if (!st) st = wr__wf_sqp_pattern(&Q, diag);
+    if (!st) st = wr__wf_sqp_scales(&Q, diag);
+    if (!st) st = wr__wf_sqp_iterate(&Q, diag);
+    if (!st) st = wr__wf_sqp_finish(&Q, a, omega, diag);
+    Q.S.seconds = wr_time_seconds() - t0;
+    if (stats) *stats = Q.S;
+    wr__wf_sqp_free(&Q);
     return st;
 }
 

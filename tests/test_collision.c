@@ -1,0 +1,574 @@
+/* tests/test_collision.c — collision.h: closed-form point–triangle and edge–edge distances in every
+ * region, finite-difference gradients and Hessians, the barrier, ACCD times of impact against
+ * closed forms (and never past the true contact), exact segment/triangle intersection cases, BVH
+ * candidate sets equal to brute force on random soups, contact sets and CCD on meshes, whole-mesh
+ * intersection checks. */
+#include <criterion/criterion.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "wrinkle/collision.h"
+
+/* Distances here are O(1) sums of a few products: rounding ~1e-16; 1e-12 leaves 4 orders. */
+#define CO_TOL 1e-12
+/* Central differences, step 1e-6 on O(1) coordinates: truncation ~1e-12, round-off ~1e-10. */
+#define CO_FD_STEP 1e-6
+#define CO_FD_TOL 1e-6
+
+static void co_set(double *p, double x, double y, double z) {
+    p[0] = x;
+    p[1] = y;
+    p[2] = z;
+}
+
+/* ---- point–triangle regions (triangle (0,0,0), (1,0,0), (0,1,0)) ---- */
+Test(collision, point_triangle_regions_closed_form) {
+    double t0[3] = {0, 0, 0}, t1[3] = {1, 0, 0}, t2[3] = {0, 1, 0}, p[3], w[4];
+    int32_t piece;
+    /* face interior: distance = height */
+    co_set(p, 0.2, 0.3, 0.7);
+    cr_expect_float_eq(wr_collision_point_triangle_dist2(p, t0, t1, t2, NULL, NULL, w, &piece), 0.49, CO_TOL);
+    cr_expect_eq(piece, WR_DIST_PF);
+    cr_expect_float_eq(w[2], -0.2, CO_TOL); /* r = p − (0.2, 0.3, 0) */
+    cr_expect_float_eq(w[3], -0.3, CO_TOL);
+    /* below the plane: same unsigned distance */
+    co_set(p, 0.2, 0.3, -0.7);
+    cr_expect_float_eq(wr_collision_point_triangle_dist2(p, t0, t1, t2, NULL, NULL, NULL, &piece), 0.49, CO_TOL);
+    /* edge region of the hypotenuse x + y = 1: distance to the line */
+    co_set(p, 1.0, 1.0, 0.5);
+    cr_expect_float_eq(wr_collision_point_triangle_dist2(p, t0, t1, t2, NULL, NULL, NULL, &piece), 0.5 + 0.25, CO_TOL);
+    cr_expect_eq(piece, WR_DIST_PE);
+    /* edge region of the x axis edge */
+    co_set(p, 0.5, -2.0, 1.0);
+    cr_expect_float_eq(wr_collision_point_triangle_dist2(p, t0, t1, t2, NULL, NULL, NULL, &piece), 5.0, CO_TOL);
+    cr_expect_eq(piece, WR_DIST_PE);
+    /* vertex regions */
+    co_set(p, -1.0, -2.0, 2.0);
+    cr_expect_float_eq(wr_collision_point_triangle_dist2(p, t0, t1, t2, NULL, NULL, NULL, &piece), 9.0, CO_TOL);
+    cr_expect_eq(piece, WR_DIST_PP);
+    co_set(p, 3.0, -1.0, 0.0);
+    cr_expect_float_eq(wr_collision_point_triangle_dist2(p, t0, t1, t2, NULL, NULL, NULL, &piece), 5.0, CO_TOL);
+    co_set(p, -0.5, 2.0, 0.0);
+    cr_expect_float_eq(wr_collision_point_triangle_dist2(p, t0, t1, t2, NULL, NULL, NULL, &piece), 1.25, CO_TOL);
+}
+
+Test(collision, edge_edge_crossing_and_parallel) {
+    double a0[3], a1[3], b0[3], b1[3], w[4];
+    int32_t piece;
+    /* crossing skew edges: x axis segment and a y-parallel segment 0.3 above at x = 0.4 */
+    co_set(a0, 0, 0, 0);
+    co_set(a1, 1, 0, 0);
+    co_set(b0, 0.4, -1, 0.3);
+    co_set(b1, 0.4, 1, 0.3);
+    cr_expect_float_eq(wr_collision_edge_edge_dist2(a0, a1, b0, b1, NULL, NULL, w, &piece), 0.09, CO_TOL);
+    cr_expect_eq(piece, WR_DIST_EE);
+    cr_expect_float_eq(w[1], 0.4, CO_TOL);
+    cr_expect_float_eq(w[3], -0.5, CO_TOL);
+    /* parallel overlapping: distance between the lines, attained at an end point */
+    co_set(b0, 0.5, 0.2, 0.0);
+    co_set(b1, 1.5, 0.2, 0.0);
+    cr_expect_float_eq(wr_collision_edge_edge_dist2(a0, a1, b0, b1, NULL, NULL, NULL, &piece), 0.04, CO_TOL);
+    cr_expect_eq(piece, WR_DIST_PE);
+    /* parallel disjoint along the line: end point to end point */
+    co_set(b0, 2.0, 0.0, 0.0);
+    co_set(b1, 3.0, 0.0, 0.0);
+    cr_expect_float_eq(wr_collision_edge_edge_dist2(a0, a1, b0, b1, NULL, NULL, NULL, &piece), 1.0, CO_TOL);
+    cr_expect_eq(piece, WR_DIST_PP);
+    /* lines cross outside one segment: end of b to the interior of a */
+    co_set(b0, 0.4, 0.5, 0.0);
+    co_set(b1, 0.4, 2.0, 0.0);
+    cr_expect_float_eq(wr_collision_edge_edge_dist2(a0, a1, b0, b1, NULL, NULL, NULL, &piece), 0.25, CO_TOL);
+    cr_expect_eq(piece, WR_DIST_PE);
+    /* intersecting: distance 0 */
+    co_set(b0, 0.4, -1, 0.0);
+    co_set(b1, 0.4, 1, 0.0);
+    cr_expect_float_eq(wr_collision_edge_edge_dist2(a0, a1, b0, b1, NULL, NULL, NULL, NULL), 0.0, CO_TOL);
+}
+
+/* FD check of gradient and Hessian of d² at x (12), for the pair kind. Returns max relative error. */
+static void co_fd_check(int kind, const double *x0) {
+    double x[12], g[12], H[144], gp[12], gm[12], sp, sm, s, scale = 0.0, herr = 0.0, gerr = 0.0, hs = 0.0;
+    int32_t piece, pp, pm;
+    int i, j;
+    memcpy(x, x0, sizeof x);
+    s = kind == 0 ? wr_collision_point_triangle_dist2(x, x + 3, x + 6, x + 9, g, H, NULL, &piece)
+                  : wr_collision_edge_edge_dist2(x, x + 3, x + 6, x + 9, g, H, NULL, &piece);
+    (void)s;
+    for (i = 0; i < 12; ++i) scale = fmax(scale, fabs(g[i]));
+    for (i = 0; i < 144; ++i) hs = fmax(hs, fabs(H[i]));
+    for (i = 0; i < 12; ++i) {
+        x[i] = x0[i] + CO_FD_STEP;
+        sp = kind == 0 ? wr_collision_point_triangle_dist2(x, x + 3, x + 6, x + 9, gp, NULL, NULL, &pp)
+                       : wr_collision_edge_edge_dist2(x, x + 3, x + 6, x + 9, gp, NULL, NULL, &pp);
+        x[i] = x0[i] - CO_FD_STEP;
+        sm = kind == 0 ? wr_collision_point_triangle_dist2(x, x + 3, x + 6, x + 9, gm, NULL, NULL, &pm)
+                       : wr_collision_edge_edge_dist2(x, x + 3, x + 6, x + 9, gm, NULL, NULL, &pm);
+        x[i] = x0[i];
+        cr_assert(pp == piece && pm == piece, "FD step crossed a piece boundary; pick another point");
+        gerr = fmax(gerr, fabs((sp - sm) / (2 * CO_FD_STEP) - g[i]));
+        for (j = 0; j < 12; ++j) herr = fmax(herr, fabs((gp[j] - gm[j]) / (2 * CO_FD_STEP) - H[12 * j + i]));
+    }
+    cr_expect(gerr <= CO_FD_TOL * fmax(scale, 1.0), "kind %d piece %d: gradient FD error %g (scale %g)", kind, piece,
+              gerr, scale);
+    cr_expect(herr <= CO_FD_TOL * fmax(hs, 1.0), "kind %d piece %d: Hessian FD error %g (scale %g)", kind, piece, herr,
+              hs);
+}
+
+Test(collision, distance_derivatives_fd_every_piece) {
+    /* point–triangle: face, edge, vertex pieces; edge–edge: line–line, point–edge, point–point */
+    double pf[12] = {0.2, 0.3, 0.7, 0.1, -0.05, 0.02, 1.1, 0.1, -0.1, 0.05, 0.9, 0.1};
+    double pe[12] = {1.0, 1.0, 0.5, 0.1, -0.05, 0.02, 1.1, 0.1, -0.1, 0.05, 0.9, 0.1};
+    double pv[12] = {-1.0, -2.0, 2.0, 0.1, -0.05, 0.02, 1.1, 0.1, -0.1, 0.05, 0.9, 0.1};
+    double ee[12] = {0, 0, 0, 1, 0.1, 0.05, 0.4, -1, 0.3, 0.45, 1, 0.35};
+    double eep[12] = {0, 0, 0, 1, 0.1, 0.05, 0.4, 0.6, 0.3, 0.45, 2, 0.35};
+    double eev[12] = {0, 0, 0, 1, 0.1, 0.05, 2.0, 1.0, 0.3, 3.0, 2.0, 0.35};
+    int32_t piece;
+    co_fd_check(0, pf);
+    co_fd_check(0, pe);
+    co_fd_check(0, pv);
+    co_fd_check(1, ee);
+    co_fd_check(1, eep);
+    co_fd_check(1, eev);
+    wr_collision_point_triangle_dist2(pf, pf + 3, pf + 6, pf + 9, NULL, NULL, NULL, &piece);
+    cr_expect_eq(piece, WR_DIST_PF);
+    wr_collision_point_triangle_dist2(pe, pe + 3, pe + 6, pe + 9, NULL, NULL, NULL, &piece);
+    cr_expect_eq(piece, WR_DIST_PE);
+    wr_collision_point_triangle_dist2(pv, pv + 3, pv + 6, pv + 9, NULL, NULL, NULL, &piece);
+    cr_expect_eq(piece, WR_DIST_PP);
+    wr_collision_edge_edge_dist2(ee, ee + 3, ee + 6, ee + 9, NULL, NULL, NULL, &piece);
+    cr_expect_eq(piece, WR_DIST_EE);
+    wr_collision_edge_edge_dist2(eep, eep + 3, eep + 6, eep + 9, NULL, NULL, NULL, &piece);
+    cr_expect_eq(piece, WR_DIST_PE);
+    wr_collision_edge_edge_dist2(eev, eev + 3, eev + 6, eev + 9, NULL, NULL, NULL, &piece);
+    cr_expect_eq(piece, WR_DIST_PP);
+}
+
+Test(collision, barrier_matches_statics_form_and_derivatives) {
+    double d, b1, b2, bp1, bm1, h = 1e-9;
+    for (d = 1e-4; d < 1e-3; d += 1.7e-4) {
+        double bp = wr_collision_barrier(d + h, 1e-3, 50.0, &bp1, NULL), bm = wr_collision_barrier(d - h, 1e-3, 50.0, &bm1, NULL);
+        double b = wr_collision_barrier(d, 1e-3, 50.0, &b1, &b2);
+        cr_expect_float_eq(b, -50.0 * (d - 1e-3) * (d - 1e-3) * log(d / 1e-3), 1e-15);
+        cr_expect(fabs((bp - bm) / (2 * h) - b1) <= 1e-6 * fabs(b1));
+        cr_expect(fabs((bp1 - bm1) / (2 * h) - b2) <= 1e-5 * fabs(b2));
+    }
+    cr_expect(isinf(wr_collision_barrier(0.0, 1e-3, 1.0, NULL, NULL)));
+    cr_expect_eq(wr_collision_barrier(2e-3, 1e-3, 1.0, NULL, NULL), 0.0);
+}
+
+/* ---- CCD ---- */
+Test(collision, accd_point_towards_plane_triangle) {
+    /* point at height z0 moving down at speed v through the triangle's interior: true impact
+     * t* = z0/v; ACCD must stop in [ (1 − keep)·t*·(1 − 1e-12), t* ) and keep d >= keep·z0 */
+    double x[12] = {0.2, 0.2, 0.5, 0, 0, 0, 1, 0, 0, 0, 1, 0}, dx[12] = {0};
+    double toi, z0 = 0.5;
+    int32_t hit;
+    dx[2] = -1.0; /* impact at t* = 0.5 */
+    hit = wr_collision_accd(WR_CONTACT_PT, x, dx, 0.1, 1.0, 0, &toi);
+    cr_expect_eq(hit, 1);
+    cr_expect(toi < 0.5 && toi >= 0.9 * 0.5 * (1 - 1e-12), "toi %g", toi);
+    cr_expect(z0 - toi >= 0.1 * z0 * (1 - 1e-12));
+    /* moving away: no impact */
+    dx[2] = 1.0;
+    cr_expect_eq(wr_collision_accd(WR_CONTACT_PT, x, dx, 0.1, 1.0, 0, &toi), 0);
+    cr_expect_eq(toi, 1.0);
+    /* the triangle moving up instead (same relative motion): same TOI bound */
+    dx[2] = 0.0;
+    dx[5] = dx[8] = dx[11] = 1.0;
+    hit = wr_collision_accd(WR_CONTACT_PT, x, dx, 0.1, 1.0, 0, &toi);
+    cr_expect(hit == 1 && toi < 0.5 && toi >= 0.45 * (1 - 1e-12), "toi %g", toi);
+    /* impact beyond t_max = 0.4: not reported */
+    dx[5] = dx[8] = dx[11] = 0.0;
+    dx[2] = -1.0;
+    cr_expect_eq(wr_collision_accd(WR_CONTACT_PT, x, dx, 0.1, 0.4, 0, &toi), 0);
+}
+
+Test(collision, accd_edge_edge_crossing_never_passes_impact) {
+    /* b moves down through a: true impact at t* = 0.3/0.9; random extra tangential motions */
+    wr_rng rng;
+    int trial;
+    wr_rng_seed(&rng, 7);
+    for (trial = 0; trial < 200; ++trial) {
+        double x[12] = {0, 0, 0, 1, 0, 0, 0.4, -1, 0.3, 0.4, 1, 0.3}, dx[12] = {0}, toi, xt[12], s;
+        double tx = 0.2 * (wr_rng_uniform(&rng) - 0.5);
+        int i, k;
+        for (k = 2; k < 4; ++k) {
+            dx[3 * k] = tx;
+            dx[3 * k + 2] = -0.9;
+        }
+        cr_assert_eq(wr_collision_accd(WR_CONTACT_EE, x, dx, 0.1, 1.0, 0, &toi), 1);
+        cr_expect(toi < 0.3 / 0.9, "toi %g past the impact", toi);
+        for (i = 0; i < 12; ++i) xt[i] = x[i] + toi * dx[i];
+        s = wr_collision_edge_edge_dist2(xt, xt + 3, xt + 6, xt + 9, NULL, NULL, NULL, NULL);
+        cr_expect(sqrt(s) >= 0.1 * 0.3 * (1 - 1e-12), "distance %g at toi", sqrt(s));
+    }
+    /* parallel overlapping edges sliding along each other at a constant gap: never a hit (ACCD
+     * only stops below keep·d(0), and d stays d(0)) */
+    {
+        double x[12] = {0, 0, 0, 1, 0, 0, 0.5, 0.1, 0, 1.5, 0.1, 0}, dx[12] = {0}, toi;
+        dx[6] = dx[9] = 0.3;
+        cr_expect_eq(wr_collision_accd(WR_CONTACT_EE, x, dx, 0.1, 1.0, 0, &toi), 0);
+    }
+}
+
+/* ---- exact predicates ---- */
+Test(collision, orient3d_exact_on_near_degenerate_input) {
+    double a[3] = {0, 0, 0}, b[3] = {1, 0, 0}, c[3] = {0, 1, 0}, d[3] = {0.3, 0.3, 1e-300};
+    cr_expect(wr_orient3d(a, b, c, d) > 0.0);
+    d[2] = -1e-300;
+    cr_expect(wr_orient3d(a, b, c, d) < 0.0);
+    d[2] = 0.0;
+    cr_expect_eq(wr_orient3d(a, b, c, d), 0.0);
+    { /* four points on the plane z = 0.75x + y (dyadic coordinates, so exactly coplanar) where the
+       * plain floating-point determinant is 1.4e-17, not 0: only the exact stage answers 0 */
+        double P[4][3] = {{1.1906375885009766, 0.89058017730712891, 1.7835583686828613},
+                          {0.71826171875, 0.78396129608154297, 1.322657585144043},
+                          {0.92459487915039062, 0.64950752258300781, 1.3429536819458008},
+                          {0.71016693115234375, 0.96557426452636719, 1.498199462890625}};
+        double bx = P[1][0] - P[0][0], by = P[1][1] - P[0][1], bz = P[1][2] - P[0][2];
+        double cx = P[2][0] - P[0][0], cy = P[2][1] - P[0][1], cz = P[2][2] - P[0][2];
+        double dx = P[3][0] - P[0][0], dy = P[3][1] - P[0][1], dz = P[3][2] - P[0][2];
+        double naive = bx * (cy * dz - cz * dy) + by * (cz * dx - cx * dz) + bz * (cx * dy - cy * dx);
+        cr_expect_neq(naive, 0.0); /* the case exercises the exact stage */
+        cr_expect_eq(wr_orient3d(P[0], P[1], P[2], P[3]), 0.0);
+        P[3][2] = nextafter(P[3][2], 2.0); /* one ulp off the plane */
+        cr_expect_neq(wr_orient3d(P[0], P[1], P[2], P[3]), 0.0);
+        P[3][2] = nextafter(nextafter(P[3][2], 0.0), 0.0); /* one ulp below: the opposite sign */
+        {
+            double below = wr_orient3d(P[0], P[1], P[2], P[3]);
+            P[3][2] = nextafter(nextafter(P[3][2], 2.0), 2.0);
+            cr_expect(below * wr_orient3d(P[0], P[1], P[2], P[3]) < 0.0);
+        }
+    }
+}
+
+Test(collision, segment_and_triangle_intersection_cases) {
+    double a[3] = {0, 0, 0}, b[3] = {1, 0, 0}, c[3] = {0, 1, 0}, p[3], q[3];
+    double A[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0}, B[9];
+    co_set(p, 0.2, 0.2, -1);
+    co_set(q, 0.2, 0.2, 1);
+    cr_expect(wr_collision_segment_triangle_intersect(p, q, a, b, c));
+    co_set(q, 0.2, 0.2, -0.5); /* stops short */
+    cr_expect(!wr_collision_segment_triangle_intersect(p, q, a, b, c));
+    co_set(q, 0.2, 0.2, 0.0); /* touches the face */
+    cr_expect(wr_collision_segment_triangle_intersect(p, q, a, b, c));
+    co_set(p, 0.5, 0.5, -1); /* through the hypotenuse exactly (closed) */
+    co_set(q, 0.5, 0.5, 1);
+    cr_expect(wr_collision_segment_triangle_intersect(p, q, a, b, c));
+    co_set(p, nextafter(0.5, 1.0), 0.5, -1); /* one ulp outside */
+    co_set(q, nextafter(0.5, 1.0), 0.5, 1);
+    cr_expect(!wr_collision_segment_triangle_intersect(p, q, a, b, c));
+    co_set(p, -1, 0.25, 0); /* coplanar, crossing */
+    co_set(q, 2, 0.25, 0);
+    cr_expect(wr_collision_segment_triangle_intersect(p, q, a, b, c));
+    co_set(p, -1, 2.5, 0); /* coplanar, outside */
+    co_set(q, 2, 2.5, 0);
+    cr_expect(!wr_collision_segment_triangle_intersect(p, q, a, b, c));
+    /* triangle–triangle: piercing, separated, coplanar overlapping, coplanar disjoint */
+    double Bp[9] = {0.2, 0.2, -1, 0.3, 0.2, 1, 0.25, 0.3, 1};
+    memcpy(B, Bp, sizeof B);
+    cr_expect(wr_collision_triangle_triangle_intersect(A, B));
+    B[2] = 0.1; /* now the whole of B is above: z in [0.1, 1] */
+    cr_expect(!wr_collision_triangle_triangle_intersect(A, B));
+    double Bc[9] = {0.2, 0.2, 0, 2, 0.2, 0, 0.2, 2, 0};
+    cr_expect(wr_collision_triangle_triangle_intersect(A, Bc));
+    double Bd[9] = {2, 2, 0, 3, 2, 0, 2, 3, 0};
+    cr_expect(!wr_collision_triangle_triangle_intersect(A, Bd));
+    /* a triangle whose edges all miss A but whose interior is pierced by an edge of A */
+    double Bq[9] = {0.5, -1, -1, 0.5, -1, 1, 0.5, 3, 0};
+    cr_expect(wr_collision_triangle_triangle_intersect(A, Bq));
+}
+
+/* ---- BVH vs brute force ---- */
+typedef struct co_pairs {
+    int32_t n, cap;
+    int64_t *k;
+} co_pairs;
+
+static wr_status co_collect(void *u, int32_t i, int32_t j) {
+    co_pairs *p = (co_pairs *)u;
+    if (p->n == p->cap) {
+        p->cap = p->cap ? 2 * p->cap : 1024;
+        p->k = (int64_t *)realloc(p->k, sizeof(int64_t) * (size_t)p->cap);
+    }
+    p->k[p->n++] = ((int64_t)i << 32) | j;
+    return WR_OK;
+}
+
+static int co_cmp(const void *a, const void *b) {
+    int64_t x = *(const int64_t *)a, y = *(const int64_t *)b;
+    return x < y ? -1 : x > y;
+}
+
+static int co_ov(const double *a, const double *b) {
+    return a[0] <= b[3] && b[0] <= a[3] && a[1] <= b[4] && b[1] <= a[4] && a[2] <= b[5] && b[2] <= a[5];
+}
+
+static void co_soup(wr_rng *rng, int32_t n, double size, double *bx) {
+    int32_t i;
+    int a;
+    for (i = 0; i < n; ++i)
+        for (a = 0; a < 3; ++a) {
+            double c = wr_rng_uniform(rng), h = size * wr_rng_uniform(rng);
+            bx[6 * i + a] = c - h;
+            bx[6 * i + 3 + a] = c + h;
+        }
+}
+
+Test(collision, bvh_candidates_equal_brute_force) {
+    wr_rng rng;
+    int round;
+    wr_rng_seed(&rng, 11);
+    for (round = 0; round < 4; ++round) {
+        int32_t n = 300 + 200 * round, m = 250, i, j;
+        double *bx = (double *)malloc(sizeof(double) * 6 * (size_t)n), *by = (double *)malloc(sizeof(double) * 6 * (size_t)m);
+        wr_bvh ta, tb;
+        co_pairs got = {0, 0, NULL}, ref = {0, 0, NULL};
+        co_soup(&rng, n, 0.03, bx);
+        co_soup(&rng, m, 0.05, by);
+        /* duplicated boxes (equal keys) in the first tree stress the median split */
+        for (i = 0; i < 30; ++i) memcpy(bx + 6 * (n - 1 - i), bx, 6 * sizeof(double));
+        cr_assert_eq(wr_bvh_build(&ta, n, bx, NULL), WR_OK);
+        cr_assert_eq(wr_bvh_build(&tb, m, by, NULL), WR_OK);
+        /* self pairs */
+        cr_assert_eq(wr_bvh_self_pairs(&ta, co_collect, &got, NULL), WR_OK);
+        for (i = 0; i < n; ++i)
+            for (j = i + 1; j < n; ++j)
+                if (co_ov(bx + 6 * i, bx + 6 * j)) co_collect(&ref, i, j);
+        qsort(got.k, (size_t)got.n, sizeof(int64_t), co_cmp);
+        cr_assert_eq(got.n, ref.n, "self pairs: BVH %d, brute force %d", got.n, ref.n);
+        cr_expect(got.n == 0 || memcmp(got.k, ref.k, sizeof(int64_t) * (size_t)got.n) == 0);
+        /* cross pairs, after moving every box (refit) */
+        for (i = 0; i < 6 * n; ++i) bx[i] += 0.01 * sin((double)i);
+        for (i = 0; i < n; ++i) /* keep min <= max */
+            for (j = 0; j < 3; ++j)
+                if (bx[6 * i + j] > bx[6 * i + 3 + j]) {
+                    double t = bx[6 * i + j];
+                    bx[6 * i + j] = bx[6 * i + 3 + j];
+                    bx[6 * i + 3 + j] = t;
+                }
+        wr_bvh_refit(&ta, bx);
+        got.n = ref.n = 0;
+        cr_assert_eq(wr_bvh_pairs(&ta, &tb, co_collect, &got, NULL), WR_OK);
+        for (i = 0; i < n; ++i)
+            for (j = 0; j < m; ++j)
+                if (co_ov(bx + 6 * i, by + 6 * j)) co_collect(&ref, i, j);
+        qsort(got.k, (size_t)got.n, sizeof(int64_t), co_cmp);
+        cr_assert_eq(got.n, ref.n, "cross pairs: BVH %d, brute force %d", got.n, ref.n);
+        cr_expect(got.n == 0 || memcmp(got.k, ref.k, sizeof(int64_t) * (size_t)got.n) == 0);
+        wr_bvh_free(&ta);
+        wr_bvh_free(&tb);
+        free(got.k);
+        free(ref.k);
+        free(bx);
+        free(by);
+    }
+}
+
+Test(collision, bvh_rejects_bad_boxes) {
+    double bx[6] = {0, 0, 0, 1, -1, 1};
+    wr_bvh t;
+    wr_diag dg;
+    cr_expect_eq(wr_bvh_build(&t, 1, bx, &dg), WR_ERR_DOMAIN);
+    cr_expect_eq(dg.item, 0);
+    bx[4] = NAN;
+    cr_expect_eq(wr_bvh_build(&t, 1, bx, &dg), WR_ERR_DOMAIN);
+    cr_expect_eq(wr_bvh_build(&t, 0, NULL, &dg), WR_OK);
+    wr_bvh_free(&t);
+}
+
+/* ---- mesh level ---- */
+/* two n×n grids of the unit square: A at z = 0 (obstacle), B at height z (cloth), B shifted by half
+ * a cell so its vertices sit over A's face interiors */
+static void co_two_sheets(int32_t n, double z, double **x, int32_t **f, int32_t *nv, int32_t *nf, uint8_t **obst) {
+    int32_t i, j, s, k = 0, q = 0, nn = (n + 1) * (n + 1);
+    *nv = 2 * nn;
+    *nf = 4 * n * n;
+    *x = (double *)malloc(sizeof(double) * 3 * (size_t)*nv);
+    *f = (int32_t *)malloc(sizeof(int32_t) * 3 * (size_t)*nf);
+    *obst = (uint8_t *)calloc((size_t)*nv, 1);
+    for (s = 0; s < 2; ++s)
+        for (j = 0; j <= n; ++j)
+            for (i = 0; i <= n; ++i) {
+                (*x)[3 * k] = (double)i / n + (s ? 0.37 / n : 0.0);
+                (*x)[3 * k + 1] = (double)j / n + (s ? 0.29 / n : 0.0);
+                (*x)[3 * k + 2] = s ? z : 0.0;
+                (*obst)[k] = s == 0;
+                ++k;
+            }
+    for (s = 0; s < 2; ++s)
+        for (j = 0; j < n; ++j)
+            for (i = 0; i < n; ++i) {
+                int32_t v = s * nn + j * (n + 1) + i;
+                int32_t t[6] = {v, v + 1, v + n + 2, v, v + n + 2, v + n + 1};
+                memcpy(*f + 3 * q, t, sizeof t);
+                q += 2;
+            }
+}
+
+Test(collision, contacts_and_ccd_between_sheets) {
+    double *x, *dx;
+    int32_t *f, nv, nf, n = 6, i;
+    uint8_t *ob;
+    wr_collision_mesh cm;
+    wr_contact_set cs;
+    wr_collision_ccd_stats st;
+    double alpha, E, *g;
+    co_two_sheets(n, 1e-3, &x, &f, &nv, &nf, &ob);
+    memset(&cs, 0, sizeof cs);
+    cr_assert_eq(wr_collision_mesh_create(&cm, nv, nf, f, ob, NULL, NULL), WR_OK);
+    cr_expect_eq(cm.ne, 2 * (3 * n * n + 2 * n));
+    /* d̂ = 2 mm > 1 mm gap: every cloth vertex over A's interior (all (n+1)² of B, B's shifted
+     * square still overlaps A except on the far rows, which sit past A's edge) has a PT contact */
+    cr_assert_eq(wr_collision_contacts(&cm, x, 2e-3, &cs, NULL), WR_OK);
+    cr_expect(cs.n > 0);
+    cr_expect_float_eq(cs.min_distance, 1e-3, 1e-15);
+    for (i = 0; i < cs.n; ++i) {
+        cr_expect(cs.c[i].d < 2e-3);
+        /* no obstacle–obstacle and (both sheets flat, 1 mm apart) no cloth–cloth pair */
+        if (cs.c[i].kind == WR_CONTACT_PT) cr_expect(!ob[cs.c[i].v[0]] || !ob[cs.c[i].v[1]]);
+    }
+    /* d̂ below the gap: none */
+    cr_assert_eq(wr_collision_contacts(&cm, x, 0.9e-3, &cs, NULL), WR_OK);
+    cr_expect_eq(cs.n, 0);
+    /* energy and its gradient against FD along a vertical move of one cloth vertex */
+    cr_assert_eq(wr_collision_contacts(&cm, x, 2e-3, &cs, NULL), WR_OK);
+    g = (double *)calloc(3 * (size_t)nv, sizeof(double));
+    cr_assert_eq(wr_collision_contact_energy(&cs, x, 2e-3, 1.0, 1, &E, g, NULL, NULL), WR_OK);
+    cr_expect(E > 0.0);
+    {
+        int32_t v = nv / 2 + (n + 1) + 1; /* an interior vertex of B */
+        double h = 1e-8, Ep, Em;
+        x[3 * v + 2] += h;
+        wr_collision_contact_energy(&cs, x, 2e-3, 1.0, 1, &Ep, NULL, NULL, NULL);
+        x[3 * v + 2] -= 2 * h;
+        wr_collision_contact_energy(&cs, x, 2e-3, 1.0, 1, &Em, NULL, NULL, NULL);
+        x[3 * v + 2] += h;
+        cr_expect(fabs((Ep - Em) / (2 * h) - g[3 * v + 2]) <= 1e-5 * fabs(g[3 * v + 2]), "dE/dz %g vs %g",
+                  (Ep - Em) / (2 * h), g[3 * v + 2]);
+        cr_expect(g[3 * v + 2] < 0.0); /* the barrier pushes the cloth up */
+    }
+    /* CCD: the cloth moves down by 3 mm (through A): alpha < 1/3 and the end state intersection-free */
+    dx = (double *)calloc(3 * (size_t)nv, sizeof(double));
+    for (i = nv / 2; i < nv; ++i) dx[3 * i + 2] = -3e-3;
+    cr_assert_eq(wr_collision_max_step(&cm, x, dx, &alpha, &st, NULL), WR_OK);
+    cr_expect(alpha < 1.0 / 3.0 && alpha >= 0.9 / 3.0 * (1 - 1e-9), "alpha %g", alpha);
+    cr_expect(st.hits > 0 && st.candidates >= st.hits);
+    {
+        double *xe = (double *)malloc(sizeof(double) * 3 * (size_t)nv);
+        int32_t cnt = -1;
+        for (i = 0; i < 3 * nv; ++i) xe[i] = x[i] + alpha * dx[i];
+        cr_assert_eq(wr_collision_mesh_self_intersects(&cm, xe, &cnt, NULL, NULL), WR_OK);
+        cr_expect_eq(cnt, 0);
+        /* a tilting motion that ends with B cutting through A: the full step intersects, the
+         * CCD-limited one does not */
+        for (i = nv / 2; i < nv; ++i) dx[3 * i + 2] = -3e-3 * x[3 * i];
+        for (i = 0; i < 3 * nv; ++i) xe[i] = x[i] + dx[i];
+        cr_assert_eq(wr_collision_mesh_self_intersects(&cm, xe, &cnt, NULL, NULL), WR_OK);
+        cr_expect(cnt > 0);
+        cr_assert_eq(wr_collision_max_step(&cm, x, dx, &alpha, &st, NULL), WR_OK);
+        cr_expect(alpha < 1.0);
+        for (i = 0; i < 3 * nv; ++i) xe[i] = x[i] + alpha * dx[i];
+        cr_assert_eq(wr_collision_mesh_self_intersects(&cm, xe, &cnt, NULL, NULL), WR_OK);
+        cr_expect_eq(cnt, 0);
+        free(xe);
+    }
+    /* tangential motion only: nothing limits it */
+    for (i = nv / 2; i < nv; ++i) {
+        dx[3 * i] = 0.3;
+        dx[3 * i + 2] = 0.0;
+    }
+    cr_assert_eq(wr_collision_max_step(&cm, x, dx, &alpha, NULL, NULL), WR_OK);
+    cr_expect_eq(alpha, 1.0);
+    wr_contact_set_free(&cs);
+    wr_collision_mesh_free(&cm);
+    free(x);
+    free(dx);
+    free(f);
+    free(ob);
+    free(g);
+}
+
+Test(collision, self_contacts_only_when_asked) {
+    double *x;
+    int32_t *f, nv, nf;
+    uint8_t *ob;
+    wr_collision_mesh cm;
+    wr_collision_desc d;
+    wr_contact_set cs;
+    co_two_sheets(4, 1e-3, &x, &f, &nv, &nf, &ob);
+    memset(ob, 0, (size_t)nv); /* both sheets are cloth */
+    memset(&cs, 0, sizeof cs);
+    memset(&d, 0, sizeof d);
+    cr_assert_eq(wr_collision_mesh_create(&cm, nv, nf, f, ob, &d, NULL), WR_OK);
+    cr_assert_eq(wr_collision_contacts(&cm, x, 2e-3, &cs, NULL), WR_OK);
+    cr_expect(cs.n > 0);
+    wr_collision_mesh_free(&cm);
+    d.no_self = 1;
+    cr_assert_eq(wr_collision_mesh_create(&cm, nv, nf, f, ob, &d, NULL), WR_OK);
+    cr_assert_eq(wr_collision_contacts(&cm, x, 2e-3, &cs, NULL), WR_OK);
+    cr_expect_eq(cs.n, 0);
+    wr_contact_set_free(&cs);
+    wr_collision_mesh_free(&cm);
+    free(x);
+    free(f);
+    free(ob);
+}
+
+Test(collision, mesh_self_intersection_exact) {
+    /* a strip of two triangles folded about their shared edge: fine at any angle but 0 (flat onto
+     * each other, exact) and a far triangle pierced by the strip */
+    double x[18] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0, 0.3, 0.3, -1, 0.3, 0.4, 1};
+    int32_t f[9] = {0, 1, 2, 1, 3, 2, 4, 5, 0}, cnt, first[2];
+    wr_collision_mesh cm;
+    cr_assert_eq(wr_collision_mesh_create(&cm, 6, 2, f, NULL, NULL, NULL), WR_OK);
+    cr_assert_eq(wr_collision_mesh_self_intersects(&cm, x, &cnt, first, NULL), WR_OK);
+    cr_expect_eq(cnt, 0); /* flat strip: neighbours share an edge only */
+    co_set(x + 9, 0, 0, 0);  /* fold vertex 3 exactly onto vertex 0: triangles coincide beyond the edge */
+    cr_assert_eq(wr_collision_mesh_self_intersects(&cm, x, &cnt, first, NULL), WR_OK);
+    cr_expect_eq(cnt, 1);
+    co_set(x + 9, 0.1, 0.1, 1e-9); /* almost folded: no intersection */
+    cr_assert_eq(wr_collision_mesh_self_intersects(&cm, x, &cnt, first, NULL), WR_OK);
+    cr_expect_eq(cnt, 0);
+    wr_collision_mesh_free(&cm);
+    /* third triangle (4, 5, 0) shares vertex 0 with the first and pierces it */
+    co_set(x + 9, 1, 1, 0);
+    cr_assert_eq(wr_collision_mesh_create(&cm, 6, 3, f, NULL, NULL, NULL), WR_OK);
+    cr_assert_eq(wr_collision_mesh_self_intersects(&cm, x, &cnt, first, NULL), WR_OK);
+    cr_expect_eq(cnt, 1);
+    cr_expect(first[0] == 0 && first[1] == 2);
+    x[14] = 0.5; /* 4 now above the plane too: (4,5,0) touches the strip only at vertex 0 */
+    x[17] = 1.0;
+    cr_assert_eq(wr_collision_mesh_self_intersects(&cm, x, &cnt, first, NULL), WR_OK);
+    cr_expect_eq(cnt, 0);
+    wr_collision_mesh_free(&cm);
+}
+
+Test(collision, meshes_intersect_and_bad_input) {
+    double xa[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0}, xb[9] = {0.2, 0.2, -1, 0.3, 0.2, 1, 0.25, 0.3, 1};
+    int32_t fa[3] = {0, 1, 2}, cnt, bad[3] = {0, 1, 5}, rep[3] = {0, 1, 1};
+    wr_collision_mesh cm;
+    wr_diag dg;
+    cr_assert_eq(wr_collision_meshes_intersect(3, xa, 1, fa, 3, xb, 1, fa, &cnt, NULL), WR_OK);
+    cr_expect_eq(cnt, 1);
+    xb[2] = 0.5;
+    cr_assert_eq(wr_collision_meshes_intersect(3, xa, 1, fa, 3, xb, 1, fa, &cnt, NULL), WR_OK);
+    cr_expect_eq(cnt, 0);
+    cr_expect_eq(wr_collision_mesh_create(&cm, 3, 1, bad, NULL, NULL, &dg), WR_ERR_TOPOLOGY);
+    cr_expect_eq(dg.item, 0);
+    cr_expect_eq(wr_collision_mesh_create(&cm, 3, 1, rep, NULL, NULL, &dg), WR_ERR_TOPOLOGY);
+    cr_assert_eq(wr_collision_mesh_create(&cm, 3, 1, fa, NULL, NULL, NULL), WR_OK);
+    xa[4] = NAN;
+    cr_expect_eq(wr_collision_contacts(&cm, xa, 1e-3, NULL, &dg), WR_ERR_INVALID_ARG);
+    {
+        wr_contact_set cs;
+        memset(&cs, 0, sizeof cs);
+        cr_expect_eq(wr_collision_contacts(&cm, xa, 1e-3, &cs, &dg), WR_ERR_DOMAIN);
+        cr_expect_eq(dg.item, 1);
+        xa[4] = 0.0;
+        cr_expect_eq(wr_collision_contacts(&cm, xa, 0.0, &cs, &dg), WR_ERR_DOMAIN);
+        wr_contact_set_free(&cs);
+    }
+    wr_collision_mesh_free(&cm);
+}
