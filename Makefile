@@ -141,7 +141,7 @@ FUZZERS       = $(addprefix build/fuzz/,$(FUZZ_NAMES))
 FUZZ_EXTRA_fuzz_scene   = drivers/lib/scene.c drivers/lib/jsonout.c
 FUZZ_EXTRA_fuzz_pattern = drivers/lib/pattern.c
 
-.PHONY: fuzz fuzz-build fuzz-smoke memcheck examples install-check driver-check deps-check
+.PHONY: fuzz fuzz-build fuzz-smoke memcheck examples install-check driver-check deps-check mutate
 
 # Tools of these checks (installed like DEB_PACKAGES: apt-get when root / passwordless sudo).
 CHECK_PACKAGES = clang libclang-rt-14-dev valgrind strace python3
@@ -162,6 +162,12 @@ fuzz: fuzz-build
 FUZZ_SMOKE_NAMES ?= $(FUZZ_NAMES)
 fuzz-smoke: fuzz-build
 	@sh tests/fuzz/run.sh 60 $(FUZZ_SMOKE_NAMES)
+
+# Mutation check (issue 20): each mutant of tests/mutants.txt applied alone to a scratch copy of the
+# tree, unit tests (its Criterion filter, fail-fast) and fast validations run; survivors reported
+# (tools/mutate.py; MUTATE_ARGS e.g. --only ID,ID or --list FILE). Survivors: tests/MUTANTS.md.
+mutate: deps
+	@nice python3 tools/mutate.py $(MUTATE_ARGS)
 
 # Every driver's smoke invocation under valgrind memcheck: any error or definite/indirect leak fails.
 memcheck: deps-check all

@@ -19,8 +19,10 @@
  * something), areal density ρ_A = 0.0025 kg/m² so that the self-weight parameter κ = ρ_A g L³/B =
  * 12.3: a large deflection (tip ≈ 0.74 L) that is not a vertical hang. A real fabric (0.15 kg/m²) at
  * 100 mm would have κ = 736 and hang nearly straight down, making the tip insensitive to the mesh.
- * Second sweep (reported, no pass band): the D1388-scale overhang L = 25 mm with ρ_A = 0.15 kg/m²
- * (κ = 11.5), the same problem at a quarter of the length, so a given r is 4× coarser relative to L.
+ * The main strip's geometry is OUR CHOICE (60× lighter than fabric), stated as such in its rows.
+ * Second sweep (pass/fail rows since issue 20, the main strip's bands): the D1388-scale overhang
+ * L = 25 mm with a real fabric's ρ_A = 0.15 kg/m² (κ = 11.5), the same problem at a quarter of the
+ * length, so a given r is 4× coarser relative to L.
  * ν = 0.3, thickness from Kirchhoff–Love h = (12(1−ν²)B/E)^{1/3}. The elastica is a beam of rigidity
  * B per unit width; the plate's anticlastic coupling changes the tip by < 0.05 % here (measured ν = 0
  * vs 0.3 at L = 25 mm). StVK + mid-edge bending, full gravity in one solve, exact-Hessian Newton to
@@ -32,7 +34,8 @@
  * Reported per resolution: tip deflection (mean −z of both tip columns), its error against the
  * elastica, and the shape error (largest distance of a mesh vertex from the reference curve in the
  * (|x − x_clamp|, z) plane, / L). Pass (issue 5): tip deflection at r_opt within 2 % of the elastica
- * and within 1 % of the 2.5 mm solve. Exit = failed quantities, 2 on errors.
+ * and within 1 % of the 2.5 mm solve, on both strips (issue 20); and the paper's "the curve flattens
+ * at r_opt" read on each sweep (see the rows). Exit = failed quantities, 2 on errors.
  */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
@@ -248,15 +251,51 @@ int main(void) {
     wr_vres_info(v, "elastica tip deflection (L = 100 mm, rho_A = 0.0025 kg/m^2)", "mm", NAN, 1e3 * cm.er.tip_deflection);
     wr_vres_info(v, "self-weight parameter kappa = rho_A g L^3 / B (main sweep)", "", NAN, cm.er.kappa);
     wr_vres_info(v, "r_opt (Style3D Eq. 4)", "mm", 6.45, 1e3 * r_opt);
-    wr_vres_rel(v, "tip deflection at r_opt vs elastica", "mm", 1e3 * cm.er.tip_deflection, 1e3 * rows[i_opt].tip, 0.02);
-    wr_vres_rel(v, "tip deflection at r_opt vs 2.5 mm solve", "mm", 1e3 * rows[I25].tip, 1e3 * rows[i_opt].tip, 0.01);
+    /* issue 5's bands: tip at r_opt within 2 % of the elastica and within 1 % of the 2.5 mm solve; the
+     * elastica and the 2.5 mm solve are references, not paper values (issue 20) */
+    {
+        const double te = 1e3 * cm.er.tip_deflection, t25 = 1e3 * rows[I25].tip;
+        wr_vres_range(v, "tip deflection at r_opt vs elastica, main strip (OUR CHOSEN geometry: L = 100 mm, rho_A = 0.0025 "
+                         "kg/m^2, 60x lighter than fabric)",
+                      "mm", NAN, 1e3 * rows[i_opt].tip, 0.98 * te, 1.02 * te);
+        wr_vres_reference(v, te, "heavy elastica, validation/elastica_ref.h");
+        wr_vres_range(v, "tip deflection at r_opt vs 2.5 mm solve, main strip (our chosen geometry)", "mm", NAN,
+                      1e3 * rows[i_opt].tip, 0.99 * t25, 1.01 * t25);
+        wr_vres_reference(v, t25, "our 2.5 mm solve");
+    }
     wr_vres_info(v, "tip deflection at 2.5 mm vs elastica (relative error)", "%", NAN,
                  100.0 * (rows[I25].tip / cm.er.tip_deflection - 1.0));
     wr_vres_info(v, "shape error / L at r_opt", "%", NAN, 100.0 * rows[i_opt].shape);
-    wr_vres_info(v, "curve flattens (coarsest r with all finer tips within 1% of 2.5 mm)", "mm", 6.45,
-                 flat >= 0 ? 1e3 * res_list[flat] : NAN);
+    /* Style3D Sec. 6 / Fig. 18: the tip-vs-r curve flattens at r_opt. Read on our sweep (issue 20: a
+     * pass/fail row): the coarsest r from which every finer tip stays within 1 % of the 2.5 mm tip must
+     * be r_opt itself — its sweep neighbours are 7.5 mm (coarser) and 5 mm (finer), so flattening at
+     * 7.5 mm means r_opt is not where the curve flattens, and at 5 mm that r_opt is too coarse. */
+    wr_vres_check(v, "curve flattens at r_opt, main strip (coarsest r with all finer tips within 1% of 2.5 mm)", "mm", 6.45,
+                  flat >= 0 ? 1e3 * res_list[flat] : NAN, "= r_opt on the sweep (neighbours 7.5, 5 mm)", flat == i_opt);
     wr_vres_info(v, "coarsest r with all finer tips within 2% of the elastica", "mm", 6.45,
                  within2 >= 0 ? 1e3 * res_list[within2] : NAN);
+    /* the realistic-density strip (real fabric rho_A at the D1388 overhang): the main strip's bands
+     * (issue 5), now pass/fail rows (issue 20) */
+    {
+        const double te = 1e3 * cs.er.tip_deflection, t25 = 1e3 * srows[3].tip;
+        int flat_s = -1;
+        wr_vres_range(v, "tip deflection at r_opt vs elastica, realistic strip (L = 25 mm, rho_A = 0.15 kg/m^2)", "mm", NAN,
+                      1e3 * srows[1].tip, 0.98 * te, 1.02 * te);
+        wr_vres_reference(v, te, "heavy elastica, validation/elastica_ref.h");
+        wr_vres_range(v, "tip deflection at r_opt vs 2.5 mm solve, realistic strip", "mm", NAN, 1e3 * srows[1].tip, 0.99 * t25,
+                      1.01 * t25);
+        wr_vres_reference(v, t25, "our 2.5 mm solve");
+        for (i = 3; i >= 0; --i) {
+            int ok = 1;
+            for (j = i; j <= 3; ++j)
+                if (fabs(srows[j].tip / srows[3].tip - 1.0) > 0.01) ok = 0;
+            if (ok) flat_s = i;
+            else break;
+        }
+        wr_vres_check(v, "curve flattens at r_opt, realistic strip (coarsest r with all finer tips within 1% of 2.5 mm)", "mm",
+                      6.45, flat_s >= 0 ? 1e3 * short_list[flat_s] : NAN, "= r_opt on the sweep (neighbours 10, 5 mm)",
+                      flat_s == 1);
+    }
     wr_vres_info(v, "L = 25 mm sweep: tip error vs elastica at r_opt", "%", NAN,
                  100.0 * (srows[1].tip / cs.er.tip_deflection - 1.0));
     wr_vres_info(v, "L = 25 mm sweep: tip error vs elastica at 2.5 mm", "%", NAN,

@@ -406,12 +406,13 @@ int main(int argc, char **argv) {
     wr_vres_table_md(v, table);
     for (i = 0; i < nb; ++i) {
         snprintf(name, sizeof name, "transition distance, B = %.1e N m: measured vs tension form lambda0^2 sqrt(T/B)", rows[i].B);
-        wr_vres_rel(v, name, "mm", 1e3 * rows[i].Lw_pred, 1e3 * rows[i].L_zc, 0.25);
+        wr_vres_rel(v, name, "mm", 1e3 * rows[i].Lw_pred, 1e3 * rows[i].L_zc, 0.25); /* ±25 %: issue 5; the "paper" column
+                                                                                     * holds the formula's value (issue 20: a reference, see REPORT) */
     }
     for (i = 0; i < nb; ++i) {
         snprintf(name, sizeof name, "transition distance, B = %.1e N m: measured vs compression form lambda0^1.5 (delta/h^2)^0.25",
                  rows[i].B);
-        wr_vres_rel(v, name, "mm", 1e3 * rows[i].Lw_comp, 1e3 * rows[i].L_zc, 0.25);
+        wr_vres_rel(v, name, "mm", 1e3 * rows[i].Lw_comp, 1e3 * rows[i].L_zc, 0.25); /* ±25 %: issue 5, as above */
     }
     for (i = 0; i < nb; ++i) {
         snprintf(name, sizeof name, "B = %.1e N m: measured vs lambda0 (A/h)^0.5 (PRL light-curtain law, exact gather amplitude; info)",
@@ -435,7 +436,7 @@ int main(int argc, char **argv) {
         snprintf(name, sizeof name,
                  "tension-dominated curtain (H = %.0f mm, rho_A = %.1f kg/m^2, T = %.2f N/m, B = 2e-6): measured vs tension form",
                  1e3 * HEAVY_HEIGHT, HEAVY_RHO, rows[nb + 1].T);
-        wr_vres_rel(v, name, "mm", 1e3 * rows[nb + 1].Lw_pred, 1e3 * rows[nb + 1].L_zc, 0.25);
+        wr_vres_rel(v, name, "mm", 1e3 * rows[nb + 1].Lw_pred, 1e3 * rows[nb + 1].L_zc, 0.25); /* ±25 %: issue 5 */
         wr_vres_info(v, "exponent of L vs T, B = 2e-6, T = 0.118 -> 4.9 N/m (tension form 1/2, compression form 0)", "", 0.5,
                      log(rows[nb + 1].L_zc / rows[1].L_zc) / log(rows[nb + 1].T / rows[1].T));
     }

@@ -61,6 +61,9 @@ int main(void) {
             if (i + 1 < NB && j + 1 < NE)
                 diag_dev = fmax(diag_dev, fabs(grid_r[i + 1][j + 1] - grid_r[i][j]) / grid_r[i][j]);
         }
+    /* exact properties of Eq. 4 on its increasing branch (no tolerance: a count of 0, a monotonicity,
+     * equal r on equal y = B/E up to 1e-12 relative, i.e. the root solve's own rel_tol ~1e-14 plus
+     * rounding; r above the model zero r0) */
     wr_vres_range(v, "root-solve failures on the 61x41 grid", "count", NAN, solve_fail, 0, 0);
     wr_vres_range(v, "violations of dr/dB > 0 (along every E row)", "count", NAN, viol_B, 0, 0);
     wr_vres_range(v, "violations of dr/dE < 0 (along every B column)", "count", NAN, viol_E, 0, 0);
@@ -69,6 +72,8 @@ int main(void) {
                   1e3 * dom.r_zero, 50.0);
     wr_vres_info(v, "largest r on the grid", "mm", NAN, 1e3 * rmax);
     if (wr_resolution_from_BE(&m, 1e-3, 2e3, NULL, &r, &d) != WR_OK) r = NAN;
+    /* the calibration pins the design corners to Sec. 4.1.1's 50 mm and 2.5 mm exactly: 1e-9 relative
+     * is rounding of the 2x2 solve, not a tolerance on physics */
     wr_vres_rel(v, "r(B_max = 1e-3, E_min = 2e3), coarsest design corner", "mm", 50.0, 1e3 * r, 1e-9);
     if (wr_resolution_from_BE(&m, 1e-9, 2e6, NULL, &r, &d) != WR_OK) r = NAN;
     wr_vres_rel(v, "r(B_min = 1e-9, E_max = 2e6), finest design corner", "mm", 2.5, 1e3 * r, 1e-9);

@@ -1,9 +1,15 @@
 /* validate_meshing — Style3D Sec. 4.3 / Table 1 / Fig. 14 and the garment examples through the mesher.
  *
  * (a) a 250 mm × 250 mm square for each Table 1 fabric at its optimal resolution (Eq. 4) and uniformly
- *     at 2.5 mm: vertex counts beside the paper's #V (pass band ±15%), with the sizing calibration
- *     (mean edge length / sizing, must be within ±10%) measured on the same meshes. The Poisson radius
- *     factor is poisson.h's calibrated default; nothing here is tuned to the table.
+ *     at 2.5 mm: vertex counts beside the paper's #V (pass band ±8 %, issue 20), with the sizing
+ *     calibration (mean edge length / sizing, within ±2 %, issue 20: the band poisson.h's own
+ *     calibration test holds) measured on the same meshes. The Poisson radius factor is poisson.h's
+ *     calibrated default; nothing here is tuned to the table. Beside each count: the equilateral-
+ *     lattice count of the same square, 2A/(√3 r²) + P/(2r) (a reference, not a paper value), which
+ *     the paper's #V follow to within 2 %: a mesh whose MEAN edge is r (ours, by calibration) has
+ *     more vertices than the lattice, because irregular triangles with a given mean edge enclose
+ *     less area than equilateral ones (the measured ours/lattice ratio is the price of Poisson-disk
+ *     irregularity; see the notes).
  * (b) Fig. 14: the square with curved shirring lines, its sizing map and mesh as a figure.
  * (c) every pattern in examples/: vertices vs uniform 2.5 mm and vs uniform base resolution, min angle.
  * Results: validation/results/style3d_meshing.json, figures in validation/figures/.
@@ -97,21 +103,38 @@ int main(void) {
             ++failed_runs;
             continue;
         }
+        /* ±8 %: issue 20's band for Table 1 counts (the paper gives no tolerance; Poisson-disk meshes at
+         * the calibrated mean edge run 5-9 % above the lattice count the paper's #V follow) */
         snprintf(name, sizeof name, "Table 1 %s: vertices at the optimal resolution (250 mm square)", f->name);
-        wr_vres_rel(v, name, "vertices", f->nv_paper, r.mesh.nv, 0.15);
+        wr_vres_rel(v, name, "vertices", f->nv_paper, r.mesh.nv, 0.08);
+        {
+            const double S = 0.25, rr = r.panels[0].r0, lat = 2.0 * S * S / (sqrt(3.0) * rr * rr) + 4.0 * S / (2.0 * rr);
+            snprintf(name, sizeof name, "Table 1 %s: ours / equilateral-lattice count at our r", f->name);
+            wr_vres_info(v, name, "1", NAN, r.mesh.nv / lat);
+            wr_vres_reference(v, 1.0, "lattice count 2A/(sqrt3 r^2) + P/(2r)");
+            snprintf(name, sizeof name, "Table 1 %s: paper #V / equilateral-lattice count at the paper's r", f->name);
+            wr_vres_info(v, name, "1", NAN,
+                         f->nv_paper / (2.0 * S * S / (sqrt(3.0) * 1e-6 * f->r_paper_mm * f->r_paper_mm) +
+                                        4.0 * S / (2e-3 * f->r_paper_mm)));
+            wr_vres_reference(v, 1.0, "lattice count 2A/(sqrt3 r^2) + P/(2r)");
+        }
+        /* ±2 %: issue 20 (the calibration is a library target, mean Delaunay edge = sizing; poisson.h's
+         * calibration test holds the same band), reference 1, not a paper value */
         snprintf(name, sizeof name, "Table 1 %s: mean edge length / sizing", f->name);
-        wr_vres_range(v, name, "1", 1.0, r.report.ratio_mean, 0.9, 1.1);
+        wr_vres_range(v, name, "1", NAN, r.report.ratio_mean, 0.98, 1.02);
+        wr_vres_reference(v, 1.0, "poisson.h calibration target");
         snprintf(name, sizeof name, "Table 1 %s: optimal resolution r", f->name);
         wr_vres_info(v, name, "mm", f->r_paper_mm, 1e3 * r.panels[0].r0);
         if (!isnan(f->nv_full_paper)) {
             snprintf(name, sizeof name, "Table 1 %s: vertices, uniform 2.5 mm (full sim)", f->name);
-            wr_vres_rel(v, name, "vertices", f->nv_full_paper, u.mesh.nv, 0.15);
+            wr_vres_rel(v, name, "vertices", f->nv_full_paper, u.mesh.nv, 0.08); /* ±8 %: as the optimal counts */
         } else {
             snprintf(name, sizeof name, "Table 1 %s: vertices, uniform 2.5 mm", f->name);
             wr_vres_info(v, name, "vertices", NAN, u.mesh.nv);
         }
         snprintf(name, sizeof name, "Table 1 %s: mean edge length / sizing, uniform 2.5 mm", f->name);
-        wr_vres_range(v, name, "1", 1.0, u.report.ratio_mean, 0.9, 1.1);
+        wr_vres_range(v, name, "1", NAN, u.report.ratio_mean, 0.98, 1.02); /* ±2 %: as above */
+        wr_vres_reference(v, 1.0, "poisson.h calibration target");
         if (fabs(r.report.ratio_mean - 1.0) > worst_cal) worst_cal = fabs(r.report.ratio_mean - 1.0);
         if (fabs(u.report.ratio_mean - 1.0) > worst_cal) worst_cal = fabs(u.report.ratio_mean - 1.0);
         ratio_sum += r.mesh.nv / f->nv_paper;
@@ -127,8 +150,17 @@ int main(void) {
         wr_mesher_free(&u);
     }
     wr_vres_table_md(v, md);
-    wr_vres_info(v, "Table 1 squares: mean of ours/paper vertex ratios", "1", 1.0, ratio_sum / 5.0);
-    wr_vres_info(v, "sizing calibration: worst |mean edge/sizing - 1| over the ten square meshes", "1", 0.0, worst_cal);
+    wr_vres_info(v, "Table 1 squares: mean of ours/paper vertex ratios", "1", NAN, ratio_sum / 5.0);
+    wr_vres_info(v, "sizing calibration: worst |mean edge/sizing - 1| over the ten square meshes", "1", NAN, worst_cal);
+    wr_vres_note(v, "Table 1 vertex counts (issue 20): the paper's #V are the equilateral-lattice counts of the square at its "
+                    "r to within 2 % (rows 'paper #V / equilateral-lattice count'), i.e. the paper's meshes have about the "
+                    "density of equilateral triangles of edge r. Ours are calibrated so that the MEAN Delaunay edge equals "
+                    "the sizing (rows 'mean edge length / sizing', within 1 %); irregular triangles with a given mean edge "
+                    "enclose less area than equilateral ones, so the same mean edge takes 5-9 % more vertices (rows 'ours / "
+                    "equilateral-lattice count'). That is the +6 % mean: a difference in what 'resolution r' measures (mean "
+                    "edge vs lattice spacing), not a sizing error. Matching the paper's counts instead would mean "
+                    "calibrating the radius factor to vertex density, ~3 % longer edges than the sizing (poisson.h's "
+                    "choice, not this driver's).");
     wr_vres_info(v, "Poisson radius factor used (poisson.h calibrated default, not tuned here)", "1", NAN,
                  WR_POISSON_DEFAULT_RADIUS_FACTOR);
 
@@ -200,10 +232,14 @@ int main(void) {
             snprintf(name, sizeof name, "%s: minimum angle in the warp/weft metric", pf.name);
             wr_vres_info(v, name, "deg", NAN, r.report.min_angle_metric_deg);
         }
+        /* ±2 %: issue 20, as for the squares (graded sizing included) */
         snprintf(name, sizeof name, "%s: mean edge length / sizing", pf.name);
-        wr_vres_range(v, name, "1", 1.0, r.report.ratio_mean, 0.9, 1.1);
+        wr_vres_range(v, name, "1", NAN, r.report.ratio_mean, 0.98, 1.02);
+        wr_vres_reference(v, 1.0, "poisson.h calibration target");
+        /* a valid mesh has none (mesh.h's definition), no tolerance */
         snprintf(name, sizeof name, "%s: inverted or zero-area faces", pf.name);
-        wr_vres_range(v, name, "faces", 0.0, r.report.n_inverted + r.report.n_zero_area, 0.0, 0.0);
+        wr_vres_range(v, name, "faces", NAN, r.report.n_inverted + r.report.n_zero_area, 0.0, 0.0);
+        wr_vres_reference(v, 0.0, "mesh validity");
         len += (size_t)snprintf(md + len, sizeof md - len, "| %s | %d | %d | %.2f%s | %d | %d | %d | %.2fx | %.1f | %.1f | %.3f | %.2f |\n",
                                 pf.name, (int)pf.pattern.n_panels, ntech, 1e3 * r.panels[0].r0,
                                 r.panels[0].r_warp != r.panels[0].r_weft ? " (fine dir.)" : "", (int)r.mesh.nv,

@@ -125,6 +125,14 @@ void wr_vres_check(wr_vres *v, const char *name, const char *unit, double paper,
     add_q(v, name, unit, paper, ours, tolerance, NAN, NAN, pass ? 1 : 0);
 }
 
+void wr_vres_reference(wr_vres *v, double reference, const char *source) {
+    cJSON *q;
+    if (!v || cJSON_GetArraySize(v->quantities) == 0) return;
+    q = cJSON_GetArrayItem(v->quantities, cJSON_GetArraySize(v->quantities) - 1);
+    add_num_or_null(q, "reference", reference);
+    cJSON_AddStringToObject(q, "reference_source", source ? source : "");
+}
+
 void wr_vres_note(wr_vres *v, const char *text) {
     if (v) cJSON_AddItemToArray(v->notes, cJSON_CreateString(text));
 }

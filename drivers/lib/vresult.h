@@ -5,10 +5,14 @@
  *   { "case": id, "title": str, "generated": ISO-8601 UTC, "machine": str,
  *     "quantities": [ { "name", "unit", "paper": number|null, "ours": number|null,
  *                       "tolerance": str, "lo": number|null, "hi": number|null,
- *                       "pass": true|false|null } ... ],
+ *                       "pass": true|false|null,
+ *                       ["reference": number, "reference_source": str] } ... ],
  *     "notes": [str...], "figures": [ {"path", "caption"} ... ], "tables_md": [str...],
  *     "failed": int }
  * "pass": null marks a reported (informational) quantity without a pass band.
+ * "paper" holds only a value printed in a paper. Anything else a quantity is compared with (an
+ * elastica, a finer solve, a calibration target, a formula) is its "reference", with its source
+ * (wr_vres_reference, issue 20).
  * The output directory is $WRINKLE_RESULTS_DIR if set, else "validation/results".
  */
 #ifndef WRINKLE_VRESULT_H
@@ -30,6 +34,9 @@ void wr_vres_info(wr_vres *v, const char *name, const char *unit, double paper, 
 /* an explicit verdict with its own tolerance text (for criteria the helpers above cannot express) */
 void wr_vres_check(wr_vres *v, const char *name, const char *unit, double paper, double ours,
                    const char *tolerance, int pass);
+/* Attaches a non-paper reference value and its source (what it is, where it comes from) to the
+ * quantity added last; its band (lo, hi) should be built around that reference, with paper = NAN. */
+void wr_vres_reference(wr_vres *v, double reference, const char *source);
 void wr_vres_note(wr_vres *v, const char *text);
 void wr_vres_figure(wr_vres *v, const char *path_relative_to_validation_dir, const char *caption);
 void wr_vres_table_md(wr_vres *v, const char *markdown);
