@@ -223,7 +223,10 @@ Test(poisson, constant_radius_min_distance_and_coverage) {
     md = min_distance_ratio(&res);
     cr_assert(md >= 1.0, "min distance ratio %.9f < 1", md);
     cov = coverage_ratio(&res, 0, size_const, &h, 0, 0, 1, 1, 100);
-    cr_assert(cov < 2.0, "largest empty disk %.3f r (bound 2 r)", cov);
+    /* maximal up to the failed-candidate arcs: no probe farther than r from every sample (a gap
+     * left by a failed direction is narrower than r; 1.5 r leaves room for the boundary layer,
+     * where the clearance keeps samples 0.35 h off the curves) */
+    cr_assert(cov < 1.5, "largest empty disk %.3f r (bound 1.5 r)", cov);
     printf("[poisson] constant h=%.3g: n=%d (fixed %d), est=%d, min dist ratio %.6f, max empty/r %.3f\n", h,
            res.n_points, res.n_fixed, res.n_estimated, md, cov);
     wr_poisson_free(&res);
@@ -249,7 +252,7 @@ Test(poisson, graded_20x_min_distance_and_coverage) {
     md = min_distance_ratio(&res);
     cr_assert(md >= 1.0, "min distance ratio %.9f < 1", md);
     cov = coverage_ratio(&res, 0, size_ramp, &h0, 0, 0, 1, 1, 120);
-    cr_assert(cov < 2.0, "largest empty disk %.3f r (bound 2 r)", cov);
+    cr_assert(cov < 1.5, "largest empty disk %.3f r (bound 1.5 r, see the constant-radius test)", cov);
     printf("[poisson] graded 20x: n=%d (fixed %d), est=%d, min dist ratio %.6f, max empty/r %.3f\n", res.n_points,
            res.n_fixed, res.n_estimated, md, cov);
     wr_poisson_free(&res);
@@ -269,21 +272,25 @@ Test(poisson, density_and_estimate) {
     kappa = (double)(res.n_points - res.n_fixed) / (1.0 / (r * r));
     printf("[poisson] density kappa = %.4f samples per r^2 (constant h=%.3g, n=%d); estimate %d vs actual %d\n", kappa, h,
            res.n_points, res.n_estimated, res.n_points);
-    cr_assert(fabs(kappa - WR_POISSON_DENSITY) < 0.03 * WR_POISSON_DENSITY, "kappa %.4f vs constant %.4f", kappa,
+    /* 1 %: seed-to-seed spread of κ at this size is < 0.2 % */
+    cr_assert(fabs(kappa - WR_POISSON_DENSITY) < 0.01 * WR_POISSON_DENSITY, "kappa %.4f vs constant %.4f", kappa,
               WR_POISSON_DENSITY);
     cr_assert(fabs((double)res.n_estimated / res.n_points - 1.0) < 0.1, "estimate %d vs %d", res.n_estimated,
               res.n_points);
     wr_poisson_free(&res);
 }
 
-/* radius_factor calibration: Delaunay mean edge length / sizing within ±10% of 1 (the brief's
- * requirement) — constant and 20×-graded sizing, measured on the interior Delaunay edges. */
+/* radius_factor calibration: the mean Delaunay edge length / sizing within ±2 % of 1 (issue 20: a
+ * band that sees a few-percent error; the mutant radius_factor × 1.078 gives +4.8 % / +8.5 %, see
+ * bench/RESULTS.md), constant and 20×-graded sizing, over the Delaunay edges between interior
+ * samples. Measured centre with 3 seeds: 0.9945 (constant h = 0.01) and 1.0016 (graded h0 =
+ * 0.0025); seed-to-seed spread < 0.3 %, so ±2 % is the band of the requirement, not a fit. */
 Test(poisson, calibration_mean_edge_matches_sizing) {
     wr_poisson_domain dom;
     wr_poisson_desc desc;
     wr_poisson_result res;
     wr_diag d;
-    double h = 0.02, h0 = 0.004, q1, q2;
+    double h = 0.01, h0 = 0.0025, q1, q2;
     int32_t u1, u2;
     dom_square(&dom);
     memset(&desc, 0, sizeof desc);
@@ -297,8 +304,8 @@ Test(poisson, calibration_mean_edge_matches_sizing) {
     printf("[poisson] calibration radius_factor=%.3f: mean Delaunay edge / sizing = %.4f (constant, %d edges), "
            "%.4f (20x graded, %d edges)\n",
            WR_POISSON_DEFAULT_RADIUS_FACTOR, q1, u1, q2, u2);
-    cr_assert(fabs(q1 - 1.0) <= 0.10, "constant: mean edge / sizing = %.4f", q1);
-    cr_assert(fabs(q2 - 1.0) <= 0.10, "graded: mean edge / sizing = %.4f", q2);
+    cr_assert(fabs(q1 - 1.0) <= 0.02, "constant: mean edge / sizing = %.4f", q1);
+    cr_assert(fabs(q2 - 1.0) <= 0.02, "graded: mean edge / sizing = %.4f", q2);
 }
 
 Test(poisson, deterministic_for_seed) {
@@ -479,12 +486,14 @@ Test(poisson, holes_and_polylines) {
         cr_assert(inside_loops(&res, 2, p[0], p[1]), "sample %d at (%g, %g) outside the domain", i, p[0], p[1]);
         for (s = 0; s < res.n_segments; ++s) {
             double dd = seg_dist(p, res.points + 2 * res.segments[2 * s], res.points + 2 * res.segments[2 * s + 1]);
-            cr_assert(dd > 0.3 * WR_POISSON_DEFAULT_RADIUS_FACTOR * res.sizing[i], "sample %d too close to segment %d", i, s);
+            /* the clearance (header: ON THE CONFLICT RULE AND THE CLEARANCE) */
+            cr_assert(dd >= WR_POISSON_DEFAULT_CLEARANCE * res.sizing[i] * (1.0 - 1e-12),
+                      "sample %d at %.4g h from segment %d", i, dd / res.sizing[i], s);
         }
     }
     printf("[poisson] holes+lines: n=%d fixed=%d segments=%d coverage %.3f\n", res.n_points, res.n_fixed,
            res.n_segments, coverage_ratio(&res, 2, size_ramp, &h0, 0, 0, 1.0, 0.9, 70));
-    cr_assert(coverage_ratio(&res, 2, size_ramp, &h0, 0, 0, 1.0, 0.9, 70) < 2.0);
+    cr_assert(coverage_ratio(&res, 2, size_ramp, &h0, 0, 0, 1.0, 0.9, 70) < 1.5);
     wr_poisson_free(&res);
 }
 
@@ -723,4 +732,196 @@ Test(poisson, far_from_origin_loop_keeps_its_area) {
     cr_assert_eq(wr_poisson_sample(&dom, size_const, &h, NULL, &res, &d), WR_OK, "%s", d.message);
     cr_expect_gt(res.n_points, res.n_fixed);
     wr_poisson_free(&res);
+}
+
+/* ---- wr_poisson_fill: the curves as given ----------------------------------------------------- */
+/* A square outer loop given at 41 points per side, a hole and an open line given at their own
+ * spacing: the first n_fixed output points are exactly the input points (concatenated in curve
+ * order), the segments exactly the input edges, and every sample keeps the mean rule, the
+ * clearance and the inside. */
+Test(poisson, fill_keeps_given_curves_exactly) {
+    double outer[2 * 160], hole[2 * 40], line[2 * 25], h = 0.02;
+    wr_poisson_curve hl, ln;
+    wr_poisson_domain dom;
+    wr_poisson_desc desc;
+    wr_poisson_result res;
+    wr_diag d;
+    int32_t i, s, k = 0, n_exp;
+    for (i = 0; i < 160; ++i) { /* CCW around the unit square, 40 steps of 0.025 per side */
+        int side = i / 40;
+        double t = (i % 40) / 40.0;
+        outer[2 * i] = side == 0 ? t : side == 1 ? 1.0 : side == 2 ? 1.0 - t : 0.0;
+        outer[2 * i + 1] = side == 0 ? 0.0 : side == 1 ? t : side == 2 ? 1.0 : 1.0 - t;
+    }
+    for (i = 0; i < 40; ++i) {
+        hole[2 * i] = 0.3 + 0.1 * cos(2 * WRT_PI * i / 40);
+        hole[2 * i + 1] = 0.3 + 0.1 * sin(2 * WRT_PI * i / 40);
+    }
+    for (i = 0; i < 25; ++i) {
+        line[2 * i] = 0.55 + 0.3 * i / 24.0;
+        line[2 * i + 1] = 0.7;
+    }
+    memset(&hl, 0, sizeof hl);
+    memset(&ln, 0, sizeof ln);
+    hl.xy = hole;
+    hl.n = 40;
+    ln.xy = line;
+    ln.n = 25;
+    memset(&dom, 0, sizeof dom);
+    dom.outer.xy = outer;
+    dom.outer.n = 160;
+    dom.holes = &hl;
+    dom.n_holes = 1;
+    dom.lines = &ln;
+    dom.n_lines = 1;
+    memset(&desc, 0, sizeof desc);
+    desc.seed = 4;
+    cr_assert_eq(wr_poisson_fill(&dom, size_const, &h, &desc, &res, &d), WR_OK, "%s", d.message);
+    cr_assert_eq(res.n_fixed, 160 + 40 + 25);
+    for (i = 0; i < 160; ++i, ++k) cr_assert(res.points[2 * k] == outer[2 * i] && res.points[2 * k + 1] == outer[2 * i + 1]);
+    for (i = 0; i < 40; ++i, ++k) cr_assert(res.points[2 * k] == hole[2 * i] && res.points[2 * k + 1] == hole[2 * i + 1]);
+    for (i = 0; i < 25; ++i, ++k) cr_assert(res.points[2 * k] == line[2 * i] && res.points[2 * k + 1] == line[2 * i + 1]);
+    n_exp = 160 + 40 + 24;
+    cr_assert_eq(res.n_segments, n_exp);
+    for (s = 0; s < 160; ++s) cr_assert(res.segments[2 * s] == s && res.segments[2 * s + 1] == (s + 1) % 160);
+    for (s = 0; s < 40; ++s)
+        cr_assert(res.segments[2 * (160 + s)] == 160 + s && res.segments[2 * (160 + s) + 1] == 160 + (s + 1) % 40);
+    for (s = 0; s < 24; ++s) {
+        cr_assert(res.segments[2 * (200 + s)] == 200 + s && res.segments[2 * (200 + s) + 1] == 201 + s);
+        cr_assert_eq(res.segment_owner[200 + s], 2);
+    }
+    cr_assert(min_distance_ratio(&res) >= 1.0);
+    for (i = res.n_fixed; i < res.n_points; ++i) {
+        const double *p = res.points + 2 * i;
+        cr_assert(inside_loops(&res, 1, p[0], p[1]), "sample %d outside", i);
+        for (s = 0; s < res.n_segments; ++s)
+            cr_assert(seg_dist(p, res.points + 2 * res.segments[2 * s], res.points + 2 * res.segments[2 * s + 1]) >=
+                          WR_POISSON_DEFAULT_CLEARANCE * h * (1.0 - 1e-12),
+                      "sample %d within the clearance of segment %d", i, s);
+    }
+    cr_assert(coverage_ratio(&res, 1, size_const, &h, 0, 0, 1, 1, 80) < 1.5);
+    wr_poisson_free(&res);
+}
+
+/* The structured location in wr_diag (no message parsing): a line crossing hole 0. */
+Test(poisson, failure_location_is_structured) {
+    static const double hole[8] = {0.2, 0.2, 0.5, 0.2, 0.5, 0.5, 0.2, 0.5};
+    static const double line[6] = {0.1, 0.6, 0.35, 0.6, 0.35, 0.3}; /* segment 1 enters the hole */
+    static const double dup[8] = {0, 0, 1, 0, 1, 0, 0, 1};
+    wr_poisson_curve hl, ln;
+    wr_poisson_domain dom;
+    wr_poisson_result res;
+    wr_diag d;
+    double h = 0.05;
+    memset(&hl, 0, sizeof hl);
+    memset(&ln, 0, sizeof ln);
+    hl.xy = hole;
+    hl.n = 4;
+    ln.xy = line;
+    ln.n = 3;
+    dom_square(&dom);
+    dom.holes = &hl;
+    dom.n_holes = 1;
+    dom.lines = &ln;
+    dom.n_lines = 1;
+    cr_assert_eq(wr_poisson_fill(&dom, size_const, &h, NULL, &res, &d), WR_ERR_GEOMETRY);
+    /* hole 0 (curve 1) segment 2 = (0.5,0.5)-(0.2,0.5) is crossed by line 0 (curve 2) segment 1 */
+    cr_assert(d.curve == 1 && d.item == 2 && d.other_curve == 2 && d.other_item == 1,
+              "curve %d item %d other %d/%d: %s", d.curve, d.item, d.other_curve, d.other_item, d.message);
+    cr_assert_eq(d.part, -1);
+    dom.n_holes = 0;
+    dom.n_lines = 0;
+    dom.outer.xy = dup;
+    cr_assert_eq(wr_poisson_fill(&dom, size_const, &h, NULL, &res, &d), WR_ERR_GEOMETRY);
+    cr_assert(d.curve == 0 && d.item == 1, "zero-length segment: curve %d item %d", d.curve, d.item);
+}
+
+/* wr_poisson_estimate against closed forms: a 2 x 1 rectangle with a 0.5 x 0.5 hole at constant
+ * h: area 1.75, perimeter 6 + 2, ∫ ds / h = 8 / h (Simpson is exact for constant h), interior
+ * κ · 1.75 / r² up to the probe lattice's area error (the hole's edges fall between probes: the
+ * mean of 1/r² is exact for constant h, so only the area enters, and that is the shoelace). */
+Test(poisson, estimate_closed_forms) {
+    static const double rect[8] = {0, 0, 2, 0, 2, 1, 0, 1};
+    static const double hole[8] = {0.5, 0.25, 0.5, 0.75, 1.0, 0.75, 1.0, 0.25};
+    wr_poisson_curve hl;
+    wr_poisson_domain dom;
+    wr_poisson_budget b;
+    wr_diag d;
+    double h = 0.01, r = WR_POISSON_DEFAULT_RADIUS_FACTOR * h;
+    memset(&hl, 0, sizeof hl);
+    hl.xy = hole;
+    hl.n = 4;
+    memset(&dom, 0, sizeof dom);
+    dom.outer.xy = rect;
+    dom.outer.n = 4;
+    dom.holes = &hl;
+    dom.n_holes = 1;
+    cr_assert_eq(wr_poisson_estimate(&dom, size_const, &h, NULL, &b, &d), WR_OK, "%s", d.message);
+    cr_assert_float_eq(b.area, 1.75, 1e-12);
+    cr_assert_float_eq(b.perimeter, 8.0, 1e-12);
+    cr_assert_float_eq(b.n_given, 8.0, 0.0);
+    cr_assert_float_eq(b.n_discretised, 800.0, 1e-9);
+    cr_assert_float_eq(b.n_interior, WR_POISSON_DENSITY * 1.75 / (r * r), 1e-9 * b.n_interior);
+    cr_assert(b.n_probes > 10000 && b.h_min == h && b.h_max == h);
+}
+
+/* Issue 17's bounded-time inputs end with WR_ERR_BUDGET from the estimate, before any work that
+ * grows with the output (no timing assert: the estimate's cost is O(input + 128² probes) by
+ * construction; bench/RESULTS.md has the seconds). A 10 km square panel at 5 mm (4e12 points) and
+ * a 1 m panel at 1 µm (1.2e12 points), default max_points; the message names what to change. */
+Test(poisson, budget_refuses_huge_inputs_early) {
+    double big[8] = {0, 0, 1e4, 0, 1e4, 1e4, 0, 1e4}, h = 5e-3, hu = 1e-6;
+    wr_poisson_domain dom;
+    wr_poisson_desc desc;
+    wr_poisson_result res;
+    wr_diag d;
+    memset(&dom, 0, sizeof dom);
+    dom.outer.xy = big;
+    dom.outer.n = 4;
+    cr_assert_eq(wr_poisson_sample(&dom, size_const, &h, NULL, &res, &d), WR_ERR_BUDGET);
+    cr_assert(strstr(d.message, "max_points=50000000") && strstr(d.message, "raise max_points or coarsen the sizing"),
+              "%s", d.message);
+    cr_assert_eq(res.n_points, 0);
+    cr_assert_eq(wr_poisson_fill(&dom, size_const, &h, NULL, &res, &d), WR_ERR_BUDGET);
+    dom_square(&dom);
+    cr_assert_eq(wr_poisson_sample(&dom, size_const, &hu, NULL, &res, &d), WR_ERR_BUDGET);
+    cr_assert(strstr(d.message, "inside") && strstr(d.message, "max_points=50000000"), "%s", d.message);
+    cr_assert(res.n_estimated == INT32_MAX, "estimate %d", res.n_estimated);
+    cr_assert_eq(wr_poisson_fill(&dom, size_const, &hu, NULL, &res, &d), WR_ERR_BUDGET);
+    memset(&desc, 0, sizeof desc);
+    desc.max_points = 1000000; /* the 4e6 boundary points alone exceed it */
+    cr_assert_eq(wr_poisson_sample(&dom, size_const, &hu, &desc, &res, &d), WR_ERR_BUDGET);
+    cr_assert(strstr(d.message, "the curves alone need 4000000 points"), "%s", d.message);
+}
+
+/* Regression (found on examples/fig13_elbow.json: the collision disk stayed empty): a sizing that
+ * halves within one h, as the mesher's collision transition does. A candidate moved inwards to the
+ * mean-rule distance landed where the sizing was larger again and was refused, so no front entered
+ * the finer disk. Now the move iterates ρ = (r_p + r(ρ))/2; checked by coverage (every probe
+ * within 1.5 r of a sample, as the constant-radius test) and by the mean rule. Also the reverse
+ * (a coarser disk: candidates beyond the neighbour list's reach, decided by the grid). */
+static double size_disk_step(void *u, double x, double y) {
+    double f = *(const double *)u, dx = x - 0.5, dy = y - 0.5, d = sqrt(dx * dx + dy * dy), h = 0.02;
+    double t = d < 0.2 ? 0.0 : (d - 0.2) / 0.02; /* transition over one h */
+    return h * (t >= 1.0 ? 1.0 : f + (1.0 - f) * t);
+}
+
+Test(poisson, steep_transition_into_finer_or_coarser_disk_is_filled) {
+    wr_poisson_domain dom;
+    wr_poisson_desc desc;
+    wr_poisson_result res;
+    wr_diag d;
+    double f[2] = {0.5, 2.0};
+    int k;
+    dom_square(&dom);
+    memset(&desc, 0, sizeof desc);
+    desc.seed = 13;
+    for (k = 0; k < 2; ++k) {
+        double cov;
+        cr_assert_eq(wr_poisson_sample(&dom, size_disk_step, &f[k], &desc, &res, &d), WR_OK, "%s", d.message);
+        cr_assert(min_distance_ratio(&res) >= 1.0);
+        cov = coverage_ratio(&res, 0, size_disk_step, &f[k], 0, 0, 1, 1, 90);
+        cr_assert(cov < 1.5, "disk sizing x%.1f: largest empty disk %.3f r", f[k], cov);
+        wr_poisson_free(&res);
+    }
 }

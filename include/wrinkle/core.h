@@ -100,6 +100,12 @@ typedef enum wr_status {
 typedef struct wr_diag {
     wr_status status;                  /* the status that was returned */
     int32_t item;                      /* index of the offending item (vertex, segment, row…), or -1 */
+    /* Where the item sits, for callers that report it without parsing `message` (all -1 when not
+     * applicable; wr_fail sets them to -1, the failing module fills what it knows):
+     * part = the part holding the curve (the mesher's panel), curve = the curve within the part
+     * (poisson.h numbering: 0 outer, 1 + i hole i, 1 + n_holes + j line j), item = the index within
+     * the curve; other_curve / other_item = the second item of a pair (two crossing segments). */
+    int32_t part, curve, other_curve, other_item;
     int32_t backend_code;              /* error code from GSL / FFTW / CHOLMOD when relevant, else 0 */
     char message[WR_DIAG_MESSAGE_LEN]; /* one line, no trailing newline */
 } wr_diag;
@@ -310,6 +316,7 @@ WRDEF wr_status wr_fail(wr_diag *diag, wr_status s, int32_t item, const char *fm
         va_list ap;
         diag->status = s;
         diag->item = item;
+        diag->part = diag->curve = diag->other_curve = diag->other_item = -1;
         diag->backend_code = 0;
         va_start(ap, fmt);
         vsnprintf(diag->message, sizeof diag->message, fmt, ap);

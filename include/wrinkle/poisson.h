@@ -1,19 +1,22 @@
-/* wrinkle/poisson.h — variable-radius Poisson-disk sampling of polygons with holes, with fixed
- * boundary and constraint-line points, driven by a sizing callback (target edge length [m]).
+/* wrinkle/poisson.h — variable-radius Poisson-disk sampling of polygons with holes and constraint
+ * lines, driven by a sizing callback (target edge length [m]).
  * wrinkle v0.1.0 — MIT licence (see LICENSE). Needs only libc and libm (and core.h).
  *
  * Style3D ("Physics-inspired Estimation of Optimal Cloth Mesh Resolution", Sec. 4.3): "we first
  * sample the sizing map using the fast Poisson disk sampling algorithm [Bridson 2007], ensuring that
  * the average vertex spacing locally aligns with the sizing values. The resulting point cloud, along
- * with boundary constraints, is then input into triangulation tools". This header is that first
- * step: boundary loops and interior constraint polylines (shirring lines, seams, fold lines) are
- * discretised at the local sizing and kept fixed; the interior is filled by Bridson's active-list
- * algorithm generalised to a radius that varies in space; the constraint segments come back as
- * index pairs for the triangulator (triangulate.h).
+ * with boundary constraints, is then input into triangulation tools". This header is that step.
+ * The curves (outer loop, hole loops, constraint polylines: shirring lines, seams, fold lines) are
+ * either taken as given (wr_poisson_fill: the caller — the mesher — has discretised them already)
+ * or discretised here at the local sizing (wr_poisson_sample); their points are kept fixed and their
+ * edges come back as constraint segments for the triangulator (triangulate.h). The interior is filled
+ * by an advancing front of Poisson-disk samples (see ON THE ALGORITHM).
  *
- * API (create/free pair: wr_poisson_sample → wr_poisson_free)
- *   wr_poisson_sample(dom, sizing, user, desc, res, diag)   validate, discretise, sample
- *   wr_poisson_free(res)                                    free and zero (safe on a zeroed result)
+ * API (create/free pair: wr_poisson_fill or wr_poisson_sample → wr_poisson_free)
+ *   wr_poisson_fill(dom, sizing, user, desc, res, diag)       curves as given → fixed points, fill
+ *   wr_poisson_sample(dom, sizing, user, desc, res, diag)     discretise the curves at the sizing, fill
+ *   wr_poisson_estimate(dom, sizing, user, desc, &bud, diag)  the budget estimate alone (cheap)
+ *   wr_poisson_free(res)                                      free and zero (safe on a zeroed result)
  *
  * EXAMPLE
  *     static double size_fn(void *u, double x, double y) { (void)u; (void)y; return 0.01 + 0.02 * x; }
@@ -27,70 +30,102 @@
  *     // res.segments (res.n_segments pairs) are the boundary edges to hand to the CDT.
  *     printf("%d points (%d on the boundary), %d segments\n", res.n_points, res.n_fixed, res.n_segments);
  *     wr_poisson_free(&res);
+ *     // curves already discretised (here the 4 corners only): they are kept exactly as given
+ *     if (wr_poisson_fill(&dom, size_fn, NULL, &desc, &res, &d) != WR_OK) { puts(d.message); return 1; }
+ *     printf("fill: %d points, the first %d are the input's\n", res.n_points, res.n_fixed);
+ *     wr_poisson_free(&res);
+ *
+ * ON THE ALGORITHM
+ *   Every point, fixed points first and then the samples in order of creation (first in, first out),
+ *   takes one front step (Dunbar & Humphreys 2006, "A spatial data structure for fast Poisson-disk
+ *   sample generation": boundary sampling, here with a radius that varies in space): new samples are
+ *   placed on the circle of radius r(p) around p, in directions drawn uniformly from the arcs still
+ *   free, until no direction is left. A neighbour's blocked arc is computed the first time a drawn
+ *   direction hits it, so most neighbours cost one distance test and the sizing is evaluated only
+ *   for candidates that survive the neighbours: once per accepted sample at constant sizing. Where
+ *   the sizing differs from r(p) the candidate moves along its direction to the mean-rule distance
+ *   ρ = (r(p) + r(ρ))/2 (a fixed-point iteration, up to 3 moves, each one more evaluation: ~1.7
+ *   evaluations per sample on a 20×-graded ramp), so the front also crosses steep transitions in
+ *   either direction. The domain's segments near p cut the arcs outside the domain and within the
+ *   clearance of a segment before any candidate is drawn. Work per sample is bounded (one
+ *   neighbour query, a few arc cuts), so the fill is O(n); Bridson's annulus darts (k = 30 failures
+ *   per retired sample) evaluated the sizing ~37 times per sample. The result is maximal up to the
+ *   failed-candidate arcs: every point of the domain is within about r of a sample.
  *
  * ON THE SIZING → RADIUS RELATION
  *   The sizing h(x) is the target mesh edge length. Each sample p carries the disk radius
- *   r(p) = radius_factor · h(p). Boundary/constraint points are spaced ≈ h along their curves (one
- *   edge per unit of ∫ ds / h). The default radius_factor WR_POISSON_DEFAULT_RADIUS_FACTOR was
- *   calibrated so that the Delaunay mesh of the output has mean edge length / local sizing ≈ 1:
- *   measured by tests/test_poisson.c (own Bowyer–Watson, interior edges, constant h on a unit square
- *   with h = 0.02 and on a 20×-graded field): see the constant's comment for the numbers.
+ *   r(p) = radius_factor · h(p). Where the value comes from: a sampler of density κ samples per r²
+ *   whose Delaunay triangulation has mean edge length β / sqrt(density) gives a mean edge of
+ *   β r / sqrt(κ); setting it to h gives radius_factor = sqrt(κ) / β. For the hexagonal lattice
+ *   β = sqrt(2/√3) = 1.0746 (edge a, density 2/(√3 a²)), for a Poisson process β = 32/(9π) =
+ *   1.1318. This sampler: κ = 0.885 (WR_POISSON_DENSITY) and β = 1.100, measured on the unit square
+ *   (tests/test_poisson.c "density" and "calibration"), so radius_factor = sqrt(0.885)/1.100 = 0.855.
+ *   The mean-rule packing sits nearer the lattice than Bridson's annulus darts (κ = 0.61, whose
+ *   0.705 this replaces), which is why more of the radius is needed for the same edge length.
  *
- * ON THE CONFLICT RULE (varying radius)
- *   Two samples p, q conflict when |p − q| < (r(p) + r(q)) / 2 (the symmetric "mean" rule; it is
+ * ON THE CONFLICT RULE (varying radius) AND THE CLEARANCE
+ *   Two points p, q conflict when |p − q| < (r(p) + r(q)) / 2 (the symmetric "mean" rule; it is
  *   well defined, independent of insertion order, and equals the classical rule for constant r).
  *   Every pair in which at least one point is an interior sample satisfies |p − q| >= (r(p)+r(q))/2.
- *   Fixed points are not tested against each other (they are the caller's geometry).
- *   Candidates are drawn uniformly (by area) in the annulus [r(p), 2 r(p)] around an active sample p,
- *   k per activation (Bridson 2007); a sample is retired after k consecutive failures.
+ *   Fixed points are not tested against each other (they are the caller's geometry). Every sample is
+ *   at least desc.clearance · h from every constraint segment (default 0.35: a triangle on a segment
+ *   of length h with its apex 0.35 h away keeps angles >= 35°; between fixed points h apart the mean
+ *   rule alone keeps samples sqrt(0.855² − 0.5²) h = 0.69 h away, so the clearance acts only where a
+ *   segment is longer than about 1.6 h).
  *
  * ON COVERAGE (what is, and is not, guaranteed)
- *   Bridson's k-candidate algorithm is not exactly maximal: the only hard guarantee is the minimum
- *   distance above. Gaps are rare: tests/test_poisson.c checks, on a probe lattice, that every probe x
- *   strictly inside the domain has a sample within 2 r(x) (2 = the annulus' outer radius) and reports
- *   the largest empty-disk ratio it saw.
+ *   The front stops at a point when no free direction is left, so gaps are closed up to the
+ *   angular resolution of failed candidates (WR__PZ_FAIL_ARC) and the desc.k cap on failures per
+ *   point. tests/test_poisson.c checks, on a probe lattice, that every probe x strictly inside the
+ *   domain has a sample within 1.5 r(x) (constant, graded, holes and lines, steep transitions) and
+ *   prints the largest empty-disk ratio it saw (0.9–1.0 r).
  *
  * ON THE ACCELERATION GRID (why it stays O(n) when the radius varies 20×)
  *   Radii are bucketed into octave levels: level l holds samples with r in [s·2^l, s·2^(l+1)),
- *   s = bbox size / 2^28. Each level is a hashed grid (open addressing, key = level + cell) with cell
- *   size 2·s·2^l >= every radius of that level, so a same-level query touches <= 3×3 cells. A dense
- *   "presence" grid with cells of ≈ 2·r_max keeps, per cell, a 64-bit mask of the levels present in
- *   it; a query probes only the levels present around the candidate. For a sizing that is smooth on
- *   the scale of r_max (any graded sizing map), only 1–2 levels are present around a point, so the
- *   work per candidate is bounded independently of n and of the global ratio r_max/r_min, and memory
- *   is O(n) (hash ~ 2n entries; presence cells <= max(4096, 4n_est)). The dense single grid at the
- *   minimum radius that Bridson uses would hold (r_max/r_min)^2 more cells than samples where the
- *   radius is large. bench/bench_poisson.c measures samples/s at constant and 20×-graded radius.
- *   Where the sizing jumps by several octaves within r_max, coarse candidates near the jump probe
- *   the fine level's cells ((r_q / r_fine)^2 cells) — still correct, only slower there.
+ *   s = bbox size / 2^28. Each level is a hashed grid (open addressing, key = level + 4×4 tile of
+ *   cells) with cell size 2·s·2^l >= every radius of that level, so a same-level query touches few
+ *   cells. A dense "presence" grid with cells of ≈ 2·r_max keeps, per cell, a 64-bit mask of the
+ *   levels present in it; a query probes only the levels present around the point. For a sizing
+ *   that is smooth on the scale of r_max, only 1–2 levels are present around a point, so the work
+ *   per sample is bounded independently of n and of r_max/r_min; memory is O(n). The segments sit in
+ *   a bucket grid with O(segments) cells for any aspect ratio (inside test and clearance).
  *
- * ON VALIDATION (all WR_ERR_GEOMETRY unless said otherwise; diag->item as stated)
- *   Loops need >= 3 points, polylines >= 2 (closed polylines >= 3); non-finite coordinate (item = the
- *   point); an input extent that overflows a double; zero-length segment; loop with |area| <=
- *   WR_POISSON_REL_TOL·bbox²; any two segments of the input (same or different curves, adjacent ones
- *   only when they fold back) that touch or cross — the
- *   message names both (curve and segment index; item = the first segment's index in its curve);
- *   a hole not inside the outer loop; a hole inside another hole; a polyline not inside the domain.
- *   Checked on a uniform bucket grid (O(n) for evenly spaced input). After discretisation the same
- *   check runs on the discretised segments (chords can cross where a feature is thinner than the
- *   sizing). The sizing callback returning a value that is not a positive finite number →
- *   WR_ERR_DOMAIN naming the point. Estimated point count κ·∫ dA / r² + n_fixed > max_points →
- *   WR_ERR_BUDGET before any per-sample memory is allocated (and again if sampling itself would
- *   exceed it). NULL arguments → WR_ERR_INVALID_ARG.
+ * ON THE BUDGET (bounded time on every input)
+ *   Before anything that grows faster than the input, the point count is estimated from area and
+ *   perimeter: n_curves (the given points, or ∫ ds / h by Simpson's rule per input segment) plus
+ *   κ · area · mean(1/r²) over a 128×128-probe lattice (aspect ratio of the bounding box; inside test
+ *   by a scanline over the loops, O(input + probes)). Over desc.max_points → WR_ERR_BUDGET, message
+ *   "... > max_points=N: raise max_points or coarsen the sizing" with the numbers behind it. The
+ *   sampling itself stops with WR_ERR_BUDGET if it would exceed max_points all the same.
+ *
+ * ON VALIDATION (all WR_ERR_GEOMETRY unless said otherwise)
+ *   Loops need >= 3 points, polylines >= 2 (closed polylines >= 3); non-finite coordinate; an input
+ *   extent that overflows a double; zero-length segment; loop with |area| <= WR_POISSON_REL_TOL·bbox²;
+ *   any two segments (same or different curves, adjacent ones only when they fold back) that touch
+ *   or cross — the message names both; a hole not inside the outer loop; a hole inside another hole;
+ *   a polyline not inside the domain. Checked on a uniform bucket grid (O(n) for evenly spaced
+ *   input). wr_poisson_sample runs the crossing check again on the discretised segments (chords can
+ *   cross where a feature is thinner than the sizing). The sizing callback returning a value that is
+ *   not a positive finite number → WR_ERR_DOMAIN naming the point. NULL arguments →
+ *   WR_ERR_INVALID_ARG. Structured location (no need to parse the message): diag->curve (0 outer,
+ *   1 + i hole i, 1 + n_holes + j line j), diag->item (point or segment index within that curve),
+ *   diag->other_curve / other_item for the second segment of a crossing or the other curve of a
+ *   containment failure; -1 where not applicable. diag->part is left for the caller (the panel).
  *
  * ON OUTPUT ORDER AND OWNERS
- *   Fixed points: outer loop, then holes in order, then polylines in order; each curve starts at its
- *   input vertex 0 and follows the input direction (any orientation is accepted and kept). Input
- *   vertices whose turning angle exceeds desc.corner_angle are kept exactly ("corners"), unless they
- *   lie closer than h/2 (arc length) to the previous kept vertex or to the curve's end; vertex 0
- *   and open-polyline endpoints are always kept. Between kept vertices points follow ∫ ds/h with the segment count
- *   N = max(1, round(∫ ds/h)) and the points redistributed so every piece has ∫ ds/h = total/N
- *   (so endpoints are hit exactly and no last step is tiny). Hence every constraint segment has
- *   ∫ ds/h in [0.5, 1.5] measured along the input curve (up to the trapezoid error of the walk;
- *   the chord is shorter where the input curves), except where a closed curve needs more segments
- *   to reach its minimum of 3.
- *   segment_owner: 0 = outer loop, 1 + i = hole i, 1 + n_holes + j = polyline j.
- *   The inside test (crossing number, boundary points count as outside) uses the DISCRETISED loops,
+ *   Fixed points: outer loop, then holes in order, then polylines in order. wr_poisson_fill keeps
+ *   the input points exactly (res.points[0 .. 2 n_fixed) is the concatenation of the curves' xy, so
+ *   the caller's indices stay valid) and its segments are the curves' edges. wr_poisson_sample:
+ *   each curve starts at its input vertex 0 and follows the input direction (any orientation is
+ *   accepted and kept). Input vertices whose turning angle exceeds desc.corner_angle are kept exactly
+ *   ("corners"), unless they lie closer than h/2 (arc length) to the previous kept vertex or to the
+ *   curve's end; vertex 0 and open-polyline endpoints are always kept. Between kept vertices points
+ *   follow ∫ ds/h with the segment count N = max(1, round(∫ ds/h)) and the points redistributed so
+ *   every piece has ∫ ds/h = total/N (so endpoints are hit exactly and no last step is tiny). Hence
+ *   every constraint segment has ∫ ds/h in [0.5, 1.5] measured along the input curve (up to the
+ *   trapezoid error of the walk), except where a closed curve needs more segments to reach its
+ *   minimum of 3. segment_owner: 0 = outer loop, 1 + i = hole i, 1 + n_holes + j = polyline j.
+ *   The inside test (crossing number, boundary points count as outside) uses the segments returned,
  *   i.e. exactly the polygon the triangulator receives.
  *
  * ON NUMERICS
@@ -113,21 +148,25 @@ extern "C" {
 /* Target edge length h(x, y) [m] at a point of the domain; must be positive and finite. */
 typedef double (*wr_poisson_sizing_fn)(void *user, double x, double y);
 
-/* r = radius_factor · h. Calibrated by test_poisson.c "calibration" (own Bowyer–Watson Delaunay of
- * the output, mean length of edges not touching the boundary, divided by the mean of the two end
- * points' sizing): see the report line printed by that test. */
-#define WR_POISSON_DEFAULT_RADIUS_FACTOR 0.705
+/* r = radius_factor · h = sqrt(κ)/β · h (ON THE SIZING → RADIUS RELATION): the mean Delaunay edge
+ * between interior samples over the mean of their two sizings is 0.995–1.004 with this value
+ * (tests/test_poisson.c "calibration", constant and 20×-graded h; band ±2 %). */
+#define WR_POISSON_DEFAULT_RADIUS_FACTOR 0.855
+/* Failed candidates allowed per front step before the point is retired. */
 #define WR_POISSON_DEFAULT_K 30
 #define WR_POISSON_DEFAULT_MAX_POINTS 50000000
 #define WR_POISSON_DEFAULT_CORNER_ANGLE 0.5235987755982988 /* 30° [rad] */
-/* Samples per r² of area for this sampler (mean rule, k = 30): N ≈ κ ∫ dA / r². Measured in
- * test_poisson.c "density" (constant and graded sizing); used only for the budget estimate. */
-#define WR_POISSON_DENSITY 0.61
+/* Minimum distance sample → constraint segment, in units of the sample's sizing h (see ON THE
+ * CONFLICT RULE AND THE CLEARANCE for the 35° reading of 0.35). */
+#define WR_POISSON_DEFAULT_CLEARANCE 0.35
+/* κ: samples per r² of area for this sampler, N ≈ κ ∫ dA / r²: 0.885 measured in test_poisson.c
+ * "density" (unit square, h = 0.01; 0.883 at h = 0.002); used for the budget estimate. */
+#define WR_POISSON_DENSITY 0.885
 /* Relative tolerance (× bbox size) for "on a boundary segment" and (× bbox size²) for zero area. */
 #define WR_POISSON_REL_TOL 1e-12
 /* Arc-length walking step along curves, as a fraction of the local sizing (trapezoid rule on 1/h). */
 #define WR_POISSON_WALK_STEP 0.25
-/* Probe lattice (per axis) over the bounding box for the ∫ dA / r² budget estimate. */
+/* Probe lattice (per axis, for a square box) for the ∫ dA / r² budget estimate. */
 #define WR_POISSON_BUDGET_PROBES 128
 
 /* A curve: n points, row-major xy[2n] [m]. Loops (outer, holes) are always closed; for polylines
@@ -148,16 +187,19 @@ typedef struct wr_poisson_domain {
 
 /* Options; zero means default:
  *   seed          0 is a valid seed and is used as given (no default substitution)
- *   k             WR_POISSON_DEFAULT_K candidates per activation
+ *   k             WR_POISSON_DEFAULT_K failed candidates per front step
  *   radius_factor WR_POISSON_DEFAULT_RADIUS_FACTOR (r = radius_factor · h)
  *   max_points    WR_POISSON_DEFAULT_MAX_POINTS (fixed + interior)
- *   corner_angle  WR_POISSON_DEFAULT_CORNER_ANGLE [rad]; a tiny positive value keeps every vertex */
+ *   corner_angle  WR_POISSON_DEFAULT_CORNER_ANGLE [rad] (wr_poisson_sample only); a tiny positive
+ *                 value keeps every vertex
+ *   clearance     WR_POISSON_DEFAULT_CLEARANCE (× h); must stay below radius_factor / 2 */
 typedef struct wr_poisson_desc {
     uint64_t seed;
     int32_t k;
     double radius_factor;
     int32_t max_points;
     double corner_angle;
+    double clearance;
 } wr_poisson_desc;
 
 typedef struct wr_poisson_result {
@@ -168,13 +210,28 @@ typedef struct wr_poisson_result {
     int32_t *segments;      /* n_segments×2 indices into points (constraint edges for the CDT) */
     int32_t *segment_owner; /* n_segments: 0 outer, 1+i hole i, 1+n_holes+j polyline j */
     int32_t n_segments;
-    int32_t n_estimated;    /* budget estimate n_fixed + κ ∫ dA / r² */
-    int64_t n_candidates;   /* candidates generated in the interior phase */
-    double seconds;         /* wall time of wr_poisson_sample */
+    int32_t n_estimated;    /* budget estimate: curve points + κ ∫ dA / r² (kept on failure) */
+    int64_t n_candidates;   /* sizing evaluations of the fill (candidates that survived the neighbours) */
+    double seconds;         /* wall time of the call */
 } wr_poisson_result;
 
+/* The budget estimate (ON THE BUDGET); all counts are expected values, not bounds. */
+typedef struct wr_poisson_budget {
+    double area;          /* |outer| − Σ |holes| [m²] */
+    double perimeter;     /* total length of all curves [m] */
+    double n_given;       /* curve points as given (what wr_poisson_fill keeps) */
+    double n_discretised; /* Σ ∫ ds / h over the curves (about what wr_poisson_sample puts on them) */
+    double n_interior;    /* κ · area · mean(1/r²) over the inside probes */
+    double h_min, h_max;  /* smallest / largest sizing seen [m] */
+    int32_t n_probes;     /* probes inside the domain */
+} wr_poisson_budget;
+
+WRDEF wr_status wr_poisson_fill(const wr_poisson_domain *dom, wr_poisson_sizing_fn sizing, void *user,
+                                const wr_poisson_desc *desc, wr_poisson_result *res, wr_diag *diag);
 WRDEF wr_status wr_poisson_sample(const wr_poisson_domain *dom, wr_poisson_sizing_fn sizing, void *user,
                                   const wr_poisson_desc *desc, wr_poisson_result *res, wr_diag *diag);
+WRDEF wr_status wr_poisson_estimate(const wr_poisson_domain *dom, wr_poisson_sizing_fn sizing, void *user,
+                                    const wr_poisson_desc *desc, wr_poisson_budget *bud, wr_diag *diag);
 WRDEF void wr_poisson_free(wr_poisson_result *res);
 
 #ifdef __cplusplus
@@ -188,11 +245,33 @@ WRDEF void wr_poisson_free(wr_poisson_result *res);
 #define WRINKLE_POISSON_IMPLEMENTATION_DONE
 
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #ifdef __cplusplus
 extern "C" {
 #endif
+
+/* Front-step constants (ON THE ALGORITHM). Dimensionless unless said otherwise. */
+/* Placement radius ρ = r_p (1 + GAP): just beyond the mean-rule distance, so rounding cannot make
+ * a new sample conflict with the point it was placed from. */
+#define WR__PZ_GAP 1e-9
+/* A candidate moved to the mean-rule distance goes that much further (the sizing at the new spot
+ * may be a little larger again: 1e-3 absorbs a 0.1 % change over the move). */
+#define WR__PZ_MOVE_GAP 1e-3
+/* Moves (extra sizing evaluations) allowed per candidate: 3 reach the fixed point of
+ * ρ = (r_p + r(ρ))/2 to < 1 % across a transition that halves the sizing within one h. */
+#define WR__PZ_MOVES 3
+/* The neighbour list of a step is complete for candidates with r <= RBOUND · r_p (larger ones ask
+ * the grid); 1.1 covers a 10 % sizing change over one radius (steeper than a graded map). */
+#define WR__PZ_RBOUND 1.1
+/* A candidate whose mean-rule distance to p differs from ρ by more than this fraction moves there
+ * and is evaluated again (2 %: well below the calibration band, rarely triggered by smooth maps). */
+#define WR__PZ_REPLACE 0.02
+/* Arc cut around a failed candidate [rad]: bounds the candidates per step (π/48 ≈ 3.75°). */
+#define WR__PZ_FAIL_ARC 0.06544984694978735
+/* Arc cut around a direction already settled [rad] (guards rounding at arc ends). */
+#define WR__PZ_TINY_ARC 1e-9
 
 /* ---------------------------------------------------------------------------------------------- */
 /* curve set: all curves' points in one array; curve c = points [off[c], off[c]+cnt[c]) */
@@ -217,6 +296,18 @@ static void wr__pz_curve_name(const wr__pz_curves *cv, int32_t c, char *buf, siz
         snprintf(buf, len, "hole %d", (int)(c - 1));
     else
         snprintf(buf, len, "polyline %d", (int)(c - 1 - cv->n_holes));
+}
+
+/* The structured location of a failure (core.h wr_diag: curve, item, other_curve, other_item). */
+static wr_status wr__pz_where(wr_diag *diag, wr_status st, int32_t curve, int32_t item, int32_t other_curve,
+                              int32_t other_item) {
+    if (diag) {
+        diag->curve = curve;
+        diag->item = item;
+        diag->other_curve = other_curve;
+        diag->other_item = other_item;
+    }
+    return st;
 }
 
 static int32_t wr__pz_nseg(const wr__pz_curves *cv, int32_t c) { return cv->closed[c] ? cv->cnt[c] : cv->cnt[c] - 1; }
@@ -359,6 +450,7 @@ static wr_status wr__pz_check_crossings(const wr__pz_curves *cv, const char *wha
                                  "%s: %s segment %d (points %d-%d) intersects %s segment %d (points %d-%d)", what, na,
                                  (int)seg_i[fs], (int)seg_i[fs], (int)((seg_i[fs] + 1) % cv->cnt[seg_c[fs]]), nb,
                                  (int)seg_i[ls], (int)seg_i[ls], (int)((seg_i[ls] + 1) % cv->cnt[seg_c[ls]]));
+                    wr__pz_where(diag, st, seg_c[fs], seg_i[fs], seg_c[ls], seg_i[ls]);
                     goto done;
                 }
             }
@@ -378,50 +470,53 @@ static int wr__pz_in_curve(const wr__pz_curves *cv, int32_t c, const double *p) 
 }
 
 /* ---------------------------------------------------------------------------------------------- */
-/* Inside test over the discretised loops: bucket grid; edge-free cells carry their in/out status
- * (computed by a right-to-left sweep per row), other cells cast two rays in lockstep, +x along
- * y = q.y and +y along x = q.x, each ending at its first edge-free cell (status ^ parity) or at the
- * grid's end (outside); the ray that ends first answers. Crossings use the half-open rule
- * ((y1 > y) != (y2 > y) for the +x ray) and count only in the cell that contains the crossing, so
- * edges spanning several cells count once. Why two rays: in a domain thinner than a cell every
- * cell of its rows holds both long boundaries, so a +x ray alone walks the whole row (O(nx) per
- * query, quadratic sampling: 20k vertices of a 216 m x 0.1 mm strip took 5 s); the +y ray leaves
- * such a strip within two cells, and a strip along y is the +x ray's easy case. */
-typedef struct wr__pz_inside {
+/* Segment grid: every constraint segment (loops and lines) in a bucket grid. It answers the two
+ * questions the sampler asks of the curves: is a point inside the domain (loop segments only), and
+ * is it at least a clearance away from every segment (all of them).
+ * Inside test: edge-free cells carry their in/out status (computed by a right-to-left sweep per
+ * row), other cells cast two rays in lockstep, +x along y = q.y and +y along x = q.x, each ending at
+ * its first edge-free cell (status ^ parity) or at the grid's end (outside); the ray that ends first
+ * answers. Crossings use the half-open rule ((y1 > y) != (y2 > y) for the +x ray) and count only in
+ * the cell that contains the crossing, so edges spanning several cells count once. Why two rays: in
+ * a domain thinner than a cell every cell of its rows holds both long boundaries, so a +x ray alone
+ * walks the whole row (O(nx) per query); the +y ray leaves such a strip within two cells, and a
+ * strip along y is the +x ray's easy case. */
+typedef struct wr__pz_segs {
     double x0, y0, g, inv_g, tol;
     int32_t nx, ny;
     int32_t *cstart, *clist;
     unsigned char *status;
-    double *seg; /* ne×4: x1 y1 x2 y2 */
+    double *seg;         /* ne×4: x1 y1 x2 y2 */
+    unsigned char *loop; /* ne: 1 = loop edge (counts for the inside parity), 0 = constraint line */
     int32_t ne;
-} wr__pz_inside;
+} wr__pz_segs;
 
-static void wr__pz_inside_free(wr__pz_inside *t) {
+static void wr__pz_segs_free(wr__pz_segs *t) {
     wr_free(t->cstart);
     wr_free(t->clist);
     wr_free(t->status);
     wr_free(t->seg);
+    wr_free(t->loop);
     memset(t, 0, sizeof *t);
 }
 
 /* Cell index along axis 0 (x) or 1 (y), clamped to [-1, n]. */
-static int32_t wr__pz_cell(const wr__pz_inside *t, int axis, double v) {
+static int32_t wr__pz_cell(const wr__pz_segs *t, int axis, double v) {
     double f = (v - (axis ? t->y0 : t->x0)) * t->inv_g;
     int32_t n = axis ? t->ny : t->nx;
-    if (f < 0.0) return -1;
+    if (!(f >= 0.0)) return -1;
     if (f >= (double)n) return n;
     return (int32_t)f;
 }
 
-static int32_t wr__pz_cell_x(const wr__pz_inside *t, double x) { return wr__pz_cell(t, 0, x); }
-
-/* Parity of the crossings, inside `cell` (index k along the ray), of the ray from q along +x (axis 0)
- * or +y (axis 1); half-open rule across the other axis, counted only where the crossing lies. */
-static int wr__pz_ray_cell(const wr__pz_inside *t, int32_t cell, int axis, const double q[2], int32_t k) {
+/* Parity of the loop crossings, inside `cell` (index k along the ray), of the ray from q along +x
+ * (axis 0) or +y (axis 1); half-open rule across the other axis, counted only where it lies. */
+static int wr__pz_ray_cell(const wr__pz_segs *t, int32_t cell, int axis, const double q[2], int32_t k) {
     int32_t p, a = axis, b = 1 - axis;
     int par = 0;
     for (p = t->cstart[cell]; p < t->cstart[cell + 1]; ++p) {
         const double *s = t->seg + 4 * t->clist[p];
+        if (!t->loop[t->clist[p]]) continue;
         if ((s[b] > q[b]) != (s[2 + b] > q[b])) {
             double c = s[a] + (q[b] - s[b]) * (s[2 + a] - s[a]) / (s[2 + b] - s[b]);
             if (c > q[a] && wr__pz_cell(t, axis, c) == k) par ^= 1;
@@ -430,31 +525,28 @@ static int wr__pz_ray_cell(const wr__pz_inside *t, int32_t cell, int axis, const
     return par;
 }
 
-static int wr__pz_inside_at(const wr__pz_inside *t, double qx, double qy) {
-    int32_t ix = wr__pz_cell_x(t, qx), iy, i, j;
+static double wr__pz_seg_d2(const double *s, double qx, double qy) {
+    double ex = s[2] - s[0], ey = s[3] - s[1], l2 = ex * ex + ey * ey;
+    double u = l2 > 0.0 ? ((qx - s[0]) * ex + (qy - s[1]) * ey) / l2 : 0.0, dx, dy;
+    u = u < 0.0 ? 0.0 : (u > 1.0 ? 1.0 : u);
+    dx = s[0] + u * ex - qx;
+    dy = s[1] + u * ey - qy;
+    return dx * dx + dy * dy;
+}
+
+/* Strictly inside the loops (points within tol of a loop edge count as outside). */
+static int wr__pz_inside_at(const wr__pz_segs *t, double qx, double qy) {
+    int32_t ix = wr__pz_cell(t, 0, qx), iy = wr__pz_cell(t, 1, qy), i, j, cell, p;
     int parx = 0, pary = 0;
-    double fy = (qy - t->y0) * t->inv_g, q[2];
-    if (ix < 0 || ix >= t->nx || !(fy >= 0.0) || fy >= (double)t->ny) return 0;
-    iy = (int32_t)fy;
+    double q[2];
+    if (ix < 0 || ix >= t->nx || iy < 0 || iy >= t->ny) return 0;
     q[0] = qx;
     q[1] = qy;
-    {
-        int32_t cell = iy * t->nx + ix, p;
-        if (t->cstart[cell] == t->cstart[cell + 1]) return t->status[cell];
-        /* boundary points count as outside */
-        for (p = t->cstart[cell]; p < t->cstart[cell + 1]; ++p) {
-            const double *s = t->seg + 4 * t->clist[p];
-            double ex = s[2] - s[0], ey = s[3] - s[1], l2 = ex * ex + ey * ey;
-            double u = l2 > 0.0 ? ((qx - s[0]) * ex + (qy - s[1]) * ey) / l2 : 0.0;
-            double dx, dy;
-            u = u < 0.0 ? 0.0 : (u > 1.0 ? 1.0 : u);
-            dx = s[0] + u * ex - qx;
-            dy = s[1] + u * ey - qy;
-            if (dx * dx + dy * dy <= t->tol * t->tol) return 0;
-        }
-    }
+    cell = iy * t->nx + ix;
+    if (t->cstart[cell] == t->cstart[cell + 1]) return t->status[cell];
+    for (p = t->cstart[cell]; p < t->cstart[cell + 1]; ++p)
+        if (t->loop[t->clist[p]] && wr__pz_seg_d2(t->seg + 4 * t->clist[p], qx, qy) <= t->tol * t->tol) return 0;
     for (i = ix, j = iy;; ++i, ++j) {
-        int32_t cell;
         if (i >= t->nx) return parx;
         cell = iy * t->nx + i;
         if (i > ix && t->cstart[cell] == t->cstart[cell + 1]) return t->status[cell] ^ parx;
@@ -466,18 +558,70 @@ static int wr__pz_inside_at(const wr__pz_inside *t, double qx, double qy) {
     }
 }
 
-/* Build from the loops (curves 0..n_holes) of a curve set. */
-static wr_status wr__pz_inside_build(wr__pz_inside *t, const wr__pz_curves *cv, double x0, double y0, double W,
-                                     double H, double tol, wr_diag *diag) {
+/* No segment (loop or line) closer than d to q? */
+static int wr__pz_clear_of_segments(const wr__pz_segs *t, double qx, double qy, double d) {
+    int32_t ix0 = wr__pz_cell(t, 0, qx - d), ix1 = wr__pz_cell(t, 0, qx + d), ix, iy, p;
+    int32_t iy0 = wr__pz_cell(t, 1, qy - d), iy1 = wr__pz_cell(t, 1, qy + d);
+    ix0 = ix0 < 0 ? 0 : ix0;
+    iy0 = iy0 < 0 ? 0 : iy0;
+    ix1 = ix1 >= t->nx ? t->nx - 1 : ix1;
+    iy1 = iy1 >= t->ny ? t->ny - 1 : iy1;
+    for (iy = iy0; iy <= iy1; ++iy)
+        for (ix = ix0; ix <= ix1; ++ix) {
+            int32_t cell = iy * t->nx + ix;
+            for (p = t->cstart[cell]; p < t->cstart[cell + 1]; ++p)
+                if (wr__pz_seg_d2(t->seg + 4 * t->clist[p], qx, qy) < d * d) return 0;
+        }
+    return 1;
+}
+
+/* Register segment e's cell box (pass 0 counts, pass 1 fills). */
+static wr_status wr__pz_segs_register(wr__pz_segs *t, int32_t e, int pass, int32_t *fill, int64_t *nreg,
+                                      wr_diag *diag) {
+    const double *s = t->seg + 4 * e;
+    int32_t ix0 = wr__pz_cell(t, 0, fmin(s[0], s[2])), ix1 = wr__pz_cell(t, 0, fmax(s[0], s[2]));
+    int32_t iy0 = wr__pz_cell(t, 1, fmin(s[1], s[3])), iy1 = wr__pz_cell(t, 1, fmax(s[1], s[3])), ix, iy;
+    for (iy = iy0; iy <= iy1; ++iy)
+        for (ix = ix0; ix <= ix1; ++ix) {
+            int64_t cell = (int64_t)iy * t->nx + ix;
+            if (pass == 0) {
+                ++t->cstart[cell + 1];
+                if (++*nreg >= INT32_MAX) return wr_fail(diag, WR_ERR_BUDGET, -1, "segment grid too large");
+            } else {
+                t->clist[fill[cell]++] = e;
+            }
+        }
+    return WR_OK;
+}
+
+/* Build from every curve of a curve set (loops: curves 0..n_holes). */
+static wr_status wr__pz_segs_build(wr__pz_segs *t, const wr__pz_curves *cv, double x0, double y0, double W,
+                                   double H, double tol, double n_est, wr_diag *diag) {
     int32_t c, i, e = 0, pass;
     int64_t ncell, nreg = 0, cell;
     int32_t *fill = NULL;
+    wr_status st = WR_OK;
     memset(t, 0, sizeof *t);
-    for (c = 0; c <= cv->n_holes; ++c) t->ne += cv->cnt[c];
-    t->g = sqrt(W * H / (4.0 * (double)t->ne));
-    t->g = fmax(t->g, fmax(W, H) / 4096.0);
+    for (c = 0; c < cv->nc; ++c) t->ne += wr__pz_nseg(cv, c);
+    /* ~4 cells per segment by area, and at most ~2 ne + 16 cells along the longer side, so the cell
+     * count stays O(ne) for any aspect ratio */
+    t->g = sqrt(fmax(W * H, 1e-300) / (4.0 * (double)t->ne));
+    {
+        /* cells about as large as the segments where the point count allows it (one cell per
+         * expected point): the sampler's steps near a curve scan the segments of the cells within
+         * ~2 r, and cells much larger than r put whole bands of samples beside the curves */
+        double len = 0.0;
+        for (c = 0; c < cv->nc; ++c)
+            for (i = 0; i < wr__pz_nseg(cv, c); ++i) {
+                const double *a = cv->xy + 2 * (cv->off[c] + i), *b = cv->xy + 2 * (cv->off[c] + (i + 1) % cv->cnt[c]);
+                len += hypot(b[0] - a[0], b[1] - a[1]);
+            }
+        len /= (double)t->ne;
+        if (len < t->g) t->g = fmax(len, sqrt(fmax(W * H, 1e-300) / fmax(4.0 * (double)t->ne, n_est)));
+    }
+    t->g = fmax(t->g, fmax(W, H) / (2.0 * (double)t->ne + 16.0));
     t->inv_g = 1.0 / t->g;
-    /* one spare cell on each side so the grid strictly contains the loops */
+    /* one spare cell on each side so the grid strictly contains the curves */
     t->x0 = x0 - t->g;
     t->y0 = y0 - t->g;
     t->nx = (int32_t)(W / t->g) + 3;
@@ -485,34 +629,20 @@ static wr_status wr__pz_inside_build(wr__pz_inside *t, const wr__pz_curves *cv, 
     t->tol = tol;
     ncell = (int64_t)t->nx * t->ny;
     t->seg = (double *)wr_alloc_array((size_t)t->ne, 4 * sizeof(double));
+    t->loop = (unsigned char *)wr_alloc_array((size_t)t->ne, 1);
     t->cstart = (int32_t *)wr_calloc_array((size_t)ncell + 1, sizeof(int32_t));
     t->status = (unsigned char *)wr_calloc_array((size_t)ncell, 1);
-    if (!t->seg || !t->cstart || !t->status) goto nomem;
-    for (c = 0; c <= cv->n_holes; ++c)
-        for (i = 0; i < cv->cnt[c]; ++i, ++e) {
+    if (!t->seg || !t->loop || !t->cstart || !t->status) goto nomem;
+    for (c = 0; c < cv->nc; ++c)
+        for (i = 0; i < wr__pz_nseg(cv, c); ++i, ++e) {
             const double *a = cv->xy + 2 * (cv->off[c] + i), *b = cv->xy + 2 * (cv->off[c] + (i + 1) % cv->cnt[c]);
-            t->seg[4 * e] = a[0];
-            t->seg[4 * e + 1] = a[1];
-            t->seg[4 * e + 2] = b[0];
-            t->seg[4 * e + 3] = b[1];
+            memcpy(t->seg + 4 * e, a, 2 * sizeof(double));
+            memcpy(t->seg + 4 * e + 2, b, 2 * sizeof(double));
+            t->loop[e] = (unsigned char)(c <= cv->n_holes);
         }
     for (pass = 0; pass < 2; ++pass) {
-        for (e = 0; e < t->ne; ++e) {
-            const double *s = t->seg + 4 * e;
-            int32_t ix0 = wr__pz_cell_x(t, fmin(s[0], s[2])), ix1 = wr__pz_cell_x(t, fmax(s[0], s[2]));
-            int32_t iy0 = (int32_t)((fmin(s[1], s[3]) - t->y0) * t->inv_g);
-            int32_t iy1 = (int32_t)((fmax(s[1], s[3]) - t->y0) * t->inv_g), ix, iy;
-            for (iy = iy0; iy <= iy1; ++iy)
-                for (ix = ix0; ix <= ix1; ++ix) {
-                    cell = (int64_t)iy * t->nx + ix;
-                    if (pass == 0) {
-                        ++t->cstart[cell + 1];
-                        if (++nreg >= INT32_MAX) return wr_fail(diag, WR_ERR_BUDGET, -1, "inside grid too large");
-                    } else {
-                        t->clist[fill[cell]++] = e;
-                    }
-                }
-        }
+        for (e = 0; e < t->ne; ++e)
+            if ((st = wr__pz_segs_register(t, e, pass, fill, &nreg, diag)) != WR_OK) goto fail;
         if (pass == 0) {
             for (cell = 0; cell < ncell; ++cell) t->cstart[cell + 1] += t->cstart[cell];
             t->clist = (int32_t *)wr_alloc_array((size_t)nreg, sizeof(int32_t));
@@ -522,7 +652,7 @@ static wr_status wr__pz_inside_build(wr__pz_inside *t, const wr__pz_curves *cv, 
         }
     }
     wr_free(fill);
-    /* status sweep: along y = row centre, from outside (right) to the left */
+    /* status sweep: along y = row centre, from outside (right) to the left, loop edges only */
     for (i = 0; i < t->ny; ++i) {
         double yc = t->y0 + ((double)i + 0.5) * t->g;
         int32_t ix, s = 0;
@@ -531,21 +661,20 @@ static wr_status wr__pz_inside_build(wr__pz_inside *t, const wr__pz_curves *cv, 
             t->status[cl] = (unsigned char)s;
             for (p = t->cstart[cl]; p < t->cstart[cl + 1]; ++p) {
                 const double *sg = t->seg + 4 * t->clist[p];
-                if ((sg[1] > yc) != (sg[3] > yc)) {
+                if (t->loop[t->clist[p]] && (sg[1] > yc) != (sg[3] > yc)) {
                     double xi = sg[0] + (yc - sg[1]) * (sg[2] - sg[0]) / (sg[3] - sg[1]);
-                    if (wr__pz_cell_x(t, xi) == ix) s ^= 1;
+                    if (wr__pz_cell(t, 0, xi) == ix) s ^= 1;
                 }
             }
         }
     }
     return WR_OK;
 nomem:
+    st = wr_fail(diag, WR_ERR_NOMEM, -1, "segment grid: out of memory");
+fail:
     wr_free(fill);
-    return wr_fail(diag, WR_ERR_NOMEM, -1, "inside grid: out of memory");
+    return st;
 }
-
-/* ---------------------------------------------------------------------------------------------- */
-/* One sample in the acceleration structure (32 bytes: one cache line holds two). */
 typedef struct wr__pz_s {
     double x, y, r;
     int32_t next; /* next sample in the same cell, -1 at the end */
@@ -559,6 +688,13 @@ typedef struct wr__pz_tile {
     uint64_t key;
     int32_t head[WR__PZ_TILE * WR__PZ_TILE];
 } wr__pz_tile;
+
+/* A neighbour of the current front step: position and radius copied next to each other. */
+typedef struct wr__pz_nbr {
+    double x, y, r;
+    int32_t id;  /* sample index */
+    int32_t cut; /* 1 = its arc is already cut from the free directions */
+} wr__pz_nbr;
 
 /* Sampler state. */
 typedef struct wr__pz {
@@ -577,13 +713,22 @@ typedef struct wr__pz {
     int hbits;
     double x0, y0, W, H, s_base;
     double cs[64], inv_cs[64], rmax[64], rmax_all;
+    uint64_t tw[64]; /* tiles per row at each level (home slot of a tile) */
     /* presence grid */
-    uint64_t *mask;
+    uint64_t *mask, levels; /* levels: every level in use */
     int32_t mx, my;
     double mg, inv_mg;
     /* walking table */
     double *tx, *ty, *tI;
     int32_t tn, tcap;
+    /* front sampler: options, the domain's segments, the current point's neighbours */
+    const wr__pz_segs *segs;
+    wr_rng rng;
+    double clearance; /* minimum sample-to-segment distance / h */
+    int32_t k;        /* placement attempts per point */
+    wr__pz_nbr *nb; /* neighbours of the point being processed (copies: scanned for every draw) */
+    int32_t nb_n, nb_cap;
+    int64_t n_candidates;
 } wr__pz;
 
 static wr_status wr__pz_size(wr__pz *z, double x, double y, double *h) {
@@ -764,6 +909,12 @@ done:
     return st;
 }
 
+/* floor() as an integer without the libm call (x86-64 has no SSE4.1 round by default); |v| < 2^62 */
+static int64_t wr__pz_ifloor(double v) {
+    int64_t i = (int64_t)v;
+    return i - (v < (double)i);
+}
+
 /* ---- level hash ------------------------------------------------------------------------------ */
 #define WR__PZ_CMAX ((1 << 29) - 2)
 
@@ -771,8 +922,13 @@ static uint64_t wr__pz_key(int l, int64_t tx, int64_t ty) {
     return (((uint64_t)l << 58) | ((uint64_t)tx << 29) | (uint64_t)ty) + 1u; /* 0 = empty slot */
 }
 
+/* Home slot = the tile's row-major index in its level's tile grid (plus a per-level offset), so
+ * tiles that are neighbours along x are neighbours in memory and a single level covering the domain
+ * fills the table without collisions; linear probing resolves the rest. (A multiplicative hash made
+ * every tile lookup a cache miss: 17 % of a step's time.) */
 static size_t wr__pz_slot(const wr__pz *z, uint64_t key) {
-    size_t m = z->hcap - 1, s = (size_t)((key * 0x9E3779B97F4A7C15ULL) >> (64 - z->hbits)) & m;
+    uint64_t k = key - 1u, l = k >> 58, tx = (k >> 29) & (uint64_t)0x1FFFFFFF, ty = k & (uint64_t)0x1FFFFFFF;
+    size_t m = z->hcap - 1, s = (size_t)(tx + ty * z->tw[l] + l * 0x9E3779B1u) & m;
     while (z->tiles[s].key != 0 && z->tiles[s].key != key) s = (s + 1) & m;
     return s;
 }
@@ -815,58 +971,308 @@ static int wr__pz_level(const wr__pz *z, double r) {
 }
 
 /* Mean rule: does (qx,qy) with radius rq conflict with any stored sample? */
-static int wr__pz_conflict(const wr__pz *z, double qx, double qy, double rq) {
-    double R = 0.5 * (rq + z->rmax_all);
-    int64_t ax0 = (int64_t)floor((qx - R - z->x0) * z->inv_mg), ax1 = (int64_t)floor((qx + R - z->x0) * z->inv_mg);
-    int64_t ay0 = (int64_t)floor((qy - R - z->y0) * z->inv_mg), ay1 = (int64_t)floor((qy + R - z->y0) * z->inv_mg);
-    int64_t ix, iy;
+
+/* Append sample i to the neighbour list. */
+static wr_status wr__pz_nb_push(wr__pz *z, int32_t i, int32_t cut) {
+    wr__pz_nbr *e;
+    if (z->nb_n == z->nb_cap) {
+        int32_t nc = z->nb_cap ? 2 * z->nb_cap : 64;
+        wr__pz_nbr *a = (wr__pz_nbr *)wr_realloc_array(z->nb, (size_t)nc, sizeof(wr__pz_nbr));
+        if (!a) return wr_fail(z->diag, WR_ERR_NOMEM, -1, "neighbour list: out of memory");
+        z->nb = a;
+        z->nb_cap = nc;
+    }
+    e = &z->nb[z->nb_n++];
+    e->x = z->sm[i].x;
+    e->y = z->sm[i].y;
+    e->r = z->sm[i].r;
+    e->id = i;
+    e->cut = cut;
+    return WR_OK;
+}
+
+/* Visit the stored samples S that lie within R0 + (rq + r_S)/2 of q (level by level, only the
+ * levels present around q). mode 0: append them to z->nb; mode 1: return 1 at the first one found
+ * (the mean-rule conflict test is R0 = 0). Returns -1 when out of memory (diag filled). */
+static int wr__pz_near(wr__pz *z, double qx, double qy, double R0, double rq, int mode) {
+    double R = R0 + 0.5 * (rq + z->rmax_all);
+    int64_t ax0 = wr__pz_ifloor((qx - R - z->x0) * z->inv_mg), ax1 = wr__pz_ifloor((qx + R - z->x0) * z->inv_mg);
+    int64_t ay0 = wr__pz_ifloor((qy - R - z->y0) * z->inv_mg), ay1 = wr__pz_ifloor((qy + R - z->y0) * z->inv_mg);
+    int64_t ix, iy, tx, ty;
     uint64_t mask = 0;
-    if (ax0 < 0) ax0 = 0;
-    if (ay0 < 0) ay0 = 0;
-    if (ax1 >= z->mx) ax1 = z->mx - 1;
-    if (ay1 >= z->my) ay1 = z->my - 1;
-    for (iy = ay0; iy <= ay1; ++iy)
-        for (ix = ax0; ix <= ax1; ++ix) mask |= z->mask[iy * z->mx + ix];
+    ax0 = ax0 < 0 ? 0 : ax0;
+    ay0 = ay0 < 0 ? 0 : ay0;
+    ax1 = ax1 >= z->mx ? z->mx - 1 : ax1;
+    ay1 = ay1 >= z->my ? z->my - 1 : ay1;
+    if ((z->levels & (z->levels - 1u)) == 0u) /* one level in use (constant sizing): no need to look */
+        mask = z->levels;
+    else
+        for (iy = ay0; iy <= ay1; ++iy)
+            for (ix = ax0; ix <= ax1; ++ix) mask |= z->mask[iy * z->mx + ix];
     while (mask) {
         int l = 0;
         uint64_t low = mask & (~mask + 1u);
+        double Rl, ic;
+        int64_t cx0, cx1, cy0, cy1, lim_x, lim_y;
+#if defined(__GNUC__) || defined(__clang__)
+        l = __builtin_ctzll(low);
+#else
         while (((uint64_t)1 << l) != low) ++l;
+#endif
         mask ^= low;
-        {
-            double Rl = 0.5 * (rq + z->rmax[l]), ic = z->inv_cs[l];
-            int64_t cx0 = (int64_t)floor((qx - Rl - z->x0) * ic), cx1 = (int64_t)floor((qx + Rl - z->x0) * ic);
-            int64_t cy0 = (int64_t)floor((qy - Rl - z->y0) * ic), cy1 = (int64_t)floor((qy + Rl - z->y0) * ic);
-            if (cx0 < 0) cx0 = 0;
-            if (cy0 < 0) cy0 = 0;
-            if (cx1 > (int64_t)(z->W * ic) + 1) cx1 = (int64_t)(z->W * ic) + 1;
-            if (cy1 > (int64_t)(z->H * ic) + 1) cy1 = (int64_t)(z->H * ic) + 1;
-            int64_t tx, ty;
-            /* walk the tiles covering the cell box, then the cells of each tile inside the box */
-            for (ty = cy0 / WR__PZ_TILE; ty <= cy1 / WR__PZ_TILE; ++ty)
-                for (tx = cx0 / WR__PZ_TILE; tx <= cx1 / WR__PZ_TILE; ++tx) {
-                    size_t sl = wr__pz_slot(z, wr__pz_key(l, tx, ty));
-                    const wr__pz_tile *T = &z->tiles[sl];
-                    int64_t jx0, jx1, jy0, jy1;
-                    if (T->key == 0) continue;
-                    jx0 = cx0 > tx * WR__PZ_TILE ? cx0 - tx * WR__PZ_TILE : 0;
-                    jy0 = cy0 > ty * WR__PZ_TILE ? cy0 - ty * WR__PZ_TILE : 0;
-                    jx1 = cx1 < tx * WR__PZ_TILE + WR__PZ_TILE - 1 ? cx1 - tx * WR__PZ_TILE : WR__PZ_TILE - 1;
-                    jy1 = cy1 < ty * WR__PZ_TILE + WR__PZ_TILE - 1 ? cy1 - ty * WR__PZ_TILE : WR__PZ_TILE - 1;
-                    for (iy = jy0; iy <= jy1; ++iy)
-                        for (ix = jx0; ix <= jx1; ++ix) {
-                            int32_t p = T->head[iy * WR__PZ_TILE + ix];
-                            for (; p >= 0; p = z->sm[p].next) {
-                                const wr__pz_s *S = &z->sm[p];
-                                double dx = S->x - qx, dy = S->y - qy, md = 0.5 * (rq + S->r);
-                                if (dx * dx + dy * dy < md * md) return 1;
-                            }
+        Rl = R0 + 0.5 * (rq + z->rmax[l]);
+        ic = z->inv_cs[l];
+        cx0 = wr__pz_ifloor((qx - Rl - z->x0) * ic);
+        cx1 = wr__pz_ifloor((qx + Rl - z->x0) * ic);
+        cy0 = wr__pz_ifloor((qy - Rl - z->y0) * ic);
+        cy1 = wr__pz_ifloor((qy + Rl - z->y0) * ic);
+        lim_x = (int64_t)(z->W * ic) + 1;
+        lim_y = (int64_t)(z->H * ic) + 1;
+        cx0 = cx0 < 0 ? 0 : cx0;
+        cy0 = cy0 < 0 ? 0 : cy0;
+        cx1 = cx1 > lim_x ? lim_x : cx1;
+        cy1 = cy1 > lim_y ? lim_y : cy1;
+        /* the tiles covering the cell box, then the cells of each tile inside the box */
+        for (ty = cy0 / WR__PZ_TILE; ty <= cy1 / WR__PZ_TILE; ++ty)
+            for (tx = cx0 / WR__PZ_TILE; tx <= cx1 / WR__PZ_TILE; ++tx) {
+                const wr__pz_tile *T = &z->tiles[wr__pz_slot(z, wr__pz_key(l, tx, ty))];
+                int64_t jx0, jx1, jy0, jy1;
+                if (T->key == 0) continue;
+                jx0 = cx0 > tx * WR__PZ_TILE ? cx0 - tx * WR__PZ_TILE : 0;
+                jy0 = cy0 > ty * WR__PZ_TILE ? cy0 - ty * WR__PZ_TILE : 0;
+                jx1 = cx1 < tx * WR__PZ_TILE + WR__PZ_TILE - 1 ? cx1 - tx * WR__PZ_TILE : WR__PZ_TILE - 1;
+                jy1 = cy1 < ty * WR__PZ_TILE + WR__PZ_TILE - 1 ? cy1 - ty * WR__PZ_TILE : WR__PZ_TILE - 1;
+                for (iy = jy0; iy <= jy1; ++iy)
+                    for (ix = jx0; ix <= jx1; ++ix) {
+                        int32_t p;
+                        for (p = T->head[iy * WR__PZ_TILE + ix]; p >= 0; p = z->sm[p].next) {
+                            const wr__pz_s *S = &z->sm[p];
+                            double dx = S->x - qx, dy = S->y - qy, md = R0 + 0.5 * (rq + S->r);
+                            if (dx * dx + dy * dy >= md * md) continue;
+                            if (mode) return 1;
+                            if (wr__pz_nb_push(z, p, 0) != WR_OK) return -1;
                         }
-                }
-        }
+                    }
+            }
     }
     return 0;
 }
 
+/* Angles for the free-arc bookkeeping by polynomial: Abramowitz & Stegun 4.4.49 (arctan on [0, 1],
+ * |error| <= 2e-8 rad) and 4.4.46 (arccos, <= 2e-8 rad); sin and cos by their Taylor series to
+ * degree 11 and 12 on [-π/4, π/4] (< 1e-11). libm's atan2, acos and sincos took 20 % of a front
+ * step; the arcs only steer where candidates are drawn and every candidate is checked exactly, so
+ * 1e-7 rad is ample. */
+#define WR__PZ_HALF_PI 1.5707963267948966
+static double wr__pz_atan2(double y, double x) {
+    double ax = fabs(x), ay = fabs(y), a, s, r;
+    if (ax == 0.0 && ay == 0.0) return 0.0;
+    a = ax >= ay ? ay / ax : ax / ay;
+    s = a * a;
+    r = a * (1.0 + s * (-0.3333314528 + s * (0.1999355085 + s * (-0.1420889944 + s * (0.1065626393 +
+        s * (-0.0752896400 + s * (0.0429096138 + s * (-0.0161657367 + s * 0.0028662257))))))));
+    if (ay > ax) r = WR__PZ_HALF_PI - r;
+    if (x < 0.0) r = 2.0 * WR__PZ_HALF_PI - r;
+    return y < 0.0 ? -r : r;
+}
+
+static double wr__pz_acos(double x) { /* |x| <= 1 */
+    double ax = fabs(x);
+    double r = sqrt(1.0 - ax) * (1.5707963050 + ax * (-0.2145988016 + ax * (0.0889789874 + ax * (-0.0501743046 +
+               ax * (0.0308918810 + ax * (-0.0170881256 + ax * (0.0066700901 + ax * -0.0012624911)))))));
+    return x < 0.0 ? 2.0 * WR__PZ_HALF_PI - r : r;
+}
+
+static void wr__pz_sincos(double t, double *sn, double *cs) {
+    int64_t q = wr__pz_ifloor(t / WR__PZ_HALF_PI + 0.5);
+    double u = t - (double)q * WR__PZ_HALF_PI, u2 = u * u, sv, cv;
+    sv = u * (1.0 + u2 * (-1.0 / 6 + u2 * (1.0 / 120 + u2 * (-1.0 / 5040 + u2 * (1.0 / 362880 + u2 * (-1.0 / 39916800))))));
+    cv = 1.0 + u2 * (-0.5 + u2 * (1.0 / 24 + u2 * (-1.0 / 720 + u2 * (1.0 / 40320 + u2 * (-1.0 / 3628800 +
+         u2 * (1.0 / 479001600))))));
+    switch ((int)(q & 3)) {
+    case 0: *sn = sv; *cs = cv; break;
+    case 1: *sn = cv; *cs = -sv; break;
+    case 2: *sn = -sv; *cs = -cv; break;
+    default: *sn = -cv; *cs = sv; break;
+    }
+}
+
+/* ---- free arcs: the directions around a point still open for a new sample -------------------- */
+#define WR__PZ_ARCS 32
+#define WR__PZ_TWO_PI 6.283185307179586
+typedef struct wr__pz_arcs {
+    double lo[WR__PZ_ARCS], hi[WR__PZ_ARCS]; /* disjoint, ascending, within [0, 2π] */
+    int32_t n;
+} wr__pz_arcs;
+
+/* Remove [a, b] (0 <= a < b <= 2π), in place. A split beyond the capacity keeps the longer side. */
+static void wr__pz_arcs_cut1(wr__pz_arcs *A, double a, double b) {
+    int32_t i;
+    for (i = 0; i < A->n; ++i) {
+        double l = A->lo[i], h = A->hi[i];
+        if (b <= l) return; /* ascending: nothing further overlaps */
+        if (a >= h) continue;
+        if (a > l && b < h) { /* strictly inside: split */
+            if (A->n < WR__PZ_ARCS) {
+                memmove(A->lo + i + 1, A->lo + i, sizeof(double) * (size_t)(A->n - i));
+                memmove(A->hi + i + 1, A->hi + i, sizeof(double) * (size_t)(A->n - i));
+                A->hi[i] = a;
+                A->lo[i + 1] = b;
+                ++A->n;
+            } else if (a - l >= h - b) {
+                A->hi[i] = a;
+            } else {
+                A->lo[i] = b;
+            }
+            return;
+        }
+        if (a > l) {
+            A->hi[i] = a; /* the top goes */
+        } else if (b < h) {
+            A->lo[i] = b; /* the bottom goes */
+            return;
+        } else { /* covered */
+            memmove(A->lo + i, A->lo + i + 1, sizeof(double) * (size_t)(A->n - i - 1));
+            memmove(A->hi + i, A->hi + i + 1, sizeof(double) * (size_t)(A->n - i - 1));
+            --A->n;
+            --i;
+        }
+    }
+}
+
+/* Remove the directions within `half` of angle `c` (any real c). */
+static void wr__pz_arcs_cut(wr__pz_arcs *A, double c, double half) {
+    double a, b;
+    if (half >= 0.5 * WR__PZ_TWO_PI) {
+        A->n = 0;
+        return;
+    }
+    if (!(half > 0.0)) return;
+    c -= WR__PZ_TWO_PI * (double)wr__pz_ifloor(c / WR__PZ_TWO_PI);
+    a = c - half;
+    b = c + half;
+    if (a < 0.0) {
+        wr__pz_arcs_cut1(A, a + WR__PZ_TWO_PI, WR__PZ_TWO_PI);
+        wr__pz_arcs_cut1(A, 0.0, b);
+    } else if (b > WR__PZ_TWO_PI) {
+        wr__pz_arcs_cut1(A, a, WR__PZ_TWO_PI);
+        wr__pz_arcs_cut1(A, 0.0, b - WR__PZ_TWO_PI);
+    } else {
+        wr__pz_arcs_cut1(A, a, b);
+    }
+}
+
+/* A direction uniform over the free arcs (u uniform in [0, 1)). */
+static double wr__pz_arcs_pick(const wr__pz_arcs *A, double u) {
+    double total = 0.0, t;
+    int32_t i;
+    for (i = 0; i < A->n; ++i) total += A->hi[i] - A->lo[i];
+    t = u * total;
+    for (i = 0; i + 1 < A->n && t >= A->hi[i] - A->lo[i]; ++i) t -= A->hi[i] - A->lo[i];
+    t += A->lo[i];
+    return t < A->hi[i] ? t : A->lo[i];
+}
+
+/* Cut the directions θ for which p + ρ(cos θ, sin θ) lies closer than D to q (the lens of two
+ * circles: law of cosines). */
+static void wr__pz_arcs_cut_disk(wr__pz_arcs *A, double px, double py, double rho, double qx, double qy, double D) {
+    double dx = qx - px, dy = qy - py, d = sqrt(dx * dx + dy * dy), cs;
+    if (d >= rho + D) return;
+    if (d <= D - rho || d == 0.0) {
+        A->n = 0;
+        return;
+    }
+    cs = (rho * rho + d * d - D * D) / (2.0 * rho * d);
+    if (cs <= -1.0) {
+        A->n = 0;
+        return;
+    }
+    if (cs < 1.0) wr__pz_arcs_cut(A, wr__pz_atan2(dy, dx), wr__pz_acos(cs));
+}
+
+/* The curves near p: cut the directions in which the circle of radius ρ around p comes within the
+ * clearance of a segment (around each crossing) and the arcs between crossings that lie outside
+ * the domain (one inside test at each arc's middle). Returns 0 when no segment is within `reach`
+ * (then every candidate up to that distance is inside and clear, p being inside). */
+static int wr__pz_arcs_cut_curves(const wr__pz *z, wr__pz_arcs *A, double px, double py, double rho, double clr,
+                                  double reach) {
+    const wr__pz_segs *t = z->segs;
+    double cross[2 * WR__PZ_ARCS];
+    int32_t ix0 = wr__pz_cell(t, 0, px - reach), ix1 = wr__pz_cell(t, 0, px + reach), ix, iy, p, nc = 0, i, j;
+    int32_t iy0 = wr__pz_cell(t, 1, py - reach), iy1 = wr__pz_cell(t, 1, py + reach);
+    int any = 0;
+    ix0 = ix0 < 0 ? 0 : ix0;
+    iy0 = iy0 < 0 ? 0 : iy0;
+    ix1 = ix1 >= t->nx ? t->nx - 1 : ix1;
+    iy1 = iy1 >= t->ny ? t->ny - 1 : iy1;
+    for (iy = iy0; iy <= iy1; ++iy)
+        for (ix = ix0; ix <= ix1; ++ix) {
+            int32_t cell = iy * t->nx + ix;
+            for (p = t->cstart[cell]; p < t->cstart[cell + 1]; ++p) {
+                /* |a + s e − p|² = ρ²: s² |e|² + 2 s e·(a−p) + |a−p|² − ρ² = 0 */
+                const double *sg = t->seg + 4 * t->clist[p];
+                double ex = sg[2] - sg[0], ey = sg[3] - sg[1], fx = sg[0] - px, fy = sg[1] - py;
+                double A2 = ex * ex + ey * ey, B = ex * fx + ey * fy, C = fx * fx + fy * fy - rho * rho, disc, sq;
+                double len, nx, ny, dl, phin, ahi, alo;
+                int r;
+                if (wr__pz_seg_d2(sg, px, py) >= reach * reach) continue;
+                any = 1;
+                disc = B * B - A2 * C;
+                if (!(disc >= 0.0) || !(A2 > 0.0)) continue;
+                sq = sqrt(disc);
+                len = sqrt(A2);
+                /* the clearance band |δ + ρ cos(φ − φn)| < clr of the segment's line (n its unit
+                 * normal, δ = n·(p − a)) meets the circle in two arcs symmetric about φn, at
+                 * angular distance in (acos(hi), acos(lo)) from it */
+                nx = -ey / len;
+                ny = ex / len;
+                dl = -(nx * fx + ny * fy);
+                phin = wr__pz_atan2(ny, nx);
+                ahi = wr__pz_acos(fmax(-1.0, fmin(1.0, (clr - dl) / rho)));
+                alo = wr__pz_acos(fmax(-1.0, fmin(1.0, (-clr - dl) / rho)));
+                for (r = 0; r < 2; ++r) {
+                    double s = (-B + (r ? sq : -sq)) / A2, th, psi;
+                    if (s < 0.0 || s > 1.0) continue;
+                    th = wr__pz_atan2(fy + s * ey, fx + s * ex);
+                    psi = th - phin;
+                    psi -= WR__PZ_TWO_PI * (double)wr__pz_ifloor(psi / WR__PZ_TWO_PI + 0.5); /* (−π, π] */
+                    wr__pz_arcs_cut(A, phin + (psi >= 0.0 ? 0.5 : -0.5) * (ahi + alo), 0.5 * (alo - ahi));
+                    if (t->loop[t->clist[p]] && nc < 2 * WR__PZ_ARCS) cross[nc++] = th < 0.0 ? th + WR__PZ_TWO_PI : th;
+                }
+            }
+        }
+    if (!any) return 0;
+    /* sort the loop crossings (few), then test each arc between consecutive ones */
+    for (i = 1; i < nc; ++i)
+        for (j = i; j > 0 && cross[j - 1] > cross[j]; --j) {
+            double tmp = cross[j];
+            cross[j] = cross[j - 1];
+            cross[j - 1] = tmp;
+        }
+    if (nc == 0) {
+        if (!wr__pz_inside_at(t, px + rho, py)) A->n = 0;
+        return 1;
+    }
+    for (i = 0; i < nc; ++i) {
+        double a = cross[i], b = i + 1 < nc ? cross[i + 1] : cross[0] + WR__PZ_TWO_PI, m = 0.5 * (a + b), sm, cm;
+        wr__pz_sincos(m, &sm, &cm);
+        if (b - a > 1e-12 && !wr__pz_inside_at(t, px + rho * cm, py + rho * sm))
+            wr__pz_arcs_cut(A, m, 0.5 * (b - a));
+    }
+    return 1;
+}
+
+/* Index into z->nb of the first neighbour not yet cut that (qx, qy) with radius rq conflicts with,
+ * or -1. all != 0: test the already-cut ones too. */
+static int32_t wr__pz_nb_conflict(const wr__pz *z, double qx, double qy, double rq, int all) {
+    int32_t i;
+    for (i = 0; i < z->nb_n; ++i) {
+        const wr__pz_nbr *S = &z->nb[i];
+        double dx = S->x - qx, dy = S->y - qy, md = 0.5 * (rq + S->r);
+        if ((all || !S->cut) && dx * dx + dy * dy < md * md) return i;
+    }
+    return -1;
+}
 static wr_status wr__pz_insert(wr__pz *z, double x, double y, double h) {
     double r = z->c * h;
     int l = wr__pz_level(z, r);
@@ -918,16 +1324,170 @@ static wr_status wr__pz_insert(wr__pz *z, double x, double y, double h) {
     if (r > z->rmax[l]) z->rmax[l] = r;
     if (r > z->rmax_all) z->rmax_all = r;
     {
-        int64_t mx = (int64_t)floor((x - z->x0) * z->inv_mg), my = (int64_t)floor((y - z->y0) * z->inv_mg);
+        int64_t mx = wr__pz_ifloor((x - z->x0) * z->inv_mg), my = wr__pz_ifloor((y - z->y0) * z->inv_mg);
         if (mx >= z->mx) mx = z->mx - 1;
         if (my >= z->my) my = z->my - 1;
         if (mx < 0) mx = 0;
         if (my < 0) my = 0;
         z->mask[my * z->mx + mx] |= (uint64_t)1 << l;
+        z->levels |= (uint64_t)1 << l;
     }
     return WR_OK;
 nomem:
     return wr_fail(z->diag, WR_ERR_NOMEM, -1, "samples: out of memory");
+}
+
+
+/* One step of the front (Dunbar & Humphreys 2006, boundary sampling, generalised to a varying
+ * radius): place new samples on the circle of radius ρ = r_p around point p until no direction is
+ * left. The free directions are kept as arcs; a neighbour's arc (the directions in which a sample
+ * would conflict with it, assuming the new radius ≈ r_p) is cut the first time a direction hits
+ * it, so most neighbours never cost a trigonometric call. A direction that survives the neighbours
+ * is checked exactly: inside the domain, sizing evaluated (once; once more only when the radius
+ * there differs from r_p by more than WR__PZ_REPLACE and the point moves to the mean-rule
+ * distance), clearance from the segments, mean rule against every neighbour. */
+static wr_status wr__pz_activate(wr__pz *z, int32_t ip) {
+    const double px = z->sm[ip].x, py = z->sm[ip].y, rp = z->sm[ip].r;
+    const double rho0 = rp * (1.0 + WR__PZ_GAP), rb = WR__PZ_RBOUND * rp, rho_max = 0.5 * (rp + rb);
+    wr__pz_arcs A;
+    int32_t fails = 0, moves;
+    int curves, far;
+    wr_status st;
+    z->nb_n = 0;
+    if (wr__pz_near(z, px, py, rho_max, rb, 0) < 0) return wr_fail(z->diag, WR_ERR_NOMEM, -1, "neighbours: out of memory");
+    A.n = 1;
+    A.lo[0] = 0.0;
+    A.hi[0] = WR__PZ_TWO_PI;
+    curves = wr__pz_arcs_cut_curves(z, &A, px, py, rho0, z->clearance * z->h[ip],
+                                    rho_max + z->clearance * rb / z->c);
+    while (A.n > 0 && fails < z->k) {
+        double th = wr__pz_arcs_pick(&A, wr_rng_uniform(&z->rng)), ux, uy, rho = rho0, x, y, hx, rx;
+        int32_t q;
+        wr__pz_sincos(th, &uy, &ux);
+        x = px + rho * ux;
+        y = py + rho * uy;
+        q = wr__pz_nb_conflict(z, x, y, rp, 0);
+        if (q >= 0) { /* this neighbour's whole arc goes (no sizing evaluated) */
+            wr__pz_nbr *S = &z->nb[q];
+            S->cut = 1;
+            wr__pz_arcs_cut_disk(&A, px, py, rho0, S->x, S->y, 0.5 * (rp + S->r));
+            wr__pz_arcs_cut(&A, th, WR__PZ_TINY_ARC);
+            continue;
+        }
+        if (curves && !wr__pz_inside_at(z->segs, x, y)) goto failed;
+        if ((st = wr__pz_size(z, x, y, &hx)) != WR_OK) return st;
+        ++z->n_candidates;
+        rx = z->c * hx;
+        /* where the sizing changed, move along the direction to the mean-rule distance: the
+         * fixed point of ρ = (r_p + r(ρ)) / 2, iterated (it contracts wherever |∇r| < 2); beyond
+         * ρ_max too, so a jump to a coarser region is crossed (checked against the grid below) */
+        for (moves = 0; 0.5 * (rp + rx) > rho || rho - 0.5 * (rp + rx) > WR__PZ_REPLACE * rho; ++moves) {
+            if (moves == WR__PZ_MOVES) {
+                if (0.5 * (rp + rx) > rho) goto failed;
+                break; /* a little slack is fine; too close is not */
+            }
+            rho = 0.5 * (rp + rx) * (1.0 + WR__PZ_MOVE_GAP);
+            x = px + rho * ux;
+            y = py + rho * uy;
+            if ((curves || rho > rho_max) && !wr__pz_inside_at(z->segs, x, y)) goto failed;
+            if ((st = wr__pz_size(z, x, y, &hx)) != WR_OK) return st;
+            ++z->n_candidates;
+            rx = z->c * hx;
+        }
+        far = rho > rho_max || rx > rb; /* beyond what the neighbour list and `curves` cover */
+        if ((curves || far) && !wr__pz_clear_of_segments(z->segs, x, y, z->clearance * hx)) goto failed;
+        if (!far) {
+            q = wr__pz_nb_conflict(z, x, y, rx, 1);
+            if (q >= 0) {
+                if (!z->nb[q].cut && z->nb[q].id != ip) {
+                    wr__pz_nbr *S = &z->nb[q];
+                    S->cut = 1;
+                    wr__pz_arcs_cut_disk(&A, px, py, rho0, S->x, S->y, 0.5 * (rp + S->r));
+                }
+                goto failed;
+            }
+        } else {
+            int hit = wr__pz_near(z, x, y, 0.0, rx, 1);
+            if (hit < 0) return wr_fail(z->diag, WR_ERR_NOMEM, -1, "neighbours: out of memory");
+            if (hit) goto failed; /* the grid decides */
+        }
+        if ((st = wr__pz_insert(z, x, y, hx)) != WR_OK) return st;
+        if ((st = wr__pz_nb_push(z, z->n - 1, 1)) != WR_OK) return st;
+        wr__pz_arcs_cut_disk(&A, px, py, rho0, x, y, 0.5 * (rp + rx));
+        wr__pz_arcs_cut(&A, th, WR__PZ_TINY_ARC);
+        continue;
+    failed:
+        ++fails;
+        wr__pz_arcs_cut(&A, th, WR__PZ_FAIL_ARC);
+    }
+    return WR_OK;
+}
+
+/* Grids and sample storage sized from the estimate (est points, radii up to rmax). */
+static wr_status wr__pz_grids_init(wr__pz *z, double x0, double y0, double W, double H, double est, double rmax) {
+    int32_t i, nc;
+    double cells_cap = fmax(4096.0, 4.0 * est), want = fmin(1.1 * est + 64.0, (double)z->max_points);
+    z->x0 = x0;
+    z->y0 = y0;
+    z->W = W;
+    z->H = H;
+    z->s_base = ldexp(fmax(fmax(W, H), 1e-300), -28);
+    for (i = 0; i < 64; ++i) {
+        z->cs[i] = ldexp(z->s_base, i + 1);
+        z->inv_cs[i] = 1.0 / z->cs[i];
+        z->rmax[i] = 0.0;
+        z->tw[i] = (uint64_t)fmin(W * z->inv_cs[i] / WR__PZ_TILE, 1e9) + 2u;
+    }
+    z->mg = 2.0 * rmax;
+    while ((W / z->mg + 1.0) * (H / z->mg + 1.0) > cells_cap) z->mg *= 1.5;
+    z->inv_mg = 1.0 / z->mg;
+    z->mx = (int32_t)(W * z->inv_mg) + 1;
+    z->my = (int32_t)(H * z->inv_mg) + 1;
+    z->mask = (uint64_t *)wr_calloc_array((size_t)z->mx * (size_t)z->my, sizeof(uint64_t));
+    if (!z->mask) return wr_fail(z->diag, WR_ERR_NOMEM, -1, "presence grid: out of memory");
+    /* tiles hold 16 cells of >= 2 r: ~ one tile per 16·(2r)²·κ/r² ≈ 40 samples; be generous */
+    if (wr__pz_hash_init(z, (size_t)(est / 16.0) + 16) != WR_OK) return WR_ERR_NOMEM;
+    nc = want < 16.0 ? 16 : (int32_t)want;
+    z->sm = (wr__pz_s *)wr_alloc_array((size_t)nc, sizeof(wr__pz_s));
+    z->h = (double *)wr_alloc_array((size_t)nc, sizeof(double));
+    if (!z->sm || !z->h) return wr_fail(z->diag, WR_ERR_NOMEM, -1, "samples: out of memory");
+    z->cap = nc;
+    return WR_OK;
+}
+
+/* The fill over curve set dc (its points are the fixed points, its edges the segments): fixed
+ * points first, then every point in order of creation is a front step (first in, first out: the
+ * front advances from the curves inwards, and consecutive steps touch nearby memory). */
+static wr_status wr__pz_fill(wr__pz *z, const wr__pz_curves *dc, const double *hfix, wr_poisson_result *res) {
+    int32_t i, c, s = 0, ns = 0;
+    wr_status st;
+    for (i = 0; i < dc->np; ++i)
+        if ((st = wr__pz_insert(z, dc->xy[2 * i], dc->xy[2 * i + 1], hfix[i])) != WR_OK) return st;
+    for (i = 0; i < z->n; ++i)
+        if ((st = wr__pz_activate(z, i)) != WR_OK) return st;
+    for (c = 0; c < dc->nc; ++c) ns += wr__pz_nseg(dc, c);
+    res->points = (double *)wr_alloc_array((size_t)z->n, 2 * sizeof(double));
+    res->sizing = (double *)wr_alloc_array((size_t)z->n, sizeof(double));
+    res->segments = (int32_t *)wr_alloc_array((size_t)ns, 2 * sizeof(int32_t));
+    res->segment_owner = (int32_t *)wr_alloc_array((size_t)ns, sizeof(int32_t));
+    if (!res->points || !res->sizing || !res->segments || !res->segment_owner)
+        return wr_fail(z->diag, WR_ERR_NOMEM, -1, "result: out of memory");
+    for (i = 0; i < z->n; ++i) {
+        res->points[2 * i] = z->sm[i].x;
+        res->points[2 * i + 1] = z->sm[i].y;
+    }
+    memcpy(res->sizing, z->h, sizeof(double) * (size_t)z->n);
+    for (c = 0; c < dc->nc; ++c)
+        for (i = 0; i < wr__pz_nseg(dc, c); ++i, ++s) {
+            res->segments[2 * s] = dc->off[c] + i;
+            res->segments[2 * s + 1] = dc->off[c] + (i + 1) % dc->cnt[c];
+            res->segment_owner[s] = c;
+        }
+    res->n_points = z->n;
+    res->n_fixed = dc->np;
+    res->n_segments = ns;
+    res->n_candidates = z->n_candidates;
+    return WR_OK;
 }
 
 static void wr__pz_free(wr__pz *z) {
@@ -938,6 +1498,7 @@ static void wr__pz_free(wr__pz *z) {
     wr_free(z->tx);
     wr_free(z->ty);
     wr_free(z->tI);
+    wr_free(z->nb);
 }
 
 WRDEF void wr_poisson_free(wr_poisson_result *res) {
@@ -949,7 +1510,11 @@ WRDEF void wr_poisson_free(wr_poisson_result *res) {
     memset(res, 0, sizeof *res);
 }
 
-/* Copy and validate the input curves (counts, finiteness, zero-length segments, zero area). */
+static const wr_poisson_curve *wr__pz_dom_curve(const wr_poisson_domain *dom, int32_t c) {
+    return c == 0 ? &dom->outer : (c <= dom->n_holes ? &dom->holes[c - 1] : &dom->lines[c - 1 - dom->n_holes]);
+}
+
+/* Copy the input curves; check counts and finiteness. */
 static wr_status wr__pz_gather(const wr_poisson_domain *dom, wr__pz_curves *cv, wr_diag *diag) {
     int32_t c, i, nc = 1 + dom->n_holes + dom->n_lines, np = 0;
     char name[32];
@@ -961,12 +1526,14 @@ static wr_status wr__pz_gather(const wr_poisson_domain *dom, wr__pz_curves *cv, 
     cv->closed = (int32_t *)wr_alloc_array((size_t)nc, sizeof(int32_t));
     if (!cv->off || !cv->cnt || !cv->closed) return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
     for (c = 0; c < nc; ++c) {
-        const wr_poisson_curve *k = c == 0 ? &dom->outer : (c <= dom->n_holes ? &dom->holes[c - 1] : &dom->lines[c - 1 - dom->n_holes]);
+        const wr_poisson_curve *k = wr__pz_dom_curve(dom, c);
         int is_loop = c <= dom->n_holes;
         int32_t need = is_loop || k->closed ? 3 : 2;
         wr__pz_curve_name(cv, c, name, sizeof name);
         if (k->n < need || !k->xy)
-            return wr_fail(diag, WR_ERR_GEOMETRY, c, "%s has %d points (at least %d needed)", name, (int)k->n, (int)need);
+            return wr__pz_where(diag, wr_fail(diag, WR_ERR_GEOMETRY, c, "%s has %d points (at least %d needed)", name,
+                                              (int)k->n, (int)need),
+                                c, -1, -1, -1);
         if (np > INT32_MAX - k->n) return wr_fail(diag, WR_ERR_OVERFLOW, c, "too many input points");
         cv->off[c] = np;
         cv->cnt[c] = k->n;
@@ -977,12 +1544,15 @@ static wr_status wr__pz_gather(const wr_poisson_domain *dom, wr__pz_curves *cv, 
     cv->xy = (double *)wr_alloc_array((size_t)np, 2 * sizeof(double));
     if (!cv->xy) return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
     for (c = 0; c < nc; ++c) {
-        const wr_poisson_curve *k = c == 0 ? &dom->outer : (c <= dom->n_holes ? &dom->holes[c - 1] : &dom->lines[c - 1 - dom->n_holes]);
-        wr__pz_curve_name(cv, c, name, sizeof name);
+        const wr_poisson_curve *k = wr__pz_dom_curve(dom, c);
         for (i = 0; i < k->n; ++i) {
             double x = k->xy[2 * i], y = k->xy[2 * i + 1];
-            if (!isfinite(x) || !isfinite(y))
-                return wr_fail(diag, WR_ERR_GEOMETRY, i, "%s point %d is not finite (%g, %g)", name, (int)i, x, y);
+            if (!isfinite(x) || !isfinite(y)) {
+                wr__pz_curve_name(cv, c, name, sizeof name);
+                return wr__pz_where(diag, wr_fail(diag, WR_ERR_GEOMETRY, i, "%s point %d is not finite (%g, %g)", name,
+                                                  (int)i, x, y),
+                                    c, i, -1, -1);
+            }
             cv->xy[2 * (cv->off[c] + i)] = x;
             cv->xy[2 * (cv->off[c] + i) + 1] = y;
         }
@@ -990,271 +1560,335 @@ static wr_status wr__pz_gather(const wr_poisson_domain *dom, wr__pz_curves *cv, 
     return WR_OK;
 }
 
-WRDEF wr_status wr_poisson_sample(const wr_poisson_domain *dom, wr_poisson_sizing_fn sizing, void *user,
-                                  const wr_poisson_desc *desc_in, wr_poisson_result *res, wr_diag *diag) {
-    wr_poisson_desc desc;
-    wr__pz z;
-    wr__pz_curves in, dc;
-    wr__pz_inside ins;
-    wr_status st = WR_OK;
-    int32_t c, i, k;
-    int32_t *active = NULL;
-    double t0 = wr_time_seconds(), x0, y0, x1, y1, W, H, maxdim, tol;
-    char name[32], name2[32];
-    memset(&z, 0, sizeof z);
-    memset(&in, 0, sizeof in);
-    memset(&dc, 0, sizeof dc);
-    memset(&ins, 0, sizeof ins);
-    if (res) memset(res, 0, sizeof *res);
-    if (!dom || !sizing || !res) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "wr_poisson_sample: NULL argument");
-    if (dom->n_holes < 0 || dom->n_lines < 0 || (dom->n_holes > 0 && !dom->holes) || (dom->n_lines > 0 && !dom->lines))
-        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "wr_poisson_sample: bad hole/line arrays");
-    /* defaults (the one place) */
-    if (desc_in)
-        desc = *desc_in;
-    else
-        memset(&desc, 0, sizeof desc);
-    if (desc.k == 0) desc.k = WR_POISSON_DEFAULT_K;
-    if (desc.radius_factor == 0.0) desc.radius_factor = WR_POISSON_DEFAULT_RADIUS_FACTOR;
-    if (desc.max_points == 0) desc.max_points = WR_POISSON_DEFAULT_MAX_POINTS;
-    if (desc.corner_angle == 0.0) desc.corner_angle = WR_POISSON_DEFAULT_CORNER_ANGLE;
-    if (desc.k < 1 || !(desc.radius_factor > 0.0) || !isfinite(desc.radius_factor) || desc.max_points < 1 ||
-        !(desc.corner_angle > 0.0))
-        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "wr_poisson_desc: k=%d radius_factor=%g max_points=%d corner_angle=%g",
-                       (int)desc.k, desc.radius_factor, (int)desc.max_points, desc.corner_angle);
-    z.fn = sizing;
-    z.user = user;
-    z.diag = diag;
-    z.c = desc.radius_factor;
-    z.max_points = desc.max_points;
-
-    /* 1. input validation */
-    if ((st = wr__pz_gather(dom, &in, diag)) != WR_OK) goto done;
-    x0 = y0 = HUGE_VAL;
-    x1 = y1 = -HUGE_VAL;
-    for (i = 0; i < in.cnt[0]; ++i) {
-        x0 = fmin(x0, in.xy[2 * i]);
-        x1 = fmax(x1, in.xy[2 * i]);
-        y0 = fmin(y0, in.xy[2 * i + 1]);
-        y1 = fmax(y1, in.xy[2 * i + 1]);
+/* Bounding box of the outer loop; its extent must be a finite double. Zero-length segments. */
+static wr_status wr__pz_check_extent(const wr__pz_curves *in, double box[4], wr_diag *diag) {
+    int32_t c, i;
+    char name[32];
+    box[0] = box[1] = HUGE_VAL;
+    box[2] = box[3] = -HUGE_VAL;
+    for (i = 0; i < in->np; ++i) {
+        box[0] = fmin(box[0], in->xy[2 * i]);
+        box[2] = fmax(box[2], in->xy[2 * i]);
+        box[1] = fmin(box[1], in->xy[2 * i + 1]);
+        box[3] = fmax(box[3], in->xy[2 * i + 1]);
     }
-    W = x1 - x0;
-    H = y1 - y0;
-    maxdim = fmax(W, H);
-    tol = WR_POISSON_REL_TOL * maxdim;
-    for (c = 0; c < in.nc; ++c) {
-        const double *v = in.xy + 2 * in.off[c];
-        int32_t n = in.cnt[c];
-        wr__pz_curve_name(&in, c, name, sizeof name);
-        for (i = 0; i < wr__pz_nseg(&in, c); ++i) {
-            const double *a = v + 2 * i, *b = v + 2 * ((i + 1) % n);
+    if (!isfinite(box[2] - box[0]) || !isfinite(box[3] - box[1]))
+        return wr_fail(diag, WR_ERR_GEOMETRY, -1, "input extent [%g, %g] x [%g, %g] m overflows a double", box[0],
+                       box[2], box[1], box[3]);
+    for (c = 0; c < in->nc; ++c)
+        for (i = 0; i < wr__pz_nseg(in, c); ++i) {
+            const double *a = in->xy + 2 * (in->off[c] + i), *b = in->xy + 2 * (in->off[c] + (i + 1) % in->cnt[c]);
             if (a[0] == b[0] && a[1] == b[1]) {
-                st = wr_fail(diag, WR_ERR_GEOMETRY, i, "%s segment %d has zero length (points %d and %d coincide)", name,
-                             (int)i, (int)i, (int)((i + 1) % n));
-                goto done;
+                wr__pz_curve_name(in, c, name, sizeof name);
+                return wr__pz_where(diag, wr_fail(diag, WR_ERR_GEOMETRY, i,
+                                                  "%s segment %d has zero length (points %d and %d coincide)", name,
+                                                  (int)i, (int)i, (int)((i + 1) % in->cnt[c])),
+                                    c, i, -1, -1);
             }
         }
-    }
+    return WR_OK;
+}
+
+/* Crossings, zero area, containment (the curves form a valid domain). */
+static wr_status wr__pz_validate(const wr__pz_curves *in, double maxdim, const char *what, wr_diag *diag) {
+    int32_t c, k;
+    char name[32], name2[32];
+    wr_status st;
     /* crossings before areas: a self-intersecting loop can have any signed area (a symmetric bow-tie
      * has 0), and the crossing is the more useful message */
-    if ((st = wr__pz_check_crossings(&in, "input", diag)) != WR_OK) goto done;
-    for (c = 0; c <= in.n_holes; ++c) {
-        const double *v = in.xy + 2 * in.off[c];
-        int32_t n = in.cnt[c];
+    if ((st = wr__pz_check_crossings(in, what, diag)) != WR_OK) return st;
+    for (c = 0; c <= in->n_holes; ++c) {
         /* about the first vertex (core.h): an origin-based shoelace cancels a small far loop away */
-        double area = wr_polygon_area(v, n);
-        wr__pz_curve_name(&in, c, name, sizeof name);
-        if (!(fabs(area) > WR_POISSON_REL_TOL * maxdim * maxdim)) {
-            st = wr_fail(diag, WR_ERR_GEOMETRY, c, "%s has zero area (%g m^2)", name, area);
-            goto done;
-        }
+        double area = wr_polygon_area(in->xy + 2 * in->off[c], in->cnt[c]);
+        wr__pz_curve_name(in, c, name, sizeof name);
+        if (!(fabs(area) > WR_POISSON_REL_TOL * maxdim * maxdim))
+            return wr__pz_where(diag, wr_fail(diag, WR_ERR_GEOMETRY, c, "%s has zero area (%g m^2)", name, area), c, -1,
+                                -1, -1);
     }
     /* no crossings: one vertex decides each containment relation */
-    for (c = 1; c < in.nc; ++c) {
-        const double *p = in.xy + 2 * in.off[c];
-        wr__pz_curve_name(&in, c, name, sizeof name);
-        if (!wr__pz_in_curve(&in, 0, p)) {
-            st = wr_fail(diag, WR_ERR_GEOMETRY, c, "%s lies outside the outer loop", name);
-            goto done;
-        }
-        for (k = 1; k <= in.n_holes; ++k) {
+    for (c = 1; c < in->nc; ++c) {
+        const double *p = in->xy + 2 * in->off[c];
+        wr__pz_curve_name(in, c, name, sizeof name);
+        if (!wr__pz_in_curve(in, 0, p))
+            return wr__pz_where(diag, wr_fail(diag, WR_ERR_GEOMETRY, c, "%s lies outside the outer loop", name), c, -1,
+                                0, -1);
+        for (k = 1; k <= in->n_holes; ++k) {
             if (k == c) continue;
-            if (wr__pz_in_curve(&in, k, p) || (c <= in.n_holes && wr__pz_in_curve(&in, c, in.xy + 2 * in.off[k]))) {
-                wr__pz_curve_name(&in, k, name2, sizeof name2);
-                st = wr_fail(diag, WR_ERR_GEOMETRY, c, "%s %s %s", name, c <= in.n_holes ? "overlaps" : "lies inside",
-                             name2);
-                goto done;
+            if (wr__pz_in_curve(in, k, p) || (c <= in->n_holes && wr__pz_in_curve(in, c, in->xy + 2 * in->off[k]))) {
+                wr__pz_curve_name(in, k, name2, sizeof name2);
+                return wr__pz_where(diag, wr_fail(diag, WR_ERR_GEOMETRY, c, "%s %s %s", name,
+                                                  c <= in->n_holes ? "overlaps" : "lies inside", name2),
+                                    c, -1, k, -1);
             }
         }
     }
+    return WR_OK;
+}
 
-    /* 2. fixed points along every curve at the local sizing */
-    if ((st = wr__pz_discretise(&z, &in, desc.corner_angle, &dc)) != WR_OK) goto done;
-    if ((st = wr__pz_check_crossings(&dc, "discretised at the sizing (feature thinner than the sizing?)", diag)) !=
-        WR_OK)
-        goto done;
-    if ((st = wr__pz_inside_build(&ins, &dc, x0, y0, W, H, tol, diag)) != WR_OK) goto done;
+static int wr__pz_cmp_double(const void *a, const void *b) {
+    double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : (x > y);
+}
 
-    /* 3. budget: n_fixed + κ ∫ dA / r² on a probe lattice, before any per-sample allocation */
-    {
-        int32_t M = WR_POISSON_BUDGET_PROBES, a, b;
-        double dA = (W / M) * (H / M), integ = 0.0, rmax = 0.0, est;
-        for (b = 0; b < M; ++b)
-            for (a = 0; a < M; ++a) {
-                double px = x0 + (a + 0.5) * W / M, py = y0 + (b + 0.5) * H / M, h, r;
-                if (!wr__pz_inside_at(&ins, px, py)) continue;
-                if ((st = wr__pz_size(&z, px, py, &h)) != WR_OK) goto done;
-                r = z.c * h;
-                integ += dA / (r * r);
-                rmax = fmax(rmax, r);
-            }
-        for (i = 0; i < dc.np; ++i) {
-            double h;
-            if ((st = wr__pz_size(&z, dc.xy[2 * i], dc.xy[2 * i + 1], &h)) != WR_OK) goto done;
-            rmax = fmax(rmax, z.c * h);
-        }
-        est = (double)dc.np + WR_POISSON_DENSITY * integ;
-        res->n_estimated = est < (double)INT32_MAX ? (int32_t)est : INT32_MAX;
-        if (est > (double)desc.max_points) {
-            st = wr_fail(diag, WR_ERR_BUDGET, -1,
-                         "estimated %.0f points (%d fixed + %.3g * integral dA/r^2) exceed max_points=%d", est,
-                         (int)dc.np, WR_POISSON_DENSITY, (int)desc.max_points);
-            goto done;
-        }
-        /* grids */
-        z.x0 = x0;
-        z.y0 = y0;
-        z.W = W;
-        z.H = H;
-        z.s_base = ldexp(fmax(maxdim, 1e-300), -28);
-        for (i = 0; i < 64; ++i) {
-            z.cs[i] = ldexp(z.s_base, i + 1);
-            z.inv_cs[i] = 1.0 / z.cs[i];
-            z.rmax[i] = 0.0;
-        }
-        z.mg = 2.0 * rmax;
-        {
-            double cells_cap = fmax(4096.0, 4.0 * est);
-            while ((W / z.mg + 1.0) * (H / z.mg + 1.0) > cells_cap) z.mg *= 1.5;
-        }
-        z.inv_mg = 1.0 / z.mg;
-        z.mx = (int32_t)(W * z.inv_mg) + 1;
-        z.my = (int32_t)(H * z.inv_mg) + 1;
-        z.mask = (uint64_t *)wr_calloc_array((size_t)z.mx * (size_t)z.my, sizeof(uint64_t));
-        if (!z.mask) {
-            st = wr_fail(diag, WR_ERR_NOMEM, -1, "presence grid: out of memory");
-            goto done;
-        }
-        /* tiles hold 16 cells of >= 2 r: ~ one tile per 16·(2r)²·κ/r² ≈ 40 samples; be generous */
-        if ((st = wr__pz_hash_init(&z, (size_t)(est / 16.0) + 16)) != WR_OK) goto done;
-        {
-            /* initial sample capacity from the estimate (+10%), never above the budget */
-            double want = fmin(1.1 * est + 64.0, (double)desc.max_points);
-            int32_t nc = (int32_t)want;
-            if (nc < 16) nc = 16;
-            z.sm = (wr__pz_s *)wr_alloc_array((size_t)nc, sizeof(wr__pz_s));
-            z.h = (double *)wr_alloc_array((size_t)nc, sizeof(double));
-            active = (int32_t *)wr_alloc_array((size_t)nc, sizeof(int32_t));
-            if (!z.sm || !z.h || !active) {
-                st = wr_fail(diag, WR_ERR_NOMEM, -1, "samples: out of memory");
-                goto done;
-            }
-            z.cap = nc;
-        }
-    }
-
-    /* 4. fixed points first, all active */
-    for (i = 0; i < dc.np; ++i) {
-        double h;
-        if ((st = wr__pz_size(&z, dc.xy[2 * i], dc.xy[2 * i + 1], &h)) != WR_OK) goto done;
-        if ((st = wr__pz_insert(&z, dc.xy[2 * i], dc.xy[2 * i + 1], h)) != WR_OK) goto done;
-    }
-
-    /* 5. Bridson's active list with the mean conflict rule */
-    {
-        wr_rng rng;
-        int32_t n_active = 0, acap = z.cap;
-        int64_t ncand = 0;
-        wr_rng_seed(&rng, desc.seed);
-        for (i = 0; i < z.n; ++i) active[n_active++] = i;
-        while (n_active > 0) {
-            int32_t ai = (int32_t)wr_rng_below(&rng, (uint32_t)n_active), p = active[ai];
-            double px = z.sm[p].x, py = z.sm[p].y, rp = z.sm[p].r;
-            int found = 0;
-            for (k = 0; k < desc.k; ++k) {
-                double ux, uy, d2, qx, qy, hq;
-                /* uniform by area in the annulus r <= |d| < 2r: rejection from the square [-2,2]²
-                 * (acceptance 3π/16 ≈ 0.59; cheaper than sincos, which was 22% of the run time) */
-                do {
-                    ux = 4.0 * wr_rng_uniform(&rng) - 2.0;
-                    uy = 4.0 * wr_rng_uniform(&rng) - 2.0;
-                    d2 = ux * ux + uy * uy;
-                } while (d2 < 1.0 || d2 >= 4.0);
-                qx = px + rp * ux;
-                qy = py + rp * uy;
-                ++ncand;
-                if (!wr__pz_inside_at(&ins, qx, qy)) continue;
-                if ((st = wr__pz_size(&z, qx, qy, &hq)) != WR_OK) goto done;
-                if (wr__pz_conflict(&z, qx, qy, z.c * hq)) continue;
-                if ((st = wr__pz_insert(&z, qx, qy, hq)) != WR_OK) goto done;
-                if (n_active == acap) {
-                    int32_t *a2;
-                    acap = z.cap;
-                    a2 = (int32_t *)wr_realloc_array(active, (size_t)acap, sizeof(int32_t));
-                    if (!a2) {
-                        st = wr_fail(diag, WR_ERR_NOMEM, -1, "active list: out of memory");
-                        goto done;
-                    }
-                    active = a2;
+/* x-crossings of the loops with the probe rows y_j = y0 + (j + ½) dy (half-open rule), as CSR:
+ * row j's crossings are xs[start[j] .. start[j+1]), sorted. Returns the row count actually used
+ * (halved until the crossings fit in 8 per segment + 64 per row, so a zigzag loop cannot blow it up). */
+static int32_t wr__pz_probe_rows(const wr__pz_curves *cv, double y0, double H, int32_t rows, int32_t **start_out,
+                                 double **xs_out) {
+    for (;; rows = rows > 1 ? rows / 2 : 1) {
+        double dy = H / rows;
+        int64_t total = 0, cap;
+        int32_t c, i, j, ns = 0, *start;
+        int pass;
+        double *xs = NULL;
+        for (c = 0; c <= cv->n_holes; ++c) ns += cv->cnt[c];
+        cap = 8 * (int64_t)ns + 64 * (int64_t)rows;
+        start = (int32_t *)wr_calloc_array((size_t)rows + 2, sizeof(int32_t));
+        if (!start) return -1;
+        for (pass = 0; pass < 2 && total <= cap; ++pass) {
+            if (pass == 1) {
+                for (j = 0; j < rows; ++j) start[j + 1] += start[j];
+                xs = (double *)wr_alloc_array((size_t)total, sizeof(double));
+                if (!xs) {
+                    wr_free(start);
+                    return -1;
                 }
-                active[n_active++] = z.n - 1;
-                found = 1;
-                break;
             }
-            if (!found) active[ai] = active[--n_active];
+            for (c = 0; c <= cv->n_holes; ++c)
+                for (i = 0; i < cv->cnt[c]; ++i) {
+                    const double *a = cv->xy + 2 * (cv->off[c] + i), *b = cv->xy + 2 * (cv->off[c] + (i + 1) % cv->cnt[c]);
+                    double lo = fmin(a[1], b[1]), hi = fmax(a[1], b[1]);
+                    int32_t j0 = (int32_t)fmax(0.0, floor((lo - y0) / dy - 0.5)), j1 = (int32_t)fmin(rows - 1.0, ceil((hi - y0) / dy));
+                    for (j = j0; j <= j1; ++j) {
+                        double y = y0 + (j + 0.5) * dy;
+                        if ((a[1] > y) == (b[1] > y)) continue;
+                        if (pass == 0) {
+                            ++start[j + 1];
+                            ++total;
+                        } else {
+                            xs[start[j]++] = a[0] + (y - a[1]) * (b[0] - a[0]) / (b[1] - a[1]);
+                        }
+                    }
+                }
+            if (pass == 1) {
+                for (j = rows; j > 0; --j) start[j] = start[j - 1];
+                start[0] = 0;
+                for (j = 0; j < rows; ++j)
+                    qsort(xs + start[j], (size_t)(start[j + 1] - start[j]), sizeof(double), wr__pz_cmp_double);
+                *start_out = start;
+                *xs_out = xs;
+                return rows;
+            }
         }
-        res->n_candidates = ncand;
+        wr_free(start);
+        if (rows == 1) return -1;
     }
+}
 
-    /* 6. output */
-    {
-        int32_t ns = 0, s = 0;
-        for (c = 0; c < dc.nc; ++c) ns += wr__pz_nseg(&dc, c);
-        res->points = (double *)wr_alloc_array((size_t)z.n, 2 * sizeof(double));
-        res->sizing = (double *)wr_alloc_array((size_t)z.n, sizeof(double));
-        res->segments = (int32_t *)wr_alloc_array((size_t)ns, 2 * sizeof(int32_t));
-        res->segment_owner = (int32_t *)wr_alloc_array((size_t)ns, sizeof(int32_t));
-        if (!res->points || !res->sizing || !res->segments || !res->segment_owner) {
-            st = wr_fail(diag, WR_ERR_NOMEM, -1, "result: out of memory");
-            goto done;
+/* The budget estimate (see wr_poisson_budget): O(input + probes), nothing that grows with the
+ * output. want_discretised = 0 skips ∫ ds / h (the fill keeps the given points). */
+static wr_status wr__pz_estimate(wr__pz *z, const wr__pz_curves *in, const double box[4], int want_discretised,
+                                 wr_poisson_budget *b) {
+    double W = box[2] - box[0], H = box[3] - box[1], dx, dy, sum_inv_r2 = 0.0, *xs = NULL;
+    int32_t P = WR_POISSON_BUDGET_PROBES * WR_POISSON_BUDGET_PROBES, mx, my, c, i, j, *start = NULL;
+    wr_status st = WR_OK;
+    memset(b, 0, sizeof *b);
+    b->h_min = HUGE_VAL;
+    b->n_given = (double)in->np;
+    for (c = 0; c <= in->n_holes; ++c) b->area += (c ? -1.0 : 1.0) * fabs(wr_polygon_area(in->xy + 2 * in->off[c], in->cnt[c]));
+    for (c = 0; c < in->nc; ++c)
+        for (i = 0; i < wr__pz_nseg(in, c); ++i) {
+            /* Simpson's rule on 1/h along the segment (endpoints and middle) */
+            const double *a = in->xy + 2 * (in->off[c] + i), *e = in->xy + 2 * (in->off[c] + (i + 1) % in->cnt[c]);
+            double L = hypot(e[0] - a[0], e[1] - a[1]), ha, hm, he;
+            b->perimeter += L;
+            if (!want_discretised) continue;
+            if ((st = wr__pz_size(z, a[0], a[1], &ha)) != WR_OK) return st;
+            if ((st = wr__pz_size(z, 0.5 * (a[0] + e[0]), 0.5 * (a[1] + e[1]), &hm)) != WR_OK) return st;
+            if ((st = wr__pz_size(z, e[0], e[1], &he)) != WR_OK) return st;
+            b->n_discretised += L * (1.0 / ha + 4.0 / hm + 1.0 / he) / 6.0 + (i == 0 && !in->closed[c]);
+            b->h_min = fmin(b->h_min, fmin(ha, fmin(hm, he)));
+            b->h_max = fmax(b->h_max, fmax(ha, fmax(hm, he)));
         }
-        for (i = 0; i < z.n; ++i) {
-            res->points[2 * i] = z.sm[i].x;
-            res->points[2 * i + 1] = z.sm[i].y;
+    /* probe lattice with the box's aspect ratio, inside test by scanline over the loops */
+    my = (int32_t)fmin((double)P, fmax(1.0, floor(sqrt((double)P * H / fmax(W, 1e-300)) + 0.5)));
+    mx = (int32_t)fmax(1.0, (double)(P / my));
+    if ((my = wr__pz_probe_rows(in, box[1], H, my, &start, &xs)) < 0)
+        return wr_fail(z->diag, WR_ERR_NOMEM, -1, "budget probes: out of memory");
+    dx = W / mx;
+    dy = H / my;
+    for (j = 0; j < my; ++j) {
+        int32_t k = start[j];
+        for (i = 0; i < mx; ++i) {
+            double x = box[0] + (i + 0.5) * dx, y = box[1] + (j + 0.5) * dy, h;
+            while (k < start[j + 1] && xs[k] < x) ++k;
+            if (((k - start[j]) & 1) == 0) continue; /* even number of crossings to the left: outside */
+            if ((st = wr__pz_size(z, x, y, &h)) != WR_OK) goto done;
+            sum_inv_r2 += 1.0 / (z->c * h * z->c * h);
+            b->h_min = fmin(b->h_min, h);
+            b->h_max = fmax(b->h_max, h);
+            ++b->n_probes;
         }
-        memcpy(res->sizing, z.h, sizeof(double) * (size_t)z.n);
-        for (c = 0; c < dc.nc; ++c)
-            for (i = 0; i < wr__pz_nseg(&dc, c); ++i, ++s) {
-                res->segments[2 * s] = dc.off[c] + i;
-                res->segments[2 * s + 1] = dc.off[c] + (i + 1) % dc.cnt[c];
-                res->segment_owner[s] = c;
-            }
-        res->n_points = z.n;
-        res->n_fixed = dc.np;
-        res->n_segments = ns;
     }
+    if (b->n_probes == 0) /* a domain thinner than the probe spacing: its curve vertices stand in */
+        for (c = 0; c <= in->n_holes; ++c)
+            for (i = 0; i < in->cnt[c]; i += 1 + in->cnt[c] / 64) {
+                double h;
+                if ((st = wr__pz_size(z, in->xy[2 * (in->off[c] + i)], in->xy[2 * (in->off[c] + i) + 1], &h)) != WR_OK)
+                    goto done;
+                sum_inv_r2 += 1.0 / (z->c * h * z->c * h);
+                b->h_min = fmin(b->h_min, h);
+                b->h_max = fmax(b->h_max, h);
+                ++b->n_probes;
+            }
+    b->n_interior = WR_POISSON_DENSITY * fmax(b->area, 0.0) * sum_inv_r2 / b->n_probes;
 done:
-    if (st != WR_OK && res) {
+    wr_free(start);
+    wr_free(xs);
+    return st;
+}
+
+/* Defaults (the one place) and argument checks. */
+static wr_status wr__pz_setup(wr__pz *z, const wr_poisson_domain *dom, wr_poisson_sizing_fn sizing, void *user,
+                              const wr_poisson_desc *desc_in, wr_poisson_desc *desc, wr_diag *diag) {
+    memset(z, 0, sizeof *z);
+    if (!dom || !sizing) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "wr_poisson: NULL domain or sizing");
+    if (dom->n_holes < 0 || dom->n_lines < 0 || (dom->n_holes > 0 && !dom->holes) || (dom->n_lines > 0 && !dom->lines))
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "wr_poisson: bad hole/line arrays");
+    if (desc_in)
+        *desc = *desc_in;
+    else
+        memset(desc, 0, sizeof *desc);
+    if (desc->k == 0) desc->k = WR_POISSON_DEFAULT_K;
+    if (desc->radius_factor == 0.0) desc->radius_factor = WR_POISSON_DEFAULT_RADIUS_FACTOR;
+    if (desc->max_points == 0) desc->max_points = WR_POISSON_DEFAULT_MAX_POINTS;
+    if (desc->corner_angle == 0.0) desc->corner_angle = WR_POISSON_DEFAULT_CORNER_ANGLE;
+    if (desc->clearance == 0.0) desc->clearance = WR_POISSON_DEFAULT_CLEARANCE;
+    if (desc->k < 1 || !(desc->radius_factor > 0.0) || !isfinite(desc->radius_factor) || desc->max_points < 1 ||
+        !(desc->corner_angle > 0.0) || !(desc->clearance >= 0.0) || !(desc->clearance < 0.5 * desc->radius_factor))
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1,
+                       "wr_poisson_desc: k=%d radius_factor=%g max_points=%d corner_angle=%g clearance=%g", (int)desc->k,
+                       desc->radius_factor, (int)desc->max_points, desc->corner_angle, desc->clearance);
+    z->fn = sizing;
+    z->user = user;
+    z->diag = diag;
+    z->c = desc->radius_factor;
+    z->max_points = desc->max_points;
+    z->k = desc->k;
+    z->clearance = desc->clearance;
+    wr_rng_seed(&z->rng, desc->seed);
+    return WR_OK;
+}
+
+/* Refuse, naming what to change, when the estimate exceeds the budget. */
+static wr_status wr__pz_check_budget(const wr__pz *z, const wr_poisson_budget *b, double n_curve, int32_t *n_est) {
+    double est = n_curve + b->n_interior;
+    *n_est = est < (double)INT32_MAX ? (int32_t)est : INT32_MAX;
+    if (n_curve > (double)z->max_points)
+        return wr_fail(z->diag, WR_ERR_BUDGET, -1,
+                       "the curves alone need %.0f points (%.4g m of curves at sizing down to %.3g m) > max_points=%d: "
+                       "raise max_points or coarsen the sizing",
+                       n_curve, b->perimeter, b->h_min, (int)z->max_points);
+    if (est > (double)z->max_points)
+        return wr_fail(z->diag, WR_ERR_BUDGET, -1,
+                       "estimated %.0f points (%.0f on the curves + %.0f inside: %.4g m^2 at sizing %.3g..%.3g m) > "
+                       "max_points=%d: raise max_points or coarsen the sizing",
+                       est, n_curve, b->n_interior, b->area, b->h_min, b->h_max, (int)z->max_points);
+    return WR_OK;
+}
+
+/* The shared pipeline of wr_poisson_sample (discretise = 1) and wr_poisson_fill (0). */
+static wr_status wr__pz_run(const wr_poisson_domain *dom, wr_poisson_sizing_fn sizing, void *user,
+                            const wr_poisson_desc *desc_in, int discretise, wr_poisson_result *res, wr_diag *diag) {
+    wr_poisson_desc desc;
+    wr_poisson_budget bud;
+    wr__pz z;
+    wr__pz_curves in, dc;
+    wr__pz_segs segs;
+    const wr__pz_curves *curves = &in;
+    double t0 = wr_time_seconds(), box[4], maxdim, rmax, *hfix = NULL;
+    int32_t i;
+    wr_status st;
+    memset(&in, 0, sizeof in);
+    memset(&dc, 0, sizeof dc);
+    memset(&segs, 0, sizeof segs);
+    if (!res) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "wr_poisson: NULL result");
+    memset(res, 0, sizeof *res);
+    if ((st = wr__pz_setup(&z, dom, sizing, user, desc_in, &desc, diag)) != WR_OK) return st;
+    /* 1. cheap O(n) checks, then the budget from area and perimeter before anything larger */
+    if ((st = wr__pz_gather(dom, &in, diag)) != WR_OK) goto done;
+    if ((st = wr__pz_check_extent(&in, box, diag)) != WR_OK) goto done;
+    maxdim = fmax(box[2] - box[0], box[3] - box[1]);
+    if ((st = wr__pz_estimate(&z, &in, box, discretise, &bud)) != WR_OK) goto done;
+    if ((st = wr__pz_check_budget(&z, &bud, discretise ? bud.n_discretised : bud.n_given, &res->n_estimated)) != WR_OK)
+        goto done;
+    /* 2. the curves form a valid domain; 3. (sample) discretised at the sizing, still valid */
+    if ((st = wr__pz_validate(&in, maxdim, "input", diag)) != WR_OK) goto done;
+    if (discretise) {
+        if ((st = wr__pz_discretise(&z, &in, desc.corner_angle, &dc)) != WR_OK) goto done;
+        if ((st = wr__pz_check_crossings(&dc, "discretised at the sizing (feature thinner than the sizing?)", diag)) !=
+            WR_OK)
+            goto done;
+        curves = &dc;
+    }
+    /* 4. sizing at the fixed points, grids, the fill */
+    hfix = (double *)wr_alloc_array((size_t)curves->np, sizeof(double));
+    if (!hfix) {
+        st = wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
+        goto done;
+    }
+    rmax = z.c * bud.h_max;
+    for (i = 0; i < curves->np; ++i) {
+        if ((st = wr__pz_size(&z, curves->xy[2 * i], curves->xy[2 * i + 1], &hfix[i])) != WR_OK) goto done;
+        rmax = fmax(rmax, z.c * hfix[i]);
+    }
+    if ((st = wr__pz_segs_build(&segs, curves, box[0], box[1], box[2] - box[0], box[3] - box[1],
+                                WR_POISSON_REL_TOL * maxdim, (double)curves->np + bud.n_interior, diag)) != WR_OK)
+        goto done;
+    z.segs = &segs;
+    if ((st = wr__pz_grids_init(&z, box[0], box[1], box[2] - box[0], box[3] - box[1],
+                                (double)curves->np + bud.n_interior, rmax)) != WR_OK)
+        goto done;
+    st = wr__pz_fill(&z, curves, hfix, res);
+done:
+    if (st != WR_OK) {
         int32_t est = res->n_estimated;
         wr_poisson_free(res);
         res->n_estimated = est;
     }
-    if (res) res->seconds = wr_time_seconds() - t0;
-    wr_free(active);
+    res->seconds = wr_time_seconds() - t0;
+    wr_free(hfix);
     wr__pz_free(&z);
     wr__pz_curves_free(&in);
     wr__pz_curves_free(&dc);
-    wr__pz_inside_free(&ins);
+    wr__pz_segs_free(&segs);
+    return st;
+}
+
+WRDEF wr_status wr_poisson_sample(const wr_poisson_domain *dom, wr_poisson_sizing_fn sizing, void *user,
+                                  const wr_poisson_desc *desc, wr_poisson_result *res, wr_diag *diag) {
+    return wr__pz_run(dom, sizing, user, desc, 1, res, diag);
+}
+
+WRDEF wr_status wr_poisson_fill(const wr_poisson_domain *dom, wr_poisson_sizing_fn sizing, void *user,
+                                const wr_poisson_desc *desc, wr_poisson_result *res, wr_diag *diag) {
+    return wr__pz_run(dom, sizing, user, desc, 0, res, diag);
+}
+
+WRDEF wr_status wr_poisson_estimate(const wr_poisson_domain *dom, wr_poisson_sizing_fn sizing, void *user,
+                                    const wr_poisson_desc *desc_in, wr_poisson_budget *out, wr_diag *diag) {
+    wr_poisson_desc desc;
+    wr__pz z;
+    wr__pz_curves in;
+    double box[4];
+    wr_status st;
+    memset(&in, 0, sizeof in);
+    if (!out) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "wr_poisson_estimate: NULL output");
+    memset(out, 0, sizeof *out);
+    if ((st = wr__pz_setup(&z, dom, sizing, user, desc_in, &desc, diag)) != WR_OK) return st;
+    if ((st = wr__pz_gather(dom, &in, diag)) == WR_OK && (st = wr__pz_check_extent(&in, box, diag)) == WR_OK)
+        st = wr__pz_estimate(&z, &in, box, 1, out);
+    wr__pz_curves_free(&in);
     return st;
 }
 
