@@ -64,6 +64,17 @@ bin/%: drivers/%.c $(LIB_OBJ) $(HEADERS) $(EXTRA_HDR)
 	@mkdir -p bin
 	$(CC) $(ALL_CFLAGS) $< $(LIB_OBJ) -o $@ $(LIBS)
 
+# Drivers that need only the dependency-free core link only what they use (process start: 1 ms
+# instead of 5 ms with CHOLMOD, GSL, FFTW and cJSON loaded): their own implementation unit of the
+# headers they include, compiled from the header itself, and the CLI helpers.
+build/obj/impl_cdt.o: include/wrinkle/triangulate.h include/wrinkle/polyfile.h include/wrinkle/core.h
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) -x c -DWRINKLE_IMPLEMENTATION -c include/wrinkle/polyfile.h -o $@
+
+bin/wrinkle-triangulate: drivers/wrinkle-triangulate.c build/obj/cli.o build/obj/impl_cdt.o $(HEADERS) $(EXTRA_HDR)
+	@mkdir -p bin
+	$(CC) $(ALL_CFLAGS) $< build/obj/cli.o build/obj/impl_cdt.o -o $@ -lm
+
 bin/%: validation/%.c $(LIB_OBJ) $(HEADERS) $(EXTRA_HDR)
 	@mkdir -p bin
 	$(CC) $(ALL_CFLAGS) $< $(LIB_OBJ) -o $@ $(LIBS)

@@ -2,7 +2,7 @@
  * with wrinkle's triangulate.h (exact predicates, CDT, Ruppert refinement). A drop-in for the common
  * Triangle command lines:
  *
- *   wrinkle-triangulate [-pqazcQVS...] [--split-intersections] name[.poly|.node]
+ *   wrinkle-triangulate [-pqazcQVS...] [--no-split-intersections] name[.poly|.node]
  *
  *   -p        read name.poly (vertices, segments, holes) and triangulate it constrained; without -p
  *             the vertices of name.node are triangulated (convex hull)
@@ -12,8 +12,9 @@
  *   -S<n>     at most n Steiner points
  *   -z        number output items from zero (input numbering is detected from the first vertex)
  *   -Q        quiet: no summary line;  -V  verbose: timings and a wr_cdt_check verification
- *   --split-intersections   split crossing segments at a Steiner point (default: reject the input,
- *             crossing segments mean a self-intersecting garment boundary)
+ *   --no-split-intersections   reject crossing segments (WR_ERR_GEOMETRY naming both: a
+ *             self-intersecting garment boundary) instead of splitting them at a Steiner point as
+ *             Triangle does (the default)
  *   -h, --help
  *   Switches may be combined as in Triangle: -pq30a0.01
  *
@@ -30,11 +31,11 @@
 
 #include "cli.h"
 #include "wrinkle/core.h"
-#include "wrinkle/triangulate.h"
+#include "wrinkle/polyfile.h"
 
 static void usage(FILE *f) {
     fprintf(f,
-            "usage: wrinkle-triangulate [-pqazcQVS...] [--split-intersections] name[.poly|.node]\n"
+            "usage: wrinkle-triangulate [-pqazcQVS...] [--no-split-intersections] name[.poly|.node]\n"
             "  -p         read name.poly (segments, holes): constrained Delaunay triangulation\n"
             "  -q[deg]    quality refinement, minimum angle (default 20, at most 34)\n"
             "  -a<area>   maximum triangle area\n"
@@ -42,7 +43,7 @@ static void usage(FILE *f) {
             "  -S<n>      at most n Steiner points\n"
             "  -z         number output items from zero\n"
             "  -Q / -V    quiet / verbose (adds a full wr_cdt_check verification)\n"
-            "  --split-intersections  split crossing segments instead of rejecting them\n"
+            "  --no-split-intersections  reject crossing segments instead of splitting them\n"
             "writes name.1.node, name.1.ele (and name.1.poly with -p), like Triangle\n"
             "exit status: 0 ok, 1 Steiner budget reached (mesh written), 2 bad input, 3 write failure\n");
 }
@@ -159,6 +160,7 @@ int main(int argc, char **argv) {
     size_t n;
     wr_cli_set_program(argv[0]);
     memset(&d, 0, sizeof d);
+    d.split_intersections = 1; /* Triangle splits intersecting segments */
     for (i = 1; i < argc; ++i) {
         const char *a = argv[i];
         size_t k;
@@ -166,8 +168,12 @@ int main(int argc, char **argv) {
             usage(stdout);
             return 0;
         }
-        if (strcmp(a, "--split-intersections") == 0) {
+        if (strcmp(a, "--split-intersections") == 0) { /* the default, as in Triangle */
             d.split_intersections = 1;
+            continue;
+        }
+        if (strcmp(a, "--no-split-intersections") == 0) {
+            d.split_intersections = 0;
             continue;
         }
         if (a[0] != '-' || a[1] == 0) {
@@ -246,7 +252,10 @@ int main(int argc, char **argv) {
         in.holes = P.holes;
         in.n_holes = P.n_holes;
     }
-    if (steiner >= 0) d.max_vertices = (int32_t)(steiner + P.n_points > 2000000000L ? 2000000000L : steiner + P.n_points);
+    /* no hidden budget: without -S refinement runs until it is done (the library's default budget
+     * is for callers that cannot bound their input; Triangle has none either) */
+    d.max_vertices = steiner >= 0 ? (int32_t)(steiner + P.n_points > 2000000000L ? 2000000000L : steiner + P.n_points)
+                                  : (int32_t)(INT32_MAX / 4);
     st = wr_cdt_triangulate(&in, &d, &r, &dg);
     if (st != WR_OK && st != WR_ERR_BUDGET) {
         wr_cli_error("%s: %s", src, dg.message);

@@ -6,7 +6,7 @@
 #include <stdint.h>
 #include <string.h>
 
-#include "wrinkle/triangulate.h"
+#include "wrinkle/polyfile.h"
 
 /* GCC/Clang 128-bit integers (an extension: marked so -pedantic stays quiet) */
 __extension__ typedef __int128 i128;

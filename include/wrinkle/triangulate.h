@@ -1,5 +1,5 @@
 /* wrinkle/triangulate.h — exact geometric predicates and a constrained Delaunay triangulator with
- * optional Ruppert/Chew quality refinement, plus a reader for Shewchuk Triangle's .node/.poly files.
+ * optional Delaunay quality refinement (Ruppert/Shewchuk, Üngör off-centers). File I/O: polyfile.h.
  * wrinkle v0.1.0 — MIT licence (see LICENSE). Needs only libc and libm.
  *
  * Style3D Sec. 4.3: "the resulting point cloud [Poisson samples of the sizing map], along with
@@ -16,9 +16,7 @@
  *   wr_cdt_triangulate(in, desc, out, diag)   CDT (+ carving, + refinement) -> wr_cdt_result
  *   wr_cdt_free(out)              release a result (also after a failed call)
  *   wr_cdt_check(res, expected_holes, info, diag)  exact verification of a result
- *   wr_cdt_poly_parse(poly_text, node_text, name, out, diag)   Triangle .poly/.node from memory
- *   wr_cdt_poly_read(path, out, diag)                          ... from a file (name.poly / name.node)
- *   wr_cdt_poly_free(p)
+ *   (Triangle's .node/.poly files: wrinkle/polyfile.h)
  *
  * EXAMPLE
  *     double pts[] = {0,0, 1,0, 1,1, 0,1, 0.5,0.5};
@@ -121,10 +119,30 @@ typedef struct wr_cdt_input {
     int32_t n_segments;
     const double *holes;     /* n_holes × 2 seed points inside holes, may be NULL */
     int32_t n_holes;
+    /* optional, all may be NULL / 0: */
+    const double *regions;   /* n_regions × 4: seed x, y, attribute, maximum area (<= 0: none). Each
+                              * seed's region (triangles reachable without crossing a segment) gets
+                              * the index in result.triangle_region and that area bound */
+    int32_t n_regions;
+    const double *attributes; /* n_points × n_attributes values per point; Steiner points get them
+                               * interpolated (linearly along a segment, affinely over the triangle
+                               * whose Steiner point they are) in result.attributes */
+    int32_t n_attributes;
+    const int32_t *triangles; /* n_triangles × 3: a previous mesh of these points to refine; its
+                               * boundary edges bound the domain (added as segments n_segments.. when
+                               * not already segments) and everything outside them is removed */
+    int32_t n_triangles;
+    const double *triangle_area; /* n_triangles: maximum area inherited by the refinement of each
+                                  * previous triangle (<= 0: none); may be NULL */
 } wr_cdt_input;
 
+/* User refinement test (Triangle's -u): nonzero when triangle (a, b, c), counter-clockwise, of the
+ * given area, must be split. Called often: keep it cheap and pure. */
+typedef int (*wr_cdt_unsuitable_fn)(const double *a, const double *b, const double *c, double area, void *user);
+
 /* Options; zero means default:
- *   quality            0: no angle refinement; nonzero: refine to min_angle_deg
+ *   quality            0: no angle refinement; nonzero: refine to min_angle_deg (Steiner points at
+ *                      off-centers, shortest edges first, diametral lenses: see ON REFINEMENT)
  *   min_angle_deg      20° when quality is set; accepted range (0, 34] (Ruppert/Shewchuk's analysis
  *                      guarantees termination up to 20.7°; up to ~33.8° works in practice)
  *   max_area           0: none; > 0: triangles larger than this [coordinate unit²] are split
@@ -133,9 +151,15 @@ typedef struct wr_cdt_input {
  *   merge_tolerance    0: only exactly equal points are merged; > 0: points closer than this are
  *   keep_convex_hull   0: carve exterior and holes when segments enclose something; 1: keep hull
  *   split_intersections 0: crossing segments -> WR_ERR_GEOMETRY; 1: split them at a Steiner point
- *   off_center         0: circumcenters; 1: Üngör off-centers (the point on the shortest edge's
- *                      bisector seeing that edge under the angle bound, when nearer than the
- *                      circumcenter)
+ *   off_center         0 or 1: Üngör off-centers (the point on the shortest edge's bisector seeing
+ *                      it under a little more than the angle bound, when nearer than the
+ *                      circumcenter); -1: plain circumcenters (Ruppert/Chew)
+ *   conforming         0: a constrained Delaunay mesh; 1: conforming Delaunay (Triangle's -D):
+ *                      subsegments are split until no vertex lies in one's diametral circle
+ *                      (then every edge is Delaunay), also without quality or area
+ *   no_segment_steiner 0: refinement may split segments; 1: not those bounding the domain
+ *                      (Triangle's -Y); 2: no segment (-YY). Triangles it cannot fix stay bad.
+ *   unsuitable, user   user test (-u), see wr_cdt_unsuitable_fn; NULL: none
  *   seed               BRIO shuffle seed (0 -> fixed constant); results are deterministic per seed */
 typedef struct wr_cdt_desc {
     int quality;
@@ -146,6 +170,10 @@ typedef struct wr_cdt_desc {
     int keep_convex_hull;
     int split_intersections;
     int off_center;
+    int conforming;
+    int no_segment_steiner;
+    wr_cdt_unsuitable_fn unsuitable;
+    void *user;
     uint64_t seed;
 } wr_cdt_desc;
 
@@ -173,6 +201,12 @@ typedef struct wr_cdt_result {
     int holes_carved;        /* 1 when hole seeds removed triangles */
     int32_t n_steiner;       /* Steiner points inserted (intersections + refinement) */
     int32_t n_duplicates;    /* input points merged into an earlier one */
+    double *attributes;      /* n_points × n_attributes (NULL without input attributes) */
+    int32_t n_attributes;
+    int32_t *triangle_region; /* n_triangles: the region (index into in->regions) the triangle lies
+                               * in; n_regions + j when it descends from previous triangle j (and no
+                               * region seed reached it); -1 otherwise. NULL without regions and
+                               * previous triangles */
     double min_angle_deg;    /* smallest angle over the output triangles */
     double seconds;          /* wall time of wr_cdt_triangulate */
 } wr_cdt_result;
@@ -203,29 +237,6 @@ typedef struct wr_cdt_check_info {
  * WR_ERR_GEOMETRY name the first failing triangle or segment. */
 WRDEF wr_status wr_cdt_check(const wr_cdt_result *r, int32_t expected_holes, wr_cdt_check_info *info,
                              wr_diag *diag);
-
-/* ---- Triangle's .node / .poly files ---- */
-typedef struct wr_cdt_poly {
-    double *points;           /* n_points × 2 */
-    int32_t n_points;
-    int32_t *point_markers;   /* n_points boundary markers (0 when the file has none) */
-    int32_t *segments;        /* n_segments × 2, converted to 0-based */
-    int32_t n_segments;
-    int32_t *segment_markers; /* n_segments (0 when the file has none) */
-    double *holes;            /* n_holes × 2 */
-    int32_t n_holes;
-    int first_index;          /* 0 or 1: numbering the file used (from its first vertex) */
-    int has_point_markers, has_segment_markers;
-} wr_cdt_poly;
-
-/* poly_text: contents of a .poly file (NULL: read only node_text as a .node file). node_text: the
- * .node file, needed when the .poly node section is empty ("0 2 0 1"), else may be NULL. name:
- * file name used in messages "name:line: reason". Attributes are read and ignored. */
-WRDEF wr_status wr_cdt_poly_parse(const char *poly_text, const char *node_text, const char *name,
-                                  wr_cdt_poly *out, wr_diag *diag);
-/* path ending in .poly (reads the sibling .node if needed) or .node. */
-WRDEF wr_status wr_cdt_poly_read(const char *path, wr_cdt_poly *out, wr_diag *diag);
-WRDEF void wr_cdt_poly_free(wr_cdt_poly *p);
 
 #ifdef __cplusplus
 }
@@ -482,6 +493,9 @@ typedef struct wr__cdt {
     int32_t max_vertices;
     int track_vtri; /* vtri is kept current only after bulk insertion (rebuilt once, saves stores) */
     int fixed_boundary; /* refinement: the domain boundary may not move (no flips between ghosts) */
+    int32_t *treg;      /* capt: region of each triangle (-1 none), NULL without regions */
+    double *attr;       /* capv × na vertex attributes, NULL without them */
+    int32_t na;
 } wr__cdt;
 
 static int wr__push(wr__cdt *S, int32_t x) {
@@ -536,6 +550,11 @@ static int wr__reserve_tris(wr__cdt *S, int32_t extra) {
             if (!cm) return 0;
             S->cm = cm;
         }
+        if (S->treg) {
+            int32_t *tr = (int32_t *)wr_realloc_array(S->treg, (size_t)nc, sizeof(int32_t));
+            if (!tr) return 0;
+            S->treg = tr;
+        }
         S->capt = nc;
     }
     return 1;
@@ -568,6 +587,11 @@ static int wr__reserve_verts(wr__cdt *S, int32_t extra) {
         a = (int32_t *)wr_realloc_array(S->vseg, (size_t)nc, sizeof(int32_t));
         if (!a) return 0;
         S->vseg = a;
+        if (S->na > 0) {
+            double *at = (double *)wr_realloc_array(S->attr, (size_t)nc * (size_t)S->na, sizeof(double));
+            if (!at) return 0;
+            S->attr = at;
+        }
         S->capv = nc;
     }
     return 1;
@@ -589,6 +613,30 @@ static void wr__setv(wr__cdt *S, int32_t t, int32_t a, int32_t b, int32_t c) {
     if (a >= 0) S->vtri[a] = t;
     if (b >= 0) S->vtri[b] = t;
     if (c >= 0) S->vtri[c] = t;
+}
+
+/* Attributes of a new vertex q: linear along x-y at fraction f (a split point or a junction), or
+ * the affine interpolation over triangle (a, b, c) at q's position (Triangle's rule for a
+ * circumcenter: extrapolated when q lies outside that triangle). */
+static void wr__attr_lerp(wr__cdt *S, int32_t q, int32_t x, int32_t y, double f) {
+    int32_t i, na = S->na;
+    for (i = 0; i < na; ++i)
+        S->attr[(size_t)q * na + i] = S->attr[(size_t)x * na + i] + f * (S->attr[(size_t)y * na + i] - S->attr[(size_t)x * na + i]);
+}
+static void wr__attr_bary(wr__cdt *S, int32_t q, int32_t a, int32_t b, int32_t c) {
+    const double *pa = S->xy + 2 * (size_t)a, *pb = S->xy + 2 * (size_t)b, *pc = S->xy + 2 * (size_t)c,
+                 *pq = S->xy + 2 * (size_t)q;
+    double bx = pb[0] - pa[0], by = pb[1] - pa[1], cx = pc[0] - pa[0], cy = pc[1] - pa[1];
+    double qx = pq[0] - pa[0], qy = pq[1] - pa[1], D = bx * cy - by * cx, xi, eta;
+    int32_t i, na = S->na;
+    if (na == 0 || D == 0.0) return;
+    xi = (qx * cy - qy * cx) / D;
+    eta = (bx * qy - by * qx) / D;
+    for (i = 0; i < na; ++i) {
+        double va = S->attr[(size_t)a * na + i];
+        S->attr[(size_t)q * na + i] =
+            va + xi * (S->attr[(size_t)b * na + i] - va) + eta * (S->attr[(size_t)c * na + i] - va);
+    }
 }
 
 /* Is point p in conflict with triangle u: strictly inside its circumcircle, or for a ghost strictly
@@ -676,6 +724,7 @@ static int wr__split_tri(wr__cdt *S, int32_t t, int32_t p) {
     t1 = S->nt++;
     t2 = S->nt++;
     S->tf[t1] = S->tf[t2] = S->tf[t];
+    if (S->treg) S->treg[t1] = S->treg[t2] = S->treg[t];
     wr__setv(S, t1, p, c, a);
     wr__setv(S, t2, p, a, b);
     wr__setv(S, t, p, b, c);
@@ -730,6 +779,10 @@ static int wr__split_edge(wr__cdt *S, int32_t he, int32_t p) {
     U2 = S->nt++;
     S->tf[T2] = S->tf[t];
     S->tf[U2] = S->tf[u];
+    if (S->treg) {
+        S->treg[T2] = S->treg[t];
+        S->treg[U2] = S->treg[u];
+    }
     wr__setv(S, T2, a, p, c);
     wr__setv(S, U2, d, p, b);
     wr__setv(S, u, d, c, p);
@@ -1380,6 +1433,10 @@ static wr_status wr__recover(wr__cdt *S, wr__segctx *C, int32_t a0, int32_t b0, 
                 S->xy[2 * q + 1] = py;
                 S->vtri[q] = -1;
                 S->vseg[q] = -3 - sid; /* a junction of two segments: an apex for concentric shells */
+                if (S->na > 0) {
+                    double ex = pb[0] - pa[0], ey = pb[1] - pa[1], l2 = ex * ex + ey * ey;
+                    wr__attr_lerp(S, q, a, b, l2 > 0.0 ? ((px - pa[0]) * ex + (py - pa[1]) * ey) / l2 : 0.5);
+                }
                 S->cm[he] = S->cm[S->tn[he]] = -1;
                 if (!wr__insert(S, q, he / 3, &vq)) return wr_fail(diag, WR_ERR_NOMEM, sid, "out of memory");
                 if (vq != q)
@@ -1486,16 +1543,33 @@ static int wr__flood(wr__cdt *S, int32_t seed, int64_t *removed) {
 }
 
 /* ---- Delaunay refinement (Ruppert 1995; Shewchuk 2002) ---- */
+/* A queued bad triangle: its corners (to tell whether it still exists), its priority bucket (the
+ * shortest edge, see wr__bad_key) and an arrival number (first in, first out within a bucket). */
+typedef struct wr__bad {
+    int32_t t, a, b, c, key;
+    int64_t seq;
+} wr__bad;
+typedef struct wr__badheap {
+    wr__bad *h;
+    int32_t n, cap;
+    int64_t seq;
+} wr__badheap;
+
 typedef struct wr__ref {
     double sin2;      /* sin²(min angle); a triangle is bad when sin² of its smallest angle is below */
     double max_area;  /* 0: none */
-    double cot_theta; /* off-center distance factor cot(θ/2) (0: circumcenters) */
+    double off;       /* off-center distance from the shortest edge's midpoint, in edge lengths (0: none) */
+    double lens_c2;   /* cos²(2θ): diametral-lens encroachment (apex angle >= 180° - 2θ); 0: circle */
+    int nobisect;     /* 1: hull/exterior subsegments are never split; 2: no subsegment is */
     double tiny;      /* smallest nonzero |coordinate| a Steiner point may have (see wr__coord_ok) */
     const int32_t *seg; /* segments in internal vertex ids (for the small-angle rule): the n_seg_in
                          * input segments, then the hull edges when the hull bounds the domain */
     int32_t n_seg_in;
+    const double *region_area; /* per region (S->treg): maximum area, <= 0 none; may be NULL */
+    wr_cdt_unsuitable_fn unsuitable; /* user test, may be NULL */
+    void *user;
     wr__ivec segq;      /* vertex pairs of possibly encroached subsegments */
-    wr__ivec badq;      /* (t, a, b, c) of possibly bad triangles */
+    wr__badheap badq;   /* possibly bad triangles, smallest shortest edge first */
     wr__ivec cav;       /* cavity scratch */
     int32_t n_steiner;
 } wr__ref;
@@ -1555,10 +1629,16 @@ static int wr__segs_meet_sharply(const wr__cdt *S, const wr__ref *R, int32_t s1,
     return c > 0.0 && c * c > 0.25 * nn;
 }
 
-/* Bad: larger than max_area, or smallest angle below the bound — except when the shortest edge joins
- * two Steiner points on different segments sharing an endpoint (the small angle is the input's
- * own and splitting there would never end). */
-static int wr__is_bad(const wr__cdt *S, const wr__ref *R, int32_t t) {
+/* Bad: larger than an area bound (max_area, the region's, the user's test), or smallest angle below
+ * the bound — except when the shortest edge joins two Steiner points on different segments meeting
+ * at a small angle (the small angle is the input's own and splitting there would never end), and
+ * rounding-scale triangles. *key: priority bucket of the shortest edge (see wr__bad_key). */
+static int32_t wr__bad_key(double len2) { /* buckets of a factor sqrt(2) in squared length */
+    int ex;
+    double mant = frexp(len2, &ex);
+    return 2 * ex + (mant >= 0.70710678118654752);
+}
+static int wr__is_bad(const wr__cdt *S, const wr__ref *R, int32_t t, int32_t *key) {
     const int32_t *v = S->tv + 3 * t;
     const double *p0 = WR__P(S, v[0]), *p1 = WR__P(S, v[1]), *p2 = WR__P(S, v[2]), *P3[3];
     double e[3], a2, l1, l2;
@@ -1569,11 +1649,16 @@ static int wr__is_bad(const wr__cdt *S, const wr__ref *R, int32_t t) {
     e[0] = (p1[0] - p2[0]) * (p1[0] - p2[0]) + (p1[1] - p2[1]) * (p1[1] - p2[1]);
     e[1] = (p2[0] - p0[0]) * (p2[0] - p0[0]) + (p2[1] - p0[1]) * (p2[1] - p0[1]);
     e[2] = (p0[0] - p1[0]) * (p0[0] - p1[0]) + (p0[1] - p1[1]) * (p0[1] - p1[1]);
-    a2 = wr_orient2d_fast(p0, p1, p2); /* twice the area */
-    if (R->max_area > 0.0 && 0.5 * a2 > R->max_area) return 1;
-    if (R->sin2 <= 0.0) return 0;
     for (k = 1; k < 3; ++k)
         if (e[k] < e[m]) m = k;
+    *key = wr__bad_key(e[m]);
+    a2 = wr_orient2d_fast(p0, p1, p2); /* twice the area */
+    if (R->max_area > 0.0 && 0.5 * a2 > R->max_area) return 1;
+    if (R->region_area && S->treg[t] >= 0 && R->region_area[S->treg[t]] > 0.0 &&
+        0.5 * a2 > R->region_area[S->treg[t]])
+        return 1;
+    if (R->unsuitable && R->unsuitable(p0, p1, p2, 0.5 * a2, R->user)) return 1;
+    if (R->sin2 <= 0.0) return 0;
     l1 = e[wr__n1[m]];
     l2 = e[wr__n2[m]];
     if (!(a2 * a2 < R->sin2 * l1 * l2)) return 0;
@@ -1589,10 +1674,65 @@ static int wr__is_bad(const wr__cdt *S, const wr__ref *R, int32_t t) {
     return 1;
 }
 
-/* does vertex w lie strictly inside the diametral circle of edge x-y */
-static int wr__encroaches(const wr__cdt *S, int32_t x, int32_t y, const double *w) {
+/* The bad-triangle queue is a binary heap on (bucket, arrival): the triangle with the shortest
+ * shortest edge first (Shewchuk's Triangle orders its queue so: small features are resolved before
+ * the large triangles around them are split, whose Steiner points would otherwise land where a
+ * later small-feature point makes them redundant), first in first out within a bucket. */
+static int wr__bad_before(const wr__bad *x, const wr__bad *y) {
+    return x->key < y->key || (x->key == y->key && x->seq < y->seq);
+}
+static int wr__bad_push(wr__badheap *H, int32_t t, int32_t a, int32_t b, int32_t c, int32_t key) {
+    wr__bad x;
+    int32_t i;
+    if (H->n == H->cap) {
+        int32_t nc = H->cap ? 2 * H->cap : 256;
+        wr__bad *p = (wr__bad *)wr_realloc_array(H->h, (size_t)nc, sizeof(wr__bad));
+        if (!p) return 0;
+        H->h = p;
+        H->cap = nc;
+    }
+    x.t = t;
+    x.a = a;
+    x.b = b;
+    x.c = c;
+    x.key = key;
+    x.seq = H->seq++;
+    for (i = H->n++; i > 0 && wr__bad_before(&x, &H->h[(i - 1) / 2]); i = (i - 1) / 2) H->h[i] = H->h[(i - 1) / 2];
+    H->h[i] = x;
+    return 1;
+}
+static wr__bad wr__bad_pop(wr__badheap *H) {
+    wr__bad top = H->h[0], x = H->h[--H->n];
+    int32_t i = 0;
+    for (;;) {
+        int32_t c = 2 * i + 1;
+        if (c >= H->n) break;
+        if (c + 1 < H->n && wr__bad_before(&H->h[c + 1], &H->h[c])) ++c;
+        if (!wr__bad_before(&H->h[c], &x)) break;
+        H->h[i] = H->h[c];
+        i = c;
+    }
+    if (H->n > 0) H->h[i] = x;
+    return top;
+}
+static int wr__queue_if_bad(const wr__cdt *S, wr__ref *R, int32_t t) {
+    int32_t key;
+    const int32_t *v = S->tv + 3 * t;
+    if (!wr__is_bad(S, R, t, &key)) return 1;
+    return wr__bad_push(&R->badq, t, v[0], v[1], v[2], key);
+}
+
+/* Does vertex w encroach subsegment x-y? Ruppert: w inside its diametral circle (angle x-w-y above
+ * 90°), kept for conforming Delaunay meshes. Otherwise Shewchuk's diametral lens (Shewchuk 2002,
+ * "Delaunay refinement algorithms for triangular mesh generation", Sec. 3): the angle at w at least
+ * 180° - 2θ for the bound θ — a vertex outside the lens cannot make a triangle on x-y worse than θ
+ * at that edge, and the lens is thinner than the circle, so fewer subsegments are split (and the
+ * analysis still bounds the mesh size): cos² of the angle against cos²(2θ). */
+static int wr__encroaches(const wr__cdt *S, const wr__ref *R, int32_t x, int32_t y, const double *w) {
     const double *px = WR__P(S, x), *py = WR__P(S, y);
-    return (px[0] - w[0]) * (py[0] - w[0]) + (px[1] - w[1]) * (py[1] - w[1]) < 0.0;
+    double ax = px[0] - w[0], ay = px[1] - w[1], bx = py[0] - w[0], by = py[1] - w[1], dot = ax * bx + ay * by;
+    if (!(dot < 0.0)) return 0;
+    return R->lens_c2 <= 0.0 || dot * dot >= R->lens_c2 * (ax * ax + ay * ay) * (bx * bx + by * by);
 }
 
 /* After inserting vertex p: queue the bad triangles around it and the subsegments its star
@@ -1603,41 +1743,103 @@ static int wr__scan_star(wr__cdt *S, wr__ref *R, int32_t p) {
         const int32_t *v = S->tv + 3 * t;
         int i = v[0] == p ? 0 : v[1] == p ? 1 : 2, k;
         if (wr__is_live(S, t)) {
-            if (wr__is_bad(S, R, t) && !(wr__ivec_push(&R->badq, t) && wr__push3(&R->badq, v[0], v[1], v[2])))
-                return 0;
+            if (!wr__queue_if_bad(S, R, t)) return 0;
             for (k = 0; k < 3; ++k) {
                 int32_t x = v[wr__n1[k]], y = v[wr__n2[k]];
-                if (S->cm[3 * t + k] != -1 && wr__encroaches(S, x, y, WR__P(S, v[k])))
+                if (S->cm[3 * t + k] != -1 && wr__encroaches(S, R, x, y, WR__P(S, v[k])))
                     if (!wr__ivec_push(&R->segq, x) || !wr__ivec_push(&R->segq, y)) return 0;
             }
         }
         t = S->tn[3 * t + wr__n1[i]] / 3;
-        (void)i;
     } while (t != t0 && ++guard < 1 << 20);
     return 1;
 }
 
-/* Split the constrained edge he: at its midpoint, or — when exactly one end is an input vertex —
- * at a power-of-two distance from that end (concentric shells, Ruppert/Shewchuk), so segments
- * meeting at a small angle are split at matching radii and stop encroaching each other.
- * Returns 1 split, 0 not splittable (result would invert a triangle: ulp-short edge), -1 budget,
- * -2 out of memory. */
+/* May subsegment he be split? Not with nobisect 2 (no Steiner point on any segment), nor with
+ * nobisect 1 when it bounds the domain (a removed or ghost triangle on one side). */
+static int wr__may_split(const wr__cdt *S, const wr__ref *R, int32_t he) {
+    if (R->nobisect >= 2) return 0;
+    if (R->nobisect == 1) return wr__is_live(S, he / 3) && wr__is_live(S, S->tn[he] / 3);
+    return 1;
+}
+
+/* Does a segment continue through input vertex (or junction) x beyond the subsegment y-x: another
+ * constrained edge at x on the same line, on the other side? */
+static int wr__continues(const wr__cdt *S, int32_t x, int32_t y) {
+    int32_t t0 = S->vtri[x], t = t0, guard = 0;
+    if (t0 < 0 || !(x < S->n_input || S->vseg[x] <= -3)) return 0;
+    do {
+        const int32_t *v = S->tv + 3 * t;
+        int i = v[0] == x ? 0 : v[1] == x ? 1 : 2;
+        int32_t w = v[wr__n1[i]];
+        if (w >= 0 && w != y && S->cm[3 * t + wr__n2[i]] != -1 &&
+            wr__orient(WR__P(S, x), WR__P(S, y), WR__P(S, w)) == 0.0 && wr__dot3(WR__P(S, x), WR__P(S, y), WR__P(S, w)) < 0.0)
+            return 1;
+        t = S->tn[3 * t + wr__n1[i]] / 3;
+    } while (t != t0 && ++guard < 1 << 20);
+    return 0;
+}
+
+/* Where to split subsegment he, as a fraction from its first end x toward y: the midpoint, unless an
+ * end is shared with another subsegment in a triangle beside it (Triangle's test) or a segment
+ * continues through it — then at the power of two nearest half its length from that end
+ * (concentric shells, Ruppert 1995 / Shewchuk 2002):
+ * segments meeting at a small angle are split at matching radii and stop encroaching each other. */
+static double wr__split_fraction(const wr__cdt *S, int32_t he, double len) {
+    int32_t t = he / 3, k = he % 3, tw = S->tn[he], u = tw / 3, j = tw % 3;
+    int acute_x = 0, acute_y = 0;
+    double p;
+    if (wr__is_live(S, t)) {
+        acute_x |= S->cm[3 * t + wr__n2[k]] != -1;
+        acute_y |= S->cm[3 * t + wr__n1[k]] != -1;
+    }
+    if (wr__is_live(S, u)) { /* u sees the edge as y -> x */
+        acute_x |= S->cm[3 * u + wr__n1[j]] != -1;
+        acute_y |= S->cm[3 * u + wr__n2[j]] != -1;
+    }
+    if (!(acute_x || acute_y)) {
+        int32_t x = S->tv[3 * t + wr__n1[k]], y = S->tv[3 * t + wr__n2[k]];
+        acute_x = wr__continues(S, x, y);
+        acute_y = wr__continues(S, y, x);
+    }
+    if (!(acute_x || acute_y) || !(len > 0.0)) return 0.5;
+    p = ldexp(1.0, (int)floor(log2(0.5 * len) + 0.5)); /* nearest power of two to len/2 */
+    return acute_y ? 1.0 - p / len : p / len;
+}
+
+/* Re-check the whole star of a new split point q with general flips: it is the rounded split point,
+ * a few ulps off the segment's line, and the edges at q may then violate the (exact) CDT property,
+ * which Lawson's test around q alone does not see. */
+static int wr__restore_star(wr__cdt *S, wr__ref *R, int32_t q) {
+    int32_t t0 = S->vtri[q], tt = t0, guard = 0;
+    R->cav.n = 0;
+    do {
+        const int32_t *vv = S->tv + 3 * tt;
+        int i = vv[0] == q ? 0 : vv[1] == q ? 1 : 2;
+        if (vv[wr__n1[i]] >= 0 && vv[wr__n2[i]] >= 0)
+            if (!wr__ivec_push(&R->cav, q) || !wr__ivec_push(&R->cav, vv[wr__n1[i]]) ||
+                !wr__ivec_push(&R->cav, vv[wr__n1[i]]) || !wr__ivec_push(&R->cav, vv[wr__n2[i]]))
+                return 0;
+        tt = S->tn[3 * tt + wr__n1[i]] / 3;
+    } while (tt != t0 && ++guard < 1 << 20);
+    return wr__restore_delaunay(S, &R->cav);
+}
+
+/* Split the constrained edge he at wr__split_fraction. Returns 1 split, 0 not splittable (nobisect,
+ * or the result would invert a triangle: ulp-short edge), -1 budget, -2 out of memory. */
 static int wr__split_segment(wr__cdt *S, wr__ref *R, int32_t he) {
     int32_t t = he / 3, k = he % 3, tw = S->tn[he], x = S->tv[3 * t + wr__n1[k]], y = S->tv[3 * t + wr__n2[k]];
     int32_t a = S->tv[he], d = S->tv[tw], q, m = S->cm[he];
     const double *px = WR__P(S, x), *py = WR__P(S, y);
-    double len = hypot(py[0] - px[0], py[1] - px[1]), f = 0.5, p[2];
-    int xin = x < S->n_input || S->vseg[x] <= -3, yin = y < S->n_input || S->vseg[y] <= -3;
-    if (wr__below_floor(px, py, len * len)) return 0;
-    if (xin != yin && len > 0.0) {
-        double dd = ldexp(1.0, (int)floor(log2(0.5 * len) + 0.5)); /* nearest power of two to len/2 */
-        f = xin ? dd / len : 1.0 - dd / len;
-    }
-    p[0] = px[0] + f * (py[0] - px[0]);
-    p[1] = px[1] + f * (py[1] - px[1]);
+    double len = hypot(py[0] - px[0], py[1] - px[1]), f, p[2];
+    if (!wr__may_split(S, R, he) || wr__below_floor(px, py, len * len)) return 0;
+    f = wr__split_fraction(S, he, len);
     if (f == 0.5) {
         p[0] = 0.5 * (px[0] + py[0]);
         p[1] = 0.5 * (px[1] + py[1]);
+    } else {
+        p[0] = px[0] + f * (py[0] - px[0]);
+        p[1] = px[1] + f * (py[1] - px[1]);
     }
     if (!wr__coord_ok(R, p)) return 0;
     if (a >= 0 && !(wr__orient(WR__P(S, a), px, p) > 0.0 && wr__orient(WR__P(S, a), p, py) > 0.0)) return 0;
@@ -1649,25 +1851,10 @@ static int wr__split_segment(wr__cdt *S, wr__ref *R, int32_t he) {
     S->xy[2 * q + 1] = p[1];
     S->vtri[q] = -1;
     S->vseg[q] = m >= 0 ? m : R->n_seg_in + (-2 - m); /* hull edge k: pseudo-segment n_seg_in + k */
+    wr__attr_lerp(S, q, x, y, f);
     if (!wr__split_edge(S, he, q)) return -2;
     R->n_steiner++;
-    /* The split point is the rounded midpoint, a few ulps off the segment's line; the edges at q
-     * may then violate the (exact) CDT property, which Lawson's test around q alone does not see:
-     * re-check the whole star of q with general flips. */
-    {
-        int32_t t0 = S->vtri[q], tt = t0, guard = 0;
-        R->cav.n = 0;
-        do {
-            const int32_t *vv = S->tv + 3 * tt;
-            int i = vv[0] == q ? 0 : vv[1] == q ? 1 : 2;
-            if (vv[wr__n1[i]] >= 0 && vv[wr__n2[i]] >= 0)
-                if (!wr__ivec_push(&R->cav, q) || !wr__ivec_push(&R->cav, vv[wr__n1[i]]) ||
-                    !wr__ivec_push(&R->cav, vv[wr__n1[i]]) || !wr__ivec_push(&R->cav, vv[wr__n2[i]]))
-                    return -2;
-            tt = S->tn[3 * tt + wr__n1[i]] / 3;
-        } while (tt != t0 && ++guard < 1 << 20);
-        if (!wr__restore_delaunay(S, &R->cav)) return -2;
-    }
+    if (!wr__restore_star(S, R, q)) return -2;
     /* flips may have reshaped the stars of the four vertices around q too */
     if (!wr__scan_star(S, R, q) || !wr__scan_star(S, R, x) || !wr__scan_star(S, R, y)) return -2;
     if ((a >= 0 && !wr__scan_star(S, R, a)) || (d >= 0 && !wr__scan_star(S, R, d))) return -2;
@@ -1689,177 +1876,219 @@ static int wr__encroach_counts(const wr__cdt *S, const wr__ref *R, int32_t sg, i
 static int wr__seg_encroached(const wr__cdt *S, const wr__ref *R, int32_t he) {
     int32_t t = he / 3, k = he % 3, tw = S->tn[he], x = S->tv[3 * t + wr__n1[k]], y = S->tv[3 * t + wr__n2[k]];
     int32_t m = S->cm[he], sg = m >= 0 ? m : m <= -2 ? R->n_seg_in + (-2 - m) : -1;
-    if (wr__is_live(S, t) && wr__encroaches(S, x, y, WR__P(S, S->tv[he])) && wr__encroach_counts(S, R, sg, S->tv[he]))
+    if (wr__is_live(S, t) && wr__encroaches(S, R, x, y, WR__P(S, S->tv[he])) &&
+        wr__encroach_counts(S, R, sg, S->tv[he]))
         return 1;
-    if (wr__is_live(S, tw / 3) && wr__encroaches(S, x, y, WR__P(S, S->tv[tw])) &&
+    if (wr__is_live(S, tw / 3) && wr__encroaches(S, R, x, y, WR__P(S, S->tv[tw])) &&
         wr__encroach_counts(S, R, sg, S->tv[tw]))
         return 1;
     return 0;
 }
 
-/* circumcenter (or off-center) of live triangle t */
-static void wr__steiner_point(const wr__cdt *S, const wr__ref *R, int32_t t, double *c) {
+/* Steiner point of bad triangle t: its circumcenter, or Üngör's off-center (Üngör 2004, "Off-centers:
+ * a new type of Steiner points for computing size-optimal quality-guaranteed Delaunay
+ * triangulations") when nearer: the point on the shortest edge's perpendicular bisector at R->off
+ * edge lengths from its midpoint, toward the circumcenter. At 0.5·cot(θ/2) the new triangle on the
+ * shortest edge has exactly the bound θ at its apex; Triangle takes 0.95 of that (Shewchuk's
+ * 0.475·cot(θ/2)), leaving a margin so that triangle is not bad again after rounding. */
+static void wr__steiner_point(const wr__cdt *S, const wr__ref *R, int32_t t, int off_ok, double *c) {
     const int32_t *v = S->tv + 3 * t;
-    const double *a = WR__P(S, v[0]), *b = WR__P(S, v[1]), *cc = WR__P(S, v[2]);
-    double bx = b[0] - a[0], by = b[1] - a[1], cx = cc[0] - a[0], cy = cc[1] - a[1];
-    double bb = bx * bx + by * by, c2 = cx * cx + cy * cy, D = 2.0 * (bx * cy - by * cx);
-    double ux = (cy * bb - by * c2) / D, uy = (bx * c2 - cx * bb) / D;
-    c[0] = a[0] + ux;
-    c[1] = a[1] + uy;
-    if (R->cot_theta > 0.0) { /* Üngör: on the shortest edge's bisector, no farther than needed */
-        double e[3], mx, my, dx, dy, dc, h;
-        int k, m = 0;
-        const double *P[3];
-        P[0] = a;
-        P[1] = b;
-        P[2] = cc;
-        for (k = 0; k < 3; ++k) {
-            const double *p = P[wr__n1[k]], *q = P[wr__n2[k]];
-            e[k] = (p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]);
-        }
-        for (k = 1; k < 3; ++k)
-            if (e[k] < e[m]) m = k;
-        mx = 0.5 * (P[wr__n1[m]][0] + P[wr__n2[m]][0]);
-        my = 0.5 * (P[wr__n1[m]][1] + P[wr__n2[m]][1]);
-        dx = c[0] - mx;
-        dy = c[1] - my;
-        dc = hypot(dx, dy);
-        h = 0.5 * sqrt(e[m]) * R->cot_theta;
-        if (dc > h && dc > 0.0) {
-            c[0] = mx + dx * (h / dc);
-            c[1] = my + dy * (h / dc);
-        }
+    const double *P[3];
+    double bx, by, cx, cy, bb, c2, D, e[3], mx, my, dx, dy, dc, h;
+    int k, m = 0;
+    P[0] = WR__P(S, v[0]);
+    P[1] = WR__P(S, v[1]);
+    P[2] = WR__P(S, v[2]);
+    bx = P[1][0] - P[0][0];
+    by = P[1][1] - P[0][1];
+    cx = P[2][0] - P[0][0];
+    cy = P[2][1] - P[0][1];
+    bb = bx * bx + by * by;
+    c2 = cx * cx + cy * cy;
+    D = 2.0 * (bx * cy - by * cx);
+    c[0] = P[0][0] + (cy * bb - by * c2) / D;
+    c[1] = P[0][1] + (bx * c2 - cx * bb) / D;
+    if (!(R->off > 0.0) || !off_ok) return;
+    for (k = 0; k < 3; ++k) {
+        const double *p = P[wr__n1[k]], *q = P[wr__n2[k]];
+        e[k] = (p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]);
+    }
+    for (k = 1; k < 3; ++k)
+        if (e[k] < e[m]) m = k;
+    mx = 0.5 * (P[wr__n1[m]][0] + P[wr__n2[m]][0]);
+    my = 0.5 * (P[wr__n1[m]][1] + P[wr__n2[m]][1]);
+    dx = c[0] - mx;
+    dy = c[1] - my;
+    dc = hypot(dx, dy);
+    h = sqrt(e[m]) * R->off;
+    if (dc > h && dc > 0.0) {
+        c[0] = mx + dx * (h / dc);
+        c[1] = my + dy * (h / dc);
     }
 }
 
+/* Ruppert: a new vertex cp that would encroach a subsegment is rejected and the subsegments it would
+ * encroach are split instead. Collects (on S->stk, as vertex pairs) the splittable constrained edges
+ * of cp's cavity (the live triangles in conflict with it, grown from tt) that cp encroaches. */
+static int wr__cavity_encroached(wr__cdt *S, wr__ref *R, int32_t tt, int loc, int32_t r, const double *cp) {
+    int32_t i, k;
+    R->cav.n = 0;
+    S->nstk = 0;
+    if (!wr__ivec_push(&R->cav, tt)) return 0;
+    if (loc == WR__LOC_EDGE && S->cm[r] == -1 && wr__is_live(S, S->tn[r] / 3))
+        if (!wr__ivec_push(&R->cav, S->tn[r] / 3)) return 0;
+    for (i = 0; i < R->cav.n; ++i) {
+        int32_t ct = R->cav.a[i];
+        for (k = 0; k < 3; ++k) {
+            int32_t ch = 3 * ct + k, u = S->tn[ch] / 3, x = S->tv[3 * ct + wr__n1[k]], y = S->tv[3 * ct + wr__n2[k]];
+            int j, seen = 0;
+            if (S->cm[ch] != -1) {
+                if (!(loc == WR__LOC_EDGE && (ch == r || ch == S->tn[r])) && wr__encroaches(S, R, x, y, cp) &&
+                    wr__may_split(S, R, ch))
+                    if (!wr__push(S, x) || !wr__push(S, y)) return 0;
+                continue;
+            }
+            if (!wr__is_live(S, u)) continue;
+            for (j = 0; j < R->cav.n && !seen; ++j) seen = R->cav.a[j] == u;
+            if (seen || !wr__conflict(S, u, cp)) continue;
+            if (!wr__ivec_push(&R->cav, u)) return 0;
+        }
+        /* A candidate's cavity is a handful of triangles in a graded mesh. Hundreds mean huge,
+         * skinny circumcircles (fuzzer finding cdt_wedge_cavity_quadratic: a 1e-3-wide wedge
+         * 1e26 long, where the cavity grew as n/6 and each rejected candidate cost that many
+         * exact in-circle tests, ~n^2 overall: 10 s at 2000 vertices). The encroachment check
+         * over the cavity is a heuristic past that size anyway, so the search stops at 256:
+         * that input now finishes in 0.5 s; no input of the fuzz corpus changes its result. */
+        if (R->cav.n > 256) break;
+    }
+    return 1;
+}
+
+/* Split the subsegments listed as vertex pairs in pairs[0..np). Returns 1 when any was split, 0 when
+ * none could be, -1 budget, -2 out of memory. */
+static int wr__split_listed(wr__cdt *S, wr__ref *R, const int32_t *pairs, int32_t np) {
+    int32_t j;
+    int any = 0;
+    for (j = 0; j + 1 < np; j += 2) {
+        int32_t he = wr__find_edge(S, pairs[j], pairs[j + 1]);
+        int rc;
+        if (he < 0 || S->cm[he] == -1) continue;
+        rc = wr__split_segment(S, R, he);
+        if (rc < 0) return rc;
+        any |= rc == 1;
+    }
+    return any;
+}
+
+/* Split the queued encroached subsegments until none is left. 1 ok, -1 budget, -2 out of memory. */
+static int wr__drain_segq(wr__cdt *S, wr__ref *R) {
+    while (R->segq.n >= 2) {
+        int32_t y = R->segq.a[--R->segq.n], x = R->segq.a[--R->segq.n], he = wr__find_edge(S, x, y);
+        int rc;
+        if (he < 0 || S->cm[he] == -1 || !wr__seg_encroached(S, R, he)) continue;
+        rc = wr__split_segment(S, R, he);
+        if (rc < 0) return rc;
+    }
+    return 1;
+}
+
+/* Insert Steiner point cp (located: loc, r) as a free vertex interpolating attributes over bad
+ * triangle (a, b, c). 1 ok, 0 not inserted, -1 budget, -2 out of memory. */
+static int wr__insert_free(wr__cdt *S, wr__ref *R, int loc, int32_t r, const double *cp, const wr__bad *bt) {
+    int32_t q;
+    /* checked here, not before the walk: a point outside the domain is not inserted anyway (the
+     * segment it lies beyond is split instead) */
+    if (!wr__coord_ok(R, cp)) return 0;
+    if (S->nv >= S->max_vertices) return -1;
+    if (!wr__reserve_verts(S, 1)) return -2;
+    q = S->nv++;
+    S->xy[2 * q] = cp[0];
+    S->xy[2 * q + 1] = cp[1];
+    S->vtri[q] = -1;
+    S->vseg[q] = -1;
+    wr__attr_bary(S, q, bt->a, bt->b, bt->c);
+    if (loc == WR__LOC_TRI ? !wr__split_tri(S, r, q) : !wr__split_edge(S, r, q)) return -2;
+    R->n_steiner++;
+    return wr__scan_star(S, R, q) ? 1 : -2;
+}
+
+/* One bad triangle: its Steiner point is inserted, or — when that point lies beyond a segment or
+ * encroaches subsegments — those are split and the triangle is queued again. 1 ok, -1 budget,
+ * -2 out of memory. */
+static int wr__fix_bad(wr__cdt *S, wr__ref *R, const wr__bad *bt) {
+    int32_t t = bt->t, r, tt, key, np, *pairs;
+    int loc, rc;
+    double cp[2];
+    if (t >= S->nt || S->tv[3 * t] != bt->a || S->tv[3 * t + 1] != bt->b || S->tv[3 * t + 2] != bt->c) return 1;
+    if (!wr__is_live(S, t) || !wr__is_bad(S, R, t, &key)) return 1;
+    wr__steiner_point(S, R, t, 1, cp);
+    /* an off-center below the coordinate floor (wr__coord_ok: between a tiny feature and the
+     * boundary) falls back to the circumcenter, which lies beyond it or splits the subsegment */
+    if (!wr__coord_ok(R, cp)) wr__steiner_point(S, R, t, 0, cp);
+    if (!isfinite(cp[0]) || !isfinite(cp[1])) return 1;
+    if (!wr__coord_ok(R, cp)) { /* still below the floor: split a subsegment of t whose diametral
+                                 * circle holds cp (its split point lies on the segment's line) */
+        int k;
+        for (k = 0; k < 3; ++k) {
+            int32_t he = 3 * t + k, x = S->tv[3 * t + wr__n1[k]], y = S->tv[3 * t + wr__n2[k]];
+            const double *px = WR__P(S, x), *py = WR__P(S, y);
+            if (S->cm[he] == -1 || !((px[0] - cp[0]) * (py[0] - cp[0]) + (px[1] - cp[1]) * (py[1] - cp[1]) < 0.0))
+                continue;
+            rc = wr__split_segment(S, R, he);
+            if (rc < 0) return rc;
+            return rc == 0 || wr__bad_push(&R->badq, t, bt->a, bt->b, bt->c, key) ? 1 : -2;
+        }
+        return 1;
+    }
+    loc = wr__locate(S, cp, t, 1, (int64_t)4 * S->nt + 64, &r);
+    if (loc == WR__LOC_VERT || loc == WR__LOC_LOST) return 1;
+    if (loc == WR__LOC_BLOCKED) { /* the point lies beyond a segment: split that segment instead */
+        rc = wr__split_segment(S, R, r);
+        if (rc < 0) return rc;
+        return rc == 0 || wr__bad_push(&R->badq, t, bt->a, bt->b, bt->c, key) ? 1 : -2;
+    }
+    tt = loc == WR__LOC_EDGE ? r / 3 : r;
+    if (!wr__is_live(S, tt)) return 1;
+    if (!wr__cavity_encroached(S, R, tt, loc, r, cp)) return -2;
+    if (S->nstk == 0) return (rc = wr__insert_free(S, R, loc, r, cp, bt)) < 0 ? rc : 1;
+    np = S->nstk;
+    pairs = (int32_t *)wr_alloc_array((size_t)np, sizeof(int32_t));
+    if (!pairs) return -2;
+    memcpy(pairs, S->stk, sizeof(int32_t) * (size_t)np);
+    rc = wr__split_listed(S, R, pairs, np);
+    wr_free(pairs);
+    if (rc < 0) return rc;
+    return rc == 0 || wr__bad_push(&R->badq, t, bt->a, bt->b, bt->c, key) ? 1 : -2;
+}
+
+/* Delaunay refinement: encroached subsegments first, then bad triangles by priority (each may
+ * encroach subsegments, which are split before the next triangle is looked at). */
 static wr_status wr__refine(wr__cdt *S, wr__ref *R, wr_diag *diag) {
     int32_t t, k;
+    int rc = 1;
     for (t = 0; t < S->nt; ++t) {
         const int32_t *v = S->tv + 3 * t;
         if (!wr__is_live(S, t)) continue;
-        if (wr__is_bad(S, R, t) && !(wr__ivec_push(&R->badq, t) && wr__push3(&R->badq, v[0], v[1], v[2])))
-            return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
+        if (!wr__queue_if_bad(S, R, t)) return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
         for (k = 0; k < 3; ++k)
-            if (S->cm[3 * t + k] != -1 && wr__encroaches(S, v[wr__n1[k]], v[wr__n2[k]], WR__P(S, v[k])))
+            if (S->cm[3 * t + k] != -1 && wr__encroaches(S, R, v[wr__n1[k]], v[wr__n2[k]], WR__P(S, v[k])))
                 if (!wr__ivec_push(&R->segq, v[wr__n1[k]]) || !wr__ivec_push(&R->segq, v[wr__n2[k]]))
                     return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
     }
-    for (;;) {
-        int32_t a, b, c, r, he, tt, q, vq, i;
-        int loc, blocked = 0;
-        double cp[2];
-        while (R->segq.n >= 2) {
-            int32_t y = R->segq.a[--R->segq.n], x = R->segq.a[--R->segq.n], rc;
-            he = wr__find_edge(S, x, y);
-            if (he < 0 || S->cm[he] == -1 || !wr__seg_encroached(S, R, he)) continue;
-            rc = wr__split_segment(S, R, he);
-            if (rc == -1) goto budget;
-            if (rc == -2) return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
-        }
-        if (R->badq.n < 4) break;
-        c = R->badq.a[--R->badq.n];
-        b = R->badq.a[--R->badq.n];
-        a = R->badq.a[--R->badq.n];
-        t = R->badq.a[--R->badq.n];
-        if (t >= S->nt || S->tv[3 * t] != a || S->tv[3 * t + 1] != b || S->tv[3 * t + 2] != c) continue;
-        if (!wr__is_live(S, t) || !wr__is_bad(S, R, t)) continue;
-        wr__steiner_point(S, R, t, cp);
-        if (!isfinite(cp[0]) || !isfinite(cp[1])) continue;
-        loc = wr__locate(S, cp, t, 1, (int64_t)4 * S->nt + 64, &r);
-        if (loc == WR__LOC_VERT || loc == WR__LOC_LOST) continue;
-        if (loc == WR__LOC_BLOCKED) { /* the point lies beyond a segment: split that segment instead */
-            int rc = wr__split_segment(S, R, r);
-            if (rc == -1) goto budget;
-            if (rc == -2) return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
-            if (rc == 1 && !(wr__ivec_push(&R->badq, t) && wr__push3(&R->badq, a, b, c)))
-                return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
-            continue;
-        }
-        tt = loc == WR__LOC_EDGE ? r / 3 : r;
-        if (!wr__is_live(S, tt)) continue;
-        /* Ruppert: a new vertex that would encroach a subsegment is rejected, and the subsegments
-         * it would encroach are split instead. Look at the constrained edges of its cavity. */
-        R->cav.n = 0;
-        if (!wr__ivec_push(&R->cav, tt)) return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
-        if (loc == WR__LOC_EDGE && S->cm[r] == -1 && wr__is_live(S, S->tn[r] / 3))
-            if (!wr__ivec_push(&R->cav, S->tn[r] / 3)) return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
-        S->nstk = 0;
-        for (i = 0; i < R->cav.n; ++i) {
-            int32_t ct = R->cav.a[i];
-            for (k = 0; k < 3; ++k) {
-                int32_t ch = 3 * ct + k, u = S->tn[ch] / 3, x = S->tv[3 * ct + wr__n1[k]], y = S->tv[3 * ct + wr__n2[k]];
-                int j, seen = 0;
-                if (S->cm[ch] != -1) {
-                    if (!(loc == WR__LOC_EDGE && (ch == r || ch == S->tn[r])) && wr__encroaches(S, x, y, cp)) {
-                        if (!wr__push(S, x) || !wr__push(S, y)) return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
-                        blocked = 1;
-                    }
-                    continue;
-                }
-                if (!wr__is_live(S, u)) continue;
-                for (j = 0; j < R->cav.n && !seen; ++j) seen = R->cav.a[j] == u;
-                if (seen || !wr__conflict(S, u, cp)) continue;
-                if (!wr__ivec_push(&R->cav, u)) return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
-            }
-            /* A candidate's cavity is a handful of triangles in a graded mesh. Hundreds mean huge,
-             * skinny circumcircles (fuzzer finding cdt_wedge_cavity_quadratic: a 1e-3-wide wedge
-             * 1e26 long, where the cavity grew as n/6 and each rejected candidate cost that many
-             * exact in-circle tests, ~n^2 overall: 10 s at 2000 vertices). The encroachment check
-             * over the cavity is a heuristic past that size anyway, so the search stops at 256:
-             * that input now finishes (WR_OK, 8509 vertices) in 0.5 s; no input of the fuzz corpus
-             * changes its result. */
-            if (R->cav.n > 256) break;
-        }
-        if (blocked) {
-            int any = 0;
-            int32_t *pairs = (int32_t *)wr_alloc_array((size_t)S->nstk, sizeof(int32_t)), np = S->nstk, j;
-            if (!pairs) return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
-            memcpy(pairs, S->stk, sizeof(int32_t) * (size_t)np);
-            for (j = 0; j + 1 < np; j += 2) {
-                int rc;
-                he = wr__find_edge(S, pairs[j], pairs[j + 1]);
-                if (he < 0 || S->cm[he] == -1) continue;
-                rc = wr__split_segment(S, R, he);
-                if (rc == -1) {
-                    wr_free(pairs);
-                    goto budget;
-                }
-                if (rc == -2) {
-                    wr_free(pairs);
-                    return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
-                }
-                any |= rc == 1;
-            }
-            wr_free(pairs);
-            if (any && !(wr__ivec_push(&R->badq, t) && wr__push3(&R->badq, a, b, c)))
-                return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
-            continue;
-        }
-        /* checked here, not before the walk: a point outside the domain is not inserted anyway (the
-         * segment it lies beyond is split instead, above) */
-        if (!wr__coord_ok(R, cp)) continue;
-        if (S->nv >= S->max_vertices) goto budget;
-        if (!wr__reserve_verts(S, 1)) return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
-        q = S->nv++;
-        S->xy[2 * q] = cp[0];
-        S->xy[2 * q + 1] = cp[1];
-        S->vtri[q] = -1;
-        S->vseg[q] = -1;
-        if (loc == WR__LOC_TRI) {
-            if (!wr__split_tri(S, tt, q)) return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
-        } else if (!wr__split_edge(S, r, q)) {
-            return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
-        }
-        vq = q;
-        R->n_steiner++;
-        if (!wr__scan_star(S, R, vq)) return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
+    while (rc > 0) {
+        wr__bad bt;
+        rc = wr__drain_segq(S, R);
+        if (rc < 0 || R->badq.n == 0) break;
+        bt = wr__bad_pop(&R->badq);
+        rc = wr__fix_bad(S, R, &bt);
     }
+    if (rc == -2) return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
+    if (rc == -1)
+        return wr_fail(diag, WR_ERR_BUDGET, -1,
+                       "refinement stopped at the vertex budget of %d vertices (%d Steiner points inserted); the "
+                       "mesh reached is returned; raise max_vertices or lower min_angle_deg",
+                       S->max_vertices, R->n_steiner);
     return WR_OK;
-budget:
-    return wr_fail(diag, WR_ERR_BUDGET, -1,
-                   "refinement stopped at the vertex budget of %d vertices (%d Steiner points inserted); the mesh "
-                   "reached is returned; raise max_vertices or lower min_angle_deg",
-                   S->max_vertices, R->n_steiner);
 }
 
 /* ---- public entry ---- */
@@ -1886,6 +2115,8 @@ static void wr__cdt_release(wr__cdt *S) {
     wr_free(S->cm);
     wr_free(S->tf);
     wr_free(S->stk);
+    wr_free(S->treg);
+    wr_free(S->attr);
     memset(S, 0, sizeof *S);
 }
 
@@ -1900,6 +2131,8 @@ WRDEF void wr_cdt_free(wr_cdt_result *r) {
     wr_free(r->segments);
     wr_free(r->segment_id);
     wr_free(r->input_segments);
+    wr_free(r->attributes);
+    wr_free(r->triangle_region);
     memset(r, 0, sizeof *r);
 }
 
@@ -1959,6 +2192,20 @@ static wr_status wr__cdt_output(wr__cdt *S, const int32_t *rep, const int32_t *p
             out->point_segment[outv[i]] = sg < in->n_segments ? sg : -1; /* hull pseudo-segments: -1 */
         }
     for (i = 0; i < n; ++i) out->point_map[i] = outv[in2int[i]];
+    if (S->na > 0) {
+        out->attributes = (double *)wr_alloc_array((size_t)nvo * (size_t)S->na, sizeof(double));
+        if (!out->attributes) goto nomem;
+        out->n_attributes = S->na;
+        for (i = 0; i < S->nv; ++i)
+            if (outv[i] >= 0)
+                memcpy(out->attributes + (size_t)outv[i] * S->na, S->attr + (size_t)i * S->na, sizeof(double) * (size_t)S->na);
+    }
+    if (S->treg) {
+        out->triangle_region = (int32_t *)wr_alloc_array((size_t)(nto > 0 ? nto : 1), sizeof(int32_t));
+        if (!out->triangle_region) goto nomem;
+        for (t = 0; t < S->nt; ++t)
+            if (outt[t] >= 0) out->triangle_region[outt[t]] = S->treg[t];
+    }
     for (i = 0; i < in->n_segments; ++i) {
         out->input_segments[2 * i] = outv[in2int[in->segments[2 * i]]];
         out->input_segments[2 * i + 1] = outv[in2int[in->segments[2 * i + 1]]];
@@ -2049,42 +2296,41 @@ nomem:
     return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory while writing the result");
 }
 
-WRDEF wr_status wr_cdt_triangulate(const wr_cdt_input *in, const wr_cdt_desc *desc_in, wr_cdt_result *out,
-                                   wr_diag *diag) {
+/* State of one wr_cdt_triangulate call, passed through its stages. */
+typedef struct wr__tctx {
+    const wr_cdt_input *in; /* the caller's input, or &in2 when a previous mesh adds segments */
+    wr_cdt_input in2;
     wr_cdt_desc d;
     wr__cdt S;
     wr__segctx C;
     wr__ref R;
     wr_rng rng;
-    int32_t *rep = NULL, *ids = NULL, *order = NULL, *in2int = NULL, *pos = NULL, *dupof = NULL, n, m, i, nid = 0,
-            i0, i1 = -1, i2 = -1;
-    wr_status st = WR_OK, st_late = WR_OK;
-    double t_start = wr_time_seconds();
-    int refine, carved = 0, holes_carved = 0;
-    int64_t budget, n_real = 0, n_live;
-    memset(&S, 0, sizeof S);
-    memset(&C, 0, sizeof C);
-    memset(&R, 0, sizeof R);
-    if (!out) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "out is NULL");
-    memset(out, 0, sizeof *out);
-    if (!in) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "input is NULL");
-    wr__cdt_defaults(desc_in, &d);
-    n = in->n_points;
-    m = in->n_segments;
-    if (n < 0 || m < 0 || in->n_holes < 0)
+    int32_t *rep, *ids, *order, *in2int, *pos, *dupof, *allseg, *prev_bnd;
+    double *tag_area;
+    int32_t n, m, nid, n_prev_bnd;
+    int refine, carved, holes_carved;
+    int64_t n_real, n_live;
+} wr__tctx;
+
+static wr_status wr__cdt_validate(const wr_cdt_input *in, const wr_cdt_desc *d, wr_diag *diag) {
+    int32_t i, n = in->n_points, m = in->n_segments;
+    if (n < 0 || m < 0 || in->n_holes < 0 || in->n_regions < 0 || in->n_attributes < 0 || in->n_triangles < 0)
         return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "negative count (points %d, segments %d, holes %d)", n, m,
                        in->n_holes);
-    if ((n > 0 && !in->points) || (m > 0 && !in->segments) || (in->n_holes > 0 && !in->holes))
+    if ((n > 0 && !in->points) || (m > 0 && !in->segments) || (in->n_holes > 0 && !in->holes) ||
+        (in->n_regions > 0 && !in->regions) || (in->n_attributes > 0 && n > 0 && !in->attributes) ||
+        (in->n_triangles > 0 && !in->triangles))
         return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "a non-empty input array is NULL");
     if (n > INT32_MAX / 8) return wr_fail(diag, WR_ERR_OVERFLOW, -1, "%d points is too many", n);
-    if (d.min_angle_deg < 0.0 || !(d.min_angle_deg <= WR__MAX_MIN_ANGLE))
-        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "min_angle_deg %g outside (0, %g]", d.min_angle_deg,
+    if (in->n_attributes > 64) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "%d attributes (at most 64)", in->n_attributes);
+    if (d->min_angle_deg < 0.0 || !(d->min_angle_deg <= WR__MAX_MIN_ANGLE))
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "min_angle_deg %g outside (0, %g]", d->min_angle_deg,
                        WR__MAX_MIN_ANGLE);
-    if (!(d.max_area >= 0.0) || !isfinite(d.max_area))
-        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "max_area %g must be finite and >= 0", d.max_area);
-    if (!(d.merge_tolerance >= 0.0) || !isfinite(d.merge_tolerance))
-        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "merge_tolerance %g must be finite and >= 0", d.merge_tolerance);
-    if (d.max_vertices < 0) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "max_vertices %d < 0", d.max_vertices);
+    if (!(d->max_area >= 0.0) || !isfinite(d->max_area))
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "max_area %g must be finite and >= 0", d->max_area);
+    if (!(d->merge_tolerance >= 0.0) || !isfinite(d->merge_tolerance))
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "merge_tolerance %g must be finite and >= 0", d->merge_tolerance);
+    if (d->max_vertices < 0) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "max_vertices %d < 0", d->max_vertices);
     for (i = 0; i < n; ++i) {
         double x = in->points[2 * i], y = in->points[2 * i + 1];
         if (!isfinite(x) || !isfinite(y))
@@ -2102,261 +2348,445 @@ WRDEF wr_status wr_cdt_triangulate(const wr_cdt_input *in, const wr_cdt_desc *de
                            (a < 0 || a >= n) ? a : b, n);
         if (a == b) return wr_fail(diag, WR_ERR_GEOMETRY, i, "segment %d has zero length (both ends are point %d)", i, a);
     }
-    for (i = 0; i < in->n_holes; ++i) {
-        double x = in->holes[2 * i], y = in->holes[2 * i + 1];
-        if (!isfinite(x) || !isfinite(y))
-            return wr_fail(diag, WR_ERR_INVALID_ARG, i, "hole %d has a non-finite coordinate", i);
-        if (fabs(x) > WR_CDT_MAX_COORD || fabs(y) > WR_CDT_MAX_COORD)
-            return wr_fail(diag, WR_ERR_GEOMETRY, i, "hole %d (%g, %g) has a coordinate beyond +-%g", i, x, y,
+    for (i = 0; i < 3 * in->n_triangles; ++i)
+        if (in->triangles[i] < 0 || in->triangles[i] >= n)
+            return wr_fail(diag, WR_ERR_INVALID_ARG, i / 3, "triangle %d references point %d, outside [0, %d)", i / 3,
+                           in->triangles[i], n);
+    for (i = 0; i < in->n_holes + in->n_regions; ++i) {
+        const double *h = i < in->n_holes ? in->holes + 2 * i : in->regions + 4 * (i - in->n_holes);
+        const char *what = i < in->n_holes ? "hole" : "region";
+        int32_t j = i < in->n_holes ? i : i - in->n_holes;
+        if (!isfinite(h[0]) || !isfinite(h[1]))
+            return wr_fail(diag, WR_ERR_INVALID_ARG, j, "%s %d has a non-finite coordinate", what, j);
+        if (fabs(h[0]) > WR_CDT_MAX_COORD || fabs(h[1]) > WR_CDT_MAX_COORD)
+            return wr_fail(diag, WR_ERR_GEOMETRY, j, "%s %d (%g, %g) has a coordinate beyond +-%g", what, j, h[0], h[1],
                            WR_CDT_MAX_COORD);
     }
-    refine = d.quality || d.max_area > 0.0;
-    budget = d.max_vertices > 0 ? (int64_t)d.max_vertices
-                                : refine ? 16 * ((int64_t)n + m) + 65536 : (int64_t)INT32_MAX / 4;
-    if (budget > INT32_MAX / 4) budget = INT32_MAX / 4;
-    S.max_vertices = (int32_t)budget;
-    if (S.max_vertices < n) S.max_vertices = n;
-    S.n_input = n;
-    S.walk_rng = 12345u;
-    wr_rng_seed(&rng, d.seed);
+    return WR_OK;
+}
 
-    if (!wr__reserve_verts(&S, n + 16)) goto nomem;
-    /* S.xy is filled below, in insertion order; the input stays where it is until then */
-    for (i = 0; i < S.capv; ++i) S.vseg[i] = -1; /* vtri: set when first needed, below */
-    rep = (int32_t *)wr_alloc_array((size_t)n, sizeof(int32_t));
-    ids = (int32_t *)wr_alloc_array((size_t)n, sizeof(int32_t));
-    order = (int32_t *)wr_alloc_array((size_t)n, sizeof(int32_t));
-    if (!rep || !ids || !order) goto nomem;
-    if (d.merge_tolerance > 0.0) {
-        if (!wr__merge_close(in->points, n, d.merge_tolerance, rep)) goto nomem;
+/* Previous mesh: its boundary edges (directed with the mesh on their left) are those whose reverse
+ * is no edge of it; they are added as segments after the input's (0 ok, -1 out of memory, -2 a
+ * triangle with repeated corners). */
+static int wr__edge_cmp(const void *x, const void *y) {
+    const int32_t *a = (const int32_t *)x, *b = (const int32_t *)y;
+    return a[0] != b[0] ? (a[0] < b[0] ? -1 : 1) : a[1] != b[1] ? (a[1] < b[1] ? -1 : 1) : 0;
+}
+static int wr__prev_boundary(wr__tctx *X) {
+    const wr_cdt_input *in = X->in;
+    int32_t nt = in->n_triangles, i, k, nb = 0, *e = (int32_t *)wr_alloc_array((size_t)nt * 3, 2 * sizeof(int32_t));
+    if (!e) return -1;
+    for (i = 0; i < nt; ++i) {
+        const int32_t *v = in->triangles + 3 * i;
+        int ccw = wr__orient(in->points + 2 * v[0], in->points + 2 * v[1], in->points + 2 * v[2]) > 0.0;
+        for (k = 0; k < 3; ++k) {
+            int32_t a = v[wr__n1[k]], b = v[wr__n2[k]];
+            e[6 * i + 2 * k] = ccw ? a : b;
+            e[6 * i + 2 * k + 1] = ccw ? b : a;
+        }
+    }
+    qsort(e, (size_t)nt * 3, 2 * sizeof(int32_t), wr__edge_cmp);
+    X->prev_bnd = (int32_t *)wr_alloc_array((size_t)nt * 3, 2 * sizeof(int32_t));
+    X->allseg = (int32_t *)wr_alloc_array((size_t)in->n_segments + 3 * (size_t)nt, 2 * sizeof(int32_t));
+    if (!X->prev_bnd || !X->allseg) {
+        wr_free(e);
+        return -1;
+    }
+    for (i = 0; i < 3 * nt; ++i) {
+        int32_t r[2];
+        r[0] = e[2 * i + 1];
+        r[1] = e[2 * i];
+        if (bsearch(r, e, (size_t)nt * 3, 2 * sizeof(int32_t), wr__edge_cmp)) continue;
+        X->prev_bnd[2 * nb] = e[2 * i];
+        X->prev_bnd[2 * nb + 1] = e[2 * i + 1];
+        ++nb;
+    }
+    wr_free(e);
+    X->n_prev_bnd = nb;
+    memcpy(X->allseg, in->segments, sizeof(int32_t) * 2 * (size_t)in->n_segments);
+    memcpy(X->allseg + 2 * in->n_segments, X->prev_bnd, sizeof(int32_t) * 2 * (size_t)nb);
+    X->in2 = *in;
+    X->in2.segments = X->allseg;
+    X->in2.n_segments = in->n_segments + nb;
+    X->in = &X->in2;
+    X->m = X->in2.n_segments;
+    return 0;
+}
+
+/* Delaunay triangulation of the distinct points in BRIO order (merging duplicates). */
+static wr_status wr__cdt_delaunay(wr__tctx *X, wr_diag *diag) {
+    wr__cdt *S = &X->S;
+    const wr_cdt_input *in = X->in;
+    int32_t i, n = X->n, i0 = 0, i1 = -1, i2 = -1, nid = 0;
+    if (!wr__reserve_verts(S, n + 16)) return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory (%d points)", n);
+    for (i = 0; i < S->capv; ++i) S->vseg[i] = -1; /* vtri: set when first needed, below */
+    X->rep = (int32_t *)wr_alloc_array((size_t)n, sizeof(int32_t));
+    X->ids = (int32_t *)wr_alloc_array((size_t)n, sizeof(int32_t));
+    X->order = (int32_t *)wr_alloc_array((size_t)n, sizeof(int32_t));
+    X->in2int = (int32_t *)wr_alloc_array((size_t)n, sizeof(int32_t));
+    if (!X->rep || !X->ids || !X->order || !X->in2int) return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory (%d points)", n);
+    if (X->d.merge_tolerance > 0.0) {
+        if (!wr__merge_close(in->points, n, X->d.merge_tolerance, X->rep)) return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
     } else {
-        for (i = 0; i < n; ++i) rep[i] = i;
+        for (i = 0; i < n; ++i) X->rep[i] = i;
     }
     for (i = 0; i < n; ++i)
-        if (rep[i] == i) ids[nid++] = i;
-    if (!wr__brio(in->points, ids, nid, &rng, order)) goto nomem;
-    if (nid == 0) {
-        st = wr_fail(diag, WR_ERR_GEOMETRY, -1, "no points to triangulate");
-        goto done;
-    }
+        if (X->rep[i] == i) X->ids[nid++] = i;
+    if (!wr__brio(in->points, X->ids, nid, &X->rng, X->order)) return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
+    if (nid == 0) return wr_fail(diag, WR_ERR_GEOMETRY, -1, "no points to triangulate");
     /* Renumber: internal vertex k is input point order[k]. Consecutive insertions then touch nearby
      * memory (the walk and the predicates read coordinates of spatial neighbours). */
     for (i = 0; i < nid; ++i) {
-        S.xy[2 * i] = in->points[2 * (size_t)order[i]];
-        S.xy[2 * i + 1] = in->points[2 * (size_t)order[i] + 1];
+        S->xy[2 * i] = in->points[2 * (size_t)X->order[i]];
+        S->xy[2 * i + 1] = in->points[2 * (size_t)X->order[i] + 1];
+        if (S->na > 0)
+            memcpy(S->attr + (size_t)i * S->na, in->attributes + (size_t)X->order[i] * S->na, sizeof(double) * (size_t)S->na);
     }
-    S.nv = nid;
-    S.n_input = nid;
-    pos = ids; /* reuse: pos[input] = internal slot of a representative */
-    for (i = 0; i < nid; ++i) pos[order[i]] = i;
-    in2int = (int32_t *)wr_alloc_array((size_t)n, sizeof(int32_t));
-    dupof = order; /* reuse: dupof[k] = k, or the earlier vertex k coincides with */
-    if (!in2int) goto nomem;
-    for (i = 0; i < nid; ++i) dupof[i] = i;
-    i0 = 0;
+    S->nv = S->n_input = X->nid = nid;
+    X->pos = X->ids; /* reuse: pos[input] = internal slot of a representative */
+    for (i = 0; i < nid; ++i) X->pos[X->order[i]] = i;
+    X->dupof = X->order; /* reuse: dupof[k] = k, or the earlier vertex k coincides with */
+    for (i = 0; i < nid; ++i) X->dupof[i] = i;
     for (i = 1; i < nid && i1 < 0; ++i)
-        if (S.xy[2 * i] != S.xy[0] || S.xy[2 * i + 1] != S.xy[1]) i1 = i;
+        if (S->xy[2 * i] != S->xy[0] || S->xy[2 * i + 1] != S->xy[1]) i1 = i;
     for (i = 1; i < nid && i1 >= 0 && i2 < 0; ++i)
-        if (wr__orient(WR__P(&S, i0), WR__P(&S, i1), WR__P(&S, i)) != 0.0) i2 = i;
-    if (i1 < 0) {
-        st = wr_fail(diag, WR_ERR_GEOMETRY, -1, "fewer than 3 distinct points (%d given, all coincide)", n);
-        goto done;
-    }
-    if (i2 < 0) {
-        st = wr_fail(diag, WR_ERR_GEOMETRY, -1, "all %d distinct points are collinear: no triangle exists", nid);
-        goto done;
-    }
-    if (!wr__reserve_tris(&S, 2 * nid + 16)) goto nomem;
-    if (wr__orient(WR__P(&S, i0), WR__P(&S, i1), WR__P(&S, i2)) > 0.0)
-        wr__init_tri(&S, i0, i1, i2);
+        if (wr__orient(WR__P(S, i0), WR__P(S, i1), WR__P(S, i)) != 0.0) i2 = i;
+    if (i1 < 0) return wr_fail(diag, WR_ERR_GEOMETRY, -1, "fewer than 3 distinct points (%d given, all coincide)", n);
+    if (i2 < 0) return wr_fail(diag, WR_ERR_GEOMETRY, -1, "all %d distinct points are collinear: no triangle exists", nid);
+    if (!wr__reserve_tris(S, 2 * nid + 16)) return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory (%d points)", n);
+    if (wr__orient(WR__P(S, i0), WR__P(S, i1), WR__P(S, i2)) > 0.0)
+        wr__init_tri(S, i0, i1, i2);
     else
-        wr__init_tri(&S, i0, i2, i1);
+        wr__init_tri(S, i0, i2, i1);
     for (i = 0; i < nid; ++i) {
         int32_t vq;
         if (i == i0 || i == i1 || i == i2) continue;
-        if (!wr__insert(&S, i, S.last, &vq)) goto nomem;
-        dupof[i] = vq; /* vq != i: exact duplicate of an inserted vertex */
+        if (!wr__insert(S, i, S->last, &vq)) return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory (%d points)", n);
+        X->dupof[i] = vq; /* vq != i: exact duplicate of an inserted vertex */
     }
-    if (m > 0 || refine || in->n_holes > 0) { /* vertex stars are needed from here on */
-        for (i = 0; i < S.capv; ++i) S.vtri[i] = -1; /* -1: not in the mesh (a merged duplicate) */
-        for (i = 0; i < S.nt; ++i) {
+    if (X->m > 0 || X->refine || in->n_holes > 0 || in->n_regions > 0) { /* vertex stars are needed from here on */
+        for (i = 0; i < S->capv; ++i) S->vtri[i] = -1; /* -1: not in the mesh (a merged duplicate) */
+        for (i = 0; i < S->nt; ++i) {
             int k;
             for (k = 0; k < 3; ++k)
-                if (S.tv[3 * i + k] >= 0) S.vtri[S.tv[3 * i + k]] = i;
+                if (S->tv[3 * i + k] >= 0) S->vtri[S->tv[3 * i + k]] = i;
         }
-        S.track_vtri = 1;
+        S->track_vtri = 1;
     }
-    for (i = 0; i < S.nt; ++i) n_real += !WR__GHOSTLY(&S, i);
-    n_live = n_real;
-    for (i = 0; i < n; ++i) {
-        in2int[i] = dupof[pos[rep[i]]];
-        out->n_duplicates += rep[i] != i || in2int[i] != pos[i];
-    }
-    /* constraints */
-    if (m > 0) {
-        int32_t *shead, *slink;
-        if (!wr__ensure_cm(&S)) goto nomem;
-        C.split = d.split_intersections;
-        C.seg = in->segments;
-        C.in2int = in2int;
-        /* A segment given again (same end points, also through merged duplicates) is recovered once:
-         * its chain is the first one's (pieces carry the lowest id, see segment_id). Recovering it
-         * again with split_intersections made it cross the first one's rounded junctions a few ulps
-         * away, and the two chains then shared a sliver of a third segment (fuzzer finding
-         * cdt_duplicate_crossing_split). shead/slink: per lower end, earlier segments. */
-        shead = (int32_t *)wr_alloc_array((size_t)nid, sizeof(int32_t));
-        slink = (int32_t *)wr_alloc_array((size_t)m, sizeof(int32_t));
-        if (!shead || !slink) {
-            wr_free(shead);
-            wr_free(slink);
-            goto nomem;
-        }
-        for (i = 0; i < nid; ++i) shead[i] = -1;
-        for (i = 0; i < m && st == WR_OK; ++i) {
-            int32_t a = in2int[in->segments[2 * i]], b = in2int[in->segments[2 * i + 1]], lo, hi, j;
-            if (a == b) {
-                st = wr_fail(diag, WR_ERR_GEOMETRY, i,
-                             "segment %d has zero length: its end points %d and %d were merged as duplicates", i,
-                             in->segments[2 * i], in->segments[2 * i + 1]);
-                break;
-            }
-            lo = a < b ? a : b;
-            hi = a < b ? b : a;
-            for (j = shead[lo]; j >= 0; j = slink[j]) {
-                int32_t a2 = in2int[in->segments[2 * j]], b2 = in2int[in->segments[2 * j + 1]];
-                if ((a2 < b2 ? b2 : a2) == hi) break;
-            }
-            if (j >= 0) continue; /* same as segment j */
-            slink[i] = shead[lo];
-            shead[lo] = i;
-            st = wr__recover(&S, &C, a, b, i, diag);
-        }
+    for (i = 0; i < S->nt; ++i) X->n_real += !WR__GHOSTLY(S, i);
+    X->n_live = X->n_real;
+    return WR_OK;
+}
+
+/* Segment recovery (each distinct segment once), then one Lawson pass when crossings were split. */
+static wr_status wr__cdt_constrain(wr__tctx *X, wr_diag *diag) {
+    wr__cdt *S = &X->S;
+    const wr_cdt_input *in = X->in;
+    int32_t *shead, *slink, i, t, m = X->m;
+    wr_status st = WR_OK;
+    if (!wr__ensure_cm(S)) return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
+    X->C.split = X->d.split_intersections;
+    X->C.seg = in->segments;
+    X->C.in2int = X->in2int;
+    /* A segment given again (same end points, also through merged duplicates) is recovered once:
+     * its chain is the first one's (pieces carry the lowest id, see segment_id). Recovering it
+     * again with split_intersections made it cross the first one's rounded junctions a few ulps
+     * away, and the two chains then shared a sliver of a third segment (fuzzer finding
+     * cdt_duplicate_crossing_split). shead/slink: per lower end, earlier segments. */
+    shead = (int32_t *)wr_alloc_array((size_t)X->nid, sizeof(int32_t));
+    slink = (int32_t *)wr_alloc_array((size_t)m, sizeof(int32_t));
+    if (!shead || !slink) {
         wr_free(shead);
         wr_free(slink);
-        if (st != WR_OK) goto done;
-        if (C.split) {
-            /* A crossing unconstrains the crossed edge and inserts its junction; an edge the
-             * insertion could not legalize (the rounded junction fell beside it) is left to later
-             * pieces, and when a junction is an existing vertex (wr__cross_vertex) no insertion
-             * happens at all. One Lawson pass over every unconstrained edge restores the CDT
-             * property for the final constraints (fuzzer finding after cdt_crossing_chain_split). */
-            int32_t t;
-            C.fresh.n = 0;
-            for (t = 0; t < S.nt; ++t) {
-                int k;
-                if (WR__GHOSTLY(&S, t)) continue;
-                for (k = 0; k < 3; ++k) {
-                    int32_t he = 3 * t + k;
-                    if (S.cm[he] != -1 || S.tn[he] < he) continue;
-                    if (!wr__ivec_push(&C.fresh, S.tv[3 * t + wr__n1[k]]) ||
-                        !wr__ivec_push(&C.fresh, S.tv[3 * t + wr__n2[k]]))
-                        goto nomem;
-                }
+        return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
+    }
+    for (i = 0; i < X->nid; ++i) shead[i] = -1;
+    for (i = 0; i < m && st == WR_OK; ++i) {
+        int32_t a = X->in2int[in->segments[2 * i]], b = X->in2int[in->segments[2 * i + 1]], lo, hi, j;
+        if (a == b) {
+            st = wr_fail(diag, WR_ERR_GEOMETRY, i, "segment %d has zero length: its end points %d and %d were merged as duplicates",
+                         i, in->segments[2 * i], in->segments[2 * i + 1]);
+            break;
+        }
+        lo = a < b ? a : b;
+        hi = a < b ? b : a;
+        for (j = shead[lo]; j >= 0; j = slink[j]) {
+            int32_t a2 = X->in2int[in->segments[2 * j]], b2 = X->in2int[in->segments[2 * j + 1]];
+            if ((a2 < b2 ? b2 : a2) == hi) break;
+        }
+        if (j >= 0) continue; /* same as segment j */
+        slink[i] = shead[lo];
+        shead[lo] = i;
+        st = wr__recover(S, &X->C, a, b, i, diag);
+    }
+    wr_free(shead);
+    wr_free(slink);
+    if (st != WR_OK || !X->C.split) return st;
+    /* A crossing unconstrains the crossed edge and inserts its junction; an edge the insertion could
+     * not legalize (the rounded junction fell beside it) is left to later pieces, and when a junction
+     * is an existing vertex (wr__cross_vertex) no insertion happens at all. One Lawson pass over
+     * every unconstrained edge restores the CDT property for the final constraints (fuzzer finding
+     * after cdt_crossing_chain_split). */
+    X->C.fresh.n = 0;
+    for (t = 0; t < S->nt; ++t) {
+        int k;
+        if (WR__GHOSTLY(S, t)) continue;
+        for (k = 0; k < 3; ++k) {
+            int32_t he = 3 * t + k;
+            if (S->cm[he] != -1 || S->tn[he] < he) continue;
+            if (!wr__ivec_push(&X->C.fresh, S->tv[3 * t + wr__n1[k]]) || !wr__ivec_push(&X->C.fresh, S->tv[3 * t + wr__n2[k]]))
+                return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
+        }
+    }
+    return wr__restore_delaunay(S, &X->C.fresh) ? WR_OK : wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
+}
+
+/* Remove the triangles outside the segments (unless the hull is kept), outside a previous mesh's
+ * boundary, and in holes. */
+static wr_status wr__cdt_carve(wr__tctx *X, wr_diag *diag) {
+    wr__cdt *S = &X->S;
+    const wr_cdt_input *in = X->in;
+    int32_t i, t;
+    int64_t removed = 0;
+    if (X->m > 0 && !X->d.keep_convex_hull) {
+        for (t = 0; t < S->nt; ++t)
+            if (WR__GHOSTLY(S, t)) {
+                const int32_t *v = S->tv + 3 * t;
+                int g = v[0] < 0 ? 0 : v[1] < 0 ? 1 : 2;
+                if (S->cm[3 * t + g] == -1 && !wr__flood(S, S->tn[3 * t + g] / 3, &removed))
+                    return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
             }
-            if (!wr__restore_delaunay(&S, &C.fresh)) goto nomem;
+        /* a previous mesh's boundary: the triangle right of each boundary edge is outside it */
+        for (i = 0; i < X->n_prev_bnd; ++i) {
+            int32_t he = wr__find_edge(S, X->in2int[X->prev_bnd[2 * i + 1]], X->in2int[X->prev_bnd[2 * i]]);
+            if (he >= 0 && !WR__GHOSTLY(S, he / 3) && !wr__flood(S, he / 3, &removed))
+                return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
         }
-        if (!d.keep_convex_hull) {
-            int32_t t;
-            int64_t removed = 0;
-            for (t = 0; t < S.nt; ++t)
-                if (WR__GHOSTLY(&S, t)) {
-                    const int32_t *v = S.tv + 3 * t;
-                    int g = v[0] < 0 ? 0 : v[1] < 0 ? 1 : 2;
-                    if (S.cm[3 * t + g] == -1 && !wr__flood(&S, S.tn[3 * t + g] / 3, &removed)) goto nomem;
-                }
-            if (removed == n_real) /* the segments enclose nothing: keep the hull */
-                memset(S.tf, 0, (size_t)S.nt);
-            else
-                carved = 1;
-            n_live = n_real - (carved ? removed : 0);
-        }
+        if (removed == X->n_real) /* the segments enclose nothing: keep the hull */
+            memset(S->tf, 0, (size_t)S->nt);
+        else
+            X->carved = 1;
+        X->n_live = X->n_real - (X->carved ? removed : 0);
     }
     for (i = 0; i < in->n_holes; ++i) {
-        int32_t r, t;
-        int64_t removed = 0;
-        int loc = wr__locate(&S, in->holes + 2 * i, S.last, 0, (int64_t)4 * S.nt + 64, &r);
+        int32_t r;
+        int loc = wr__locate(S, in->holes + 2 * i, S->last, 0, (int64_t)4 * S->nt + 64, &r);
+        removed = 0;
         if (loc == WR__LOC_LOST) continue;
-        t = loc == WR__LOC_TRI ? r : loc == WR__LOC_EDGE ? r / 3 : S.vtri[r];
-        if (WR__GHOSTLY(&S, t)) continue; /* seed outside the convex hull */
-        if (!wr__flood(&S, t, &removed)) goto nomem;
-        n_live -= removed;
-        holes_carved |= removed > 0;
-        if (n_live == 0) {
-            st = wr_fail(diag, WR_ERR_GEOMETRY, i,
-                         "hole %d at (%g, %g) removed every remaining triangle: the boundary around it is not closed",
-                         i, in->holes[2 * i], in->holes[2 * i + 1]);
-            goto done;
+        t = loc == WR__LOC_TRI ? r : loc == WR__LOC_EDGE ? r / 3 : S->vtri[r];
+        if (WR__GHOSTLY(S, t)) continue; /* seed outside the convex hull */
+        if (!wr__flood(S, t, &removed)) return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
+        X->n_live -= removed;
+        X->holes_carved |= removed > 0;
+        if (X->n_live == 0)
+            return wr_fail(diag, WR_ERR_GEOMETRY, i,
+                           "hole %d at (%g, %g) removed every remaining triangle: the boundary around it is not closed",
+                           i, in->holes[2 * i], in->holes[2 * i + 1]);
+    }
+    return WR_OK;
+}
+
+/* Triangle tags (S->treg): n_regions + j for a triangle that is triangle j of a previous mesh, then
+ * region r for the triangles a flood from region seed r reaches (regions win). tag_area: the area
+ * bound per tag. */
+static int wr__tri_cmp3(const void *x, const void *y) {
+    const int32_t *a = (const int32_t *)x, *b = (const int32_t *)y;
+    int k;
+    for (k = 0; k < 3; ++k)
+        if (a[k] != b[k]) return a[k] < b[k] ? -1 : 1;
+    return 0;
+}
+static void wr__sort3(int32_t *v) {
+    int32_t t;
+    if (v[0] > v[1]) t = v[0], v[0] = v[1], v[1] = t;
+    if (v[1] > v[2]) t = v[1], v[1] = v[2], v[2] = t;
+    if (v[0] > v[1]) t = v[0], v[0] = v[1], v[1] = t;
+}
+static wr_status wr__cdt_tags(wr__tctx *X, wr_diag *diag) {
+    wr__cdt *S = &X->S;
+    const wr_cdt_input *in = X->in;
+    int32_t nr = in->n_regions, np = in->n_triangles, i, t, *key = NULL;
+    if (nr == 0 && np == 0) return WR_OK;
+    S->treg = (int32_t *)wr_alloc_array((size_t)S->capt, sizeof(int32_t));
+    X->tag_area = (double *)wr_alloc_array((size_t)nr + (size_t)np, sizeof(double));
+    if (np > 0) key = (int32_t *)wr_alloc_array((size_t)np, 4 * sizeof(int32_t));
+    if (!S->treg || !X->tag_area || (np > 0 && !key)) {
+        wr_free(key);
+        return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
+    }
+    for (t = 0; t < S->capt; ++t) S->treg[t] = -1;
+    for (i = 0; i < nr; ++i) X->tag_area[i] = in->regions[4 * i + 3];
+    for (i = 0; i < np; ++i) {
+        int k;
+        X->tag_area[nr + i] = in->triangle_area ? in->triangle_area[i] : 0.0;
+        for (k = 0; k < 3; ++k) key[4 * i + k] = X->in2int[in->triangles[3 * i + k]];
+        wr__sort3(key + 4 * i);
+        key[4 * i + 3] = i;
+    }
+    if (np > 0) {
+        qsort(key, (size_t)np, 4 * sizeof(int32_t), wr__tri_cmp3);
+        for (t = 0; t < S->nt; ++t) {
+            int32_t v[3], *hit;
+            if (!wr__is_live(S, t)) continue;
+            memcpy(v, S->tv + 3 * t, sizeof v);
+            wr__sort3(v);
+            hit = (int32_t *)bsearch(v, key, (size_t)np, 4 * sizeof(int32_t), wr__tri_cmp3);
+            if (hit) S->treg[t] = nr + hit[3];
+        }
+        wr_free(key);
+    }
+    for (i = 0; i < nr; ++i) {
+        int32_t r, t0;
+        int loc = wr__locate(S, in->regions + 4 * i, S->last, 0, (int64_t)4 * S->nt + 64, &r);
+        if (loc == WR__LOC_LOST) continue;
+        t0 = loc == WR__LOC_TRI ? r : loc == WR__LOC_EDGE ? r / 3 : S->vtri[r];
+        if (!wr__is_live(S, t0) || S->treg[t0] == i) continue;
+        S->nstk = 0;
+        S->treg[t0] = i;
+        if (!wr__push(S, t0)) return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
+        while (S->nstk) {
+            int32_t u = S->stk[--S->nstk], k;
+            for (k = 0; k < 3; ++k) {
+                int32_t w = S->tn[3 * u + k] / 3;
+                if (S->cm[3 * u + k] != -1 || !wr__is_live(S, w) || S->treg[w] == i) continue;
+                S->treg[w] = i;
+                if (!wr__push(S, w)) return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
+            }
         }
     }
-    if (refine) {
-        int32_t t, n_ghost = 0, n_hull = 0, *sg;
-        if (!wr__ensure_cm(&S)) goto nomem;
-        for (t = 0; t < S.nt; ++t) n_ghost += WR__GHOSTLY(&S, t);
-        sg = (int32_t *)wr_alloc_array(2 * ((size_t)m + (size_t)n_ghost), sizeof(int32_t));
-        if (!sg) goto nomem;
-        for (i = 0; i < 2 * m; ++i) sg[i] = in2int[in->segments[i]];
-        /* When the hull bounds the domain, its edges not already on a segment become segments for
-         * refinement (Ruppert treats the boundary of the domain as segments): they are split when
-         * encroached, never flipped, concentric shells apply at hull vertices, and the small-angle
-         * rule covers two hull edges (a needle-thin input triangle) or a hull edge and a segment
-         * meeting at a small angle; each hull edge k is pseudo-segment m + k of R.seg. */
-        if (!carved)
-            for (t = 0; t < S.nt; ++t)
-                if (WR__GHOSTLY(&S, t)) {
-                    const int32_t *v = S.tv + 3 * t;
-                    int g = v[0] < 0 ? 0 : v[1] < 0 ? 1 : 2;
-                    if (S.cm[3 * t + g] != -1) continue;
-                    S.cm[3 * t + g] = S.cm[S.tn[3 * t + g]] = WR__HULL_MARK(n_hull);
-                    sg[2 * (m + n_hull)] = v[wr__n1[g]];
-                    sg[2 * (m + n_hull) + 1] = v[wr__n2[g]];
-                    ++n_hull;
-                }
-        S.fixed_boundary = 1;
-        R.seg = sg;
-        R.n_seg_in = m;
-        if (d.quality) {
-            double s = sin(d.min_angle_deg * (3.14159265358979323846 / 180.0));
-            R.sin2 = s * s;
-            /* Üngör's off-center: apex of the isosceles triangle on the shortest edge whose apex angle is
-             * the bound θ, i.e. at (|pq|/2)·cot(θ/2) from the edge midpoint */
-            if (d.off_center) R.cot_theta = 1.0 / tan(0.5 * d.min_angle_deg * (3.14159265358979323846 / 180.0));
-        }
-        R.max_area = d.max_area;
-        R.tiny = 1e-50;
-        for (i = 0; i < 2 * nid; ++i)
-            if (S.xy[i] != 0.0 && fabs(S.xy[i]) < R.tiny) R.tiny = fabs(S.xy[i]);
-        st_late = wr__refine(&S, &R, diag);
-        wr_free((void *)R.seg);
-        R.seg = NULL;
+    return WR_OK;
+}
+
+/* Refinement set-up (the hull becomes segments when it bounds the domain) and run. */
+static wr_status wr__cdt_refine(wr__tctx *X, wr_diag *diag) {
+    wr__cdt *S = &X->S;
+    wr__ref *R = &X->R;
+    const wr_cdt_input *in = X->in;
+    int32_t t, i, n_ghost = 0, n_hull = 0, *sg, m = X->m;
+    wr_status st;
+    if (!wr__ensure_cm(S)) return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
+    for (t = 0; t < S->nt; ++t) n_ghost += WR__GHOSTLY(S, t);
+    sg = (int32_t *)wr_alloc_array(2 * ((size_t)m + (size_t)n_ghost), sizeof(int32_t));
+    if (!sg) return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
+    for (i = 0; i < 2 * m; ++i) sg[i] = X->in2int[in->segments[i]];
+    /* When the hull bounds the domain, its edges not already on a segment become segments for
+     * refinement (Ruppert treats the boundary of the domain as segments): they are split when
+     * encroached, never flipped, concentric shells apply at hull vertices, and the small-angle
+     * rule covers two hull edges (a needle-thin input triangle) or a hull edge and a segment
+     * meeting at a small angle; each hull edge k is pseudo-segment m + k of R->seg. */
+    if (!X->carved)
+        for (t = 0; t < S->nt; ++t)
+            if (WR__GHOSTLY(S, t)) {
+                const int32_t *v = S->tv + 3 * t;
+                int g = v[0] < 0 ? 0 : v[1] < 0 ? 1 : 2;
+                if (S->cm[3 * t + g] != -1) continue;
+                S->cm[3 * t + g] = S->cm[S->tn[3 * t + g]] = WR__HULL_MARK(n_hull);
+                sg[2 * (m + n_hull)] = v[wr__n1[g]];
+                sg[2 * (m + n_hull) + 1] = v[wr__n2[g]];
+                ++n_hull;
+            }
+    S->fixed_boundary = 1;
+    R->seg = sg;
+    R->n_seg_in = m;
+    if (X->d.quality) {
+        double th = X->d.min_angle_deg * (3.14159265358979323846 / 180.0), s = sin(th), c2 = cos(2.0 * th);
+        R->sin2 = s * s;
+        /* Üngör's off-center at 0.95 of the distance (|pq|/2)·cot(θ/2) where the apex angle is θ */
+        if (X->d.off_center >= 0) R->off = 0.475 / tan(0.5 * th);
+        R->lens_c2 = X->d.conforming ? 0.0 : c2 * c2;
+    } else {
+        /* no angle bound: the lens of θ = 0 is the segment itself; Steiner points beyond a segment
+         * still split it (see wr__fix_bad) */
+        R->lens_c2 = X->d.conforming ? 0.0 : 1.0;
+    }
+    R->nobisect = X->d.no_segment_steiner;
+    R->max_area = X->d.max_area;
+    R->region_area = X->tag_area;
+    R->unsuitable = X->d.unsuitable;
+    R->user = X->d.user;
+    R->tiny = 1e-50;
+    for (i = 0; i < 2 * X->nid; ++i)
+        if (S->xy[i] != 0.0 && fabs(S->xy[i]) < R->tiny) R->tiny = fabs(S->xy[i]);
+    st = wr__refine(S, R, diag);
+    wr_free(sg);
+    R->seg = NULL;
+    return st;
+}
+
+WRDEF wr_status wr_cdt_triangulate(const wr_cdt_input *in, const wr_cdt_desc *desc_in, wr_cdt_result *out,
+                                   wr_diag *diag) {
+    wr__tctx X;
+    wr_status st, st_late = WR_OK;
+    double t_start = wr_time_seconds();
+    int64_t budget;
+    int32_t i;
+    memset(&X, 0, sizeof X);
+    if (!out) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "out is NULL");
+    memset(out, 0, sizeof *out);
+    if (!in) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "input is NULL");
+    wr__cdt_defaults(desc_in, &X.d);
+    if ((st = wr__cdt_validate(in, &X.d, diag)) != WR_OK) return st;
+    X.in = in;
+    X.n = in->n_points;
+    X.m = in->n_segments;
+    X.refine = X.d.quality || X.d.max_area > 0.0 || X.d.conforming || X.d.unsuitable ||
+               (in->n_triangles > 0 && in->triangle_area);
+    for (i = 0; i < in->n_regions; ++i) X.refine |= in->regions[4 * i + 3] > 0.0;
+    if (in->n_triangles > 0 && wr__prev_boundary(&X) < 0) {
+        st = wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
+        goto done;
+    }
+    budget = X.d.max_vertices > 0 ? (int64_t)X.d.max_vertices
+             : X.refine           ? 16 * ((int64_t)X.n + X.m) + 65536
+                                  : (int64_t)INT32_MAX / 4;
+    if (budget > INT32_MAX / 4) budget = INT32_MAX / 4;
+    X.S.max_vertices = budget < X.n ? X.n : (int32_t)budget;
+    X.S.n_input = X.n;
+    X.S.walk_rng = 12345u;
+    X.S.na = in->n_attributes;
+    wr_rng_seed(&X.rng, X.d.seed);
+    if ((st = wr__cdt_delaunay(&X, diag)) != WR_OK) goto done;
+    for (i = 0; i < X.n; ++i) {
+        X.in2int[i] = X.dupof[X.pos[X.rep[i]]];
+        out->n_duplicates += X.rep[i] != i || X.in2int[i] != X.pos[i];
+    }
+    if (X.m > 0 && (st = wr__cdt_constrain(&X, diag)) != WR_OK) goto done;
+    if ((st = wr__cdt_carve(&X, diag)) != WR_OK) goto done;
+    if ((X.refine || in->n_regions > 0 || in->n_triangles > 0) && !wr__ensure_cm(&X.S)) {
+        st = wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
+        goto done;
+    }
+    if ((st = wr__cdt_tags(&X, diag)) != WR_OK) goto done;
+    if (X.refine) {
+        st_late = wr__cdt_refine(&X, diag);
         if (st_late != WR_OK && st_late != WR_ERR_BUDGET) {
             st = st_late;
             goto done;
         }
     }
-    st = wr__cdt_output(&S, rep, pos, dupof, in2int, nid, in, out, diag);
+    st = wr__cdt_output(&X.S, X.rep, X.pos, X.dupof, X.in2int, X.nid, X.in, out, diag);
     if (st != WR_OK) goto done;
-    out->exterior_carved = carved;
-    out->holes_carved = holes_carved;
-    out->n_steiner = C.n_steiner + R.n_steiner;
+    out->exterior_carved = X.carved;
+    out->holes_carved = X.holes_carved;
+    out->n_steiner = X.C.n_steiner + X.R.n_steiner;
     st = st_late;
-    goto done;
-nomem:
-    st = wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory (%d points)", n);
 done:
     if (st != WR_OK && st != WR_ERR_BUDGET) wr_cdt_free(out);
-    if (out) out->seconds = wr_time_seconds() - t_start;
-    wr__cdt_release(&S);
-    wr_free(C.pieces.a);
-    wr_free(C.cross.a);
-    wr_free(C.fresh.a);
-    wr_free(R.segq.a);
-    wr_free(R.badq.a);
-    wr_free(R.cav.a);
-    wr_free((void *)R.seg);
-    wr_free(rep);
-    wr_free(ids);
-    wr_free(order);
-    wr_free(in2int);
+    out->seconds = wr_time_seconds() - t_start;
+    wr__cdt_release(&X.S);
+    wr_free(X.C.pieces.a);
+    wr_free(X.C.cross.a);
+    wr_free(X.C.fresh.a);
+    wr_free(X.R.segq.a);
+    wr_free(X.R.badq.h);
+    wr_free(X.R.cav.a);
+    wr_free(X.rep);
+    wr_free(X.ids);
+    wr_free(X.order);
+    wr_free(X.in2int);
+    wr_free(X.allseg);
+    wr_free(X.prev_bnd);
+    wr_free(X.tag_area);
     return st;
 }
 
@@ -2616,308 +3046,6 @@ done:
     wr_free(stamp);
     wr_free(dfs);
     wr_free(sstart);
-    return st;
-}
-
-/* ---- Triangle .node / .poly reader ---- */
-#define WR__PL_MAXTOK 64 /* tokens looked at per line: index, x, y, up to 60 attributes, marker */
-typedef struct wr__pl {
-    const char *p;    /* next unread character */
-    const char *name; /* for messages */
-    int line;         /* current line number (1-based) */
-    int ntok;
-    const char *tok[WR__PL_MAXTOK];
-    int tlen[WR__PL_MAXTOK];
-} wr__pl;
-
-/* Advance to the next line holding tokens ('#' starts a comment). 0 at end of text. */
-static int wr__pl_next(wr__pl *L) {
-    while (*L->p) {
-        const char *s = L->p;
-        int in_comment = 0;
-        L->line++;
-        L->ntok = 0;
-        while (*s && *s != '\n' && *s != '\r') {
-            if (*s == '#') in_comment = 1;
-            if (!in_comment && !(*s == ' ' || *s == '\t' || *s == ',')) {
-                const char *b = s;
-                while (*s && *s != '\n' && *s != '\r' && *s != ' ' && *s != '\t' && *s != ',' && *s != '#') ++s;
-                if (L->ntok < WR__PL_MAXTOK) {
-                    L->tok[L->ntok] = b;
-                    L->tlen[L->ntok] = (int)(s - b);
-                }
-                L->ntok++;
-                continue;
-            }
-            ++s;
-        }
-        if (*s == '\r' && s[1] == '\n') ++s;
-        if (*s) ++s;
-        L->p = s;
-        if (L->ntok > 0) return 1;
-    }
-    return 0;
-}
-
-static int wr__pl_num(const wr__pl *L, int i, double *x) {
-    char buf[128], *end;
-    if (i >= L->ntok || i >= WR__PL_MAXTOK || L->tlen[i] >= (int)sizeof buf) return 0;
-    memcpy(buf, L->tok[i], (size_t)L->tlen[i]);
-    buf[L->tlen[i]] = 0;
-    *x = strtod(buf, &end);
-    return end != buf && *end == 0 && isfinite(*x);
-}
-static int wr__pl_int(const wr__pl *L, int i, int32_t *v) {
-    double x;
-    if (!wr__pl_num(L, i, &x) || x != floor(x) || x < -2147483647.0 || x > 2147483647.0) return 0;
-    *v = (int32_t)x;
-    return 1;
-}
-
-/* Each vertex, segment or hole takes a line of its own, so a section declaring more entries than
- * there are lines left cannot be complete: checked before allocating, so a header that declares
- * 2e8 vertices in a 100-byte file fails at once instead of reserving gigabytes (fuzzer finding
- * tests/regressions/poly_huge_vertex_count.fuzz_poly). Counts '\n' and '\r' (an upper bound on the
- * lines left), stopping as soon as `need` is reached. */
-static int wr__pl_lines_left(const wr__pl *L, int32_t need) {
-    const char *s = L->p;
-    int32_t n;
-    if (need <= 0) return 1;
-    n = *s ? 1 : 0;
-    for (; *s && n < need; ++s)
-        if (*s == '\n' || *s == '\r') ++n;
-    return n >= need;
-}
-
-/* node section (header already on the current line) */
-static wr_status wr__pl_nodes(wr__pl *L, wr_cdt_poly *out, wr_diag *diag) {
-    int32_t n, dim, nattr = 0, nmark = 0, i;
-    if (!wr__pl_int(L, 0, &n) || n < 0)
-        return wr_fail(diag, WR_ERR_PARSE, -1, "%s:%d: bad vertex count", L->name, L->line);
-    if (L->ntok > 1 && (!wr__pl_int(L, 1, &dim) || dim != 2))
-        return wr_fail(diag, WR_ERR_PARSE, -1, "%s:%d: dimension must be 2", L->name, L->line);
-    if (L->ntok > 2 && (!wr__pl_int(L, 2, &nattr) || nattr < 0 || nattr > WR__PL_MAXTOK - 4))
-        return wr_fail(diag, WR_ERR_PARSE, -1, "%s:%d: bad attribute count (0..%d)", L->name, L->line,
-                       WR__PL_MAXTOK - 4);
-    if (L->ntok > 3 && (!wr__pl_int(L, 3, &nmark) || nmark < 0 || nmark > 1))
-        return wr_fail(diag, WR_ERR_PARSE, -1, "%s:%d: boundary-marker count must be 0 or 1", L->name, L->line);
-    if (n > INT32_MAX / 8) return wr_fail(diag, WR_ERR_PARSE, -1, "%s:%d: too many vertices", L->name, L->line);
-    if (!wr__pl_lines_left(L, n))
-        return wr_fail(diag, WR_ERR_PARSE, -1, "%s:%d: declares %d vertices but fewer lines follow", L->name, L->line,
-                       n);
-    out->points = (double *)wr_alloc_array((size_t)n * 2, sizeof(double));
-    out->point_markers = (int32_t *)wr_calloc_array((size_t)n, sizeof(int32_t));
-    if (!out->points || !out->point_markers) return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
-    out->has_point_markers = nmark;
-    for (i = 0; i < n; ++i) {
-        int32_t idx;
-        if (!wr__pl_next(L))
-            return wr_fail(diag, WR_ERR_PARSE, -1, "%s:%d: file ends after %d of %d vertices", L->name, L->line, i, n);
-        if (L->ntok < 3 + nattr + nmark || !wr__pl_int(L, 0, &idx) || !wr__pl_num(L, 1, &out->points[2 * i]) ||
-            !wr__pl_num(L, 2, &out->points[2 * i + 1]))
-            return wr_fail(diag, WR_ERR_PARSE, -1, "%s:%d: expected '<index> <x> <y>%s%s' with finite numbers",
-                           L->name, L->line, nattr ? " <attributes>" : "", nmark ? " <marker>" : "");
-        if (i == 0) out->first_index = idx == 0 ? 0 : 1; /* Triangle's rule: numbering follows vertex 1 */
-        if (idx != out->first_index + i)
-            return wr_fail(diag, WR_ERR_PARSE, -1, "%s:%d: vertex number %d, expected %d", L->name, L->line, idx,
-                           out->first_index + i);
-        if (nmark && !wr__pl_int(L, 3 + nattr, &out->point_markers[i]))
-            return wr_fail(diag, WR_ERR_PARSE, -1, "%s:%d: bad boundary marker", L->name, L->line);
-        out->n_points = i + 1;
-    }
-    return WR_OK;
-}
-
-WRDEF void wr_cdt_poly_free(wr_cdt_poly *p) {
-    if (!p) return;
-    wr_free(p->points);
-    wr_free(p->point_markers);
-    wr_free(p->segments);
-    wr_free(p->segment_markers);
-    wr_free(p->holes);
-    memset(p, 0, sizeof *p);
-}
-
-WRDEF wr_status wr_cdt_poly_parse(const char *poly_text, const char *node_text, const char *name, wr_cdt_poly *out,
-                                  wr_diag *diag) {
-    wr__pl L;
-    wr_status st;
-    int32_t n_nodes, m, nmark = 0, i, nh;
-    char nodename[WR_PATH_MAX];
-    if (!out) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "out is NULL");
-    memset(out, 0, sizeof *out);
-    if (!name) name = "<input>";
-    {
-        size_t ln = strlen(name);
-        if (ln > 5 && strcmp(name + ln - 5, ".poly") == 0 && ln < sizeof nodename) {
-            memcpy(nodename, name, ln - 5);
-            memcpy(nodename + ln - 5, ".node", 6);
-        } else {
-            snprintf(nodename, sizeof nodename, "%s", name);
-        }
-    }
-    if (!poly_text && !node_text) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "no text to parse");
-    memset(&L, 0, sizeof L);
-    if (!poly_text) { /* a lone .node file */
-        L.p = node_text;
-        L.name = name;
-        if (!wr__pl_next(&L)) return wr_fail(diag, WR_ERR_PARSE, -1, "%s:%d: empty file", name, L.line);
-        st = wr__pl_nodes(&L, out, diag);
-        if (st != WR_OK) wr_cdt_poly_free(out);
-        return st;
-    }
-    L.p = poly_text;
-    L.name = name;
-    if (!wr__pl_next(&L)) return wr_fail(diag, WR_ERR_PARSE, -1, "%s:%d: empty file", name, L.line);
-    if (!wr__pl_int(&L, 0, &n_nodes) || n_nodes < 0)
-        return wr_fail(diag, WR_ERR_PARSE, -1, "%s:%d: bad vertex count", name, L.line);
-    if (n_nodes > 0) {
-        st = wr__pl_nodes(&L, out, diag);
-        if (st != WR_OK) goto fail;
-    } else { /* "0 2 0 1": the vertices are in the .node file */
-        wr__pl N;
-        if (!node_text) {
-            st = wr_fail(diag, WR_ERR_PARSE, -1, "%s:%d: the node section is empty and no .node file was read", name,
-                         L.line);
-            goto fail;
-        }
-        memset(&N, 0, sizeof N);
-        N.p = node_text;
-        N.name = nodename;
-        if (!wr__pl_next(&N)) {
-            st = wr_fail(diag, WR_ERR_PARSE, -1, "%s:%d: empty file", nodename, N.line);
-            goto fail;
-        }
-        st = wr__pl_nodes(&N, out, diag);
-        if (st != WR_OK) goto fail;
-    }
-    if (!wr__pl_next(&L)) {
-        st = wr_fail(diag, WR_ERR_PARSE, -1, "%s:%d: missing segment section", name, L.line);
-        goto fail;
-    }
-    if (!wr__pl_int(&L, 0, &m) || m < 0 || m > INT32_MAX / 8 ||
-        (L.ntok > 1 && (!wr__pl_int(&L, 1, &nmark) || nmark < 0 || nmark > 1))) {
-        st = wr_fail(diag, WR_ERR_PARSE, -1, "%s:%d: expected '<#segments> <#markers 0|1>'", name, L.line);
-        goto fail;
-    }
-    if (!wr__pl_lines_left(&L, m)) {
-        st = wr_fail(diag, WR_ERR_PARSE, -1, "%s:%d: declares %d segments but fewer lines follow", name, L.line, m);
-        goto fail;
-    }
-    out->segments = (int32_t *)wr_alloc_array((size_t)m * 2, sizeof(int32_t));
-    out->segment_markers = (int32_t *)wr_calloc_array((size_t)m, sizeof(int32_t));
-    if (!out->segments || !out->segment_markers) {
-        st = wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
-        goto fail;
-    }
-    out->has_segment_markers = nmark;
-    for (i = 0; i < m; ++i) {
-        int32_t idx, a, b;
-        if (!wr__pl_next(&L)) {
-            st = wr_fail(diag, WR_ERR_PARSE, -1, "%s:%d: file ends after %d of %d segments", name, L.line, i, m);
-            goto fail;
-        }
-        if (L.ntok < 3 + nmark || !wr__pl_int(&L, 0, &idx) || !wr__pl_int(&L, 1, &a) || !wr__pl_int(&L, 2, &b) ||
-            (nmark && !wr__pl_int(&L, 3, &out->segment_markers[i]))) {
-            st = wr_fail(diag, WR_ERR_PARSE, -1, "%s:%d: expected '<index> <end> <end>%s' (integers)", name, L.line,
-                         nmark ? " <marker>" : "");
-            goto fail;
-        }
-        a -= out->first_index;
-        b -= out->first_index;
-        if (a < 0 || a >= out->n_points || b < 0 || b >= out->n_points) {
-            st = wr_fail(diag, WR_ERR_PARSE, i, "%s:%d: segment %d references vertex %d, outside [%d, %d]", name, L.line,
-                         idx, (a < 0 || a >= out->n_points ? a : b) + out->first_index, out->first_index,
-                         out->n_points - 1 + out->first_index);
-            goto fail;
-        }
-        out->segments[2 * i] = a;
-        out->segments[2 * i + 1] = b;
-        out->n_segments = i + 1;
-    }
-    if (!wr__pl_next(&L)) return WR_OK; /* Triangle tolerates a missing hole section */
-    if (!wr__pl_int(&L, 0, &nh) || nh < 0 || nh > INT32_MAX / 8) {
-        st = wr_fail(diag, WR_ERR_PARSE, -1, "%s:%d: bad hole count", name, L.line);
-        goto fail;
-    }
-    if (!wr__pl_lines_left(&L, nh)) {
-        st = wr_fail(diag, WR_ERR_PARSE, -1, "%s:%d: declares %d holes but fewer lines follow", name, L.line, nh);
-        goto fail;
-    }
-    out->holes = (double *)wr_alloc_array((size_t)nh * 2, sizeof(double));
-    if (!out->holes) {
-        st = wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
-        goto fail;
-    }
-    for (i = 0; i < nh; ++i) {
-        int32_t idx;
-        if (!wr__pl_next(&L) || L.ntok < 3 || !wr__pl_int(&L, 0, &idx) || !wr__pl_num(&L, 1, &out->holes[2 * i]) ||
-            !wr__pl_num(&L, 2, &out->holes[2 * i + 1])) {
-            st = wr_fail(diag, WR_ERR_PARSE, -1, "%s:%d: expected '<index> <x> <y>' for hole %d of %d", name, L.line,
-                         i + out->first_index, nh);
-            goto fail;
-        }
-        out->n_holes = i + 1;
-    }
-    return WR_OK; /* a regional-attribute section may follow; it is ignored */
-fail:
-    wr_cdt_poly_free(out);
-    return st;
-}
-
-/* core.h's wr_file_read, plus the one check a text format needs: an embedded NUL byte would end
- * the parse early and silently, so it is refused. */
-static char *wr__slurp(const char *path, wr_diag *diag, wr_status *st) {
-    char *buf = NULL;
-    size_t len = 0;
-    *st = wr_file_read(path, &buf, &len, diag);
-    if (*st != WR_OK) return NULL;
-    if (strlen(buf) != len) {
-        wr_free(buf);
-        *st = wr_fail(diag, WR_ERR_PARSE, -1, "%s: contains a NUL byte (not a text file)", path);
-        return NULL;
-    }
-    return buf;
-}
-
-WRDEF wr_status wr_cdt_poly_read(const char *path, wr_cdt_poly *out, wr_diag *diag) {
-    size_t ln;
-    char *poly = NULL, *node = NULL;
-    wr_status st;
-    if (!out) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "out is NULL");
-    memset(out, 0, sizeof *out);
-    if (!path) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "path is NULL");
-    ln = strlen(path);
-    if (ln > 5 && strcmp(path + ln - 5, ".poly") == 0) {
-        wr__pl L;
-        int32_t nn = -1;
-        poly = wr__slurp(path, diag, &st);
-        if (!poly) return st;
-        memset(&L, 0, sizeof L);
-        L.p = poly;
-        L.name = path;
-        if (wr__pl_next(&L) && wr__pl_int(&L, 0, &nn) && nn == 0) {
-            char np[WR_PATH_MAX];
-            if (ln >= sizeof np) {
-                wr_free(poly);
-                return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "path too long");
-            }
-            memcpy(np, path, ln - 5);
-            memcpy(np + ln - 5, ".node", 6);
-            node = wr__slurp(np, diag, &st);
-            if (!node) {
-                wr_free(poly);
-                return st;
-            }
-        }
-        st = wr_cdt_poly_parse(poly, node, path, out, diag);
-    } else {
-        node = wr__slurp(path, diag, &st);
-        if (!node) return st;
-        st = wr_cdt_poly_parse(NULL, node, path, out, diag);
-    }
-    wr_free(poly);
-    wr_free(node);
     return st;
 }
 

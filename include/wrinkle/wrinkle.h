@@ -34,6 +34,7 @@
 #include "shell.h"
 #include "poisson.h"
 #include "triangulate.h"
+#include "polyfile.h"
 #include "statics.h"
 #include "dynamics.h"
 #include "body.h"

@@ -6,7 +6,7 @@
  * sanitizer report; WR_OK gives in-range 0-based segment indices and finite coordinates; failure
  * leaves the output zeroed with a NUL-terminated one-line message. */
 #define WRINKLE_IMPLEMENTATION
-#include "wrinkle/triangulate.h"
+#include "wrinkle/polyfile.h"
 
 #include <math.h>
 #include <stdint.h>
