@@ -852,3 +852,94 @@ Test(triangulate, extreme_scales) {
         wr_cdt_free(&r);
     }
 }
+
+/* ---- refinement size against Shewchuk's Triangle 1.6 ----
+ * Two of the inputs of bench/RESULTS.md ("Quality refinement"): the front bodice outline of
+ * examples/garment_dress_shirred_waist.json (11 corners, mm, edges cut into pieces of at most 20 mm:
+ * 80 vertices) and a unit square (edges in 16 pieces) with five circular holes of 16..32 vertices.
+ * Triangle 1.6 (-pq30 / -pq33, same files) gives 181 / 218 and 427 / 493 vertices; we measured
+ * 180 / 228 and 431 / 495 (ratios 0.99-1.05). The bound: at most 1.05x Triangle's count, the largest
+ * ratio measured, rounded up; plain circumcenters with diametral circles (the previous refinement)
+ * needed 1.13-1.27x on these inputs and fail it. */
+static void bodice_outline(double *p, int32_t *seg, int32_t *n) {
+    static const double c[] = {0, 0, 360, 0, 360, 250, 300, 330, 300, 420, 230, 420, 180, 360, 130, 420, 60, 420, 60, 330, 0, 250};
+    int32_t i, j, k, m = 0;
+    for (i = 0; i < 11; ++i) {
+        const double *a = c + 2 * i, *b = c + 2 * ((i + 1) % 11);
+        k = (int32_t)ceil(hypot(b[0] - a[0], b[1] - a[1]) / 20.0);
+        for (j = 0; j < k; ++j) {
+            p[2 * m] = a[0] + (b[0] - a[0]) * j / k;
+            p[2 * m + 1] = a[1] + (b[1] - a[1]) * j / k;
+            ++m;
+        }
+    }
+    for (i = 0; i < m; ++i) {
+        seg[2 * i] = i;
+        seg[2 * i + 1] = (i + 1) % m;
+    }
+    *n = m;
+}
+static void holes_input(double *p, int32_t *seg, double *holes, int32_t *n) {
+    static const double sq[] = {0, 0, 1, 0, 1, 1, 0, 1}, circ[5][4] = {{0.25, 0.25, 0.1, 24}, {0.75, 0.25, 0.06, 16},
+                                                                       {0.5, 0.55, 0.14, 32}, {0.2, 0.8, 0.08, 20},
+                                                                       {0.8, 0.78, 0.12, 28}};
+    int32_t e, j, m = 0, h, s0;
+    for (e = 0; e < 4; ++e)
+        for (j = 0; j < 16; ++j) {
+            const double *a = sq + 2 * e, *b = sq + 2 * ((e + 1) % 4);
+            double t = j / 16.0;
+            p[2 * m] = a[0] + (b[0] - a[0]) * t;
+            p[2 * m + 1] = a[1] + (b[1] - a[1]) * t;
+            seg[2 * m] = m;
+            seg[2 * m + 1] = (m + 1) % 64;
+            ++m;
+        }
+    for (h = 0; h < 5; ++h) {
+        int32_t k = (int32_t)circ[h][3];
+        s0 = m;
+        for (j = 0; j < k; ++j) {
+            p[2 * m] = circ[h][0] + circ[h][2] * cos(2 * 3.141592653589793 * j / k);
+            p[2 * m + 1] = circ[h][1] + circ[h][2] * sin(2 * 3.141592653589793 * j / k);
+            seg[2 * m] = m;
+            seg[2 * m + 1] = s0 + (j + 1) % k;
+            ++m;
+        }
+        holes[2 * h] = circ[h][0];
+        holes[2 * h + 1] = circ[h][1];
+    }
+    *n = m;
+}
+
+Test(triangulate, refinement_size_vs_triangle) {
+    static double p[2 * 256], holes[10];
+    static int32_t seg[2 * 256];
+    const double angle[2] = {30.0, 33.0};
+    const int32_t tri_bodice[2] = {181, 218}, tri_holes[2] = {427, 493};
+    int32_t n, a, input;
+    for (input = 0; input < 2; ++input)
+        for (a = 0; a < 2; ++a) {
+            wr_cdt_desc d;
+            wr_cdt_result r;
+            wr_diag dg;
+            int32_t ref = input ? tri_holes[a] : tri_bodice[a];
+            memset(&d, 0, sizeof d);
+            d.quality = 1;
+            d.min_angle_deg = angle[a];
+            if (input == 0) {
+                bodice_outline(p, seg, &n);
+                cr_assert_eq(n, 80);
+                cr_assert_eq(tri(p, n, seg, n, NULL, 0, &d, &r, &dg), WR_OK, "%s", dg.message);
+                check_ok(&r, 0, NULL);
+            } else {
+                holes_input(p, seg, holes, &n);
+                cr_assert_eq(n, 184);
+                cr_assert_eq(tri(p, n, seg, n, holes, 5, &d, &r, &dg), WR_OK, "%s", dg.message);
+                check_ok(&r, 5, NULL);
+            }
+            cr_assert_geq(r.min_angle_deg, angle[a], "%s q%g: min angle %g", input ? "holes" : "bodice", angle[a],
+                          r.min_angle_deg);
+            cr_assert_leq(r.n_points, (int32_t)(1.05 * ref), "%s q%g: %d vertices, Triangle %d", input ? "holes" : "bodice",
+                          angle[a], r.n_points, ref);
+            wr_cdt_free(&r);
+        }
+}
