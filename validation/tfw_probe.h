@@ -16,6 +16,7 @@
 #include "wrinkle/wrinkle.h"
 #include "wrinkle/tfw.h"
 #include "vresult.h"
+#include "meshout.h"
 
 #define TP_PI 3.14159265358979323846
 
@@ -280,6 +281,25 @@ static inline void tp_profile_figure(wr_vres *v, const char *stem, const double 
         wr_vres_figure(v, rel, caption);
     else
         wr_vres_note(v, "gnuplot failed; figure not drawn");
+}
+
+/* A rendered picture of a TFW result (render.h through meshout.h: the coarse base with its edges
+ * beside the wrinkled surface coloured by wrinkle height) as <figures>/<stem>.png, added to v. */
+static inline void tp_render_figure(wr_vres *v, const char *stem, const wr_mesh *base, const double *x,
+                                    const wr_wf_material *mat, const wr_tfw_desc *td, const wr_tfw_result *r,
+                                    const char *caption) {
+    char png[700], rel[300];
+    wr_diag d;
+    memset(&d, 0, sizeof d);
+    snprintf(png, sizeof png, "%s/../figures/%s.png", wr_vres_dir(), stem);
+    snprintf(rel, sizeof rel, "figures/%s.png", stem);
+    if (wr_meshout_tfw_png(png, base, x, mat, td, r, &d) == WR_OK)
+        wr_vres_figure(v, rel, caption);
+    else {
+        char msg[sizeof d.message + 32];
+        snprintf(msg, sizeof msg, "rendered picture not drawn: %s", d.message);
+        wr_vres_note(v, msg);
+    }
 }
 
 /* Circulation of the one-form ω around a closed vertex loop (loop[0..n), consecutive vertices joined

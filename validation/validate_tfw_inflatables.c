@@ -50,6 +50,8 @@ typedef struct infl {
     double mesh_pow[NF][2]; /* power at the harmonics nt and nt/2 (±1) over all non-DC power (torus meshes) */
     int32_t nt;         /* segments around of the annulus panel (0 = not an annulus) */
     double sig[NSAMP]; /* the f = 0.25 ring, for the figure */
+    const char *render;  /* figures/<render>.png: the rendered base and wrinkled surface (NULL = none) */
+    int rendered;
 } infl;
 
 /* Share of the non-DC power of a closed signal in the harmonics k0−1..k0+1 (direct DFT; a mesh with
@@ -228,6 +230,13 @@ static void run(infl *c, const wr_mesh *panel, double rho_split_rel) {
         free(sig);
         free(fn);
     }
+    if (c->render && r.wrinkled.nv > 0) {
+        char png[700];
+        wr_diag dr;
+        memset(&dr, 0, sizeof dr);
+        snprintf(png, sizeof png, "%s/../figures/%s.png", wr_vres_dir(), c->render);
+        c->rendered = wr_meshout_tfw_png(png, &bal, x, &mat, &td, &r, &dr) == WR_OK;
+    }
     wr_mesh_free(&sm);
     wr_tfw_result_free(&r);
     wr_shell_free(&sh);
@@ -253,6 +262,9 @@ int main(void) {
     cs[0].name = "torus";
     cs[1].name = "Mylar balloon";
     cs[2].name = "teabag";
+    cs[0].render = "tfw_inflatables_torus_render";
+    cs[1].render = "tfw_inflatables_balloon_render";
+    cs[2].render = "tfw_inflatables_teabag_render";
     cs[3].name = "torus, 11 rings x 64 (mesh-dependence check)";
     for (i = 0; i < 2; ++i) {
         cs[i].young = 10e6;
@@ -269,6 +281,7 @@ int main(void) {
     cs[2].pressure = 10.0;
     cs[3] = cs[0];
     cs[3].name = "torus, 11 rings x 64 (mesh-dependence check)";
+    cs[3].render = NULL;
     cs[0].nt = 80;
     cs[3].nt = 64;
     for (i = 0; i < 4; ++i) run(&cs[i], &pan[i], i == 0 || i == 3 ? 1.0 : 0.0);
@@ -376,6 +389,14 @@ int main(void) {
             }
         }
     }
+    for (i = 0; i < 3; ++i)
+        if (cs[i].rendered) {
+            char rel[300];
+            snprintf(rel, sizeof rel, "figures/%s.png", cs[i].render);
+            snprintf(buf, sizeof buf, "rendered: the %s's TFT base (%d vertices) beside its TFW wrinkled surface, coloured by wrinkle height",
+                     cs[i].name, (int)cs[i].nv);
+            wr_vres_figure(v, rel, buf);
+        }
     for (i = 0; i < 4; ++i) wr_mesh_free(&pan[i]);
     return wr_vres_finish(v) < 0 ? 1 : 0;
 }

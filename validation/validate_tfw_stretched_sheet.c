@@ -297,6 +297,7 @@ int main(void) {
         snprintf(buf, sizeof buf, "TFT base solve ended %s (best iterate used).", wr_status_string(s_base));
         wr_vres_note(v, buf);
     }
+    tp_render_figure(v, "tfw_stretched_sheet_render", &m, x, &mat, &td, &r, "rendered: the 522-vertex TFT base beside the TFW wrinkled surface (Loop level 3, a = 0 on the clamps), coloured by wrinkle height");
     /* figure: probe profile */
     if (!s_sp)
         tp_profile_figure(v, "tfw_stretched_sheet", pts + 1, 2, zv, NPROBE, "y across the width [mm]", "z of the wrinkled surface [mm]",

@@ -648,7 +648,11 @@ static wr_status tfw_picture(const char *path, const wr_mesh *base, const double
     ph = (int32_t)(pw * fmin(1.1, fmax(0.3, aspect * 1.12)));
     memset(pn, 0, sizeof pn);
     snprintf(t0, sizeof t0, "coarse base: %d vertices (TFT)", (int)base->nv);
-    snprintf(t1, sizeof t1, "TFW wrinkles: %d vertices, max amplitude %.2f mm", (int)r->wrinkled.nv, 1e3 * amax);
+    /* a 700 px cell holds ~38 title characters: the short form side by side, the long one stacked */
+    if (columns == 2)
+        snprintf(t1, sizeof t1, "TFW: %d vertices, max a %.2f mm", (int)r->wrinkled.nv, 1e3 * amax);
+    else
+        snprintf(t1, sizeof t1, "TFW wrinkles: %d vertices, max amplitude %.2f mm", (int)r->wrinkled.nv, 1e3 * amax);
     pn[0].pos = base_pos;
     pn[0].nv = base->nv;
     pn[0].faces = base->faces;
@@ -665,6 +669,19 @@ static wr_status tfw_picture(const char *path, const wr_mesh *base, const double
     pn[1].colorbar_label = "wrinkle height mm";
     st = wr_meshout_png(path, pn, 2, columns, pw, ph, &vd, diag);
     free(hmm);
+    return st;
+}
+
+wr_status wr_meshout_tfw_png(const char *path, const wr_mesh *base, const double *base_pos, const wr_wf_material *mat,
+                             const wr_tfw_desc *td, const wr_tfw_result *r, wr_diag *diag) {
+    double *height;
+    wr_status st;
+    if (r->wrinkled.nv <= 0) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "no wrinkled surface to draw");
+    height = (double *)malloc(sizeof(double) * (size_t)r->wrinkled.nv);
+    if (!height) return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
+    st = tfw_height(base, base_pos, mat, td, r, height, diag);
+    if (st == WR_OK) st = tfw_picture(path, base, base_pos, r, height, diag);
+    free(height);
     return st;
 }
 

@@ -41,6 +41,8 @@
  *       when png is nonzero, DIR/wrinkles.png: the coarse base with its edges beside the wrinkled
  *       surface coloured by height. Nothing is written when result->wrinkled is empty except the
  *       base files. Each file atomic.
+ *   wr_meshout_tfw_png(path, base_mesh, base_pos, material, tfw_desc, tfw_result, diag)
+ *       that picture alone, at any path (the validation report's renders).
  */
 #ifndef WRINKLE_DRIVERS_MESHOUT_H
 #define WRINKLE_DRIVERS_MESHOUT_H
@@ -68,6 +70,8 @@ wr_status wr_meshout_write_viewer(const wr_mesh *m, const double *pos, const wr_
                                   wr_diag *diag);
 wr_status wr_meshout_tfw(const char *dir, const wr_mesh *base, const double *base_pos, const wr_wf_material *mat,
                          const wr_tfw_desc *td, const wr_tfw_result *r, int png, wr_diag *diag);
+wr_status wr_meshout_tfw_png(const char *path, const wr_mesh *base, const double *base_pos, const wr_wf_material *mat,
+                             const wr_tfw_desc *td, const wr_tfw_result *r, wr_diag *diag);
 double wr_meshout_max_strain(const wr_mesh *m, const double *pos);
 wr_status wr_meshout_png(const char *path, const wr_render_panel *panels, int32_t n, int32_t columns, int32_t panel_w,
                          int32_t panel_h, const wr_view_desc *view, wr_diag *diag);
