@@ -37,8 +37,11 @@ static void usage(FILE *f) {
             "  --max-vertices N        vertex budget (default: the file's, else 20000000)\n"
             "  --sew                   merge seam vertex pairs (corner rest coordinates in the OBJ)\n"
             "  --no-png                do not draw sizing.png\n"
-            "  -q, --quiet             no summary line on stdout\n"
+            "  -q, --quiet             no summary line on stdout, no progress on stderr\n"
             "  -h, --help              this text\n"
+            "\n"
+            "Progress (stderr, unless -q): the sizing stage, then one report per panel meshed; on a\n"
+            "terminal one line redrawn in place, redirected one plain line each.\n"
             "\n"
             "Warnings (stderr, the mesh is still written): a panel smaller than one edge (coordinates in\n"
             "metres in a millimetre file?), a base resolution outside the 2.5-50 mm band Eq. 4 was\n"
@@ -75,6 +78,24 @@ static void plausibility(const wr_pattern_file *pf, const wr_mesher_result *res)
             }
         }
     }
+}
+
+/* desc.progress: after the sizing map, after each panel, at the end (mesher.h ON PROGRESS). */
+static void progress(void *user, const wr_mesher_progress *p) {
+    char name[64];
+    size_t k;
+    (void)user;
+    snprintf(name, sizeof name, "%s", p->panel_name ? p->panel_name : "");
+    for (k = 0; name[k]; ++k) /* user text: keep the progress line one line */
+        if ((unsigned char)name[k] < 32) name[k] = ' ';
+    if (!strcmp(p->stage, "sizing"))
+        wr_cli_progress("  sizing map: %d panel%s, %.2f s", (int)p->n_panels, p->n_panels == 1 ? "" : "s", p->seconds);
+    else if (!strcmp(p->stage, "panel"))
+        wr_cli_progress("  panel %d/%d%s%s%s meshed: %d vertices so far, %.2f s", (int)p->panel + 1, (int)p->n_panels,
+                        name[0] ? " '" : "", name, name[0] ? "'" : "", (int)p->n_vertices,
+                        p->seconds);
+    else
+        wr_cli_progress_end();
 }
 
 static void free_pattern(void *p) { wr_pattern_file_free((wr_pattern_file *)p); }
@@ -125,7 +146,9 @@ int main(int argc, char **argv) {
     if (uniform > 0.0) pf.desc.uniform_resolution = uniform * 1e-3;
     if (maxv > 0) pf.desc.max_vertices = (int32_t)maxv;
     if (sew) pf.desc.sew = 1;
+    if (!quiet) pf.desc.progress = progress;
     st = wr_mesher_run(&pf.pattern, &pf.desc, &res, &d);
+    wr_cli_progress_end(); /* a failure leaves the terminal line open */
     if (st != WR_OK) {
         /* the library names its option (max_vertices); the user's lever here is the CLI flag */
         wr_cli_error("%s: %s%s", in ? in : "built-in example", d.message,

@@ -168,6 +168,21 @@ if [ -x "$B/wrinkle-mesh" ]; then
         "$B/wrinkle-mesh" -o "$tmp/mesh" $nopng -q --seed 1
     keep_on_failure "wrinkle-mesh malformed pattern" "$tmp/mesh/mesh.obj" "$tmp/mesh/summary.json" -- \
         "$B/wrinkle-mesh" "$tmp/broken.json" -o "$tmp/mesh"
+    # issue 17, bounded time: a 10 km panel at its fabric's 6 mm and a 1 um size on a 1 m panel end
+    # within 5 s with a budget error naming the CLI option
+    sq='"fabrics":{"g":{"B":2.6e-6,"E":2e6}},"panels":[{"name":"p","fabric":"g","outer":[[0,0],[S,0],[S,S],[0,S]]}]}'
+    echo "{\"units\":\"mm\",$sq" | sed 's/S/1e7/g' > "$tmp/km10.json"
+    echo "{\"units\":\"mm\",$sq" | sed 's/S/1000/g' > "$tmp/m1.json"
+    for c in "km10.json" "m1.json --uniform 0.001"; do
+        set -- $c
+        expect_fail "wrinkle-mesh budget ($c)" timeout 5 "$B/wrinkle-mesh" "$tmp/$1" -o "$tmp/mbud" $2 $3
+        if grep -q -- "--max-vertices" "$tmp/err"; then ok; else bad "wrinkle-mesh budget ($c): no --max-vertices in the error"; fi
+    done
+    # per-panel progress on stderr (plain lines when redirected), none with -q
+    (cd "$tmp/cwd" && "$B/wrinkle-mesh" -o "$tmp/mprog" --no-png) >/dev/null 2>"$tmp/err" </dev/null
+    if grep -q "panel 1/1 'square' meshed" "$tmp/err"; then ok; else bad "wrinkle-mesh: no per-panel progress"; cat "$tmp/err"; fi
+    (cd "$tmp/cwd" && "$B/wrinkle-mesh" -o "$tmp/mprog" --no-png -q) >/dev/null 2>"$tmp/err" </dev/null
+    if [ -s "$tmp/err" ]; then bad "wrinkle-mesh -q: stderr not empty"; cat "$tmp/err"; else ok; fi
 fi
 if [ -x "$B/wrinkle-statics" ]; then
     expect_fail "wrinkle-statics missing scene" "$B/wrinkle-statics" "$tmp/none.json" -o "$tmp/s0"

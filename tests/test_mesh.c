@@ -252,6 +252,49 @@ static void expect_topology_error(int32_t nv, const double *pos, const double *r
     expect_create_error(WR_ERR_TOPOLOGY, nv, pos, rest, nf, faces, item, needle);
 }
 
+/* wr_mesh_create orders half-edges by their low vertex, then by the high vertex within each low
+ * vertex (insertion sort up to 32, a qsort beyond): a fan of 100 faces puts 200 half-edges under
+ * vertex 0, so the large-bucket path must give the same conventions as the small one. Everything is
+ * checked against the face list directly (ON CONVENTIONS). */
+Test(mesh, topology_of_a_large_fan_matches_the_conventions) {
+    enum { N = 100 };
+    double rest[2 * (N + 1)];
+    int32_t faces[3 * N], i, e, f, k;
+    wr_mesh m;
+    wr_diag d;
+    rest[0] = rest[1] = 0.0;
+    for (i = 0; i < N; ++i) {
+        rest[2 * (i + 1)] = cos(6.283185307179586 * i / N);
+        rest[2 * (i + 1) + 1] = sin(6.283185307179586 * i / N);
+        /* faces listed from the last, corners rotated, so neither order is the sorted one */
+        faces[3 * (N - 1 - i)] = 1 + i;
+        faces[3 * (N - 1 - i) + 1] = 1 + (i + 1) % N;
+        faces[3 * (N - 1 - i) + 2] = 0;
+    }
+    cr_assert_eq(wr_mesh_create(&m, N + 1, NULL, rest, N, faces, &d), WR_OK, "%s", d.message);
+    cr_expect_eq(m.ne, 2 * N);
+    cr_expect_eq(m.n_loops, 1);
+    cr_expect_eq(m.loop_start[1], N);
+    for (e = 0; e < m.ne; ++e) {
+        cr_expect_lt(m.edges[2 * e], m.edges[2 * e + 1], "edge %d", e);
+        if (e > 0)
+            cr_expect(m.edges[2 * e - 2] < m.edges[2 * e] ||
+                          (m.edges[2 * e - 2] == m.edges[2 * e] && m.edges[2 * e - 1] < m.edges[2 * e + 1]),
+                      "edges %d and %d out of lexicographic order", e - 1, e);
+        /* spokes (0, i) are interior, rim edges are boundary */
+        cr_expect_eq(m.edge_faces[2 * e] >= 0 && m.edge_faces[2 * e + 1] >= 0, m.edges[2 * e] == 0, "edge %d", e);
+    }
+    for (f = 0; f < m.nf; ++f)
+        for (k = 0; k < 3; ++k) {
+            int32_t a = m.faces[3 * f + (k + 1) % 3], b = m.faces[3 * f + (k + 2) % 3], ee = m.face_edges[3 * f + k];
+            int plus = a < b;
+            cr_expect(m.edges[2 * ee] == (plus ? a : b) && m.edges[2 * ee + 1] == (plus ? b : a), "face %d edge %d", f, k);
+            cr_expect_eq(m.face_edge_sign[3 * f + k], plus ? 1 : -1, "face %d edge %d", f, k);
+            cr_expect_eq(m.edge_faces[2 * ee + (plus ? 0 : 1)], f, "face %d edge %d", f, k);
+        }
+    wr_mesh_free(&m);
+}
+
 Test(mesh, topology_errors) {
     static const int32_t out_of_range[6] = {0, 1, 2, 1, 4, 2};
     static const int32_t negative[6] = {0, 1, 2, 1, 3, -1};

@@ -41,6 +41,93 @@ static void expect_every_constraint_present(const wr_mesher_result *r) {
     cr_expect_eq(missing, 0, "%d of %d constraint segments are not mesh edges", missing, r->n_constraint_segments);
 }
 
+/* The mesher's output for an isotropic single-panel pattern (T = I: mesh coordinates are the CDT's)
+ * as a wr_cdt_result, so wr_cdt_check verifies it exactly: every triangle CCW, every unconstrained
+ * interior edge locally Delaunay, every constraint segment an edge, Euler. */
+static wr_status check_as_cdt(const wr_mesher_result *r, int32_t holes, wr_diag *d) {
+    const wr_mesh *m = &r->mesh;
+    wr_cdt_result c;
+    int32_t *seg_of_edge = (int32_t *)calloc((size_t)m->ne, sizeof(int32_t)), f, k, s, e;
+    wr_status st;
+    memset(&c, 0, sizeof c);
+    c.n_points = c.n_input_points = m->nv;
+    c.points = m->rest;
+    c.point_segment = (int32_t *)malloc(sizeof(int32_t) * (size_t)m->nv);
+    c.n_triangles = m->nf;
+    c.triangles = m->faces;
+    c.neighbors = (int32_t *)malloc(sizeof(int32_t) * 3 * (size_t)m->nf);
+    c.edge_segment = (int32_t *)malloc(sizeof(int32_t) * 3 * (size_t)m->nf);
+    c.segment_id = (int32_t *)malloc(sizeof(int32_t) * (size_t)(r->n_constraint_segments + 1));
+    cr_assert(seg_of_edge && c.point_segment && c.neighbors && c.edge_segment && c.segment_id);
+    for (k = 0; k < m->nv; ++k) c.point_segment[k] = -1;
+    for (e = 0; e < m->ne; ++e) seg_of_edge[e] = -1;
+    for (s = 0; s < r->n_constraint_segments; ++s) {
+        int32_t a = r->constraint_segments[2 * s], b = r->constraint_segments[2 * s + 1], j;
+        c.segment_id[s] = s;
+        for (j = m->vf_start[a]; j < m->vf_start[a + 1]; ++j)
+            for (k = 0; k < 3; ++k) {
+                int32_t ee = m->face_edges[3 * m->vf[j] + k];
+                if ((m->edges[2 * ee] == a && m->edges[2 * ee + 1] == b) || (m->edges[2 * ee] == b && m->edges[2 * ee + 1] == a))
+                    seg_of_edge[ee] = s;
+            }
+    }
+    for (f = 0; f < m->nf; ++f)
+        for (k = 0; k < 3; ++k) {
+            e = m->face_edges[3 * f + k];
+            c.neighbors[3 * f + k] = m->edge_faces[2 * e] == f ? m->edge_faces[2 * e + 1] : m->edge_faces[2 * e];
+            c.edge_segment[3 * f + k] = seg_of_edge[e];
+        }
+    c.segments = c.input_segments = r->constraint_segments;
+    c.n_segments = c.n_input_segments = r->n_constraint_segments;
+    c.exterior_carved = 1;
+    c.holes_carved = holes > 0;
+    st = wr_cdt_check(&c, holes, NULL, d);
+    free(seg_of_edge);
+    free(c.point_segment);
+    free(c.neighbors);
+    free(c.edge_segment);
+    free(c.segment_id);
+    return st;
+}
+
+Test(mesher, output_is_a_constrained_delaunay_triangulation) {
+    /* a hole, a shirring line and a fold (line + two parallels): the sampler fills between our own
+     * curves, and the CDT of the result is what the mesher hands back */
+    wr_pattern pat;
+    wr_pattern_panel pn;
+    wr_pattern_curve hole;
+    wr_pattern_shirring sh;
+    wr_pattern_fold fd;
+    wr_mesher_result r;
+    wr_diag d;
+    double hxy[8] = {0.15, 0.15, 0.2, 0.15, 0.2, 0.2, 0.15, 0.2};
+    double line[6] = {0.03, 0.1, 0.125, 0.14, 0.22, 0.1}, fl[4] = {0.05, 0.04, 0.2, 0.06};
+    int k;
+    one_panel(&pat, &pn, sq250, 4);
+    hole.xy = hxy;
+    hole.n = 4;
+    pn.holes = &hole;
+    pn.n_holes = 1;
+    memset(&sh, 0, sizeof sh);
+    sh.xy = line;
+    sh.n = 3;
+    sh.E_sh = 2.0e6;
+    sh.rho = 0.5;
+    memset(&fd, 0, sizeof fd);
+    fd.xy = fl;
+    fd.n = 2;
+    fd.angle_deg = 180.0;
+    pat.shirrings = &sh;
+    pat.n_shirrings = 1;
+    pat.folds = &fd;
+    pat.n_folds = 1;
+    cr_assert_eq(wr_mesher_run(&pat, NULL, &r, &d), WR_OK, "%s", d.message);
+    for (k = 0; k < 4; ++k) cr_assert_eq(r.panels[0].T[k], k == 0 || k == 3 ? 1.0 : 0.0, "isotropic: T = I");
+    cr_expect_eq(check_as_cdt(&r, 1, &d), WR_OK, "%s", d.message);
+    cr_expect_eq(r.report.n_inverted + r.report.n_zero_area, 0);
+    wr_mesher_free(&r);
+}
+
 Test(mesher, constant_sizing_square_edge_length_and_count) {
     wr_pattern pat;
     wr_pattern_panel pn;
@@ -519,7 +606,17 @@ Test(mesher_errors, techniques) {
         two[1].xy = cross2;
         pat.shirrings = two;
         pat.n_shirrings = 2;
-        run_expect(&pat, NULL, WR_ERR_GEOMETRY, "= shirrings[1]");
+        run_expect(&pat, NULL, WR_ERR_GEOMETRY, "polyline 1 = shirrings[1]");
+        {
+            /* and the structured location: panel 0, curves 1 and 2 (no holes: curve 1 + j is line j) */
+            wr_mesher_result r2;
+            wr_diag d2;
+            cr_expect_eq(wr_mesher_run(&pat, NULL, &r2, &d2), WR_ERR_GEOMETRY);
+            cr_expect(strstr(d2.message, "polyline 0 = shirrings[0]") != NULL, "%s", d2.message);
+            cr_expect_eq(d2.part, 0);
+            cr_expect(d2.curve == 1 && d2.other_curve == 2, "curve %d, other_curve %d", (int)d2.curve,
+                      (int)d2.other_curve);
+        }
         pat.shirrings = &sh;
     }
     pat.n_shirrings = 0;

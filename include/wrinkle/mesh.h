@@ -70,8 +70,9 @@
  *   Counts < 1, NULL faces, or pos3 and rest2 both NULL → WR_ERR_INVALID_ARG.
  *   Orientation is checked combinatorially; faces whose rest area is <= 0 are not rejected here
  *   (a quality report counts them). Vertices in no face are allowed (empty vf range).
- *   nf or nv > INT32_MAX/3 → WR_ERR_OVERFLOW. The topology build is O(nv + nf): two counting-sort passes
- *   over the half-edges (measured ~150 ns/face on the 2-core dev box, 2M faces in 0.38 s).
+ *   nf or nv > INT32_MAX/3 → WR_ERR_OVERFLOW. The topology build is O(nv + nf) for bounded vertex
+ *   degree: one counting sort of the half-edges by their low vertex (the faces read in order), a
+ *   small sort per vertex, and the fan and boundary walks over the twins found there.
  *
  * ON UNITS
  *   Metres everywhere (pos, rest, corner_rest). OBJ vt values are taken as metres, unscaled.
@@ -306,71 +307,127 @@ WRDEF void wr_mesh_free(wr_mesh *m) {
 /* Half-edge h (corner h % 3 of face h / 3) runs from WR__HE_A to WR__HE_B, the corners after it. */
 #define WR__HE_A(m, h) ((m)->faces[3 * ((h) / 3) + ((h) % 3 + 1) % 3])
 #define WR__HE_B(m, h) ((m)->faces[3 * ((h) / 3) + ((h) % 3 + 2) % 3])
-#define WR__HE_LO(m, h) (WR__HE_A(m, h) < WR__HE_B(m, h) ? WR__HE_A(m, h) : WR__HE_B(m, h))
-#define WR__HE_HI(m, h) (WR__HE_A(m, h) < WR__HE_B(m, h) ? WR__HE_B(m, h) : WR__HE_A(m, h))
+/* Sort key of a half-edge a → b: 2 × its high vertex, + 1 when it runs high → low. */
+#define WR__HE_KEY(a, b) ((a) < (b) ? 2 * (b) : 2 * (a) + 1)
 
-/* ord ← the 3nf half-edges ordered by (low vertex, high vertex, half-edge): two stable counting
- * sorts, by the high vertex into tmp, then by the low vertex */
-static void wr__mesh_sort_halfedges(const wr_mesh *m, int32_t *cnt, int32_t *tmp, int32_t *ord) {
-    const int32_t nv = m->nv;
-    const size_t nh = (size_t)3 * (size_t)m->nf;
-    size_t i;
-    int32_t v;
-    memset(cnt, 0, sizeof(int32_t) * ((size_t)nv + 1));
-    for (i = 0; i < nh; ++i) cnt[WR__HE_HI(m, (int32_t)i) + 1]++;
-    for (v = 0; v < nv; ++v) cnt[v + 1] += cnt[v];
-    for (i = 0; i < nh; ++i) tmp[cnt[WR__HE_HI(m, (int32_t)i)]++] = (int32_t)i;
-    memset(cnt, 0, sizeof(int32_t) * ((size_t)nv + 1));
-    for (i = 0; i < nh; ++i) cnt[WR__HE_LO(m, tmp[i]) + 1]++;
-    for (v = 0; v < nv; ++v) cnt[v + 1] += cnt[v];
-    for (i = 0; i < nh; ++i) ord[cnt[WR__HE_LO(m, tmp[i])]++] = tmp[i];
+/* Scratch of the topology build. In sorted position i: ord[i] = the half-edge, key[i] = its
+ * WR__HE_KEY; twin[h] = the other half-edge of h's edge, -1 on the boundary; cnt = bucket ends. */
+typedef struct wr__mesh_he {
+    int32_t *cnt, *key, *ord, *twin;
+} wr__mesh_he;
+
+static int wr__mesh_cmp_i64(const void *x, const void *y) {
+    int64_t a = *(const int64_t *)x, b = *(const int64_t *)y;
+    return a < b ? -1 : a > b;
 }
 
-/* groups of equal keys in ord: the edge count, each edge in at most two faces traversing it in
- * opposite directions */
-static wr_status wr__mesh_count_edges(const wr_mesh *m, const int32_t *ord, size_t *ne_out, wr_diag *diag) {
-    const size_t nh = (size_t)3 * (size_t)m->nf;
-    size_t i, ne = 0;
-    for (i = 0; i < nh;) {
-        size_t j = i + 1;
-        int32_t h0 = ord[i], lo = WR__HE_LO(m, h0), hi = WR__HE_HI(m, h0);
-        while (j < nh && WR__HE_LO(m, ord[j]) == lo && WR__HE_HI(m, ord[j]) == hi) ++j;
-        if (j - i > 2)
-            return wr_fail(diag, WR_ERR_TOPOLOGY, ord[i + 2] / 3, "non-manifold edge (%d,%d): shared by faces %d, %d and %d",
-                           lo, hi, ord[i] / 3, ord[i + 1] / 3, ord[i + 2] / 3);
-        if (j - i == 2 && (WR__HE_A(m, ord[i]) == lo) == (WR__HE_A(m, ord[i + 1]) == lo))
-            return wr_fail(diag, WR_ERR_TOPOLOGY, ord[i + 1] / 3,
-                           "inconsistent orientation: faces %d and %d both traverse edge %d->%d", ord[i] / 3,
-                           ord[i + 1] / 3, WR__HE_A(m, ord[i]), WR__HE_B(m, ord[i]));
-        ++ne;
-        i = j;
+/* The n half-edges of one low vertex in (high vertex, half-edge) order: insertion sort (a vertex
+ * is the low end of ~3 edges); qsort of packed (high, h) pairs in aux for a large fan. */
+static void wr__mesh_sort_bucket(const wr_mesh *m, int32_t *key, int32_t *ord, int32_t n, int64_t *aux) {
+    int32_t i, j;
+    if (n > 32) {
+        for (i = 0; i < n; ++i) aux[i] = ((int64_t)(key[i] >> 1) << 32) | (int64_t)ord[i]; /* both >= 0 */
+        qsort(aux, (size_t)n, sizeof *aux, wr__mesh_cmp_i64);
+        for (i = 0; i < n; ++i) {
+            int32_t h = (int32_t)(aux[i] & 0x7fffffff), a = WR__HE_A(m, h), b = WR__HE_B(m, h);
+            ord[i] = h;
+            key[i] = WR__HE_KEY(a, b);
+        }
+        return;
     }
+    for (i = 1; i < n; ++i) {
+        int32_t k = key[i], o = ord[i];
+        for (j = i; j > 0 && ((key[j - 1] >> 1) > (k >> 1) || ((key[j - 1] >> 1) == (k >> 1) && ord[j - 1] > o)); --j) {
+            key[j] = key[j - 1];
+            ord[j] = ord[j - 1];
+        }
+        key[j] = k;
+        ord[j] = o;
+    }
+}
+
+/* ord/key ← the 3nf half-edges ordered by (low vertex, high vertex, half-edge): one counting sort by
+ * the low vertex (the faces read in order, twice), then each low vertex's few half-edges sorted. */
+static int wr__mesh_sort_halfedges(const wr_mesh *m, wr__mesh_he *s) {
+    const int32_t nv = m->nv, n3 = 3 * m->nf, *F = m->faces;
+    int32_t f, v, maxb = 0;
+    int64_t *aux = NULL;
+    memset(s->cnt, 0, sizeof(int32_t) * ((size_t)nv + 1));
+    for (f = 0; f < n3; f += 3) {
+        int32_t a = F[f], b = F[f + 1], c = F[f + 2];
+        s->cnt[(b < c ? b : c) + 1]++; /* half-edge f+0: b → c; f+1: c → a; f+2: a → b */
+        s->cnt[(c < a ? c : a) + 1]++;
+        s->cnt[(a < b ? a : b) + 1]++;
+    }
+    for (v = 0; v < nv; ++v) {
+        if (s->cnt[v + 1] > maxb) maxb = s->cnt[v + 1];
+        s->cnt[v + 1] += s->cnt[v];
+    }
+    for (f = 0; f < n3; f += 3) {
+        int32_t k;
+        for (k = 0; k < 3; ++k) {
+            int32_t a = F[f + (k + 1) % 3], b = F[f + (k + 2) % 3], i = s->cnt[a < b ? a : b]++;
+            s->ord[i] = f + k;
+            s->key[i] = WR__HE_KEY(a, b);
+        }
+    }
+    /* cnt[v] is now the end of v's bucket, i.e. the start of v + 1's */
+    if (maxb > 32 && !(aux = (int64_t *)wr_alloc_array((size_t)maxb, sizeof(int64_t)))) return 0;
+    for (v = 0; v < nv; ++v) {
+        int32_t b0 = v ? s->cnt[v - 1] : 0;
+        if (s->cnt[v] - b0 > 1) wr__mesh_sort_bucket(m, s->key + b0, s->ord + b0, s->cnt[v] - b0, aux);
+    }
+    wr_free(aux);
+    return 1;
+}
+
+/* Runs of equal (low, high) in the sorted half-edges: the edge count, each edge in at most two faces
+ * traversing it in opposite directions. Reads only the sorted arrays. */
+static wr_status wr__mesh_count_edges(const wr_mesh *m, const wr__mesh_he *s, size_t *ne_out, wr_diag *diag) {
+    size_t i = 0, ne = 0;
+    int32_t v;
+    for (v = 0; v < m->nv; ++v)
+        for (; i < (size_t)s->cnt[v];) {
+            size_t j = i + 1;
+            int32_t hi = s->key[i] >> 1;
+            while (j < (size_t)s->cnt[v] && (s->key[j] >> 1) == hi) ++j;
+            if (j - i > 2)
+                return wr_fail(diag, WR_ERR_TOPOLOGY, s->ord[i + 2] / 3,
+                               "non-manifold edge (%d,%d): shared by faces %d, %d and %d", v, hi, s->ord[i] / 3,
+                               s->ord[i + 1] / 3, s->ord[i + 2] / 3);
+            if (j - i == 2 && (s->key[i] & 1) == (s->key[i + 1] & 1))
+                return wr_fail(diag, WR_ERR_TOPOLOGY, s->ord[i + 1] / 3,
+                               "inconsistent orientation: faces %d and %d both traverse edge %d->%d", s->ord[i] / 3,
+                               s->ord[i + 1] / 3, (s->key[i] & 1) ? hi : v, (s->key[i] & 1) ? v : hi);
+            ++ne;
+            i = j;
+        }
     if (ne > (size_t)INT32_MAX / 2) return wr_fail(diag, WR_ERR_OVERFLOW, -1, "mesh has too many edges (%zu)", ne);
     *ne_out = ne;
     return WR_OK;
 }
 
-/* edges (low, high), face_edges, face_edge_sign, edge_faces from the ordered half-edges */
-static void wr__mesh_fill_edges(wr_mesh *m, const int32_t *ord) {
-    const size_t nh = (size_t)3 * (size_t)m->nf;
-    size_t i, ne = 0;
-    for (i = 0; i < nh;) {
-        size_t j = i;
-        int32_t h0 = ord[i], lo = WR__HE_LO(m, h0), hi = WR__HE_HI(m, h0);
-        m->edges[2 * ne] = lo;
-        m->edges[2 * ne + 1] = hi;
-        m->edge_faces[2 * ne] = m->edge_faces[2 * ne + 1] = -1;
-        while (j < nh && WR__HE_LO(m, ord[j]) == lo && WR__HE_HI(m, ord[j]) == hi) {
-            int32_t h = ord[j];
-            int plus = WR__HE_A(m, h) == lo;
-            m->face_edges[h] = (int32_t)ne;
-            m->face_edge_sign[h] = (int8_t)(plus ? 1 : -1);
-            m->edge_faces[2 * ne + (plus ? 0 : 1)] = h / 3;
-            ++j;
+/* edges (low, high), face_edges, face_edge_sign, edge_faces and the twins from the sorted half-edges */
+static void wr__mesh_fill_edges(wr_mesh *m, wr__mesh_he *s) {
+    size_t i = 0;
+    int32_t v, ne = 0;
+    for (v = 0; v < m->nv; ++v)
+        for (; i < (size_t)s->cnt[v]; ++ne) {
+            int32_t hi = s->key[i] >> 1, h0 = s->ord[i], two = i + 1 < (size_t)s->cnt[v] && (s->key[i + 1] >> 1) == hi;
+            size_t j, end = i + (two ? 2 : 1);
+            m->edges[2 * ne] = v;
+            m->edges[2 * ne + 1] = hi;
+            m->edge_faces[2 * ne] = m->edge_faces[2 * ne + 1] = -1;
+            for (j = i; j < end; ++j) {
+                int32_t h = s->ord[j], plus = !(s->key[j] & 1);
+                m->face_edges[h] = ne;
+                m->face_edge_sign[h] = (int8_t)(plus ? 1 : -1);
+                m->edge_faces[2 * ne + (plus ? 0 : 1)] = h / 3;
+            }
+            s->twin[h0] = two ? s->ord[i + 1] : -1;
+            if (two) s->twin[s->ord[i + 1]] = h0;
+            i = end;
         }
-        ++ne;
-        i = j;
-    }
 }
 
 /* vertex → faces CSR (faces ascending per vertex); cnt (nv + 1) is scratch */
@@ -385,30 +442,33 @@ static void wr__mesh_vertex_faces(wr_mesh *m, int32_t *cnt) {
     for (i = 0; i < nh; ++i) m->vf[cnt[m->faces[i]]++] = (int32_t)(i / 3);
 }
 
-/* Manifold vertices: the faces around v must form one fan. Walking across the edge (v, next) of each
- * face is an injective map on v's faces (consistent orientation), so the walk from the first face
- * either returns or stops at the boundary; then walk the other way. */
-static wr_status wr__mesh_check_fans(const wr_mesh *m, wr_diag *diag) {
+/* Manifold vertices: the faces around v must form one fan. Crossing the edge (v, next) of each face
+ * to its twin is an injective map on v's faces (consistent orientation), so the walk from the first
+ * face either returns or stops at the boundary; then walk the other way, across (prev, v). Half-edge
+ * 3f + k runs from corner k+1 to k+2: the one leaving v (corner c) is k = c+2, the one entering it
+ * k = c+1; in the twin face the roles swap, hence the steps (k_t + 1) and (k_t + 2) mod 3. */
+static wr_status wr__mesh_check_fans(const wr_mesh *m, const int32_t *twin, wr_diag *diag) {
     int32_t v;
     for (v = 0; v < m->nv; ++v) {
-        int32_t deg = m->vf_start[v + 1] - m->vf_start[v], f0, f, count = 1;
-        int dir;
+        int32_t deg = m->vf_start[v + 1] - m->vf_start[v], f0, c, h, count = 1, closed = 0;
         if (deg == 0) continue;
         f0 = m->vf[m->vf_start[v]];
-        for (dir = 0; dir < 2; ++dir) {
-            int closed = 0;
-            f = f0;
-            while (count <= deg) {
-                int c = m->faces[3 * f] == v ? 0 : (m->faces[3 * f + 1] == v ? 1 : 2);
-                /* dir 0 crosses (v, next): edge opposite corner c+2; dir 1 crosses (prev, v): opposite c+1 */
-                int32_t e = m->face_edges[3 * f + (dir == 0 ? (c + 2) % 3 : (c + 1) % 3)];
-                int32_t g = m->edge_faces[2 * e] == f ? m->edge_faces[2 * e + 1] : m->edge_faces[2 * e];
-                if (g == f0) closed = 1;
-                if (g < 0 || g == f0) break;
-                f = g;
-                ++count; /* bounded by deg + 1: the map is injective, so no face repeats before f0 */
+        c = m->faces[3 * f0] == v ? 0 : (m->faces[3 * f0 + 1] == v ? 1 : 2);
+        for (h = 3 * f0 + (c + 2) % 3; count <= deg;) { /* across (v, next) */
+            int32_t t = twin[h];
+            if (t < 0) break;
+            if (t / 3 == f0) {
+                closed = 1;
+                break;
             }
-            if (closed) break; /* closed fan: nothing on the other side */
+            ++count;
+            h = t - t % 3 + (t % 3 + 1) % 3;
+        }
+        for (h = 3 * f0 + (c + 1) % 3; !closed && count <= deg;) { /* across (prev, v) */
+            int32_t t = twin[h];
+            if (t < 0 || t / 3 == f0) break;
+            ++count;
+            h = t - t % 3 + (t % 3 + 2) % 3;
         }
         if (count != deg)
             return wr_fail(diag, WR_ERR_TOPOLOGY, v, "non-manifold vertex %d: its %d faces form more than one fan (one fan has %d)",
@@ -419,7 +479,7 @@ static wr_status wr__mesh_check_fans(const wr_mesh *m, wr_diag *diag) {
 
 /* Boundary loops: boundary half-edges a→b in face traversal order; bnext[a] = b is unique at a
  * manifold vertex (one open fan has exactly one outgoing boundary half-edge). */
-static wr_status wr__mesh_boundary_loops(wr_mesh *m, wr_diag *diag) {
+static wr_status wr__mesh_boundary_loops(wr_mesh *m, const int32_t *twin, wr_diag *diag) {
     const int32_t nv = m->nv;
     const size_t nh = (size_t)3 * (size_t)m->nf;
     int32_t nb = 0, l = 0, pos = 0, v, *bnext = (int32_t *)wr_alloc_array((size_t)nv + 1, sizeof(int32_t));
@@ -432,8 +492,7 @@ static wr_status wr__mesh_boundary_loops(wr_mesh *m, wr_diag *diag) {
     }
     for (v = 0; v < nv; ++v) bnext[v] = -1;
     for (i = 0; i < nh; ++i) {
-        int32_t e = m->face_edges[i];
-        if (m->edge_faces[2 * e] >= 0 && m->edge_faces[2 * e + 1] >= 0) continue;
+        if (twin[i] >= 0) continue;
         bnext[WR__HE_A(m, (int32_t)i)] = WR__HE_B(m, (int32_t)i);
         ++nb;
     }
@@ -474,21 +533,24 @@ done:
 }
 
 /* Builds edges, face_edges, face_edge_sign, edge_faces, vf CSR and boundary loops from nv, nf,
- * faces (already range-checked). O(nf + nv): two stable counting-sort passes order the 3nf
- * half-edges by (low vertex, high vertex); equal keys are then adjacent. */
+ * faces (already range-checked). O(nf + nv): one counting sort of the 3nf half-edges by their low
+ * vertex and a small sort per vertex order them by (low vertex, high vertex); equal keys are then
+ * adjacent, and the fan and loop walks follow the twins found there. */
 static wr_status wr__mesh_build_topology(wr_mesh *m, wr_diag *diag) {
     const int32_t nv = m->nv, nf = m->nf;
     const size_t nh = (size_t)3 * (size_t)nf;
-    int32_t *cnt = (int32_t *)wr_alloc_array((size_t)nv + 1, sizeof(int32_t));
-    int32_t *tmp = (int32_t *)wr_alloc_array(nh, sizeof(int32_t)), *ord = (int32_t *)wr_alloc_array(nh, sizeof(int32_t));
+    wr__mesh_he s;
     wr_status st = WR_OK;
     size_t ne = 0;
-    if (!cnt || !tmp || !ord) {
+    s.cnt = (int32_t *)wr_alloc_array((size_t)nv + 1, sizeof(int32_t));
+    s.key = (int32_t *)wr_alloc_array(nh, sizeof(int32_t));
+    s.ord = (int32_t *)wr_alloc_array(nh, sizeof(int32_t));
+    s.twin = (int32_t *)wr_alloc_array(nh, sizeof(int32_t));
+    if (!s.cnt || !s.key || !s.ord || !s.twin || !wr__mesh_sort_halfedges(m, &s)) {
         st = wr_fail(diag, WR_ERR_NOMEM, -1, "mesh topology: out of memory (%d faces)", nf);
         goto done;
     }
-    wr__mesh_sort_halfedges(m, cnt, tmp, ord);
-    if ((st = wr__mesh_count_edges(m, ord, &ne, diag)) != WR_OK) goto done;
+    if ((st = wr__mesh_count_edges(m, &s, &ne, diag)) != WR_OK) goto done;
     m->ne = (int32_t)ne;
     m->edges = (int32_t *)wr_alloc_array(2 * ne, sizeof(int32_t));
     m->edge_faces = (int32_t *)wr_alloc_array(2 * ne, sizeof(int32_t));
@@ -500,21 +562,21 @@ static wr_status wr__mesh_build_topology(wr_mesh *m, wr_diag *diag) {
         st = wr_fail(diag, WR_ERR_NOMEM, -1, "mesh topology: out of memory (%zu edges)", ne);
         goto done;
     }
-    wr__mesh_fill_edges(m, ord);
-    wr__mesh_vertex_faces(m, cnt);
-    if ((st = wr__mesh_check_fans(m, diag)) != WR_OK) goto done;
-    st = wr__mesh_boundary_loops(m, diag);
+    wr__mesh_fill_edges(m, &s);
+    wr__mesh_vertex_faces(m, s.cnt);
+    if ((st = wr__mesh_check_fans(m, s.twin, diag)) != WR_OK) goto done;
+    st = wr__mesh_boundary_loops(m, s.twin, diag);
 done:
-    wr_free(cnt);
-    wr_free(tmp);
-    wr_free(ord);
+    wr_free(s.cnt);
+    wr_free(s.key);
+    wr_free(s.ord);
+    wr_free(s.twin);
     if (st != WR_OK) wr__mesh_free_topology(m);
     return st;
 }
 #undef WR__HE_A
 #undef WR__HE_B
-#undef WR__HE_LO
-#undef WR__HE_HI
+#undef WR__HE_KEY
 
 WRDEF wr_status wr_mesh_create(wr_mesh *m, int32_t nv, const double *pos3, const double *rest2, int32_t nf,
                                const int32_t *faces, wr_diag *diag) {

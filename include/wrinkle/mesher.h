@@ -57,14 +57,18 @@
  *
  * ON SAMPLING AND TRIANGULATION (Sec. 4.3)
  *   Per panel, in stretched coordinates: the outer loop (with seam ends inserted), holes and
- *   constraint lines are discretised here at ∫ ds/h (break points: corners turning >
+ *   constraint lines are discretised here, once, at ∫ ds/h (break points: corners turning >
  *   WR_MESHER_CORNER_DEG, seam ends; a seam range gets the count N shared with its partner side).
- *   poisson.h fills the interior (its calibrated radius factor unless desc.radius_factor); it
- *   re-discretises the curves it is given, so only its INTERIOR samples are used: each is dropped
- *   when closer than WR_MESHER_SAMPLE_CLEARANCE × h to one of our constraint segments or (near the
- *   boundary) outside our polygon. The CDT (triangulate.h, no refinement, so no Steiner points and
- *   seam counts stay exact) gets our curve points + the kept samples, our segments and one seed per
- *   hole. Measurements: docs/notes-mesher.md.
+ *   poisson.h's wr_poisson_fill takes these curves as given: our points are its fixed points (in our
+ *   order), our curve edges its segments, and its samples keep its clearance (0.35 h) from exactly
+ *   those segments, inside exactly that polygon (its calibrated radius factor unless
+ *   desc.radius_factor). The CDT (triangulate.h, no refinement, so no Steiner points and seam counts
+ *   stay exact) gets the sampler's points and segments as they are and one seed per hole.
+ *   Sampler failures on the curves (crossings, a line outside its panel) name the pattern items
+ *   behind the sampler's curves from its structured location; diag->part = the panel, diag->curve /
+ *   other_curve = the sampler's curves (0 outer, 1 + i hole i, 1 + n_holes + j constraint line j in
+ *   the order shirrings, quilt lines, folds with their two parallels). Measurements:
+ *   docs/notes-mesher.md.
  *
  * ON THE OUTPUT
  *   Vertices are numbered panel by panel. rest = pattern position, pos = (rest, 0). face_panel set.
@@ -84,9 +88,10 @@
  *   Pattern and sizing errors as in sizing.h (WR_ERR_INVALID_ARG, WR_ERR_DOMAIN, WR_ERR_GEOMETRY);
  *   here also WR_ERR_GEOMETRY for overlapping seams, a seam across a corner or of zero length, and
  *   self-intersections reported by poisson.h (message names the technique behind the sampler's
- *   curve); WR_ERR_BUDGET when desc.max_vertices would be exceeded: by the area/perimeter estimate
- *   before any panel is discretised, by a panel's curve points before sampling, by the sampler's own
- *   estimate, and by the CDT output (item = the panel). On failure the result is zeroed.
+ *   curves; diag->part / curve / other_curve as in ON SAMPLING AND TRIANGULATION); WR_ERR_BUDGET
+ *   when desc.max_vertices would be exceeded: by the area/perimeter estimate before any panel is
+ *   discretised, by a panel's curve points before sampling, by the sampler's own estimate, and by
+ *   the CDT output (item = the panel). On failure the result is zeroed.
  *
  * ON THREADS: no global state; one call is single-threaded. Deterministic for a fixed desc.seed.
  */
@@ -110,10 +115,6 @@ extern "C" {
 #define WR_MESHER_CORNER_DEG 30.0 /* turning angle above which a boundary vertex is kept exactly */
 #define WR_MESHER_TRIM_FACTOR 0.5 /* constraint trim at a line end lying on the boundary (× sizing) */
 #define WR_MESHER_HIST_BINS 20    /* edge-ratio histogram bins on [0, 2) */
-/* Interior samples closer than this × local sizing to one of our constraint segments are dropped
- * (the sampler keeps ≈ 0.7 h from its own curve points; half of that marks a sample squeezed
- * against our slightly different discretisation, which would only make a sliver). */
-#define WR_MESHER_SAMPLE_CLEARANCE 0.35
 
 /* What wr_mesher_run reports to desc.progress. */
 typedef struct wr_mesher_progress {
@@ -296,9 +297,7 @@ typedef struct wr__msh_panel_run {
     wr__msh_dbuf outer, holes, lines;             /* discretised curves */
     wr__msh_ibuf hole_n, line_n, line_lab;        /* counts; line_lab: 2 per line (kind, technique index) */
     wr_poisson_curve *hole_curves, *line_curves;  /* views of holes / lines for the sampler */
-    wr_poisson_result samples;
-    wr__msh_dbuf points;                          /* CDT input: our curve points + kept samples */
-    wr__msh_ibuf segs;                            /* CDT input: our segments */
+    wr_poisson_result samples;                    /* our curve points, then the fill; our curve edges */
     double *hole_seeds;
     wr_cdt_result tri;
 } wr__msh_panel_run;
@@ -315,8 +314,6 @@ static void wr__msh_panel_run_free(wr__msh_panel_run *r) {
     wr_free(r->hole_curves);
     wr_free(r->line_curves);
     wr_poisson_free(&r->samples);
-    wr_free(r->points.v);
-    wr_free(r->segs.v);
     wr_free(r->hole_seeds);
     wr_cdt_free(&r->tri);
     memset(r, 0, sizeof *r);
@@ -842,42 +839,57 @@ static wr_status wr__msh_discretise(wr__msh_ctx *c, int32_t p, wr__msh_panel_run
     return WR_OK;
 }
 
-/* ---- per panel: Poisson fill in stretched space (Sec. 4.3, Bridson) -------------------------------- */
-/* The technique behind the sampler's constraint polyline j (its numbering: lines in our order). */
-static void wr__msh_line_name(const wr__msh_panel_run *r, int32_t j, char *buf, size_t len) {
+/* ---- per panel: Poisson fill in stretched space (Sec. 4.3) --------------------------------------- */
+/* The pattern item behind the sampler's curve c (its numbering: 0 outer, 1 + i hole i, 1 + n_holes + j
+ * line j in our order: shirrings, quilt lines, folds with their two parallels). */
+static void wr__msh_curve_name(const wr__msh_panel_run *r, int32_t c, char *buf, size_t len) {
     static const char *const kinds[3] = {"shirrings", "quilts", "folds"};
-    if (j >= 0 && j < r->line_n.n)
-        snprintf(buf, len, "%s[%d]", kinds[r->line_lab.v[2 * j]], (int)r->line_lab.v[2 * j + 1]);
+    int32_t j = c - 1 - r->hole_n.n;
+    if (c == 0)
+        snprintf(buf, len, "outer loop = the panel's outline");
+    else if (c >= 1 && c <= r->hole_n.n)
+        snprintf(buf, len, "hole %d = holes[%d]", (int)(c - 1), (int)(c - 1));
+    else if (j >= 0 && j < r->line_n.n)
+        snprintf(buf, len, "polyline %d = %s[%d]%s", (int)j, kinds[r->line_lab.v[2 * j]], (int)r->line_lab.v[2 * j + 1],
+                 r->line_lab.v[2 * j] == 2 ? " (the fold line or a parallel)" : "");
     else
-        snprintf(buf, len, "?");
+        snprintf(buf, len, "curve %d", (int)c);
 }
 
 /* The sampler's failure, named for the pattern: budget errors name the panel and the budget; curve
- * errors get the legend of the sampler's polylines (which technique each one is). */
+ * errors name the techniques behind the curves from the sampler's structured location (diag->curve,
+ * diag->other_curve), and diag->part = the panel. */
 static wr_status wr__msh_sampling_failure(wr__msh_ctx *c, int32_t p, const wr__msh_panel_run *r, wr_status st) {
-    char msg[WR_DIAG_MESSAGE_LEN], legend[200], name[40];
-    size_t ll = 0;
-    int32_t j;
+    char msg[WR_DIAG_MESSAGE_LEN], n1[96], n2[96];
+    int32_t cu = c->diag ? c->diag->curve : -1, oc = c->diag ? c->diag->other_curve : -1;
+    wr_status out;
     snprintf(msg, sizeof msg, "%s", c->diag ? c->diag->message : "");
     if (st == WR_ERR_BUDGET)
         return wr_fail(c->diag, st, p, "vertex budget of %d exceeded at panels[%d] '%s' (%s)", (int)c->desc.max_vertices,
                        (int)p, wr__msh_pname(c, p), msg);
-    legend[0] = 0;
-    for (j = 0; j < r->line_n.n && j < 4 && ll < sizeof legend - 48; ++j) {
-        wr__msh_line_name(r, j, name, sizeof name);
-        ll += (size_t)snprintf(legend + ll, sizeof legend - ll, "%spolyline %d = %s", j ? "; " : " [", (int)j, name);
+    n1[0] = n2[0] = 0;
+    if (cu >= 0) wr__msh_curve_name(r, cu, n1, sizeof n1);
+    if (oc >= 0 && oc != cu) wr__msh_curve_name(r, oc, n2, sizeof n2);
+    out = wr_fail(c->diag, st, p, "panels[%d] '%s': %.300s%s%s%s%s%s", (int)p, wr__msh_pname(c, p), msg,
+                  cu >= 0 ? " [" : "", n1, n2[0] ? "; " : "", n2, cu >= 0 ? "]" : "");
+    if (c->diag) { /* wr_fail reset the location: restore the sampler's, with the panel */
+        c->diag->part = p;
+        c->diag->curve = cu;
+        c->diag->other_curve = oc;
     }
-    if (j > 0 && ll < sizeof legend - 2) snprintf(legend + ll, sizeof legend - ll, "%s]", j < r->line_n.n ? "; ..." : "");
-    return wr_fail(c->diag, st, p, "panels[%d] '%s': %.300s%s", (int)p, wr__msh_pname(c, p), msg, legend);
+    return out;
 }
 
+/* Our curves as the sampler's domain: every curve point is kept as given and every curve edge is a
+ * constraint (wr_poisson_fill), so the samples keep their clearance from exactly the segments the
+ * CDT receives and the first n_fixed points are ours, in our order. */
 static wr_status wr__msh_sample(wr__msh_ctx *c, int32_t p, wr__msh_panel_run *r) {
     wr_poisson_domain dom;
     wr_poisson_desc pd;
     int32_t j, off;
     wr_status st;
-    r->hole_curves = (wr_poisson_curve *)wr_calloc_array((size_t)r->hole_n.n, sizeof(wr_poisson_curve));
-    r->line_curves = (wr_poisson_curve *)wr_calloc_array((size_t)r->line_n.n, sizeof(wr_poisson_curve));
+    r->hole_curves = (wr_poisson_curve *)wr_calloc_array((size_t)r->hole_n.n + 1, sizeof(wr_poisson_curve));
+    r->line_curves = (wr_poisson_curve *)wr_calloc_array((size_t)r->line_n.n + 1, sizeof(wr_poisson_curve));
     if (!r->hole_curves || !r->line_curves) return wr__msh_nomem(c, p);
     for (j = 0, off = 0; j < r->hole_n.n; off += r->hole_n.v[j++]) {
         r->hole_curves[j].xy = r->holes.v + 2 * off;
@@ -898,153 +910,10 @@ static wr_status wr__msh_sample(wr__msh_ctx *c, int32_t p, wr__msh_panel_run *r)
     memset(&pd, 0, sizeof pd);
     pd.seed = c->desc.seed + (uint64_t)p * 0x9E3779B97F4A7C15ULL;
     pd.radius_factor = c->desc.radius_factor;
-    pd.corner_angle = 1e-9; /* keep our points where it can, so its curve points match ours closely */
     pd.max_points = c->desc.max_vertices - c->rest.n / 2;
     if (pd.max_points < 3) pd.max_points = 3;
-    st = wr_poisson_sample(&dom, wr__msh_size_cb, (void *)wr__msh_map(c, p), &pd, &r->samples, c->diag);
+    st = wr_poisson_fill(&dom, wr__msh_size_cb, (void *)wr__msh_map(c, p), &pd, &r->samples, c->diag);
     return st == WR_OK ? WR_OK : wr__msh_sampling_failure(c, p, r, st);
-}
-
-/* ---- per panel: the CDT input — our curve points and segments plus the kept samples ---------------- */
-/* Our curve points (outer, holes, lines, so seam counts are exactly ours) and segments (closed outer,
- * closed holes, open lines). */
-static wr_status wr__msh_curve_input(wr__msh_ctx *c, int32_t p, wr__msh_panel_run *r) {
-    int32_t n_out = r->outer.n / 2, n_lin = r->line_n.n ? r->lines.n / 2 : 0, j, k, off;
-    if (!wr__msh_dbuf_reserve(&r->points, r->outer.n + r->holes.n + 2 * n_lin +
-                                               2 * (r->samples.n_points - r->samples.n_fixed)))
-        return wr__msh_nomem(c, p);
-    for (j = 0; j < r->outer.n; ++j) r->points.v[r->points.n++] = r->outer.v[j];
-    for (j = 0; j < r->holes.n; ++j) r->points.v[r->points.n++] = r->holes.v[j];
-    for (j = 0; j < 2 * n_lin; ++j) r->points.v[r->points.n++] = r->lines.v[j];
-    for (j = 0; j < n_out; ++j)
-        if (!wr__msh_ipush2(&r->segs, j, (j + 1) % n_out)) return wr__msh_nomem(c, p);
-    off = n_out;
-    for (k = 0; k < r->hole_n.n; off += r->hole_n.v[k++])
-        for (j = 0; j < r->hole_n.v[k]; ++j)
-            if (!wr__msh_ipush2(&r->segs, off + j, off + (j + 1) % r->hole_n.v[k])) return wr__msh_nomem(c, p);
-    for (k = 0; k < r->line_n.n; off += r->line_n.v[k++])
-        for (j = 0; j + 1 < r->line_n.v[k]; ++j)
-            if (!wr__msh_ipush2(&r->segs, off + j, off + j + 1)) return wr__msh_nomem(c, p);
-    return WR_OK;
-}
-
-/* A bucket grid (CSR) over our segments, for the samples' clearance test. */
-typedef struct wr__msh_seg_grid {
-    double x0, y0, cell;
-    int32_t gx, gy;
-    int32_t *start, *item;
-} wr__msh_seg_grid;
-
-static int wr__msh_seg_grid_build(wr__msh_seg_grid *g, const wr__msh_panel_run *r, int32_t nfix) {
-    const wr_poisson_result *pr = &r->samples;
-    double hmax = 0.0, bx1 = -HUGE_VAL, by1 = -HUGE_VAL;
-    int32_t j, pass;
-    memset(g, 0, sizeof *g);
-    g->x0 = g->y0 = HUGE_VAL;
-    /* cell = largest sizing among the samples, over the box of samples and fixed points */
-    for (j = 0; j < pr->n_points; ++j) {
-        if (pr->sizing[j] > hmax) hmax = pr->sizing[j];
-        g->x0 = fmin(g->x0, pr->points[2 * j]);
-        g->y0 = fmin(g->y0, pr->points[2 * j + 1]);
-        bx1 = fmax(bx1, pr->points[2 * j]);
-        by1 = fmax(by1, pr->points[2 * j + 1]);
-    }
-    for (j = 0; j < nfix; ++j) {
-        g->x0 = fmin(g->x0, r->points.v[2 * j]);
-        g->y0 = fmin(g->y0, r->points.v[2 * j + 1]);
-        bx1 = fmax(bx1, r->points.v[2 * j]);
-        by1 = fmax(by1, r->points.v[2 * j + 1]);
-    }
-    g->cell = hmax > 0.0 ? hmax : 1.0;
-    if ((bx1 - g->x0) / g->cell > 2048.0 || (by1 - g->y0) / g->cell > 2048.0)
-        g->cell = fmax(bx1 - g->x0, by1 - g->y0) / 2048.0;
-    g->gx = (int32_t)((bx1 - g->x0) / g->cell) + 1;
-    g->gy = (int32_t)((by1 - g->y0) / g->cell) + 1;
-    g->start = (int32_t *)wr_calloc_array((size_t)g->gx * (size_t)g->gy + 1, sizeof(int32_t));
-    if (!g->start) return 0;
-    for (pass = 0; pass < 2; ++pass) { /* pass 0 counts, pass 1 fills */
-        int32_t s;
-        if (pass == 1) {
-            int32_t acc = 0, cc;
-            for (cc = 0; cc < g->gx * g->gy; ++cc) {
-                int32_t t4 = g->start[cc];
-                g->start[cc] = acc;
-                acc += t4;
-            }
-            g->start[g->gx * g->gy] = acc;
-            g->item = (int32_t *)wr_alloc_array((size_t)acc + 1, sizeof(int32_t));
-            if (!g->item) return 0;
-        }
-        for (s = 0; s < r->segs.n / 2; ++s) {
-            const double *a = r->points.v + 2 * r->segs.v[2 * s], *b = r->points.v + 2 * r->segs.v[2 * s + 1];
-            int32_t x0 = (int32_t)((fmin(a[0], b[0]) - g->x0) / g->cell), x1 = (int32_t)((fmax(a[0], b[0]) - g->x0) / g->cell);
-            int32_t y0 = (int32_t)((fmin(a[1], b[1]) - g->y0) / g->cell), y1 = (int32_t)((fmax(a[1], b[1]) - g->y0) / g->cell);
-            int32_t xx, yy;
-            if (x1 >= g->gx) x1 = g->gx - 1;
-            if (y1 >= g->gy) y1 = g->gy - 1;
-            for (yy = y0; yy <= y1; ++yy)
-                for (xx = x0; xx <= x1; ++xx) {
-                    if (pass == 0)
-                        g->start[yy * g->gx + xx]++;
-                    else
-                        g->item[g->start[yy * g->gx + xx]++] = s;
-                }
-        }
-    }
-    for (j = g->gx * g->gy; j > 0; --j) g->start[j] = g->start[j - 1]; /* restore the starts */
-    g->start[0] = 0;
-    return 1;
-}
-
-/* Distance from q to the nearest of our segments in the 3×3 cells around it (HUGE_VAL if none). */
-static double wr__msh_seg_grid_dist(const wr__msh_seg_grid *g, const wr__msh_panel_run *r, const double *q) {
-    int32_t cx = (int32_t)((q[0] - g->x0) / g->cell), cy = (int32_t)((q[1] - g->y0) / g->cell), xx, yy, it;
-    double dmin = HUGE_VAL;
-    for (yy = cy - 1; yy <= cy + 1; ++yy)
-        for (xx = cx - 1; xx <= cx + 1; ++xx) {
-            if (xx < 0 || yy < 0 || xx >= g->gx || yy >= g->gy) continue;
-            for (it = g->start[yy * g->gx + xx]; it < g->start[yy * g->gx + xx + 1]; ++it) {
-                int32_t s = g->item[it];
-                double d = wr_segment_distance(q, r->points.v + 2 * r->segs.v[2 * s], r->points.v + 2 * r->segs.v[2 * s + 1],
-                                               NULL);
-                if (d < dmin) dmin = d;
-            }
-        }
-    return dmin;
-}
-
-/* The sampler re-discretises the curves it is given, slightly differently from us: keep only its
- * interior samples that are at least WR_MESHER_SAMPLE_CLEARANCE × h from our segments and, near the
- * boundary, inside our polygon. */
-static wr_status wr__msh_cdt_input(wr__msh_ctx *c, int32_t p, wr__msh_panel_run *r) {
-    const wr_poisson_result *pr = &r->samples;
-    wr__msh_seg_grid g;
-    int32_t j, k, nfix;
-    wr_status st = wr__msh_curve_input(c, p, r);
-    if (st != WR_OK) return st;
-    nfix = r->points.n / 2;
-    if (!wr__msh_seg_grid_build(&g, r, nfix)) {
-        wr_free(g.start);
-        wr_free(g.item);
-        return wr__msh_nomem(c, p);
-    }
-    for (j = pr->n_fixed; j < pr->n_points; ++j) {
-        const double *q = pr->points + 2 * j;
-        double h = pr->sizing[j], dmin = wr__msh_seg_grid_dist(&g, r, q);
-        int keep = dmin >= WR_MESHER_SAMPLE_CLEARANCE * h;
-        if (keep && dmin < 2.0 * h) {
-            /* near our boundary: containment against our own polygon */
-            if (!wr_point_in_polygon(r->outer.v, r->outer.n / 2, q[0], q[1])) keep = 0;
-            for (k = 0; k < r->hole_n.n && keep; ++k)
-                if (wr_point_in_polygon(r->hole_curves[k].xy, r->hole_curves[k].n, q[0], q[1])) keep = 0;
-        }
-        if (!keep) continue;
-        r->points.v[r->points.n++] = q[0];
-        r->points.v[r->points.n++] = q[1];
-    }
-    wr_free(g.start);
-    wr_free(g.item);
-    return WR_OK;
 }
 
 /* ---- per panel: the constrained Delaunay triangulation ---------------------------------------------- */
@@ -1087,10 +956,10 @@ static wr_status wr__msh_triangulate(wr__msh_ctx *c, int32_t p, wr__msh_panel_ru
     memset(&ci, 0, sizeof ci);
     ci.holes = r->hole_seeds;
     ci.n_holes = r->hole_n.n;
-    ci.points = r->points.v;
-    ci.n_points = r->points.n / 2;
-    ci.segments = r->segs.v;
-    ci.n_segments = r->segs.n / 2;
+    ci.points = r->samples.points; /* our curve points, then the interior samples */
+    ci.n_points = r->samples.n_points;
+    ci.segments = r->samples.segments; /* our curve edges */
+    ci.n_segments = r->samples.n_segments;
     memset(&cd, 0, sizeof cd);
     cd.seed = c->desc.seed + 1;
     st = wr_cdt_triangulate(&ci, &cd, &r->tri, c->diag);
@@ -1100,6 +969,32 @@ static wr_status wr__msh_triangulate(wr__msh_ctx *c, int32_t p, wr__msh_panel_ru
         return wr_fail(c->diag, st, p, "panels[%d] '%s': triangulation: %s", (int)p, wr__msh_pname(c, p), msg);
     }
     return WR_OK;
+}
+
+/* Room for nv more output vertices and nf more faces (amortised doubling). */
+static int wr__msh_ireserve(wr__msh_ibuf *b, int32_t more) {
+    int64_t need = (int64_t)b->n + more, nc = b->cap ? b->cap : 64;
+    int32_t *nv;
+    if (need <= b->cap) return 1;
+    while (nc < need) nc *= 2;
+    if (nc > INT32_MAX) return 0;
+    nv = (int32_t *)wr_realloc_array(b->v, (size_t)nc, sizeof(int32_t));
+    if (!nv) return 0;
+    b->v = nv;
+    b->cap = (int32_t)nc;
+    return 1;
+}
+static int wr__msh_dreserve(wr__msh_dbuf *b, int32_t more) {
+    int64_t need = (int64_t)b->n + more, nc = b->cap ? b->cap : 64;
+    if (need <= b->cap) return 1;
+    while (nc < need) nc *= 2;
+    return nc <= INT32_MAX && wr__msh_dbuf_reserve(b, (int32_t)nc);
+}
+static int wr__msh_reserve(wr__msh_ctx *c, int32_t nv, int32_t nf) {
+    return nv < INT32_MAX / 3 && nf < INT32_MAX / 3 && wr__msh_dreserve(&c->rest, 2 * nv) &&
+           wr__msh_dreserve(&c->sizing, nv) && wr__msh_dreserve(&c->sizing_warp, nv) &&
+           wr__msh_dreserve(&c->sizing_weft, nv) && wr__msh_ireserve(&c->faces, 3 * nf) &&
+           wr__msh_ireserve(&c->face_panel, nf);
 }
 
 /* ---- per panel: append to the output -------------------------------------------------------------- */
@@ -1116,28 +1011,28 @@ static wr_status wr__msh_append(wr__msh_ctx *c, int32_t p, wr__msh_panel_run *r)
     if (!cr->exterior_carved)
         return wr_fail(c->diag, WR_ERR_GEOMETRY, p, "panels[%d] '%s': triangulation did not carve the exterior", (int)p,
                        wr__msh_pname(c, p));
+    if (!wr__msh_reserve(c, cr->n_points, cr->n_triangles)) return wr__msh_nomem(c, p);
+    /* the sizing the sampler evaluated at each point (input i → output point_map[i]; no Steiner points) */
+    for (j = 0; j < cr->n_map && j < r->samples.n_points; ++j) c->sizing.v[vbase + cr->point_map[j]] = r->samples.sizing[j];
     for (j = 0; j < cr->n_points; ++j) {
-        double q[2], h;
-        wr_sizing_panel_to_pattern(m, cr->points + 2 * j, q);
-        h = wr_sizing_panel_eval_stretched(m, cr->points[2 * j], cr->points[2 * j + 1]);
-        if (!wr__msh_dpush2(&c->rest, q[0], q[1]) || !wr__msh_dpush(&c->sizing, h) ||
-            !wr__msh_dpush(&c->sizing_warp, h * pi->r_warp / pi->r0) ||
-            !wr__msh_dpush(&c->sizing_weft, h * pi->r_weft / pi->r0))
-            return wr__msh_nomem(c, p);
+        double h = c->sizing.v[vbase + j];
+        wr_sizing_panel_to_pattern(m, cr->points + 2 * j, c->rest.v + 2 * (vbase + j));
+        c->sizing_warp.v[vbase + j] = h * pi->r_warp / pi->r0;
+        c->sizing_weft.v[vbase + j] = h * pi->r_weft / pi->r0;
     }
+    c->rest.n += 2 * cr->n_points;
+    c->sizing.n += cr->n_points;
+    c->sizing_warp.n += cr->n_points;
+    c->sizing_weft.n += cr->n_points;
     pi->f_begin = c->faces.n / 3;
-    for (j = 0; j < cr->n_triangles; ++j) {
-        const int32_t *t3 = cr->triangles + 3 * j;
-        if (!wr__msh_ipush2(&c->faces, vbase + t3[0], vbase + t3[1]) || !wr__msh_ipush(&c->faces, vbase + t3[2]) ||
-            !wr__msh_ipush(&c->face_panel, p))
-            return wr__msh_nomem(c, p);
-    }
+    for (j = 0; j < 3 * cr->n_triangles; ++j) c->faces.v[c->faces.n++] = vbase + cr->triangles[j];
+    for (j = 0; j < cr->n_triangles; ++j) c->face_panel.v[c->face_panel.n++] = p;
     pi->f_end = c->faces.n / 3;
     pi->v_begin = vbase;
     pi->v_end = c->rest.n / 2;
-    for (j = 0; j < r->segs.n / 2; ++j)
-        if (!wr__msh_ipush2(&c->segments, vbase + cr->point_map[r->segs.v[2 * j]],
-                            vbase + cr->point_map[r->segs.v[2 * j + 1]]))
+    for (j = 0; j < r->samples.n_segments; ++j)
+        if (!wr__msh_ipush2(&c->segments, vbase + cr->point_map[r->samples.segments[2 * j]],
+                            vbase + cr->point_map[r->samples.segments[2 * j + 1]]))
             return wr__msh_nomem(c, p);
     for (k = 0; k < c->n_sides; ++k) {
         wr__msh_side *sd = &c->sides[k];
@@ -1162,8 +1057,7 @@ static wr_status wr__msh_mesh_panel(wr__msh_ctx *c, int32_t p) {
     if (st == WR_OK) st = wr__msh_discretise(c, p, &r);
     t0 = wr_time_seconds();
     if (st == WR_OK) st = wr__msh_sample(c, p, &r);
-    if (st == WR_OK) st = wr__msh_cdt_input(c, p, &r);
-    c->res->report.t_poisson += wr_time_seconds() - t0; /* sampling + filtering against our curves */
+    c->res->report.t_poisson += wr_time_seconds() - t0;
     t0 = wr_time_seconds();
     if (st == WR_OK) st = wr__msh_triangulate(c, p, &r);
     c->res->report.t_cdt += wr_time_seconds() - t0;
@@ -1300,98 +1194,125 @@ static wr_status wr__msh_assemble(wr__msh_ctx *c) {
 }
 
 /* ---- report: quality in pattern and metric space, edge ratios ---------------------------------------- */
-/* Smallest and mean smallest angle of the faces in each panel's stretched space. */
-static void wr__msh_metric_angles(const wr_mesher_result *res, double *amin, double *amean) {
-    const wr_mesh *M = &res->mesh;
-    double asum = 0.0;
-    int32_t f;
-    *amin = 180.0;
-    for (f = 0; f < M->nf; ++f) {
-        const wr_mesher_panel_info *pi = &res->panels[M->face_panel[f]];
-        double uv[6], w[6], fmin_a = 180.0;
-        int k;
-        wr_mesh_face_rest(M, f, uv);
-        for (k = 0; k < 3; ++k) {
-            w[2 * k] = pi->T[0] * uv[2 * k] + pi->T[1] * uv[2 * k + 1];
-            w[2 * k + 1] = pi->T[2] * uv[2 * k] + pi->T[3] * uv[2 * k + 1];
-        }
-        for (k = 0; k < 3; ++k) {
-            const double *a = w + 2 * k, *b = w + 2 * ((k + 1) % 3), *cc = w + 2 * ((k + 2) % 3);
-            double ux = b[0] - a[0], uy = b[1] - a[1], vx = cc[0] - a[0], vy = cc[1] - a[1];
-            double ang = fabs(atan2(ux * vy - uy * vx, ux * vx + uy * vy)) * 57.29577951308232;
-            if (ang < fmin_a) fmin_a = ang;
-        }
-        if (fmin_a < *amin) *amin = fmin_a;
-        asum += fmin_a;
+/* Smallest and largest angle [deg] of the triangle w[6]: at the corners opposite its shortest and
+ * its longest edge, each one atan2(|u × v|, u · v) (exact at any shape, unlike acos of the cosine
+ * rule near 0 and 180 deg). */
+static void wr__msh_tri_angles(const double *w, double *amin, double *amax) {
+    double L[3];
+    int k, s = 0, g = 0, pass;
+    for (k = 0; k < 3; ++k) { /* L[k]: squared length of the edge opposite corner k */
+        const double *a = w + 2 * ((k + 1) % 3), *b = w + 2 * ((k + 2) % 3);
+        L[k] = (b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]);
     }
-    *amean = M->nf ? asum / M->nf : 0.0;
+    for (k = 1; k < 3; ++k) {
+        if (L[k] < L[s]) s = k;
+        if (L[k] > L[g]) g = k;
+    }
+    for (pass = 0; pass < (amax ? 2 : 1); ++pass) { /* amax == NULL: the smallest only */
+        int q = pass ? g : s;
+        const double *o = w + 2 * q, *a = w + 2 * ((q + 1) % 3), *b = w + 2 * ((q + 2) % 3);
+        double ux = a[0] - o[0], uy = a[1] - o[1], vx = b[0] - o[0], vy = b[1] - o[1];
+        double ang = atan2(fabs(ux * vy - uy * vx), ux * vx + uy * vy) * 57.29577951308232;
+        if (pass)
+            *amax = ang;
+        else
+            *amin = ang;
+    }
 }
 
-/* Edge metric length |T e| over the mean of its two end sizings: mean, interior mean (edges with no
- * boundary or constraint vertex), extremes, histogram. */
-static wr_status wr__msh_edge_ratios(wr__msh_ctx *c) {
+/* Running sums of the report's one pass over the faces. */
+typedef struct wr__msh_quality {
+    double sum_min, sum_min_metric, sum_ratio, sum_ratio_int;
+    int32_t n_ratio, n_ratio_int;
+} wr__msh_quality;
+
+/* Edge metric length |T e| over the mean of its two end sizings, for the edges face f owns (the face
+ * edge_faces lists first): sums, extremes, histogram; interior = no boundary or constraint vertex. */
+static void wr__msh_face_ratios(wr_mesher_result *res, int32_t f, const double *uv, const double *T,
+                                const char *bnd, wr__msh_quality *qa) {
+    const wr_mesh *M = &res->mesh;
+    wr_mesher_report *rp = &res->report;
+    int k;
+    for (k = 0; k < 3; ++k) {
+        int32_t e = M->face_edges[3 * f + k], a = M->edges[2 * e], b = M->edges[2 * e + 1];
+        const double *p0 = uv + 2 * ((k + 1) % 3), *p1 = uv + 2 * ((k + 2) % 3);
+        double dx = p1[0] - p0[0], dy = p1[1] - p0[1], mx = T[0] * dx + T[1] * dy, my = T[2] * dx + T[3] * dy;
+        double ratio, bin;
+        if ((M->edge_faces[2 * e] >= 0 ? M->edge_faces[2 * e] : M->edge_faces[2 * e + 1]) != f) continue;
+        ratio = sqrt(mx * mx + my * my) / (0.5 * (res->sizing[a] + res->sizing[b]));
+        qa->sum_ratio += ratio;
+        ++qa->n_ratio;
+        if (!bnd[a] && !bnd[b]) {
+            qa->sum_ratio_int += ratio;
+            ++qa->n_ratio_int;
+        }
+        if (ratio < rp->ratio_min) rp->ratio_min = ratio;
+        if (ratio > rp->ratio_max) rp->ratio_max = ratio;
+        bin = floor(ratio / 2.0 * WR_MESHER_HIST_BINS);
+        if (!(bin >= 0)) bin = 0;
+        if (bin > WR_MESHER_HIST_BINS - 1) bin = WR_MESHER_HIST_BINS - 1;
+        rp->ratio_hist[(int)bin]++;
+    }
+}
+
+/* One pass over the faces: angles in pattern space and in each panel's metric (stretched) space,
+ * inverted / zero-area faces (WR_MESH_ZERO_AREA_REL, as wr_mesh_quality counts them), edge ratios. */
+static wr_status wr__msh_report(wr__msh_ctx *c) {
     wr_mesher_result *res = c->res;
     wr_mesher_report *rp = &res->report;
     const wr_mesh *M = &res->mesh;
-    double sum = 0.0, sumi = 0.0;
-    int32_t ni = 0, e, j, k;
+    wr__msh_quality qa;
+    int32_t f, j, k;
     char *bnd = (char *)wr_calloc_array((size_t)M->nv, 1);
     if (!bnd) return wr__msh_nomem(c, -1);
     for (j = 0; j < M->n_loops; ++j)
         for (k = M->loop_start[j]; k < M->loop_start[j + 1]; ++k) bnd[M->loop_verts[k]] = 1;
     for (j = 0; j < 2 * res->n_constraint_segments; ++j) bnd[res->constraint_segments[j]] = 1;
+    memset(&qa, 0, sizeof qa);
+    rp->min_angle_deg = rp->min_angle_metric_deg = 180.0;
+    rp->max_angle_deg = 0.0;
     rp->ratio_min = HUGE_VAL;
     rp->ratio_max = 0.0;
-    for (e = 0; e < M->ne; ++e) {
-        int32_t a = M->edges[2 * e], b = M->edges[2 * e + 1];
-        int32_t f = M->edge_faces[2 * e] >= 0 ? M->edge_faces[2 * e] : M->edge_faces[2 * e + 1];
-        const wr_mesher_panel_info *pi = &res->panels[M->face_panel[f]];
-        double uv[6], d[2], l, ratio, bin;
-        int32_t ka = -1, kb = -1, c6;
+    for (f = 0; f < M->nf; ++f) {
+        const double *T = res->panels[M->face_panel[f]].T;
+        double uv[6], w[6], amin, amax, amin_m, area, lmax = 0.0;
         wr_mesh_face_rest(M, f, uv);
-        for (c6 = 0; c6 < 3; ++c6) {
-            if (M->faces[3 * f + c6] == a) ka = c6;
-            if (M->faces[3 * f + c6] == b) kb = c6;
+        wr__msh_tri_angles(uv, &amin, &amax);
+        if (T[1] == 0.0 && T[2] == 0.0 && T[0] == T[3]) { /* isotropic panel: a similarity keeps angles */
+            amin_m = amin;
+        } else {
+            for (k = 0; k < 3; ++k) {
+                w[2 * k] = T[0] * uv[2 * k] + T[1] * uv[2 * k + 1];
+                w[2 * k + 1] = T[2] * uv[2 * k] + T[3] * uv[2 * k + 1];
+            }
+            wr__msh_tri_angles(w, &amin_m, NULL);
         }
-        d[0] = uv[2 * kb] - uv[2 * ka];
-        d[1] = uv[2 * kb + 1] - uv[2 * ka + 1];
-        l = sqrt((pi->T[0] * d[0] + pi->T[1] * d[1]) * (pi->T[0] * d[0] + pi->T[1] * d[1]) +
-                 (pi->T[2] * d[0] + pi->T[3] * d[1]) * (pi->T[2] * d[0] + pi->T[3] * d[1]));
-        ratio = l / (0.5 * (res->sizing[a] + res->sizing[b]));
-        sum += ratio;
-        if (!bnd[a] && !bnd[b]) {
-            sumi += ratio;
-            ++ni;
+        rp->min_angle_deg = fmin(rp->min_angle_deg, amin);
+        rp->max_angle_deg = fmax(rp->max_angle_deg, amax);
+        rp->min_angle_metric_deg = fmin(rp->min_angle_metric_deg, amin_m);
+        qa.sum_min += amin;
+        qa.sum_min_metric += amin_m;
+        area = 0.5 * ((uv[2] - uv[0]) * (uv[5] - uv[1]) - (uv[3] - uv[1]) * (uv[4] - uv[0]));
+        for (k = 0; k < 3; ++k) {
+            const double *a = uv + 2 * k, *b = uv + 2 * ((k + 1) % 3);
+            lmax = fmax(lmax, (b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]));
         }
-        if (ratio < rp->ratio_min) rp->ratio_min = ratio;
-        if (ratio > rp->ratio_max) rp->ratio_max = ratio;
-        bin = floor(ratio / 2.0 * WR_MESHER_HIST_BINS);
-        if (bin < 0) bin = 0;
-        if (bin > WR_MESHER_HIST_BINS - 1) bin = WR_MESHER_HIST_BINS - 1;
-        rp->ratio_hist[(int)bin]++;
+        if (fabs(area) <= WR_MESH_ZERO_AREA_REL * lmax)
+            ++rp->n_zero_area;
+        else if (area < 0.0)
+            ++rp->n_inverted;
+        wr__msh_face_ratios(res, f, uv, T, bnd, &qa);
     }
-    rp->ratio_mean = M->ne ? sum / M->ne : 0.0;
-    rp->ratio_interior_mean = ni ? sumi / ni : NAN;
     wr_free(bnd);
-    return WR_OK;
-}
-
-static wr_status wr__msh_report(wr__msh_ctx *c) {
-    wr_mesher_report *rp = &c->res->report;
-    const wr_mesh *M = &c->res->mesh;
-    wr_mesh_quality_stats q;
-    wr_mesh_quality(M, 1, &q);
     rp->n_vertices = M->nv;
     rp->n_triangles = M->nf;
-    rp->n_seam_pairs = c->res->n_seam_pairs;
-    rp->n_constraint_segments = c->res->n_constraint_segments;
-    rp->min_angle_deg = q.min_angle_deg;
-    rp->max_angle_deg = q.max_angle_deg;
-    rp->mean_min_angle_deg = q.mean_min_angle_deg;
-    wr__msh_metric_angles(c->res, &rp->min_angle_metric_deg, &rp->mean_min_angle_metric_deg);
-    rp->n_inverted = q.n_inverted;
-    rp->n_zero_area = q.n_zero_area;
-    return wr__msh_edge_ratios(c);
+    rp->n_seam_pairs = res->n_seam_pairs;
+    rp->n_constraint_segments = res->n_constraint_segments;
+    rp->mean_min_angle_deg = M->nf ? qa.sum_min / M->nf : 0.0;
+    rp->mean_min_angle_metric_deg = M->nf ? qa.sum_min_metric / M->nf : 0.0;
+    rp->ratio_mean = qa.n_ratio ? qa.sum_ratio / qa.n_ratio : 0.0;
+    rp->ratio_interior_mean = qa.n_ratio_int ? qa.sum_ratio_int / qa.n_ratio_int : NAN;
+    return WR_OK;
 }
 
 /* ---- the one cleanup path --------------------------------------------------------------------------- */
