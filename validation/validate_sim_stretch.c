@@ -30,7 +30,8 @@
  * expected count = band / λ_CM. Bands (set before the runs): count(r_opt) within ±1 of count(2.5 mm)
  * (Style3D's claim: 6 vs 7); count(2.5 mm) within ±1 of the paper's 7 and count(5 mm) within ±1 of its
  * 4; λ at 2.5 mm within 20 % of λ_CM(L_z) (the scaling law's prefactor uncertainty, issue 5).
- * Options: --quick (TFW sheet, 5 mm, dynamics only), --long (everything), --sheet N, --res LIST.
+ * Results: sim_stretch_tfw.json, sim_stretch_ropt38.json (one per sheet), sim_stretch_quick.json (--quick).
+ * Options: --quick (TFW sheet, 5 mm, dynamics only), --sheet N, --res-mask M, --no-statics, --no-png.
  * Exit = failed quantities, 2 on errors.
  */
 #define _POSIX_C_SOURCE 200809L
@@ -409,14 +410,16 @@ static int run_row(const sheet *S, srow *R, int png, wr_vres *v) {
     return 0;
 }
 
+static int sheet_report(wr_vres *v, const sheet *S, const srow *rows, int nrow, int quick, int res_mask, int with_statics);
+
 int main(int argc, char **argv) {
     static srow rows[2 * NKIND * NRES * 2];
     sheet S[2];
     wr_resolution_model mdl = wr_resolution_model_paper();
     wr_diag d;
-    int i, k, r, s, dy, quick = 0, nrow = 0, only_sheet = -1, png = 1, with_statics = 1, res_mask = 7;
-    char buf[4096], table[32768], name[512], lab[128];
-    const char *case_id = "sim_stretch";
+    int i, r, k, s, dy, quick = 0, nrow = 0, only_sheet = -1, png = 1, with_statics = 1, res_mask = 7, failed = 0;
+    char buf[512];
+    const char *case_id;
     wr_vres *v;
     for (i = 1; i < argc; ++i) {
         if (strcmp(argv[i], "--quick") == 0) quick = 1;
@@ -427,13 +430,17 @@ int main(int argc, char **argv) {
         else if (strcmp(argv[i], "--help") == 0) {
             printf("usage: validate_sim_stretch [--quick] [--sheet 0|1] [--res-mask M] [--no-statics] [--no-png]\n"
                    "  Style3D Fig. 16 with dynamics and statics on Delaunay and lattice meshes (0/15/30 deg);\n"
-                   "  res-mask bits: 1 = 2.5 mm, 2 = r_opt, 4 = 5 mm. Writes validation/results/sim_stretch.json\n"
+                   "  res-mask bits: 1 = 2.5 mm, 2 = r_opt, 4 = 5 mm. Writes validation/results/sim_stretch_tfw.json and\n  sim_stretch_ropt38.json\n"
                    "  (--quick: sim_stretch_quick.json: TFW sheet, 5 mm, dynamics, every mesh kind).\n");
             return 0;
         } else {
             fprintf(stderr, "validate_sim_stretch: unknown option '%s' (see --help)\n", argv[i]);
             return 2;
         }
+    }
+    if (only_sheet > 1 || res_mask < 1 || res_mask > 7) {
+        fprintf(stderr, "validate_sim_stretch: invalid option value (--sheet 0|1, --res-mask 1..7)\n");
+        return 2;
     }
     S[0].name = "TFW", S[0].h = 1.0e-4;
     S[1].name = "r_opt 3.8", S[1].h = cbrt(12.0 * (1.0 - POISSON * POISSON) * 5.75e-14);
@@ -443,11 +450,16 @@ int main(int argc, char **argv) {
             fprintf(stderr, "validate_sim_stretch: %s\n", d.message);
             return 2;
         }
-    if (quick) case_id = "sim_stretch_quick", only_sheet = 0, res_mask = 4, with_statics = 0;
-    v = wr_vres_begin(case_id, "Style3D Fig. 16 stretch test with dynamics and statics: Delaunay vs lattice meshes");
-    if (!v) return 2;
+    if (quick) only_sheet = 0, res_mask = 4, with_statics = 0;
     for (s = 0; s < 2; ++s) {
+        int fs;
         if (only_sheet >= 0 && s != only_sheet) continue;
+        nrow = 0;
+        case_id = quick ? "sim_stretch_quick" : s == 0 ? "sim_stretch_tfw" : "sim_stretch_ropt38";
+        snprintf(buf, sizeof buf, "Style3D Fig. 16 stretch test, %s sheet, dynamics and statics: Delaunay vs lattice meshes%s",
+                 S[s].name, quick ? " (quick)" : "");
+        v = wr_vres_begin(case_id, buf);
+        if (!v) return 2;
         for (r = 0; r < NRES; ++r) {
             if (!(res_mask & (1 << r))) continue;
             for (k = 0; k < NKIND; ++k)
@@ -460,7 +472,16 @@ int main(int argc, char **argv) {
                     ++nrow;
                 }
         }
+        fs = sheet_report(v, S, rows, nrow, quick, res_mask, with_statics);
+        if (fs < 0) return 2;
+        failed += fs;
     }
+    return failed > 125 ? 125 : failed;
+}
+
+static int sheet_report(wr_vres *v, const sheet *S, const srow *rows, int nrow, int quick, int res_mask, int with_statics) {
+    int i, k, s, dy;
+    char buf[4096], table[32768], name[512], lab[128];
     snprintf(table, sizeof table,
              "| sheet | mesh | r [mm] | mean edge [mm] | vertices | solver | count (lobes/2) | amplitude-weighted | band [mm] | "
              "band / lambda_FFT | lambda_FFT [mm] | amplitude [mm] | zone L_z [mm] | C-M(L_z) lambda [mm] | band / C-M | Newton | "
@@ -475,13 +496,11 @@ int main(int argc, char **argv) {
         strncat(table, buf, sizeof table - strlen(table) - 1);
     }
     wr_vres_table_md(v, table);
-    for (s = 0; s < 2; ++s) {
-        snprintf(name, sizeof name, "%s sheet: r_opt (Style3D Eq. 4, paper calibration)", S[s].name);
-        wr_vres_info(v, name, "mm", s == 1 ? 3.8 : NAN, 1e3 * S[s].r_opt);
-    }
-    /* the bands of the file comment, per sheet, mesh kind and solver, where the rows ran */
-    for (s = 0; s < 2; ++s)
-        for (k = 0; k < NKIND; ++k)
+    s = nrow > 0 ? rows[0].sheet : 0;
+    snprintf(name, sizeof name, "%s sheet: r_opt (Style3D Eq. 4, paper calibration)", S[s].name);
+    wr_vres_info(v, name, "mm", s == 1 ? 3.8 : NAN, 1e3 * S[s].r_opt);
+    /* the bands of the file comment, per mesh kind and solver, where the rows ran */
+    for (k = 0; k < NKIND; ++k)
             for (dy = 1; dy >= 0; --dy) {
                 const srow *q[NRES] = {NULL, NULL, NULL};
                 for (i = 0; i < nrow; ++i)
@@ -525,5 +544,10 @@ int main(int argc, char **argv) {
     if (quick) wr_vres_note(v, "--quick: TFW sheet at 5 mm, dynamics only (smoke); the full matrix is `make validate-long`.");
     wr_vres_note(v, "Machine: 2-core AMD EPYC shared by six engineers (load average ~10 during these runs); CPU seconds per row "
                     "in the table.");
+    if ((res_mask & 7) != 7 || !with_statics) {
+        snprintf(buf, sizeof buf, "Rows run: resolutions%s%s%s, %s.", res_mask & 1 ? " 2.5 mm" : "", res_mask & 2 ? " r_opt" : "",
+                 res_mask & 4 ? " 5 mm" : "", with_statics ? "dynamics and statics" : "dynamics only");
+        wr_vres_note(v, buf);
+    }
     return wr_vres_finish(v);
 }
