@@ -13,16 +13,17 @@
  * A = λ0 sqrt(δ)/π (the sine's arc length is the rest width: an inextensible gather), ramped in with
  * a smoothstep over RAMP_S. Sides free; bottom edge a weighted hem (its lumped masses raised after
  * wr_dyn_create, see ON THE HEM) so that the vertical tension T is nearly uniform over the height,
- * as the tension form assumes: T(y) = T_HEM + ρ_A g (y − 0) … at the top T = T_TOP (stated per case).
- * Widths W = NWAVES λ0 (≥ 20 λ0, issue 14), height H = HWAVES λ0, regular union-jack grid with
- * CELLS cells per λ0. Material: StVK membrane with a fixed membrane stiffness Y = E h_m (E = 1 MPa,
+ * as the tension form assumes: T(y) = T_hem + ρ_A g y, T_TOP at the top edge, ≥ 83 % of it at the hem.
+ * Width W = NWAVES λ0 (≥ 20 λ0, issue 14), height H = 10 λ0 (--height-waves), regular union-jack grid
+ * with 4 cells per λ0 (--cells; 5 cells moved case 0's L_w by −9 %, a scratch run). Material: StVK membrane with a fixed membrane stiffness Y = E h_m (E = 1 MPa,
  * h_m = 0.2 mm: Y = 200 N/m, ν = 0.3), dihedral (fold-safe) bending with B set directly, areal density
  * ρ_A = 0.1 kg/m². With Y fixed and B varied, the compression form's thickness is the Kirchhoff–Love
  * thickness that this B and Y imply, h = sqrt(12 (1 − ν²) B / Y) (Vandeparre et al.'s light-curtain
  * balance is between E h stretching and B bending; h² is their ratio), so L_c ∝ B^{-1/4}.
- * Dynamics: backward Euler, 1/30 s frames, Newton velocity_tol 1e-4 m/s, PCG block-Jacobi 1e-5
- * (the paper's solver settings), mass damping α = ALPHA, no contact (a hanging curtain does not touch
- * itself; self-contact off for speed, stated). A 1 µm seeded normal kick breaks the λ0 symmetry.
+ * Dynamics: backward Euler, 1/30 s frames, Newton with the simulator's defaults (velocity_tol 1e-2
+ * m/s; 1e-4 made the second frame take 438 Newton steps and 5 halvings), CHOLMOD (--pcg: the paper's
+ * PCG + block Jacobi to 1e-5), mass damping α = ALPHA, no contact (a hanging curtain does not touch
+ * itself; self-contact off for speed). Start pre-stretched by T/Y; a 1 µm seeded normal kick.
  * Rest: frames until the fastest vertex is below REST_SPEED, at most MAX_SECONDS of simulated time.
  *
  * METRIC (defined before the runs, issue 14). Horizontal probes (rest coordinates) every half cell in
@@ -34,7 +35,8 @@
  * Fits: least squares of ln L_w over (1, ln λ0, ln B) (exponents a, b) and, per form, the prefactor c
  * = L_w / form on the calibration case (case 0), then |L_w − c · form| ≤ 25 % on every other case
  * (±25 %: issue 5's band for the curtain, kept).
- * Options: --quick (one small case, smoke), --case N (only case N), --cells N, --seconds S, --png.
+ * Options: --quick (case 0 on a 3-cell, 6 λ0 grid for 3 s: smoke, sim_curtain_quick.json), --case N,
+ * --cells N, --seconds S (default 6), --height-waves N, --pcg, --vtol V, --verbose, --no-png.
  * Exit = failed quantities, 2 on errors.
  *
  * ON THE HEM. wr_dyn's lumped masses are its public array sim.mass (dynamics.h struct wr_dyn); the
@@ -409,12 +411,12 @@ static void report(wr_vres *v, crun *runs, const int *idx, int n, const char *ca
     snprintf(table, sizeof table,
              "| case | lambda0 [mm] | B [N m] | h (K-L from B, Y) [mm] | W x H [mm] | cells/lambda0 | vertices | simulated [s] | Newton | "
              "halvings | end max speed [m/s] | CPU [s] | wall [s] | L_w crest count [mm] | L_w FFT [mm] | tension form [mm] | "
-             "compression form [mm] | L/tension | L/compression | Y delta/(B k0^2) | T/(Y (A/L)^2) |\\n"
-             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\\n");
+             "compression form [mm] | L/tension | L/compression | Y delta/(B k0^2) | T/(Y (A/L)^2) |\n"
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     for (i = 0; i < n; ++i) {
         crun *R = &runs[i];
         snprintf(buf, sizeof buf,
-                 "| %d | %.1f | %.2e | %.3f | %.0f x %.0f | %d | %d | %.2f | %d | %d | %.1e | %.0f | %.0f | %.1f | %.1f | %.1f | %.1f | %.2f | %.2f | %.0f | %.1f |\\n",
+                 "| %d | %.1f | %.2e | %.3f | %.0f x %.0f | %d | %d | %.2f | %d | %d | %.1e | %.0f | %.0f | %.1f | %.1f | %.1f | %.1f | %.2f | %.2f | %.0f | %.1f |\n",
                  idx[i], 1e3 * R->c.lambda0, R->c.B, 1e3 * R->h_kl, 1e3 * R->W, 1e3 * R->H, R->cells, (int)R->nv,
                  R->frames / 30.0, (int)R->newton, (int)R->halvings, R->max_speed, R->cpu, R->wall, 1e3 * R->L_zc,
                  1e3 * R->L_fft, 1e3 * R->L_t, 1e3 * R->L_c, R->L_zc / R->L_t, R->L_zc / R->L_c, regime_buckle(R),
@@ -514,13 +516,13 @@ static void report(wr_vres *v, crun *runs, const int *idx, int n, const char *ca
         wr_afile f;
         wr_diag d;
         if (wr_afile_open(&f, gp, &d) == WR_OK) {
-            fprintf(f.fp, "set terminal pngcairo size 1000,560 noenhanced\\nset output '%s'\\nset grid\\nset key top left\\n", png);
-            fprintf(f.fp, "set xlabel 'depth / lambda0'\\nset ylabel 'crest-count wavelength / lambda0'\\nset yrange [0:6]\\nplot ");
+            fprintf(f.fp, "set terminal pngcairo size 1000,560 noenhanced\nset output '%s'\nset grid\nset key top left\n", png);
+            fprintf(f.fp, "set xlabel 'depth / lambda0'\nset ylabel 'crest-count wavelength / lambda0'\nset yrange [0:6]\nplot ");
             for (i = 0; i < n; ++i)
                 fprintf(f.fp, "%s'%s' u ($1/%g):($2/%g) w l lw 2 t 'case %d: lambda0 %.1f mm, B %.2g (L_w %.1f mm)'", i ? ", " : "",
                         dat[i], 1e3 * runs[i].c.lambda0, 1e3 * runs[i].c.lambda0, idx[i], 1e3 * runs[i].c.lambda0, runs[i].c.B,
                         1e3 * runs[i].L_zc);
-            fprintf(f.fp, ", 2 w l dt 2 lc rgb 'black' t '2 lambda0'\\n");
+            fprintf(f.fp, ", 2 w l dt 2 lc rgb 'black' t '2 lambda0'\n");
             if (wr_afile_commit(&f, &d) == WR_OK) {
                 snprintf(cmd, sizeof cmd, "gnuplot '%s' 2>/dev/null", gp);
                 snprintf(buf, sizeof buf, "figures/%s.png", case_id);
@@ -532,7 +534,7 @@ static void report(wr_vres *v, crun *runs, const int *idx, int n, const char *ca
 
 int main(int argc, char **argv) {
     static crun runs[NCASE];
-    int i, quick = 0, only = -1, cells = 5, png = 1, n = 0, idx[NCASE];
+    int i, quick = 0, only = -1, cells = 4, png = 1, n = 0, idx[NCASE];
     double seconds = 6.0, hwaves = 10.0;
     char buf[4096], path[4096];
     const char *case_id = "sim_curtain";
@@ -564,7 +566,7 @@ int main(int argc, char **argv) {
     }
     if (quick) {
         case_id = "sim_curtain_quick";
-        cells = 4, seconds = 3.0, only = 0;
+        cells = 3, seconds = 3.0, only = 0, hwaves = 6.0;
     }
     for (i = 0; i < NCASE; ++i)
         if (only < 0 || only == i) idx[n++] = i;
