@@ -445,7 +445,7 @@ static void report(wr_vres *v, crun *runs, const int *idx, int n, const char *ca
                 lo = fmin(lo, q), hi = fmax(hi, q), mean += q, ++cnt;
             }
         mean /= cnt;
-        wr_vres_info(v, "L_w / lambda0, mean over the cases (neither form: a boundary layer of fixed relative width)", "", NAN, mean);
+        wr_vres_info(v, "L_w / lambda0, mean over the cases", "", NAN, mean);
         snprintf(buf, sizeof buf,
                  "Exponents measured: L_w ~ lambda0^%.2f B^%.2f (least squares over %d cases; tension form 2 / -0.5, compression "
                  "form 1.5 / -0.25). L_w / lambda0 = %.2f-%.2f over lambda0 3x and B 10x. %s",
