@@ -38,7 +38,7 @@ BENCHES     = $(patsubst bench/%.c,bin/%,$(BENCH_SRC)) $(patsubst bench/%.cpp,bi
 EXTRA_HDR   = $(wildcard drivers/lib/*.h)
 
 .SECONDARY: $(LIB_OBJ)
-.PHONY: all deps deps-bench demo test python-test validate bench install uninstall clean check-headers check-examples
+.PHONY: all deps deps-bench demo test python-test validate validate-long bench install uninstall clean check-headers check-examples
 
 all: $(DRIVERS) $(VALIDATORS) build/libwrinkle.so
 
@@ -136,6 +136,12 @@ demo: deps
 validate: deps
 	@$(MAKE) --no-print-directory all
 	@sh validation/run_all.sh
+
+# The dynamic-simulator validations (validation/validate_sim_*.c) in full: tens of CPU minutes each
+# on this 2-core box; `make validate` runs their --quick versions.
+validate-long: deps
+	@$(MAKE) --no-print-directory all
+	@sh validation/run_all.sh --long
 
 bench: deps-bench
 	@$(MAKE) --no-print-directory $(BENCHES)

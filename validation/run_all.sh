@@ -9,12 +9,22 @@ mkdir -p validation/results validation/figures
 : "${OMP_THREAD_LIMIT:=1}" "${OMP_NUM_THREADS:=1}" "${OPENBLAS_NUM_THREADS:=1}" "${OMP_WAIT_POLICY:=PASSIVE}"
 export OMP_THREAD_LIMIT OMP_NUM_THREADS OPENBLAS_NUM_THREADS OMP_WAIT_POLICY
 status=0
+# The dynamic-simulator cases (validate_sim_*) run --quick here (a smoke version, its own result
+# file <case>_quick.json); `sh validation/run_all.sh --long` (make validate-long) runs only them,
+# in full, then rewrites the report. Their full runs take tens of CPU minutes.
+long=0
+[ "$1" = "--long" ] && long=1
 # Cross-check drivers read other cases' result files, so they run last.
 for src in $(ls validation/validate_*.c | grep -v crosscheck) $(ls validation/validate_*crosscheck*.c 2>/dev/null); do
     [ -f "$src" ] || continue
     name=$(basename "$src" .c)
-    echo "== $name"
-    if ! "./bin/$name"; then
+    args=
+    case "$name" in
+        validate_sim_*) [ $long = 1 ] || args=--quick ;;
+        *) [ $long = 1 ] && continue ;;
+    esac
+    echo "== $name $args"
+    if ! "./bin/$name" $args; then
         echo "   $name: FAILED (exit $?)"
         status=1
     fi
