@@ -34,6 +34,9 @@
 #include <omp.h>
 #endif
 
+#ifdef WR_BENCH_IMPL /* the Makefile builds this bench as its own implementation unit, with -fopenmp */
+#define WRINKLE_IMPLEMENTATION
+#endif
 #include "wrinkle/wrinkle.h"
 
 #define WR_BENCH_WARM 2          /* frames of fall before timing (contact is set up within them) */
@@ -142,7 +145,16 @@ static void case_free(bench_case *c) {
 typedef struct frame_fig {
     double ns, ch, tot, cpu, newton, pcg, ns_per_newton;
     int32_t nv, ok;
+    uint64_t hash; /* FNV-1a of the final positions' bytes: bit-identical runs give the same */
 } frame_fig;
+
+static uint64_t fnv(const double *x, size_t n) {
+    const unsigned char *p = (const unsigned char *)x;
+    uint64_t h = 1469598103934665603ULL;
+    size_t i;
+    for (i = 0; i < n * sizeof(double); ++i) h = (h ^ p[i]) * 1099511628211ULL;
+    return h;
+}
 
 /* WARM frames, then `frames` timed ones: medians into *out; verbose prints every frame */
 static int case_run(const char *kind, int32_t n, double mu, int frames, int verbose, frame_fig *out) {
@@ -198,6 +210,7 @@ static int case_run(const char *kind, int32_t n, double mu, int frames, int verb
         out->cpu = (cpu_seconds() - c0) / k;
     }
     out->ok = rc == 0;
+    out->hash = fnv(c.x, 3 * (size_t)c.m.nv);
     wr_dyn_free(&sim);
     case_free(&c);
     return rc;
@@ -283,6 +296,23 @@ static int bench_all(int32_t max_nv) {
         printf("  dynamics: %.1f ms NS per Newton iteration (%.0f PCG per Newton); ratio dynamic/static %.2f\n",
                1e3 * fg.ns_per_newton, fg.newton > 0 ? fg.pcg / fg.newton : 0.0, ts > 0 ? fg.ns_per_newton / ts : 0.0);
     }
+#ifdef _OPENMP
+    {
+        frame_fig f1, f2;
+        int32_t nc = max_nv >= 20164 ? 141 : 70;
+        printf("\n== threads (OpenMP face blocks: element Hessians + PSD projection), sphere, %d vertices ==\n",
+               (int)((nc + 1) * (nc + 1)));
+        omp_set_num_threads(1);
+        case_run("sphere", nc, 0.0, WR_BENCH_FRAMES, 0, &f1);
+        omp_set_num_threads(2);
+        case_run("sphere", nc, 0.0, WR_BENCH_FRAMES, 0, &f2);
+        printf("  1 thread: NS %.1f ms, total %.1f ms, cpu %.2f s per frame\n", 1e3 * f1.ns, 1e3 * f1.tot, f1.cpu);
+        printf("  2 threads: NS %.1f ms, total %.1f ms, cpu %.2f s per frame; NS gain %.2fx; final positions %s\n",
+               1e3 * f2.ns, 1e3 * f2.tot, f2.cpu, f2.ns > 0 ? f1.ns / f2.ns : 0.0,
+               f1.hash == f2.hash ? "bit-identical" : "DIFFER");
+        if (f1.hash != f2.hash) rc = 1;
+    }
+#endif
     printf("\npaper (Style3D Table 1, GPU, not comparable): 3.8 ms NS + 0.8 ms CH per frame at 59k vertices\n");
     return rc;
 }
@@ -291,8 +321,8 @@ int main(int argc, char **argv) {
     if (argc >= 5 && !strcmp(argv[1], "frames")) {
         frame_fig fg;
         int rc = case_run(argv[2], (int32_t)atoi(argv[3]), argc > 5 ? atof(argv[5]) : 0.0, atoi(argv[4]), 1, &fg);
-        printf("%s %d vertices: median NS %.1f ms, CH %.1f ms, total %.1f ms, cpu %.2f s per frame\n", argv[2], (int)fg.nv,
-               1e3 * fg.ns, 1e3 * fg.ch, 1e3 * fg.tot, fg.cpu);
+        printf("%s %d vertices: median NS %.1f ms, CH %.1f ms, total %.1f ms, cpu %.2f s per frame, positions %016llx\n",
+               argv[2], (int)fg.nv, 1e3 * fg.ns, 1e3 * fg.ch, 1e3 * fg.tot, fg.cpu, (unsigned long long)fg.hash);
         return rc;
     }
     if (argc >= 2 && (!strcmp(argv[1], "-h") || !strcmp(argv[1], "--help"))) {

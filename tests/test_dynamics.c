@@ -326,7 +326,7 @@ Test(dynamics, sliding_sheet_obeys_coulomb_friction) {
         }
         cr_assert_eq(wr_dyn_step(&sim, &st, &fs, &dg), WR_OK, "frame %d: %s", (int)f, dg.message);
         for (i = 0; i < m.nv; ++i) P1 += sim.mass[i] * vel[3 * i];
-        if (vmin > 0.05) { /* sliding well above ε_v through the whole step */
+        if (vmin > 0.2) { /* sliding above ε_v through the whole step (μ g h = 0.1 m/s is lost per step) */
             sliding++;
             cr_assert_float_eq(P1 - P0, -h * mu * lam, 10.0 * M * vtol, "frame %d: dP %.6e, -h mu sum(lambda) %.6e", (int)f,
                                P1 - P0, -h * mu * lam);

@@ -71,9 +71,20 @@
  *   D = Σ_k μ λ_k f0(‖T_kᵀ Σ_i w_i (x_i − x_n,i)‖) with IPC's smoothed f0 (ε = ε_v h, ε_v =
  *   friction_eps_v): Coulomb's law μλ above the sliding speed ε_v, a stiff viscous stick below.
  *
+ * ON PROJECTION
+ *   Newton (newton.h) makes each element block PSD. The shell's face blocks (membrane + bending over
+ *   the face and the vertices across its edges) carry their share of the inertia when projected:
+ *   each vertex's lumped mass is split evenly over the blocks that hold it, so block e is
+ *   K_e + (1/h² + α/h) M_e and the blocks still sum to K_el + (1/h² + α/h) M. Projecting K_e alone
+ *   would discard compression curvature that the inertia outweighs; with its share a block whose
+ *   negative curvature is below m/h² passes the projection's Cholesky test unchanged, and the
+ *   projected matrix is closer to the true Hessian.
+ *
  * ON MOVING BODIES
- *   Body vertices are unknowns of Newton's vector after the cloth's (z = (x, body)). A body without
- *   keys is held (fixed DOFs). A keyframed body's vertices start each step where they are and are
+ *   Body vertices are unknowns of Newton's vector after the cloth's (z = (x, body)) when some body
+ *   moves; bodies without keys are then fixed DOFs. When no body moves they are not unknowns at all
+ *   (Newton and its linear solves see the cloth only; contacts drop the body rows of their blocks
+ *   after projection, a principal submatrix of a PSD block being PSD). A keyframed body's vertices start each step where they are and are
  *   pulled to their positions at the step's end by springs k/2 ‖z_b − target(t + h)‖² (k =
  *   kinematic_stiffness, default WR_DYN_KINEMATIC_FACTOR · m̄/h²), so the body's motion goes
  *   through the same CCD-limited line search as the cloth's and can never push through it; a body
@@ -89,7 +100,12 @@
  *   SI: m, s, kg (shell density), N/m (κ, sewing), 1/s (α), s (β), m/s (tolerances).
  *
  * ON THREADS
- *   A created sim is used by one thread at a time; several sims may run concurrently.
+ *   A created sim is used by one thread at a time; several sims may run concurrently. Built with
+ *   OpenMP (-fopenmp), each Hessian's face blocks are computed and projected in parallel, 1024 faces
+ *   at a time, into a buffer that is then added to the matrix in face order: every sum happens in
+ *   the same order for any thread count, so results are bit-identical with 1, 2, … threads and
+ *   without OpenMP (bench/bench_dynamics.c checks this). Energies, gradients, contact detection and
+ *   the linear solves are serial.
  */
 #ifndef WRINKLE_DYNAMICS_H
 #define WRINKLE_DYNAMICS_H
