@@ -1153,11 +1153,13 @@ static wr_status wr__coll_tree(wr_collision_mesh *cm, int t, const double *x, co
     return WR_OK;
 }
 
-/* The obstacle trees are fitted again only when an obstacle vertex moved (or moves along dx) or a
- * larger padding is asked for: a body held still costs nothing per query. */
+/* The obstacle trees are fitted again only when an obstacle vertex moved (or moves along dx) or the
+ * padding changed (contacts pad by d̂/2, CCD by 0: a padded tree would hand CCD extra candidates,
+ * whose additive CCD is conservative for tangential motion): a body held still costs its box
+ * refit per query at most, and never the traversal of its own pairs. */
 static wr_status wr__coll_obstacle_trees(wr_collision_mesh *cm, const double *x, const double *dx, double pad,
                                          wr_diag *diag) {
-    int32_t k, i, moving = 0, same = cm->ofit && pad <= cm->opad;
+    int32_t k, i, moving = 0, same = cm->ofit && pad == cm->opad;
     wr_status st;
     int t, rebuild;
     for (k = 0; k < cm->nids[3]; ++k) {
