@@ -87,6 +87,12 @@ bin/%: bench/%.c $(LIB_OBJ) $(HEADERS) $(EXTRA_HDR)
 # a Triangle binary built outside the tree; without it the Triangle columns are skipped).
 bin/bench_triangle: bin/wrinkle-triangulate
 
+# bench_dynamics is its own implementation unit, built with OpenMP, so it measures the thread gain of
+# dynamics.h's face blocks in one run (the library objects stay serial; results are bit-identical).
+bin/bench_dynamics: bench/bench_dynamics.c $(HEADERS)
+	@mkdir -p bin
+	$(CC) $(ALL_CFLAGS) -O3 -fopenmp -DWR_BENCH_IMPL $< -o $@ $(LIBS)
+
 bin/%: bench/%.cpp $(LIB_OBJ) $(HEADERS) $(EXTRA_HDR)
 	@mkdir -p bin
 	$(CXX) $(ALL_CXXFLAGS) -O3 -frounding-math $< $(LIB_OBJ) -o $@ $(LIBS) -lgmp -lmpfr

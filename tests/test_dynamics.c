@@ -272,6 +272,76 @@ Test(dynamics, sheet_rests_on_ball_without_penetration) {
     wr_mesh_free(&m);
 }
 
+/* Coulomb friction on a sheet sliding over a floor (analytic plane z = 0, μ = 0.3, 3 m/s along x
+ * once it has settled onto the floor). Over one backward Euler step the elastic forces of the sheet sum
+ * to zero (translation invariance) and every sliding contact (tangential speed above ε_v) pulls back
+ * with exactly μλ_k, λ_k = κ|b'(d_k)| lagged at the step's start (IPC Sec. 5), so the x-momentum
+ * changes by P_{n+1} − P_n = −h μ Σ_k λ_k(x_n): checked to 10·M·velocity_tol (Newton's velocity
+ * criterion leaves each vertex's velocity within ~velocity_tol). Settled first, so λ ≈ weight and
+ * the sheet must stop after about v0/(μg) ≈ 1.02 s, and, while it slides, no Newton step may be cut by the
+ * max-step hook: the motion is tangential, no vertex approaches the floor faster than gravity pulls
+ * it (this failed when the analytic CCD advanced by the 1-Lipschitz bound, 64 steps of 0.8·d0:
+ * steps cut to ~0.45 at 3 m/s over the settled gap of ~0.9 mm, and cut on the ball drape of
+ * examples/sim with μ = 0.3, whose frame 11 then exceeded Newton's 50 iterations). */
+Test(dynamics, sliding_sheet_obeys_coulomb_friction) {
+    wr_mesh m;
+    wr_shell s;
+    wr_dyn_desc dd;
+    wr_dyn sim;
+    wr_dyn_state st;
+    wr_dyn_stats fs;
+    wr_obstacle floor_;
+    wr_diag dg;
+    int32_t i, f, sliding = 0;
+    double *x, *vel, M = 0.0, mu = 0.3, h = 1.0 / 30.0, vtol = 1e-6;
+    dyn_sheet(&m, &s, 0.1, 4, WR_MEMBRANE_STVK, WR_BENDING_MIDEDGE);
+    x = dyn_copy(m.pos, 3 * m.nv);
+    vel = (double *)calloc(3 * (size_t)m.nv, sizeof(double));
+    for (i = 0; i < m.nv; ++i) x[3 * i + 2] = 0.5e-3;
+    memset(&floor_, 0, sizeof floor_);
+    floor_.kind = WR_OBSTACLE_PLANE;
+    floor_.normal[2] = 1.0;
+    memset(&dd, 0, sizeof dd);
+    dd.gravity[2] = -9.81;
+    dd.contact.analytic = &floor_;
+    dd.contact.n_analytic = 1;
+    dd.contact.friction = mu;
+    dd.contact.no_self = 1;
+    dd.newton.velocity_tol = vtol;
+    dd.time.has_max_halvings = 1; /* max_halvings 0: a step that fails fails the test */
+    cr_assert_eq(wr_dyn_create(&sim, &s, &dd, &dg), WR_OK, "%s", dg.message);
+    for (i = 0; i < m.nv; ++i) M += sim.mass[i];
+    wr_dyn_state_init(&sim, &st, x, vel);
+    /* settle on the floor first (the barrier then carries the weight: λ ≈ m g per vertex), then slide */
+    for (f = 0; f < 6; ++f) cr_assert_eq(wr_dyn_step(&sim, &st, &fs, &dg), WR_OK, "settling %d: %s", (int)f, dg.message);
+    for (i = 0; i < m.nv; ++i) vel[3 * i] = 3.0;
+    for (f = 0; f < 40; ++f) {
+        double P0 = 0.0, P1 = 0.0, lam = 0.0, vmin = HUGE_VAL;
+        for (i = 0; i < m.nv; ++i) {
+            double b1 = 0.0;
+            P0 += sim.mass[i] * vel[3 * i];
+            vmin = fmin(vmin, vel[3 * i]);
+            if (x[3 * i + 2] < sim.dhat) wr_statics_barrier(x[3 * i + 2], sim.dhat, sim.kappa, &b1, NULL);
+            lam += fabs(b1);
+        }
+        cr_assert_eq(wr_dyn_step(&sim, &st, &fs, &dg), WR_OK, "frame %d: %s", (int)f, dg.message);
+        for (i = 0; i < m.nv; ++i) P1 += sim.mass[i] * vel[3 * i];
+        if (vmin > 0.2) { /* sliding above ε_v through the whole step (μ g h = 0.1 m/s is lost per step) */
+            sliding++;
+            cr_assert_float_eq(P1 - P0, -h * mu * lam, 10.0 * M * vtol, "frame %d: dP %.6e, -h mu sum(lambda) %.6e", (int)f,
+                               P1 - P0, -h * mu * lam);
+            cr_assert_eq(fs.ccd_alpha_min, 1.0, "frame %d: a tangential step was cut to %.3f", (int)f, fs.ccd_alpha_min);
+        }
+    }
+    cr_assert_geq(sliding, 25, "the sheet slid for %d frames (v0/(mu g) = 31 frames)", (int)sliding);
+    cr_assert_lt(dyn_max_speed(vel, m.nv), 1e-2, "still moving at %.3e m/s after 1.33 s", dyn_max_speed(vel, m.nv));
+    wr_dyn_free(&sim);
+    free(x);
+    free(vel);
+    wr_shell_free(&s);
+    wr_mesh_free(&m);
+}
+
 Test(dynamics, bad_input_is_refused) {
     wr_mesh m;
     wr_shell s;

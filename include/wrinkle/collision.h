@@ -217,8 +217,14 @@ typedef struct wr_collision_mesh {
     uint8_t *obst_v;  /* nv: 1 = obstacle vertex */
     uint8_t *obst_e, *obst_f; /* ne, nf: 1 = all vertices obstacle */
     int32_t self;
-    int32_t queries;  /* trees are rebuilt every 64th query and refitted in between */
-    wr_bvh bv, be, bf; /* vertices, edges, faces (built at create, refitted per query) */
+    int32_t queries;  /* cloth trees are rebuilt every 64th query and refitted in between */
+    /* ON THE BROAD PHASE: trees over cloth vertices, edges, faces (0–2) and obstacle vertices,
+     * edges, faces (3–5); ids[t][i] is the mesh-wide id of tree t's primitive i */
+    wr_bvh tree[6];
+    int32_t *ids[6], nids[6];
+    double *ox;       /* nv*3: positions the obstacle trees were fitted at (obstacle rows) */
+    double opad;      /* box padding of the obstacle trees [m] */
+    int32_t ofit, orefits; /* obstacle trees fitted (0/1), refits since their last build */
     double *boxes;    /* scratch: max(nv, ne, nf)*6 */
 } wr_collision_mesh;
 
@@ -1021,9 +1027,14 @@ WRDEF void wr_collision_mesh_free(wr_collision_mesh *cm) {
     wr_free(cm->obst_e);
     wr_free(cm->obst_f);
     wr_free(cm->boxes);
-    wr_bvh_free(&cm->bv);
-    wr_bvh_free(&cm->be);
-    wr_bvh_free(&cm->bf);
+    wr_free(cm->ox);
+    {
+        int t;
+        for (t = 0; t < 6; ++t) {
+            wr_bvh_free(&cm->tree[t]);
+            wr_free(cm->ids[t]);
+        }
+    }
     memset(cm, 0, sizeof *cm);
 }
 
@@ -1080,6 +1091,21 @@ WRDEF wr_status wr_collision_mesh_create(wr_collision_mesh *cm, int32_t nv, int3
         cm->obst_e[i] = cm->obst_v[cm->edges[2 * i]] && cm->obst_v[cm->edges[2 * i + 1]];
     }
     wr_free(keys);
+    keys = NULL;
+    cm->ox = (double *)wr_alloc_array((size_t)3 * (size_t)nv, sizeof(double));
+    if (!cm->ox) goto nomem;
+    {   /* the six primitive lists of ON THE BROAD PHASE, in increasing id order */
+        int t;
+        for (t = 0; t < 6; ++t) {
+            int32_t n = t % 3 == 0 ? nv : (t % 3 == 1 ? ne : nf), m = 0;
+            const uint8_t *ob = t % 3 == 0 ? cm->obst_v : (t % 3 == 1 ? cm->obst_e : cm->obst_f);
+            cm->ids[t] = (int32_t *)wr_alloc_array((size_t)(n > 0 ? n : 1), sizeof(int32_t));
+            if (!cm->ids[t]) goto nomem;
+            for (i = 0; i < n; ++i)
+                if ((ob[i] != 0) == (t >= 3)) cm->ids[t][m++] = i;
+            cm->nids[t] = m;
+        }
+    }
     return WR_OK;
 nomem:
     wr_free(keys);
@@ -1109,35 +1135,67 @@ static void wr__coll_box(const double *x, const double *dx, const int32_t *vs, i
 
 static int wr__coll_finite(double v) { return v == v && v - v == 0.0; }
 
-/* Boxes for vertices (which = 0), edges (1) or faces (2) into cm->boxes; refit or (re)build the tree. */
-static wr_status wr__coll_tree(wr_collision_mesh *cm, int which, const double *x, const double *dx, double pad,
-                               int rebuild, wr_diag *diag) {
-    wr_bvh *t = which == 0 ? &cm->bv : (which == 1 ? &cm->be : &cm->bf);
-    int32_t n = which == 0 ? cm->nv : (which == 1 ? cm->ne : cm->nf), i;
+/* Boxes of tree t's primitives (ON THE BROAD PHASE) into cm->boxes; refit or (re)build the tree. */
+static wr_status wr__coll_tree(wr_collision_mesh *cm, int t, const double *x, const double *dx, double pad, int rebuild,
+                               wr_diag *diag) {
+    wr_bvh *b = &cm->tree[t];
+    int32_t n = cm->nids[t], i, which = t % 3;
     for (i = 0; i < n; ++i) {
-        const int32_t *vs = which == 0 ? &i : (which == 1 ? cm->edges + 2 * i : cm->faces + 3 * i);
+        int32_t g = cm->ids[t][i];
+        const int32_t *vs = which == 0 ? &cm->ids[t][i] : (which == 1 ? cm->edges + 2 * g : cm->faces + 3 * g);
         wr__coll_box(x, dx, vs, which + 1, pad, cm->boxes + 6 * i);
     }
-    if (rebuild || t->n != n || !t->left) {
-        wr_bvh_free(t);
-        return wr_bvh_build(t, n, cm->boxes, diag);
+    if (rebuild || b->n != n || !b->left) {
+        wr_bvh_free(b);
+        return wr_bvh_build(b, n, cm->boxes, diag);
     }
-    wr_bvh_refit(t, cm->boxes);
+    wr_bvh_refit(b, cm->boxes);
     return WR_OK;
 }
 
-static wr_status wr__coll_trees(wr_collision_mesh *cm, const double *x, const double *dx, double pad, int need_v,
-                                wr_diag *diag) {
-    int rebuild = (cm->queries++ % WR__COLL_REBUILD) == 0;
+/* The obstacle trees are fitted again only when an obstacle vertex moved (or moves along dx) or the
+ * padding changed (contacts pad by d̂/2, CCD by 0: a padded tree would hand CCD extra candidates,
+ * whose additive CCD is conservative for tangential motion): a body held still costs its box
+ * refit per query at most, and never the traversal of its own pairs. */
+static wr_status wr__coll_obstacle_trees(wr_collision_mesh *cm, const double *x, const double *dx, double pad,
+                                         wr_diag *diag) {
+    int32_t k, i, moving = 0, same = cm->ofit && pad == cm->opad;
+    wr_status st;
+    int t, rebuild;
+    for (k = 0; k < cm->nids[3]; ++k) {
+        int32_t v = cm->ids[3][k];
+        for (i = 0; i < 3; ++i) {
+            if (dx && dx[3 * v + i] != 0.0) moving = 1;
+            if (x[3 * v + i] != cm->ox[3 * v + i]) same = 0;
+        }
+    }
+    if (same && !moving) return WR_OK;
+    rebuild = !cm->ofit || cm->orefits >= WR__COLL_REBUILD;
+    for (t = 3; t < 6; ++t)
+        if ((st = wr__coll_tree(cm, t, x, dx, pad, rebuild, diag)) != WR_OK) {
+            cm->ofit = 0;
+            return st;
+        }
+    cm->orefits = rebuild ? 0 : cm->orefits + 1;
+    /* boxes swept along a moving obstacle's dx are not reused */
+    cm->ofit = !moving;
+    cm->opad = pad;
+    for (k = 0; k < cm->nids[3]; ++k)
+        for (i = 0; i < 3; ++i) cm->ox[3 * cm->ids[3][k] + i] = x[3 * cm->ids[3][k] + i];
+    return WR_OK;
+}
+
+static wr_status wr__coll_trees(wr_collision_mesh *cm, const double *x, const double *dx, double pad, wr_diag *diag) {
+    int rebuild = (cm->queries++ % WR__COLL_REBUILD) == 0, t;
     wr_status st;
     int32_t i;
     for (i = 0; i < 3 * cm->nv; ++i)
         if (!wr__coll_finite(x[i]) || (dx && !wr__coll_finite(dx[i])))
             return wr_fail(diag, WR_ERR_DOMAIN, i / 3, "collision: vertex %d has a non-finite coordinate%s", (int)(i / 3),
                            dx && wr__coll_finite(x[i]) ? " step" : "");
-    if (need_v && (st = wr__coll_tree(cm, 0, x, dx, pad, rebuild, diag)) != WR_OK) return st;
-    if ((st = wr__coll_tree(cm, 1, x, dx, pad, rebuild, diag)) != WR_OK) return st;
-    return wr__coll_tree(cm, 2, x, dx, pad, rebuild, diag);
+    for (t = 0; t < 3; ++t)
+        if ((st = wr__coll_tree(cm, t, x, dx, pad, rebuild, diag)) != WR_OK) return st;
+    return wr__coll_obstacle_trees(cm, x, dx, pad, diag);
 }
 
 /* ON PAIRS: 1 when the pair (primitive obstacle flags oa, ob) is to be considered */
@@ -1155,6 +1213,7 @@ static void wr__coll_gather(const double *x, const int32_t v[4], double x12[12])
 
 typedef struct wr__coll_ctx {
     wr_collision_mesh *cm;
+    const int32_t *ma, *mb; /* tree-local → mesh-wide ids of the two trees being traversed */
     const double *x, *dx;
     double dhat;
     wr_contact_set *set;
@@ -1189,7 +1248,7 @@ static wr_status wr__coll_add_contact(wr__coll_ctx *c, int kind, int32_t i, int3
     int32_t v[4], piece = 0;
     double x12[12], d, w[4];
     wr_contact_set *s = c->set;
-    if (!wr__coll_pair(c->cm, kind, i, j, v)) return WR_OK;
+    if (!wr__coll_pair(c->cm, kind, c->ma[i], c->mb[j], v)) return WR_OK;
     wr__coll_gather(c->x, v, x12);
     d = sqrt(kind == WR_CONTACT_PT
                  ? wr_collision_point_triangle_dist2(x12, x12 + 3, x12 + 6, x12 + 9, NULL, NULL, w, &piece)
@@ -1223,6 +1282,26 @@ static wr_status wr__coll_ee_contact(void *u, int32_t i, int32_t j) {
     return wr__coll_add_contact((wr__coll_ctx *)u, WR_CONTACT_EE, i, j);
 }
 
+/* Every candidate pair of ON PAIRS from the six trees (ON THE BROAD PHASE): cloth vertices against
+ * cloth faces (self) and obstacle faces, obstacle vertices against cloth faces, cloth edges among
+ * themselves (self) and against obstacle edges. Obstacle–obstacle pairs are never visited. */
+static wr_status wr__coll_query(wr_collision_mesh *cm, wr__coll_ctx *c, wr_bvh_pair_fn pt, wr_bvh_pair_fn ee,
+                                wr_diag *diag) {
+    static const int pairs[5][3] = {{0, 2, 0}, {0, 5, 0}, {3, 2, 0}, {1, 1, 1}, {1, 4, 1}};
+    int q;
+    wr_status st;
+    for (q = 0; q < 5; ++q) {
+        int a = pairs[q][0], b = pairs[q][1];
+        if (!cm->self && a < 3 && b < 3) continue; /* a cloth–cloth pair */
+        c->ma = cm->ids[a];
+        c->mb = cm->ids[b];
+        st = a == b ? wr_bvh_self_pairs(&cm->tree[a], ee, c, diag)
+                    : wr_bvh_pairs(&cm->tree[a], &cm->tree[b], pairs[q][2] ? ee : pt, c, diag);
+        if (st != WR_OK) return st;
+    }
+    return WR_OK;
+}
+
 WRDEF void wr_contact_set_free(wr_contact_set *set) {
     if (!set) return;
     wr_free(set->c);
@@ -1239,15 +1318,14 @@ WRDEF wr_status wr_collision_contacts(wr_collision_mesh *cm, const double *x, do
     set->n = 0;
     set->min_distance = HUGE_VAL;
     /* boxes grown by d̂/2 each: two primitives closer than d̂ have overlapping boxes */
-    if ((st = wr__coll_trees(cm, x, NULL, 0.5 * dhat, 1, diag)) != WR_OK) return st;
+    if ((st = wr__coll_trees(cm, x, NULL, 0.5 * dhat, diag)) != WR_OK) return st;
     memset(&c, 0, sizeof c);
     c.cm = cm;
     c.x = x;
     c.dhat = dhat;
     c.set = set;
     c.diag = diag;
-    if ((st = wr_bvh_pairs(&cm->bv, &cm->bf, wr__coll_pt_contact, &c, diag)) != WR_OK) return st;
-    return wr_bvh_self_pairs(&cm->be, wr__coll_ee_contact, &c, diag);
+    return wr__coll_query(cm, &c, wr__coll_pt_contact, wr__coll_ee_contact, diag);
 }
 
 WRDEF wr_status wr_collision_contact_energy(const wr_contact_set *set, const double *x, double dhat, double kappa,
@@ -1292,7 +1370,7 @@ WRDEF wr_status wr_collision_contact_energy(const wr_contact_set *set, const dou
 static wr_status wr__coll_ccd(wr__coll_ctx *c, int kind, int32_t i, int32_t j) {
     int32_t v[4];
     double x12[12], d12[12], toi;
-    if (!wr__coll_pair(c->cm, kind, i, j, v)) return WR_OK;
+    if (!wr__coll_pair(c->cm, kind, c->ma[i], c->mb[j], v)) return WR_OK;
     wr__coll_gather(c->x, v, x12);
     wr__coll_gather(c->dx, v, d12);
     if (c->stats) c->stats->candidates++;
@@ -1323,7 +1401,7 @@ WRDEF wr_status wr_collision_max_step(wr_collision_mesh *cm, const double *x, co
         stats->worst_kind = -1;
         stats->worst_v[0] = stats->worst_v[1] = stats->worst_v[2] = stats->worst_v[3] = -1;
     }
-    if ((st = wr__coll_trees(cm, x, dx, 0.0, 1, diag)) != WR_OK) return st;
+    if ((st = wr__coll_trees(cm, x, dx, 0.0, diag)) != WR_OK) return st;
     memset(&c, 0, sizeof c);
     c.cm = cm;
     c.x = x;
@@ -1331,8 +1409,7 @@ WRDEF wr_status wr_collision_max_step(wr_collision_mesh *cm, const double *x, co
     c.diag = diag;
     c.alpha = 1.0;
     c.stats = stats;
-    if ((st = wr_bvh_pairs(&cm->bv, &cm->bf, wr__coll_pt_ccd, &c, diag)) != WR_OK) return st;
-    if ((st = wr_bvh_self_pairs(&cm->be, wr__coll_ee_ccd, &c, diag)) != WR_OK) return st;
+    if ((st = wr__coll_query(cm, &c, wr__coll_pt_ccd, wr__coll_ee_ccd, diag)) != WR_OK) return st;
     *alpha = c.alpha;
     return WR_OK;
 }
@@ -1405,6 +1482,9 @@ static wr_status wr__coll_pair_isect(void *u, int32_t i, int32_t j) {
     return WR_OK;
 }
 
+static wr_status wr__coll_face_tree(wr_bvh *t, int32_t nv, const double *x, int32_t nf, const int32_t *f,
+                                    wr_diag *diag);
+
 WRDEF wr_status wr_collision_mesh_self_intersects(wr_collision_mesh *cm, const double *x, int32_t *count,
                                                   int32_t first[2], wr_diag *diag) {
     wr__coll_isect c;
@@ -1414,12 +1494,18 @@ WRDEF wr_status wr_collision_mesh_self_intersects(wr_collision_mesh *cm, const d
     for (i = 0; i < 3 * cm->nv; ++i)
         if (!wr__coll_finite(x[i]))
             return wr_fail(diag, WR_ERR_DOMAIN, i / 3, "self-intersection: vertex %d is not finite", (int)(i / 3));
-    if ((st = wr__coll_tree(cm, 2, x, NULL, 0.0, 1, diag)) != WR_OK) return st;
-    memset(&c, 0, sizeof c);
-    c.fa = cm->faces;
-    c.xa = x;
-    c.first[0] = c.first[1] = -1;
-    if ((st = wr_bvh_self_pairs(&cm->bf, wr__coll_self_isect, &c, diag)) != WR_OK) return st;
+    {   /* every face pair, obstacle ones included: a tree of its own */
+        wr_bvh t;
+        memset(&t, 0, sizeof t);
+        if ((st = wr__coll_face_tree(&t, cm->nv, x, cm->nf, cm->faces, diag)) != WR_OK) return st;
+        memset(&c, 0, sizeof c);
+        c.fa = cm->faces;
+        c.xa = x;
+        c.first[0] = c.first[1] = -1;
+        st = wr_bvh_self_pairs(&t, wr__coll_self_isect, &c, diag);
+        wr_bvh_free(&t);
+        if (st != WR_OK) return st;
+    }
     *count = c.count;
     if (first) {
         first[0] = c.first[0];

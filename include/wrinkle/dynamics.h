@@ -71,9 +71,20 @@
  *   D = Σ_k μ λ_k f0(‖T_kᵀ Σ_i w_i (x_i − x_n,i)‖) with IPC's smoothed f0 (ε = ε_v h, ε_v =
  *   friction_eps_v): Coulomb's law μλ above the sliding speed ε_v, a stiff viscous stick below.
  *
+ * ON PROJECTION
+ *   Newton (newton.h) makes each element block PSD. The shell's face blocks (membrane + bending over
+ *   the face and the vertices across its edges) carry their share of the inertia when projected:
+ *   each vertex's lumped mass is split evenly over the blocks that hold it, so block e is
+ *   K_e + (1/h² + α/h) M_e and the blocks still sum to K_el + (1/h² + α/h) M. Projecting K_e alone
+ *   would discard compression curvature that the inertia outweighs; with its share a block whose
+ *   negative curvature is below m/h² passes the projection's Cholesky test unchanged, and the
+ *   projected matrix is closer to the true Hessian.
+ *
  * ON MOVING BODIES
- *   Body vertices are unknowns of Newton's vector after the cloth's (z = (x, body)). A body without
- *   keys is held (fixed DOFs). A keyframed body's vertices start each step where they are and are
+ *   Body vertices are unknowns of Newton's vector after the cloth's (z = (x, body)) when some body
+ *   moves; bodies without keys are then fixed DOFs. When no body moves they are not unknowns at all
+ *   (Newton and its linear solves see the cloth only; contacts drop the body rows of their blocks
+ *   after projection, a principal submatrix of a PSD block being PSD). A keyframed body's vertices start each step where they are and are
  *   pulled to their positions at the step's end by springs k/2 ‖z_b − target(t + h)‖² (k =
  *   kinematic_stiffness, default WR_DYN_KINEMATIC_FACTOR · m̄/h²), so the body's motion goes
  *   through the same CCD-limited line search as the cloth's and can never push through it; a body
@@ -89,7 +100,12 @@
  *   SI: m, s, kg (shell density), N/m (κ, sewing), 1/s (α), s (β), m/s (tolerances).
  *
  * ON THREADS
- *   A created sim is used by one thread at a time; several sims may run concurrently.
+ *   A created sim is used by one thread at a time; several sims may run concurrently. Built with
+ *   OpenMP (-fopenmp), each Hessian's face blocks are computed and projected in parallel, 1024 faces
+ *   at a time, into a buffer that is then added to the matrix in face order: every sum happens in
+ *   the same order for any thread count, so results are bit-identical with 1, 2, … threads and
+ *   without OpenMP (bench/bench_dynamics.c checks this). Energies, gradients, contact detection and
+ *   the linear solves are serial.
  */
 #ifndef WRINKLE_DYNAMICS_H
 #define WRINKLE_DYNAMICS_H
@@ -203,6 +219,8 @@ typedef struct wr_dyn_stats {
     double min_distance;  /* smallest contact distance at the end of the frame [m] (HUGE_VAL: none) */
     double ccd_alpha_min; /* smallest CCD step cut (1 = never cut) */
     double h_min;         /* smallest time step used [s] */
+    int32_t pattern_builds; /* Hessian patterns built (newton.h: one per solve, more when contacts appear) */
+    int32_t elements_projected; /* element blocks the PSD projection changed (newton.h), summed */
 } wr_dyn_stats;
 
 /* Called after every frame of wr_dyn_run; a nonzero return stops the run (WR_OK). */
@@ -282,6 +300,9 @@ extern "C" {
  * WR_STATICS_CCD_KEEP, IPC's 0.1–0.2 safety fraction) */
 #define WR_DYN_CCD_KEEP 0.2
 #define WR__DYN_CCD_ITERS 64
+/* face blocks computed together before they are added (2.6 MB of 18×18 blocks: cache-sized work
+ * per thread, and enough faces per chunk for two threads) */
+#define WR__DYN_CHUNK 1024
 
 /* one lagged friction contact (ON CONTACT): vertex v against analytic obstacle, normal force lam,
  * tangent basis T (two orthonormal rows) frozen at the step's start */
@@ -303,7 +324,9 @@ typedef struct wr__dyn_body {
 } wr__dyn_body;
 
 typedef struct wr__dyn_work {
-    int32_t n;          /* DOFs = 3 nv */
+    int32_t n;          /* 3 (nv + nb): cloth and body vertices, the collision mesh's vector */
+    int32_t nn;         /* Newton's DOFs: n with a moving body, else 3 nv (held bodies are no unknowns) */
+    double *zc, *dzc, *gc; /* n: Newton's iterate, step and contact gradient over cloth + held bodies */
     double h;           /* current step [s] */
     double *xn, *xt;    /* step start x_n, inertial target x̃ = x_n + h v_n */
     double *z;          /* Newton's iterate (a copy of x: the state stays put when a step fails) */
@@ -319,6 +342,11 @@ typedef struct wr__dyn_work {
     wr_collision_mesh cm;      /* cloth faces + body faces over Newton's vector */
     wr_contact_set cs;         /* the contact set at the last evaluated point */
     double *target;            /* nb*3 body positions at the step's end (moving bodies) */
+    double *mshare, *mdiag;    /* nv: inertia share per face block, mass kept on the diagonal */
+    int face_blocks;           /* the shell has face blocks (membrane, mid-edge or dihedral bending) */
+    double *kbuf;              /* WR__DYN_CHUNK face blocks (18×18 each) of one chunk */
+    int32_t *kvert;            /* per block: k, then k vertices (7 ints) */
+    int8_t *kstat, *kproj;     /* per block: failed, changed by the projection */
 } wr__dyn_work;
 
 static double wr__dyn_now(void) { return wr_time_seconds(); }
@@ -421,9 +449,9 @@ static void wr__dyn_smooth_terms(const wr_dyn *sim, const double *z, double *E, 
     }
     if (w->damp_stiff) { /* β/(2h) Δᵀ K_n Δ, Δ = z − x_n */
         double *d = w->s1, *Kdd = w->s2, q = 0.0, c = sim->desc.damping.stiffness / h;
-        for (i = 0; i < w->n; ++i) d[i] = z[i] - w->xn[i];
+        for (i = 0; i < 3 * sim->nv; ++i) d[i] = z[i] - w->xn[i];
         wr_csr_spmv(&w->Kd.A, d, Kdd);
-        for (i = 0; i < w->n; ++i) {
+        for (i = 0; i < 3 * sim->nv; ++i) { /* K_n is over the cloth alone */
             q += d[i] * Kdd[i];
             if (g) g[i] += c * Kdd[i];
         }
@@ -508,6 +536,43 @@ static wr_status wr__dyn_contact_terms(wr_dyn *sim, const double *z, double *E, 
     return WR_OK;
 }
 
+/* Newton's vector z (nn) as the collision mesh's (n): z, then the held bodies (set per step). */
+static const double *wr__dyn_full(wr__dyn_work *w, const double *z, double *buf) {
+    if (w->nn == w->n) return z;
+    memcpy(buf, z, sizeof(double) * (size_t)w->nn);
+    return buf;
+}
+
+/* Contact elements into Newton's matrix with held-body vertices (not unknowns) dropped: the block
+ * is made PSD over all its vertices first (when the step projects), so its cloth part, a principal
+ * submatrix, stays PSD. */
+typedef struct wr__dyn_csink {
+    wr_newton_hessian *H;
+    int32_t nblk; /* Newton's blocks: vertices >= nblk are held body vertices */
+    int psd;      /* the elements are PSD by construction (friction) */
+} wr__dyn_csink;
+
+static wr_status wr__dyn_csink_add(void *user, int32_t k, const int32_t *verts, const double *Ke) {
+    wr__dyn_csink *cs = (wr__dyn_csink *)user;
+    double buf[WR_DENSE_MAX * WR_DENSE_MAX];
+    int32_t vv[WR_DENSE_MAX / 3], a, n = 3 * k, drop = 0;
+    if (k > WR_DENSE_MAX / 3) return WR_ERR_INVALID_ARG;
+    for (a = 0; a < k; ++a) {
+        vv[a] = verts[a] < cs->nblk ? verts[a] : -1;
+        drop |= vv[a] < 0;
+    }
+    if (!drop) return cs->psd ? wr_newton_add_element_psd(cs->H, k, verts, Ke) : wr_newton_sink_add(cs->H, k, verts, Ke);
+    if (cs->psd) return wr_newton_add_element_psd(cs->H, k, vv, Ke);
+    memcpy(buf, Ke, sizeof(double) * (size_t)(n * n));
+    /* projected over the whole stencil (newton.h's per-step mode), then added with the rows dropped */
+    if (!wr_newton_hessian_exact(cs->H)) {
+        cs->H->n_elem++;
+        cs->H->n_proj += (cs->H->proj == WR_PROJECT_JACOBI ? wr_dense_project_spd(n, buf, 0.0)
+                                                           : wr_newton_project_spd(n, buf, 0.0)) != 0;
+    }
+    return wr_newton_add_element_psd(cs->H, k, vv, buf);
+}
+
 /* Newton's energy callback: Φ(z), ∇Φ; scale = Σ|parts| (newton.h ON STOPPING). A penetrating
  * vertex or a degenerate face is outside Φ's domain (an error status). */
 static wr_status wr__dyn_energy_cb(void *user, const double *z, double *Phi, double *g, double *scale, wr_diag *diag) {
@@ -516,10 +581,18 @@ static wr_status wr__dyn_energy_cb(void *user, const double *z, double *Phi, dou
     double E = 0.0, Es = 0.0, Ec = 0.0, t0;
     wr_status st = wr_shell_energy(sim->shell, z, &E, g, diag);
     if (st != WR_OK) return st;
-    if (g && sim->nb) memset(g + 3 * sim->nv, 0, sizeof(double) * 3 * (size_t)sim->nb);
+    if (g && w->nn > 3 * sim->nv) memset(g + 3 * sim->nv, 0, sizeof(double) * (size_t)(w->nn - 3 * sim->nv));
     wr__dyn_smooth_terms(sim, z, &Es, g);
     t0 = wr__dyn_now();
-    st = wr__dyn_contact_terms(sim, z, &Ec, g, NULL, NULL, diag);
+    if (w->nn == w->n) {
+        st = wr__dyn_contact_terms(sim, z, &Ec, g, NULL, NULL, diag);
+    } else { /* held bodies: contact terms over (z, body), their body rows dropped */
+        int32_t i;
+        if (g) memset(w->gc, 0, sizeof(double) * (size_t)w->n);
+        st = wr__dyn_contact_terms(sim, wr__dyn_full(w, z, w->zc), &Ec, g ? w->gc : NULL, NULL, NULL, diag);
+        if (g)
+            for (i = 0; i < w->nn; ++i) g[i] += w->gc[i];
+    }
     w->t_ch += wr__dyn_now() - t0;
     if (st != WR_OK) return st;
     *Phi = E + Es + Ec;
@@ -532,7 +605,7 @@ static wr_status wr__dyn_energy_cb(void *user, const double *z, double *Phi, dou
  * f1/y I + (f1' y − f1)/y³ u uᵀ; below ε that is (2/ε − y/ε²) I − u uᵀ/(ε² y), PSD (eigenvalue
  * 2(1 − y/ε)/ε along u); above ε it is (I − ûûᵀ)/y, PSD (IPC Sec. 5.2); block (a, b) = w_a w_b T H2 Tᵀ. */
 static wr_status wr__dyn_fric_hessian(const wr__dyn_fric *f, const double *z, const double *xn, double mu, double eps,
-                                      wr_newton_hessian *H) {
+                                      wr__dyn_csink *H) {
     double u[2], y, a, c, H2[4], TH[6], B[9], K[144];
     int32_t i, j, p, q;
     wr__dyn_fric_eval(f, z, xn, mu, eps, NULL, u, &y);
@@ -547,21 +620,27 @@ static wr_status wr__dyn_fric_hessian(const wr__dyn_fric *f, const double *z, co
         for (j = 0; j < 2; ++j) TH[2 * i + j] = f->T[i] * H2[j] + f->T[3 + i] * H2[2 + j];
     for (i = 0; i < 3; ++i)
         for (j = 0; j < 3; ++j) B[3 * i + j] = TH[2 * i] * f->T[j] + TH[2 * i + 1] * f->T[3 + j];
-    if (f->k == 1) return wr_newton_add_diagonal(H, f->v[0], B);
+    if (f->k == 1) return wr_newton_add_diagonal(H->H, f->v[0], B);
     for (p = 0; p < f->k; ++p)
         for (q = 0; q < f->k; ++q)
             for (i = 0; i < 3; ++i)
                 for (j = 0; j < 3; ++j) K[(3 * p + i) * 3 * f->k + 3 * q + j] = f->w[p] * f->w[q] * B[3 * i + j];
-    return wr_newton_add_element_psd(H, f->k, f->v, K);
+    return wr__dyn_csink_add(H, f->k, f->v, K);
 }
 
 /* Contact and friction Hessian blocks: analytic obstacles vertex-diagonal, mesh pairs 4-vertex
  * elements (projected or exact by Newton's phase, like the elastic ones), friction elements PSD. */
-static wr_status wr__dyn_contact_hessian(wr_dyn *sim, const double *z, wr_newton_hessian *H, wr_diag *diag) {
+static wr_status wr__dyn_contact_hessian(wr_dyn *sim, const double *zn, wr_newton_hessian *H, wr_diag *diag) {
     wr__dyn_work *w = sim->w;
     double mu = sim->desc.contact.friction, eps = sim->desc.contact.friction_eps_v * w->h, B[9];
+    const double *z = wr__dyn_full(w, zn, w->zc);
     int32_t o, v, i, j, k;
+    wr__dyn_csink cs, fs;
     wr_status st;
+    cs.H = fs.H = H;
+    cs.nblk = fs.nblk = w->nn / 3;
+    cs.psd = 0;
+    fs.psd = 1;
     for (o = 0; o < sim->desc.contact.n_analytic; ++o)
         for (v = 0; v < sim->nv; ++v) {
             double gd[3], d, b2;
@@ -578,19 +657,131 @@ static wr_status wr__dyn_contact_hessian(wr_dyn *sim, const double *z, wr_newton
     if (w->have_cm) {
         wr_hess_sink hs;
         double Ec = 0.0;
-        hs.user = H;
-        hs.add = wr_newton_sink_add;
+        hs.user = &cs;
+        hs.add = wr__dyn_csink_add;
         if ((st = wr_collision_contacts(&w->cm, z, sim->dhat, &w->cs, diag)) != WR_OK) return st;
         if ((st = wr_collision_contact_energy(&w->cs, z, sim->dhat, sim->kappa, 0, &Ec, NULL, &hs, diag)) != WR_OK)
             return st;
     }
     for (k = 0; k < w->n_fr && mu > 0.0; ++k)
-        if ((st = wr__dyn_fric_hessian(w->fr + k, z, w->xn, mu, eps, H)) != WR_OK) return st;
+        if ((st = wr__dyn_fric_hessian(w->fr + k, z, w->xn, mu, eps, &fs)) != WR_OK) return st;
     return WR_OK;
 }
 
-/* Newton's Hessian callback: K_el (elements, projected by Newton per its phase) + M(1/h² + α/h) +
- * β/h K_n + sewing + moving-body springs + contact and friction. */
+/* ---- the elastic Hessian: face blocks computed in chunks, added in face order (ON THREADS) ----- */
+
+/* One face block of the shell (shell.h ON ELEMENT HESSIANS: membrane + mid-edge or dihedral bending
+ * over the face's corners and the vertices across its edges) plus its share of the inertia: each
+ * vertex's lumped mass is split evenly over the blocks whose stencil holds it (w->mshare), so every
+ * DOF of a block carries c·m_v/count_v on its diagonal (c = 1/h² + α/h) before the block is made
+ * PSD; the blocks sum to K_el + cM exactly as before, but a block whose negative curvature the
+ * inertia outweighs passes the projection's Cholesky test untouched (ON PROJECTION). Ke: (3k)²
+ * row-major, verts: k vertices; returns WR_OK or WR_ERR_GEOMETRY (an undefined normal). */
+static wr_status wr__dyn_face_block(const wr_dyn *sim, const double *z, int32_t f, double c, int32_t *k, int32_t verts[6],
+                                    double *Ke) {
+    const wr_shell *s = sim->shell;
+    const double *ms = sim->w->mshare;
+    double x18[18], H18[324], H9[81];
+    int32_t vs[6], idx[6], mask, n = 0, a, b, i, j, kk;
+    int bend = s->bending == WR_BENDING_MIDEDGE || s->bending == WR_BENDING_DIHEDRAL;
+    mask = wr_shell_face_stencil(s, f, vs);
+    for (a = 0; a < 6; ++a)
+        for (i = 0; i < 3; ++i) x18[3 * a + i] = vs[a] >= 0 ? z[3 * vs[a] + i] : 0.0;
+    if (bend) {
+        wr_status es = s->bending == WR_BENDING_MIDEDGE
+                           ? wr_shell_midedge_element(x18, mask, s->qbend + 9 * f, s->bbar ? s->bbar + 3 * f : NULL, NULL,
+                                                      NULL, H18, NULL)
+                           : wr_shell_dihedral_element(x18, mask, s->qbend + 9 * f, s->bbar ? s->bbar + 3 * f : NULL, NULL,
+                                                       NULL, H18, NULL);
+        if (es != WR_OK) return WR_ERR_GEOMETRY;
+    } else {
+        memset(H18, 0, sizeof H18);
+    }
+    if (s->membrane != WR_MEMBRANE_NONE) {
+        wr_shell_membrane_element(s, f, x18, NULL, H9);
+        for (a = 0; a < 9; ++a)
+            for (b = 0; b < 9; ++b) H18[a * 18 + b] += H9[a * 9 + b];
+    }
+    for (a = 0; a < 6; ++a)
+        if (vs[a] >= 0 && (a < 3 || bend)) idx[n++] = a;
+    kk = 3 * n;
+    for (a = 0; a < n; ++a)
+        for (b = 0; b < n; ++b)
+            for (i = 0; i < 3; ++i)
+                for (j = 0; j < 3; ++j) Ke[(3 * a + i) * kk + 3 * b + j] = H18[(3 * idx[a] + i) * 18 + 3 * idx[b] + j];
+    for (a = 0; a < n; ++a) {
+        verts[a] = vs[idx[a]];
+        for (i = 0; i < 3; ++i) Ke[(3 * a + i) * kk + 3 * a + i] += c * ms[verts[a]];
+    }
+    *k = n;
+    return WR_OK;
+}
+
+/* The face blocks into Newton's matrix: WR__DYN_CHUNK faces at a time are computed and projected
+ * (per Newton's mode for this step, newton.h ON PROJECTION) independently — in parallel with
+ * OpenMP — into w->kbuf, then added one by one in face order, so the matrix is bit-identical for
+ * any thread count. Newton's element counters and projection time are kept as its own sink would
+ * (the time as the chunk's wall time share). */
+static wr_status wr__dyn_face_blocks(wr_dyn *sim, const double *z, double c, wr_newton_hessian *H, wr_diag *diag) {
+    wr__dyn_work *w = sim->w;
+    int32_t nf = sim->shell->nf, f0, i;
+    int proj = H->proj;
+    for (f0 = 0; f0 < nf; f0 += WR__DYN_CHUNK) {
+        int32_t nb = nf - f0 < WR__DYN_CHUNK ? nf - f0 : WR__DYN_CHUNK;
+        double t0 = wr__dyn_now(), tp = 0.0;
+#ifdef _OPENMP
+#pragma omp parallel for schedule(static) reduction(+ : tp) if (nb >= 64)
+#endif
+        for (i = 0; i < nb; ++i) {
+            double *Ke = w->kbuf + (size_t)324 * i, t1;
+            int32_t *kv = w->kvert + 7 * i, k = 0;
+            w->kstat[i] = (int8_t)(wr__dyn_face_block(sim, z, f0 + i, c, &k, kv + 1, Ke) != WR_OK);
+            kv[0] = k;
+            w->kproj[i] = 0;
+            if (w->kstat[i] || proj == WR_PROJECT_NONE) continue;
+            t1 = wr__dyn_now();
+            w->kproj[i] = (int8_t)((proj == WR_PROJECT_JACOBI ? wr_dense_project_spd(3 * k, Ke, 0.0)
+                                                              : wr_newton_project_spd(3 * k, Ke, 0.0)) != 0);
+            tp += wr__dyn_now() - t1;
+        }
+        for (i = 0; i < nb; ++i) {
+            wr_status st;
+            if (w->kstat[i])
+                return wr_fail(diag, WR_ERR_GEOMETRY, f0 + i, "dynamics: face %d has an undefined normal", (int)(f0 + i));
+            H->n_elem++;
+            H->n_proj += w->kproj[i];
+            if ((st = wr_newton_add_element_psd(H, w->kvert[7 * i], w->kvert + 7 * i + 1, w->kbuf + (size_t)324 * i)) != WR_OK)
+                return wr_fail(diag, st, f0 + i, "dynamics: face %d not assembled", (int)(f0 + i));
+        }
+        /* the projections' summed time, capped by the chunk's wall time when threads overlap */
+        H->t_proj += fmin(tp, wr__dyn_now() - t0);
+    }
+    return WR_OK;
+}
+
+/* Which shell face blocks hold which vertex (shell.h ON ELEMENT HESSIANS: the face's corners, and
+ * the vertices across its edges with mid-edge or dihedral bending): the inertia shares above. */
+static void wr__dyn_mass_shares(wr_dyn *sim) {
+    const wr_shell *s = sim->shell;
+    wr__dyn_work *w = sim->w;
+    int32_t f, a, v, vs[6];
+    int faces = s->membrane != WR_MEMBRANE_NONE || s->bending == WR_BENDING_MIDEDGE || s->bending == WR_BENDING_DIHEDRAL;
+    int opp = s->bending == WR_BENDING_MIDEDGE || s->bending == WR_BENDING_DIHEDRAL;
+    w->face_blocks = faces;
+    for (v = 0; v < sim->nv; ++v) w->mshare[v] = 0.0;
+    for (f = 0; faces && f < s->nf; ++f) {
+        wr_shell_face_stencil(s, f, vs);
+        for (a = 0; a < 6; ++a)
+            if (vs[a] >= 0 && (a < 3 || opp)) w->mshare[vs[a]] += 1.0;
+    }
+    for (v = 0; v < sim->nv; ++v) {
+        w->mdiag[v] = w->mshare[v] > 0.0 ? 0.0 : sim->mass[v];
+        w->mshare[v] = w->mshare[v] > 0.0 ? sim->mass[v] / w->mshare[v] : 0.0;
+    }
+}
+
+/* Newton's Hessian callback: K_el + M(1/h² + α/h) (face blocks with their inertia share, projected
+ * by Newton per its phase) + β/h K_n + sewing + moving-body springs + contact and friction. */
 static wr_status wr__dyn_hessian_cb(void *user, const double *z, wr_newton_hessian *H, wr_diag *diag) {
     wr_dyn *sim = (wr_dyn *)user;
     wr__dyn_work *w = sim->w;
@@ -600,13 +791,18 @@ static wr_status wr__dyn_hessian_cb(void *user, const double *z, wr_newton_hessi
     wr_status st;
     hs.user = H;
     hs.add = wr_newton_sink_add;
-    if ((st = wr_shell_hessian_elements(sim->shell, z, 0, &hs, diag)) != WR_OK) return st;
+    if (w->face_blocks && (st = wr__dyn_face_blocks(sim, z, c, H, diag)) != WR_OK) return st;
+    /* quadratic bending stencils (x-independent, PSD): the shell streams them */
+    if (sim->shell->bending == WR_BENDING_QUADRATIC &&
+        (st = wr_shell_hessian_elements_part(sim->shell, z, 0, WR_SHELL_HESS_QUADRATIC, &hs, diag)) != WR_OK)
+        return st;
     if (w->damp_stiff && (st = wr__dyn_stream_stiffness(sim, H)) != WR_OK) return st;
     memset(B, 0, sizeof B);
-    for (v = 0; v < sim->nv; ++v) {
-        B[0] = B[4] = B[8] = c * sim->mass[v];
-        if ((st = wr_newton_add_diagonal(H, v, B)) != WR_OK) return st;
-    }
+    for (v = 0; v < sim->nv; ++v)
+        if (w->mdiag[v] > 0.0) {
+            B[0] = B[4] = B[8] = c * w->mdiag[v];
+            if ((st = wr_newton_add_diagonal(H, v, B)) != WR_OK) return st;
+        }
     if (w->moving)
         for (v = 0; v < sim->nb; ++v) {
             B[0] = B[4] = B[8] = sim->kin_k;
@@ -630,12 +826,18 @@ static wr_status wr__dyn_hessian_cb(void *user, const double *z, wr_newton_hessi
 }
 
 /* Max-step hook (CCD): the largest α in (0, 1] keeping every free vertex at >= WR_DYN_CCD_KEEP of
- * its current distance to every analytic obstacle along z + αΔz (conservative advancement: d is
- * 1-Lipschitz, so advancing by (d − target)/|Δz| never overshoots), and every mesh pair
- * intersection-free (collision.h's additive CCD, keep 0.1). */
-static double wr__dyn_max_step_cb(void *user, const double *z, const double *dz) {
+ * its current distance to every analytic obstacle along z + αΔz, and every mesh pair
+ * intersection-free (collision.h's additive CCD, keep 0.1). The analytic obstacles are convex
+ * solids, so the distance d(t) along the straight path is convex in t: its tangent lies below it,
+ * and Newton's iteration t += (d(t) − target)/(−d'(t)) from t = 0 climbs to the first crossing of
+ * the target from below (every iterate is safe); d' >= 0 means no crossing at all. (Advancing by
+ * (d − target)/|Δz|, the 1-Lipschitz bound, also stays below but crawls when a vertex slides
+ * tangentially at a small gap: 64 of its steps covered only 64·0.8·d0 of the path, so a sliding
+ * cloth had its Newton steps cut to a fraction for no approach at all.) */
+static double wr__dyn_max_step_cb(void *user, const double *zn, const double *dzn) {
     wr_dyn *sim = (wr_dyn *)user;
     double alpha = 1.0, t0 = wr__dyn_now();
+    const double *z = wr__dyn_full(sim->w, zn, sim->w->zc), *dz = wr__dyn_full(sim->w, dzn, sim->w->dzc);
     int32_t o, v, it, i;
     for (o = 0; o < sim->desc.contact.n_analytic; ++o)
         for (v = 0; v < sim->nv; ++v) {
@@ -646,12 +848,18 @@ static double wr__dyn_max_step_cb(void *user, const double *z, const double *dz)
             d0 = wr_obstacle_distance(sim->analytic + o, z + 3 * v, NULL);
             if (speed <= (1.0 - WR_DYN_CCD_KEEP) * d0) continue;
             target = WR_DYN_CCD_KEEP * d0;
+            /* Newton on the convex d(t): every iterate stays below the first crossing of target */
             for (it = 0; it < WR__DYN_CCD_ITERS && t < alpha; ++it) {
-                double gap;
+                double gap, gd[3], slope;
                 for (i = 0; i < 3; ++i) p[i] = z[3 * v + i] + t * dz[3 * v + i];
-                gap = wr_obstacle_distance(sim->analytic + o, p, NULL) - target;
+                gap = wr_obstacle_distance(sim->analytic + o, p, gd) - target;
                 if (gap <= 1e-6 * d0) break;
-                t += gap / speed;
+                slope = gd[0] * dz[3 * v] + gd[1] * dz[3 * v + 1] + gd[2] * dz[3 * v + 2];
+                if (!(slope < 0.0)) { /* d no longer decreases, and a convex d never turns down again */
+                    t = alpha;
+                    break;
+                }
+                t += gap / -slope;
             }
             if (t < alpha) alpha = t;
         }
@@ -774,7 +982,7 @@ static wr_status wr__dyn_one_step(wr_dyn *sim, wr_dyn_state *state, double h, wr
     w->t_ch += wr__dyn_now() - t0;
     if (st != WR_OK) return st;
     memset(&pb, 0, sizeof pb);
-    pb.n_blocks = sim->nv + sim->nb;
+    pb.n_blocks = w->nn / 3;
     pb.block = 3;
     pb.user = sim;
     pb.energy = wr__dyn_energy_cb;
@@ -790,10 +998,13 @@ static wr_status wr__dyn_one_step(wr_dyn *sim, wr_dyn_state *state, double h, wr
     nd.name = "dynamics";
     /* Newton keeps the lowest-Φ iterate in its x on failure: work on a copy so the state stays */
     memcpy(w->z, w->xn, sizeof(double) * (size_t)n);
+    /* held bodies: their part of the full vectors is x_n's, the step's is zero (ON MOVING BODIES) */
+    memcpy(w->zc, w->xn, sizeof(double) * (size_t)n);
+    memset(w->dzc, 0, sizeof(double) * (size_t)n);
     st = wr_newton_solve(&pb, w->z, &nd, ns, diag);
     if (st != WR_OK) return st;
     memcpy(x, w->z, sizeof(double) * (size_t)nc);
-    if (sim->nb) memcpy(sim->body_x, w->z + nc, sizeof(double) * 3 * (size_t)sim->nb);
+    if (w->nn == n && sim->nb) memcpy(sim->body_x, w->z + nc, sizeof(double) * 3 * (size_t)sim->nb);
     for (i = 0; i < nc; ++i) v[i] = w->fixd[i] ? 0.0 : (x[i] - w->xn[i]) / h;
     state->t += h;
     return WR_OK;
@@ -897,6 +1108,15 @@ WRDEF void wr_dyn_free(wr_dyn *sim) {
         if (w->have_cm) wr_collision_mesh_free(&w->cm);
         wr_contact_set_free(&w->cs);
         wr_free(w->target);
+        wr_free(w->zc);
+        wr_free(w->dzc);
+        wr_free(w->gc);
+        wr_free(w->mshare);
+        wr_free(w->mdiag);
+        wr_free(w->kbuf);
+        wr_free(w->kvert);
+        wr_free(w->kstat);
+        wr_free(w->kproj);
         wr_free(w->fr);
         wr_free(w);
     }
@@ -1011,6 +1231,10 @@ WRDEF wr_status wr_dyn_create(wr_dyn *sim, const wr_shell *shell, const wr_dyn_d
     if ((st = wr__dyn_copy_bodies(sim, &d, diag)) != WR_OK) goto fail;
     n = 3 * (shell->nv + sim->nb);
     w->n = n;
+    w->zc = (double *)wr_alloc_array((size_t)n, sizeof(double));
+    w->dzc = (double *)wr_alloc_array((size_t)n, sizeof(double));
+    w->gc = (double *)wr_alloc_array((size_t)n, sizeof(double));
+    if (!w->zc || !w->dzc || !w->gc) goto nomem;
     w->xn = (double *)wr_alloc_array((size_t)n, sizeof(double));
     w->xt = (double *)wr_alloc_array((size_t)n, sizeof(double));
     w->z = (double *)wr_alloc_array((size_t)n, sizeof(double));
@@ -1018,8 +1242,17 @@ WRDEF wr_status wr_dyn_create(wr_dyn *sim, const wr_shell *shell, const wr_dyn_d
     w->s2 = (double *)wr_alloc_array((size_t)n, sizeof(double));
     w->fixd = (uint8_t *)wr_calloc_array((size_t)n, 1);
     w->target = (double *)wr_alloc_array(3 * (size_t)sim->nb + 1, sizeof(double));
-    if (!w->xn || !w->xt || !w->z || !w->s1 || !w->s2 || !w->fixd || !w->target) goto nomem;
+    w->mshare = (double *)wr_alloc_array((size_t)shell->nv, sizeof(double));
+    w->mdiag = (double *)wr_alloc_array((size_t)shell->nv, sizeof(double));
+    w->kbuf = (double *)wr_alloc_array((size_t)324 * WR__DYN_CHUNK, sizeof(double));
+    w->kvert = (int32_t *)wr_alloc_array((size_t)7 * WR__DYN_CHUNK, sizeof(int32_t));
+    w->kstat = (int8_t *)wr_alloc_array(WR__DYN_CHUNK, 1);
+    w->kproj = (int8_t *)wr_alloc_array(WR__DYN_CHUNK, 1);
+    if (!w->xn || !w->xt || !w->z || !w->s1 || !w->s2 || !w->fixd || !w->target || !w->mshare || !w->mdiag || !w->kbuf ||
+        !w->kvert || !w->kstat || !w->kproj)
+        goto nomem;
     wr_shell_vertex_masses(shell, sim->mass);
+    wr__dyn_mass_shares(sim);
     for (v = 0; v < shell->nv; ++v) {
         sim->fixed[v] = d.fixed ? d.fixed[v] != 0 : 0;
         for (i = 0; i < 3; ++i) w->fixd[3 * v + i] = sim->fixed[v];
@@ -1031,6 +1264,7 @@ WRDEF wr_status wr_dyn_create(wr_dyn *sim, const wr_shell *shell, const wr_dyn_d
         if (bd->n_keys >= 2) w->moving = 1;
         for (i = 0; i < 3 * bd->nv; ++i) w->fixd[3 * (shell->nv + bd->off) + i] = bd->n_keys < 2;
     }
+    w->nn = w->moving ? n : 3 * shell->nv; /* held bodies stay out of Newton's vector (and its PCG) */
     if (d.sewing.n_pairs) memcpy(sim->sew_pairs, d.sewing.pairs, sizeof(int32_t) * 2 * (size_t)d.sewing.n_pairs);
     if (d.contact.n_analytic) memcpy(sim->analytic, d.contact.analytic, sizeof(wr_obstacle) * (size_t)d.contact.n_analytic);
     sim->desc.fixed = sim->fixed;
@@ -1088,6 +1322,8 @@ static void wr__dyn_stats_add(wr_dyn_stats *to, const wr_newton_stats *ns) {
     to->residual_rel = ns->grad_norm0 > 0.0 ? ns->grad_norm / ns->grad_norm0 : 0.0;
     to->stop = ns->stop;
     to->t_ns += ns->t_total;
+    to->pattern_builds += ns->pattern_builds;
+    to->elements_projected += ns->elements_projected;
     if (ns->iterations > 0 && ns->max_step_min < to->ccd_alpha_min) to->ccd_alpha_min = ns->max_step_min;
 }
 
@@ -1167,6 +1403,8 @@ WRDEF wr_status wr_dyn_run(wr_dyn *sim, wr_dyn_state *state, double t_end, wr_dy
         tot.min_distance = fmin(tot.min_distance, fs.min_distance);
         tot.ccd_alpha_min = fmin(tot.ccd_alpha_min, fs.ccd_alpha_min);
         tot.h_min = fmin(tot.h_min, fs.h_min);
+        tot.pattern_builds += fs.pattern_builds;
+        tot.elements_projected += fs.elements_projected;
         if (st != WR_OK) break;
         if (progress && progress(user, state, &fs)) break;
     }
