@@ -3,15 +3,19 @@
  * length and keeps faces facing outwards), the seam pairs as sewing pairs, the weld's bookkeeping
  * (vertex count, mass, momentum), a two-panel A-line skirt sewn onto the procedural mannequin with
  * every seam closed below 1 mm and no cloth–body intersection at any frame (exact test), and bad
- * garments refused with a diag naming the item. */
+ * garments refused with a diag naming the item; the scene format's garment, body and mesh-obstacle
+ * entries refused with the JSON path. */
+#define _POSIX_C_SOURCE 200809L /* mkdtemp */
 #include <criterion/criterion.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "wrinkle/garment.h"
 #include "wrinkle/body.h"
 #include "wrinkle/mesher.h"
+#include "simscene.h"
 
 #define GAR_PI 3.14159265358979323846
 
@@ -340,6 +344,40 @@ static void gar_body_part(const wr_mesh *bm, int32_t **faces, int32_t *nf) {
     *nf = n;
 }
 
+/* The skirt (mesh at `res`), the whole mannequin, the part the simulation sees, the placements and
+ * the fabric, shared by the mannequin tests. */
+typedef struct gar_skirt_case {
+    wr_mesher_result mr;
+    wr_mesh bm;
+    int32_t *bf, nbf;
+    wr_dyn_body body;
+    wr_garment_placement pl[2];
+    wr_garment g;
+    wr_shell_desc sd;
+} gar_skirt_case;
+
+static void gar_skirt_setup(gar_skirt_case *c, double res) {
+    wr_body_desc bd;
+    wr_diag d;
+    memset(c, 0, sizeof *c);
+    gar_skirt_mesh(&c->mr, res);
+    memset(&bd, 0, sizeof bd);
+    bd.target_faces = 10000;
+    cr_assert_eq(wr_body_mannequin(&c->bm, &bd, &d), WR_OK, "%s", d.message);
+    gar_body_part(&c->bm, &c->bf, &c->nbf);
+    c->body.nv = c->bm.nv, c->body.nf = c->nbf, c->body.faces = c->bf, c->body.pos = c->bm.pos;
+    gar_skirt_placements(c->pl, 0.55);
+    c->g.pattern = &c->mr.mesh, c->g.seam_pairs = c->mr.seam_pairs, c->g.seam_pair_seam = c->mr.seam_pair_seam;
+    c->g.n_seam_pairs = c->mr.n_seam_pairs, c->g.placements = c->pl, c->g.n_placements = 2;
+    gar_fabric(&c->sd);
+}
+
+static void gar_skirt_teardown(gar_skirt_case *c) {
+    free(c->bf);
+    wr_mesh_free(&c->bm);
+    wr_mesher_free(&c->mr);
+}
+
 /* The skirt sewn onto the mannequin (gravity, μ 0.5, 8 cm mesh): every frame no cloth triangle
  * meets a body triangle of the whole 1e4-triangle mannequin (exact tri–tri test), and after the weld
  * the cloth does not meet itself; the 0.2 m waist gaps close below 1 mm (the issue's bound; the weld
@@ -347,45 +385,28 @@ static void gar_body_part(const wr_mesh *bm, int32_t **faces, int32_t *nf) {
  * distinct seam pair fewer and hangs on the hips (its waist above z = 0.9: the hips' widest section
  * is at z ≈ 0.875, so a skirt that slipped past them would have its waist lower), in contact. */
 Test(garment, skirt_sewn_onto_mannequin) {
-    wr_mesher_result mr;
-    wr_mesh bm;
-    wr_body_desc bd;
-    wr_dyn_body body;
-    wr_garment_placement pl[2];
-    wr_garment g;
+    gar_skirt_case c;
     wr_garment_sim gs;
-    wr_shell_desc sd;
     wr_dyn_desc dd;
     wr_garment_desc gd;
     wr_dyn_stats fs;
     wr_collision_mesh cm;
     wr_diag d;
-    int32_t *bf, nbf, f, cnt, v, after = 0;
+    int32_t f, cnt, v, after = 0;
     double gap0, zmax = -HUGE_VAL;
-    gar_skirt_mesh(&mr, 0.08);
-    memset(&bd, 0, sizeof bd);
-    bd.target_faces = 10000;
-    cr_assert_eq(wr_body_mannequin(&bm, &bd, &d), WR_OK, "%s", d.message);
-    gar_body_part(&bm, &bf, &nbf);
-    memset(&body, 0, sizeof body);
-    body.nv = bm.nv, body.nf = nbf, body.faces = bf, body.pos = bm.pos;
-    gar_skirt_placements(pl, 0.55);
-    memset(&g, 0, sizeof g);
-    g.pattern = &mr.mesh, g.seam_pairs = mr.seam_pairs, g.seam_pair_seam = mr.seam_pair_seam;
-    g.n_seam_pairs = mr.n_seam_pairs, g.placements = pl, g.n_placements = 2;
-    gar_fabric(&sd);
+    gar_skirt_setup(&c, 0.08);
     memset(&dd, 0, sizeof dd);
     dd.gravity[2] = -9.81;
-    dd.contact.bodies = &body, dd.contact.n_bodies = 1, dd.contact.friction = 0.5;
+    dd.contact.bodies = &c.body, dd.contact.n_bodies = 1, dd.contact.friction = 0.5;
     dd.damping.mass = 1.0;
     memset(&gd, 0, sizeof gd);
-    cr_assert_eq(wr_garment_sim_create(&gs, &g, &sd, &dd, &gd, &d), WR_OK, "%s", d.message);
+    cr_assert_eq(wr_garment_sim_create(&gs, &c.g, &c.sd, &dd, &gd, &d), WR_OK, "%s", d.message);
     gap0 = gs.gap;
     cr_assert_gt(gap0, 0.15, "the waist gaps are ~0.2 m as placed (got %g)", gap0);
     for (f = 0; f < 30 && after < 2; ++f) {
         cr_assert_eq(wr_garment_sim_step(&gs, &fs, &d), WR_OK, "frame %d: %s", (int)f, d.message);
-        cr_assert_eq(wr_collision_meshes_intersect(gs.mesh.nv, gs.x, gs.mesh.nf, gs.mesh.faces, bm.nv, bm.pos, bm.nf, bm.faces,
-                                                   &cnt, &d),
+        cr_assert_eq(wr_collision_meshes_intersect(gs.mesh.nv, gs.x, gs.mesh.nf, gs.mesh.faces, c.bm.nv, c.bm.pos, c.bm.nf,
+                                                   c.bm.faces, &cnt, &d),
                      WR_OK);
         cr_assert_eq(cnt, 0, "frame %d: %d cloth-body triangle pairs intersect", (int)f, (int)cnt);
         if (gs.welded) {
@@ -403,51 +424,137 @@ Test(garment, skirt_sewn_onto_mannequin) {
     cr_assert_gt(fs.n_contacts, 0, "the skirt must rest on the body");
     wr_collision_mesh_free(&cm);
     wr_garment_sim_free(&gs);
-    free(bf);
-    wr_mesh_free(&bm);
-    wr_mesher_free(&mr);
+    gar_skirt_teardown(&c);
 }
 
 /* Bad garments are refused naming the item: a panel wrapped through the body (radius 0.1 m round
  * the hips) names that panel; missing placements name the first panel without one; a zero radius
  * names its placement. */
 Test(garment, bad_garments_refused) {
-    wr_mesher_result mr;
-    wr_mesh bm;
-    wr_body_desc bd;
-    wr_dyn_body body;
-    wr_garment_placement pl[2];
-    wr_garment g;
+    gar_skirt_case c;
     wr_garment_sim gs;
-    wr_shell_desc sd;
     wr_dyn_desc dd;
     wr_diag d;
-    int32_t *bf, nbf;
-    gar_skirt_mesh(&mr, 0.1);
-    memset(&bd, 0, sizeof bd);
-    bd.target_faces = 10000;
-    cr_assert_eq(wr_body_mannequin(&bm, &bd, &d), WR_OK, "%s", d.message);
-    gar_body_part(&bm, &bf, &nbf);
-    memset(&body, 0, sizeof body);
-    body.nv = bm.nv, body.nf = nbf, body.faces = bf, body.pos = bm.pos;
-    gar_skirt_placements(pl, 0.55);
-    pl[1].cylinder.radius = 0.1; /* the back panel through the hips */
-    memset(&g, 0, sizeof g);
-    g.pattern = &mr.mesh, g.seam_pairs = mr.seam_pairs, g.seam_pair_seam = mr.seam_pair_seam;
-    g.n_seam_pairs = mr.n_seam_pairs, g.placements = pl, g.n_placements = 2;
-    gar_fabric(&sd);
+    gar_skirt_setup(&c, 0.1);
+    c.pl[1].cylinder.radius = 0.1; /* the back panel through the hips */
     memset(&dd, 0, sizeof dd);
-    dd.contact.bodies = &body, dd.contact.n_bodies = 1;
-    cr_assert_eq(wr_garment_sim_create(&gs, &g, &sd, &dd, NULL, &d), WR_ERR_GEOMETRY);
+    dd.contact.bodies = &c.body, dd.contact.n_bodies = 1;
+    cr_assert_eq(wr_garment_sim_create(&gs, &c.g, &c.sd, &dd, NULL, &d), WR_ERR_GEOMETRY);
     cr_assert_eq(d.item, 1, "%s", d.message);
     cr_assert(strstr(d.message, "panel 1") != NULL, "%s", d.message);
-    pl[1].cylinder.radius = 0.0;
-    cr_assert_eq(wr_garment_sim_create(&gs, &g, &sd, &dd, NULL, &d), WR_ERR_INVALID_ARG);
+    c.pl[1].cylinder.radius = 0.0;
+    cr_assert_eq(wr_garment_sim_create(&gs, &c.g, &c.sd, &dd, NULL, &d), WR_ERR_INVALID_ARG);
     cr_assert_eq(d.item, 1, "%s", d.message);
-    g.n_placements = 1;
-    cr_assert_eq(wr_garment_sim_create(&gs, &g, &sd, &dd, NULL, &d), WR_ERR_INVALID_ARG);
+    c.g.n_placements = 1;
+    cr_assert_eq(wr_garment_sim_create(&gs, &c.g, &c.sd, &dd, NULL, &d), WR_ERR_INVALID_ARG);
     cr_assert_eq(d.item, 1, "%s", d.message);
-    free(bf);
-    wr_mesh_free(&bm);
-    wr_mesher_free(&mr);
+    gar_skirt_teardown(&c);
+}
+
+/* ---- the scene format (drivers/lib/simscene.c) ------------------------------------------------- */
+
+
+/* a two-panel skirt pattern file in a fresh temporary directory; dir receives the directory */
+static void gar_pattern_file(char *dir) {
+    static const char *pat =
+        "{\"units\": \"mm\", \"fabrics\": {\"c\": {\"B\": 1e-5, \"E\": 1e6}},"
+        " \"panels\": [{\"name\": \"front\", \"fabric\": \"c\", \"outer\": [[0, 0], [630, 0], [530, 500], [100, 500]]},"
+        "  {\"name\": \"back\", \"fabric\": \"c\", \"outer\": [[700, 0], [1330, 0], [1230, 500], [800, 500]]}],"
+        " \"seams\": [{\"a\": {\"panel\": \"front\", \"from\": [630, 0], \"to\": [530, 500]},"
+        "   \"b\": {\"panel\": \"back\", \"from\": [700, 0], \"to\": [800, 500], \"reverse\": true}},"
+        "  {\"a\": {\"panel\": \"back\", \"from\": [1330, 0], \"to\": [1230, 500]},"
+        "   \"b\": {\"panel\": \"front\", \"from\": [0, 0], \"to\": [100, 500], \"reverse\": true}}],"
+        " \"mesher\": {\"uniform_resolution\": 100}}";
+    char path[600];
+    FILE *f;
+    snprintf(dir, 512, "/tmp/wr_garment_test_XXXXXX");
+    cr_assert(mkdtemp(dir) != NULL);
+    snprintf(path, sizeof path, "%s/skirt.json", dir);
+    f = fopen(path, "w");
+    cr_assert(f != NULL);
+    fputs(pat, f);
+    fclose(f);
+}
+
+static void gar_pattern_file_remove(const char *dir) {
+    char path[600];
+    snprintf(path, sizeof path, "%s/skirt.json", dir);
+    remove(path);
+    remove(dir);
+}
+
+#define GAR_MAT "\"material\": {\"young\": 1e6, \"poisson\": 0.3, \"thickness\": 5e-4, \"density\": 300}"
+#define GAR_FRONT "{\"panel\": \"front\", \"cylinder\": {\"radius\": 0.201, \"angle\": -1.5707963, \"point\": [0, 0, 0.55]}}"
+#define GAR_BACK "{\"panel\": \"back\", \"cylinder\": {\"radius\": 0.201, \"angle\": 1.5707963, \"point\": [0, 0, 0.55]}}"
+
+/* Parse errors name the JSON path: both a sheet and a garment, a placement with neither kind, an
+ * unknown body type, a sequence without times, a mesh obstacle without a path. */
+Test(garment_scene, parse_errors_name_the_path) {
+    static const char *const cases[][2] = {
+        {"{\"cloth\": {}, \"garment\": {}}", "$: needs exactly one of cloth"},
+        {"{\"garment\": {\"pattern\": \"p.json\", " GAR_MAT ", \"placements\": [{\"panel\": \"front\"}]}}",
+         "$.garment.placements[0]: needs exactly one of cylinder or rigid"},
+        {"{\"garment\": {\"pattern\": \"p.json\", " GAR_MAT ", \"placements\": [{\"panel\": \"front\", \"cylinder\": {\"angle\": 1}}]}}",
+         "$.garment.placements[0].cylinder.radius: is required"},
+        {"{\"garment\": {\"pattern\": \"p.json\", " GAR_MAT ", \"placements\": [" GAR_FRONT "], \"sewing\": {\"weld\": 1}}}",
+         "$.garment.sewing.weld: must be true or false"},
+        {"{\"garment\": {\"pattern\": \"p.json\", \"placements\": [" GAR_FRONT "]}}", "$.garment.material: is required"},
+        {"{\"garment\": {\"pattern\": \"p.json\", " GAR_MAT ", \"placements\": [" GAR_FRONT "]}, \"body\": {\"type\": \"statue\"}}",
+         "$.body.type: must be one of"},
+        {"{\"garment\": {\"pattern\": \"p.json\", " GAR_MAT ", \"placements\": [" GAR_FRONT "]}, "
+         "\"body\": {\"type\": \"obj_sequence\", \"paths\": [\"a.obj\", \"b.obj\"]}}",
+         "$.body: an obj_sequence needs exactly one of times or fps"},
+        {"{\"garment\": {\"pattern\": \"p.json\", " GAR_MAT ", \"placements\": [" GAR_FRONT "]}, "
+         "\"body\": {\"type\": \"mannequin\", \"target_faces\": 500}}",
+         "$.body.target_faces: must be an integer in [10000"},
+        {"{\"garment\": {\"pattern\": \"p.json\", " GAR_MAT ", \"placements\": [" GAR_FRONT "]}, \"obstacles\": [{\"type\": \"mesh\"}]}",
+         "$.obstacles[0].path: is required"}};
+    size_t i;
+    for (i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
+        wr_simscene sc;
+        wr_diag d;
+        cr_assert_eq(wr_simscene_parse(&sc, cases[i][0], strlen(cases[i][0]), "", &d), WR_ERR_PARSE, "case %d parsed", (int)i);
+        cr_assert(strstr(d.message, cases[i][1]) != NULL, "case %d: got \"%s\", want \"%s\"", (int)i, d.message, cases[i][1]);
+        wr_simscene_free(&sc);
+    }
+}
+
+/* Errors only the pattern can show, at run_create, naming the placement: an unknown panel, a panel
+ * without a placement, a panel placed twice, a mannequin part without a mannequin, and (with the
+ * mannequin) a panel wrapped through the hips. */
+Test(garment_scene, run_create_errors_name_the_placement) {
+    char dir[512], text[2048];
+    static const char *const cases[][2] = {
+        {"[{\"panel\": \"frnt\", \"cylinder\": {\"radius\": 0.2}}, " GAR_BACK "]",
+         "$.garment.placements[0].panel: no panel named \"frnt\""},
+        {"[" GAR_FRONT "]", "$.garment.placements: panel 1 'back' has no placement"},
+        {"[" GAR_FRONT ", " GAR_BACK ", {\"panel\": 0, \"rigid\": {}}]", "$.garment.placements[2].panel: panel 0 'front' is already placed"},
+        {"[{\"panel\": \"front\", \"cylinder\": {\"part\": \"torso\", \"radius\": 0.2}}, " GAR_BACK "]",
+         "$.garment.placements[0].cylinder.part: needs a $.body of type \"mannequin\""}};
+    size_t i;
+    gar_pattern_file(dir);
+    for (i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
+        wr_simscene sc;
+        wr_simscene_run run;
+        wr_diag d;
+        snprintf(text, sizeof text, "{\"garment\": {\"pattern\": \"skirt.json\", " GAR_MAT ", \"placements\": %s}}", cases[i][0]);
+        cr_assert_eq(wr_simscene_parse(&sc, text, strlen(text), dir, &d), WR_OK, "case %d: %s", (int)i, d.message);
+        cr_assert_neq(wr_simscene_run_create(&run, &sc, &d), WR_OK, "case %d ran", (int)i);
+        cr_assert(strstr(d.message, cases[i][1]) != NULL, "case %d: got \"%s\", want \"%s\"", (int)i, d.message, cases[i][1]);
+        wr_simscene_free(&sc);
+    }
+    {
+        wr_simscene sc;
+        wr_simscene_run run;
+        wr_diag d;
+        snprintf(text, sizeof text,
+                 "{\"garment\": {\"pattern\": \"skirt.json\", " GAR_MAT ", \"placements\": [" GAR_FRONT ", "
+                 "{\"panel\": \"back\", \"cylinder\": {\"part\": \"torso\", \"offset\": -0.35, \"radius\": 0.1, \"angle\": 1.57}}]},"
+                 " \"body\": {\"type\": \"mannequin\", \"target_faces\": 10000}}");
+        cr_assert_eq(wr_simscene_parse(&sc, text, strlen(text), dir, &d), WR_OK, "%s", d.message);
+        cr_assert_eq(wr_simscene_run_create(&run, &sc, &d), WR_ERR_GEOMETRY);
+        cr_assert(strstr(d.message, "$.garment.placements[1]") != NULL, "%s", d.message);
+        wr_simscene_free(&sc);
+    }
+    gar_pattern_file_remove(dir);
 }
