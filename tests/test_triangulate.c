@@ -1442,3 +1442,93 @@ Test(triangulate, user_unsuitable_callback) {
     cr_assert_gt(left, 3 * right, "graded: %d triangles in x < 0.25, %d in x > 0.75", left, right);
     wr_cdt_free(&r);
 }
+
+/* The files themselves: the -vo2en run above written by wr_cdt_out_write and read back as text.
+ * Triangle 1.6 -Qvo2en on the same v.node wrote (index column dropped, comments skipped, lines in
+ * any order, an edge's two ends in any order):
+ *   .node "9 2 1 1": 0 0 1 1 | 2 0 2 1 | 0 2 3 1 | 2 2.5 4 1 | 0 1 2 1 | 1 0 1.5 1 | 1 1 2.5 0 |
+ *         2 1.25 3 1 | 1 2.25 3.5 1
+ *   .edge "5 1": 3 1 1 | 1 2 1 | 2 3 0 | 2 4 1 | 4 3 1
+ *   .neigh "2 3": -1 2 -1 | -1 1 -1
+ *   .v.node "2 2 1 0": 1 1 2.5 | 1.25 1.25 2.7749999999999999
+ *   .v.edge "5 0": 1 -1 -2 0 | 1 -1 0 -2 | 1 2 | 2 -1 2.5 0 | 2 -1 -0.5 2 */
+static int cmp_str(const void *a, const void *b) { return strcmp(*(const char *const *)a, *(const char *const *)b); }
+static void expect_file(const char *path, const char *header, const char *const *lines, int n, int edge) {
+    char *text = NULL, *got[16], *s;
+    const char *want[16];
+    size_t len;
+    int k = 0, i, first = 1;
+    wr_diag dg;
+    cr_assert_eq(wr_file_read(path, &text, &len, &dg), WR_OK, "%s", dg.message);
+    for (s = strtok(text, "\n"); s; s = strtok(NULL, "\n")) {
+        char *b;
+        if (s[0] == '#') continue;
+        if (first) {
+            cr_assert_str_eq(s, header, "%s: header", path);
+            first = 0;
+            continue;
+        }
+        cr_assert_lt(k, 16);
+        b = strchr(s, ' ');
+        cr_assert_not_null(b);
+        got[k] = b + 1;
+        if (edge) { /* ends in ascending order */
+            int a0, a1, m;
+            cr_assert_eq(sscanf(got[k], "%d %d %d", &a0, &a1, &m), 3);
+            if (a0 > a1) sprintf(got[k], "%d %d %d", a1, a0, m);
+        }
+        ++k;
+    }
+    cr_assert_eq(k, n, "%s: %d lines, want %d", path, k, n);
+    for (i = 0; i < n; ++i) want[i] = lines[i];
+    qsort(got, (size_t)n, sizeof *got, cmp_str);
+    qsort((void *)want, (size_t)n, sizeof *want, cmp_str);
+    for (i = 0; i < n; ++i) cr_assert_str_eq(got[i], want[i], "%s", path);
+    wr_free(text);
+}
+Test(triangulate, out_write_files_match_triangle) {
+    const char *node = "4 2 1 0\n1 0 0 1\n2 2 0 2\n3 0 2 3\n4 2 2.5 4\n", *base = "/tmp/wr_test_out_v.1";
+    static const char *const nodes[] = {"0 0 1 1", "2 0 2 1", "0 2 3 1", "2 2.5 4 1", "0 1 2 1",
+                                        "1 0 1.5 1", "1 1 2.5 0", "2 1.25 3 1", "1 2.25 3.5 1"},
+                             *edges[] = {"1 3 1", "1 2 1", "2 3 0", "2 4 1", "3 4 1"}, *neigh[] = {"-1 2 -1", "-1 1 -1"},
+                             *vnode[] = {"1 1 2.5", "1.25 1.25 2.7749999999999999"},
+                             *vedge[] = {"1 -1 -2 0", "1 -1 0 -2", "1 2", "2 -1 2.5 0", "2 -1 -0.5 2"};
+    static const char *ext[] = {"node", "ele", "edge", "neigh", "v.node", "v.edge"};
+    char path[128];
+    wr_cdt_poly P;
+    wr_cdt_input in;
+    wr_cdt_result r;
+    wr_cdt_out o;
+    wr_cdt_out_desc od;
+    wr_diag dg;
+    size_t i;
+    cr_assert_eq(wr_cdt_poly_parse(NULL, node, "v.node", &P, &dg), WR_OK, "%s", dg.message);
+    memset(&in, 0, sizeof in);
+    in.points = P.points;
+    in.n_points = 4;
+    in.attributes = P.attributes;
+    in.n_attributes = 1;
+    cr_assert_eq(wr_cdt_triangulate(&in, NULL, &r, &dg), WR_OK, "%s", dg.message);
+    check_ok(&r, 0, NULL);
+    memset(&od, 0, sizeof od);
+    od.second_order = od.voronoi = od.edges = od.neighbors = 1;
+    cr_assert_eq(wr_cdt_out_build(&P, &in, NULL, &r, &od, &o, &dg), WR_OK, "%s", dg.message);
+    cr_assert_eq(wr_cdt_out_write(&o, &P, base, &od, &dg), WR_OK, "%s", dg.message);
+    snprintf(path, sizeof path, "%s.node", base);
+    expect_file(path, "9 2 1 1", nodes, 9, 0);
+    snprintf(path, sizeof path, "%s.edge", base);
+    expect_file(path, "5 1", edges, 5, 1);
+    snprintf(path, sizeof path, "%s.neigh", base);
+    expect_file(path, "2 3", neigh, 2, 0);
+    snprintf(path, sizeof path, "%s.v.node", base);
+    expect_file(path, "2 2 1 0", vnode, 2, 0);
+    snprintf(path, sizeof path, "%s.v.edge", base);
+    expect_file(path, "5 0", vedge, 5, 0);
+    for (i = 0; i < sizeof ext / sizeof ext[0]; ++i) {
+        snprintf(path, sizeof path, "%s.%s", base, ext[i]);
+        remove(path);
+    }
+    wr_cdt_out_free(&o);
+    wr_cdt_free(&r);
+    wr_cdt_poly_free(&P);
+}
