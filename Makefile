@@ -93,11 +93,20 @@ bin/%: bench/%.cpp $(LIB_OBJ) $(HEADERS) $(EXTRA_HDR)
 
 # Unit tests: every tests/test_*.c plus tests/impl.c (the one WRINKLE_IMPLEMENTATION unit) in one
 # Criterion binary, built with ASan+UBSan. Driver helpers (but not drivers/lib/impl.c, the drivers'
-# implementation unit) are rebuilt with the sanitizers too.
-build/test/wrinkle_tests: $(TEST_SRC) tests/impl.c $(LIB_SRC) $(HEADERS) $(EXTRA_HDR) $(wildcard tests/*.h)
+# implementation unit) are rebuilt with the sanitizers too. One object per source (dependencies from
+# -MMD), so `make -j2` compiles two at a time and a changed test file recompiles alone.
+TEST_OBJ = $(patsubst tests/%.c,build/test/obj/%.o,$(TEST_SRC) tests/impl.c) \
+           $(patsubst drivers/lib/%.c,build/test/obj/lib_%.o,$(filter-out drivers/lib/impl.c,$(LIB_SRC)))
+build/test/obj/%.o: tests/%.c
+	@mkdir -p build/test/obj
+	$(CC) $(ALL_CFLAGS) $(SAN) -O1 -MMD -MP -c $< -o $@
+build/test/obj/lib_%.o: drivers/lib/%.c
+	@mkdir -p build/test/obj
+	$(CC) $(ALL_CFLAGS) $(SAN) -O1 -MMD -MP -c $< -o $@
+build/test/wrinkle_tests: $(TEST_OBJ)
 	@mkdir -p build/test
-	$(CC) $(ALL_CFLAGS) $(SAN) -O1 $(TEST_SRC) tests/impl.c $(filter-out drivers/lib/impl.c,$(LIB_SRC)) \
-	    -o $@ $(LIBS) -lcriterion
+	$(CC) $(ALL_CFLAGS) $(SAN) -O1 $(TEST_OBJ) -o $@ $(LIBS) -lcriterion
+-include $(TEST_OBJ:.o=.d)
 
 check-headers:
 	@sh tests/check_headers.sh

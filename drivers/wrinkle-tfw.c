@@ -252,7 +252,9 @@ int main(int argc, char **argv) {
         if (run.n_steps_done > 0) {
             const wr_statics_stats *ls = &run.steps[run.n_steps_done - 1].st;
             cJSON_AddNumberToObject(base, "relative_gradient", ls->grad_ref > 0 ? ls->grad_norm / ls->grad_ref : 0.0);
+            if (run.sc->pressure != 0.0) cJSON_AddNumberToObject(base, "enclosed_volume_m3", ls->volume);
         }
+        if (run.sc->pressure != 0.0) cJSON_AddNumberToObject(base, "pressure_Pa", run.sc->pressure);
         cJSON_AddStringToObject(sqp, "status", wr_status_string(tst));
         cJSON_AddNumberToObject(sqp, "iterations", r.sqp.iterations);
         cJSON_AddNumberToObject(sqp, "rejected", r.sqp.n_rejected);

@@ -420,7 +420,7 @@ def main():
         return False, first[:200], ntests
 
     def run_valid(vbin, name, resdir, timeout):
-        os.makedirs(resdir, exist_ok=True)
+        os.makedirs(os.path.join(T.dir, resdir), exist_ok=True)
         e = dict(env)
         e["WRINKLE_RESULTS_DIR"] = os.path.abspath(os.path.join(T.dir, resdir))
         t0 = time.time()

@@ -197,10 +197,10 @@ void wr_scene_free(wr_scene *sc) {
 
 static wr_status sc_parse_mesh(wr_jin *c, const cJSON *o, const char *base_dir, wr_scene_mesh *m) {
     static const char *const keys[] = {"type", "path", "width", "height", "radius", "resolution", "nx", "ny",
-                                       "seed", NULL};
+                                       "seed", "pillow", NULL};
     const char *P = "$.mesh";
     wr_status st;
-    int kind = 0, fw = 0, fh = 0, fr = 0, fres = 0, fnx = 0, fny = 0, fs = 0;
+    int kind = 0, fw = 0, fh = 0, fr = 0, fres = 0, fnx = 0, fny = 0, fs = 0, fp = 0;
     int32_t seed = 0;
     if ((st = wr_jin_keys(c, o, P, keys)) != WR_OK) return st;
     if ((st = wr_jin_enum(c, o, "type", P, SC_MESH_TYPES, &kind, 1)) != WR_OK) return st;
@@ -213,6 +213,11 @@ static wr_status sc_parse_mesh(wr_jin *c, const cJSON *o, const char *base_dir, 
     if ((st = wr_jin_int(c, o, "ny", P, 1, 100000, &m->ny, &fny)) != WR_OK) return st;
     if ((st = wr_jin_int(c, o, "seed", P, 0, 2147483647L, &seed, &fs)) != WR_OK) return st;
     m->seed = (uint64_t)seed;
+    if ((st = wr_jin_num(c, o, "pillow", P, WR_JIN_POS, &m->pillow_lift, &fp)) != WR_OK) return st;
+    /* a pillow doubles a flat panel with a boundary (statics.h ON PRESSURE needs a closed surface) */
+    if (fp && m->kind != WR_SCENE_MESH_RECTANGLE && m->kind != WR_SCENE_MESH_DISK &&
+        m->kind != WR_SCENE_MESH_DELAUNAY_RECTANGLE)
+        return wr_jin_err(c, "$.mesh.pillow", "needs a flat panel: type rectangle, disk or delaunay_rectangle");
     switch (m->kind) {
     case WR_SCENE_MESH_OBJ: {
         char rel[WR_SCENE_PATH_LEN];
@@ -417,8 +422,8 @@ static wr_status sc_parse_probe(wr_jin *c, const cJSON *o, const char *P, wr_sce
 }
 
 wr_status wr_scene_parse(wr_scene *sc, const char *text, size_t len, const char *base_dir, wr_diag *diag) {
-    static const char *const keys[] = {"name", "mesh", "material", "energy", "gravity", "ramp_gravity", "boundary",
-                                       "solver", "probes", NULL};
+    static const char *const keys[] = {"name", "mesh", "material", "energy", "gravity", "ramp_gravity", "pressure",
+                                       "boundary", "solver", "probes", NULL};
     static const char *const ekeys[] = {"membrane", "bending", NULL};
     wr_jin c;
     cJSON *root;
@@ -463,6 +468,7 @@ wr_status wr_scene_parse(wr_scene *sc, const char *text, size_t len, const char 
     }
     if ((st = wr_jin_vec(&c, root, "gravity", "$", 3, sc->gravity, NULL)) != WR_OK) goto done;
     if ((st = wr_jin_bool(&c, root, "ramp_gravity", "$", &sc->ramp_gravity)) != WR_OK) goto done;
+    if ((st = wr_jin_num(&c, root, "pressure", "$", WR_JIN_ANY, &sc->pressure, NULL)) != WR_OK) goto done;
     o = cJSON_GetObjectItemCaseSensitive(root, "boundary");
     if (o) {
         if (!cJSON_IsArray(o)) {
@@ -569,7 +575,21 @@ static wr_status sc_mesh_delaunay(wr_mesh *m, double w, double h, double r, uint
     return st;
 }
 
+static wr_status sc_build_panel(const wr_scene_mesh *g, wr_mesh *m, wr_diag *diag);
+
+/* The scene's mesh: the generated or read one, doubled into a pillow when asked. */
 static wr_status sc_build_mesh(const wr_scene_mesh *g, wr_mesh *m, wr_diag *diag) {
+    wr_mesh panel;
+    wr_status st;
+    if (!(g->pillow_lift > 0.0)) return sc_build_panel(g, m, diag);
+    memset(&panel, 0, sizeof panel);
+    if ((st = sc_build_panel(g, &panel, diag)) != WR_OK) return st;
+    st = wr_mesh_pillow(m, &panel, g->pillow_lift, diag);
+    wr_mesh_free(&panel);
+    return st;
+}
+
+static wr_status sc_build_panel(const wr_scene_mesh *g, wr_mesh *m, wr_diag *diag) {
     double r = g->resolution;
     double est = 0.0;
     switch (g->kind) {
@@ -773,6 +793,7 @@ wr_status wr_scene_run_solve(wr_scene_run *run, wr_scene_progress_fn progress, v
     d.stop.max_iter = sc->max_iter;
     d.stop.grad_tol = sc->grad_tol;
     for (i = 0; i < 3; ++i) d.loads.gravity[i] = sc->gravity[i];
+    d.loads.pressure = sc->pressure;
     d.start.perturb = sc->perturb;
     d.start.seed = sc->seed;
     d.hessian.projection = sc->hessian == WR_SCENE_HESSIAN_EXACT ? WR_PROJECT_NONE : WR_PROJECT_FAST;
@@ -874,7 +895,9 @@ static wr_status sc_write_summary(const wr_scene_run *run, const char *path, wr_
         cJSON_AddNumberToObject(o, "total_potential", last->energy);
         cJSON_AddNumberToObject(root, "final_grad_norm_N", last->grad_norm);
         cJSON_AddNumberToObject(root, "final_grad_ref_N", last->grad_ref);
+        if (sc->pressure != 0.0) cJSON_AddNumberToObject(root, "enclosed_volume_m3", last->volume);
     }
+    if (sc->pressure != 0.0) cJSON_AddNumberToObject(root, "pressure_Pa", sc->pressure);
     cJSON_AddNumberToObject(root, "max_displacement_m", maxu);
     cJSON_AddNumberToObject(root, "newton_iterations", run->newton_iterations);
     cJSON_AddNumberToObject(root, "linear_iterations", run->linear_iterations);

@@ -50,6 +50,7 @@ typedef struct wr_scene_mesh {
     double resolution;            /* target edge length [m] (generators) */
     int32_t nx, ny;               /* rectangle: explicit cell counts (override resolution when > 0) */
     uint64_t seed;                /* delaunay_rectangle sampling seed */
+    double pillow_lift;           /* > 0: the flat panel doubled into a closed pillow (wr_mesh_pillow) [m] */
 } wr_scene_mesh;
 
 typedef enum wr_scene_select { WR_SCENE_SELECT_BOX = 0, WR_SCENE_SELECT_INDICES } wr_scene_select;
@@ -101,6 +102,7 @@ typedef struct wr_scene {
     double areal_density; /* kg/m² as given (0 = not given) */
     double gravity[3];
     int ramp_gravity;     /* 1 (default): gravity ramps with the load steps */
+    double pressure;      /* [Pa], > 0 inflates (statics.h ON PRESSURE); the full value at every load step */
     wr_scene_bc bc[WR_SCENE_MAX_BC];
     int32_t n_bc;
     wr_scene_probe probe[WR_SCENE_MAX_PROBES];
