@@ -558,3 +558,57 @@ Test(garment_scene, run_create_errors_name_the_placement) {
     }
     gar_pattern_file_remove(dir);
 }
+
+/* OBJ bodies: a keyframed $.body (two OBJ keys of one tetrahedron) becomes one moving body with its
+ * keys and times, a mesh obstacle becomes a second static body, and a key of another topology is
+ * refused naming its path. */
+Test(garment_scene, obj_bodies_and_mesh_obstacles) {
+    static const char *tet0 = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+    static const char *tet1 = "v 0 0 1\nv 1 0 1\nv 0 1 1\nv 0 0 2\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+    static const char *tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    const char *files[3][2] = {{"k0.obj", tet0}, {"k1.obj", tet1}, {"k2.obj", tri}};
+    char dir[512], path[600], text[1024];
+    wr_simscene sc;
+    wr_simscene_run run;
+    wr_diag d;
+    int i;
+    snprintf(dir, sizeof dir, "/tmp/wr_garment_obj_XXXXXX");
+    cr_assert(mkdtemp(dir) != NULL);
+    for (i = 0; i < 3; ++i) {
+        FILE *f;
+        snprintf(path, sizeof path, "%s/%s", dir, files[i][0]);
+        f = fopen(path, "w");
+        cr_assert(f != NULL);
+        fputs(files[i][1], f);
+        fclose(f);
+    }
+    snprintf(text, sizeof text,
+             "{\"cloth\": {\"mesh\": {\"type\": \"rectangle\", \"width\": 0.2, \"height\": 0.2, \"nx\": 2, \"ny\": 2},"
+             " \"material\": {\"young\": 1e5, \"thickness\": 5e-4, \"density\": 300}, \"placement\": {\"translate\": [2, 2, 3]}},"
+             " \"body\": {\"type\": \"obj_sequence\", \"paths\": [\"k0.obj\", \"k1.obj\"], \"fps\": 10},"
+             " \"obstacles\": [{\"type\": \"sphere\", \"center\": [5, 5, 5], \"radius\": 0.1}, {\"type\": \"mesh\", \"path\": \"k2.obj\"}]}");
+    cr_assert_eq(wr_simscene_parse(&sc, text, strlen(text), dir, &d), WR_OK, "%s", d.message);
+    cr_assert_eq(wr_simscene_run_create(&run, &sc, &d), WR_OK, "%s", d.message);
+    cr_assert_eq(run.n_bodies, 2);
+    cr_assert_eq(run.dbodies[0].n_keys, 2);
+    cr_assert_float_eq(run.dbodies[0].key_time[1], 0.1, 1e-15);
+    cr_assert_float_eq(run.dbodies[0].key_pos[3 * 4 + 2], 1.0, 1e-15, "key 1 vertex 0 z");
+    cr_assert_eq(run.dbodies[1].nf, 1);
+    cr_assert_eq(run.dbodies[1].n_keys, 0);
+    cr_assert_eq(wr_simscene_dyn(&run)->nb, 7, "4 + 3 body vertices in the simulator");
+    wr_simscene_run_free(&run);
+    wr_simscene_free(&sc);
+    snprintf(text, sizeof text,
+             "{\"cloth\": {\"mesh\": {\"type\": \"rectangle\", \"width\": 0.2, \"height\": 0.2, \"nx\": 2, \"ny\": 2},"
+             " \"material\": {\"young\": 1e5, \"thickness\": 5e-4, \"density\": 300}},"
+             " \"body\": {\"type\": \"obj_sequence\", \"paths\": [\"k0.obj\", \"k2.obj\"], \"times\": [0, 1]}}");
+    cr_assert_eq(wr_simscene_parse(&sc, text, strlen(text), dir, &d), WR_OK, "%s", d.message);
+    cr_assert_neq(wr_simscene_run_create(&run, &sc, &d), WR_OK);
+    cr_assert(strstr(d.message, "$.body.paths[1]") != NULL && strstr(d.message, "topology") != NULL, "%s", d.message);
+    wr_simscene_free(&sc);
+    for (i = 0; i < 3; ++i) {
+        snprintf(path, sizeof path, "%s/%s", dir, files[i][0]);
+        remove(path);
+    }
+    remove(dir);
+}
