@@ -1,13 +1,16 @@
 /* wrinkle-sim — dynamic cloth simulation of a JSON scene (backward Euler on the shared Newton).
  *
- *   wrinkle-sim SCENE.json -o DIR [--quiet] [--every N] [--duration T]
+ *   wrinkle-sim SCENE.json -o DIR [--quiet] [--every N] [--duration T] [--png]
  *
- * Reads the scene (docs/sim-scene-format.md), builds the cloth, its pins and obstacles, and runs
- * dynamics.h frame by frame to the scene's duration. Writes DIR/frame_0000.obj (the initial state)
- * and every Nth frame after it (OBJ or PLY, $.output), and DIR/summary.json (per-frame NS and CH
- * milliseconds, Newton and PCG iterations, contacts, minimum distance; totals and medians). Every
- * file appears atomically (temporary + rename). Progress on stderr: one updating line on a terminal,
- * a line per tenth of the run otherwise.
+ * Reads the scene (docs/sim-scene-format.md), builds the cloth (a sheet, or a garment: a pattern
+ * meshed by the kit's mesher, placed panel by panel and sewn, garment.h), its pins, the body (the
+ * kit's mannequin or an OBJ, static or keyframed) and obstacles, and runs dynamics.h frame by frame
+ * to the scene's duration. Writes DIR/frame_0000.obj (the initial state) and every Nth frame after
+ * it (OBJ or PLY, $.output), DIR/body.obj (the triangle-mesh bodies at their first pose),
+ * DIR/frame_NNNN.png with --png (front and 3/4 views), and DIR/summary.json (per-frame NS and CH
+ * milliseconds, Newton and PCG iterations, contacts, minimum distance, seam gap; totals and
+ * medians). Every file appears atomically (temporary + rename). Progress on stderr: one updating
+ * line on a terminal, a line per tenth of the run otherwise.
  * Exit: 0 done; 1 a step failed (frames before it and the summary are written, the summary says why);
  * 2 bad input (one line naming the JSON path or option); 3 output or setup failure.
  */
@@ -32,6 +35,7 @@ static void usage(FILE *f) {
             "  -o, --output DIR     output directory (created if missing)\n"
             "  --every N            write every Nth frame (overrides $.output.every)\n"
             "  --duration T         simulated time [s] (overrides $.time.duration)\n"
+            "  --png                also DIR/frame_NNNN.png for every written frame (front and 3/4 views)\n"
             "  --quiet              no progress on stderr\n"
             "  -h, --help           this text\n"
             "exit status: 0 ok, 1 a step failed (outputs written), 2 bad input, 3 failure\n");
@@ -39,26 +43,38 @@ static void usage(FILE *f) {
 
 typedef struct sim_ctx {
     const char *dir;
-    int quiet, tty;
+    int quiet, tty, png;
     int32_t every, total;
     wr_status write_status;
     wr_diag write_diag;
 } sim_ctx;
+
+/* " seam gap 0.42 mm" / " welded" for a garment's progress line, "" for a sheet */
+static const char *seam_note(const wr_simscene_run *run, const wr_simscene_frame *f) {
+    static char buf[48];
+    if (!run->sc->is_garment) return "";
+    if (f->welded) return "  welded";
+    snprintf(buf, sizeof buf, "  seam gap %.2f mm", 1e3 * f->seam_gap);
+    return buf;
+}
 
 static int on_frame(void *user, const wr_simscene_run *run, int32_t k) {
     sim_ctx *c = (sim_ctx *)user;
     const wr_simscene_frame *f = run->frames + k;
     if (k % c->every == 0 || k == c->total) {
         c->write_status = wr_simscene_write_frame(run, c->dir, k, &c->write_diag);
+        if (c->write_status == WR_OK && c->png) c->write_status = wr_simscene_write_png(run, c->dir, k, &c->write_diag);
         if (c->write_status != WR_OK) return 1;
     }
     if (!c->quiet) {
         if (c->tty)
-            fprintf(stderr, "\r  frame %d/%d  t %.3f s  NS %.1f ms  CH %.1f ms  Newton %d  PCG %d  contacts %d   ", (int)k,
-                    (int)c->total, f->t, 1e3 * f->t_ns, 1e3 * f->t_ch, (int)f->newton, (int)f->pcg, (int)f->contacts);
-        else if (k == c->total || (c->total >= 10 && k % (c->total / 10) == 0))
-            fprintf(stderr, "  frame %d/%d  t %.3f s  NS %.1f ms  CH %.1f ms  Newton %d  PCG %d  contacts %d\n", (int)k,
-                    (int)c->total, f->t, 1e3 * f->t_ns, 1e3 * f->t_ch, (int)f->newton, (int)f->pcg, (int)f->contacts);
+            fprintf(stderr, "\r  frame %d/%d  t %.3f s  NS %.1f ms  CH %.1f ms  Newton %d  PCG %d  contacts %d%s   ", (int)k,
+                    (int)c->total, f->t, 1e3 * f->t_ns, 1e3 * f->t_ch, (int)f->newton, (int)f->pcg, (int)f->contacts,
+                    seam_note(run, f));
+        else if (k == c->total || (c->total >= 10 && k % (c->total / 10) == 0) || c->total < 10)
+            fprintf(stderr, "  frame %d/%d  t %.3f s  NS %.1f ms  CH %.1f ms  Newton %d  PCG %d  contacts %d%s\n", (int)k,
+                    (int)c->total, f->t, 1e3 * f->t_ns, 1e3 * f->t_ch, (int)f->newton, (int)f->pcg, (int)f->contacts,
+                    seam_note(run, f));
     }
     return 0;
 }
@@ -90,18 +106,20 @@ static int same_file(const char *dir_real, const char *name, const char *input) 
     return strcmp(out, in_real) == 0;
 }
 
-/* Refuse when any output path resolves to an input file (the scene or the cloth OBJ). */
-static int outputs_clash(const wr_simscene *sc, const char *scene_path, const char *dir, int32_t n_frames, int32_t every) {
+/* Refuse when any output path resolves to an input file (the scene, the cloth OBJ, the pattern, body
+ * and obstacle OBJs). */
+static int outputs_clash(const wr_simscene *sc, const char *scene_path, const char *dir, int32_t n_frames, int32_t every,
+                         int png) {
     char dir_real[PATH_MAX], name[32];
-    const char *inputs[2];
-    int32_t k;
+    const char *inputs[1 + WR_SIMSCENE_MAX_INPUTS + WR_SIMSCENE_MAX_BODY_KEYS];
+    int32_t k, n;
     int i;
     if (!realpath(dir, dir_real)) return 0;
     inputs[0] = scene_path;
-    inputs[1] = sc->cloth.kind == WR_SIMSCENE_MESH_OBJ ? sc->cloth.path : NULL;
-    for (i = 0; i < 2; ++i) {
-        if (same_file(dir_real, "summary.json", inputs[i])) {
-            wr_cli_error("output %s/summary.json is the input %s", dir, inputs[i]);
+    n = 1 + wr_simscene_inputs(sc, inputs + 1, (int32_t)(sizeof inputs / sizeof inputs[0]) - 1);
+    for (i = 0; i < n; ++i) {
+        if (same_file(dir_real, "summary.json", inputs[i]) || same_file(dir_real, "body.obj", inputs[i])) {
+            wr_cli_error("an output in %s would overwrite the input %s", dir, inputs[i]);
             return 1;
         }
         for (k = 0; k <= n_frames; ++k) {
@@ -111,6 +129,13 @@ static int outputs_clash(const wr_simscene *sc, const char *scene_path, const ch
                 wr_cli_error("output %s/%s is the input %s", dir, name, inputs[i]);
                 return 1;
             }
+            if (png) {
+                snprintf(name, sizeof name, "frame_%04d.png", (int)k);
+                if (same_file(dir_real, name, inputs[i])) {
+                    wr_cli_error("output %s/%s is the input %s", dir, name, inputs[i]);
+                    return 1;
+                }
+            }
         }
     }
     return 0;
@@ -119,7 +144,7 @@ static int outputs_clash(const wr_simscene *sc, const char *scene_path, const ch
 int main(int argc, char **argv) {
     const char *scene_path = NULL, *out = NULL;
     double every = 0.0, duration = -1.0;
-    int quiet = 0, i, k, rc;
+    int quiet = 0, png = 0, i, k, rc;
     wr_simscene sc;
     wr_simscene_run run;
     sim_ctx ctx;
@@ -134,6 +159,10 @@ int main(int argc, char **argv) {
         }
         if (wr_cli_is_flag(argv[i], "--quiet")) {
             quiet = 1;
+            continue;
+        }
+        if (wr_cli_is_flag(argv[i], "--png")) {
+            png = 1;
             continue;
         }
         if ((k = wr_cli_integer(argc, argv, &i, "--every", 1.0, 1e6, &every)) != 0) {
@@ -175,7 +204,7 @@ int main(int argc, char **argv) {
         rc = 3;
         goto done;
     }
-    if (outputs_clash(&sc, scene_path, out, run.n_frames_max - 1, sc.output_every)) {
+    if (outputs_clash(&sc, scene_path, out, run.n_frames_max - 1, sc.output_every, png)) {
         rc = WR_CLI_EXIT_USAGE;
         goto done;
     }
@@ -188,13 +217,20 @@ int main(int argc, char **argv) {
     ctx.dir = out;
     ctx.quiet = quiet;
     ctx.tty = isatty(2);
+    ctx.png = png;
     ctx.every = sc.output_every;
     ctx.total = run.n_frames_max - 1;
-    if (!quiet)
-        fprintf(stderr, "%s: %d vertices, %d faces, %d pinned, %d obstacle(s), %d frames of %.4f s, %s\n", sc.name,
-                (int)run.mesh.nv, (int)run.mesh.nf, (int)run.n_fixed, (int)sc.n_analytic, (int)ctx.total,
-                run.sim.desc.time.dt, wr_solver_method_name(run.sim.desc.linear.method));
-    if ((st = wr_simscene_write_frame(&run, out, 0, &d)) != WR_OK) {
+    if (!quiet) {
+        const wr_dyn *dyn = wr_simscene_dyn(&run);
+        fprintf(stderr, "%s: %d vertices, %d faces, %d pinned, %d analytic obstacle(s), %d mesh bod%s, %d frames of %.4f s, %s\n",
+                sc.name, (int)run.mesh.nv, (int)run.mesh.nf, (int)run.n_fixed, (int)sc.n_analytic, (int)run.n_bodies,
+                run.n_bodies == 1 ? "y" : "ies", (int)ctx.total, dyn->desc.time.dt, wr_solver_method_name(dyn->desc.linear.method));
+        if (sc.is_garment)
+            fprintf(stderr, "  garment: %d panels, %d seam pairs, largest seam gap %.1f mm as placed\n", (int)run.n_panels,
+                    (int)run.gs.n_pairs, 1e3 * run.gs.gap);
+    }
+    if ((st = wr_simscene_write_frame(&run, out, 0, &d)) != WR_OK ||
+        (png && (st = wr_simscene_write_png(&run, out, 0, &d)) != WR_OK) || (st = wr_simscene_write_bodies(&run, out, &d)) != WR_OK) {
         wr_cli_error("writing frame 0: %s", d.message);
         rc = 3;
         goto done;

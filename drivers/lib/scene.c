@@ -1,6 +1,7 @@
 /* scene.c — see scene.h and docs/scene-format.md. Uses cJSON (Debian libcjson-dev). */
 #define _POSIX_C_SOURCE 200809L
 #include "scene.h"
+#include "jsonin.h"
 
 #include "jsonout.h"
 
@@ -22,18 +23,14 @@
 #define SC_HYBRID_SWITCH 1e-3
 
 /* ---------------------------------------------------------------------------------------------- */
-/* parsing helpers: every error names the JSON path                                               */
+/* parsing helpers: every error names the JSON path (declared in jsonin.h, shared with simscene.c) */
 
-typedef struct sc_ctx {
-    wr_diag *diag;
-} sc_ctx;
-
-static wr_status sc_err(sc_ctx *c, const char *path, const char *fmt, ...)
+wr_status wr_jin_err(wr_jin *c, const char *path, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 3, 4)))
 #endif
     ;
-static wr_status sc_err(sc_ctx *c, const char *path, const char *fmt, ...) {
+wr_status wr_jin_err(wr_jin *c, const char *path, const char *fmt, ...) {
     char msg[400], full[WR_DIAG_MESSAGE_LEN], line[WR_DIAG_MESSAGE_LEN];
     size_t i, o = 0;
     va_list ap;
@@ -53,12 +50,12 @@ static wr_status sc_err(sc_ctx *c, const char *path, const char *fmt, ...) {
     return wr_fail(c->diag, WR_ERR_PARSE, -1, "%s", line);
 }
 
-static void sc_path(char *out, size_t n, const char *base, const char *key) { snprintf(out, n, "%s.%s", base, key); }
+void wr_jin_path(char *out, size_t n, const char *base, const char *key) { snprintf(out, n, "%s.%s", base, key); }
 
 /* Reject keys not in the list (a typo must not silently fall back to a default). */
-static wr_status sc_keys(sc_ctx *c, const cJSON *obj, const char *path, const char *const *allowed) {
+wr_status wr_jin_keys(wr_jin *c, const cJSON *obj, const char *path, const char *const *allowed) {
     const cJSON *it;
-    if (!cJSON_IsObject(obj)) return sc_err(c, path, "must be an object");
+    if (!cJSON_IsObject(obj)) return wr_jin_err(c, path, "must be an object");
     for (it = obj->child; it; it = it->next) {
         const char *const *a;
         int ok = 0;
@@ -66,60 +63,58 @@ static wr_status sc_keys(sc_ctx *c, const cJSON *obj, const char *path, const ch
             if (strcmp(*a, it->string) == 0) ok = 1;
         if (!ok) {
             char p[512];
-            sc_path(p, sizeof p, path, it->string);
-            return sc_err(c, p, "unknown key");
+            wr_jin_path(p, sizeof p, path, it->string);
+            return wr_jin_err(c, p, "unknown key");
         }
     }
     return WR_OK;
 }
 
-enum { SC_ANY = 0, SC_POS = 1, SC_NONNEG = 2 };
-
-/* Optional number: *found = 0 when absent. rule: SC_ANY finite, SC_POS > 0, SC_NONNEG >= 0. */
-static wr_status sc_num(sc_ctx *c, const cJSON *obj, const char *key, const char *path, int rule, double *out,
+/* Optional number: *found = 0 when absent. rule: WR_JIN_ANY finite, WR_JIN_POS > 0, WR_JIN_NONNEG >= 0. */
+wr_status wr_jin_num(wr_jin *c, const cJSON *obj, const char *key, const char *path, int rule, double *out,
                         int *found) {
     const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
     char p[512];
     if (found) *found = 0;
     if (!v) return WR_OK;
-    sc_path(p, sizeof p, path, key);
-    if (!cJSON_IsNumber(v) || !isfinite(v->valuedouble)) return sc_err(c, p, "must be a finite number");
-    if (rule == SC_POS && !(v->valuedouble > 0.0)) return sc_err(c, p, "must be > 0 (got %g)", v->valuedouble);
-    if (rule == SC_NONNEG && !(v->valuedouble >= 0.0)) return sc_err(c, p, "must be >= 0 (got %g)", v->valuedouble);
+    wr_jin_path(p, sizeof p, path, key);
+    if (!cJSON_IsNumber(v) || !isfinite(v->valuedouble)) return wr_jin_err(c, p, "must be a finite number");
+    if (rule == WR_JIN_POS && !(v->valuedouble > 0.0)) return wr_jin_err(c, p, "must be > 0 (got %g)", v->valuedouble);
+    if (rule == WR_JIN_NONNEG && !(v->valuedouble >= 0.0)) return wr_jin_err(c, p, "must be >= 0 (got %g)", v->valuedouble);
     *out = v->valuedouble;
     if (found) *found = 1;
     return WR_OK;
 }
 
-static wr_status sc_int(sc_ctx *c, const cJSON *obj, const char *key, const char *path, long lo, long hi,
+wr_status wr_jin_int(wr_jin *c, const cJSON *obj, const char *key, const char *path, long lo, long hi,
                         int32_t *out, int *found) {
     const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
     char p[512];
     if (found) *found = 0;
     if (!v) return WR_OK;
-    sc_path(p, sizeof p, path, key);
+    wr_jin_path(p, sizeof p, path, key);
     if (!cJSON_IsNumber(v) || v->valuedouble != floor(v->valuedouble) || v->valuedouble < (double)lo ||
         v->valuedouble > (double)hi)
-        return sc_err(c, p, "must be an integer in [%ld, %ld]", lo, hi);
+        return wr_jin_err(c, p, "must be an integer in [%ld, %ld]", lo, hi);
     *out = (int32_t)v->valuedouble;
     if (found) *found = 1;
     return WR_OK;
 }
 
-static wr_status sc_vec(sc_ctx *c, const cJSON *obj, const char *key, const char *path, int n, double *out,
+wr_status wr_jin_vec(wr_jin *c, const cJSON *obj, const char *key, const char *path, int n, double *out,
                         int *found) {
     const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key), *e;
     char p[512];
     int i = 0;
     if (found) *found = 0;
     if (!v) return WR_OK;
-    sc_path(p, sizeof p, path, key);
-    if (!cJSON_IsArray(v) || cJSON_GetArraySize(v) != n) return sc_err(c, p, "must be an array of %d numbers", n);
+    wr_jin_path(p, sizeof p, path, key);
+    if (!cJSON_IsArray(v) || cJSON_GetArraySize(v) != n) return wr_jin_err(c, p, "must be an array of %d numbers", n);
     for (e = v->child; e; e = e->next, ++i) {
         if (!cJSON_IsNumber(e) || !isfinite(e->valuedouble)) {
             char q[540];
             snprintf(q, sizeof q, "%s[%d]", p, i);
-            return sc_err(c, q, "must be a finite number");
+            return wr_jin_err(c, q, "must be a finite number");
         }
         out[i] = e->valuedouble;
     }
@@ -127,24 +122,24 @@ static wr_status sc_vec(sc_ctx *c, const cJSON *obj, const char *key, const char
     return WR_OK;
 }
 
-static wr_status sc_bool(sc_ctx *c, const cJSON *obj, const char *key, const char *path, int *out) {
+wr_status wr_jin_bool(wr_jin *c, const cJSON *obj, const char *key, const char *path, int *out) {
     const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
     char p[512];
     if (!v) return WR_OK;
-    sc_path(p, sizeof p, path, key);
-    if (!cJSON_IsBool(v)) return sc_err(c, p, "must be true or false");
+    wr_jin_path(p, sizeof p, path, key);
+    if (!cJSON_IsBool(v)) return wr_jin_err(c, p, "must be true or false");
     *out = cJSON_IsTrue(v) ? 1 : 0;
     return WR_OK;
 }
 
 /* String choice: index into names (NULL-terminated), *out unchanged when absent. */
-static wr_status sc_enum(sc_ctx *c, const cJSON *obj, const char *key, const char *path, const char *const *names,
+wr_status wr_jin_enum(wr_jin *c, const cJSON *obj, const char *key, const char *path, const char *const *names,
                          int *out, int required) {
     const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
     char p[512], list[256];
     int i;
-    sc_path(p, sizeof p, path, key);
-    if (!v) return required ? sc_err(c, p, "is required") : WR_OK;
+    wr_jin_path(p, sizeof p, path, key);
+    if (!v) return required ? wr_jin_err(c, p, "is required") : WR_OK;
     list[0] = 0;
     for (i = 0; names[i]; ++i) {
         if (cJSON_IsString(v) && strcmp(v->valuestring, names[i]) == 0) {
@@ -154,17 +149,17 @@ static wr_status sc_enum(sc_ctx *c, const cJSON *obj, const char *key, const cha
         strncat(list, i ? ", " : "", sizeof list - strlen(list) - 1);
         strncat(list, names[i], sizeof list - strlen(list) - 1);
     }
-    return sc_err(c, p, "must be one of: %s", list);
+    return wr_jin_err(c, p, "must be one of: %s", list);
 }
 
-static wr_status sc_str(sc_ctx *c, const cJSON *obj, const char *key, const char *path, char *out, size_t cap,
+wr_status wr_jin_str(wr_jin *c, const cJSON *obj, const char *key, const char *path, char *out, size_t cap,
                         int required) {
     const cJSON *v = cJSON_GetObjectItemCaseSensitive(obj, key);
     char p[512];
-    sc_path(p, sizeof p, path, key);
-    if (!v) return required ? sc_err(c, p, "is required") : WR_OK;
-    if (!cJSON_IsString(v) || v->valuestring[0] == 0) return sc_err(c, p, "must be a non-empty string");
-    if (strlen(v->valuestring) >= cap) return sc_err(c, p, "longer than %d characters", (int)cap - 1);
+    wr_jin_path(p, sizeof p, path, key);
+    if (!v) return required ? wr_jin_err(c, p, "is required") : WR_OK;
+    if (!cJSON_IsString(v) || v->valuestring[0] == 0) return wr_jin_err(c, p, "must be a non-empty string");
+    if (strlen(v->valuestring) >= cap) return wr_jin_err(c, p, "longer than %d characters", (int)cap - 1);
     strcpy(out, v->valuestring);
     return WR_OK;
 }
@@ -200,39 +195,39 @@ void wr_scene_free(wr_scene *sc) {
     }
 }
 
-static wr_status sc_parse_mesh(sc_ctx *c, const cJSON *o, const char *base_dir, wr_scene_mesh *m) {
+static wr_status sc_parse_mesh(wr_jin *c, const cJSON *o, const char *base_dir, wr_scene_mesh *m) {
     static const char *const keys[] = {"type", "path", "width", "height", "radius", "resolution", "nx", "ny",
                                        "seed", "pillow", NULL};
     const char *P = "$.mesh";
     wr_status st;
     int kind = 0, fw = 0, fh = 0, fr = 0, fres = 0, fnx = 0, fny = 0, fs = 0, fp = 0;
     int32_t seed = 0;
-    if ((st = sc_keys(c, o, P, keys)) != WR_OK) return st;
-    if ((st = sc_enum(c, o, "type", P, SC_MESH_TYPES, &kind, 1)) != WR_OK) return st;
+    if ((st = wr_jin_keys(c, o, P, keys)) != WR_OK) return st;
+    if ((st = wr_jin_enum(c, o, "type", P, SC_MESH_TYPES, &kind, 1)) != WR_OK) return st;
     m->kind = (wr_scene_mesh_kind)kind;
-    if ((st = sc_num(c, o, "width", P, SC_POS, &m->width, &fw)) != WR_OK) return st;
-    if ((st = sc_num(c, o, "height", P, SC_POS, &m->height, &fh)) != WR_OK) return st;
-    if ((st = sc_num(c, o, "radius", P, SC_POS, &m->radius, &fr)) != WR_OK) return st;
-    if ((st = sc_num(c, o, "resolution", P, SC_POS, &m->resolution, &fres)) != WR_OK) return st;
-    if ((st = sc_int(c, o, "nx", P, 1, 100000, &m->nx, &fnx)) != WR_OK) return st;
-    if ((st = sc_int(c, o, "ny", P, 1, 100000, &m->ny, &fny)) != WR_OK) return st;
-    if ((st = sc_int(c, o, "seed", P, 0, 2147483647L, &seed, &fs)) != WR_OK) return st;
+    if ((st = wr_jin_num(c, o, "width", P, WR_JIN_POS, &m->width, &fw)) != WR_OK) return st;
+    if ((st = wr_jin_num(c, o, "height", P, WR_JIN_POS, &m->height, &fh)) != WR_OK) return st;
+    if ((st = wr_jin_num(c, o, "radius", P, WR_JIN_POS, &m->radius, &fr)) != WR_OK) return st;
+    if ((st = wr_jin_num(c, o, "resolution", P, WR_JIN_POS, &m->resolution, &fres)) != WR_OK) return st;
+    if ((st = wr_jin_int(c, o, "nx", P, 1, 100000, &m->nx, &fnx)) != WR_OK) return st;
+    if ((st = wr_jin_int(c, o, "ny", P, 1, 100000, &m->ny, &fny)) != WR_OK) return st;
+    if ((st = wr_jin_int(c, o, "seed", P, 0, 2147483647L, &seed, &fs)) != WR_OK) return st;
     m->seed = (uint64_t)seed;
-    if ((st = sc_num(c, o, "pillow", P, SC_POS, &m->pillow_lift, &fp)) != WR_OK) return st;
+    if ((st = wr_jin_num(c, o, "pillow", P, WR_JIN_POS, &m->pillow_lift, &fp)) != WR_OK) return st;
     /* a pillow doubles a flat panel with a boundary (statics.h ON PRESSURE needs a closed surface) */
     if (fp && m->kind != WR_SCENE_MESH_RECTANGLE && m->kind != WR_SCENE_MESH_DISK &&
         m->kind != WR_SCENE_MESH_DELAUNAY_RECTANGLE)
-        return sc_err(c, "$.mesh.pillow", "needs a flat panel: type rectangle, disk or delaunay_rectangle");
+        return wr_jin_err(c, "$.mesh.pillow", "needs a flat panel: type rectangle, disk or delaunay_rectangle");
     switch (m->kind) {
     case WR_SCENE_MESH_OBJ: {
         char rel[WR_SCENE_PATH_LEN];
         rel[0] = 0;
-        if ((st = sc_str(c, o, "path", P, rel, sizeof rel, 1)) != WR_OK) return st;
+        if ((st = wr_jin_str(c, o, "path", P, rel, sizeof rel, 1)) != WR_OK) return st;
         if (rel[0] == '/' || !base_dir || !base_dir[0])
             snprintf(m->path, sizeof m->path, "%s", rel);
         else {
             size_t lb = strlen(base_dir), lr = strlen(rel);
-            if (lb + lr + 2 > sizeof m->path) return sc_err(c, "$.mesh.path", "resolved path too long");
+            if (lb + lr + 2 > sizeof m->path) return wr_jin_err(c, "$.mesh.path", "resolved path too long");
             memcpy(m->path, base_dir, lb);
             m->path[lb] = '/';
             memcpy(m->path + lb + 1, rel, lr + 1);
@@ -241,26 +236,26 @@ static wr_status sc_parse_mesh(sc_ctx *c, const cJSON *o, const char *base_dir, 
     }
     case WR_SCENE_MESH_RECTANGLE:
     case WR_SCENE_MESH_DELAUNAY_RECTANGLE:
-        if (!fw) return sc_err(c, "$.mesh.width", "is required for type %s", SC_MESH_TYPES[kind]);
-        if (!fh) return sc_err(c, "$.mesh.height", "is required for type %s", SC_MESH_TYPES[kind]);
+        if (!fw) return wr_jin_err(c, "$.mesh.width", "is required for type %s", SC_MESH_TYPES[kind]);
+        if (!fh) return wr_jin_err(c, "$.mesh.height", "is required for type %s", SC_MESH_TYPES[kind]);
         if (m->kind == WR_SCENE_MESH_RECTANGLE && (fnx || fny)) {
-            if (!(fnx && fny)) return sc_err(c, fnx ? "$.mesh.ny" : "$.mesh.nx", "nx and ny go together");
+            if (!(fnx && fny)) return wr_jin_err(c, fnx ? "$.mesh.ny" : "$.mesh.nx", "nx and ny go together");
             return WR_OK;
         }
         break;
     case WR_SCENE_MESH_DISK:
-        if (!fr) return sc_err(c, "$.mesh.radius", "is required for type disk");
+        if (!fr) return wr_jin_err(c, "$.mesh.radius", "is required for type disk");
         break;
     case WR_SCENE_MESH_CYLINDER:
-        if (!fr) return sc_err(c, "$.mesh.radius", "is required for type cylinder");
-        if (!fh) return sc_err(c, "$.mesh.height", "is required for type cylinder");
+        if (!fr) return wr_jin_err(c, "$.mesh.radius", "is required for type cylinder");
+        if (!fh) return wr_jin_err(c, "$.mesh.height", "is required for type cylinder");
         break;
     }
-    if (!fres) return sc_err(c, "$.mesh.resolution", "is required for type %s", SC_MESH_TYPES[kind]);
+    if (!fres) return wr_jin_err(c, "$.mesh.resolution", "is required for type %s", SC_MESH_TYPES[kind]);
     return WR_OK;
 }
 
-static wr_status sc_parse_material(sc_ctx *c, const cJSON *o, wr_scene *sc) {
+static wr_status sc_parse_material(wr_jin *c, const cJSON *o, wr_scene *sc) {
     static const char *const keys[] = {"young", "poisson", "thickness", "bending_stiffness", "density",
                                        "areal_density", "orthotropic", NULL};
     static const char *const okeys[] = {"young_warp", "young_weft", "shear_modulus", "poisson_warp", NULL};
@@ -269,18 +264,18 @@ static wr_status sc_parse_material(sc_ctx *c, const cJSON *o, wr_scene *sc) {
     wr_status st;
     int fE = 0, fh = 0, fB = 0, fd = 0, fa = 0, fnu = 0;
     const cJSON *orth;
-    if ((st = sc_keys(c, o, P, keys)) != WR_OK) return st;
-    if ((st = sc_num(c, o, "young", P, SC_POS, &d->young, &fE)) != WR_OK) return st;
-    if ((st = sc_num(c, o, "poisson", P, SC_ANY, &d->poisson, &fnu)) != WR_OK) return st;
+    if ((st = wr_jin_keys(c, o, P, keys)) != WR_OK) return st;
+    if ((st = wr_jin_num(c, o, "young", P, WR_JIN_POS, &d->young, &fE)) != WR_OK) return st;
+    if ((st = wr_jin_num(c, o, "poisson", P, WR_JIN_ANY, &d->poisson, &fnu)) != WR_OK) return st;
     if (fnu && !(d->poisson > -1.0 && d->poisson <= 0.5))
-        return sc_err(c, "$.material.poisson", "must be in (-1, 0.5] (got %g)", d->poisson);
-    if ((st = sc_num(c, o, "thickness", P, SC_POS, &d->thickness, &fh)) != WR_OK) return st;
-    if ((st = sc_num(c, o, "bending_stiffness", P, SC_POS, &d->bending_stiffness, &fB)) != WR_OK) return st;
-    if ((st = sc_num(c, o, "density", P, SC_NONNEG, &d->density, &fd)) != WR_OK) return st;
-    if ((st = sc_num(c, o, "areal_density", P, SC_NONNEG, &sc->areal_density, &fa)) != WR_OK) return st;
-    if (!fE) return sc_err(c, "$.material.young", "is required");
-    if (!fh && !fB) return sc_err(c, "$.material", "needs thickness or bending_stiffness");
-    if (fd && fa) return sc_err(c, "$.material.areal_density", "give density or areal_density, not both");
+        return wr_jin_err(c, "$.material.poisson", "must be in (-1, 0.5] (got %g)", d->poisson);
+    if ((st = wr_jin_num(c, o, "thickness", P, WR_JIN_POS, &d->thickness, &fh)) != WR_OK) return st;
+    if ((st = wr_jin_num(c, o, "bending_stiffness", P, WR_JIN_POS, &d->bending_stiffness, &fB)) != WR_OK) return st;
+    if ((st = wr_jin_num(c, o, "density", P, WR_JIN_NONNEG, &d->density, &fd)) != WR_OK) return st;
+    if ((st = wr_jin_num(c, o, "areal_density", P, WR_JIN_NONNEG, &sc->areal_density, &fa)) != WR_OK) return st;
+    if (!fE) return wr_jin_err(c, "$.material.young", "is required");
+    if (!fh && !fB) return wr_jin_err(c, "$.material", "needs thickness or bending_stiffness");
+    if (fd && fa) return wr_jin_err(c, "$.material.areal_density", "give density or areal_density, not both");
     if (!fh) /* Kirchhoff–Love (Style3D Sec. 4.1.1): B = E h³/(12(1−ν²)) solved for h */
         d->thickness = cbrt(12.0 * (1.0 - d->poisson * d->poisson) * d->bending_stiffness / d->young);
     if (fa) d->density = sc->areal_density / d->thickness;
@@ -288,19 +283,19 @@ static wr_status sc_parse_material(sc_ctx *c, const cJSON *o, wr_scene *sc) {
     if (orth) {
         const char *Q = "$.material.orthotropic";
         int f1 = 0, f2 = 0, f3 = 0;
-        if ((st = sc_keys(c, orth, Q, okeys)) != WR_OK) return st;
-        if ((st = sc_num(c, orth, "young_warp", Q, SC_POS, &d->young_warp, &f1)) != WR_OK) return st;
-        if ((st = sc_num(c, orth, "young_weft", Q, SC_POS, &d->young_weft, &f2)) != WR_OK) return st;
-        if ((st = sc_num(c, orth, "shear_modulus", Q, SC_POS, &d->shear_modulus, &f3)) != WR_OK) return st;
-        if ((st = sc_num(c, orth, "poisson_warp", Q, SC_ANY, &d->poisson_warp, NULL)) != WR_OK) return st;
+        if ((st = wr_jin_keys(c, orth, Q, okeys)) != WR_OK) return st;
+        if ((st = wr_jin_num(c, orth, "young_warp", Q, WR_JIN_POS, &d->young_warp, &f1)) != WR_OK) return st;
+        if ((st = wr_jin_num(c, orth, "young_weft", Q, WR_JIN_POS, &d->young_weft, &f2)) != WR_OK) return st;
+        if ((st = wr_jin_num(c, orth, "shear_modulus", Q, WR_JIN_POS, &d->shear_modulus, &f3)) != WR_OK) return st;
+        if ((st = wr_jin_num(c, orth, "poisson_warp", Q, WR_JIN_ANY, &d->poisson_warp, NULL)) != WR_OK) return st;
         if (!f1 || !f2 || !f3)
-            return sc_err(c, Q, "needs young_warp, young_weft and shear_modulus");
+            return wr_jin_err(c, Q, "needs young_warp, young_weft and shear_modulus");
         d->orthotropic = 1;
     }
     return WR_OK;
 }
 
-static wr_status sc_parse_bc(sc_ctx *c, const cJSON *o, const char *P, wr_scene_bc *b) {
+static wr_status sc_parse_bc(wr_jin *c, const cJSON *o, const char *P, wr_scene_bc *b) {
     static const char *const keys[] = {"name", "box", "indices", "center", "translate", "stretch", "shear", "twist",
                                        "wave", NULL};
     static const char *const bkeys[] = {"min", "max", NULL};
@@ -310,26 +305,26 @@ static wr_status sc_parse_bc(sc_ctx *c, const cJSON *o, const char *P, wr_scene_
     char p[512];
     wr_status st;
     int f = 0, i;
-    if ((st = sc_keys(c, o, P, keys)) != WR_OK) return st;
-    if ((st = sc_str(c, o, "name", P, b->name, sizeof b->name, 0)) != WR_OK) return st;
+    if ((st = wr_jin_keys(c, o, P, keys)) != WR_OK) return st;
+    if ((st = wr_jin_str(c, o, "name", P, b->name, sizeof b->name, 0)) != WR_OK) return st;
     box = cJSON_GetObjectItemCaseSensitive(o, "box");
     idx = cJSON_GetObjectItemCaseSensitive(o, "indices");
-    if (!!box == !!idx) return sc_err(c, P, "needs exactly one of box or indices");
+    if (!!box == !!idx) return wr_jin_err(c, P, "needs exactly one of box or indices");
     if (box) {
         int f1 = 0, f2 = 0;
-        sc_path(p, sizeof p, P, "box");
-        if ((st = sc_keys(c, box, p, bkeys)) != WR_OK) return st;
-        if ((st = sc_vec(c, box, "min", p, 3, b->box_lo, &f1)) != WR_OK) return st;
-        if ((st = sc_vec(c, box, "max", p, 3, b->box_hi, &f2)) != WR_OK) return st;
-        if (!f1 || !f2) return sc_err(c, p, "needs min and max");
+        wr_jin_path(p, sizeof p, P, "box");
+        if ((st = wr_jin_keys(c, box, p, bkeys)) != WR_OK) return st;
+        if ((st = wr_jin_vec(c, box, "min", p, 3, b->box_lo, &f1)) != WR_OK) return st;
+        if ((st = wr_jin_vec(c, box, "max", p, 3, b->box_hi, &f2)) != WR_OK) return st;
+        if (!f1 || !f2) return wr_jin_err(c, p, "needs min and max");
         for (i = 0; i < 3; ++i)
-            if (b->box_lo[i] > b->box_hi[i]) return sc_err(c, p, "min[%d] > max[%d]", i, i);
+            if (b->box_lo[i] > b->box_hi[i]) return wr_jin_err(c, p, "min[%d] > max[%d]", i, i);
         b->select = WR_SCENE_SELECT_BOX;
     } else {
         const cJSON *e;
         int n = cJSON_GetArraySize(idx);
-        sc_path(p, sizeof p, P, "indices");
-        if (!cJSON_IsArray(idx) || n < 1) return sc_err(c, p, "must be a non-empty array of vertex indices");
+        wr_jin_path(p, sizeof p, P, "indices");
+        if (!cJSON_IsArray(idx) || n < 1) return wr_jin_err(c, p, "must be a non-empty array of vertex indices");
         b->indices = (int32_t *)malloc(sizeof(int32_t) * (size_t)n);
         if (!b->indices) return wr_fail(c->diag, WR_ERR_NOMEM, -1, "%s: out of memory", p);
         b->n_indices = n;
@@ -339,49 +334,49 @@ static wr_status sc_parse_bc(sc_ctx *c, const cJSON *o, const char *P, wr_scene_
                 e->valuedouble > 2147483647.0) {
                 char q[540];
                 snprintf(q, sizeof q, "%s[%d]", p, i);
-                return sc_err(c, q, "must be a vertex index (integer >= 0)");
+                return wr_jin_err(c, q, "must be a vertex index (integer >= 0)");
             }
             b->indices[i] = (int32_t)e->valuedouble;
         }
         b->select = WR_SCENE_SELECT_INDICES;
     }
-    if ((st = sc_vec(c, o, "center", P, 3, b->center, NULL)) != WR_OK) return st;
-    if ((st = sc_vec(c, o, "translate", P, 3, b->translate, NULL)) != WR_OK) return st;
-    if ((st = sc_vec(c, o, "stretch", P, 3, b->stretch, &f)) != WR_OK) return st;
+    if ((st = wr_jin_vec(c, o, "center", P, 3, b->center, NULL)) != WR_OK) return st;
+    if ((st = wr_jin_vec(c, o, "translate", P, 3, b->translate, NULL)) != WR_OK) return st;
+    if ((st = wr_jin_vec(c, o, "stretch", P, 3, b->stretch, &f)) != WR_OK) return st;
     if (f)
         for (i = 0; i < 3; ++i)
             if (!(b->stretch[i] > 0.0)) {
-                sc_path(p, sizeof p, P, "stretch");
-                return sc_err(c, p, "scale factors must be > 0");
+                wr_jin_path(p, sizeof p, P, "stretch");
+                return wr_jin_err(c, p, "scale factors must be > 0");
             }
-    if ((st = sc_vec(c, o, "shear", P, 3, b->shear, NULL)) != WR_OK) return st;
+    if ((st = wr_jin_vec(c, o, "shear", P, 3, b->shear, NULL)) != WR_OK) return st;
     tw = cJSON_GetObjectItemCaseSensitive(o, "twist");
     if (tw) {
         int fa = 0, fg = 0;
-        sc_path(p, sizeof p, P, "twist");
-        if ((st = sc_keys(c, tw, p, tkeys)) != WR_OK) return st;
-        if ((st = sc_vec(c, tw, "axis", p, 3, b->twist_axis, &fa)) != WR_OK) return st;
-        if ((st = sc_num(c, tw, "angle", p, SC_ANY, &b->twist_angle, &fg)) != WR_OK) return st;
-        if (!fa || !fg) return sc_err(c, p, "needs axis and angle");
+        wr_jin_path(p, sizeof p, P, "twist");
+        if ((st = wr_jin_keys(c, tw, p, tkeys)) != WR_OK) return st;
+        if ((st = wr_jin_vec(c, tw, "axis", p, 3, b->twist_axis, &fa)) != WR_OK) return st;
+        if ((st = wr_jin_num(c, tw, "angle", p, WR_JIN_ANY, &b->twist_angle, &fg)) != WR_OK) return st;
+        if (!fa || !fg) return wr_jin_err(c, p, "needs axis and angle");
         if (!(fabs(b->twist_axis[0]) + fabs(b->twist_axis[1]) + fabs(b->twist_axis[2]) > 0.0))
-            return sc_err(c, p, "axis must be nonzero");
+            return wr_jin_err(c, p, "axis must be nonzero");
     }
     wv = cJSON_GetObjectItemCaseSensitive(o, "wave");
     if (wv) {
         int fa = 0, fl = 0, f1 = 0, f2 = 0;
-        sc_path(p, sizeof p, P, "wave");
-        if ((st = sc_keys(c, wv, p, wkeys)) != WR_OK) return st;
-        if ((st = sc_num(c, wv, "amplitude", p, SC_ANY, &b->wave_amplitude, &fa)) != WR_OK) return st;
-        if ((st = sc_num(c, wv, "wavelength", p, SC_POS, &b->wave_length, &fl)) != WR_OK) return st;
-        if ((st = sc_num(c, wv, "phase", p, SC_ANY, &b->wave_phase, NULL)) != WR_OK) return st;
-        if ((st = sc_vec(c, wv, "along", p, 3, b->wave_along, &f1)) != WR_OK) return st;
-        if ((st = sc_vec(c, wv, "dir", p, 3, b->wave_dir, &f2)) != WR_OK) return st;
-        if (!fa || !fl || !f1 || !f2) return sc_err(c, p, "needs amplitude, wavelength, along and dir");
+        wr_jin_path(p, sizeof p, P, "wave");
+        if ((st = wr_jin_keys(c, wv, p, wkeys)) != WR_OK) return st;
+        if ((st = wr_jin_num(c, wv, "amplitude", p, WR_JIN_ANY, &b->wave_amplitude, &fa)) != WR_OK) return st;
+        if ((st = wr_jin_num(c, wv, "wavelength", p, WR_JIN_POS, &b->wave_length, &fl)) != WR_OK) return st;
+        if ((st = wr_jin_num(c, wv, "phase", p, WR_JIN_ANY, &b->wave_phase, NULL)) != WR_OK) return st;
+        if ((st = wr_jin_vec(c, wv, "along", p, 3, b->wave_along, &f1)) != WR_OK) return st;
+        if ((st = wr_jin_vec(c, wv, "dir", p, 3, b->wave_dir, &f2)) != WR_OK) return st;
+        if (!fa || !fl || !f1 || !f2) return wr_jin_err(c, p, "needs amplitude, wavelength, along and dir");
     }
     return WR_OK;
 }
 
-static wr_status sc_parse_solver(sc_ctx *c, const cJSON *o, wr_scene *sc) {
+static wr_status sc_parse_solver(wr_jin *c, const cJSON *o, wr_scene *sc) {
     static const char *const keys[] = {"linear", "linear_tol", "grad_tol", "max_iter", "load_steps", "perturb",
                                        "seed", "hessian", NULL};
     const char *P = "$.solver";
@@ -389,48 +384,48 @@ static wr_status sc_parse_solver(sc_ctx *c, const cJSON *o, wr_scene *sc) {
     int lin = (int)sc->linear, hes = (int)sc->hessian;
     int32_t seed = 0;
     int fs = 0;
-    if ((st = sc_keys(c, o, P, keys)) != WR_OK) return st;
-    if ((st = sc_enum(c, o, "linear", P, SC_LINEAR, &lin, 0)) != WR_OK) return st;
+    if ((st = wr_jin_keys(c, o, P, keys)) != WR_OK) return st;
+    if ((st = wr_jin_enum(c, o, "linear", P, SC_LINEAR, &lin, 0)) != WR_OK) return st;
     sc->linear = (wr_solver_method)lin;
-    if ((st = sc_enum(c, o, "hessian", P, SC_HESSIAN, &hes, 0)) != WR_OK) return st;
+    if ((st = wr_jin_enum(c, o, "hessian", P, SC_HESSIAN, &hes, 0)) != WR_OK) return st;
     sc->hessian = (wr_scene_hessian)hes;
-    if ((st = sc_num(c, o, "linear_tol", P, SC_POS, &sc->linear_tol, NULL)) != WR_OK) return st;
-    if ((st = sc_num(c, o, "grad_tol", P, SC_POS, &sc->grad_tol, NULL)) != WR_OK) return st;
-    if ((st = sc_int(c, o, "max_iter", P, 1, 1000000, &sc->max_iter, NULL)) != WR_OK) return st;
-    if ((st = sc_int(c, o, "load_steps", P, 1, 100000, &sc->load_steps, NULL)) != WR_OK) return st;
-    if ((st = sc_num(c, o, "perturb", P, SC_NONNEG, &sc->perturb, NULL)) != WR_OK) return st;
-    if ((st = sc_int(c, o, "seed", P, 0, 2147483647L, &seed, &fs)) != WR_OK) return st;
+    if ((st = wr_jin_num(c, o, "linear_tol", P, WR_JIN_POS, &sc->linear_tol, NULL)) != WR_OK) return st;
+    if ((st = wr_jin_num(c, o, "grad_tol", P, WR_JIN_POS, &sc->grad_tol, NULL)) != WR_OK) return st;
+    if ((st = wr_jin_int(c, o, "max_iter", P, 1, 1000000, &sc->max_iter, NULL)) != WR_OK) return st;
+    if ((st = wr_jin_int(c, o, "load_steps", P, 1, 100000, &sc->load_steps, NULL)) != WR_OK) return st;
+    if ((st = wr_jin_num(c, o, "perturb", P, WR_JIN_NONNEG, &sc->perturb, NULL)) != WR_OK) return st;
+    if ((st = wr_jin_int(c, o, "seed", P, 0, 2147483647L, &seed, &fs)) != WR_OK) return st;
     if (fs) sc->seed = (uint64_t)seed;
     return WR_OK;
 }
 
-static wr_status sc_parse_probe(sc_ctx *c, const cJSON *o, const char *P, wr_scene_probe *pr) {
+static wr_status sc_parse_probe(wr_jin *c, const cJSON *o, const char *P, wr_scene_probe *pr) {
     static const char *const keys[] = {"name", "from", "to", "samples", "dir", "closed", NULL};
     wr_status st;
     int f1 = 0, f2 = 0, fd = 0;
-    if ((st = sc_keys(c, o, P, keys)) != WR_OK) return st;
-    if ((st = sc_str(c, o, "name", P, pr->name, sizeof pr->name, 0)) != WR_OK) return st;
-    if ((st = sc_vec(c, o, "from", P, 2, pr->from, &f1)) != WR_OK) return st;
-    if ((st = sc_vec(c, o, "to", P, 2, pr->to, &f2)) != WR_OK) return st;
-    if (!f1 || !f2) return sc_err(c, P, "needs from and to");
-    if (pr->from[0] == pr->to[0] && pr->from[1] == pr->to[1]) return sc_err(c, P, "from and to coincide");
+    if ((st = wr_jin_keys(c, o, P, keys)) != WR_OK) return st;
+    if ((st = wr_jin_str(c, o, "name", P, pr->name, sizeof pr->name, 0)) != WR_OK) return st;
+    if ((st = wr_jin_vec(c, o, "from", P, 2, pr->from, &f1)) != WR_OK) return st;
+    if ((st = wr_jin_vec(c, o, "to", P, 2, pr->to, &f2)) != WR_OK) return st;
+    if (!f1 || !f2) return wr_jin_err(c, P, "needs from and to");
+    if (pr->from[0] == pr->to[0] && pr->from[1] == pr->to[1]) return wr_jin_err(c, P, "from and to coincide");
     pr->samples = 512;
-    if ((st = sc_int(c, o, "samples", P, WR_SPECTRUM_MIN_SAMPLES, 1 << 22, &pr->samples, NULL)) != WR_OK) return st;
+    if ((st = wr_jin_int(c, o, "samples", P, WR_SPECTRUM_MIN_SAMPLES, 1 << 22, &pr->samples, NULL)) != WR_OK) return st;
     pr->dir[2] = 1.0;
-    if ((st = sc_vec(c, o, "dir", P, 3, pr->dir, &fd)) != WR_OK) return st;
+    if ((st = wr_jin_vec(c, o, "dir", P, 3, pr->dir, &fd)) != WR_OK) return st;
     if (fd && !(fabs(pr->dir[0]) + fabs(pr->dir[1]) + fabs(pr->dir[2]) > 0.0)) {
         char p[512];
-        sc_path(p, sizeof p, P, "dir");
-        return sc_err(c, p, "must be nonzero");
+        wr_jin_path(p, sizeof p, P, "dir");
+        return wr_jin_err(c, p, "must be nonzero");
     }
-    return sc_bool(c, o, "closed", P, &pr->closed);
+    return wr_jin_bool(c, o, "closed", P, &pr->closed);
 }
 
 wr_status wr_scene_parse(wr_scene *sc, const char *text, size_t len, const char *base_dir, wr_diag *diag) {
     static const char *const keys[] = {"name", "mesh", "material", "energy", "gravity", "ramp_gravity", "pressure",
                                        "boundary", "solver", "probes", NULL};
     static const char *const ekeys[] = {"membrane", "bending", NULL};
-    sc_ctx c;
+    wr_jin c;
     cJSON *root;
     const cJSON *o, *e;
     wr_status st = WR_OK;
@@ -444,44 +439,44 @@ wr_status wr_scene_parse(wr_scene *sc, const char *text, size_t len, const char 
         long off = (ep && ep >= text && ep <= text + len) ? (long)(ep - text) : -1;
         return wr_fail(diag, WR_ERR_PARSE, -1, "$: malformed JSON near byte %ld", off);
     }
-    if ((st = sc_keys(&c, root, "$", keys)) != WR_OK) goto done;
-    if ((st = sc_str(&c, root, "name", "$", sc->name, sizeof sc->name, 0)) != WR_OK) goto done;
+    if ((st = wr_jin_keys(&c, root, "$", keys)) != WR_OK) goto done;
+    if ((st = wr_jin_str(&c, root, "name", "$", sc->name, sizeof sc->name, 0)) != WR_OK) goto done;
     o = cJSON_GetObjectItemCaseSensitive(root, "mesh");
     if (!o) {
-        st = sc_err(&c, "$.mesh", "is required");
+        st = wr_jin_err(&c, "$.mesh", "is required");
         goto done;
     }
     if ((st = sc_parse_mesh(&c, o, base_dir, &sc->mesh)) != WR_OK) goto done;
     o = cJSON_GetObjectItemCaseSensitive(root, "material");
     if (!o) {
-        st = sc_err(&c, "$.material", "is required");
+        st = wr_jin_err(&c, "$.material", "is required");
         goto done;
     }
     if ((st = sc_parse_material(&c, o, sc)) != WR_OK) goto done;
     o = cJSON_GetObjectItemCaseSensitive(root, "energy");
     if (o) {
         int mem = 0, ben = 0;
-        if ((st = sc_keys(&c, o, "$.energy", ekeys)) != WR_OK) goto done;
-        if ((st = sc_enum(&c, o, "membrane", "$.energy", SC_MEMBRANES, &mem, 0)) != WR_OK) goto done;
-        if ((st = sc_enum(&c, o, "bending", "$.energy", SC_BENDINGS, &ben, 0)) != WR_OK) goto done;
+        if ((st = wr_jin_keys(&c, o, "$.energy", ekeys)) != WR_OK) goto done;
+        if ((st = wr_jin_enum(&c, o, "membrane", "$.energy", SC_MEMBRANES, &mem, 0)) != WR_OK) goto done;
+        if ((st = wr_jin_enum(&c, o, "bending", "$.energy", SC_BENDINGS, &ben, 0)) != WR_OK) goto done;
         sc->shell.membrane = (wr_membrane_model)mem;
         sc->shell.bending = (wr_bending_model)ben;
     }
     if (sc->shell.orthotropic && (sc->shell.membrane == WR_MEMBRANE_TFT || sc->shell.bending == WR_BENDING_QUADRATIC)) {
-        st = sc_err(&c, "$.material.orthotropic", "needs membrane stvk and bending midedge (shell.h)");
+        st = wr_jin_err(&c, "$.material.orthotropic", "needs membrane stvk and bending midedge (shell.h)");
         goto done;
     }
-    if ((st = sc_vec(&c, root, "gravity", "$", 3, sc->gravity, NULL)) != WR_OK) goto done;
-    if ((st = sc_bool(&c, root, "ramp_gravity", "$", &sc->ramp_gravity)) != WR_OK) goto done;
-    if ((st = sc_num(&c, root, "pressure", "$", SC_ANY, &sc->pressure, NULL)) != WR_OK) goto done;
+    if ((st = wr_jin_vec(&c, root, "gravity", "$", 3, sc->gravity, NULL)) != WR_OK) goto done;
+    if ((st = wr_jin_bool(&c, root, "ramp_gravity", "$", &sc->ramp_gravity)) != WR_OK) goto done;
+    if ((st = wr_jin_num(&c, root, "pressure", "$", WR_JIN_ANY, &sc->pressure, NULL)) != WR_OK) goto done;
     o = cJSON_GetObjectItemCaseSensitive(root, "boundary");
     if (o) {
         if (!cJSON_IsArray(o)) {
-            st = sc_err(&c, "$.boundary", "must be an array");
+            st = wr_jin_err(&c, "$.boundary", "must be an array");
             goto done;
         }
         if (cJSON_GetArraySize(o) > WR_SCENE_MAX_BC) {
-            st = sc_err(&c, "$.boundary", "more than %d sets", WR_SCENE_MAX_BC);
+            st = wr_jin_err(&c, "$.boundary", "more than %d sets", WR_SCENE_MAX_BC);
             goto done;
         }
         for (e = o->child, i = 0; e; e = e->next, ++i) {
@@ -497,11 +492,11 @@ wr_status wr_scene_parse(wr_scene *sc, const char *text, size_t len, const char 
     o = cJSON_GetObjectItemCaseSensitive(root, "probes");
     if (o) {
         if (!cJSON_IsArray(o)) {
-            st = sc_err(&c, "$.probes", "must be an array");
+            st = wr_jin_err(&c, "$.probes", "must be an array");
             goto done;
         }
         if (cJSON_GetArraySize(o) > WR_SCENE_MAX_PROBES) {
-            st = sc_err(&c, "$.probes", "more than %d probes", WR_SCENE_MAX_PROBES);
+            st = wr_jin_err(&c, "$.probes", "more than %d probes", WR_SCENE_MAX_PROBES);
             goto done;
         }
         for (e = o->child, i = 0; e; e = e->next, ++i) {

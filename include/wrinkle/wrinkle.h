@@ -6,7 +6,8 @@
  *
  * WHAT IS INCLUDED
  *   Always (libc + libm only, MIT): core, mesh, sparse, pcg (iterative solvers), resolution,
- *   transition, tft, shell, poisson, triangulate, statics, wrinkle_field, mesher, tfw, collision,
+ *   transition, tft, shell, poisson, triangulate, statics, dynamics, body, garment, wrinkle_field,
+ *   mesher, tfw, collision,
  *   render.
  *   Link with -lm (pkg-config: wrinkle-core).
  *   Opt-in backends, each behind a macro so that a binary without them carries no GPL code:
@@ -38,6 +39,7 @@
 #include "statics.h"
 #include "dynamics.h"
 #include "body.h"
+#include "garment.h"
 #include "wrinkle_field.h"
 #include "mesher.h"
 #include "tfw.h"
