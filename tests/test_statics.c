@@ -1349,6 +1349,13 @@ Test(statics, stability_escapes_the_unstable_flat_strip) {
     cr_assert_eq(wr_statics_solve(&off.s, off.x, &d, &s0, &dg), WR_OK, "%s", dg.message);
     cr_assert(st_zmax(&off) == 0.0, "without the test the strip stays flat (zmax %g)", st_zmax(&off));
     st_strip_make(&on, eps);
+    st_strip_desc(&d, &on, 2); /* test and report only: flat, with its negative eigenvalue */
+    cr_assert_eq(wr_statics_solve(&on.s, on.x, &d, &s1, &dg), WR_OK, "%s", dg.message);
+    cr_assert(st_zmax(&on) == 0.0);
+    cr_assert_eq(s1.stability_negative, 1);
+    cr_assert_eq(s1.stability_escapes, 0);
+    st_strip_free(&on);
+    st_strip_make(&on, eps);
     st_strip_desc(&d, &on, 1);
     cr_assert_eq(wr_statics_solve(&on.s, on.x, &d, &s1, &dg), WR_OK, "%s", dg.message);
     cr_assert_eq(s1.stability_negative_first, 1);
@@ -1405,7 +1412,7 @@ Test(statics, stability_option_errors) {
     wr_statics_stats st;
     wr_diag dg;
     st_strip_make(&S, 1e-5);
-    st_strip_desc(&d, &S, 2);
+    st_strip_desc(&d, &S, 3);
     cr_assert_eq(wr_statics_solve(&S.s, S.x, &d, &st, &dg), WR_ERR_INVALID_ARG);
     st_strip_desc(&d, &S, 1);
     d.stability.amplitude = -1.0;

@@ -27,6 +27,7 @@
  *   wr_statics_barrier(d, dhat, kappa, b1, b2)       contact barrier κ·b(d) and its d-derivatives
  *   desc.stability                                   test each equilibrium with the true Hessian's
  *                                                    lowest eigenpairs, escape along negative modes
+ *   wr_statics_stability_test(shell, x, desc, stats, diag)   that test alone, at a given x
  *   (sewing — wr_mesh_weld, wr_mesh_pillow — is in mesh.h; the element projection is newton.h's
  *   wr_newton_project_spd)
  *
@@ -156,7 +157,7 @@
  *   no perturbation) and the lower Π is kept if it is below Π(x); then the test repeats (at most
  *   max_rounds escapes per increment). The stats report the eigenvalues at the returned x, the
  *   negative count and lowest eigenvalue before the first escape, the modes found, the escapes and
- *   the energy drop. perturb_each = 1 also applies start.perturb at every increment (seed + k − 1),
+ *   the energy drop. check = 2 tests and reports without escaping. perturb_each = 1 also applies start.perturb at every increment (seed + k − 1),
  *   not only the first. Checked against Euler's strip in tests/test_statics.c (λ₁ within 0.1 %,
  *   the buckled amplitude within 1 %); cost and figures: docs/notes-statics.md.
  *
@@ -264,8 +265,9 @@ typedef struct wr_obstacle {
  *   increments    grad_tol 0 → stop.grad_tol, for the intermediate increments; predictor 0 = each
  *                 increment starts from the last equilibrium, 1 = secant predictor (ON MOTIONS AND
  *                 INCREMENTS)
- *   stability     check 0 = off, 1 = test the equilibrium and escape along negative modes (ON
- *                 STABILITY; needs WR_USE_ARPACK and WR_USE_CHOLMOD, else WR_ERR_UNSUPPORTED); n_modes
+ *   stability     check 0 = off, 1 = test the equilibrium and escape along negative modes, 2 = test
+ *                 and report only (ON STABILITY; needs WR_USE_ARPACK and WR_USE_CHOLMOD, else
+ *                 WR_ERR_UNSUPPORTED); n_modes
  *                 0 → 4 eigenpairs (<= 64); neg_tol 0 → WR_EIGEN_NEG_REL (eigen.h); amplitude 0 → the
  *                 shell thickness [m] (largest vertex displacement of a mode step); max_rounds 0 → 4
  *                 escapes per test; perturb_each 1 = start.perturb at every increment (seed + k − 1)
@@ -367,6 +369,11 @@ typedef struct wr_motion {
 
 WRDEF wr_status wr_statics_solve(const wr_shell *s, double *x, const wr_statics_desc *desc, wr_statics_stats *stats,
                                  wr_diag *diag);
+/* ON STABILITY without a solve: the lowest eigenpairs of Π's true Hessian at x (desc's loads, contact,
+ * pressure; desc.stability's n_modes and neg_tol; its check is ignored) into stats' stability fields
+ * (stability_eigs, stability_negative, …); x is not changed. Needs WR_USE_ARPACK and WR_USE_CHOLMOD. */
+WRDEF wr_status wr_statics_stability_test(const wr_shell *s, const double *x, const wr_statics_desc *desc,
+                                          wr_statics_stats *stats, wr_diag *diag);
 /* x: nv*3 reference positions in (the motions' X and the first warm start), final equilibrium out.
  * desc->fixed / desc->target still prescribe other vertices (held at their target). n_inc >= 1. */
 WRDEF wr_status wr_statics_solve_incremental(const wr_shell *s, double *x, const wr_statics_desc *desc,
@@ -782,10 +789,10 @@ static wr_status wr__statics_defaults(wr_statics_desc *d, const wr_statics_desc 
         if ((rs = wr_newton_desc_check(&nd, diag)) != WR_OK) return rs;
     }
     if (d->stability.check != 0 &&
-        (d->stability.check != 1 || d->stability.n_modes < 0 || d->stability.n_modes > 64 || d->stability.max_rounds < 0 ||
+        (d->stability.check < 0 || d->stability.check > 2 || d->stability.n_modes < 0 || d->stability.n_modes > 64 || d->stability.max_rounds < 0 ||
          !(d->stability.neg_tol >= 0.0) || !(d->stability.amplitude >= 0.0) || d->stability.amplitude - d->stability.amplitude != 0.0))
         return wr_fail(diag, WR_ERR_INVALID_ARG, -1,
-                       "statics: stability.check %d (0 or 1), n_modes %d (0..64), max_rounds %d, neg_tol %g, amplitude %g invalid",
+                       "statics: stability.check %d (0, 1 or 2), n_modes %d (0..64), max_rounds %d, neg_tol %g, amplitude %g invalid",
                        (int)d->stability.check, (int)d->stability.n_modes, (int)d->stability.max_rounds, d->stability.neg_tol,
                        d->stability.amplitude);
 #if !(defined(WR_USE_ARPACK) && WR_USE_ARPACK && defined(WR_USE_CHOLMOD) && WR_USE_CHOLMOD)
@@ -1034,6 +1041,18 @@ done:
 
 /* ---- stability of an equilibrium (ON STABILITY) ------------------------------------------------ */
 
+/* Π at x (loads and targets of d, no perturbation), through the reference-only solve */
+static wr_status wr__statics_energy_at(const wr_shell *s, double *x, const wr_statics_desc *d, double *Pi) {
+    wr_statics_desc d2 = *d;
+    wr_statics_stats st;
+    wr_status rs;
+    d2.start.perturb = 0.0;
+    d2.stability.check = 0;
+    rs = wr__statics_solve_one(s, x, &d2, &st, NULL, 0.0, 1);
+    *Pi = st.energy;
+    return rs;
+}
+
 /* The true (unprojected) Hessian of Π at x into A (every term of wr__statics_hessian, exact element
  * blocks), the fixed DOFs (nv*3) and the DOF metric: lumped rest vertex areas (ON STABILITY). */
 static wr_status wr__statics_true_hessian(const wr_shell *s, const double *x, const wr_statics_desc *d, wr_assembly *A,
@@ -1157,7 +1176,7 @@ static wr_status wr__statics_stability(const wr_shell *s, double *x, const wr_st
         wr_statics_stats kept, saved;
         if ((rs = wr__statics_eigen(s, x, d, &sd, seed, &er, diag)) != WR_OK) break;
         wr__statics_stab_record(&er, round == 0, st);
-        if (er.n_negative == 0 || er.nev == 0 || round == sd.max_rounds ||
+        if (er.n_negative == 0 || er.nev == 0 || round == sd.max_rounds || sd.check == 2 ||
             !wr__statics_escape(s, x, er.vectors, amp, st->energy, fn, user, xt, st, &kept)) {
             wr_eigen_result_free(&er);
             break;
@@ -1188,6 +1207,30 @@ typedef struct wr__statics_plain {
 static wr_status wr__statics_resolve_plain(void *user, double *x, wr_statics_stats *st, wr_diag *diag) {
     const wr__statics_plain *p = (const wr__statics_plain *)user;
     return wr_statics_solve(p->s, x, &p->d, st, diag);
+}
+
+WRDEF wr_status wr_statics_stability_test(const wr_shell *s, const double *x, const wr_statics_desc *desc,
+                                          wr_statics_stats *stats, wr_diag *diag) {
+    wr_statics_desc dk;
+    wr_statics_stats st;
+    wr_status rs;
+    double *xc;
+    memset(&st, 0, sizeof st);
+    if (stats) *stats = st;
+    if (!s || !x || !s->faces) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "statics: NULL shell or x");
+    if ((rs = wr__statics_defaults(&dk, desc, diag)) != WR_OK) return rs;
+    dk.stability.check = 2; /* report only: no re-solve, x unchanged */
+#if !(defined(WR_USE_ARPACK) && WR_USE_ARPACK && defined(WR_USE_CHOLMOD) && WR_USE_CHOLMOD)
+    return wr_fail(diag, WR_ERR_UNSUPPORTED, -1, "statics: the stability test needs WR_USE_ARPACK=1 and WR_USE_CHOLMOD=1");
+#endif
+    xc = (double *)wr_alloc_array(3 * (size_t)s->nv, sizeof(double));
+    if (!xc) return wr_fail(diag, WR_ERR_NOMEM, -1, "statics: out of memory (%d vertices)", (int)s->nv);
+    memcpy(xc, x, sizeof(double) * 3 * (size_t)s->nv);
+    if (wr__statics_energy_at(s, xc, &dk, &st.energy) != WR_OK) st.energy = NAN;
+    rs = wr__statics_stability(s, xc, &dk, &dk.stability, dk.start.seed, NULL, NULL, &st, diag);
+    wr_free(xc);
+    if (stats) *stats = st;
+    return rs;
 }
 
 /* ON MEMBRANE CONTINUATION: soft-membrane stages, then the real shell */
