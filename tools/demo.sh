@@ -35,13 +35,11 @@ echo "   fig14: $(json "$out/fig14/summary.json" 'd["vertices"]') vertices, sizi
 echo "== 3. Base surface and wrinkles (TFW: TFT membrane + bending statics, then E_wf by SQP, phase, Eq. 19)"
 # Shell thickness of the fabric by Kirchhoff-Love, B = E h^3 / (12 (1 - nu^2)).
 h=$(awk -v B=$B -v E=$E -v nu=$NU 'BEGIN { printf "%.6g", (12 * (1 - nu * nu) * B / E) ^ (1 / 3) }')
-r_m=$(awk -v r="$r_mm" 'BEGIN { printf "%.6g", r / 1000 }')
-# The base mesh is the union-jack grid at the same r: on the Poisson-Delaunay mesh of step 2 the
-# TFW initial guess (App. E.2) lands 1.3x above the wrinkled energy and the SQP stops at a = 0
-# (reported in the ux engineer's notes; see README "Status").
+# The base mesh is the Poisson-Delaunay mesh of step 2 (mesh.obj: positions and vt rest coordinates
+# in metres), so the wrinkles below are computed on exactly the mesh the Style3D pipeline made.
 cat > "$out/sheet_scene.json" <<EOF
 {"name": "demo_stretched_sheet",
- "mesh": {"type": "rectangle", "width": 0.25, "height": 0.1, "resolution": $r_m},
+ "mesh": {"type": "obj", "path": "mesh/mesh.obj"},
  "material": {"young": $E, "poisson": $NU, "thickness": $h, "density": 0},
  "boundary": [
   {"name": "left",  "box": {"min": [-1e-9, -1, -1], "max": [1e-9, 1, 1]}},
@@ -50,7 +48,7 @@ cat > "$out/sheet_scene.json" <<EOF
  "solver": {"linear": "cholmod", "load_steps": 4, "grad_tol": 1e-8, "max_iter": 200, "hessian": "projected"},
  "probes": [{"name": "mid_width", "from": [0.125, 0.0], "to": [0.125, 0.1], "samples": 512}]}
 EOF
-echo "   h = $h m (Kirchhoff-Love from B, E, nu = $NU); grid at r = $r_mm mm; right edge pulled to $STRETCH x"
+echo "   h = $h m (Kirchhoff-Love from B, E, nu = $NU); base = the step-2 mesh (r = $r_mm mm); right edge pulled to $STRETCH x"
 echo "   \$ bin/wrinkle-tfw $out/sheet_scene.json -o $out/tfw --png"
 ./bin/wrinkle-tfw "$out/sheet_scene.json" -o "$out/tfw" --png --quiet
 s=$out/tfw/summary.json

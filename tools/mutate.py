@@ -46,11 +46,30 @@ import sys
 import time
 
 SAN = ["-fsanitize=address,undefined,float-cast-overflow", "-fno-omit-frame-pointer", "-fno-sanitize-recover=all"]
-COMMON = ["-g", "-Wall", "-Wextra", "-pedantic", "-ffp-contract=off", "-Iinclude", "-Idrivers/lib",
-          "-I/usr/include/suitesparse", "-DWR_USE_CHOLMOD=1"]
+
+
+def make_variable(name, default):
+    """The Makefile's value of `name` (so the mutation builds never drift from `make test`'s flags);
+    `default` when make cannot tell (run outside the tree)."""
+    try:
+        out = subprocess.run(["make", "-s", "--no-print-directory", "-f", "Makefile", "-f", "-", "_wr_print_var"],
+                             input="_wr_print_var:\n\t@echo $(%s)\n" % name, capture_output=True, text=True,
+                             timeout=30)
+        if out.returncode == 0 and out.stdout.strip():
+            return out.stdout.split()
+    except (OSError, subprocess.SubprocessError):
+        pass
+    return default
+
+
+# The Makefile's common flags without its optimisation level (set per flavour below) and its libraries.
+COMMON = [f for f in make_variable("CFLAGS_COMMON", ["-g", "-Wall", "-Wextra", "-pedantic", "-ffp-contract=off",
+                                                     "-Iinclude", "-Idrivers/lib", "-I/usr/include/suitesparse",
+                                                     "-DWR_USE_CHOLMOD=1", "-DWR_USE_FFTW=1", "-DWR_USE_LIBPNG=1"])
+          if not re.fullmatch(r"-O.*", f)]
 TEST_FLAGS = ["-std=c11"] + COMMON + ["-O1"] + SAN          # as the Makefile's test binary
 VALID_FLAGS = ["-std=c11"] + COMMON + ["-O2"]                # as the Makefile's drivers/validators
-LIBS = ["-lcjson", "-lcholmod", "-lfftw3", "-lgsl", "-lgslcblas", "-lm"]
+LIBS = make_variable("LIBS", ["-lcjson", "-lcholmod", "-lfftw3", "-lpng", "-lgsl", "-lgslcblas", "-lm"])
 MODULE_GUARD = re.compile(r"^#ifndef WRINKLE_([A-Z0-9_]+)_IMPLEMENTATION_DONE", re.M)
 
 

@@ -1,5 +1,7 @@
-/* tfw_probe.h — validation-side helpers shared by the TFW Sec. 6 drivers (sphere drape, inflatables,
- * cross-check): the smooth Loop surface under a wrinkled one, the out-of-base (normal) wrinkle
+/* tfw_probe.h — validation-side helpers shared by the TFW Sec. 6 drivers: the clamped base of the
+ * strips and tubes (two clamp sets picked by one rest coordinate, the incremental statics solve),
+ * the paper-literal / a = 0-at-the-clamps pair of TFW runs, a field's spectrum along a straight
+ * rest-domain probe, the smooth Loop surface under a wrinkled one, the out-of-base (normal) wrinkle
  * displacement, a plane-cut ring signal resampled at equal angles (for sewn meshes, whose two panels
  * overlap in the rest plane so a rest-domain probe circle is ambiguous), a small figure writer and
  * the ring wave count. Static functions only (each driver is its own program). */
@@ -16,6 +18,113 @@
 #include "vresult.h"
 
 #define TP_PI 3.14159265358979323846
+
+/* ---- the clamped base of the strips and tubes (stretched sheet, sheared rectangle, cylinder) ----
+ * held: vertices whose rest coordinate `axis` is <= lo + 1e-9; moved: those >= hi - 1e-9; flags: 1
+ * on both (the TFW runs' a = 0 set). mo[0] holds the held set, mo[1] moves the moved set: the
+ * caller sets its kind, axis/vec and amount. */
+typedef struct tp_clamps {
+    int32_t *held, *moved, n_held, n_moved;
+    uint8_t *flags;
+    wr_motion mo[2];
+} tp_clamps;
+
+static inline void tp_clamps_free(tp_clamps *c) {
+    free(c->held);
+    free(c->moved);
+    free(c->flags);
+    memset(c, 0, sizeof *c);
+}
+
+static inline wr_status tp_clamps_select(tp_clamps *c, const wr_mesh *m, int axis, double lo, double hi, wr_diag *d) {
+    int32_t v;
+    memset(c, 0, sizeof *c);
+    c->held = (int32_t *)malloc(sizeof(int32_t) * ((size_t)m->nv + 1));
+    c->moved = (int32_t *)malloc(sizeof(int32_t) * ((size_t)m->nv + 1));
+    c->flags = (uint8_t *)calloc((size_t)m->nv + 1, 1);
+    if (!c->held || !c->moved || !c->flags) {
+        tp_clamps_free(c);
+        return wr_fail(d, WR_ERR_NOMEM, -1, "clamps: out of memory");
+    }
+    for (v = 0; v < m->nv; ++v) {
+        double q = m->pos[3 * v + axis];
+        if (q < lo + 1e-9) c->held[c->n_held++] = v;
+        if (q > hi - 1e-9) c->moved[c->n_moved++] = v;
+        c->flags[v] = (uint8_t)(q < lo + 1e-9 || q > hi - 1e-9);
+    }
+    c->mo[0].kind = WR_MOTION_HOLD;
+    c->mo[0].verts = c->held;
+    c->mo[0].n_verts = c->n_held;
+    c->mo[1].verts = c->moved;
+    c->mo[1].n_verts = c->n_moved;
+    return WR_OK;
+}
+
+/* x (nv*3) from the rest positions to the equilibrium under the clamps' two motions, in `steps`
+ * load steps (statics.h wr_statics_solve_incremental; st NULL = defaults). */
+static inline wr_status tp_clamped_solve(const wr_shell *sh, const wr_mesh *m, const tp_clamps *c, const wr_statics_desc *st,
+                                         int32_t steps, double *x, wr_statics_stats *ss, wr_diag *d) {
+    wr_statics_desc def;
+    if (!st) {
+        memset(&def, 0, sizeof def);
+        st = &def;
+    }
+    memcpy(x, m->pos, sizeof(double) * 3 * (size_t)m->nv);
+    return wr_statics_solve_incremental(sh, x, st, c->mo, 2, steps, ss, d);
+}
+
+/* TFW twice on one clamped base: the paper-literal run (no amplitude condition; the paper states
+ * none) into r0, then a = 0 held on the clamped vertices (`flags`) into r; the rest of td is used for
+ * both; one progress line each on stderr. td->a_zero_vertices is left at flags. */
+static inline void tp_tfw_pair(const wr_mesh *m, const double *x, const wr_wf_material *mat, wr_tfw_desc *td,
+                               const uint8_t *flags, wr_tfw_result *r0, wr_status *s0, wr_tfw_result *r, wr_status *s,
+                               wr_diag *d) {
+    td->a_zero_vertices = NULL;
+    *s0 = wr_tfw_fields(m, x, mat, td, r0, d);
+    fprintf(stderr, "tfw (no clamp condition): %s, SQP %d iterations\n", wr_status_string(*s0), r0->sqp.iterations);
+    td->a_zero_vertices = flags;
+    *s = wr_tfw_fields(m, x, mat, td, r, d);
+    fprintf(stderr, "tfw: %s, SQP %d iterations, %.2f s\n", wr_status_string(*s), r->sqp.iterations, r->seconds_sqp);
+}
+
+/* A per-vertex field of mesh m (NULL: its z coordinate) at n points along the rest-domain segment
+ * A→B: the points (pts, 2n, may be NULL), spacing ds, the samples (vals, n) and, when sr is not NULL,
+ * their spectrum (spectrum.h defaults). */
+static inline wr_status tp_line_field(const wr_mesh *m, const double *field, const double A[2], const double B[2], int32_t n,
+                                      double *pts, double *ds, double *vals, wr_spectrum_result *sr, wr_diag *d) {
+    wr_probe p;
+    double *own_pts = pts ? NULL : (double *)malloc(sizeof(double) * 2 * (size_t)n);
+    double *z = field ? NULL : (double *)malloc(sizeof(double) * ((size_t)m->nv + 1));
+    int32_t v, nout = 0;
+    wr_status s = WR_OK;
+    if ((!pts && !own_pts) || (!field && !z)) s = wr_fail(d, WR_ERR_NOMEM, -1, "line probe: out of memory");
+    if (!s && z) {
+        for (v = 0; v < m->nv; ++v) z[v] = m->pos[3 * v + 2];
+        field = z;
+    }
+    if (!pts) pts = own_pts;
+    if (!s) s = wr_probe_create(&p, m, NULL, d);
+    if (!s) {
+        s = wr_path_segment(A, B, n, 0, pts, ds, d);
+        if (!s) s = wr_probe_sample(&p, field, pts, n, vals, &nout, d);
+        if (!s && sr) {
+            memset(sr, 0, sizeof *sr);
+            s = wr_spectrum_analyze(vals, n, *ds, 0, NULL, sr, NULL, 0, d);
+        }
+        wr_probe_free(&p);
+    }
+    free(own_pts);
+    free(z);
+    return s;
+}
+
+/* max |vals[i]| */
+static inline double tp_max_abs(const double *vals, int32_t n) {
+    double mx = 0.0;
+    int32_t i;
+    for (i = 0; i < n; ++i) mx = fmax(mx, fabs(vals[i]));
+    return mx;
+}
 
 /* The smooth Loop surface of the base (a = 0, same W and phase, same levels): the wrinkled mesh
  * minus Eq. 19's displacement, vertex for vertex. */
@@ -135,6 +244,35 @@ static inline void tp_figure(wr_vres *v, const char *stem, const char *gp_body, 
     }
     fprintf(f.fp, "set terminal pngcairo size 1000,%d\nset output '%s'\n", 420, png);
     fputs(gp_body, f.fp);
+    if (wr_afile_commit(&f, &d) != WR_OK) return;
+    snprintf(cmd, sizeof cmd, "gnuplot '%s' 2>/dev/null", gp);
+    snprintf(rel, sizeof rel, "figures/%s.png", stem);
+    if (system(cmd) == 0)
+        wr_vres_figure(v, rel, caption);
+    else
+        wr_vres_note(v, "gnuplot failed; figure not drawn");
+}
+
+/* A probe profile figure: <results>/<stem>_probe.dat (x[i]·1e3, y[i]·1e3: mm), <figures>/<stem>.gp
+ * (900 × 450, one line) and <figures>/<stem>.png by gnuplot, added to v on success. */
+static inline void tp_profile_figure(wr_vres *v, const char *stem, const double *x, int32_t xstride, const double *y,
+                                     int32_t n, const char *xlabel, const char *ylabel, const char *title,
+                                     const char *caption) {
+    char dat[700], gp[700], png[700], cmd[1600], rel[300];
+    wr_afile f;
+    wr_diag d;
+    int32_t i;
+    memset(&d, 0, sizeof d);
+    snprintf(dat, sizeof dat, "%s/%s_probe.dat", wr_vres_dir(), stem);
+    snprintf(gp, sizeof gp, "%s/../figures/%s.gp", wr_vres_dir(), stem);
+    snprintf(png, sizeof png, "%s/../figures/%s.png", wr_vres_dir(), stem);
+    if (wr_afile_open(&f, dat, &d) != WR_OK) return;
+    for (i = 0; i < n; ++i) fprintf(f.fp, "%.6g %.6g\n", 1e3 * x[(size_t)xstride * i], 1e3 * y[i]);
+    if (wr_afile_commit(&f, &d) != WR_OK || wr_afile_open(&f, gp, &d) != WR_OK) return;
+    fprintf(f.fp, "set terminal pngcairo size 900,450\nset output '%s'\n", png);
+    fprintf(f.fp, "set xlabel '%s'\nset ylabel '%s'\n", xlabel, ylabel);
+    fprintf(f.fp, "set title '%s'\n", title);
+    fprintf(f.fp, "plot '%s' w l t 'TFW, Loop level 3'\n", dat);
     if (wr_afile_commit(&f, &d) != WR_OK) return;
     snprintf(cmd, sizeof cmd, "gnuplot '%s' 2>/dev/null", gp);
     snprintf(rel, sizeof rel, "figures/%s.png", stem);

@@ -75,10 +75,9 @@ static void sheet(res *o) {
     wr_shell_desc sd;
     wr_statics_desc st;
     wr_statics_stats ss;
-    wr_motion mo[2];
-    int32_t *l, *rt, nl = 0, nr = 0, v, nout = 0;
+    tp_clamps cl;
+    int32_t v;
     double *x, *fz, pts[2 * NPROBE], zv[NPROBE], A[2] = {0.125, 0.0}, B[2] = {0.125, 0.1}, ds, t0 = wr_time_seconds();
-    wr_probe p;
     wr_spectrum_result sr;
     o->ran = 1;
     o->count = o->count_ls = o->amp = o->zc = NAN;
@@ -94,49 +93,39 @@ static void sheet(res *o) {
         wr_mesh_free(&m);
         return;
     }
-    l = (int32_t *)malloc(sizeof(int32_t) * m.nv);
-    rt = (int32_t *)malloc(sizeof(int32_t) * m.nv);
     x = (double *)malloc(sizeof(double) * 3 * m.nv);
     fz = (double *)malloc(sizeof(double) * m.nv);
-    for (v = 0; v < m.nv; ++v) {
-        if (m.pos[3 * v] < 1e-9) l[nl++] = v;
-        if (m.pos[3 * v] > 0.25 - 1e-9) rt[nr++] = v;
+    if (!x || !fz || (o->st = tp_clamps_select(&cl, &m, 0, 0.0, 0.25, &d)) != WR_OK) {
+        if (!x || !fz) o->st = WR_ERR_NOMEM;
+        free(x);
+        free(fz);
+        wr_shell_free(&sh);
+        wr_mesh_free(&m);
+        return;
     }
-    memset(mo, 0, sizeof mo);
-    mo[0].kind = WR_MOTION_HOLD;
-    mo[0].verts = l;
-    mo[0].n_verts = nl;
-    mo[1].kind = WR_MOTION_STRETCH;
-    mo[1].verts = rt;
-    mo[1].n_verts = nr;
-    mo[1].axis[0] = 1.0;
-    mo[1].amount = 0.1278;
+    cl.mo[1].kind = WR_MOTION_STRETCH;
+    cl.mo[1].axis[0] = 1.0;
+    cl.mo[1].amount = 0.1278;
     memset(&st, 0, sizeof st);
     st.start.perturb = 1e-6;
     st.start.seed = 3;
     st.stop.max_iter = 300;
-    memcpy(x, m.pos, sizeof(double) * 3 * m.nv);
-    o->st = wr_statics_solve_incremental(&sh, x, &st, mo, 2, 4, &ss, &d);
+    o->st = tp_clamped_solve(&sh, &m, &cl, &st, 4, x, &ss, &d);
     o->iters = ss.total_iterations;
     o->fails = ss.increments_failed + (o->st != WR_OK);
     o->t = wr_time_seconds() - t0;
     fprintf(stderr, "  sheet StVK %d v: %s, %d Newton, %.1f s\n", (int)m.nv, wr_status_string(o->st), (int)o->iters, o->t);
     {
         for (v = 0; v < m.nv; ++v) fz[v] = x[3 * v + 2];
-        o->sp = wr_probe_create(&p, &m, NULL, &d);
-        if (!o->sp) o->sp = wr_path_segment(A, B, NPROBE, 0, pts, &ds, &d);
-        if (!o->sp) o->sp = wr_probe_sample(&p, fz, pts, NPROBE, zv, &nout, &d);
-        if (!o->sp) o->sp = wr_spectrum_analyze(zv, NPROBE, ds, 0, NULL, &sr, NULL, 0, &d);
+        o->sp = tp_line_field(&m, fz, A, B, NPROBE, pts, &ds, zv, &sr, &d);
         if (!o->sp) {
             o->count = sr.count;
             o->count_ls = sr.count_ls;
             o->amp = sr.amplitude_p2p;
             o->zc = sr.zc_waves;
         }
-        wr_probe_free(&p);
     }
-    free(l);
-    free(rt);
+    tp_clamps_free(&cl);
     free(x);
     free(fz);
     wr_shell_free(&sh);
@@ -150,9 +139,9 @@ static void cylinder(res *o) {
     wr_shell_desc sd;
     wr_statics_desc st;
     wr_statics_stats ss;
-    wr_motion mo[2];
+    tp_clamps cl;
     wr_spectrum_result sr;
-    int32_t *bot, *top, nb = 0, nt = 0, v, i, j;
+    int32_t v, i, j;
     double *x, *sig, t0 = wr_time_seconds();
     o->ran = 1;
     o->count = o->count_ls = o->amp = o->zc = NAN;
@@ -168,23 +157,19 @@ static void cylinder(res *o) {
         wr_mesh_free(&m);
         return;
     }
-    bot = (int32_t *)malloc(sizeof(int32_t) * m.nv);
-    top = (int32_t *)malloc(sizeof(int32_t) * m.nv);
     x = (double *)malloc(sizeof(double) * 3 * m.nv);
     sig = (double *)malloc(sizeof(double) * o->nx);
-    for (v = 0; v < m.nv; ++v) {
-        if (m.pos[3 * v + 2] < 1e-9) bot[nb++] = v;
-        if (m.pos[3 * v + 2] > 5.0 - 1e-9) top[nt++] = v;
+    if (!x || !sig || (o->st = tp_clamps_select(&cl, &m, 2, 0.0, 5.0, &d)) != WR_OK) {
+        if (!x || !sig) o->st = WR_ERR_NOMEM;
+        free(x);
+        free(sig);
+        wr_shell_free(&sh);
+        wr_mesh_free(&m);
+        return;
     }
-    memset(mo, 0, sizeof mo);
-    mo[0].kind = WR_MOTION_HOLD;
-    mo[0].verts = bot;
-    mo[0].n_verts = nb;
-    mo[1].kind = WR_MOTION_TWIST;
-    mo[1].verts = top;
-    mo[1].n_verts = nt;
-    mo[1].axis[2] = 1.0;
-    mo[1].amount = 10.0 * TP_PI / 180.0;
+    cl.mo[1].kind = WR_MOTION_TWIST;
+    cl.mo[1].axis[2] = 1.0;
+    cl.mo[1].amount = 10.0 * TP_PI / 180.0;
     memset(&st, 0, sizeof st);
     st.start.perturb = 1e-5;
     st.start.seed = 5;
@@ -194,8 +179,7 @@ static void cylinder(res *o) {
      * nearly flat mode with projected Newton and 3 of its 4 increments stopped at max_iter (see the
      * notes); same minimiser, same tolerances, only the Newton matrix near the end differs. */
     st.hessian.exact_retry = 0.1;
-    memcpy(x, m.pos, sizeof(double) * 3 * m.nv);
-    o->st = wr_statics_solve_incremental(&sh, x, &st, mo, 2, 4, &ss, &d);
+    o->st = tp_clamped_solve(&sh, &m, &cl, &st, 4, x, &ss, &d);
     o->iters = ss.total_iterations;
     o->fails = ss.increments_failed + (o->st != WR_OK);
     o->t = wr_time_seconds() - t0;
@@ -211,8 +195,7 @@ static void cylinder(res *o) {
         o->amp = sr.amplitude_p2p;
         o->zc = sr.zc_waves;
     }
-    free(bot);
-    free(top);
+    tp_clamps_free(&cl);
     free(x);
     free(sig);
     wr_shell_free(&sh);

@@ -23,6 +23,7 @@
 #include "wrinkle/wrinkle.h"
 #include "wrinkle/tfw.h"
 #include "vresult.h"
+#include "tfw_probe.h"
 
 #define L_SHEET 0.38
 #define H_SHEET 0.128
@@ -39,19 +40,17 @@ int main(void) {
     wr_shell_desc sd;
     wr_statics_desc st;
     wr_statics_stats ss;
-    wr_motion mo[2];
+    tp_clamps cl;
     wr_wf_material mat;
     wr_tfw_desc td;
     wr_tfw_result r, r0;
-    wr_probe p;
     wr_spectrum_result sr;
     wr_vres *v;
-    int32_t *left, *right, nl = 0, nr = 0, vv, nout = 0, i;
-    double *x, *pts, *zv, *fz, ds = 0.0, t0, t_base, amax = 0.0, zmax = 0.0, A[2], B[2];
+    int32_t vv, i;
+    double *x, *pts, *zv, ds = 0.0, t0, t_base, amax = 0.0, zmax = 0.0, A[2], B[2];
     wr_status s_base, s_tfw, s_tfw0, s_sp;
-    uint8_t *clampv;
     double count0 = NAN, wl0 = NAN, zc0 = NAN;
-    char buf[768], dat[600], figdir[600];
+    char buf[768];
     memset(&d, 0, sizeof d);
     memset(&r, 0, sizeof r);
     memset(&r0, 0, sizeof r0);
@@ -64,25 +63,16 @@ int main(void) {
         fprintf(stderr, "shell: %s\n", d.message);
         return 1;
     }
-    left = (int32_t *)malloc(sizeof(int32_t) * m.nv);
-    right = (int32_t *)malloc(sizeof(int32_t) * m.nv);
     x = (double *)malloc(sizeof(double) * 3 * m.nv);
-    for (vv = 0; vv < m.nv; ++vv) {
-        if (m.pos[3 * vv + 1] < 1e-9) left[nl++] = vv;              /* bottom edge: clamped */
-        if (m.pos[3 * vv + 1] > H_SHEET - 1e-9) right[nr++] = vv;   /* top edge: sheared */
+    if (!x || tp_clamps_select(&cl, &m, 1, 0.0, H_SHEET, &d)) { /* bottom edge clamped, top edge sheared */
+        fprintf(stderr, "clamps: out of memory\n");
+        return 1;
     }
-    memset(mo, 0, sizeof mo);
-    mo[0].kind = WR_MOTION_HOLD;
-    mo[0].verts = left;
-    mo[0].n_verts = nl;
-    mo[1].kind = WR_MOTION_TRANSLATE;
-    mo[1].verts = right;
-    mo[1].n_verts = nr;
-    mo[1].vec[0] = SHEAR;
+    cl.mo[1].kind = WR_MOTION_TRANSLATE;
+    cl.mo[1].vec[0] = SHEAR;
     memset(&st, 0, sizeof st);
-    memcpy(x, m.pos, sizeof(double) * 3 * m.nv);
     t0 = wr_time_seconds();
-    s_base = wr_statics_solve_incremental(&sh, x, &st, mo, 2, 4, &ss, &d);
+    s_base = tp_clamped_solve(&sh, &m, &cl, &st, 4, x, &ss, &d);
     t_base = wr_time_seconds() - t0;
     fprintf(stderr, "base: %s, %d Newton steps, %.2f s\n", wr_status_string(s_base), ss.total_iterations, t_base);
     mat.young = YOUNG;
@@ -90,14 +80,7 @@ int main(void) {
     mat.thickness = THICK;
     memset(&td, 0, sizeof td);
     td.upsample.levels = 3;
-    s_tfw0 = wr_tfw_fields(&m, x, &mat, &td, &r0, &d); /* no amplitude condition (paper-literal) */
-    fprintf(stderr, "tfw (no clamp condition): %s, SQP %d iterations\n", wr_status_string(s_tfw0), r0.sqp.iterations);
-    clampv = (uint8_t *)calloc((size_t)m.nv, 1);
-    for (i = 0; i < nl; ++i) clampv[left[i]] = 1;
-    for (i = 0; i < nr; ++i) clampv[right[i]] = 1;
-    td.a_zero_vertices = clampv;
-    s_tfw = wr_tfw_fields(&m, x, &mat, &td, &r, &d);
-    fprintf(stderr, "tfw: %s, SQP %d iterations, %.2f s\n", wr_status_string(s_tfw), r.sqp.iterations, r.seconds_sqp);
+    tp_tfw_pair(&m, x, &mat, &td, cl.flags, &r0, &s_tfw0, &r, &s_tfw, &d);
     v = wr_vres_begin("tfw_sheared_rectangle", "TFW Sec. 6 sheared rectangle after Wong & Pellegrino 2006 (Fig. 9): wrinkle count");
     if (s_tfw != WR_OK && s_tfw != WR_ERR_NOT_CONVERGED) {
         snprintf(buf, sizeof buf, "TFW pipeline failed: %s", d.message);
@@ -106,37 +89,23 @@ int main(void) {
         return wr_vres_finish(v) == 0 ? 0 : 1;
     }
     for (vv = 0; vv < m.nv; ++vv) amax = fmax(amax, r.a[vv]);
-    /* probe across the width at mid-length (rest domain of the subdivided mesh) */
+    /* probe along the horizontal mid-line (rest domain of the subdivided mesh) */
     pts = (double *)malloc(sizeof(double) * 2 * NPROBE);
     zv = (double *)malloc(sizeof(double) * NPROBE);
-    fz = (double *)malloc(sizeof(double) * r.wrinkled.nv);
-    for (vv = 0; vv < r.wrinkled.nv; ++vv) fz[vv] = r.wrinkled.pos[3 * vv + 2];
     A[1] = B[1] = 0.5 * H_SHEET;
     A[0] = 0.0;
     B[0] = L_SHEET;
     memset(&sr, 0, sizeof sr);
-    s_sp = wr_probe_create(&p, &r.wrinkled, NULL, &d);
-    if (!s_sp) s_sp = wr_path_segment(A, B, NPROBE, 0, pts, &ds, &d);
-    if (!s_sp) s_sp = wr_probe_sample(&p, fz, pts, NPROBE, zv, &nout, &d);
-    if (!s_sp) s_sp = wr_spectrum_analyze(zv, NPROBE, ds, 0, NULL, &sr, NULL, 0, &d);
-    if (!s_sp)
-        for (i = 0; i < NPROBE; ++i) zmax = fmax(zmax, fabs(zv[i]));
+    s_sp = pts && zv ? tp_line_field(&r.wrinkled, NULL, A, B, NPROBE, pts, &ds, zv, &sr, &d) : WR_ERR_NOMEM;
+    if (!s_sp) zmax = tp_max_abs(zv, NPROBE);
     if (!s_sp && (s_tfw0 == WR_OK || s_tfw0 == WR_ERR_NOT_CONVERGED)) {
-        wr_probe p0;
         wr_spectrum_result s0;
-        double *fz0 = (double *)malloc(sizeof(double) * r0.wrinkled.nv), *zv0 = (double *)malloc(sizeof(double) * NPROBE);
-        for (vv = 0; vv < r0.wrinkled.nv; ++vv) fz0[vv] = r0.wrinkled.pos[3 * vv + 2];
-        memset(&s0, 0, sizeof s0);
-        if (!wr_probe_create(&p0, &r0.wrinkled, NULL, &d)) {
-            if (!wr_probe_sample(&p0, fz0, pts, NPROBE, zv0, &nout, &d) &&
-                !wr_spectrum_analyze(zv0, NPROBE, ds, 0, NULL, &s0, NULL, 0, &d)) {
-                count0 = s0.count;
-                wl0 = s0.wavelength;
-                zc0 = s0.zc_waves;
-            }
-            wr_probe_free(&p0);
+        double *zv0 = (double *)malloc(sizeof(double) * NPROBE), ds0 = 0.0;
+        if (zv0 && !tp_line_field(&r0.wrinkled, NULL, A, B, NPROBE, NULL, &ds0, zv0, &s0, &d)) {
+            count0 = s0.count;
+            wl0 = s0.wavelength;
+            zc0 = s0.zc_waves;
         }
-        free(fz0);
         free(zv0);
     }
     /* pass row: the paper-literal set-up (no clamp condition on a); band 17-27 from issue 6 */
@@ -209,41 +178,14 @@ int main(void) {
         wr_vres_note(v, buf);
     }
     /* figure: probe profile */
-    snprintf(figdir, sizeof figdir, "%s/../figures", wr_vres_dir());
-    snprintf(dat, sizeof dat, "%s/tfw_sheared_rectangle_probe.dat", wr_vres_dir());
-    if (!s_sp) {
-        wr_afile f;
-        if (wr_afile_open(&f, dat, &d) == WR_OK) {
-            for (i = 0; i < NPROBE; ++i) fprintf(f.fp, "%.6g %.6g\n", 1e3 * pts[2 * i], 1e3 * zv[i]);
-            if (wr_afile_commit(&f, &d) == WR_OK) {
-                char gp[700], png[700], cmd[1600];
-                snprintf(gp, sizeof gp, "%s/tfw_sheared_rectangle.gp", figdir);
-                snprintf(png, sizeof png, "%s/tfw_sheared_rectangle.png", figdir);
-                if (wr_afile_open(&f, gp, &d) == WR_OK) {
-                    fprintf(f.fp, "set terminal pngcairo size 900,450\nset output '%s'\n", png);
-                    fprintf(f.fp, "set xlabel 'x along the mid-line [mm]'\nset ylabel 'z of the wrinkled surface [mm]'\n");
-                    fprintf(f.fp, "set title 'TFW sheared rectangle (990-vertex base, 3 mm shear), y = 64 mm'\n");
-                    fprintf(f.fp, "plot '%s' w l t 'TFW, Loop level 3'\n", dat);
-                    if (wr_afile_commit(&f, &d) == WR_OK) {
-                        snprintf(cmd, sizeof cmd, "gnuplot '%s' 2>/dev/null", gp);
-                        if (system(cmd) == 0)
-                            wr_vres_figure(v, "figures/tfw_sheared_rectangle.png", "wrinkled-surface profile along the horizontal mid-line");
-                        else
-                            wr_vres_note(v, "gnuplot failed; figure not drawn");
-                    }
-                }
-            }
-        }
-        wr_probe_free(&p);
-    }
+    if (!s_sp)
+        tp_profile_figure(v, "tfw_sheared_rectangle", pts, 2, zv, NPROBE, "x along the mid-line [mm]", "z of the wrinkled surface [mm]",
+                          "TFW sheared rectangle (990-vertex base, 3 mm shear), y = 64 mm", "wrinkled-surface profile along the horizontal mid-line");
     i = wr_vres_finish(v);
-    free(left);
-    free(right);
+    tp_clamps_free(&cl);
     free(x);
     free(pts);
     free(zv);
-    free(fz);
-    free(clampv);
     wr_tfw_result_free(&r);
     wr_tfw_result_free(&r0);
     wr_shell_free(&sh);

@@ -20,6 +20,7 @@
 #include "wrinkle/wrinkle.h"
 #include "wrinkle/tfw.h"
 #include "vresult.h"
+#include "tfw_probe.h"
 
 #define L_SHEET 0.25
 #define H_SHEET 0.1
@@ -54,16 +55,13 @@ static int delaunay_run(double out[5]) {
     wr_shell_desc sd;
     wr_statics_desc st;
     wr_statics_stats ss;
-    wr_motion mo[2];
+    tp_clamps cl;
     wr_wf_material mat;
     wr_tfw_desc td;
     wr_tfw_result r;
-    wr_probe p;
     wr_spectrum_result sr;
     wr_diag d;
-    int32_t *left = NULL, *right = NULL, nl = 0, nr = 0, v, nout = 0;
-    double *x = NULL, *fz = NULL, *pts = NULL, *zv = NULL, ds = 0.0, A[2], B[2];
-    uint8_t *clampv = NULL;
+    double *x = NULL, *zv = NULL, ds = 0.0, A[2], B[2];
     wr_status s;
     int fail = 1;
     memset(&pn, 0, sizeof pn);
@@ -71,6 +69,7 @@ static int delaunay_run(double out[5]) {
     memset(&md, 0, sizeof md);
     memset(&r, 0, sizeof r);
     memset(&d, 0, sizeof d);
+    memset(&cl, 0, sizeof cl);
     pn.outer.xy = sq;
     pn.outer.n = 4;
     pn.fabric.B = 1e6 * 1e-12 / (12.0 * 0.75); /* E h³/(12(1-ν²)) [N·m]; sizing is uniform anyway */
@@ -85,52 +84,27 @@ static int delaunay_run(double out[5]) {
         wr_mesher_free(&res);
         return 1;
     }
-    left = (int32_t *)malloc(sizeof(int32_t) * res.mesh.nv);
-    right = (int32_t *)malloc(sizeof(int32_t) * res.mesh.nv);
     x = (double *)malloc(sizeof(double) * 3 * res.mesh.nv);
-    clampv = (uint8_t *)calloc((size_t)res.mesh.nv, 1);
-    pts = (double *)malloc(sizeof(double) * 2 * NPROBE);
     zv = (double *)malloc(sizeof(double) * NPROBE);
-    if (!left || !right || !x || !clampv || !pts || !zv) goto done;
-    for (v = 0; v < res.mesh.nv; ++v) {
-        if (res.mesh.pos[3 * v] < 1e-9) left[nl++] = v;
-        if (res.mesh.pos[3 * v] > L_SHEET - 1e-9) right[nr++] = v;
-        clampv[v] = (uint8_t)(res.mesh.pos[3 * v] < 1e-9 || res.mesh.pos[3 * v] > L_SHEET - 1e-9);
-    }
-    memset(mo, 0, sizeof mo);
-    mo[0].kind = WR_MOTION_HOLD;
-    mo[0].verts = left;
-    mo[0].n_verts = nl;
-    mo[1].kind = WR_MOTION_STRETCH;
-    mo[1].verts = right;
-    mo[1].n_verts = nr;
-    mo[1].axis[0] = 1.0;
-    mo[1].amount = STRETCH;
+    if (!x || !zv || tp_clamps_select(&cl, &res.mesh, 0, 0.0, L_SHEET, &d)) goto done;
+    cl.mo[1].kind = WR_MOTION_STRETCH;
+    cl.mo[1].axis[0] = 1.0;
+    cl.mo[1].amount = STRETCH;
     memset(&st, 0, sizeof st);
-    memcpy(x, res.mesh.pos, sizeof(double) * 3 * res.mesh.nv);
-    s = wr_statics_solve_incremental(&sh, x, &st, mo, 2, 4, &ss, &d);
+    s = tp_clamped_solve(&sh, &res.mesh, &cl, &st, 4, x, &ss, &d);
     if (s != WR_OK && s != WR_ERR_NOT_CONVERGED) goto done;
     mat.young = 1e6;
     mat.poisson = 0.5;
     mat.thickness = 1e-4;
     memset(&td, 0, sizeof td);
     td.upsample.levels = 3;
-    td.a_zero_vertices = clampv;
+    td.a_zero_vertices = cl.flags;
     s = wr_tfw_fields(&res.mesh, x, &mat, &td, &r, &d);
     if (s != WR_OK && s != WR_ERR_NOT_CONVERGED) goto done;
-    fz = (double *)malloc(sizeof(double) * r.wrinkled.nv);
-    if (!fz) goto done;
-    for (v = 0; v < r.wrinkled.nv; ++v) fz[v] = r.wrinkled.pos[3 * v + 2];
     A[0] = B[0] = 0.5 * L_SHEET;
     A[1] = 0.0;
     B[1] = H_SHEET;
-    memset(&sr, 0, sizeof sr);
-    if (wr_probe_create(&p, &r.wrinkled, NULL, &d)) goto done;
-    s = wr_path_segment(A, B, NPROBE, 0, pts, &ds, &d);
-    if (!s) s = wr_probe_sample(&p, fz, pts, NPROBE, zv, &nout, &d);
-    if (!s) s = wr_spectrum_analyze(zv, NPROBE, ds, 0, NULL, &sr, NULL, 0, &d);
-    wr_probe_free(&p);
-    if (s) goto done;
+    if (tp_line_field(&r.wrinkled, NULL, A, B, NPROBE, NULL, &ds, zv, &sr, &d)) goto done;
     out[0] = res.mesh.nv;
     out[1] = sr.count;
     out[2] = sr.wavelength;
@@ -138,13 +112,9 @@ static int delaunay_run(double out[5]) {
     out[4] = r.sqp.iterations;
     fail = 0;
 done:
-    free(left);
-    free(right);
+    tp_clamps_free(&cl);
     free(x);
-    free(clampv);
-    free(pts);
     free(zv);
-    free(fz);
     wr_tfw_result_free(&r);
     wr_shell_free(&sh);
     wr_mesher_free(&res);
@@ -158,19 +128,17 @@ int main(void) {
     wr_shell_desc sd;
     wr_statics_desc st;
     wr_statics_stats ss;
-    wr_motion mo[2];
+    tp_clamps cl;
     wr_wf_material mat;
     wr_tfw_desc td;
     wr_tfw_result r, r0;
-    wr_probe p;
     wr_spectrum_result sr;
     wr_vres *v;
-    int32_t *left, *right, nl = 0, nr = 0, vv, nout = 0, i;
-    double *x, *pts, *zv, *fz, ds = 0.0, t0, t_base, amax = 0.0, zmax = 0.0, A[2], B[2];
+    int32_t vv, i;
+    double *x, *pts, *zv, ds = 0.0, t0, t_base, amax = 0.0, zmax = 0.0, A[2], B[2];
     wr_status s_base, s_tfw, s_tfw0, s_sp;
-    uint8_t *clampv;
-    double *av, *pl, dsl = 0.0, leff = NAN, aband = 0.0, amaxp = 0.0, weighted = NAN, count0 = NAN, wl0 = NAN;
-    char buf[768], dat[600], figdir[600];
+    double *av, dsl = 0.0, leff = NAN, aband = 0.0, amaxp = 0.0, weighted = NAN, count0 = NAN, wl0 = NAN;
+    char buf[768];
     memset(&d, 0, sizeof d);
     memset(&r, 0, sizeof r);
     memset(&r0, 0, sizeof r0);
@@ -183,26 +151,17 @@ int main(void) {
         fprintf(stderr, "shell: %s\n", d.message);
         return 1;
     }
-    left = (int32_t *)malloc(sizeof(int32_t) * m.nv);
-    right = (int32_t *)malloc(sizeof(int32_t) * m.nv);
     x = (double *)malloc(sizeof(double) * 3 * m.nv);
-    for (vv = 0; vv < m.nv; ++vv) {
-        if (m.pos[3 * vv] < 1e-9) left[nl++] = vv;
-        if (m.pos[3 * vv] > L_SHEET - 1e-9) right[nr++] = vv;
+    if (!x || tp_clamps_select(&cl, &m, 0, 0.0, L_SHEET, &d)) {
+        fprintf(stderr, "clamps: out of memory\n");
+        return 1;
     }
-    memset(mo, 0, sizeof mo);
-    mo[0].kind = WR_MOTION_HOLD;
-    mo[0].verts = left;
-    mo[0].n_verts = nl;
-    mo[1].kind = WR_MOTION_STRETCH;
-    mo[1].verts = right;
-    mo[1].n_verts = nr;
-    mo[1].axis[0] = 1.0;
-    mo[1].amount = STRETCH;
+    cl.mo[1].kind = WR_MOTION_STRETCH;
+    cl.mo[1].axis[0] = 1.0;
+    cl.mo[1].amount = STRETCH;
     memset(&st, 0, sizeof st);
-    memcpy(x, m.pos, sizeof(double) * 3 * m.nv);
     t0 = wr_time_seconds();
-    s_base = wr_statics_solve_incremental(&sh, x, &st, mo, 2, 4, &ss, &d);
+    s_base = tp_clamped_solve(&sh, &m, &cl, &st, 4, x, &ss, &d);
     t_base = wr_time_seconds() - t0;
     fprintf(stderr, "base: %s, %d Newton steps, %.2f s\n", wr_status_string(s_base), ss.total_iterations, t_base);
     mat.young = 1e6;
@@ -211,14 +170,7 @@ int main(void) {
     memset(&td, 0, sizeof td);
     td.upsample.levels = 3;
     /* the paper-literal run first: no amplitude condition at the clamps (reported) */
-    s_tfw0 = wr_tfw_fields(&m, x, &mat, &td, &r0, &d);
-    fprintf(stderr, "tfw (no clamp condition): %s, SQP %d iterations\n", wr_status_string(s_tfw0), r0.sqp.iterations);
-    clampv = (uint8_t *)calloc((size_t)m.nv, 1);
-    for (i = 0; i < nl; ++i) clampv[left[i]] = 1;
-    for (i = 0; i < nr; ++i) clampv[right[i]] = 1;
-    td.a_zero_vertices = clampv;
-    s_tfw = wr_tfw_fields(&m, x, &mat, &td, &r, &d);
-    fprintf(stderr, "tfw: %s, SQP %d iterations, %.2f s\n", wr_status_string(s_tfw), r.sqp.iterations, r.seconds_sqp);
+    tp_tfw_pair(&m, x, &mat, &td, cl.flags, &r0, &s_tfw0, &r, &s_tfw, &d);
     v = wr_vres_begin("tfw_stretched_sheet", "TFW Sec. 6 stretched sheet (Fig. 6): wave periods and peak amplitude");
     if (s_tfw != WR_OK && s_tfw != WR_ERR_NOT_CONVERGED) {
         snprintf(buf, sizeof buf, "TFW pipeline failed: %s", d.message);
@@ -230,22 +182,15 @@ int main(void) {
     /* probe across the width at mid-length (rest domain of the subdivided mesh) */
     pts = (double *)malloc(sizeof(double) * 2 * NPROBE);
     zv = (double *)malloc(sizeof(double) * NPROBE);
-    fz = (double *)malloc(sizeof(double) * r.wrinkled.nv);
-    for (vv = 0; vv < r.wrinkled.nv; ++vv) fz[vv] = r.wrinkled.pos[3 * vv + 2];
+    av = (double *)malloc(sizeof(double) * NPROBE);
     A[0] = B[0] = 0.5 * L_SHEET;
     A[1] = 0.0;
     B[1] = H_SHEET;
     memset(&sr, 0, sizeof sr);
-    s_sp = wr_probe_create(&p, &r.wrinkled, NULL, &d);
-    if (!s_sp) s_sp = wr_path_segment(A, B, NPROBE, 0, pts, &ds, &d);
-    if (!s_sp) s_sp = wr_probe_sample(&p, fz, pts, NPROBE, zv, &nout, &d);
-    if (!s_sp) s_sp = wr_spectrum_analyze(zv, NPROBE, ds, 0, NULL, &sr, NULL, 0, &d);
-    if (!s_sp)
-        for (i = 0; i < NPROBE; ++i) zmax = fmax(zmax, fabs(zv[i]));
+    s_sp = pts && zv && av ? tp_line_field(&r.wrinkled, NULL, A, B, NPROBE, pts, &ds, zv, &sr, &d) : WR_ERR_NOMEM;
+    if (!s_sp) zmax = tp_max_abs(zv, NPROBE);
     /* amplitude envelope: across the width (same probe) and along the mid-line y = H/2 */
-    av = (double *)malloc(sizeof(double) * NPROBE);
-    pl = (double *)malloc(sizeof(double) * 2 * NPROBE);
-    if (!s_sp) s_sp = wr_probe_sample(&p, r.wrinkled_a, pts, NPROBE, av, &nout, &d);
+    if (!s_sp) s_sp = tp_line_field(&r.wrinkled, r.wrinkled_a, A, B, NPROBE, NULL, &ds, av, NULL, &d);
     if (!s_sp) {
         /* amplitude-weighted periods: ∫ a dy / max a over the width, divided by the FFT wavelength —
          * the number of full-amplitude periods the wrinkled band holds (= width/λ if the band is the
@@ -256,31 +201,19 @@ int main(void) {
         }
         weighted = amaxp > 0.0 && sr.wavelength > 0.0 ? aband / amaxp / sr.wavelength : NAN;
     }
-    A[0] = 0.0;
-    B[0] = L_SHEET;
-    A[1] = B[1] = 0.5 * H_SHEET;
-    if (!s_sp) s_sp = wr_path_segment(A, B, NPROBE, 0, pl, &dsl, &d);
-    if (!s_sp) s_sp = wr_probe_sample(&p, r.wrinkled_a, pl, NPROBE, av, &nout, &d);
+    {
+        double Am[2] = {0.0, 0.5 * H_SHEET}, Bm[2] = {L_SHEET, 0.5 * H_SHEET};
+        if (!s_sp) s_sp = tp_line_field(&r.wrinkled, r.wrinkled_a, Am, Bm, NPROBE, NULL, &dsl, av, NULL, &d);
+    }
     if (!s_sp) leff = envelope_length(av, NPROBE, dsl);
     /* the run without the clamp condition, same probe on its own wrinkled mesh */
     if (!s_sp && (s_tfw0 == WR_OK || s_tfw0 == WR_ERR_NOT_CONVERGED)) {
-        wr_probe p0;
         wr_spectrum_result s0;
-        double *fz0 = (double *)malloc(sizeof(double) * r0.wrinkled.nv), *zv0 = (double *)malloc(sizeof(double) * NPROBE);
-        A[0] = B[0] = 0.5 * L_SHEET;
-        A[1] = 0.0;
-        B[1] = H_SHEET;
-        for (vv = 0; vv < r0.wrinkled.nv; ++vv) fz0[vv] = r0.wrinkled.pos[3 * vv + 2];
-        memset(&s0, 0, sizeof s0);
-        if (!wr_probe_create(&p0, &r0.wrinkled, NULL, &d)) {
-            if (!wr_probe_sample(&p0, fz0, pts, NPROBE, zv0, &nout, &d) &&
-                !wr_spectrum_analyze(zv0, NPROBE, ds, 0, NULL, &s0, NULL, 0, &d)) {
-                count0 = s0.count;
-                wl0 = s0.wavelength;
-            }
-            wr_probe_free(&p0);
+        double *zv0 = (double *)malloc(sizeof(double) * NPROBE), ds0 = 0.0;
+        if (zv0 && !tp_line_field(&r0.wrinkled, NULL, A, B, NPROBE, NULL, &ds0, zv0, &s0, &d)) {
+            count0 = s0.count;
+            wl0 = s0.wavelength;
         }
-        free(fz0);
         free(zv0);
     }
     wr_vres_range(v, "wave periods across the width (FFT count on the probe)", "periods", 5.0,
@@ -365,43 +298,15 @@ int main(void) {
         wr_vres_note(v, buf);
     }
     /* figure: probe profile */
-    snprintf(figdir, sizeof figdir, "%s/../figures", wr_vres_dir());
-    snprintf(dat, sizeof dat, "%s/tfw_stretched_sheet_probe.dat", wr_vres_dir());
-    if (!s_sp) {
-        wr_afile f;
-        if (wr_afile_open(&f, dat, &d) == WR_OK) {
-            for (i = 0; i < NPROBE; ++i) fprintf(f.fp, "%.6g %.6g\n", 1e3 * pts[2 * i + 1], 1e3 * zv[i]);
-            if (wr_afile_commit(&f, &d) == WR_OK) {
-                char gp[700], png[700], cmd[1600];
-                snprintf(gp, sizeof gp, "%s/tfw_stretched_sheet.gp", figdir);
-                snprintf(png, sizeof png, "%s/tfw_stretched_sheet.png", figdir);
-                if (wr_afile_open(&f, gp, &d) == WR_OK) {
-                    fprintf(f.fp, "set terminal pngcairo size 900,450\nset output '%s'\n", png);
-                    fprintf(f.fp, "set xlabel 'y across the width [mm]'\nset ylabel 'z of the wrinkled surface [mm]'\n");
-                    fprintf(f.fp, "set title 'TFW stretched sheet (522-vertex base, 12.78%%), x = L/2'\n");
-                    fprintf(f.fp, "plot '%s' w l t 'TFW, Loop level 3'\n", dat);
-                    if (wr_afile_commit(&f, &d) == WR_OK) {
-                        snprintf(cmd, sizeof cmd, "gnuplot '%s' 2>/dev/null", gp);
-                        if (system(cmd) == 0)
-                            wr_vres_figure(v, "figures/tfw_stretched_sheet.png", "wrinkled-surface profile across the width at mid-length");
-                        else
-                            wr_vres_note(v, "gnuplot failed; figure not drawn");
-                    }
-                }
-            }
-        }
-        wr_probe_free(&p);
-    }
+    if (!s_sp)
+        tp_profile_figure(v, "tfw_stretched_sheet", pts + 1, 2, zv, NPROBE, "y across the width [mm]", "z of the wrinkled surface [mm]",
+                          "TFW stretched sheet (522-vertex base, 12.78%), x = L/2", "wrinkled-surface profile across the width at mid-length");
     i = wr_vres_finish(v);
-    free(left);
-    free(right);
+    tp_clamps_free(&cl);
     free(x);
     free(pts);
     free(zv);
-    free(fz);
     free(av);
-    free(pl);
-    free(clampv);
     wr_tfw_result_free(&r);
     wr_tfw_result_free(&r0);
     wr_shell_free(&sh);

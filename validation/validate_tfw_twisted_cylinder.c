@@ -31,6 +31,7 @@
 #include "wrinkle/tfw.h"
 #include "wrinkle/mesher.h"
 #include "vresult.h"
+#include "tfw_probe.h"
 
 #define PI_ 3.14159265358979323846
 #define R_CYL 1.0
@@ -212,11 +213,11 @@ static void run_case(row *rw, int keep_profile, double *profile) {
     wr_shell_desc sd;
     wr_statics_desc st;
     wr_statics_stats ss;
-    wr_motion mo[2];
+    tp_clamps cl;
     wr_wf_material mat;
     wr_tfw_desc td;
     wr_tfw_result r;
-    int32_t *bot, *top, nb = 0, nt = 0, v, i;
+    int32_t i;
     double *x, t0, *sig, *zero;
     memset(&r, 0, sizeof r);
     memset(&sm, 0, sizeof sm);
@@ -235,30 +236,24 @@ static void run_case(row *rw, int keep_profile, double *profile) {
         wr_mesh_free(&m);
         return;
     }
-    bot = (int32_t *)malloc(sizeof(int32_t) * m.nv);
-    top = (int32_t *)malloc(sizeof(int32_t) * m.nv);
     x = (double *)malloc(sizeof(double) * 3 * m.nv);
-    for (v = 0; v < m.nv; ++v) {
-        if (m.pos[3 * v + 2] < 1e-9) bot[nb++] = v;
-        if (m.pos[3 * v + 2] > H_CYL - 1e-9) top[nt++] = v;
+    if (!x || (rw->s_base = tp_clamps_select(&cl, &m, 2, 0.0, H_CYL, &d)) != WR_OK) {
+        if (!x) rw->s_base = WR_ERR_NOMEM;
+        free(x);
+        wr_shell_free(&sh);
+        wr_mesh_free(&m);
+        return;
     }
-    memset(mo, 0, sizeof mo);
-    mo[0].kind = WR_MOTION_HOLD;
-    mo[0].verts = bot;
-    mo[0].n_verts = nb;
-    mo[1].kind = WR_MOTION_TWIST;
-    mo[1].verts = top;
-    mo[1].n_verts = nt;
-    mo[1].axis[2] = 1.0;
-    mo[1].amount = TWIST_DEG * PI_ / 180.0;
+    cl.mo[1].kind = WR_MOTION_TWIST;
+    cl.mo[1].axis[2] = 1.0;
+    cl.mo[1].amount = TWIST_DEG * PI_ / 180.0;
     memset(&st, 0, sizeof st);
     /* TFT + quadratic bending is convex (TFW Sec. 6.5): one increment reaches the same equilibrium
      * (696 vertices: 14 Newton steps against 33 in 4 increments, positions equal to 1e-9 m), and its
      * element Hessians are PSD already, so they are assembled exactly (no projection pass) */
     st.hessian.projection = WR_PROJECT_NONE;
-    memcpy(x, m.pos, sizeof(double) * 3 * m.nv);
     t0 = wr_time_seconds();
-    rw->s_base = wr_statics_solve_incremental(&sh, x, &st, mo, 2, 1, &ss, &d);
+    rw->s_base = tp_clamped_solve(&sh, &m, &cl, &st, 1, x, &ss, &d);
     rw->t_base = wr_time_seconds() - t0;
     rw->base_iters = ss.total_iterations;
     mat.young = 10e6;
@@ -282,17 +277,12 @@ static void run_case(row *rw, int keep_profile, double *profile) {
         wr_wf wf;
         /* circulation of ω around the mid-height ring of base vertices j = nh/2 (square-cell grids) */
         if (rw->kind == MESH_SQUARE) {
-            int32_t j = rw->nh / 2, e;
-            double circ = 0.0;
-            for (i = 0; i < rw->nu; ++i) {
-                int32_t a = j * rw->nu + i, b = j * rw->nu + (i + 1) % rw->nu;
-                for (e = 0; e < m.ne; ++e)
-                    if ((m.edges[2 * e] == a && m.edges[2 * e + 1] == b) || (m.edges[2 * e] == b && m.edges[2 * e + 1] == a)) {
-                        circ += m.edges[2 * e] == a ? r.omega[e] : -r.omega[e];
-                        break;
-                    }
+            int32_t *loop = (int32_t *)malloc(sizeof(int32_t) * (size_t)rw->nu);
+            if (loop) {
+                for (i = 0; i < rw->nu; ++i) loop[i] = rw->nh / 2 * rw->nu + i;
+                rw->circ_waves = tp_circulation(&m, r.omega, loop, rw->nu);
             }
-            rw->circ_waves = fabs(circ) / (2.0 * PI_);
+            free(loop);
         }
         zero = (double *)calloc((size_t)m.nv, sizeof(double));
         sig = (double *)malloc(sizeof(double) * NSAMP);
@@ -322,8 +312,7 @@ static void run_case(row *rw, int keep_profile, double *profile) {
     wr_tfw_result_free(&r);
     wr_shell_free(&sh);
     wr_mesh_free(&m);
-    free(bot);
-    free(top);
+    tp_clamps_free(&cl);
     free(x);
 }
 

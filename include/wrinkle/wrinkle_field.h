@@ -91,34 +91,23 @@
  *   M = max(|diag|, 1e-2 · block mean), μ adapted from ρ = actual/predicted decrease (Nielsen's rule)
  *   instead of a Moré–Thuente line search; bounds by a projected-Newton ε-active set (ε = 1e-3 a_ref).
  *   KKT residual: see wr__wf_kkt — nondimensional (a / a_ref, E / E_ref), so its relative tolerance
- *   means the same on every case. Measured on a 12×5 clamped stretched sheet (tests): 24 (AUTO),
- *   26 (TRUE), 62 (PROJECTED) accepted steps to KKT < 1e-8 · KKT0. The earlier stall (KKT 1.06e-5 →
- *   9.0e-6 in 200 iterations) had two causes: the reduced Hessian applied face_edge_sign twice (a
- *   19% wrong Hessian in a finite-difference check) and the test case itself — a uniformly compressed
- *   sheet with a free everywhere has no minimiser (E → 0 along (s a, ω/s), s → ∞).
+ *   means the same on every case.
  *   a = 0 is a KKT point wherever it holds (E is even in a): before stopping on KKT the solver tries
- *   a second-order escape along the amplitudes whose faces see compression (wr__wf_escape); on the
- *   12.78%-stretched sheet this is what lets wrinkles reappear after the E.2 guess collapses to 0,
- *   as the paper's video notes describe.
+ *   a second-order escape along the amplitudes whose faces see compression (wr__wf_escape); this is
+ *   what lets wrinkles reappear after the E.2 guess collapses to 0 (the paper's video notes describe
+ *   the same), and what lets a flat stop on an unstructured base wrinkle.
  *   Cost per iteration: per face the energy is 3 α0 + α2 M2 + α4 M4 (coefficients in da, dφ; M2, M4
  *   the quadrature moments of a; see wr__wf_face_eval_fast), Q of Eq. 4 is cached per face
- *   (wf->qf), the pattern of K, each face block's positions in K.val and the symbolic Cholesky are
- *   built once per solve, and a face block that passes a 6×6 Cholesky skips the eigen-projection (it
- *   is its own projection). Bench cases (CPU s per SQP, this 2-core box, medians): stretched sheet
- *   0.34 -> 0.16, sheared rectangle 0.55 -> 0.25, twisted cylinder 0.43 -> 0.19, teabag 0.34 -> 0.16,
- *   same iterations and fields (max |Δa|/max a <= 5e-9). What is left is mostly CHOLMOD.
+ *   (wf->qf); the reduced Hessian is assembled through sparse.h's assembly cache (wr_assembly: the
+ *   pattern and each face block's offsets recorded once per solve) and its symbolic Cholesky is
+ *   built once per solve; a face block that passes a 6×6 Cholesky skips the eigen-projection (it is
+ *   its own projection).
  *   Termination vs App. E.3: the paper stops on (1) |ΔE| < 1e-10, (2) stationarity < 1e-6, (3) update
  *   < 1e-10, (4) 1000 iterations, absolute numbers in its (SI) units. Rule 1 here is relative,
- *   |ΔE| <= 1e-10 |E_wf| on a step with ρ > 1/2; with |E_wf| = 0.024-0.86 J on the bench cases it is
- *   1.2-42x stricter than the absolute reading, so it never stops earlier than the paper allows
- *   (measured relative to the wrinkle part E - E(a = 0), -7.5e-6 J on the sheet, it would be 3000x
- *   stricter again). The absolute reading would stop at the same or one earlier iteration on the
- *   sheared rectangle (54 of 55), cylinder and teabag (quadratic tail), and the sheet's first solve at
- *   31 of 46 (validation count 7.745 -> 7.728 periods, peak 0.3453 -> 0.3436 mm). The gap to the
- *   paper's counts (23, 147, 813, 46) is the approach, not the stop: ten steps before the end the
- *   fields still move by 10-50 % (cylinder: mean |dφ| 70 -> 51 rad/m over iterations 21-50).
- *   Below round-off (predicted decrease <= 1e-14 |E|) E - Et is noise, so such a step is taken iff it
- *   lowers the KKT residual, else rule 1 stops (was: ρ from noise decided).
+ *   |ΔE| <= 1e-10 |E_wf| on a step with ρ > 1/2, never looser than the absolute reading on the
+ *   kit's cases (docs/notes-tfw-solver.md has the comparison). Below round-off (predicted decrease
+ *   <= 1e-14 |E|) E - Et is noise, so such a step is taken iff it lowers the KKT residual, else
+ *   rule 1 stops.
  *   omega_reg (default 0 = the paper's energy) adds a tiny Tikhonov term on ω; it is not needed for
  *   convergence and changes the solution, so it is off unless asked for.
  *
@@ -2701,11 +2690,11 @@ typedef struct wr__wf_sqp {
     double *y, *yt, *d, *g, *rhs;   /* n each: iterate, trial, step, reduced gradient, right-hand side */
     double *xa, *xo, *gx, *H;       /* full space: a (nv), ω (ne), ∇E (nv + ne), face Hessians (nf × 36) */
     /* per-face reduction ω-local DOFs → reduced unknowns: face f's columns fcols[fstart[f] ..], the
-     * first fused[f] of them used, P (6 × used) column-major in Pm; kpos[kpstart[f] ..] the positions
-     * of its reduced block in K.val (the pattern is fixed for the whole solve) */
-    int32_t *fstart, *fcols, *fused, *kpstart, *kpos;
+     * first fused[f] of them used, P (6 × used) column-major in Pm; the reduced Hessian K = KA.A is
+     * assembled through sparse.h's assembly cache (its pattern is fixed for the whole solve) */
+    int32_t *fstart, *fcols, *fused;
     double *Pm;
-    wr_csr K;
+    wr_assembly KA;
     wr_spd_solver SV;
     int have_solver;
     double *kmodel, *mdiag, *ks, *ainit; /* undamped model values (nnz), damping diagonal, K·s, scratch */
@@ -2724,15 +2713,13 @@ typedef struct wr__wf_trial {
 
 static void wr__wf_sqp_free(wr__wf_sqp *Q) {
     if (Q->have_solver) wr_spd_solver_free(&Q->SV);
-    wr_csr_free(&Q->K);
+    wr_assembly_free(&Q->KA);
     wr__wf_basis_free(&Q->B);
     wr_free(Q->avar);
     wr_free(Q->zero);
     wr_free(Q->fstart);
     wr_free(Q->fcols);
     wr_free(Q->fused);
-    wr_free(Q->kpstart);
-    wr_free(Q->kpos);
     wr_free(Q->Pm);
     wr_free(Q->y);
     wr_free(Q->yt);
@@ -2851,65 +2838,102 @@ static wr_status wr__wf_sqp_face_maps(wr__wf_sqp *Q, wr_diag *diag) {
     return WR_OK;
 }
 
-/* The reduced Hessian's sparsity pattern (all face blocks + the diagonal), its solver, and per face
- * the positions of its block entries in K.val, so each assembly adds straight into K.val (no
- * searches, no allocation). */
+/* Face f's reduced block Pᵀ He P (u × u, row-major, u = fused[f]), He its true or SPD-projected
+ * 6×6 Hessian block (App. E.3). */
+static void wr__wf_sqp_face_block(const wr__wf_sqp *Q, int32_t f, double *Ke) {
+    int32_t s0 = Q->fstart[f], u = Q->fused[f], r, c, k, l;
+    double He[36], HP[6 * WR_DENSE_MAX];
+    memcpy(He, Q->H + 36 * (size_t)f, sizeof He);
+    /* App. E.3 per-face projection; a positive definite block is its own projection, and a
+     * Cholesky attempt settles that far cheaper than the eigen-decomposition */
+    if (!Q->hess_true && !wr__wf_spd6(He)) wr_dense_project_spd(6, He, 0.0);
+    /* HP = He P first (6 × u), then the upper triangle of Pᵀ HP, mirrored */
+    for (c = 0; c < u; ++c) {
+        const double *pc = Q->Pm + 6 * (size_t)(s0 + c);
+        for (k = 0; k < 6; ++k) {
+            double t = 0.0;
+            for (l = 0; l < 6; ++l) t += He[6 * k + l] * pc[l];
+            HP[6 * c + k] = t;
+        }
+    }
+    for (r = 0; r < u; ++r) {
+        const double *pr = Q->Pm + 6 * (size_t)(s0 + r);
+        for (c = r; c < u; ++c) {
+            const double *hc = HP + 6 * c;
+            double t = pr[0] * hc[0] + pr[1] * hc[1] + pr[2] * hc[2] + pr[3] * hc[3] + pr[4] * hc[4] + pr[5] * hc[5];
+            Ke[r * u + c] = Ke[c * u + r] = t;
+        }
+    }
+}
+
+/* The reduced Hessian's element stream, shared by the pattern and every assembly: per face the
+ * reduced block Pᵀ He P over its used columns (He the face's true or SPD-projected 6×6 block, App.
+ * E.3), then the regulariser's γ ZᵀZ per active edge. values = 0 streams zero blocks (the recording
+ * pass that fixes the pattern before any Hessian exists). */
+static wr_status wr__wf_sqp_stream(wr__wf_sqp *Q, int values, wr_diag *diag) {
+    const wr_wf *wf = Q->wf;
+    double Ke[WR_DENSE_MAX * WR_DENSE_MAX];
+    int32_t f, e;
+    wr_status st;
+    for (f = 0; f < wf->nf; ++f) {
+        int32_t s0 = Q->fstart[f], u = Q->fused[f];
+        if (wf->wfree[f]) continue;
+        if (values) wr__wf_sqp_face_block(Q, f, Ke);
+        else memset(Ke, 0, sizeof(double) * (size_t)u * (size_t)u);
+        if ((st = wr_assembly_add(&Q->KA, u, Q->fcols + s0, Ke, diag)) != WR_OK) return st;
+    }
+    if (Q->greg > 0.0 || !values)
+        for (e = 0; e < wf->ne; ++e) {
+            int32_t s0 = Q->B.zstart[e], nz = Q->B.zstart[e + 1] - s0, r, c, cols[WR_DENSE_MAX];
+            if (!Q->B.eact[e] || nz == 0) continue;
+            if (nz > WR_DENSE_MAX)
+                return wr_fail(diag, WR_ERR_BUDGET, e, "wf solve: edge %d couples %d unknowns (> %d)", (int)e, (int)nz,
+                               WR_DENSE_MAX);
+            for (r = 0; r < nz; ++r) {
+                cols[r] = Q->na + Q->B.zcol[s0 + r];
+                for (c = 0; c < nz; ++c)
+                    Ke[r * nz + c] = values ? Q->greg * Q->B.zval[s0 + r] * Q->B.zval[s0 + c] : 0.0;
+            }
+            if ((st = wr_assembly_add(&Q->KA, nz, cols, Ke, diag)) != WR_OK) return st;
+        }
+    return WR_OK;
+}
+
+/* The reduced Hessian's sparsity pattern (every face block, the regulariser's edge blocks and the
+ * diagonal: one recording assembly of zero blocks through the assembly cache) and its solver, so
+ * the symbolic analysis is done once and each later assembly adds through cached offsets. */
 static wr_status wr__wf_sqp_pattern(wr__wf_sqp *Q, wr_diag *diag) {
     const wr_wf *wf = Q->wf;
-    wr_triplets T;
     wr_spd_desc sd;
-    int64_t tot = 0;
     int32_t f, n = Q->n;
     wr_status st;
-    memset(&T, 0, sizeof T);
-    st = wr_triplets_create(&T, n, (int64_t)n + 16, diag);
-    for (f = 0; f < wf->nf && !st; ++f) {
-        int32_t s0 = Q->fstart[f], m = Q->fstart[f + 1] - s0, r, c;
-        if (wf->wfree[f]) continue;
-        for (r = 0; r < m && !st; ++r)
-            for (c = 0; c < m && !st; ++c)
-                if (Q->fcols[s0 + r] >= 0 && Q->fcols[s0 + c] >= 0)
-                    st = wr_triplets_add(&T, Q->fcols[s0 + r], Q->fcols[s0 + c], 0.0, diag);
-    }
-    if (!st) st = wr_csr_from_triplets(&Q->K, &T, diag);
-    wr_triplets_free(&T);
-    if (st) return st;
-    memset(&sd, 0, sizeof sd);
-    sd.method = Q->D.solver;
-    st = wr_spd_solver_create(&Q->SV, &Q->K, &sd, diag);
-    if (st) return st;
-    Q->have_solver = 1;
-    Q->kmodel = (double *)wr_alloc_array((size_t)(Q->K.nnz > 0 ? Q->K.nnz : 1), sizeof(double));
-    Q->mdiag = (double *)wr_alloc_array((size_t)n + 1, sizeof(double));
-    Q->ks = (double *)wr_alloc_array((size_t)n + 1, sizeof(double));
-    Q->fused = (int32_t *)wr_calloc_array((size_t)wf->nf, sizeof(int32_t));
-    Q->kpstart = (int32_t *)wr_calloc_array((size_t)wf->nf + 1, sizeof(int32_t));
-    if (!Q->kmodel || !Q->mdiag || !Q->ks || !Q->fused || !Q->kpstart)
-        return wr_fail(diag, WR_ERR_NOMEM, -1, "wf solve: out of memory");
+    Q->fused = (int32_t *)wr_calloc_array((size_t)wf->nf + 1, sizeof(int32_t));
+    if (!Q->fused) return wr_fail(diag, WR_ERR_NOMEM, -1, "wf solve: out of memory");
     for (f = 0; f < wf->nf; ++f) {
         int32_t s0 = Q->fstart[f], m = Q->fstart[f + 1] - s0, u = 0;
-        Q->kpstart[f] = (int32_t)tot;
         if (wf->wfree[f]) continue;
         while (u < m && Q->fcols[s0 + u] >= 0) ++u; /* used columns come first (wr__wf_sqp_face_maps) */
         if (u > WR_DENSE_MAX)
             return wr_fail(diag, WR_ERR_BUDGET, f, "wf solve: face %d couples %d unknowns (> %d)", (int)f, (int)u,
                            WR_DENSE_MAX);
         Q->fused[f] = u;
-        tot += (int64_t)u * u;
-        if (tot > INT32_MAX) return wr_fail(diag, WR_ERR_BUDGET, f, "wf solve: face blocks exceed 2^31 entries");
     }
-    Q->kpstart[wf->nf] = (int32_t)tot;
-    Q->kpos = (int32_t *)wr_alloc_array((size_t)(tot > 0 ? tot : 1), sizeof(int32_t));
-    if (!Q->kpos) return wr_fail(diag, WR_ERR_NOMEM, -1, "wf solve: out of memory");
-    for (f = 0; f < wf->nf; ++f) {
-        int32_t s0 = Q->fstart[f], u = Q->fused[f], r, c;
-        for (r = 0; r < u; ++r)
-            for (c = 0; c < u; ++c) {
-                int32_t pk = wr_csr_find(&Q->K, Q->fcols[s0 + r], Q->fcols[s0 + c]);
-                WR_ASSERT(pk >= 0); /* every face block is in the pattern by construction */
-                Q->kpos[Q->kpstart[f] + r * u + c] = pk;
-            }
+    st = wr_assembly_init(&Q->KA, n, 1, diag);
+    if (!st) {
+        wr_assembly_begin(&Q->KA);
+        st = wr__wf_sqp_stream(Q, 0, diag);
+        if (!st) st = wr_assembly_end(&Q->KA, diag);
     }
+    if (st) return st;
+    memset(&sd, 0, sizeof sd);
+    sd.method = Q->D.solver;
+    st = wr_spd_solver_create(&Q->SV, &Q->KA.A, &sd, diag);
+    if (st) return st;
+    Q->have_solver = 1;
+    Q->kmodel = (double *)wr_alloc_array((size_t)(Q->KA.A.nnz > 0 ? Q->KA.A.nnz : 1), sizeof(double));
+    Q->mdiag = (double *)wr_alloc_array((size_t)n + 1, sizeof(double));
+    Q->ks = (double *)wr_alloc_array((size_t)n + 1, sizeof(double));
+    if (!Q->kmodel || !Q->mdiag || !Q->ks) return wr_fail(diag, WR_ERR_NOMEM, -1, "wf solve: out of memory");
     return WR_OK;
 }
 
@@ -2964,53 +2988,16 @@ static wr_status wr__wf_sqp_evaluate(wr__wf_sqp *Q, int first, wr_diag *diag) {
     return WR_OK;
 }
 
-/* The model Hessian K = Σ_f Pᵀ He P (+ the regulariser's γ ZᵀZ), He the face's true or SPD-projected
- * block (App. E.3), kept undamped in kmodel. */
+/* The model Hessian K = Σ_f Pᵀ He P (+ the regulariser's γ ZᵀZ), kept undamped in kmodel. */
 static wr_status wr__wf_sqp_assemble(wr__wf_sqp *Q, wr_diag *diag) {
-    const wr_wf *wf = Q->wf;
-    wr_csr *K = &Q->K;
-    int32_t f, e;
-    wr_csr_zero_values(K);
-    for (f = 0; f < wf->nf; ++f) {
-        int32_t s0 = Q->fstart[f], u = Q->fused[f], r, c, k, l;
-        const int32_t *kp = Q->kpos + Q->kpstart[f];
-        double He[36], HP[6 * WR_DENSE_MAX];
-        if (wf->wfree[f]) continue;
-        memcpy(He, Q->H + 36 * (size_t)f, sizeof He);
-        /* App. E.3 per-face projection; a positive definite block is its own projection, and a
-         * Cholesky attempt settles that far cheaper than the eigen-decomposition */
-        if (!Q->hess_true && !wr__wf_spd6(He)) wr_dense_project_spd(6, He, 0.0);
-        /* reduced block Pᵀ He P: HP = He P first (6 × u), then the upper triangle of Pᵀ HP */
-        for (c = 0; c < u; ++c) {
-            const double *pc = Q->Pm + 6 * (size_t)(s0 + c);
-            for (k = 0; k < 6; ++k) {
-                double t = 0.0;
-                for (l = 0; l < 6; ++l) t += He[6 * k + l] * pc[l];
-                HP[6 * c + k] = t;
-            }
-        }
-        for (r = 0; r < u; ++r) {
-            const double *pr = Q->Pm + 6 * (size_t)(s0 + r);
-            for (c = r; c < u; ++c) {
-                const double *hc = HP + 6 * c;
-                double t = pr[0] * hc[0] + pr[1] * hc[1] + pr[2] * hc[2] + pr[3] * hc[3] + pr[4] * hc[4] + pr[5] * hc[5];
-                K->val[kp[r * u + c]] += t;
-                if (c != r) K->val[kp[c * u + r]] += t;
-            }
-        }
-    }
-    if (Q->greg > 0.0)
-        for (e = 0; e < wf->ne; ++e) {
-            int32_t s0 = Q->B.zstart[e], nz = Q->B.zstart[e + 1] - s0, r, c;
-            if (!Q->B.eact[e]) continue;
-            for (r = 0; r < nz; ++r)
-                for (c = 0; c < nz; ++c) {
-                    wr_status st = wr_csr_add(K, Q->na + Q->B.zcol[s0 + r], Q->na + Q->B.zcol[s0 + c],
-                                              Q->greg * Q->B.zval[s0 + r] * Q->B.zval[s0 + c], diag);
-                    if (st) return st;
-                }
-        }
-    memcpy(Q->kmodel, K->val, sizeof(double) * (size_t)K->nnz);
+    wr_status st;
+    wr_assembly_begin(&Q->KA);
+    st = wr__wf_sqp_stream(Q, 1, diag);
+    if (!st) st = wr_assembly_end(&Q->KA, diag);
+    if (st) return st;
+    /* the stream is the recorded one, so the pattern never goes stale within a solve */
+    WR_ASSERT(!Q->KA.stale && Q->KA.misses == 0);
+    memcpy(Q->kmodel, Q->KA.A.val, sizeof(double) * (size_t)Q->KA.A.nnz);
     return WR_OK;
 }
 
@@ -3020,7 +3007,7 @@ static void wr__wf_sqp_damping(wr__wf_sqp *Q) {
     double mblock[2] = {0.0, 0.0}, mcount[2] = {0.0, 0.0};
     int32_t i, na = Q->na;
     for (i = 0; i < Q->n; ++i) {
-        int32_t p = wr_csr_find(&Q->K, i, i);
+        int32_t p = wr_csr_find(&Q->KA.A, i, i);
         Q->mdiag[i] = p >= 0 ? fabs(Q->kmodel[p]) : 0.0;
         mblock[i < na ? 0 : 1] += Q->mdiag[i];
         mcount[i < na ? 0 : 1] += 1.0;
@@ -3033,7 +3020,7 @@ static void wr__wf_sqp_damping(wr__wf_sqp *Q) {
  * amplitudes within ε of the bound whose scaled gradient pushes them down are held and moved onto
  * it) and turn d into the projected step yt - y. Returns the factor/solve status. */
 static wr_status wr__wf_sqp_damped_step(wr__wf_sqp *Q, double epsact, int32_t *nact) {
-    wr_csr *K = &Q->K;
+    wr_csr *K = &Q->KA.A;
     wr_spd_stats ss;
     wr_status fs;
     double t1 = wr_time_seconds();
@@ -3071,7 +3058,7 @@ static wr_status wr__wf_sqp_damped_step(wr__wf_sqp *Q, double epsact, int32_t *n
 
 /* Model decrease of the projected step s = d: -(gᵀs + ½ sᵀ K s) with the undamped model K. */
 static double wr__wf_sqp_predicted(wr__wf_sqp *Q) {
-    const wr_csr *K = &Q->K;
+    const wr_csr *K = &Q->KA.A;
     double pred = 0.0;
     int32_t i;
     for (i = 0; i < Q->n; ++i) {
