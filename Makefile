@@ -97,6 +97,10 @@ bin/%: bench/%.c $(LIB_OBJ) $(HEADERS) $(EXTRA_HDR)
 	@mkdir -p bin
 	$(CC) $(ALL_CFLAGS) -O3 $< $(LIB_OBJ) -o $@ $(LIBS)
 
+# bench_triangle times bin/wrinkle-triangulate as a process (against Triangle when WR_TRIANGLE names
+# a Triangle binary built outside the tree; without it the Triangle columns are skipped).
+bin/bench_triangle: bin/wrinkle-triangulate
+
 bin/%: bench/%.cpp $(LIB_OBJ) $(HEADERS) $(EXTRA_HDR)
 	@mkdir -p bin
 	$(CXX) $(ALL_CXXFLAGS) -O3 -frounding-math $< $(LIB_OBJ) -o $@ $(LIBS) -lgmp -lmpfr

@@ -2,6 +2,8 @@
 # Runs every built benchmark (bin/bench_*) in sequence and records their output in
 # bench/RESULTS.md (also shown on the terminal). Build them first: `make bench` does both.
 # A benchmark that fails is reported and the others still run; the exit status says whether all passed.
+# bench_triangle compares against Shewchuk's Triangle when WR_TRIANGLE=/path/to/triangle is set (a binary
+# built outside the tree; never committed); without it only our columns are printed.
 cd "$(dirname "$0")/.." || exit 1
 out=bench/RESULTS.md
 tmp=$out.tmp.$$

@@ -149,6 +149,15 @@ if [ -x "$B/wrinkle-triangulate" ]; then
     expect_fail "wrinkle-triangulate bad segment" "$B/wrinkle-triangulate" -pQ "$tmp/tri/badseg.poly"
     atomic wrinkle-triangulate "$tmp/tri/sq.1.node" "$tmp/tri/sq.1.ele" "$tmp/tri/sq.1.poly" -- \
         "$B/wrinkle-triangulate" -pq30 -a0.01 -Q "$tmp/tri/sq.poly"
+    # Triangle's other outputs, refinement of a previous mesh (-r), and what is refused
+    atomic wrinkle-triangulate-evn "$tmp/tri/sq.1.edge" "$tmp/tri/sq.1.neigh" "$tmp/tri/sq.1.v.node" \
+        "$tmp/tri/sq.1.v.edge" -- "$B/wrinkle-triangulate" -pq30a0.01evno2Q "$tmp/tri/sq.poly"
+    atomic wrinkle-triangulate-r "$tmp/tri/sq.2.node" "$tmp/tri/sq.2.ele" -- \
+        "$B/wrinkle-triangulate" -rq30a0.002Q "$tmp/tri/sq.1"
+    expect_fail "wrinkle-triangulate -u (an API callback)" "$B/wrinkle-triangulate" -puQ "$tmp/tri/sq.poly"
+    expect_fail "wrinkle-triangulate -I with -r" "$B/wrinkle-triangulate" -rIQ "$tmp/tri/sq.1"
+    cp "$tmp/tri/sq.1.node" "$tmp/tri/bad.node"; printf '2 3 0\n1 1 2 3\n2 1 3 99999\n' > "$tmp/tri/bad.ele"
+    expect_fail "wrinkle-triangulate bad .ele" "$B/wrinkle-triangulate" -rQ "$tmp/tri/bad.ele"
 fi
 if [ -x "$B/wrinkle-mesh" ]; then
     expect_fail "wrinkle-mesh missing pattern" "$B/wrinkle-mesh" "$tmp/none.json" -o "$tmp/m0"

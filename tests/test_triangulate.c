@@ -852,3 +852,683 @@ Test(triangulate, extreme_scales) {
         wr_cdt_free(&r);
     }
 }
+
+/* ---- refinement size against Shewchuk's Triangle 1.6 ----
+ * Two of the inputs of bench/RESULTS.md ("Quality refinement"): the front bodice outline of
+ * examples/garment_dress_shirred_waist.json (11 corners, mm, edges cut into pieces of at most 20 mm:
+ * 80 vertices) and a unit square (edges in 16 pieces) with five circular holes of 16..32 vertices.
+ * Triangle 1.6 (-pq30 / -pq33, same files) gives 181 / 218 and 427 / 493 vertices; we measured
+ * 180 / 228 and 431 / 495 (ratios 0.99-1.05). The bound: at most 1.05x Triangle's count, the largest
+ * ratio measured, rounded up; plain circumcenters with diametral circles (the previous refinement)
+ * needed 1.13-1.27x on these inputs and fail it. */
+static void bodice_outline(double *p, int32_t *seg, int32_t *n) {
+    static const double c[] = {0, 0, 360, 0, 360, 250, 300, 330, 300, 420, 230, 420, 180, 360, 130, 420, 60, 420, 60, 330, 0, 250};
+    int32_t i, j, k, m = 0;
+    for (i = 0; i < 11; ++i) {
+        const double *a = c + 2 * i, *b = c + 2 * ((i + 1) % 11);
+        k = (int32_t)ceil(hypot(b[0] - a[0], b[1] - a[1]) / 20.0);
+        for (j = 0; j < k; ++j) {
+            p[2 * m] = a[0] + (b[0] - a[0]) * j / k;
+            p[2 * m + 1] = a[1] + (b[1] - a[1]) * j / k;
+            ++m;
+        }
+    }
+    for (i = 0; i < m; ++i) {
+        seg[2 * i] = i;
+        seg[2 * i + 1] = (i + 1) % m;
+    }
+    *n = m;
+}
+static void holes_input(double *p, int32_t *seg, double *holes, int32_t *n) {
+    static const double sq[] = {0, 0, 1, 0, 1, 1, 0, 1}, circ[5][4] = {{0.25, 0.25, 0.1, 24}, {0.75, 0.25, 0.06, 16},
+                                                                       {0.5, 0.55, 0.14, 32}, {0.2, 0.8, 0.08, 20},
+                                                                       {0.8, 0.78, 0.12, 28}};
+    int32_t e, j, m = 0, h, s0;
+    for (e = 0; e < 4; ++e)
+        for (j = 0; j < 16; ++j) {
+            const double *a = sq + 2 * e, *b = sq + 2 * ((e + 1) % 4);
+            double t = j / 16.0;
+            p[2 * m] = a[0] + (b[0] - a[0]) * t;
+            p[2 * m + 1] = a[1] + (b[1] - a[1]) * t;
+            seg[2 * m] = m;
+            seg[2 * m + 1] = (m + 1) % 64;
+            ++m;
+        }
+    for (h = 0; h < 5; ++h) {
+        int32_t k = (int32_t)circ[h][3];
+        s0 = m;
+        for (j = 0; j < k; ++j) {
+            p[2 * m] = circ[h][0] + circ[h][2] * cos(2 * 3.141592653589793 * j / k);
+            p[2 * m + 1] = circ[h][1] + circ[h][2] * sin(2 * 3.141592653589793 * j / k);
+            seg[2 * m] = m;
+            seg[2 * m + 1] = s0 + (j + 1) % k;
+            ++m;
+        }
+        holes[2 * h] = circ[h][0];
+        holes[2 * h + 1] = circ[h][1];
+    }
+    *n = m;
+}
+
+Test(triangulate, refinement_size_vs_triangle) {
+    static double p[2 * 256], holes[10];
+    static int32_t seg[2 * 256];
+    const double angle[2] = {30.0, 33.0};
+    const int32_t tri_bodice[2] = {181, 218}, tri_holes[2] = {427, 493};
+    int32_t n, a, input;
+    for (input = 0; input < 2; ++input)
+        for (a = 0; a < 2; ++a) {
+            wr_cdt_desc d;
+            wr_cdt_result r;
+            wr_diag dg;
+            int32_t ref = input ? tri_holes[a] : tri_bodice[a];
+            memset(&d, 0, sizeof d);
+            d.quality = 1;
+            d.min_angle_deg = angle[a];
+            if (input == 0) {
+                bodice_outline(p, seg, &n);
+                cr_assert_eq(n, 80);
+                cr_assert_eq(tri(p, n, seg, n, NULL, 0, &d, &r, &dg), WR_OK, "%s", dg.message);
+                check_ok(&r, 0, NULL);
+            } else {
+                holes_input(p, seg, holes, &n);
+                cr_assert_eq(n, 184);
+                cr_assert_eq(tri(p, n, seg, n, holes, 5, &d, &r, &dg), WR_OK, "%s", dg.message);
+                check_ok(&r, 5, NULL);
+            }
+            cr_assert_geq(r.min_angle_deg, angle[a], "%s q%g: min angle %g", input ? "holes" : "bodice", angle[a],
+                          r.min_angle_deg);
+            cr_assert_leq(r.n_points, (int32_t)(1.05 * ref), "%s q%g: %d vertices, Triangle %d", input ? "holes" : "bodice",
+                          angle[a], r.n_points, ref);
+            wr_cdt_free(&r);
+        }
+}
+
+/* ---- Triangle's files and switches (polyfile.h): each case was run through Triangle 1.6 on the
+ * same text, and the numbers in the comments are its output ---- */
+
+/* A 4 x 4 square (markers 5, 0, 2, 0 on its sides) with a triangular hole (marker 9), an interior
+ * vertex with marker 3, vertex 9 a duplicate of vertex 2, one vertex attribute, and two region seeds
+ * in the same region (attributes 100 and 200; the second has no area, so its attribute is both). */
+static const char *SQ_POLY = "9 2 1 1\n"
+                             "1 0 0 10.0 0\n2 4 0 11.0 0\n3 4 4 12.0 7\n4 0 4 13.0 0\n5 1 1 1.0 0\n"
+                             "6 2 1 2.0 0\n7 1.5 2 3.0 0\n8 3 3 4.0 3\n9 4 0 99.0 0\n"
+                             "7 1\n1 1 2 5\n2 2 3 0\n3 3 4 2\n4 4 1 0\n5 5 6 9\n6 6 7 9\n7 7 5 9\n"
+                             "1\n1 1.5 1.4\n"
+                             "2\n1 3 2 100.0 0.5\n2 0.5 3.5 200.0\n";
+
+/* what wrinkle-triangulate passes to the library for a .poly (holes; regions with -A / -a) */
+static wr_status tri_poly(const wr_cdt_poly *P, int regions, const wr_cdt_desc *d, wr_cdt_input *in,
+                          wr_cdt_result *r, wr_diag *dg) {
+    memset(in, 0, sizeof *in);
+    in->points = P->points;
+    in->n_points = P->n_points;
+    in->attributes = P->attributes;
+    in->n_attributes = P->n_attributes;
+    in->segments = P->segments;
+    in->n_segments = P->n_segments;
+    in->holes = P->holes;
+    in->n_holes = P->n_holes;
+    if (regions) {
+        in->regions = P->regions;
+        in->n_regions = P->n_regions;
+    }
+    return wr_cdt_triangulate(in, d, r, dg);
+}
+
+static int count_value(const int32_t *v, int32_t n, int32_t x) {
+    int32_t i, c = 0;
+    for (i = 0; i < n; ++i) c += v[i] == x;
+    return c;
+}
+
+Test(triangulate, poly_attributes_regions_ele_area_parse) {
+    wr_cdt_poly P;
+    wr_cdt_ele E;
+    wr_diag dg;
+    static const struct {
+        const char *ele, *area, *needle;
+    } bad[] = {
+        {"2 3 0\n1 1 2 3\n2 1 3 5\n", NULL, "m.ele:3: corner 3 of triangle 2 is not a vertex in [1, 4]"},
+        {"2 4 0\n", NULL, "m.ele:1: expected '<#triangles> <#nodes 3|6>"},
+        {"2 3 1\n1 1 2 3 0.5\n2 1 3 4\n", NULL, "m.ele:3: expected '<triangle> <3 nodes> <attributes>'"},
+        {"2 3 0\n1 1 2 3\n", NULL, "m.ele:2: file ends after 1 of 2 triangles"},
+        {"2 3 0\n1 1 2 3\n2 1 3 4\n", "3\n1 0.1\n2 0.2\n3 0.3\n", "m.area:1: expected the triangle count 2"},
+        {"2 3 0\n1 1 2 3\n2 1 3 4\n", "2\n1 0.1\n2 x\n", "m.area:3: expected '<triangle> <maximum area>'"},
+    };
+    size_t i;
+    cr_assert_eq(wr_cdt_poly_parse(SQ_POLY, NULL, "sq.poly", &P, &dg), WR_OK, "%s", dg.message);
+    cr_assert_eq(P.n_attributes, 1);
+    cr_assert_float_eq(P.attributes[8], 99.0, 0.0);
+    cr_assert_eq(P.n_regions, 2);
+    cr_assert_float_eq(P.regions[3], 0.5, 0.0);
+    cr_assert_float_eq(P.regions[6], 200.0, 0.0);
+    cr_assert_float_eq(P.regions[7], 200.0, 0.0, "a lone value after x y is also the area (Triangle)");
+    wr_cdt_poly_free(&P);
+    cr_assert_eq(wr_cdt_poly_parse("3 2 0 0\n1 0 0\n2 1 0\n3 0 1\n0 0\n0\n1\n1 0.2 0.2\n", NULL, "r.poly", &P, &dg),
+                 WR_ERR_PARSE);
+    cr_assert(strstr(dg.message, "r.poly:8: expected '<index> <x> <y> <attribute>") != NULL, "%s", dg.message);
+    cr_assert_eq(wr_cdt_poly_parse("3 2 1 0\n1 0 0 1\n2 1 0 inf\n3 0 1 1\n0 0\n0\n", NULL, "a.poly", &P, &dg),
+                 WR_ERR_PARSE);
+    cr_assert(strstr(dg.message, "a.poly:3: attribute 1 is not a finite number") != NULL, "%s", dg.message);
+    /* a 6-node .ele with an attribute, 0-based, and its .area */
+    cr_assert_eq(wr_cdt_ele_parse("# two\n2 6 1\n0 0 1 2 4 5 6 7.5\n1 0 2 3 7 8 9 -1\n", "2\n0 0.25\n1 -1\n", "z.ele",
+                                  "z.area", 10, 0, &E, &dg),
+                 WR_OK, "%s", dg.message);
+    cr_assert_eq(E.n_triangles, 2);
+    cr_assert_eq(E.n_corners, 6);
+    cr_assert_eq(E.triangles[5], 3);
+    cr_assert_float_eq(E.attributes[0], 7.5, 0.0);
+    cr_assert_float_eq(E.areas[0], 0.25, 0.0);
+    cr_assert_float_eq(E.areas[1], -1.0, 0.0);
+    wr_cdt_ele_free(&E);
+    for (i = 0; i < sizeof bad / sizeof bad[0]; ++i) {
+        cr_assert_eq(wr_cdt_ele_parse(bad[i].ele, bad[i].area, "m.ele", "m.area", 4, 1, &E, &dg), WR_ERR_PARSE,
+                     "case %zu", i);
+        cr_assert(strstr(dg.message, bad[i].needle) != NULL, "case %zu: '%s' lacks '%s'", i, dg.message, bad[i].needle);
+        cr_assert_null(E.triangles);
+    }
+}
+
+/* Triangle 1.6 -pAeen on SQ_POLY: 9 nodes (the duplicate kept in the numbering), 9 triangles, all
+ * with attribute 200 (the later seed of one region wins), 17 edges, 7 segments, 7 boundary sides
+ * in .neigh. Node markers 5 0 7 2 9 9 9 3 5: Triangle used the duplicate's later copy (node 9) and
+ * left node 2 unused with its input marker 0; we use the first copy, so ours read 5 5 7 2 9 9 9 3 0.
+ * Edge markers: ten 0, two 1, one 2, one 5, three 9; segment markers 5 1 2 1 9 9 9 (the unmarked
+ * sides of the hull became 1, as boundary). */
+Test(triangulate, triangle_outputs_match_triangle) {
+    static const int32_t node_mk[9] = {5, 5, 7, 2, 9, 9, 9, 3, 0};
+    wr_cdt_poly P;
+    wr_cdt_input in;
+    wr_cdt_result r;
+    wr_cdt_out o;
+    wr_cdt_out_desc od;
+    wr_diag dg;
+    int32_t i, k, nb = 0;
+    cr_assert_eq(wr_cdt_poly_parse(SQ_POLY, NULL, "sq.poly", &P, &dg), WR_OK, "%s", dg.message);
+    cr_assert_eq(tri_poly(&P, 1, NULL, &in, &r, &dg), WR_OK, "%s", dg.message);
+    check_ok(&r, 1, NULL);
+    memset(&od, 0, sizeof od);
+    od.region_attribute = od.edges = od.neighbors = od.poly = 1;
+    cr_assert_eq(wr_cdt_out_build(&P, &in, NULL, &r, &od, &o, &dg), WR_OK, "%s", dg.message);
+    cr_assert_eq(o.n_nodes, 9);
+    cr_assert_eq(o.n_elements, 9);
+    cr_assert_eq(o.n_edges, 17);
+    cr_assert_eq(o.n_segments, 7);
+    for (i = 0; i < 9; ++i) cr_assert_eq(o.node_markers[i], node_mk[i], "node %d: marker %d", i + 1, o.node_markers[i]);
+    cr_assert_float_eq(o.nodes[16], 4.0, 0.0);
+    cr_assert_float_eq(o.node_attributes[8], 99.0, 0.0);
+    for (i = 0; i < 3 * 9; ++i) cr_assert_neq(o.elements[i], 8, "the duplicate is used by no triangle");
+    cr_assert_eq(o.n_element_attributes, 1);
+    for (i = 0; i < 9; ++i) cr_assert_float_eq(o.element_attributes[i], 200.0, 0.0);
+    cr_assert_eq(count_value(o.edge_markers, 17, 0), 10);
+    cr_assert_eq(count_value(o.edge_markers, 17, 1), 2);
+    cr_assert_eq(count_value(o.edge_markers, 17, 2), 1);
+    cr_assert_eq(count_value(o.edge_markers, 17, 5), 1);
+    cr_assert_eq(count_value(o.edge_markers, 17, 9), 3);
+    cr_assert_eq(count_value(o.segment_markers, 7, 1), 2);
+    cr_assert_eq(count_value(o.segment_markers, 7, 9), 3);
+    cr_assert_eq(count_value(o.segment_markers, 7, 5) + count_value(o.segment_markers, 7, 2), 2);
+    for (i = 0; i < 9; ++i) /* .neigh: symmetric, -1 on the 7 boundary sides */
+        for (k = 0; k < 3; ++k) {
+            int32_t n = o.neighbors[3 * i + k], j, back = 0;
+            if (n < 0) {
+                ++nb;
+                continue;
+            }
+            for (j = 0; j < 3; ++j) back += o.neighbors[3 * n + j] == i;
+            cr_assert_eq(back, 1, "triangle %d -> %d not symmetric", i, n);
+        }
+    cr_assert_eq(nb, 7);
+    wr_cdt_out_free(&o);
+    /* -j: the duplicate dropped (Triangle -pj: 8 nodes, markers 5 5 7 2 9 9 9 3 — it kept node 2) */
+    od.jettison = 1;
+    cr_assert_eq(wr_cdt_out_build(&P, &in, NULL, &r, &od, &o, &dg), WR_OK, "%s", dg.message);
+    cr_assert_eq(o.n_nodes, 8);
+    for (i = 0; i < 8; ++i) cr_assert_eq(o.node_markers[i], node_mk[i]);
+    for (i = 0; i < 3 * 9; ++i) cr_assert(o.elements[i] >= 0 && o.elements[i] < 8);
+    wr_cdt_out_free(&o);
+    wr_cdt_free(&r);
+    wr_cdt_poly_free(&P);
+}
+
+/* Triangle 1.6 -pq30a1e on a 4 x 4 square whose right side has marker 4, the others 0, and an
+ * interior segment (1,2)-(3,2) with marker 0: 22 vertices, 17 segments; input vertices' markers
+ * 1 4 4 1 0 0 (the interior segment is not boundary, so 0 stays 0); a Steiner point takes its side's
+ * marker: 4 on x = 4, 1 on the other sides, 0 inside. */
+Test(triangulate, triangle_markers_after_refinement) {
+    const char *poly = "6 2 0 1\n1 0 0 0\n2 4 0 0\n3 4 4 0\n4 0 4 0\n5 1 2 0\n6 3 2 0\n"
+                       "5 1\n1 1 2 0\n2 2 3 4\n3 3 4 0\n4 4 1 0\n5 5 6 0\n0\n";
+    static const int32_t in_mk[6] = {1, 4, 4, 1, 0, 0};
+    wr_cdt_poly P;
+    wr_cdt_input in;
+    wr_cdt_desc d;
+    wr_cdt_result r;
+    wr_cdt_out o;
+    wr_cdt_out_desc od;
+    wr_diag dg;
+    int32_t i;
+    cr_assert_eq(wr_cdt_poly_parse(poly, NULL, "t2.poly", &P, &dg), WR_OK, "%s", dg.message);
+    memset(&d, 0, sizeof d);
+    d.quality = 1;
+    d.min_angle_deg = 30.0;
+    d.max_area = 1.0;
+    cr_assert_eq(tri_poly(&P, 0, &d, &in, &r, &dg), WR_OK, "%s", dg.message);
+    check_ok(&r, 0, NULL);
+    memset(&od, 0, sizeof od);
+    od.edges = od.poly = 1;
+    cr_assert_eq(wr_cdt_out_build(&P, &in, NULL, &r, &od, &o, &dg), WR_OK, "%s", dg.message);
+    cr_assert_eq(o.n_nodes, 22);
+    cr_assert_eq(o.n_segments, 17);
+    for (i = 0; i < 6; ++i) cr_assert_eq(o.node_markers[i], in_mk[i], "vertex %d", i + 1);
+    for (i = 6; i < o.n_nodes; ++i) {
+        double x = o.nodes[2 * i], y = o.nodes[2 * i + 1];
+        int32_t want = x == 4.0 ? 4 : (x == 0.0 || y == 0.0 || y == 4.0) ? 1 : 0;
+        cr_assert_eq(o.node_markers[i], want, "Steiner point (%g, %g): marker %d", x, y, o.node_markers[i]);
+    }
+    for (i = 0; i < o.n_segments; ++i) { /* segment markers: 4 on the right side, 0 inside, else 1 */
+        const double *a = o.nodes + 2 * o.segments[2 * i], *b = o.nodes + 2 * o.segments[2 * i + 1];
+        int32_t want = a[0] == 4.0 && b[0] == 4.0 ? 4 : a[1] == 2.0 && b[1] == 2.0 && a[0] > 0.0 && a[0] < 4.0 ? 0 : 1;
+        cr_assert_eq(o.segment_markers[i], want, "segment %d", i);
+    }
+    wr_cdt_out_free(&o);
+    wr_cdt_free(&r);
+    wr_cdt_poly_free(&P);
+}
+
+/* Triangle 1.6 -vo2 on four vertices (0,0) (2,0) (0,2) (2,2.5) with attributes 1 2 3 4: 9 nodes
+ * (midpoints (0,1) (1,0) (1,1) (2,1.25) (1,2.25), attributes the averages, marker 0 only on (1,1));
+ * element nodes 4-6 the midpoints opposite corners 1-3; Voronoi vertices (1, 1) attribute 2.5 and
+ * (1.25, 1.25) attribute 2.775 (the affine interpolant, extrapolated); Voronoi edges: one finite,
+ * rays (-2,0) (0,-2) from the first and (2.5,0) (-0.5,2) from the second. */
+Test(triangulate, second_order_and_voronoi_match_triangle) {
+    const char *node = "4 2 1 0\n1 0 0 1\n2 2 0 2\n3 0 2 3\n4 2 2.5 4\n";
+    static const double mid[5][4] = {{0, 1, 2, 1}, {1, 0, 1.5, 1}, {1, 1, 2.5, 0}, {2, 1.25, 3, 1}, {1, 2.25, 3.5, 1}},
+                        vor[2][3] = {{1, 1, 2.5}, {1.25, 1.25, 2.775}}, ray[4][2] = {{-2, 0}, {0, -2}, {2.5, 0}, {-0.5, 2}};
+    wr_cdt_poly P;
+    wr_cdt_input in;
+    wr_cdt_result r;
+    wr_cdt_out o;
+    wr_cdt_out_desc od;
+    wr_diag dg;
+    int32_t i, j, k, finite = 0;
+    cr_assert_eq(wr_cdt_poly_parse(NULL, node, "v.node", &P, &dg), WR_OK, "%s", dg.message);
+    memset(&in, 0, sizeof in);
+    in.points = P.points;
+    in.n_points = 4;
+    in.attributes = P.attributes;
+    in.n_attributes = 1;
+    cr_assert_eq(wr_cdt_triangulate(&in, NULL, &r, &dg), WR_OK, "%s", dg.message);
+    check_ok(&r, 0, NULL);
+    memset(&od, 0, sizeof od);
+    od.second_order = od.voronoi = 1;
+    cr_assert_eq(wr_cdt_out_build(&P, &in, NULL, &r, &od, &o, &dg), WR_OK, "%s", dg.message);
+    cr_assert_eq(o.n_nodes, 9);
+    cr_assert_eq(o.n_corners, 6);
+    for (j = 0; j < 5; ++j) {
+        int hit = 0;
+        for (i = 4; i < 9; ++i)
+            if (o.nodes[2 * i] == mid[j][0] && o.nodes[2 * i + 1] == mid[j][1]) {
+                hit = 1;
+                cr_assert_float_eq(o.node_attributes[i], mid[j][2], 1e-15);
+                cr_assert_eq(o.node_markers[i], (int32_t)mid[j][3]);
+            }
+        cr_assert(hit, "midpoint (%g, %g) missing", mid[j][0], mid[j][1]);
+    }
+    for (i = 0; i < o.n_elements; ++i)
+        for (k = 0; k < 3; ++k) { /* node 4 + k: the midpoint of the edge opposite corner k */
+            const double *a = o.nodes + 2 * o.elements[6 * i + (k + 1) % 3], *b = o.nodes + 2 * o.elements[6 * i + (k + 2) % 3],
+                         *m = o.nodes + 2 * o.elements[6 * i + 3 + k];
+            cr_assert(m[0] == 0.5 * (a[0] + b[0]) && m[1] == 0.5 * (a[1] + b[1]), "element %d node %d", i, 4 + k);
+        }
+    cr_assert_eq(o.n_elements, 2);
+    for (j = 0; j < 2; ++j) {
+        int hit = 0;
+        for (i = 0; i < 2; ++i)
+            if (fabs(o.voronoi_nodes[2 * i] - vor[j][0]) < 1e-15 && fabs(o.voronoi_nodes[2 * i + 1] - vor[j][1]) < 1e-15) {
+                hit = 1;
+                cr_assert_float_eq(o.voronoi_attributes[i], vor[j][2], 1e-14);
+            }
+        cr_assert(hit, "Voronoi vertex (%g, %g) missing", vor[j][0], vor[j][1]);
+    }
+    cr_assert_eq(o.n_edges, 5);
+    for (i = 0; i < 5; ++i) {
+        if (o.voronoi_edges[2 * i + 1] >= 0) {
+            ++finite;
+            continue;
+        }
+        for (j = 0; j < 4 && !(o.voronoi_rays[2 * i] == ray[j][0] && o.voronoi_rays[2 * i + 1] == ray[j][1]); ++j) {}
+        cr_assert_lt(j, 4, "ray (%g, %g)", o.voronoi_rays[2 * i], o.voronoi_rays[2 * i + 1]);
+        /* the ray leaves from the circumcentre of the triangle the boundary edge belongs to */
+        cr_assert_float_eq(o.voronoi_nodes[2 * o.voronoi_edges[2 * i]], j < 2 ? 1.0 : 1.25, 1e-15);
+    }
+    cr_assert_eq(finite, 1);
+    wr_cdt_out_free(&o);
+    wr_cdt_free(&r);
+    wr_cdt_poly_free(&P);
+}
+
+static double tri_area(const double *p, const int32_t *v) {
+    return 0.5 * wr_orient2d_fast(p + 2 * v[0], p + 2 * v[1], p + 2 * v[2]);
+}
+
+/* -r: the mesh of SQ_POLY written as Triangle's files, read back, refined at -q30 with a .area bound
+ * of 0.05 on its triangle 1 only. The refined mesh covers the same area, keeps the hole, every
+ * triangle inherits the region attribute 200 written in the .ele, those descending from triangle 1
+ * obey its bound, and the output files read back as the input did. */
+Test(triangulate, refine_previous_mesh_from_files) {
+    const char *base = "/tmp/wr_test_refine_sq.1";
+    char path[256], apath[256];
+    wr_cdt_poly P, P1;
+    wr_cdt_ele E;
+    wr_cdt_input in;
+    wr_cdt_desc d;
+    wr_cdt_result r, r2;
+    wr_cdt_out o, o2;
+    wr_cdt_out_desc od;
+    wr_diag dg;
+    FILE *f;
+    double a0, a1 = 0.0;
+    int32_t t, i, n_small = 0;
+    cr_assert_eq(wr_cdt_poly_parse(SQ_POLY, NULL, "sq.poly", &P, &dg), WR_OK, "%s", dg.message);
+    cr_assert_eq(tri_poly(&P, 1, NULL, &in, &r, &dg), WR_OK, "%s", dg.message);
+    memset(&od, 0, sizeof od);
+    od.region_attribute = od.poly = 1;
+    cr_assert_eq(wr_cdt_out_build(&P, &in, NULL, &r, &od, &o, &dg), WR_OK, "%s", dg.message);
+    cr_assert_eq(wr_cdt_out_write(&o, &P, base, &od, &dg), WR_OK, "%s", dg.message);
+    a0 = total_area(&r);
+    cr_assert_float_eq(a0, 16.0 - 0.5, 1e-12);
+    snprintf(path, sizeof path, "%s.node", base);
+    cr_assert_eq(wr_cdt_poly_read(path, &P1, &dg), WR_OK, "%s", dg.message);
+    cr_assert_eq(P1.n_points, 9);
+    cr_assert_eq(P1.n_attributes, 1);
+    cr_assert_eq(P1.point_markers[0], 5);
+    snprintf(apath, sizeof apath, "%s.area", base);
+    f = fopen(apath, "w");
+    cr_assert_not_null(f);
+    fprintf(f, "%d\n1 0.05\n", r.n_triangles);
+    for (t = 1; t < r.n_triangles; ++t) fprintf(f, "%d -1\n", t + 1);
+    fclose(f);
+    snprintf(path, sizeof path, "%s.ele", base);
+    cr_assert_eq(wr_cdt_ele_read(path, apath, P1.n_points, P1.first_index, &E, &dg), WR_OK, "%s", dg.message);
+    cr_assert_eq(E.n_triangles, r.n_triangles);
+    cr_assert_eq(E.n_attributes, 1);
+    memset(&in, 0, sizeof in);
+    in.points = P1.points;
+    in.n_points = P1.n_points;
+    in.attributes = P1.attributes;
+    in.n_attributes = 1;
+    in.triangles = E.triangles;
+    in.n_triangles = E.n_triangles;
+    in.triangle_area = E.areas;
+    memset(&d, 0, sizeof d);
+    d.quality = 1;
+    d.min_angle_deg = 30.0;
+    cr_assert_eq(wr_cdt_triangulate(&in, &d, &r2, &dg), WR_OK, "%s", dg.message);
+    check_ok(&r2, 1, NULL);
+    cr_assert_gt(r2.n_points, r.n_points + 10);
+    cr_assert_not_null(r2.triangle_region);
+    for (t = 0; t < r2.n_triangles; ++t) {
+        double a = tri_area(r2.points, r2.triangles + 3 * t);
+        a1 += a;
+        cr_assert(r2.triangle_region[t] >= 0 && r2.triangle_region[t] < E.n_triangles, "triangle %d: tag %d", t,
+                  r2.triangle_region[t]);
+        if (r2.triangle_region[t] == 0) {
+            ++n_small;
+            cr_assert_leq(a, 0.05, "triangle %d from previous triangle 1: area %g > 0.05", t, a);
+        }
+    }
+    cr_assert_gt(n_small, 4);
+    cr_assert_float_eq(a1, a0, 1e-12 * a0);
+    memset(&od, 0, sizeof od);
+    cr_assert_eq(wr_cdt_out_build(&P1, &in, &E, &r2, &od, &o2, &dg), WR_OK, "%s", dg.message);
+    cr_assert_eq(o2.n_element_attributes, 1);
+    for (t = 0; t < o2.n_elements; ++t) cr_assert_float_eq(o2.element_attributes[t], 200.0, 0.0);
+    for (i = 0; i < 9; ++i) cr_assert_eq(o2.node_markers[i], o.node_markers[i], "vertex %d", i + 1);
+    wr_cdt_out_free(&o2);
+    wr_cdt_free(&r2);
+    wr_cdt_ele_free(&E);
+    wr_cdt_poly_free(&P1);
+    wr_cdt_out_free(&o);
+    wr_cdt_free(&r);
+    wr_cdt_poly_free(&P);
+    for (i = 0; i < 3; ++i) {
+        static const char *ext[3] = {"node", "ele", "poly"};
+        snprintf(path, sizeof path, "%s.%s", base, ext[i]);
+        remove(path);
+    }
+    remove(apath);
+}
+
+/* -a (regional) and -A: a 2 x 1 rectangle cut in two by a segment at x = 1; region 1 (left, seed
+ * (0.5, 0.5)) attribute 1 with maximum area 0.01, region 2 (right) attribute 2 and no bound. The
+ * left triangles obey 0.01 and carry 1, the right ones carry 2 and are not refined down to it. */
+Test(triangulate, regional_areas_and_attributes) {
+    static const double pts[] = {0, 0, 1, 0, 2, 0, 2, 1, 1, 1, 0, 1}, reg[] = {0.5, 0.5, 1.0, 0.01, 1.5, 0.5, 2.0, -1.0};
+    static const int32_t seg[] = {0, 1, 1, 2, 2, 3, 3, 4, 4, 5, 5, 0, 1, 4};
+    wr_cdt_input in;
+    wr_cdt_result r;
+    wr_diag dg;
+    int32_t t, nl = 0, nr = 0;
+    double big = 0.0;
+    memset(&in, 0, sizeof in);
+    in.points = pts;
+    in.n_points = 6;
+    in.segments = seg;
+    in.n_segments = 7;
+    in.regions = reg;
+    in.n_regions = 2;
+    cr_assert_eq(wr_cdt_triangulate(&in, NULL, &r, &dg), WR_OK, "%s", dg.message);
+    check_ok(&r, 0, NULL);
+    for (t = 0; t < r.n_triangles; ++t) {
+        const int32_t *v = r.triangles + 3 * t;
+        double a = tri_area(r.points, v), cx = (r.points[2 * v[0]] + r.points[2 * v[1]] + r.points[2 * v[2]]) / 3.0;
+        cr_assert_eq(r.triangle_region[t], cx < 1.0 ? 0 : 1, "triangle %d at x %g: region %d", t, cx, r.triangle_region[t]);
+        if (cx < 1.0) {
+            ++nl;
+            cr_assert_leq(a, 0.01, "left triangle %d: area %g", t, a);
+        } else {
+            ++nr;
+            if (a > big) big = a;
+        }
+    }
+    cr_assert_geq(nl, 100); /* area 1 in pieces of at most 0.01 */
+    cr_assert_gt(big, 0.01);
+    cr_assert_gt(nr, 0);
+    wr_cdt_free(&r);
+}
+
+/* -D: a conforming Delaunay mesh is Delaunay on every edge, segments included (the plain CDT of
+ * this input is not: vertex (0.5, 0.55) lies in the circle of the triangles on the segment
+ * (0,0.5)-(1,0.5) below it), and every segment is still a chain of edges. */
+static int32_t non_delaunay_edges(const wr_cdt_result *r) {
+    int32_t t, k, bad = 0;
+    for (t = 0; t < r->n_triangles; ++t)
+        for (k = 0; k < 3; ++k) {
+            int32_t n = r->neighbors[3 * t + k], j;
+            if (n < t) continue;
+            for (j = 0; j < 3 && r->neighbors[3 * n + j] != t; ++j) {}
+            bad += wr_incircle(r->points + 2 * r->triangles[3 * t], r->points + 2 * r->triangles[3 * t + 1],
+                               r->points + 2 * r->triangles[3 * t + 2], r->points + 2 * r->triangles[3 * n + j]) > 0.0;
+        }
+    return bad;
+}
+Test(triangulate, conforming_delaunay_every_edge) {
+    static const double pts[] = {0, 0, 1, 0, 1, 1, 0, 1, 0, 0.5, 1, 0.5, 0.5, 0.55, 0.3, 0.45, 0.7, 0.56};
+    static const int32_t seg[] = {0, 1, 1, 5, 5, 2, 2, 3, 3, 4, 4, 0, 4, 5};
+    wr_cdt_desc d;
+    wr_cdt_result r;
+    wr_diag dg;
+    memset(&d, 0, sizeof d);
+    cr_assert_eq(tri(pts, 9, seg, 7, NULL, 0, &d, &r, &dg), WR_OK, "%s", dg.message);
+    check_ok(&r, 0, NULL);
+    cr_assert_gt(non_delaunay_edges(&r), 0, "the CDT of this input should have a non-Delaunay segment");
+    wr_cdt_free(&r);
+    d.conforming = 1;
+    cr_assert_eq(tri(pts, 9, seg, 7, NULL, 0, &d, &r, &dg), WR_OK, "%s", dg.message);
+    check_ok(&r, 0, NULL);
+    cr_assert_eq(non_delaunay_edges(&r), 0);
+    cr_assert_gt(r.n_steiner, 0);
+    wr_cdt_free(&r);
+    d.quality = 1; /* -qD */
+    d.min_angle_deg = 25.0;
+    cr_assert_eq(tri(pts, 9, seg, 7, NULL, 0, &d, &r, &dg), WR_OK, "%s", dg.message);
+    check_ok(&r, 0, NULL);
+    cr_assert_eq(non_delaunay_edges(&r), 0);
+    cr_assert_geq(r.min_angle_deg, 25.0);
+    wr_cdt_free(&r);
+}
+
+/* -Y / -YY: no Steiner point on the boundary segments / on any segment. The unit square with an
+ * interior segment, refined at 30°: without the switch both get split points; with -Y only the
+ * interior one; with -YY neither. */
+Test(triangulate, no_steiner_points_on_segments) {
+    static const double pts[] = {0, 0, 1, 0, 1, 1, 0, 1, 0.2, 0.5, 0.8, 0.5};
+    static const int32_t seg[] = {0, 1, 1, 2, 2, 3, 3, 0, 4, 5};
+    wr_cdt_desc d;
+    wr_cdt_result r;
+    wr_diag dg;
+    int y;
+    for (y = 0; y <= 2; ++y) {
+        int32_t v, on_bnd = 0, on_int = 0;
+        memset(&d, 0, sizeof d);
+        d.quality = 1;
+        d.min_angle_deg = 30.0;
+        d.max_area = 0.01;
+        d.no_segment_steiner = y;
+        cr_assert_eq(tri(pts, 6, seg, 5, NULL, 0, &d, &r, &dg), WR_OK, "%s", dg.message);
+        check_ok(&r, 0, NULL);
+        for (v = r.n_input_points; v < r.n_points; ++v) {
+            on_bnd += r.point_segment[v] >= 0 && r.point_segment[v] < 4;
+            on_int += r.point_segment[v] == 4;
+        }
+        cr_assert(y >= 1 ? on_bnd == 0 : on_bnd > 0, "-Y x%d: %d Steiner points on the boundary", y, on_bnd);
+        cr_assert(y >= 2 ? on_int == 0 : on_int > 0, "-Y x%d: %d Steiner points on the interior segment", y, on_int);
+        wr_cdt_free(&r);
+    }
+}
+
+/* -u through the API: a user test (here: area above 0.002 (1 + 20 x), finer toward x = 0) makes
+ * refinement split exactly the triangles it flags; every output triangle then passes it. */
+static int graded_unsuitable(const double *a, const double *b, const double *c, double area, void *user) {
+    double x = (a[0] + b[0] + c[0]) / 3.0;
+    ++*(int *)user;
+    return area > 0.002 * (1.0 + 20.0 * x);
+}
+Test(triangulate, user_unsuitable_callback) {
+    static const double pts[] = {0, 0, 1, 0, 1, 1, 0, 1};
+    static const int32_t seg[] = {0, 1, 1, 2, 2, 3, 3, 0};
+    wr_cdt_desc d;
+    wr_cdt_result r;
+    wr_diag dg;
+    int calls = 0;
+    int32_t t, left = 0, right = 0;
+    memset(&d, 0, sizeof d);
+    d.unsuitable = graded_unsuitable;
+    d.user = &calls;
+    cr_assert_eq(tri(pts, 4, seg, 4, NULL, 0, &d, &r, &dg), WR_OK, "%s", dg.message);
+    check_ok(&r, 0, NULL);
+    cr_assert_gt(calls, 0);
+    for (t = 0; t < r.n_triangles; ++t) {
+        const double *a = r.points + 2 * r.triangles[3 * t], *b = r.points + 2 * r.triangles[3 * t + 1],
+                     *c = r.points + 2 * r.triangles[3 * t + 2];
+        int dummy = 0;
+        cr_assert(!graded_unsuitable(a, b, c, tri_area(r.points, r.triangles + 3 * t), &dummy), "triangle %d", t);
+        if ((a[0] + b[0] + c[0]) / 3.0 < 0.25)
+            ++left;
+        else if ((a[0] + b[0] + c[0]) / 3.0 > 0.75)
+            ++right;
+    }
+    cr_assert_gt(left, 3 * right, "graded: %d triangles in x < 0.25, %d in x > 0.75", left, right);
+    wr_cdt_free(&r);
+}
+
+/* The files themselves: the -vo2en run above written by wr_cdt_out_write and read back as text.
+ * Triangle 1.6 -Qvo2en on the same v.node wrote (index column dropped, comments skipped, lines in
+ * any order, an edge's two ends in any order):
+ *   .node "9 2 1 1": 0 0 1 1 | 2 0 2 1 | 0 2 3 1 | 2 2.5 4 1 | 0 1 2 1 | 1 0 1.5 1 | 1 1 2.5 0 |
+ *         2 1.25 3 1 | 1 2.25 3.5 1
+ *   .edge "5 1": 3 1 1 | 1 2 1 | 2 3 0 | 2 4 1 | 4 3 1
+ *   .neigh "2 3": -1 2 -1 | -1 1 -1
+ *   .v.node "2 2 1 0": 1 1 2.5 | 1.25 1.25 2.7749999999999999
+ *   .v.edge "5 0": 1 -1 -2 0 | 1 -1 0 -2 | 1 2 | 2 -1 2.5 0 | 2 -1 -0.5 2 */
+static int cmp_str(const void *a, const void *b) { return strcmp(*(const char *const *)a, *(const char *const *)b); }
+static void expect_file(const char *path, const char *header, const char *const *lines, int n, int edge) {
+    char *text = NULL, *got[16], *s;
+    const char *want[16];
+    size_t len;
+    int k = 0, i, first = 1;
+    wr_diag dg;
+    cr_assert_eq(wr_file_read(path, &text, &len, &dg), WR_OK, "%s", dg.message);
+    for (s = strtok(text, "\n"); s; s = strtok(NULL, "\n")) {
+        char *b;
+        if (s[0] == '#') continue;
+        if (first) {
+            cr_assert_str_eq(s, header, "%s: header", path);
+            first = 0;
+            continue;
+        }
+        cr_assert_lt(k, 16);
+        b = strchr(s, ' ');
+        cr_assert_not_null(b);
+        got[k] = b + 1;
+        if (edge) { /* ends in ascending order */
+            int a0, a1, m;
+            cr_assert_eq(sscanf(got[k], "%d %d %d", &a0, &a1, &m), 3);
+            if (a0 > a1) sprintf(got[k], "%d %d %d", a1, a0, m);
+        }
+        ++k;
+    }
+    cr_assert_eq(k, n, "%s: %d lines, want %d", path, k, n);
+    for (i = 0; i < n; ++i) want[i] = lines[i];
+    qsort(got, (size_t)n, sizeof *got, cmp_str);
+    qsort((void *)want, (size_t)n, sizeof *want, cmp_str);
+    for (i = 0; i < n; ++i) cr_assert_str_eq(got[i], want[i], "%s", path);
+    wr_free(text);
+}
+Test(triangulate, out_write_files_match_triangle) {
+    const char *node = "4 2 1 0\n1 0 0 1\n2 2 0 2\n3 0 2 3\n4 2 2.5 4\n", *base = "/tmp/wr_test_out_v.1";
+    static const char *const nodes[] = {"0 0 1 1", "2 0 2 1", "0 2 3 1", "2 2.5 4 1", "0 1 2 1",
+                                        "1 0 1.5 1", "1 1 2.5 0", "2 1.25 3 1", "1 2.25 3.5 1"},
+                             *edges[] = {"1 3 1", "1 2 1", "2 3 0", "2 4 1", "3 4 1"}, *neigh[] = {"-1 2 -1", "-1 1 -1"},
+                             *vnode[] = {"1 1 2.5", "1.25 1.25 2.7749999999999999"},
+                             *vedge[] = {"1 -1 -2 0", "1 -1 0 -2", "1 2", "2 -1 2.5 0", "2 -1 -0.5 2"};
+    static const char *ext[] = {"node", "ele", "edge", "neigh", "v.node", "v.edge"};
+    char path[128];
+    wr_cdt_poly P;
+    wr_cdt_input in;
+    wr_cdt_result r;
+    wr_cdt_out o;
+    wr_cdt_out_desc od;
+    wr_diag dg;
+    size_t i;
+    cr_assert_eq(wr_cdt_poly_parse(NULL, node, "v.node", &P, &dg), WR_OK, "%s", dg.message);
+    memset(&in, 0, sizeof in);
+    in.points = P.points;
+    in.n_points = 4;
+    in.attributes = P.attributes;
+    in.n_attributes = 1;
+    cr_assert_eq(wr_cdt_triangulate(&in, NULL, &r, &dg), WR_OK, "%s", dg.message);
+    check_ok(&r, 0, NULL);
+    memset(&od, 0, sizeof od);
+    od.second_order = od.voronoi = od.edges = od.neighbors = 1;
+    cr_assert_eq(wr_cdt_out_build(&P, &in, NULL, &r, &od, &o, &dg), WR_OK, "%s", dg.message);
+    cr_assert_eq(wr_cdt_out_write(&o, &P, base, &od, &dg), WR_OK, "%s", dg.message);
+    snprintf(path, sizeof path, "%s.node", base);
+    expect_file(path, "9 2 1 1", nodes, 9, 0);
+    snprintf(path, sizeof path, "%s.edge", base);
+    expect_file(path, "5 1", edges, 5, 1);
+    snprintf(path, sizeof path, "%s.neigh", base);
+    expect_file(path, "2 3", neigh, 2, 0);
+    snprintf(path, sizeof path, "%s.v.node", base);
+    expect_file(path, "2 2 1 0", vnode, 2, 0);
+    snprintf(path, sizeof path, "%s.v.edge", base);
+    expect_file(path, "5 0", vedge, 5, 0);
+    for (i = 0; i < sizeof ext / sizeof ext[0]; ++i) {
+        snprintf(path, sizeof path, "%s.%s", base, ext[i]);
+        remove(path);
+    }
+    wr_cdt_out_free(&o);
+    wr_cdt_free(&r);
+    wr_cdt_poly_free(&P);
+}

@@ -2403,7 +2403,7 @@ static int wr__prev_boundary(wr__tctx *X) {
     }
     wr_free(e);
     X->n_prev_bnd = nb;
-    memcpy(X->allseg, in->segments, sizeof(int32_t) * 2 * (size_t)in->n_segments);
+    if (in->n_segments > 0) memcpy(X->allseg, in->segments, sizeof(int32_t) * 2 * (size_t)in->n_segments);
     memcpy(X->allseg + 2 * in->n_segments, X->prev_bnd, sizeof(int32_t) * 2 * (size_t)nb);
     X->in2 = *in;
     X->in2.segments = X->allseg;
