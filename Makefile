@@ -19,8 +19,14 @@ LIBS    = -lcjson -lcholmod -lfftw3 -lpng -lgsl -lgslcblas -lm
 # Debian packages the kit builds against. libopenblas0 gives CHOLMOD an optimized BLAS
 # (through the libblas.so.3 alternative) instead of the reference one.
 DEB_PACKAGES = libgsl-dev libfftw3-dev libsuitesparse-dev libopenblas0 libcjson-dev \
-               libcriterion-dev gnuplot-nox pkg-config universal-ctags libpng-dev python3 python3-numpy
+               libcriterion-dev gnuplot-nox pkg-config universal-ctags libpng-dev python3 python3-numpy \
+               libarpack2-dev
 BENCH_PACKAGES = libcgal-dev
+
+# ARPACK (eigen.h's eigensolver, statics.h's stability test) only for the programs that use it: the
+# test binary and validate_statics_stability (its own implementation unit, build/obj/impl_arpack.o).
+ARPACK_FLAGS = -DWR_USE_ARPACK=1
+ARPACK_LIBS  = -larpack
 
 SAN = -fsanitize=address,undefined,float-cast-overflow -fno-omit-frame-pointer -fno-sanitize-recover=all
 
@@ -75,6 +81,14 @@ bin/wrinkle-triangulate: drivers/wrinkle-triangulate.c build/obj/cli.o build/obj
 	@mkdir -p bin
 	$(CC) $(ALL_CFLAGS) $< build/obj/cli.o build/obj/impl_cdt.o -o $@ -lm
 
+build/obj/impl_arpack.o: drivers/lib/impl.c $(HEADERS) $(EXTRA_HDR)
+	@mkdir -p $(dir $@)
+	$(CC) $(ALL_CFLAGS) $(ARPACK_FLAGS) -c $< -o $@
+
+bin/validate_statics_stability: validation/validate_statics_stability.c build/obj/impl_arpack.o $(filter-out build/obj/impl.o,$(LIB_OBJ)) $(HEADERS) $(EXTRA_HDR)
+	@mkdir -p bin
+	$(CC) $(ALL_CFLAGS) $(ARPACK_FLAGS) $< build/obj/impl_arpack.o $(filter-out build/obj/impl.o,$(LIB_OBJ)) -o $@ $(LIBS) $(ARPACK_LIBS)
+
 bin/%: validation/%.c $(LIB_OBJ) $(HEADERS) $(EXTRA_HDR)
 	@mkdir -p bin
 	$(CC) $(ALL_CFLAGS) $< $(LIB_OBJ) -o $@ $(LIBS)
@@ -105,13 +119,13 @@ TEST_OBJ = $(patsubst tests/%.c,build/test/obj/%.o,$(TEST_SRC) tests/impl.c) \
            $(patsubst drivers/lib/%.c,build/test/obj/lib_%.o,$(filter-out drivers/lib/impl.c,$(LIB_SRC)))
 build/test/obj/%.o: tests/%.c
 	@mkdir -p build/test/obj
-	$(CC) $(ALL_CFLAGS) $(SAN) -O1 -MMD -MP -c $< -o $@
+	$(CC) $(ALL_CFLAGS) $(ARPACK_FLAGS) $(SAN) -O1 -MMD -MP -c $< -o $@
 build/test/obj/lib_%.o: drivers/lib/%.c
 	@mkdir -p build/test/obj
-	$(CC) $(ALL_CFLAGS) $(SAN) -O1 -MMD -MP -c $< -o $@
+	$(CC) $(ALL_CFLAGS) $(ARPACK_FLAGS) $(SAN) -O1 -MMD -MP -c $< -o $@
 build/test/wrinkle_tests: $(TEST_OBJ)
 	@mkdir -p build/test
-	$(CC) $(ALL_CFLAGS) $(SAN) -O1 $(TEST_OBJ) -o $@ $(LIBS) -lcriterion
+	$(CC) $(ALL_CFLAGS) $(ARPACK_FLAGS) $(SAN) -O1 $(TEST_OBJ) -o $@ $(LIBS) $(ARPACK_LIBS) -lcriterion
 -include $(TEST_OBJ:.o=.d)
 
 check-headers:

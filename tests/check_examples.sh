@@ -16,15 +16,15 @@
 #     <static lines>
 #     int main(void) { <body> return 0; }
 # compiled with -Wall -Wextra -pedantic -Werror (no warning is relaxed), linked with the libraries
-# the headers name (FFTW for spectrum.h, CHOLMOD with -DWR_USE_CHOLMOD=1), and run in a scratch
+# the headers name (FFTW for spectrum.h, CHOLMOD with -DWR_USE_CHOLMOD=1, ARPACK with -DWR_USE_ARPACK=1), and run in a scratch
 # directory (examples may write files) under a time limit of EXAMPLE_SECONDS (default 10 s; the
 # examples are written to take well under 1 s). Prints one line per failure and a summary.
 # wrinkle.h (the umbrella header) has no example of its own: its examples are examples/minimal_*.
 CC=${CC:-cc}; CXX=${CXX:-c++}
 root=$(cd "$(dirname "$0")/.." && pwd) || exit 2
 limit=${EXAMPLE_SECONDS:-10}
-flags="-O1 -Wall -Wextra -pedantic -Werror -ffp-contract=off -I$root/include -I/usr/include/suitesparse -DWR_USE_CHOLMOD=1"
-libs="-lcholmod -lfftw3 -lm"
+flags="-O1 -Wall -Wextra -pedantic -Werror -ffp-contract=off -I$root/include -I/usr/include/suitesparse -DWR_USE_CHOLMOD=1 -DWR_USE_ARPACK=1"
+libs="-lcholmod -larpack -lfftw3 -lm"
 tmp=$(mktemp -d) || exit 2
 trap 'rm -rf "$tmp"' EXIT
 pass=0; fail=0

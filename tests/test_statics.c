@@ -1245,3 +1245,177 @@ Test(statics, affine_predictor_absolute_reference_hybrid) {
     wr_shell_free(&s);
     wr_mesh_free(&m);
 }
+
+/* ---- stability (statics.h ON STABILITY) ---------------------------------------------------------
+ * An Euler strip: L × W = 0.1 × 0.01 m, 40 × 4 union-jack grid, E = 1 MPa, ν = 0 (so plate and beam
+ * bending agree: D = E h³/12), h = 0.5 mm, StVK + mid-edge bending, both short edges' vertices held
+ * (pinned: the mid-edge normal of a boundary edge is its face's, so no moment is carried there), the
+ * strip compressed by ε. The flat compressed state is an equilibrium at every ε; with the rest-area
+ * metric its lowest eigenvalue is the Rayleigh quotient of w = sin(πx/L): λ₁(ε) = D k⁴ − E h ε k²,
+ * k = π/L, which vanishes at Euler's ε_cr = D k²/(E h) = π²h²/(12 L²) = 2.056e-5. Past it the strip
+ * buckles to the amplitude that takes up the excess end-shortening, ½∫w'² dx = (ε − ε_cr) L:
+ * A = (2L/π) √(ε − ε_cr). Measured discretisation error of λ₁ on this grid: 0.10 % at ε = 0 (0.03 %
+ * on 80 × 8), hence the 1 % tolerances below. */
+#define ST_L 0.1
+#define ST_W 0.01
+#define ST_H 5e-4
+#define ST_E 1e6
+#define ST_PI 3.14159265358979323846
+
+typedef struct st_strip {
+    wr_mesh m;
+    wr_shell s;
+    double *x;
+    uint8_t *fix;
+} st_strip;
+
+static void st_strip_make(st_strip *S, double eps) {
+    wr_shell_desc d;
+    int32_t i;
+    cr_assert_eq(wr_mesh_rectangle(&S->m, ST_L, ST_W, 40, 4, NULL), WR_OK);
+    memset(&d, 0, sizeof d);
+    d.young = ST_E, d.poisson = 0.0, d.thickness = ST_H;
+    cr_assert_eq(wr_shell_create(&S->s, &S->m, &d, NULL), WR_OK);
+    S->x = (double *)malloc(sizeof(double) * 3 * S->m.nv);
+    S->fix = (uint8_t *)calloc((size_t)S->m.nv, 1);
+    for (i = 0; i < S->m.nv; ++i) {
+        S->x[3 * i] = S->m.pos[3 * i] * (1.0 - eps); /* the flat uniformly compressed state, exactly flat */
+        S->x[3 * i + 1] = S->m.pos[3 * i + 1];
+        S->x[3 * i + 2] = 0.0;
+        S->fix[i] = S->m.pos[3 * i] < 1e-9 || S->m.pos[3 * i] > ST_L - 1e-9;
+    }
+}
+
+static void st_strip_free(st_strip *S) {
+    free(S->x), free(S->fix);
+    wr_shell_free(&S->s);
+    wr_mesh_free(&S->m);
+}
+
+static double st_zmax(const st_strip *S) {
+    double z = 0.0;
+    int32_t i;
+    for (i = 0; i < S->m.nv; ++i) z = fmax(z, fabs(S->x[3 * i + 2]));
+    return z;
+}
+
+static void st_strip_desc(wr_statics_desc *d, const st_strip *S, int check) {
+    memset(d, 0, sizeof *d);
+    d->loads.fixed = S->fix;
+    d->linear.solver.method = WR_SOLVER_CHOLMOD;
+    d->hessian.projection = WR_PROJECT_NONE;
+    d->stability.check = check;
+}
+
+Test(statics, stability_euler_strip_critical_strain) {
+    double D = ST_E * ST_H * ST_H * ST_H / 12.0, k = ST_PI / ST_L, eps[2] = {0.8e-5, 1.6e-5}, lam[2], ecr, ecr_exact;
+    int j;
+    for (j = 0; j < 2; ++j) {
+        st_strip S;
+        wr_statics_desc d;
+        wr_statics_stats st;
+        wr_diag dg;
+        double exact = D * k * k * k * k - ST_E * ST_H * eps[j] * k * k;
+        st_strip_make(&S, eps[j]);
+        st_strip_desc(&d, &S, 1);
+        cr_assert_eq(wr_statics_solve(&S.s, S.x, &d, &st, &dg), WR_OK, "%s", dg.message);
+        cr_assert_eq(st.stability_checks, 1);
+        cr_assert_eq(st.stability_negative, 0); /* below ε_cr the flat state is a minimum */
+        cr_assert_eq(st.stability_escapes, 0);
+        lam[j] = st.stability_eigs[0];
+        cr_assert(fabs(lam[j] - exact) <= 0.01 * D * k * k * k * k, "ε = %g: λ₁ = %.6g, closed form %.6g", eps[j], lam[j], exact);
+        cr_assert(st.stability_eigs[1] > 10.0 * lam[j]); /* the next mode is sin(2πx/L), ~16 D k⁴ */
+        cr_assert(st_zmax(&S) == 0.0);
+        st_strip_free(&S);
+    }
+    /* λ₁ is linear in ε: its zero is the critical strain the eigensolver predicts */
+    ecr = eps[0] - lam[0] * (eps[1] - eps[0]) / (lam[1] - lam[0]);
+    ecr_exact = ST_PI * ST_PI * ST_H * ST_H / (12.0 * ST_L * ST_L);
+    cr_assert(fabs(ecr - ecr_exact) <= 0.01 * ecr_exact, "ε_cr %.6g vs Euler %.6g", ecr, ecr_exact);
+}
+
+Test(statics, stability_escapes_the_unstable_flat_strip) {
+    /* ε = 2 ε_cr, started exactly flat: the flat state is an equilibrium (every out-of-plane force is
+     * zero by symmetry) but a saddle. Newton alone stays on it; the stability test must find the
+     * negative mode, step along it and re-solve to the buckled minimum A = (2L/π)√(ε − ε_cr). */
+    st_strip off, on;
+    wr_statics_desc d;
+    wr_statics_stats s0, s1;
+    wr_diag dg;
+    double ecr = ST_PI * ST_PI * ST_H * ST_H / (12.0 * ST_L * ST_L), eps = 2.0 * ecr;
+    double D = ST_E * ST_H * ST_H * ST_H / 12.0, k = ST_PI / ST_L, A = 2.0 * ST_L / ST_PI * sqrt(eps - ecr);
+    st_strip_make(&off, eps);
+    st_strip_desc(&d, &off, 0);
+    cr_assert_eq(wr_statics_solve(&off.s, off.x, &d, &s0, &dg), WR_OK, "%s", dg.message);
+    cr_assert(st_zmax(&off) == 0.0, "without the test the strip stays flat (zmax %g)", st_zmax(&off));
+    st_strip_make(&on, eps);
+    st_strip_desc(&d, &on, 2); /* test and report only: flat, with its negative eigenvalue */
+    cr_assert_eq(wr_statics_solve(&on.s, on.x, &d, &s1, &dg), WR_OK, "%s", dg.message);
+    cr_assert(st_zmax(&on) == 0.0);
+    cr_assert_eq(s1.stability_negative, 1);
+    cr_assert_eq(s1.stability_escapes, 0);
+    st_strip_free(&on);
+    st_strip_make(&on, eps);
+    st_strip_desc(&d, &on, 1);
+    cr_assert_eq(wr_statics_solve(&on.s, on.x, &d, &s1, &dg), WR_OK, "%s", dg.message);
+    cr_assert_eq(s1.stability_negative_first, 1);
+    cr_assert(fabs(s1.stability_lambda_first - (D * k * k * k * k - ST_E * ST_H * eps * k * k)) <= 0.01 * D * k * k * k * k);
+    cr_assert(s1.stability_escapes >= 1);
+    cr_assert_eq(s1.stability_negative, 0, "the buckled state is a minimum");
+    cr_assert(fabs(st_zmax(&on) - A) <= 0.02 * A, "amplitude %.5g vs closed form %.5g", st_zmax(&on), A);
+    cr_assert(s1.energy < s0.energy);
+    cr_assert_float_eq(s1.stability_energy_drop, s0.energy - s1.energy, 1e-6 * s0.energy);
+    st_strip_free(&off);
+    st_strip_free(&on);
+}
+
+Test(statics, stability_after_every_load_step) {
+    /* The same strip compressed by a prescribed motion of its right edge in 3 increments to
+     * ε = 3 ε_cr from rest: the first increment (ε_cr) is still flat and stable, later ones are
+     * flat saddles unless each load step is tested (the flat path is an equilibrium path). */
+    int on;
+    double ecr = ST_PI * ST_PI * ST_H * ST_H / (12.0 * ST_L * ST_L), eps = 3.0 * ecr;
+    double A = 2.0 * ST_L / ST_PI * sqrt(eps - ecr);
+    for (on = 0; on < 2; ++on) {
+        st_strip S;
+        wr_statics_desc d;
+        wr_statics_stats st;
+        wr_motion mo;
+        wr_diag dg;
+        int32_t *verts, nver = 0, i;
+        st_strip_make(&S, 0.0);
+        verts = (int32_t *)malloc(sizeof(int32_t) * S.m.nv);
+        for (i = 0; i < S.m.nv; ++i)
+            if (S.m.pos[3 * i] > ST_L - 1e-9) verts[nver++] = i;
+        memset(&mo, 0, sizeof mo);
+        mo.kind = WR_MOTION_STRETCH, mo.verts = verts, mo.n_verts = nver, mo.axis[0] = 1.0, mo.amount = -eps;
+        st_strip_desc(&d, &S, on);
+        d.increments.predictor = WR_STATICS_PREDICT_AFFINE;
+        cr_assert_eq(wr_statics_solve_incremental(&S.s, S.x, &d, &mo, 1, 3, &st, &dg), WR_OK, "%s", dg.message);
+        if (!on) {
+            cr_assert(st_zmax(&S) == 0.0, "zmax %g", st_zmax(&S));
+            cr_assert_eq(st.stability_checks, 0);
+        } else {
+            cr_assert(st.stability_checks >= 4, "%d checks (3 steps, one escape)", (int)st.stability_checks);
+            cr_assert(st.stability_escapes >= 1);
+            cr_assert_eq(st.stability_negative, 0);
+            cr_assert(fabs(st_zmax(&S) - A) <= 0.02 * A, "amplitude %.5g vs closed form %.5g", st_zmax(&S), A);
+        }
+        free(verts);
+        st_strip_free(&S);
+    }
+}
+
+Test(statics, stability_option_errors) {
+    st_strip S;
+    wr_statics_desc d;
+    wr_statics_stats st;
+    wr_diag dg;
+    st_strip_make(&S, 1e-5);
+    st_strip_desc(&d, &S, 3);
+    cr_assert_eq(wr_statics_solve(&S.s, S.x, &d, &st, &dg), WR_ERR_INVALID_ARG);
+    st_strip_desc(&d, &S, 1);
+    d.stability.amplitude = -1.0;
+    cr_assert_eq(wr_statics_solve(&S.s, S.x, &d, &st, &dg), WR_ERR_INVALID_ARG);
+    st_strip_free(&S);
+}

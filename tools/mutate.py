@@ -67,9 +67,12 @@ COMMON = [f for f in make_variable("CFLAGS_COMMON", ["-g", "-Wall", "-Wextra", "
                                                      "-Iinclude", "-Idrivers/lib", "-I/usr/include/suitesparse",
                                                      "-DWR_USE_CHOLMOD=1", "-DWR_USE_FFTW=1", "-DWR_USE_LIBPNG=1"])
           if not re.fullmatch(r"-O.*", f)]
-TEST_FLAGS = ["-std=c11"] + COMMON + ["-O1"] + SAN          # as the Makefile's test binary
+# the test binary also gets ARPACK (eigen.h, statics.h ON STABILITY), as the Makefile builds it
+ARPACK_FLAGS = make_variable("ARPACK_FLAGS", ["-DWR_USE_ARPACK=1"])
+TEST_FLAGS = ["-std=c11"] + COMMON + ARPACK_FLAGS + ["-O1"] + SAN          # as the Makefile's test binary
 VALID_FLAGS = ["-std=c11"] + COMMON + ["-O2"]                # as the Makefile's drivers/validators
-LIBS = make_variable("LIBS", ["-lcjson", "-lcholmod", "-lfftw3", "-lpng", "-lgsl", "-lgslcblas", "-lm"])
+LIBS = make_variable("LIBS", ["-lcjson", "-lcholmod", "-lfftw3", "-lpng", "-lgsl", "-lgslcblas", "-lm"]) + \
+    make_variable("ARPACK_LIBS", ["-larpack"])
 MODULE_GUARD = re.compile(r"^#ifndef WRINKLE_([A-Z0-9_]+)_IMPLEMENTATION_DONE", re.M)
 
 

@@ -804,6 +804,7 @@ wr_status wr_scene_run_solve(wr_scene_run *run, wr_scene_progress_fn progress, v
     d.increments.absolute_reference = 1;
     d.increments.hybrid_switch = sc->hessian == WR_SCENE_HESSIAN_HYBRID ? SC_HYBRID_SWITCH : 0.0;
     d.increments.done = sc_step_done;
+    d.stability = sc->stability;
     memset(&pg, 0, sizeof pg);
     pg.run = run, pg.fn = progress, pg.user = user, pg.worst = WR_OK, pg.diag = diag;
     d.progress = progress ? sc_progress : NULL;

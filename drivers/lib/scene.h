@@ -116,6 +116,9 @@ typedef struct wr_scene {
     double perturb;   /* [m], applied at the first load step */
     uint64_t seed;
     wr_scene_hessian hessian;
+    /* statics.h ON STABILITY; not read from JSON (zero = off): programs set it
+     * (validation/validate_statics_stability.c) */
+    wr_statics_stability_desc stability;
 } wr_scene;
 
 /* Everything one solve needs and produces. */

@@ -3,7 +3,8 @@
  * sewn surfaces, frictionless contact with analytic obstacles (plane, sphere, capsule), solved by
  * newton.h's projected Newton with linear solves through spd.h.
  * wrinkle v0.1.0 — MIT licence (see LICENSE). Needs core.h, sparse.h, spd.h (CHOLMOD when built
- * with WR_USE_CHOLMOD=1, see spd.h), newton.h, mesh.h, tft.h, shell.h; otherwise only libc and libm.
+ * with WR_USE_CHOLMOD=1, see spd.h), newton.h, mesh.h, tft.h, shell.h, eigen.h (the opt-in
+ * stability test needs its ARPACK, WR_USE_ARPACK=1, -larpack); otherwise only libc and libm.
  *
  * Minimises Π(x) = E_shell(x) − Σ_v m_v g·x_v − p·V(x) + Σ_{free v, obstacles o} κ·b(d_o(x_v))
  * over the free vertices: the TFW Sec. 4.1 base surface (TFT membrane + quadratic bending), and the
@@ -24,6 +25,9 @@
  *   wr_statics_pressure_element(x9, origin, p, g, H) one face's −p·V_f, gradient and Hessian
  *   wr_obstacle_distance(obstacle, x, grad)          signed distance [m] and its gradient
  *   wr_statics_barrier(d, dhat, kappa, b1, b2)       contact barrier κ·b(d) and its d-derivatives
+ *   desc.stability                                   test each equilibrium with the true Hessian's
+ *                                                    lowest eigenpairs, escape along negative modes
+ *   wr_statics_stability_test(shell, x, desc, stats, diag)   that test alone, at a given x
  *   (sewing — wr_mesh_weld, wr_mesh_pillow — is in mesh.h; the element projection is newton.h's
  *   wr_newton_project_spd)
  *
@@ -138,6 +142,25 @@
  *   the next increment, counted in stats.increments_failed); the status of the last increment is
  *   returned. The perturbation is applied in the first increment only.
  *
+ * ON STABILITY (stability.check = 1; needs eigen.h's ARPACK + CHOLMOD)
+ *   Newton stops at any stationary point, and a flat start under compression is one: every
+ *   out-of-plane force vanishes by symmetry, so an unstable flat state can be carried to full load.
+ *   With the option, after each increment of wr_statics_solve_incremental (and at the end of
+ *   wr_statics_solve) the equilibrium is tested with the TRUE Hessian K of Π (exact element blocks,
+ *   pressure and contact terms included, free DOFs only): eigen.h's LDLᵀ of K − σ0A gives the
+ *   number of eigenvalues below σ0 = −neg_tol · scale (the inertia; scale = mean diag K / mean A)
+ *   and shift-invert Lanczos the n_modes lowest pairs of K v = λ A v, A = the lumped rest vertex
+ *   areas (so λ is an energy per area and displacement², [Pa/m], comparable across meshes). When
+ *   an eigenvalue is below σ0 the lowest mode v is scaled to a largest vertex displacement of
+ *   `amplitude` (default: the thickness h, the scale of a wrinkle's amplitude, much larger than
+ *   round-off and much smaller than the mesh), x ± amplitude·v̂ are both re-solved (same options,
+ *   no perturbation) and the lower Π is kept if it is below Π(x); then the test repeats (at most
+ *   max_rounds escapes per increment). The stats report the eigenvalues at the returned x, the
+ *   negative count and lowest eigenvalue before the first escape, the modes found, the escapes and
+ *   the energy drop. check = 2 tests and reports without escaping. perturb_each = 1 also applies start.perturb at every increment (seed + k − 1),
+ *   not only the first. Checked against Euler's strip in tests/test_statics.c (λ₁ within 0.1 %,
+ *   the buckled amplitude within 1 %); cost and figures: docs/notes-statics.md.
+ *
  * ON ASSEMBLY CACHE
  *   Each solve (each continuation stage and load increment) assembles through sparse.h's
  *   wr_assembly (inside newton.h): the pattern of the first assembly is kept and every later one adds
@@ -158,10 +181,13 @@
 #include "newton.h"
 #include "shell.h"
 #include "collision.h" /* wr_collision_barrier */
+#include "eigen.h"     /* the stability test (ON STABILITY) */
 
 #ifdef __cplusplus
 extern "C" {
 #endif
+
+#define WR_STATICS_STABILITY_EIGS 8 /* eigenvalues kept in the stats */
 
 typedef struct wr_statics_stats {
     int32_t iterations;         /* Newton steps taken (this solve; last increment for incremental) */
@@ -186,6 +212,19 @@ typedef struct wr_statics_stats {
     int32_t exact_steps;        /* Newton steps taken with the exact Hessian in a projected solve (ON PROJECTION) */
     int32_t ramp_fallback;      /* 1: the continuation's last stage did not converge, solved again without it */
     int32_t increment;          /* incremental solve: the increment being solved (1-based; progress callbacks) */
+    /* stability (ON STABILITY; zero when stability.check is off). Eigenvalues λ of K v = λ A v, K the
+     * true Hessian of Π on the free DOFs, A the lumped rest vertex areas: [J/m⁴ = Pa/m] */
+    int32_t stability_checks;   /* eigen-analyses (summed over increments) */
+    int32_t stability_modes;    /* negative eigenpairs found (summed over analyses) */
+    int32_t stability_escapes;  /* steps along a mode that lowered Π and were kept (summed) */
+    int32_t stability_iterations; /* Newton steps of the re-solves from the mode steps (summed) */
+    double stability_energy_drop; /* Π lowered by the kept escapes, summed [J] */
+    double t_stability;         /* seconds in the analyses and re-solves */
+    int32_t stability_negative_first; /* last increment: # negative eigenvalues before any escape */
+    double stability_lambda_first;    /* last increment: lowest eigenvalue before any escape */
+    int32_t stability_negative; /* # negative eigenvalues (below −neg_tol·scale) at the returned x */
+    int32_t stability_n_eigs;   /* eigenvalues in stability_eigs: the lowest at the returned x, ascending */
+    double stability_eigs[WR_STATICS_STABILITY_EIGS];
 } wr_statics_stats;
 
 
@@ -226,6 +265,12 @@ typedef struct wr_obstacle {
  *   increments    grad_tol 0 → stop.grad_tol, for the intermediate increments; predictor 0 = each
  *                 increment starts from the last equilibrium, 1 = secant predictor (ON MOTIONS AND
  *                 INCREMENTS)
+ *   stability     check 0 = off, 1 = test the equilibrium and escape along negative modes, 2 = test
+ *                 and report only (ON STABILITY; needs WR_USE_ARPACK and WR_USE_CHOLMOD, else
+ *                 WR_ERR_UNSUPPORTED); n_modes
+ *                 0 → 4 eigenpairs (<= 64); neg_tol 0 → WR_EIGEN_NEG_REL (eigen.h); amplitude 0 → the
+ *                 shell thickness [m] (largest vertex displacement of a mode step); max_rounds 0 → 4
+ *                 escapes per test; perturb_each 1 = start.perturb at every increment (seed + k − 1)
  *   progress      NULL, else called with progress_user after every Newton step.
  * Out-of-range values (negative tolerances, factors outside their intervals, non-finite numbers)
  * are WR_ERR_INVALID_ARG naming the field. */
@@ -274,6 +319,11 @@ typedef struct wr_statics_increments_desc {
                  const wr_diag *diag);
 } wr_statics_increments_desc;
 
+typedef struct wr_statics_stability_desc {
+    int32_t check, n_modes, max_rounds, perturb_each;
+    double neg_tol, amplitude;
+} wr_statics_stability_desc;
+
 typedef struct wr_statics_desc {
     wr_statics_stop_desc stop;
     wr_statics_loads_desc loads;
@@ -284,6 +334,7 @@ typedef struct wr_statics_desc {
     wr_newton_linear_desc linear;
     wr_statics_continuation_desc continuation;
     wr_statics_increments_desc increments;
+    wr_statics_stability_desc stability;
     void (*progress)(void *user, const wr_statics_stats *stats);
     void *progress_user;
 } wr_statics_desc;
@@ -318,6 +369,11 @@ typedef struct wr_motion {
 
 WRDEF wr_status wr_statics_solve(const wr_shell *s, double *x, const wr_statics_desc *desc, wr_statics_stats *stats,
                                  wr_diag *diag);
+/* ON STABILITY without a solve: the lowest eigenpairs of Π's true Hessian at x (desc's loads, contact,
+ * pressure; desc.stability's n_modes and neg_tol; its check is ignored) into stats' stability fields
+ * (stability_eigs, stability_negative, …); x is not changed. Needs WR_USE_ARPACK and WR_USE_CHOLMOD. */
+WRDEF wr_status wr_statics_stability_test(const wr_shell *s, const double *x, const wr_statics_desc *desc,
+                                          wr_statics_stats *stats, wr_diag *diag);
 /* x: nv*3 reference positions in (the motions' X and the first warm start), final equilibrium out.
  * desc->fixed / desc->target still prescribe other vertices (held at their target). n_inc >= 1. */
 WRDEF wr_status wr_statics_solve_incremental(const wr_shell *s, double *x, const wr_statics_desc *desc,
@@ -732,6 +788,18 @@ static wr_status wr__statics_defaults(wr_statics_desc *d, const wr_statics_desc 
         nd.name = "statics";
         if ((rs = wr_newton_desc_check(&nd, diag)) != WR_OK) return rs;
     }
+    if (d->stability.check != 0 &&
+        (d->stability.check < 0 || d->stability.check > 2 || d->stability.n_modes < 0 || d->stability.n_modes > 64 || d->stability.max_rounds < 0 ||
+         !(d->stability.neg_tol >= 0.0) || !(d->stability.amplitude >= 0.0) || d->stability.amplitude - d->stability.amplitude != 0.0))
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1,
+                       "statics: stability.check %d (0, 1 or 2), n_modes %d (0..64), max_rounds %d, neg_tol %g, amplitude %g invalid",
+                       (int)d->stability.check, (int)d->stability.n_modes, (int)d->stability.max_rounds, d->stability.neg_tol,
+                       d->stability.amplitude);
+#if !(defined(WR_USE_ARPACK) && WR_USE_ARPACK && defined(WR_USE_CHOLMOD) && WR_USE_CHOLMOD)
+    if (d->stability.check)
+        return wr_fail(diag, WR_ERR_UNSUPPORTED, -1,
+                       "statics: stability.check needs eigen.h's ARPACK and CHOLMOD (WR_USE_ARPACK=1, WR_USE_CHOLMOD=1)");
+#endif
     return wr__statics_check_obstacles(d->contact.obstacles, d->contact.n_obstacles, diag);
 }
 
@@ -971,6 +1039,200 @@ done:
     return rs;
 }
 
+/* ---- stability of an equilibrium (ON STABILITY) ------------------------------------------------ */
+
+/* Π at x (loads and targets of d, no perturbation), through the reference-only solve */
+static wr_status wr__statics_energy_at(const wr_shell *s, double *x, const wr_statics_desc *d, double *Pi) {
+    wr_statics_desc d2 = *d;
+    wr_statics_stats st;
+    wr_status rs;
+    d2.start.perturb = 0.0;
+    d2.stability.check = 0;
+    rs = wr__statics_solve_one(s, x, &d2, &st, NULL, 0.0, 1);
+    *Pi = st.energy;
+    return rs;
+}
+
+/* The true (unprojected) Hessian of Π at x into A (every term of wr__statics_hessian, exact element
+ * blocks), the fixed DOFs (nv*3) and the DOF metric: lumped rest vertex areas (ON STABILITY). */
+static wr_status wr__statics_true_hessian(const wr_shell *s, const double *x, const wr_statics_desc *d, wr_assembly *A,
+                                          uint8_t *fixd, double *metric, wr_diag *diag) {
+    wr__statics_ctx c;
+    wr_newton_hessian H;
+    int32_t f, k, i, n = 3 * s->nv, pass;
+    double *xc = (double *)wr_alloc_array((size_t)n, sizeof(double));
+    wr_status rs;
+    memset(&c, 0, sizeof c);
+    memset(&H, 0, sizeof H);
+    if (!xc) return wr_fail(diag, WR_ERR_NOMEM, -1, "statics: out of memory (%d DOFs)", (int)n);
+    memcpy(xc, x, sizeof(double) * (size_t)n);
+    c.s = s, c.d = d, c.fixv = d->loads.fixed, c.p = d->loads.pressure;
+    c.obs = d->contact.obstacles, c.nobs = d->contact.n_obstacles;
+    rs = wr__statics_loads(&c, xc, diag);
+    if (rs == WR_OK) rs = wr__statics_frame(&c, xc, diag);
+    if (rs == WR_OK) memcpy(fixd, c.fixd, (size_t)n);
+    H.assembly = A, H.proj = WR_PROJECT_NONE, H.block = 3;
+    for (pass = 0; pass < 2 && rs == WR_OK; ++pass) {
+        wr_assembly_begin(A);
+        if ((rs = wr__statics_hessian(&c, x, &H, diag)) != WR_OK || (rs = wr_assembly_end(A, diag)) != WR_OK || !A->stale)
+            break;
+    }
+    memset(metric, 0, sizeof(double) * (size_t)n);
+    for (f = 0; f < s->nf; ++f)
+        for (k = 0; k < 3; ++k)
+            for (i = 0; i < 3; ++i) metric[3 * s->faces[3 * f + k] + i] += s->area[f] / 3.0;
+    wr_free(c.fext), wr_free(c.mass), wr_free(c.fixd), wr_free(xc);
+    return rs;
+}
+
+/* The lowest eigenpairs of the true Hessian at x (eigen.h, K v = λ A v on the free DOFs). */
+static wr_status wr__statics_eigen(const wr_shell *s, const double *x, const wr_statics_desc *d,
+                                   const wr_statics_stability_desc *sd, uint64_t seed, wr_eigen_result *er, wr_diag *diag) {
+    wr_assembly A;
+    wr_eigen_desc ed;
+    int32_t n = 3 * s->nv, i, nfree = 0;
+    uint8_t *fixd = (uint8_t *)wr_alloc_array((size_t)n, 1);
+    double *metric = (double *)wr_alloc_array((size_t)n, sizeof(double));
+    wr_status rs = wr_assembly_init(&A, s->nv, 3, diag);
+    memset(er, 0, sizeof *er);
+    if (rs == WR_OK && (!fixd || !metric)) rs = wr_fail(diag, WR_ERR_NOMEM, -1, "statics: out of memory (%d DOFs)", (int)n);
+    if (rs == WR_OK) rs = wr__statics_true_hessian(s, x, d, &A, fixd, metric, diag);
+    for (i = 0; fixd && i < n; ++i) nfree += !fixd[i];
+    memset(&ed, 0, sizeof ed);
+    ed.nev = sd->n_modes < nfree - 1 ? sd->n_modes : nfree - 1;
+    ed.neg_rel = sd->neg_tol;
+    ed.fixed = fixd, ed.metric = metric, ed.seed = seed;
+    if (rs == WR_OK && ed.nev < 1) rs = wr_fail(diag, WR_ERR_INVALID_ARG, -1, "statics: %d free DOFs, no stability test", (int)nfree);
+    if (rs == WR_OK) rs = wr_eigen_lowest(&A.A, &ed, er, diag);
+    wr_assembly_free(&A), wr_free(fixd), wr_free(metric);
+    return rs;
+}
+
+/* the analysis into the stats: eigenvalues at x, negative count; first = before any escape */
+static void wr__statics_stab_record(const wr_eigen_result *er, int first, wr_statics_stats *st) {
+    int32_t k;
+    st->stability_checks++;
+    st->stability_negative = er->n_negative;
+    st->stability_n_eigs = er->nev < WR_STATICS_STABILITY_EIGS ? er->nev : WR_STATICS_STABILITY_EIGS;
+    for (k = 0; k < st->stability_n_eigs; ++k) st->stability_eigs[k] = er->values[k];
+    if (first) {
+        st->stability_negative_first = er->n_negative;
+        st->stability_lambda_first = er->nev > 0 ? er->values[0] : 0.0;
+    }
+    for (k = 0; k < er->nev; ++k) st->stability_modes += er->values[k] < er->sigma0;
+}
+
+/* re-solve from a trial state (the caller's solve: one increment, or the plain solve) */
+typedef wr_status (*wr__statics_resolve_fn)(void *user, double *x, wr_statics_stats *st, wr_diag *diag);
+
+/* ON STABILITY: step along the lowest negative mode, both signs, re-solve each; the lower Π is kept when
+ * it is below Π(x). *best_st receives the kept solve's stats. Returns 1 when x moved. */
+static int wr__statics_escape(const wr_shell *s, double *x, const double *mode, double amp, double Pi0,
+                              wr__statics_resolve_fn fn, void *user, double *xt, wr_statics_stats *st,
+                              wr_statics_stats *best_st) {
+    int32_t n = 3 * s->nv, i, v, sgn, moved = 0;
+    double vmax = 0.0, best = Pi0 - WR_NEWTON_ENERGY_NOISE * fmax(fabs(Pi0), 1e-300);
+    double *xb = xt + n;
+    for (v = 0; v < s->nv; ++v)
+        vmax = fmax(vmax, sqrt(mode[3 * v] * mode[3 * v] + mode[3 * v + 1] * mode[3 * v + 1] + mode[3 * v + 2] * mode[3 * v + 2]));
+    if (!(vmax > 0.0)) return 0;
+    for (sgn = -1; sgn <= 1; sgn += 2) {
+        wr_statics_stats s2;
+        wr_diag d2;
+        wr_status rs;
+        for (i = 0; i < n; ++i) xt[i] = x[i] + sgn * amp / vmax * mode[i];
+        rs = fn(user, xt, &s2, &d2);
+        st->stability_iterations += s2.iterations;
+        if (rs == WR_OK && s2.energy < best) {
+            best = s2.energy;
+            memcpy(xb, xt, sizeof(double) * (size_t)n);
+            *best_st = s2;
+            moved = 1;
+        }
+    }
+    if (moved) memcpy(x, xb, sizeof(double) * (size_t)n);
+    return moved;
+}
+
+/* ON STABILITY: analyse, escape while a negative mode lowers Π (at most max_rounds times), analyse the
+ * result. st holds the solve's stats at x on entry and at the returned x on exit (stability counters
+ * added). d: the solve's options (loads of this increment). */
+static wr_status wr__statics_stability(const wr_shell *s, double *x, const wr_statics_desc *d,
+                                       const wr_statics_stability_desc *user_sd, uint64_t seed, wr__statics_resolve_fn fn,
+                                       void *user, wr_statics_stats *st, wr_diag *diag) {
+    wr_statics_stability_desc sd = *user_sd;
+    wr_eigen_result er;
+    double t0 = wr_time_seconds(), amp, *xt;
+    int32_t round;
+    wr_status rs = WR_OK;
+    if (sd.n_modes == 0) sd.n_modes = 4;
+    if (sd.max_rounds == 0) sd.max_rounds = 4;
+    if (sd.neg_tol == 0.0) sd.neg_tol = WR_EIGEN_NEG_REL;
+    amp = sd.amplitude > 0.0 ? sd.amplitude : s->thickness;
+    if (!(amp > 0.0)) amp = 1e-2 * sqrt(2.0 * s->total_area / s->nf); /* no thickness: 1 % of the typical edge */
+    xt = (double *)wr_alloc_array(6 * (size_t)s->nv, sizeof(double));
+    if (!xt) return wr_fail(diag, WR_ERR_NOMEM, -1, "statics: out of memory (%d vertices)", (int)s->nv);
+    for (round = 0;; ++round) {
+        wr_statics_stats kept, saved;
+        if ((rs = wr__statics_eigen(s, x, d, &sd, seed, &er, diag)) != WR_OK) break;
+        wr__statics_stab_record(&er, round == 0, st);
+        if (er.n_negative == 0 || er.nev == 0 || round == sd.max_rounds || sd.check == 2 ||
+            !wr__statics_escape(s, x, er.vectors, amp, st->energy, fn, user, xt, st, &kept)) {
+            wr_eigen_result_free(&er);
+            break;
+        }
+        wr_eigen_result_free(&er);
+        /* x moved: the kept solve's figures, with the stability counters carried over */
+        saved = *st;
+        *st = kept;
+        st->stability_energy_drop = saved.stability_energy_drop + (saved.energy - kept.energy);
+        st->stability_escapes = saved.stability_escapes + 1;
+        st->stability_checks = saved.stability_checks, st->stability_modes = saved.stability_modes;
+        st->stability_iterations = saved.stability_iterations;
+        st->stability_negative_first = saved.stability_negative_first;
+        st->stability_lambda_first = saved.stability_lambda_first;
+    }
+    wr_eigen_result_free(&er);
+    wr_free(xt);
+    st->t_stability += wr_time_seconds() - t0;
+    return rs;
+}
+
+/* the plain solve's re-solve (stability off, no perturbation) */
+typedef struct wr__statics_plain {
+    const wr_shell *s;
+    wr_statics_desc d;
+} wr__statics_plain;
+
+static wr_status wr__statics_resolve_plain(void *user, double *x, wr_statics_stats *st, wr_diag *diag) {
+    const wr__statics_plain *p = (const wr__statics_plain *)user;
+    return wr_statics_solve(p->s, x, &p->d, st, diag);
+}
+
+WRDEF wr_status wr_statics_stability_test(const wr_shell *s, const double *x, const wr_statics_desc *desc,
+                                          wr_statics_stats *stats, wr_diag *diag) {
+    wr_statics_desc dk;
+    wr_statics_stats st;
+    wr_status rs;
+    double *xc;
+    memset(&st, 0, sizeof st);
+    if (stats) *stats = st;
+    if (!s || !x || !s->faces) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "statics: NULL shell or x");
+    if ((rs = wr__statics_defaults(&dk, desc, diag)) != WR_OK) return rs;
+    dk.stability.check = 2; /* report only: no re-solve, x unchanged */
+#if !(defined(WR_USE_ARPACK) && WR_USE_ARPACK && defined(WR_USE_CHOLMOD) && WR_USE_CHOLMOD)
+    return wr_fail(diag, WR_ERR_UNSUPPORTED, -1, "statics: the stability test needs WR_USE_ARPACK=1 and WR_USE_CHOLMOD=1");
+#endif
+    xc = (double *)wr_alloc_array(3 * (size_t)s->nv, sizeof(double));
+    if (!xc) return wr_fail(diag, WR_ERR_NOMEM, -1, "statics: out of memory (%d vertices)", (int)s->nv);
+    memcpy(xc, x, sizeof(double) * 3 * (size_t)s->nv);
+    if (wr__statics_energy_at(s, xc, &dk, &st.energy) != WR_OK) st.energy = NAN;
+    rs = wr__statics_stability(s, xc, &dk, &dk.stability, dk.start.seed, NULL, NULL, &st, diag);
+    wr_free(xc);
+    if (stats) *stats = st;
+    return rs;
+}
+
 /* ON MEMBRANE CONTINUATION: soft-membrane stages, then the real shell */
 WRDEF wr_status wr_statics_solve(const wr_shell *s, double *x, const wr_statics_desc *desc, wr_statics_stats *stats,
                                  wr_diag *diag) {
@@ -980,6 +1242,25 @@ WRDEF wr_status wr_statics_solve(const wr_shell *s, double *x, const wr_statics_
     wr_status rs;
     int32_t k;
     double gref, *x0;
+    if (desc && desc->stability.check) {
+        /* ON STABILITY: the solve, then the test of its equilibrium and the escapes */
+        wr__statics_plain pl;
+        wr_statics_stats st0;
+        if ((rs = wr__statics_defaults(&dk, desc, diag)) != WR_OK) return rs;
+        pl.s = s, pl.d = *desc;
+        pl.d.stability.check = 0;
+        rs = wr_statics_solve(s, x, &pl.d, &st0, diag);
+        if (rs == WR_OK || rs == WR_ERR_NOT_CONVERGED) {
+            wr_status r2;
+            pl.d.start.perturb = 0.0;
+            r2 = wr__statics_stability(s, x, &pl.d, &desc->stability, desc->start.seed, wr__statics_resolve_plain, &pl, &st0, diag);
+            if (r2 != WR_OK) rs = r2;
+            else if (st0.stability_escapes > 0) rs = WR_OK; /* the kept re-solve converged */
+        }
+        st0.t_total = wr_time_seconds() - t0;
+        if (stats) *stats = st0;
+        return rs;
+    }
     if (!desc || desc->continuation.membrane_ramp == 0.0) return wr__statics_solve_one(s, x, desc, stats, diag, 0.0, 0);
     memset(&acc, 0, sizeof acc);
     if (stats) *stats = acc;
@@ -1176,6 +1457,7 @@ typedef struct wr__statics_inc {
     uint8_t *fixed;
     double grad_tol, G;      /* the final tolerance; the absolute force scale (increments.absolute_reference) */
     int32_t k, n_inc;
+    wr_statics_stability_desc stab; /* the user's (ON STABILITY); dk.stability.check is 0 */
 } wr__statics_inc;
 
 static void wr__statics_inc_free(wr__statics_inc *I) {
@@ -1363,7 +1645,11 @@ static wr_status wr__statics_inc_step(wr__statics_inc *I, double *x, const wr_mo
     wr_status rs;
     for (j = 0; j < n_motions; ++j)
         if ((rs = wr_motion_apply(motions + j, I->s->nv, I->X, t, I->target, I->fixed, diag)) != WR_OK) return rs;
-    if (I->k > 1) I->dk.start.perturb = 0.0;
+    if (I->k > 1) {
+        /* the perturbation at the first increment only, or at every one (stability.perturb_each) */
+        I->dk.start.perturb = (I->stab.perturb_each && ud) ? ud->start.perturb : 0.0;
+        I->dk.start.seed = (ud ? ud->start.seed : 0) + (uint64_t)(I->k - 1);
+    }
     if (I->dk.increments.ramp_gravity)
         for (j = 0; j < 3; ++j) I->dk.loads.gravity[j] = ud->loads.gravity[j] * t;
     gtol = I->k < I->n_inc ? I->dk.increments.grad_tol : I->grad_tol;
@@ -1385,6 +1671,27 @@ static wr_status wr__statics_inc_step(wr__statics_inc *I, double *x, const wr_mo
     }
     memcpy(I->xprev, I->xsave, sizeof(double) * (size_t)n);
     return rs;
+}
+
+/* an increment's re-solve from a mode step (ON STABILITY): the same solve, without the perturbation */
+static wr_status wr__statics_inc_resolve(void *user, double *x, wr_statics_stats *st, wr_diag *diag) {
+    wr__statics_inc *I = (wr__statics_inc *)user;
+    double p = I->dk.start.perturb;
+    wr_status rs;
+    I->dk.start.perturb = 0.0;
+    rs = wr__statics_inc_solve(I, x, st, diag);
+    I->dk.start.perturb = p;
+    return rs;
+}
+
+/* the stability counters of one increment into the running total */
+static void wr__statics_stab_add(wr_statics_stats *to, const wr_statics_stats *from) {
+    to->stability_checks += from->stability_checks;
+    to->stability_modes += from->stability_modes;
+    to->stability_escapes += from->stability_escapes;
+    to->stability_iterations += from->stability_iterations;
+    to->stability_energy_drop += from->stability_energy_drop;
+    to->t_stability += from->t_stability;
 }
 
 WRDEF wr_status wr_statics_solve_incremental(const wr_shell *s, double *x, const wr_statics_desc *desc,
@@ -1411,9 +1718,18 @@ WRDEF wr_status wr_statics_solve_incremental(const wr_shell *s, double *x, const
     I.user_desc = desc;
     I.n_inc = n_inc;
     I.grad_tol = I.dk.stop.grad_tol;
+    I.stab = I.dk.stability;
+    I.dk.stability.check = 0;
     if ((rs = wr__statics_inc_setup(&I, x, motions, n_motions, diag)) != WR_OK) goto done;
     for (I.k = 1; I.k <= n_inc; ++I.k) {
         rs = wr__statics_inc_step(&I, x, motions, n_motions, &sk, diag);
+        if (I.stab.check && (rs == WR_OK || rs == WR_ERR_NOT_CONVERGED)) {
+            /* ON STABILITY: test this increment's equilibrium, escape along its negative modes */
+            wr_status r2 = wr__statics_stability(s, x, &I.dk, &I.stab, I.dk.start.seed, wr__statics_inc_resolve, &I, &sk, diag);
+            if (r2 != WR_OK) rs = r2;
+            else if (sk.stability_escapes > 0) rs = WR_OK; /* the kept re-solve converged */
+        }
+        wr__statics_stab_add(&acc, &sk);
         sk.increment = I.k;
         acc.total_iterations += sk.iterations;
         wr__statics_work_add(&acc, &sk);
@@ -1440,6 +1756,12 @@ WRDEF wr_status wr_statics_solve_incremental(const wr_shell *s, double *x, const
         out.elements_assembled = acc.elements_assembled;
         out.increments = acc.increments;
         out.increments_failed = acc.increments_failed;
+        out.stability_checks = acc.stability_checks;
+        out.stability_modes = acc.stability_modes;
+        out.stability_escapes = acc.stability_escapes;
+        out.stability_iterations = acc.stability_iterations;
+        out.stability_energy_drop = acc.stability_energy_drop;
+        out.t_stability = acc.t_stability;
         out.t_total = wr_time_seconds() - t0;
         acc = out;
     }

@@ -6,15 +6,16 @@
  *
  * WHAT IS INCLUDED
  *   Always (libc + libm only, MIT): core, mesh, sparse, pcg (iterative solvers), resolution,
- *   transition, tft, shell, poisson, triangulate, statics, dynamics, body, garment, wrinkle_field,
- *   mesher, tfw, collision,
- *   render.
+ *   transition, tft, shell, poisson, triangulate, eigen (its solvers opt-in), statics, dynamics,
+ *   body, garment, wrinkle_field, mesher, tfw, collision, render.
  *   Link with -lm (pkg-config: wrinkle-core).
  *   Opt-in backends, each behind a macro so that a binary without them carries no GPL code:
  *     -DWR_USE_FFTW=1     also include spectrum.h (wrinkle counting; FFTW 3, GPL-2+, -lfftw3)
  *     -DWR_USE_CHOLMOD=1  pcg.h's direct solver backend (SuiteSparse CHOLMOD, -lcholmod,
  *                         -I/usr/include/suitesparse on Debian)
  *     -DWR_USE_LIBPNG=1   render.h's PNG writer (libpng, zlib licence, -lpng)
+ *     -DWR_USE_ARPACK=1   eigen.h's eigensolver and statics.h's stability test (ARPACK-ng, BSD-3,
+ *                         -larpack; with WR_USE_CHOLMOD)
  *   pkg-config `wrinkle` sets all three (the configuration the kit's own programs use).
  *   spectrum.h may always be included directly; the macro only decides what this umbrella pulls in.
  *
@@ -36,6 +37,7 @@
 #include "poisson.h"
 #include "triangulate.h"
 #include "polyfile.h"
+#include "eigen.h"
 #include "statics.h"
 #include "dynamics.h"
 #include "body.h"
