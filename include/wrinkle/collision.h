@@ -812,6 +812,9 @@ WRDEF int32_t wr_collision_accd(wr_contact_kind kind, const double x[12], const 
 
 /* ==== exact predicates =========================================================================== */
 
+#ifndef WR__EPS /* triangulate.h's, when its implementation is in another unit */
+#define WR__EPS 1.1102230246251565e-16 /* 2^-53, half an ulp of 1 */
+#endif
 #define WR__O3D_BOUND ((7.0 + 56.0 * WR__EPS) * WR__EPS) /* Shewchuk's o3derrboundA */
 
 /* det[b−a, c−a, d−a] exactly, cofactor expansion along the first row (expansions by magnitude). */

@@ -248,7 +248,7 @@ WRDEF wr_status wr_tfw_fields(const wr_mesh *m, const double *base_pos, const wr
         res->wfree[f] = wf.wfree[f];
         res->n_wrinkle_free += wf.wfree[f];
     }
-    wr__tfw_count_strain(&wf, D.classify.compress_tol > 0.0 ? D.classify.compress_tol : WR__WF_COMPRESS_TOL, res);
+    wr__tfw_count_strain(&wf, D.classify.compress_tol > 0.0 ? D.classify.compress_tol : WR_WF_COMPRESS_TOL_DEFAULT, res);
     if (!D.allow_slack && res->n_slack > 0 && res->n_slack == m->nf - res->n_wrinkle_free) {
         st = wr_fail(diag, WR_ERR_DOMAIN, -1, "tfw: %s (%d faces; allow_slack solves it anyway)",
                      wr_tfw_outcome_reason(WR_TFW_SLACK), (int)res->n_slack);

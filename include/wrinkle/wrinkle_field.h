@@ -173,6 +173,8 @@ WRDEF wr_status wr_wf_create(wr_wf *wf, const wr_mesh *m, const double *base_pos
                              wr_diag *diag);
 WRDEF void wr_wf_free(wr_wf *wf);
 
+/* The default compress_tol below (tfw.h counts strain states with the same threshold). */
+#define WR_WF_COMPRESS_TOL_DEFAULT 1e-10
 /* Defaults: compress_tol = 1e-10 (strain; a face counts as compressed when its smoothed most
  * negative Eq. 29 eigenvalue is < -compress_tol, so round-off on an unstrained sheet is "tension"). */
 typedef struct wr_wf_classify_desc {
@@ -374,7 +376,7 @@ extern "C" {
 
 #define WR__WF_PI 3.14159265358979323846
 /* Default tolerances (see the desc comments for their source). */
-#define WR__WF_COMPRESS_TOL 1e-10
+#define WR__WF_COMPRESS_TOL WR_WF_COMPRESS_TOL_DEFAULT
 #define WR__WF_K_MAX 0.01         /* [m] App. E.2: k = min(0.01, 0.1 bbox) */
 #define WR__WF_MAX_ITER 1000      /* App. E.3 rule 4 */
 #define WR__WF_TOL_ENERGY 1e-10   /* App. E.3 rule 1 */
