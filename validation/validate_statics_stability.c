@@ -224,7 +224,7 @@ static void metrics_pair(wr_vres *v, const srow *off, const srow *on, const char
     snprintf(q, sizeof q, "%s with the test: amplitude (peak-to-peak/2 at L/2)", name);
     wr_vres_info(v, q, "mm", NAN, 1e3 * on->amplitude);
     snprintf(q, sizeof q, "%s: Π with the test minus Π without", name);
-    wr_vres_check(v, q, "J", NAN, on->energy - off->energy, "<= 1e-12 |Π without|",
+    wr_vres_check(v, q, "J", NAN, on->energy - off->energy, "<= 1e-12 x abs(Π without)",
                   on->ok && off->ok && on->energy <= off->energy + ENERGY_SLACK * fabs(off->energy));
 }
 
