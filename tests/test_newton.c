@@ -473,3 +473,43 @@ Test(newton, bad_options_and_failing_start) {
     x[4] = NAN;
     cr_expect_eq(wr_newton_solve(&p, x, &nd, NULL, &d), WR_ERR_DOMAIN);
 }
+
+/* ---- the Armijo test: a full Newton step that does not decrease E must be cut ---------------------
+ * E(x) = sqrt(1 + x²) (one DOF, convex, E'' > 0 everywhere): the Newton step from x is −x(1 + x²), so
+ * from x0 = 1 the full step lands on x = −1 with exactly the same energy. Armijo (sufficient decrease
+ * c·α·∇E·Δx < 0) rejects it and the halved step lands on the minimiser x = 0; a line search that
+ * accepted non-decreasing steps would bounce between ±1 until max_iter. */
+static wr_status sq_energy(void *user, const double *x, double *E, double *g, double *scale, wr_diag *d) {
+    (void)user;
+    (void)d;
+    *E = sqrt(1.0 + x[0] * x[0]);
+    if (g) g[0] = x[0] / *E;
+    if (scale) *scale = *E;
+    return WR_OK;
+}
+static wr_status sq_hessian(void *user, const double *x, wr_newton_hessian *H, wr_diag *d) {
+    double B = pow(1.0 + x[0] * x[0], -1.5);
+    (void)user;
+    (void)d;
+    return wr_newton_add_diagonal(H, 0, &B);
+}
+
+Test(newton, armijo_rejects_a_step_without_decrease) {
+    wr_newton_problem p;
+    wr_newton_desc nd;
+    wr_newton_stats st;
+    wr_diag d;
+    double x[1] = {1.0};
+    memset(&p, 0, sizeof p);
+    p.n_blocks = 1;
+    p.block = 1;
+    p.energy = sq_energy;
+    p.hessian = sq_hessian;
+    memset(&nd, 0, sizeof nd);
+    nd.shift.rel = 1e-15; /* the exact Newton step (the default shift would shorten it below |x| = 1) */
+    nd.max_iter = 50;
+    cr_assert_eq(wr_newton_solve(&p, x, &nd, &st, &d), WR_OK, "%s", d.message);
+    cr_expect(fabs(x[0]) < 1e-8, "x = %g, want the minimiser 0", x[0]);
+    cr_expect(st.iterations <= 3, "%d iterations (one halved step reaches x = 0 exactly)", (int)st.iterations);
+    cr_expect(st.line_search_evals >= 2, "the full step must have been tried and cut");
+}

@@ -1264,3 +1264,45 @@ Test(shell, cylinder_dihedral_equilateral_mesh) {
             free(F);
         }
 }
+
+/* Mixed Voronoi areas (Meyer et al. 2003) partition the surface: on a closed mesh every vertex has a
+ * quadratic-bending stencil and Σ_v A_v = Σ_f A_f exactly — circumcentric thirds on non-obtuse
+ * faces, A/2 to the obtuse corner and A/4 to the others on obtuse ones. The panel (a hexagon with its
+ * centre pushed towards one side) has obtuse faces, doubled into a closed pillow (mesh.h). Swapping
+ * the obtuse weights (A/4 obtuse, A/2 others) gives 1.25 A per obtuse face and fails. */
+Test(shell, mixed_voronoi_areas_partition_a_closed_surface) {
+    double pos[7 * 3] = {0}, asum = 0.0, vsum = 0.0;
+    int32_t faces[6 * 3], i, n_obtuse = 0;
+    wr_mesh panel, pil;
+    wr_shell sh;
+    wr_shell_desc sd;
+    wr_diag d;
+    for (i = 0; i < 6; ++i) {
+        pos[3 * i] = cos(i * 3.14159265358979323846 / 3.0);
+        pos[3 * i + 1] = sin(i * 3.14159265358979323846 / 3.0);
+        faces[3 * i] = 6, faces[3 * i + 1] = i, faces[3 * i + 2] = (i + 1) % 6;
+    }
+    pos[18] = 0.55; /* the centre, close to the edge between vertices 0 and 1 */
+    pos[19] = 0.3;
+    cr_assert_eq(wr_mesh_create(&panel, 7, pos, NULL, 6, faces, &d), WR_OK, "%s", d.message);
+    cr_assert_eq(wr_mesh_pillow(&pil, &panel, 0.1, &d), WR_OK, "%s", d.message);
+    memset(&sd, 0, sizeof sd);
+    sd.membrane = WR_MEMBRANE_TFT;
+    sd.bending = WR_BENDING_QUADRATIC;
+    sd.young = 1e6;
+    sd.poisson = 0.3;
+    sd.thickness = 1e-3;
+    cr_assert_eq(wr_shell_create(&sh, &pil, &sd, &d), WR_OK, "%s", d.message);
+    for (i = 0; i < 6; ++i) { /* the panel really has obtuse faces (angle at the centre > 90°) */
+        const double *c = pos + 18, *a = pos + 3 * i, *b = pos + 3 * ((i + 1) % 6);
+        if ((a[0] - c[0]) * (b[0] - c[0]) + (a[1] - c[1]) * (b[1] - c[1]) < 0.0) ++n_obtuse;
+    }
+    cr_assert(n_obtuse >= 1, "test panel has no obtuse face");
+    cr_assert_eq(sh.n_qb, pil.nv, "a closed surface: every vertex is interior (%d of %d)", (int)sh.n_qb, (int)pil.nv);
+    for (i = 0; i < pil.nf; ++i) asum += sh.area[i];
+    for (i = 0; i < sh.n_qb; ++i) vsum += sh.bending_stiffness / sh.qb_coef[i];
+    cr_assert(fabs(vsum / asum - 1.0) < 1e-12, "sum of vertex areas %.15g vs surface %.15g", vsum, asum);
+    wr_shell_free(&sh);
+    wr_mesh_free(&pil);
+    wr_mesh_free(&panel);
+}
