@@ -533,6 +533,10 @@ Test(mesh, lengths_areas_normals_on_rectangle) {
     }
     wr_mesh_face_areas(&m, 1, area);
     for (f = 0; f < m.nf; ++f) cr_assert_float_eq(area[f], 0.5, 1e-15);
+    /* the 3D areas of the flat mesh are the same half cells (make mutate: a 3D area without its ½
+     * survived the ">= 0.5" check below) */
+    wr_mesh_face_areas(&m, 0, area);
+    for (f = 0; f < m.nf; ++f) cr_assert_float_eq(area[f], 0.5, 1e-15, "3D area of face %d: %g", (int)f, area[f]);
     wr_mesh_face_normals(&m, fn);
     wr_mesh_vertex_normals(&m, vn);
     for (f = 0; f < m.nf; ++f) cr_assert_eq(fn[3 * f + 2], 1.0);
