@@ -232,7 +232,7 @@ typedef struct wr_dyn {
     const wr_shell *shell; /* borrowed, must outlive the sim */
     int32_t nv;            /* cloth vertices */
     wr_dyn_desc desc;      /* resolved defaults; pointer fields point at the copies below */
-    double *mass;          /* nv lumped masses [kg] */
+    double *mass;          /* nv lumped masses [kg]; may be changed between steps (e.g. a weighted hem) */
     uint8_t *fixed;        /* nv */
     int32_t *sew_pairs;    /* copy */
     wr_obstacle *analytic; /* copy */
@@ -342,7 +342,7 @@ typedef struct wr__dyn_work {
     wr_collision_mesh cm;      /* cloth faces + body faces over Newton's vector */
     wr_contact_set cs;         /* the contact set at the last evaluated point */
     double *target;            /* nb*3 body positions at the step's end (moving bodies) */
-    double *mshare, *mdiag;    /* nv: inertia share per face block, mass kept on the diagonal */
+    double *mshare, *mdiag;    /* nv: 1/(face blocks holding v), 1 where none does (mass on the diagonal) */
     int face_blocks;           /* the shell has face blocks (membrane, mid-edge or dihedral bending) */
     double *kbuf;              /* WR__DYN_CHUNK face blocks (18×18 each) of one chunk */
     int32_t *kvert;            /* per block: k, then k vertices (7 ints) */
@@ -711,7 +711,7 @@ static wr_status wr__dyn_face_block(const wr_dyn *sim, const double *z, int32_t 
                 for (j = 0; j < 3; ++j) Ke[(3 * a + i) * kk + 3 * b + j] = H18[(3 * idx[a] + i) * 18 + 3 * idx[b] + j];
     for (a = 0; a < n; ++a) {
         verts[a] = vs[idx[a]];
-        for (i = 0; i < 3; ++i) Ke[(3 * a + i) * kk + 3 * a + i] += c * ms[verts[a]];
+        for (i = 0; i < 3; ++i) Ke[(3 * a + i) * kk + 3 * a + i] += c * ms[verts[a]] * sim->mass[verts[a]];
     }
     *k = n;
     return WR_OK;
@@ -774,9 +774,11 @@ static void wr__dyn_mass_shares(wr_dyn *sim) {
         for (a = 0; a < 6; ++a)
             if (vs[a] >= 0 && (a < 3 || opp)) w->mshare[vs[a]] += 1.0;
     }
+    /* fractions, not masses: sim->mass may be changed after wr_dyn_create (a weighted hem), and the
+     * Hessian's inertia must stay the energy's */
     for (v = 0; v < sim->nv; ++v) {
-        w->mdiag[v] = w->mshare[v] > 0.0 ? 0.0 : sim->mass[v];
-        w->mshare[v] = w->mshare[v] > 0.0 ? sim->mass[v] / w->mshare[v] : 0.0;
+        w->mdiag[v] = w->mshare[v] > 0.0 ? 0.0 : 1.0;
+        w->mshare[v] = w->mshare[v] > 0.0 ? 1.0 / w->mshare[v] : 0.0;
     }
 }
 
@@ -800,7 +802,7 @@ static wr_status wr__dyn_hessian_cb(void *user, const double *z, wr_newton_hessi
     memset(B, 0, sizeof B);
     for (v = 0; v < sim->nv; ++v)
         if (w->mdiag[v] > 0.0) {
-            B[0] = B[4] = B[8] = c * w->mdiag[v];
+            B[0] = B[4] = B[8] = c * w->mdiag[v] * sim->mass[v];
             if ((st = wr_newton_add_diagonal(H, v, B)) != WR_OK) return st;
         }
     if (w->moving)
