@@ -679,41 +679,13 @@ static wr_status wr__dyn_contact_hessian(wr_dyn *sim, const double *zn, wr_newto
  * row-major, verts: k vertices; returns WR_OK or WR_ERR_GEOMETRY (an undefined normal). */
 static wr_status wr__dyn_face_block(const wr_dyn *sim, const double *z, int32_t f, double c, int32_t *k, int32_t verts[6],
                                     double *Ke) {
-    const wr_shell *s = sim->shell;
     const double *ms = sim->w->mshare;
-    double x18[18], H18[324], H9[81];
-    int32_t vs[6], idx[6], mask, n = 0, a, b, i, j, kk;
-    int bend = s->bending == WR_BENDING_MIDEDGE || s->bending == WR_BENDING_DIHEDRAL;
-    mask = wr_shell_face_stencil(s, f, vs);
-    for (a = 0; a < 6; ++a)
-        for (i = 0; i < 3; ++i) x18[3 * a + i] = vs[a] >= 0 ? z[3 * vs[a] + i] : 0.0;
-    if (bend) {
-        wr_status es = s->bending == WR_BENDING_MIDEDGE
-                           ? wr_shell_midedge_element(x18, mask, s->qbend + 9 * f, s->bbar ? s->bbar + 3 * f : NULL, NULL,
-                                                      NULL, H18, NULL)
-                           : wr_shell_dihedral_element(x18, mask, s->qbend + 9 * f, s->bbar ? s->bbar + 3 * f : NULL, NULL,
-                                                       NULL, H18, NULL);
-        if (es != WR_OK) return WR_ERR_GEOMETRY;
-    } else {
-        memset(H18, 0, sizeof H18);
-    }
-    if (s->membrane != WR_MEMBRANE_NONE) {
-        wr_shell_membrane_element(s, f, x18, NULL, H9);
-        for (a = 0; a < 9; ++a)
-            for (b = 0; b < 9; ++b) H18[a * 18 + b] += H9[a * 9 + b];
-    }
-    for (a = 0; a < 6; ++a)
-        if (vs[a] >= 0 && (a < 3 || bend)) idx[n++] = a;
-    kk = 3 * n;
-    for (a = 0; a < n; ++a)
-        for (b = 0; b < n; ++b)
-            for (i = 0; i < 3; ++i)
-                for (j = 0; j < 3; ++j) Ke[(3 * a + i) * kk + 3 * b + j] = H18[(3 * idx[a] + i) * 18 + 3 * idx[b] + j];
-    for (a = 0; a < n; ++a) {
-        verts[a] = vs[idx[a]];
+    int32_t a, i, kk;
+    wr_status st = wr_shell_face_block(sim->shell, f, z, k, verts, Ke);
+    if (st != WR_OK) return st;
+    kk = 3 * *k;
+    for (a = 0; a < *k; ++a)
         for (i = 0; i < 3; ++i) Ke[(3 * a + i) * kk + 3 * a + i] += c * ms[verts[a]] * sim->mass[verts[a]];
-    }
-    *k = n;
     return WR_OK;
 }
 

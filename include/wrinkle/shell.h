@@ -34,6 +34,8 @@
  *   wr_shell_vertex_masses(s, mass)                 lumped masses ρ·h·A/3 [kg] (for gravity)
  *   wr_shell_face_strain(s, f, x, eps)              Green strain (ε11, ε22, ε12) of face f
  *   wr_shell_face_stencil(s, f, verts)              the 6 vertices of face f's bending stencil
+ *   wr_shell_face_block(s, f, x, n, verts, Ke)      face f's Hessian block (membrane + bending)
+ *                                                   over the n vertices it couples, unprojected
  *   wr_shell_membrane_element(s, f, x9, g, H)       one face's membrane energy, gradient, Hessian
  *   wr_shell_midedge_element(x18, mask, Q, bbar, E, g, H)   one face's mid-edge bending
  *   wr_shell_dihedral_element(x18, mask, M, thbar, E, g, H, theta)  one face's dihedral bending
@@ -257,6 +259,13 @@ WRDEF void wr_shell_face_strain(const wr_shell *s, int32_t f, const double *x, d
 /* verts[0..2] = face corners, verts[3+k] = vertex across the edge opposite corner k or -1.
  * Returns the mask (bit k set when verts[3+k] exists). */
 WRDEF int32_t wr_shell_face_stencil(const wr_shell *s, int32_t f, int32_t verts[6]);
+/* Face f's element Hessian at x (nv*3): membrane plus mid-edge or dihedral bending, over the *n
+ * vertices it couples (its 3 corners, and with mid-edge/dihedral bending the vertices across its
+ * edges that exist), written to verts[0..n) and Ke ((3n)² row-major, at most 18×18 = 324), not
+ * projected: the one face block the statics (through the sink) and the dynamic simulator share.
+ * Returns WR_OK or WR_ERR_GEOMETRY (an undefined normal in the bending stencil). */
+WRDEF wr_status wr_shell_face_block(const wr_shell *s, int32_t f, const double *x, int32_t *n, int32_t verts[6],
+                                    double Ke[324]);
 /* Membrane energy of face f with corner positions x9; g (9) and H (81) may be NULL. */
 WRDEF double wr_shell_membrane_element(const wr_shell *s, int32_t f, const double x[9], double *g, double *H);
 /* Mid-edge bending of one stencil x18 (layout of wr_shell_face_stencil; absent vertices ignored):
@@ -1357,6 +1366,39 @@ WRDEF wr_status wr_shell_energy_parts(const wr_shell *s, const double *x, double
     return wr__shell_eval(s, x, E_membrane, E_bending, NULL, diag);
 }
 
+WRDEF wr_status wr_shell_face_block(const wr_shell *s, int32_t f, const double *x, int32_t *n, int32_t verts[6],
+                                    double Ke[324]) {
+    int32_t vs[6], mask, idx[6], k = 0, a, b, i, j;
+    double x18[18], H18[324], H9[81];
+    int bend = s->bending == WR_BENDING_MIDEDGE || s->bending == WR_BENDING_DIHEDRAL;
+    wr__shell_gather(s, f, x, vs, &mask, x18);
+    if (bend) {
+        wr_status es = s->bending == WR_BENDING_MIDEDGE
+                           ? wr_shell_midedge_element(x18, mask, s->qbend + 9 * f, s->bbar ? s->bbar + 3 * f : NULL, NULL,
+                                                      NULL, H18, NULL)
+                           : wr_shell_dihedral_element(x18, mask, s->qbend + 9 * f, s->bbar ? s->bbar + 3 * f : NULL, NULL,
+                                                       NULL, H18, NULL);
+        if (es != WR_OK) return WR_ERR_GEOMETRY;
+    } else {
+        memset(H18, 0, sizeof H18);
+    }
+    if (s->membrane != WR_MEMBRANE_NONE) {
+        wr_shell_membrane_element(s, f, x18, NULL, H9);
+        for (a = 0; a < 9; ++a)
+            for (b = 0; b < 9; ++b) H18[a * 18 + b] += H9[a * 9 + b];
+    }
+    /* without mid-edge or dihedral bending the face block only couples its own 3 corners */
+    for (a = 0; a < 6; ++a)
+        if (vs[a] >= 0 && (a < 3 || bend)) idx[k++] = a;
+    for (a = 0; a < k; ++a)
+        for (b = 0; b < k; ++b)
+            for (i = 0; i < 3; ++i)
+                for (j = 0; j < 3; ++j) Ke[(3 * a + i) * 3 * k + 3 * b + j] = H18[(3 * idx[a] + i) * 18 + 3 * idx[b] + j];
+    for (a = 0; a < k; ++a) verts[a] = vs[idx[a]];
+    *n = k;
+    return WR_OK;
+}
+
 WRDEF wr_status wr_shell_hessian_elements(const wr_shell *s, const double *x, int32_t project_spd,
                                           const wr_hess_sink *sink, wr_diag *diag) {
     return wr_shell_hessian_elements_part(s, x, project_spd, WR_SHELL_HESS_ALL, sink, diag);
@@ -1375,39 +1417,13 @@ WRDEF wr_status wr_shell_hessian_elements_part(const wr_shell *s, const double *
     if ((parts & WR_SHELL_HESS_FACES) &&
         (s->membrane != WR_MEMBRANE_NONE || s->bending == WR_BENDING_MIDEDGE || s->bending == WR_BENDING_DIHEDRAL))
         for (f = 0; f < s->nf; ++f) {
-            int32_t verts[6], mask, idx[6], n = 0, a, b, i, j;
-            double x18[18], H18[324], H9[81], Ke[324];
+            int32_t verts[6], n = 0;
+            double Ke[324];
             wr_status rs;
-            wr__shell_gather(s, f, x, verts, &mask, x18);
-            if (s->bending == WR_BENDING_MIDEDGE || s->bending == WR_BENDING_DIHEDRAL) {
-                wr_status es =
-                    s->bending == WR_BENDING_MIDEDGE
-                        ? wr_shell_midedge_element(x18, mask, s->qbend + 9 * f, s->bbar ? s->bbar + 3 * f : NULL, NULL,
-                                                   NULL, H18, NULL)
-                        : wr_shell_dihedral_element(x18, mask, s->qbend + 9 * f, s->bbar ? s->bbar + 3 * f : NULL, NULL,
-                                                    NULL, H18, NULL);
-                if (es != WR_OK)
-                    return wr_fail(diag, WR_ERR_GEOMETRY, f, "shell Hessian: face %d has an undefined normal", (int)f);
-            } else {
-                memset(H18, 0, sizeof H18);
-            }
-            if (s->membrane != WR_MEMBRANE_NONE) {
-                wr_shell_membrane_element(s, f, x18, NULL, H9);
-                for (a = 0; a < 9; ++a)
-                    for (b = 0; b < 9; ++b) H18[a * 18 + b] += H9[a * 9 + b];
-            }
-            /* without mid-edge bending the face block only couples its own 3 corners */
-            for (a = 0; a < 6; ++a)
-                if (verts[a] >= 0 && (a < 3 || s->bending == WR_BENDING_MIDEDGE || s->bending == WR_BENDING_DIHEDRAL))
-                    idx[n++] = a;
-            for (a = 0; a < n; ++a)
-                for (b = 0; b < n; ++b)
-                    for (i = 0; i < 3; ++i)
-                        for (j = 0; j < 3; ++j)
-                            Ke[(3 * a + i) * 3 * n + 3 * b + j] = H18[(3 * idx[a] + i) * 18 + 3 * idx[b] + j];
+            if (wr_shell_face_block(s, f, x, &n, verts, Ke) != WR_OK)
+                return wr_fail(diag, WR_ERR_GEOMETRY, f, "shell Hessian: face %d has an undefined normal", (int)f);
             if (project_spd) wr_dense_project_spd(3 * n, Ke, 0.0);
-            for (a = 0; a < n; ++a) idx[a] = verts[idx[a]];
-            rs = sink->add(sink->user, n, idx, Ke);
+            rs = sink->add(sink->user, n, verts, Ke);
             if (rs != WR_OK) return wr_fail(diag, rs, f, "shell Hessian: sink rejected face %d", (int)f);
         }
     if ((parts & WR_SHELL_HESS_QUADRATIC) && s->bending == WR_BENDING_QUADRATIC) {
