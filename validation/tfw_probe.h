@@ -302,6 +302,36 @@ static inline void tp_render_figure(wr_vres *v, const char *stem, const wr_mesh 
     }
 }
 
+/* The solver rows every TFW Sec. 6 driver reports, in one place: the base's Newton steps and time
+ * (paper values paper_newton, paper_base_s, NAN where the paper prints none), the SQP's iterations
+ * (paper_sqp), residuals, folds, rejections and escapes, the TFW time (paper_tfw_s), and the notes on
+ * the SQP stop rule and on phase folds. base_newton / t_base: the caller's TFT base solve. */
+static inline void tp_solver_rows(wr_vres *v, const wr_tfw_result *r, wr_status s_tfw, int32_t base_newton, double t_base,
+                                  double paper_base_s, double paper_newton, double paper_sqp, double paper_tfw_s) {
+    char buf[300];
+    wr_vres_info(v, "TFT base time (4 load steps)", "s", paper_base_s, t_base);
+    wr_vres_info(v, "TFT base Newton steps (all load steps)", "", paper_newton, base_newton);
+    wr_vres_info(v, "SQP iterations (accepted steps, both solves if unfolded)", "", paper_sqp, r->sqp.iterations);
+    wr_vres_info(v, "SQP iterations of the first solve", "", paper_sqp, r->sqp_first.iterations);
+    wr_vres_info(v, "SQP relative KKT residual at the end of the first solve", "", NAN,
+                 r->sqp_first.kkt0 > 0.0 ? r->sqp_first.kkt / r->sqp_first.kkt0 : NAN);
+    wr_vres_info(v, "phase-fold edges after the first solve (wr_wf_count_folds)", "", NAN, r->n_folds_first);
+    wr_vres_info(v, "phase-fold edges in the returned fields", "", 0, r->n_folds);
+    wr_vres_info(v, "SQP rejected trial steps", "", NAN, r->sqp.n_rejected);
+    wr_vres_info(v, "SQP escapes from a = 0", "", NAN, r->sqp.n_escapes);
+    wr_vres_info(v, "SQP relative KKT residual at the end (of the returned solve)", "", NAN, r->sqp.kkt / r->sqp.kkt0);
+    wr_vres_info(v, "SQP scaled KKT residual at the end (absolute, a/a_ref and E/E_ref units)", "", NAN, r->sqp.kkt);
+    wr_vres_info(v, "TFW time (E.2 to E.5)", "s", paper_tfw_s, r->seconds_total);
+    wr_vres_info(v, "  of which SQP", "s", NAN, r->seconds_sqp);
+    snprintf(buf, sizeof buf, "SQP stop rule %d (1 energy/round-off, 2 KKT, 3 step, 4 max-iter, 5 no acceptable step); status %s.",
+             (int)r->sqp.stop, wr_status_string(s_tfw));
+    wr_vres_note(v, buf);
+    wr_vres_note(v, "Phase folds: E_wf only sees dphi through even terms, so a curl-free omega whose dphi flips sign between "
+                    "neighbouring faces (phi zig-zagging at ~2 base edges per wavelength) costs almost nothing and the SQP can "
+                    "end there; the Loop-smoothed phase then draws a wrong surface. wr_tfw_fields counts such edges, "
+                    "re-orients dphi consistently (wr_wf_unfold) and solves again; the rows above give both solves.");
+}
+
 /* Circulation of the one-form ω around a closed vertex loop (loop[0..n), consecutive vertices joined
  * by mesh edges) divided by 2π: the number of wrinkle waves crossing the loop (TFW: dφ = ω).
  * NaN when two consecutive loop vertices share no edge. */

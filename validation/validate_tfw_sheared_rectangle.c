@@ -135,28 +135,7 @@ int main(void) {
     wr_vres_info(v, "max a on the base vertices", "mm", NAN, 1e3 * amax);
     wr_vres_info(v, "base vertices", "", 1000, m.nv);
     wr_vres_info(v, "wrinkle-free faces |W| (Sec. 5.1)", "", NAN, r.n_wrinkle_free);
-    wr_vres_info(v, "TFT base time (4 load steps)", "s", 2.27, t_base);
-    wr_vres_info(v, "TFT base Newton steps (all load steps)", "", 21, ss.total_iterations);
-    wr_vres_info(v, "SQP iterations (accepted steps, both solves if unfolded)", "", 147,
-                 r.sqp.iterations);
-    wr_vres_info(v, "SQP iterations of the first solve", "", 147, r.sqp_first.iterations);
-    wr_vres_info(v, "SQP relative KKT residual at the end of the first solve", "", NAN,
-                 r.sqp_first.kkt0 > 0.0 ? r.sqp_first.kkt / r.sqp_first.kkt0 : NAN);
-    wr_vres_info(v, "phase-fold edges after the first solve (wr_wf_count_folds)", "", NAN, r.n_folds_first);
-    wr_vres_info(v, "phase-fold edges in the returned fields", "", 0, r.n_folds);
-    wr_vres_info(v, "SQP rejected trial steps", "", NAN, r.sqp.n_rejected);
-    wr_vres_info(v, "SQP escapes from a = 0", "", NAN, r.sqp.n_escapes);
-    wr_vres_info(v, "SQP relative KKT residual at the end (of the returned solve)", "", NAN, r.sqp.kkt / r.sqp.kkt0);
-    wr_vres_info(v, "SQP scaled KKT residual at the end (absolute, a/a_ref and E/E_ref units)", "", NAN, r.sqp.kkt);
-    wr_vres_info(v, "TFW time (E.2 to E.5)", "s", 27.52, r.seconds_total);
-    wr_vres_info(v, "  of which SQP", "s", NAN, r.seconds_sqp);
-    snprintf(buf, sizeof buf, "SQP stop rule %d (1 energy/round-off, 2 KKT, 3 step, 4 max-iter, 5 no acceptable step); status %s.",
-             (int)r.sqp.stop, wr_status_string(s_tfw));
-    wr_vres_note(v, buf);
-    wr_vres_note(v, "Phase folds: E_wf only sees dphi through even terms, so a curl-free omega whose dphi flips sign between "
-                    "neighbouring faces (phi zig-zagging at ~2 base edges per wavelength) costs almost nothing and the SQP can "
-                    "end there; the Loop-smoothed phase then draws a wrong surface. wr_tfw_fields counts such edges, "
-                    "re-orients dphi consistently (wr_wf_unfold) and solves again; the rows above give both solves.");
+    tp_solver_rows(v, &r, s_tfw, ss.total_iterations, t_base, 2.27, 21, 147, 27.52);
     wr_vres_note(v, "Setup (Wong & Pellegrino 2006): Kapton 380 x 128 mm, 25 um, E = 3530 MPa, nu = 0.3, shear displacement "
                     "3 mm of the top clamp, short edges free; delta = 3 mm confirmed from their Part III, size and "
                     "material from our reading of Part I (not re-checked against the paper text here).");

@@ -251,28 +251,7 @@ int main(void) {
     }
     wr_vres_info(v, "base vertices", "", 522, m.nv);
     wr_vres_info(v, "wrinkle-free faces |W| (Sec. 5.1)", "", NAN, r.n_wrinkle_free);
-    wr_vres_info(v, "TFT base time (4 load steps)", "s", 0.45, t_base);
-    wr_vres_info(v, "TFT base Newton steps (all load steps)", "", 10, ss.total_iterations);
-    wr_vres_info(v, "SQP iterations (accepted steps, both solves if unfolded)", "", 23,
-                 r.sqp.iterations);
-    wr_vres_info(v, "SQP iterations of the first solve", "", 23, r.sqp_first.iterations);
-    wr_vres_info(v, "SQP relative KKT residual at the end of the first solve", "", NAN,
-                 r.sqp_first.kkt0 > 0.0 ? r.sqp_first.kkt / r.sqp_first.kkt0 : NAN);
-    wr_vres_info(v, "phase-fold edges after the first solve (wr_wf_count_folds)", "", NAN, r.n_folds_first);
-    wr_vres_info(v, "phase-fold edges in the returned fields", "", 0, r.n_folds);
-    wr_vres_info(v, "SQP rejected trial steps", "", NAN, r.sqp.n_rejected);
-    wr_vres_info(v, "SQP escapes from a = 0", "", NAN, r.sqp.n_escapes);
-    wr_vres_info(v, "SQP relative KKT residual at the end (of the returned solve)", "", NAN, r.sqp.kkt / r.sqp.kkt0);
-    wr_vres_info(v, "SQP scaled KKT residual at the end (absolute, a/a_ref and E/E_ref units)", "", NAN, r.sqp.kkt);
-    wr_vres_info(v, "TFW time (E.2 to E.5)", "s", 3.93, r.seconds_total);
-    wr_vres_info(v, "  of which SQP", "s", NAN, r.seconds_sqp);
-    snprintf(buf, sizeof buf, "SQP stop rule %d (1 energy/round-off, 2 KKT, 3 step, 4 max-iter, 5 no acceptable step); status %s.",
-             (int)r.sqp.stop, wr_status_string(s_tfw));
-    wr_vres_note(v, buf);
-    wr_vres_note(v, "Phase folds: E_wf only sees dphi through even terms, so a curl-free omega whose dphi flips sign between "
-                    "neighbouring faces (phi zig-zagging at ~2 base edges per wavelength) costs almost nothing and the SQP can "
-                    "end there; the Loop-smoothed phase then draws a wrong surface. wr_tfw_fields counts such edges, "
-                    "re-orients dphi consistently (wr_wf_unfold) and solves again; the rows above give both solves.");
+    tp_solver_rows(v, &r, s_tfw, ss.total_iterations, t_base, 0.45, 10, 23, 3.93);
     wr_vres_note(v, "The TFW paper states no stretch for this case; 12.78 % is the Style3D paper's setting for the same sheet.");
     wr_vres_note(v, "Count = probe length (0.1 m) / FFT wavelength; the paper's 5 periods are read off its Fig. 6.");
     wr_vres_note(v, "Clamp condition: a = 0 on the clamped vertices (the clamp holds the sheet in the base surface, so "
