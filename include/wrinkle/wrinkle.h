@@ -25,6 +25,7 @@
 #include "core.h"
 /* modules, foundations first (one line each) */
 #include "mesh.h"
+#include "subdiv.h"
 #include "sparse.h"
 #include "pcg.h"
 #if defined(WR_USE_FFTW) && WR_USE_FFTW

@@ -1,0 +1,262 @@
+/* tests/test_subdiv.c — subdiv.h: the regular Loop patch's basis against closed forms (partition of
+ * unity, linear and quadratic precision, derivatives by finite differences), the face stencil against
+ * the regular patch evaluated directly on a valence-6 lattice, and on an irregular mesh against an
+ * independent global Loop step (the limit surface does not change under subdivision). */
+#include <criterion/criterion.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "wrinkle/subdiv.h"
+
+/* lattice points of the 12 basis functions (subdiv.h ON THE REGULAR PATCH), (i, j) → i e1 + j e2 */
+static const int lat[12][2] = {{0, -1}, {-1, 0}, {1, -1}, {0, 0}, {-1, 1}, {2, -1},
+                               {1, 0},  {0, 1},  {-1, 2}, {2, 0}, {1, 1},  {0, 2}};
+static void lat_xy(int i, int j, double xy[2]) {
+    xy[0] = i + 0.5 * j;
+    xy[1] = 0.8660254037844386 * j;
+}
+
+Test(subdiv, basis_partition_of_unity_and_fd_derivatives) {
+    double pts[4][2] = {{1.0 / 3, 1.0 / 3}, {0.1, 0.7}, {0.6, 0.05}, {0.0, 0.0}};
+    int p, i, k;
+    for (p = 0; p < 4; ++p) {
+        double N[12], dN[24], d2N[36], s = 0, sd[2] = {0, 0}, sdd[3] = {0, 0, 0}, h = 1e-5;
+        double Np[12], Nm[12], dNp[24], dNm[24];
+        wr_subdiv_loop_basis(pts[p][0], pts[p][1], N, dN, d2N);
+        for (i = 0; i < 12; ++i) {
+            s += N[i];
+            cr_assert_geq(N[i], -1e-15, "box-spline basis is non-negative (N%d = %g)", i, N[i]);
+            for (k = 0; k < 2; ++k) sd[k] += dN[2 * i + k];
+            for (k = 0; k < 3; ++k) sdd[k] += d2N[3 * i + k];
+        }
+        cr_assert_float_eq(s, 1.0, 1e-14, "partition of unity: %.17g", s);
+        for (k = 0; k < 2; ++k) cr_assert_float_eq(sd[k], 0.0, 1e-13);
+        for (k = 0; k < 3; ++k) cr_assert_float_eq(sdd[k], 0.0, 1e-12);
+        for (k = 0; k < 2; ++k) { /* central differences of N and dN along v (k = 0) and w (k = 1) */
+            wr_subdiv_loop_basis(pts[p][0] + (k == 0 ? h : 0), pts[p][1] + (k == 1 ? h : 0), Np, dNp, NULL);
+            wr_subdiv_loop_basis(pts[p][0] - (k == 0 ? h : 0), pts[p][1] - (k == 1 ? h : 0), Nm, dNm, NULL);
+            for (i = 0; i < 12; ++i) {
+                cr_assert_float_eq((Np[i] - Nm[i]) / (2 * h), dN[2 * i + k], 1e-9, "dN%d/d%c", i, "vw"[k]);
+                /* ∂v of (∂v, ∂w) gives (vv, vw); ∂w gives (vw, ww) */
+                cr_assert_float_eq((dNp[2 * i] - dNm[2 * i]) / (2 * h), d2N[3 * i + k], 1e-8);
+                cr_assert_float_eq((dNp[2 * i + 1] - dNm[2 * i + 1]) / (2 * h), d2N[3 * i + k + 1], 1e-8);
+            }
+        }
+    }
+}
+
+Test(subdiv, basis_reproduces_linear_and_quadratic_functions) {
+    /* on the lattice: Σ N_i L_i is the point u·L_u + v·L_v + w·L_w exactly (linear precision), and for a
+     * sampled quadratic q the patch differs from q by a constant, so its derivatives are q's */
+    double pts[3][2] = {{0.2, 0.3}, {1.0 / 3, 1.0 / 3}, {0.7, 0.1}};
+    int p, i;
+    for (p = 0; p < 3; ++p) {
+        double v = pts[p][0], w = pts[p][1], N[12], dN[24], d2N[36], X[2] = {0, 0}, e1[2], e2[2], want[2];
+        double s = 0, sv = 0, sw = 0, svv = 0, svw = 0, sww = 0, qx, qy;
+        wr_subdiv_loop_basis(v, w, N, dN, d2N);
+        lat_xy(1, 0, e1);
+        lat_xy(0, 1, e2);
+        for (i = 0; i < 12; ++i) {
+            double xy[2], q;
+            lat_xy(lat[i][0], lat[i][1], xy);
+            X[0] += N[i] * xy[0];
+            X[1] += N[i] * xy[1];
+            q = 0.3 * xy[0] * xy[0] - 0.7 * xy[0] * xy[1] + 1.1 * xy[1] * xy[1] + 0.2 * xy[0] - 0.5 * xy[1];
+            s += N[i] * q;
+            sv += dN[2 * i] * q;
+            sw += dN[2 * i + 1] * q;
+            svv += d2N[3 * i] * q;
+            svw += d2N[3 * i + 1] * q;
+            sww += d2N[3 * i + 2] * q;
+        }
+        want[0] = v * e1[0] + w * e2[0];
+        want[1] = v * e1[1] + w * e2[1];
+        cr_assert_float_eq(X[0], want[0], 1e-14);
+        cr_assert_float_eq(X[1], want[1], 1e-14);
+        qx = 0.6 * want[0] - 0.7 * want[1] + 0.2; /* ∇q at the point */
+        qy = -0.7 * want[0] + 2.2 * want[1] - 0.5;
+        cr_assert_float_eq(sv, qx * e1[0] + qy * e1[1], 1e-13, "q_v");
+        cr_assert_float_eq(sw, qx * e2[0] + qy * e2[1], 1e-13, "q_w");
+        cr_assert_float_eq(svv, 0.6 * e1[0] * e1[0] - 1.4 * e1[0] * e1[1] + 2.2 * e1[1] * e1[1], 1e-12);
+        cr_assert_float_eq(svw, 0.6 * e1[0] * e2[0] - 0.7 * (e1[0] * e2[1] + e1[1] * e2[0]) + 2.2 * e1[1] * e2[1], 1e-12);
+        cr_assert_float_eq(sww, 0.6 * e2[0] * e2[0] - 1.4 * e2[0] * e2[1] + 2.2 * e2[1] * e2[1], 1e-12);
+        (void)s;
+    }
+}
+
+/* A (n+1)² triangular lattice, vertex (i, j) = i e1 + j e2, random heights and in-plane jitter (the
+ * limit-surface identities hold for any control positions); faces (i,j),(i+1,j),(i,j+1) and
+ * (i+1,j),(i+1,j+1),(i,j+1), counter-clockwise. */
+static void lattice_mesh(wr_mesh *m, int n, unsigned seed) {
+    int32_t nv = (n + 1) * (n + 1), nf = 2 * n * n, *faces = (int32_t *)malloc(sizeof(int32_t) * 3 * (size_t)nf), i, j, f = 0;
+    double *pos = (double *)malloc(sizeof(double) * 3 * (size_t)nv), *rest = (double *)malloc(sizeof(double) * 2 * (size_t)nv);
+    wr_rng rng;
+    wr_diag d;
+    wr_rng_seed(&rng, seed);
+    for (j = 0; j <= n; ++j)
+        for (i = 0; i <= n; ++i) {
+            int32_t v = j * (n + 1) + i;
+            lat_xy(i, j, rest + 2 * v);
+            pos[3 * v] = rest[2 * v] + 0.1 * (wr_rng_uniform(&rng) - 0.5);
+            pos[3 * v + 1] = rest[2 * v + 1] + 0.1 * (wr_rng_uniform(&rng) - 0.5);
+            pos[3 * v + 2] = 0.3 * (wr_rng_uniform(&rng) - 0.5);
+        }
+    for (j = 0; j < n; ++j)
+        for (i = 0; i < n; ++i) {
+            int32_t a = j * (n + 1) + i;
+            faces[3 * f] = a;
+            faces[3 * f + 1] = a + 1;
+            faces[3 * f + 2] = a + n + 1;
+            ++f;
+            faces[3 * f] = a + 1;
+            faces[3 * f + 1] = a + n + 2;
+            faces[3 * f + 2] = a + n + 1;
+            ++f;
+        }
+    cr_assert_eq(wr_mesh_create(m, nv, pos, rest, nf, faces, &d), WR_OK, "%s", d.message);
+    free(faces);
+    free(pos);
+    free(rest);
+}
+
+/* x at the stencil's 6 rows (position, ∂v, ∂w, ∂vv, ∂vw, ∂ww) */
+static void apply_stencil(const wr_mesh *m, int32_t n, const int32_t *verts, const double *W, double x[6][3]) {
+    int k, i, j;
+    for (k = 0; k < 6; ++k)
+        for (i = 0; i < 3; ++i) {
+            x[k][i] = 0.0;
+            for (j = 0; j < n; ++j) x[k][i] += W[k * n + j] * m->pos[3 * verts[j] + i];
+        }
+}
+
+Test(subdiv, stencil_equals_the_regular_patch_on_a_valence6_lattice) {
+    /* the central child of a regular face is the parent patch turned by 180° and halved: same point,
+     * first derivatives −½, second ¼ of the parent patch's at its centre (subdiv.h ON THE STENCIL) */
+    wr_mesh m;
+    int n = 8, ci, cj, tested = 0;
+    lattice_mesh(&m, n, 7u);
+    for (cj = 2; cj <= n - 3; ++cj)
+        for (ci = 2; ci <= n - 3; ++ci) {
+            int32_t f = 2 * (cj * n + ci), cnt, verts[WR_SUBDIV_MAX_STENCIL], i, k;
+            double W[6 * WR_SUBDIV_MAX_STENCIL], x[6][3], N[12], dN[24], d2N[36], y[6][3], scale[6] = {1, -0.5, -0.5, 0.25, 0.25, 0.25};
+            wr_diag d;
+            cr_assert_eq(wr_subdiv_loop_stencil(&m, f, &cnt, verts, W, &d), WR_OK, "%s", d.message);
+            cr_assert_eq(cnt, 12, "a regular face's stencil is its 12 patch vertices, got %d", cnt);
+            apply_stencil(&m, cnt, verts, W, x);
+            wr_subdiv_loop_basis(1.0 / 3, 1.0 / 3, N, dN, d2N);
+            memset(y, 0, sizeof y);
+            for (i = 0; i < 12; ++i) {
+                int32_t v = (cj + lat[i][1]) * (n + 1) + ci + lat[i][0];
+                double b[6];
+                b[0] = N[i];
+                b[1] = dN[2 * i];
+                b[2] = dN[2 * i + 1];
+                b[3] = d2N[3 * i];
+                b[4] = d2N[3 * i + 1];
+                b[5] = d2N[3 * i + 2];
+                for (k = 0; k < 6; ++k) {
+                    int c;
+                    for (c = 0; c < 3; ++c) y[k][c] += b[k] * m.pos[3 * v + c];
+                }
+            }
+            for (k = 0; k < 6; ++k) {
+                int c;
+                for (c = 0; c < 3; ++c)
+                    cr_assert_float_eq(x[k][c], scale[k] * y[k][c], 1e-12, "face %d row %d comp %d: %.15g vs %.15g", f, k,
+                                       c, x[k][c], scale[k] * y[k][c]);
+            }
+            ++tested;
+        }
+    cr_assert_gt(tested, 10);
+    wr_mesh_free(&m);
+}
+
+/* One global Loop step of m, written edge by edge (not through the stencil code): new vertex i < nv
+ * is vertex i's vertex point, nv + e the edge point of edge e; each face → four, the central one
+ * (ep(e_BC), ep(e_CA), ep(e_AB)) stored at 4f + 3. Only interior-vertex positions are meaningful. */
+static void loop_step(const wr_mesh *m, wr_mesh *out) {
+    int32_t nv = m->nv + m->ne, nf = 4 * m->nf, e, v, f, k;
+    int32_t *faces = (int32_t *)malloc(sizeof(int32_t) * 3 * (size_t)nf), *val = (int32_t *)calloc((size_t)m->nv, sizeof(int32_t));
+    double *pos = (double *)calloc(3 * (size_t)nv, sizeof(double)), *sum = (double *)calloc(3 * (size_t)m->nv, sizeof(double));
+    wr_diag d;
+    for (e = 0; e < m->ne; ++e) {
+        int32_t a = m->edges[2 * e], b = m->edges[2 * e + 1], s;
+        for (k = 0; k < 3; ++k) {
+            sum[3 * a + k] += m->pos[3 * b + k];
+            sum[3 * b + k] += m->pos[3 * a + k];
+            pos[3 * (m->nv + e) + k] = 0.375 * (m->pos[3 * a + k] + m->pos[3 * b + k]);
+        }
+        val[a]++;
+        val[b]++;
+        for (s = 0; s < 2; ++s) {
+            int32_t g = m->edge_faces[2 * e + s], c;
+            if (g < 0) continue;
+            for (c = 0; c < 3; ++c)
+                if (m->faces[3 * g + c] != a && m->faces[3 * g + c] != b)
+                    for (k = 0; k < 3; ++k) pos[3 * (m->nv + e) + k] += 0.125 * m->pos[3 * m->faces[3 * g + c] + k];
+        }
+    }
+    for (v = 0; v < m->nv; ++v) {
+        double c = 0.375 + 0.25 * cos(2.0 * 3.14159265358979323846 / val[v]), beta = (0.625 - c * c) / val[v];
+        for (k = 0; k < 3; ++k) pos[3 * v + k] = (1.0 - val[v] * beta) * m->pos[3 * v + k] + beta * sum[3 * v + k];
+    }
+    for (f = 0; f < m->nf; ++f) {
+        int32_t A = m->faces[3 * f], B = m->faces[3 * f + 1], C = m->faces[3 * f + 2];
+        int32_t eBC = m->nv + m->face_edges[3 * f], eCA = m->nv + m->face_edges[3 * f + 1], eAB = m->nv + m->face_edges[3 * f + 2];
+        int32_t t[12] = {A, eAB, eCA, B, eBC, eAB, C, eCA, eBC, eBC, eCA, eAB};
+        memcpy(faces + 12 * f, t, sizeof t);
+    }
+    cr_assert_eq(wr_mesh_create(out, nv, pos, NULL, nf, faces, &d), WR_OK, "%s", d.message);
+    free(faces);
+    free(val);
+    free(pos);
+    free(sum);
+}
+
+Test(subdiv, stencil_is_invariant_under_a_loop_step_on_an_irregular_mesh) {
+    /* wr_mesh_rectangle's union-jack grid has valences 4 and 8: every face is irregular. The limit
+     * surface of the once-subdivided mesh is the same surface, and the subdivided mesh's central child
+     * of face f has the same centre: same point, derivatives −½ and ¼ (one more half-turn and halving) */
+    wr_mesh m, r;
+    wr_diag d;
+    int32_t f, tested = 0, i;
+    wr_rng rng;
+    cr_assert_eq(wr_mesh_rectangle(&m, 1.0, 1.0, 6, 6, &d), WR_OK);
+    wr_rng_seed(&rng, 3u);
+    for (i = 0; i < m.nv; ++i) m.pos[3 * i + 2] = 0.2 * (wr_rng_uniform(&rng) - 0.5);
+    loop_step(&m, &r);
+    for (f = 0; f < m.nf; ++f) {
+        int32_t n1, n2, v1[WR_SUBDIV_MAX_STENCIL], v2[WR_SUBDIV_MAX_STENCIL], k, c;
+        double W1[6 * WR_SUBDIV_MAX_STENCIL], W2[6 * WR_SUBDIV_MAX_STENCIL], x1[6][3], x2[6][3], scale[6] = {1, -0.5, -0.5, 0.25, 0.25, 0.25};
+        double wsum = 0.0;
+        if (wr_subdiv_loop_stencil(&m, f, &n1, v1, W1, NULL) != WR_OK) continue; /* a boundary corner */
+        cr_assert_eq(wr_subdiv_loop_stencil(&r, 4 * f + 3, &n2, v2, W2, &d), WR_OK, "%s", d.message);
+        for (k = 0; k < n1; ++k) wsum += W1[k];
+        cr_assert_float_eq(wsum, 1.0, 1e-14, "position weights sum to 1");
+        apply_stencil(&m, n1, v1, W1, x1);
+        apply_stencil(&r, n2, v2, W2, x2);
+        for (k = 0; k < 6; ++k)
+            for (c = 0; c < 3; ++c)
+                cr_assert_float_eq(x2[k][c], scale[k] * x1[k][c], 1e-12, "face %d row %d comp %d: %.15g vs %.15g", f, k, c,
+                                   x2[k][c], scale[k] * x1[k][c]);
+        ++tested;
+    }
+    cr_assert_geq(tested, 16, "interior faces tested: %d", tested);
+    wr_mesh_free(&r);
+    wr_mesh_free(&m);
+}
+
+Test(subdiv, boundary_faces_and_bad_arguments_are_refused) {
+    wr_mesh m;
+    wr_diag d;
+    int32_t n, verts[WR_SUBDIV_MAX_STENCIL];
+    double W[6 * WR_SUBDIV_MAX_STENCIL];
+    cr_assert_eq(wr_mesh_rectangle(&m, 1.0, 1.0, 4, 4, &d), WR_OK);
+    cr_assert_eq(wr_subdiv_loop_stencil(&m, 0, &n, verts, W, &d), WR_ERR_TOPOLOGY);
+    cr_assert_eq(d.item, 0);
+    cr_assert(strstr(d.message, "boundary") != NULL, "%s", d.message);
+    cr_assert_eq(wr_subdiv_loop_stencil(&m, m.nf, &n, verts, W, &d), WR_ERR_INVALID_ARG);
+    cr_assert_eq(wr_subdiv_loop_stencil(NULL, 0, &n, verts, W, &d), WR_ERR_INVALID_ARG);
+    wr_mesh_free(&m);
+}
