@@ -1,12 +1,14 @@
 /* tests/test_subdiv.c — subdiv.h: the regular Loop patch's basis against closed forms (partition of
  * unity, linear and quadratic precision, derivatives by finite differences), the face stencil against
  * the regular patch evaluated directly on a valence-6 lattice, and on an irregular mesh against an
- * independent global Loop step (the limit surface does not change under subdivision). */
+ * independent global Loop step (the limit surface does not change under subdivision); and shell.h's
+ * Koiter point energy that the Loop element integrates (closed forms, finite differences). */
 #include <criterion/criterion.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "wrinkle/shell.h"
 #include "wrinkle/subdiv.h"
 
 /* lattice points of the 12 basis functions (subdiv.h ON THE REGULAR PATCH), (i, j) → i e1 + j e2 */
@@ -259,4 +261,87 @@ Test(subdiv, boundary_faces_and_bad_arguments_are_refused) {
     cr_assert_eq(wr_subdiv_loop_stencil(&m, m.nf, &n, verts, W, &d), WR_ERR_INVALID_ARG);
     cr_assert_eq(wr_subdiv_loop_stencil(NULL, 0, &n, verts, W, &d), WR_ERR_INVALID_ARG);
     wr_mesh_free(&m);
+}
+
+/* ---- wr_shell_koiter_point: the energy the Loop element evaluates at each face centre ------------ */
+
+static void koiter_rest_plate(wr_shell_koiter_rest *r, double Y, double h, double nu) {
+    memset(r, 0, sizeof *r);
+    r->A[0] = 1.0;
+    r->A[2] = 1.0;
+    r->Ym = Y * h / (1.0 - nu * nu);
+    r->Db = Y * h * h * h / (12.0 * (1.0 - nu * nu));
+    r->nu = nu;
+}
+
+Test(subdiv, koiter_point_closed_forms) {
+    /* flat rest, unit metric. (1) a cylinder of radius R bent about w: κ11 = 1/R, W = ½ D / R²;
+     * (2) a uniaxial stretch x_v = λ e1 with free lateral contraction... here held: ε11 = (λ² − 1)/2,
+     * W = ½ Ym ε11² (plane-stress StVK with ε22 = 0); (3) equal biaxial ε: W = Ym (1 + ν) ε² */
+    wr_shell_koiter_rest r;
+    double p[15], R = 0.05, lam = 1.1, e, W;
+    koiter_rest_plate(&r, 1e6, 1e-3, 0.3);
+    memset(p, 0, sizeof p);
+    p[0] = 1.0;
+    p[4] = 1.0;
+    p[8] = 1.0 / R; /* x_vv = n / R */
+    W = wr_shell_koiter_point(&r, p, NULL, NULL);
+    cr_assert_float_eq(W, 0.5 * r.Db / (R * R), 1e-12 * W, "cylinder: %.15g vs %.15g", W, 0.5 * r.Db / (R * R));
+    p[8] = 0.0;
+    p[0] = lam;
+    e = 0.5 * (lam * lam - 1.0);
+    W = wr_shell_koiter_point(&r, p, NULL, NULL);
+    cr_assert_float_eq(W, 0.5 * r.Ym * e * e, 1e-12 * W);
+    p[4] = lam;
+    W = wr_shell_koiter_point(&r, p, NULL, NULL);
+    cr_assert_float_eq(W, r.Ym * (1.0 + r.nu) * e * e, 1e-12 * W);
+    /* a sheared parametrisation of the same plate (A ≠ I) measures the same physical strain energy:
+     * rest x_v = (1, 0, 0), x_w = (0.4, 1, 0); deformed by the stretch diag(λ, 1) */
+    r.A[0] = 1.0;
+    r.A[1] = 0.4;
+    r.A[2] = 1.16;
+    memset(p, 0, sizeof p);
+    p[0] = lam;
+    p[3] = 0.4 * lam;
+    p[4] = 1.0;
+    W = wr_shell_koiter_point(&r, p, NULL, NULL); /* √det A = 1 */
+    cr_assert_float_eq(W, 0.5 * r.Ym * e * e, 1e-12 * W, "sheared parameters: %.15g vs %.15g", W, 0.5 * r.Ym * e * e);
+}
+
+Test(subdiv, koiter_point_gradient_and_hessian_match_finite_differences) {
+    wr_shell_koiter_rest r;
+    wr_rng rng;
+    int trial, i, j;
+    wr_rng_seed(&rng, 11u);
+    for (trial = 0; trial < 4; ++trial) {
+        double p[15], g[15], H[225], gp[15], gm[15], h = 1e-6, gmax = 0.0, hmax = 0.0;
+        koiter_rest_plate(&r, 1e6, 2e-3, 0.35);
+        r.A[0] = 1.0 + 0.3 * wr_rng_uniform(&rng);
+        r.A[1] = 0.2 * (wr_rng_uniform(&rng) - 0.5);
+        r.A[2] = 0.8 + 0.3 * wr_rng_uniform(&rng);
+        for (i = 0; i < 3; ++i) r.B[i] = 2.0 * (wr_rng_uniform(&rng) - 0.5);
+        for (i = 0; i < 15; ++i) p[i] = 0.3 * (wr_rng_uniform(&rng) - 0.5);
+        p[0] += 1.0;
+        p[4] += 1.0;
+        wr_shell_koiter_point(&r, p, g, H);
+        for (i = 0; i < 15; ++i) {
+            gmax = fmax(gmax, fabs(g[i]));
+            for (j = 0; j < 15; ++j) hmax = fmax(hmax, fabs(H[15 * i + j]));
+        }
+        for (i = 0; i < 15; ++i) {
+            double q[15], Ep, Em;
+            memcpy(q, p, sizeof q);
+            q[i] = p[i] + h;
+            Ep = wr_shell_koiter_point(&r, q, gp, NULL);
+            q[i] = p[i] - h;
+            Em = wr_shell_koiter_point(&r, q, gm, NULL);
+            cr_assert_float_eq((Ep - Em) / (2 * h), g[i], 1e-6 * gmax, "trial %d: dE/dp%d %.10g vs %.10g", trial, i,
+                               (Ep - Em) / (2 * h), g[i]);
+            for (j = 0; j < 15; ++j)
+                cr_assert_float_eq((gp[j] - gm[j]) / (2 * h), H[15 * j + i], 1e-6 * hmax, "trial %d: H[%d][%d] %.10g vs %.10g",
+                                   trial, j, i, (gp[j] - gm[j]) / (2 * h), H[15 * j + i]);
+        }
+        for (i = 0; i < 15; ++i)
+            for (j = 0; j < i; ++j) cr_assert_float_eq(H[15 * i + j], H[15 * j + i], 1e-12 * hmax, "H symmetric");
+    }
 }

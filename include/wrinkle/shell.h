@@ -41,6 +41,8 @@
  *   wr_shell_dihedral_element(x18, mask, M, thbar, E, g, H, theta)  one face's dihedral bending
  *   wr_shell_hinge_angle(x12, theta, g, H)          signed atan2 dihedral angle of a hinge, ∇, ∇²
  *   wr_shell_stvk_density(C, eps, dW, d2W)          Voigt StVK density in Green-strain coordinates
+ *   wr_shell_koiter_point(pt, p, E, g, H)           Koiter shell energy density at one point of a
+ *                                                   smooth surface (subdiv.h's Loop limit surface)
  *
  * EXAMPLE
  *     wr_mesh m;  wr_shell s;  wr_shell_desc d;  wr_diag dg;  double E, *g;
@@ -286,6 +288,19 @@ WRDEF wr_status wr_shell_dihedral_element(const double x[18], int32_t mask, cons
 WRDEF int32_t wr_shell_hinge_angle(const double x[12], double *theta, double *g, double *H);
 /* ½ γᵀCγ with γ = (ε11, ε22, 2ε12); dW, d2W w.r.t. (ε11, ε22, ε12); either may be NULL. */
 WRDEF double wr_shell_stvk_density(const double C[9], const double eps[3], double *dW, double *d2W);
+/* The rest data of one quadrature point of a smooth shell (issue 15's Loop element, subdiv.h):
+ * covariant rest metric A = (A11, A12, A22) and rest curvature B (b_ab = x_ab · n), in the surface
+ * parameters (v, w); membrane stiffness Ym = E h / (1 − ν²) [N/m], bending stiffness
+ * Db = E h³ / (12 (1 − ν²)) [N·m], Poisson ratio nu. */
+typedef struct wr_shell_koiter_rest {
+    double A[3], B[3], Ym, Db, nu;
+} wr_shell_koiter_rest;
+/* Koiter's isotropic thin-shell energy at one point, per unit parameter area: √det A · [Q_Ym(ε) +
+ * Q_Db(κ)], ε = ½ (a − A), κ = b − B, Q_k(s) = ½ k [(1 − ν) tr((A⁻¹s)²) + ν (tr A⁻¹s)²] (the StVK
+ * membrane and the plate bending density written covariantly). p (15) = (x_v, x_w, x_vv, x_vw, x_ww)
+ * of the deformed surface; g (15) and H (225, row-major) may be NULL. The Hessian is exact (not
+ * projected). Returns NaN when x_v × x_w vanishes (no normal). */
+WRDEF double wr_shell_koiter_point(const wr_shell_koiter_rest *rest, const double p[15], double *g, double *H);
 
 #ifdef __cplusplus
 }
@@ -321,6 +336,181 @@ WRDEF double wr_shell_stvk_density(const double C[9], const double eps[3], doubl
         for (i = 0; i < 3; ++i)
             for (j = 0; j < 3; ++j) d2W[3 * i + j] = C[3 * i + j] * (i == 2 ? 2.0 : 1.0) * (j == 2 ? 2.0 : 1.0);
     return 0.5 * (gam[0] * Cg[0] + gam[1] * Cg[1] + gam[2] * Cg[2]);
+}
+
+/* ---- Koiter energy at one point of a smooth surface (the Loop element's quadrature point) ------ */
+
+/* Q(s) = ½ k [(1 − ν) tr((A⁻¹s)²) + ν (tr A⁻¹s)²] as ½ sᵀ M s over s = (s11, s12, s22), s12 counted
+ * once: M from the polarisation of Q on the unit tensors (exact for a quadratic form). */
+static double wr__koiter_q(const double Ai[3], double k, double nu, const double s[3]) {
+    double m11 = Ai[0] * s[0] + Ai[1] * s[1], m12 = Ai[0] * s[1] + Ai[1] * s[2]; /* (A⁻¹ s) row 1 */
+    double m21 = Ai[1] * s[0] + Ai[2] * s[1], m22 = Ai[1] * s[1] + Ai[2] * s[2]; /* row 2 */
+    double tr = m11 + m22, tr2 = m11 * m11 + 2.0 * m12 * m21 + m22 * m22;
+    return 0.5 * k * ((1.0 - nu) * tr2 + nu * tr * tr);
+}
+
+static void wr__koiter_matrix(const double Ai[3], double k, double nu, double M[9]) {
+    double e[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, q[3];
+    int i, j, c;
+    for (i = 0; i < 3; ++i) q[i] = wr__koiter_q(Ai, k, nu, e[i]);
+    for (i = 0; i < 3; ++i)
+        for (j = 0; j < 3; ++j) {
+            double sij[3];
+            if (i == j) {
+                M[3 * i + j] = 2.0 * q[i];
+                continue;
+            }
+            for (c = 0; c < 3; ++c) sij[c] = e[i][c] + e[j][c];
+            M[3 * i + j] = wr__koiter_q(Ai, k, nu, sij) - q[i] - q[j];
+        }
+}
+
+/* [v]× as a row-major 3×3 */
+static void wr__koiter_cross(const double v[3], double X[9]) {
+    X[0] = 0.0;
+    X[1] = -v[2];
+    X[2] = v[1];
+    X[3] = v[2];
+    X[4] = 0.0;
+    X[5] = -v[0];
+    X[6] = -v[1];
+    X[7] = v[0];
+    X[8] = 0.0;
+}
+
+/* H[ra.., cb..] += s · (X Y) for 3×3 blocks at DOF offsets ra, cb of the 15 × 15 Hessian */
+static void wr__koiter_block(double *H, int ra, int cb, double s, const double X[9]) {
+    int i, j;
+    for (i = 0; i < 3; ++i)
+        for (j = 0; j < 3; ++j) H[(ra + i) * 15 + cb + j] += s * X[3 * i + j];
+}
+
+static void wr__koiter_mul(const double X[9], const double Y[9], double Z[9], int transpose_x) {
+    int i, j, k;
+    for (i = 0; i < 3; ++i)
+        for (j = 0; j < 3; ++j) {
+            double t = 0.0;
+            for (k = 0; k < 3; ++k) t += (transpose_x ? X[3 * k + i] : X[3 * i + k]) * Y[3 * k + j];
+            Z[3 * i + j] = t;
+        }
+}
+
+WRDEF double wr_shell_koiter_point(const wr_shell_koiter_rest *rest, const double p[15], double *g, double *H) {
+    const double *xv = p, *xw = p + 3, *xab[3];
+    double detA = rest->A[0] * rest->A[2] - rest->A[1] * rest->A[1], sq = sqrt(detA), Ai[3], a[3], r, n[3], eps[3],
+           kap[3], Mm[9], Mb[9], Sm[3], Sb[3], Jm[3][15], Jb[3][15], E;
+    int i, j, c, k;
+    xab[0] = p + 6;
+    xab[1] = p + 9;
+    xab[2] = p + 12;
+    Ai[0] = rest->A[2] / detA;
+    Ai[1] = -rest->A[1] / detA;
+    Ai[2] = rest->A[0] / detA;
+    a[0] = xv[1] * xw[2] - xv[2] * xw[1];
+    a[1] = xv[2] * xw[0] - xv[0] * xw[2];
+    a[2] = xv[0] * xw[1] - xv[1] * xw[0];
+    r = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+    if (!(r > 0.0)) return NAN;
+    for (c = 0; c < 3; ++c) n[c] = a[c] / r;
+    eps[0] = 0.5 * (xv[0] * xv[0] + xv[1] * xv[1] + xv[2] * xv[2] - rest->A[0]);
+    eps[1] = 0.5 * (xv[0] * xw[0] + xv[1] * xw[1] + xv[2] * xw[2] - rest->A[1]);
+    eps[2] = 0.5 * (xw[0] * xw[0] + xw[1] * xw[1] + xw[2] * xw[2] - rest->A[2]);
+    for (k = 0; k < 3; ++k) kap[k] = xab[k][0] * n[0] + xab[k][1] * n[1] + xab[k][2] * n[2] - rest->B[k];
+    wr__koiter_matrix(Ai, rest->Ym, rest->nu, Mm);
+    wr__koiter_matrix(Ai, rest->Db, rest->nu, Mb);
+    for (i = 0; i < 3; ++i) {
+        Sm[i] = Mm[3 * i] * eps[0] + Mm[3 * i + 1] * eps[1] + Mm[3 * i + 2] * eps[2];
+        Sb[i] = Mb[3 * i] * kap[0] + Mb[3 * i + 1] * kap[1] + Mb[3 * i + 2] * kap[2];
+    }
+    E = sq * 0.5 * (eps[0] * Sm[0] + eps[1] * Sm[1] + eps[2] * Sm[2] + kap[0] * Sb[0] + kap[1] * Sb[1] + kap[2] * Sb[2]);
+    if (!g && !H) return E;
+    /* Jacobians of ε and κ with respect to p. ε: ∂ε11/∂x_v = x_v, ∂ε12 = ½ (x_w, x_v), ∂ε22/∂x_w = x_w.
+     * κ_k = x_k · n(a), a = x_v × x_w: ∂/∂x_k = n; through n, with q = (I − n nᵀ) x_k / r:
+     * ∂/∂x_v = x_w × q, ∂/∂x_w = q × x_v. */
+    memset(Jm, 0, sizeof Jm);
+    memset(Jb, 0, sizeof Jb);
+    for (c = 0; c < 3; ++c) {
+        Jm[0][c] = xv[c];
+        Jm[1][c] = 0.5 * xw[c];
+        Jm[1][3 + c] = 0.5 * xv[c];
+        Jm[2][3 + c] = xw[c];
+    }
+    for (k = 0; k < 3; ++k) {
+        double cn = xab[k][0] * n[0] + xab[k][1] * n[1] + xab[k][2] * n[2], q[3];
+        for (c = 0; c < 3; ++c) q[c] = (xab[k][c] - cn * n[c]) / r;
+        Jb[k][0] = xw[1] * q[2] - xw[2] * q[1];
+        Jb[k][1] = xw[2] * q[0] - xw[0] * q[2];
+        Jb[k][2] = xw[0] * q[1] - xw[1] * q[0];
+        Jb[k][3] = q[1] * xv[2] - q[2] * xv[1];
+        Jb[k][4] = q[2] * xv[0] - q[0] * xv[2];
+        Jb[k][5] = q[0] * xv[1] - q[1] * xv[0];
+        for (c = 0; c < 3; ++c) Jb[k][6 + 3 * k + c] = n[c];
+    }
+    if (g)
+        for (i = 0; i < 15; ++i)
+            g[i] = sq * (Sm[0] * Jm[0][i] + Sm[1] * Jm[1][i] + Sm[2] * Jm[2][i] + Sb[0] * Jb[0][i] + Sb[1] * Jb[1][i] +
+                         Sb[2] * Jb[2][i]);
+    if (!H) return E;
+    /* Gauss–Newton part Jᵀ M J, then the stresses times the second derivatives of ε and κ */
+    for (i = 0; i < 15; ++i)
+        for (j = 0; j < 15; ++j) {
+            double t = 0.0;
+            int u, w;
+            for (u = 0; u < 3; ++u)
+                for (w = 0; w < 3; ++w) t += Jm[u][i] * Mm[3 * u + w] * Jm[w][j] + Jb[u][i] * Mb[3 * u + w] * Jb[w][j];
+            H[15 * i + j] = t;
+        }
+    for (c = 0; c < 3; ++c) { /* ε: ∂²ε11/∂x_v² = I, ∂²ε12/∂x_v∂x_w = ½ I, ∂²ε22/∂x_w² = I */
+        H[15 * c + c] += Sm[0];
+        H[15 * (3 + c) + 3 + c] += Sm[2];
+        H[15 * c + 3 + c] += 0.5 * Sm[1];
+        H[15 * (3 + c) + c] += 0.5 * Sm[1];
+    }
+    {
+        /* κ: Σ_k S_k ∇²κ_k. With c = Σ_k S_k x_k (one vector, κ is linear in S): ∇²_a (c·n) =
+         * [−(c nᵀ + n cᵀ) − (c·n) I + 3 (c·n) n nᵀ] / r²; J_v = ∂a/∂x_v = −[x_w]×, J_w = [x_v]×; the
+         * bilinear a adds −[∇_a]× to the (x_v, x_w) block; the (x_k, x_v/x_w) blocks are S_k ∂n. */
+        double cv[3], cn, ga[3], Fa[9], P[9], Xw[9], Xv[9], T[9], U[9], G[9];
+        for (c = 0; c < 3; ++c) cv[c] = Sb[0] * xab[0][c] + Sb[1] * xab[1][c] + Sb[2] * xab[2][c];
+        cn = cv[0] * n[0] + cv[1] * n[1] + cv[2] * n[2];
+        for (i = 0; i < 3; ++i) {
+            ga[i] = (cv[i] - cn * n[i]) / r;
+            for (j = 0; j < 3; ++j) {
+                Fa[3 * i + j] = (-(cv[i] * n[j] + n[i] * cv[j]) - (i == j ? cn : 0.0) + 3.0 * cn * n[i] * n[j]) / (r * r);
+                P[3 * i + j] = ((i == j ? 1.0 : 0.0) - n[i] * n[j]) / r;
+            }
+        }
+        wr__koiter_cross(xw, Xw);
+        wr__koiter_cross(xv, Xv);
+        for (i = 0; i < 9; ++i) Xw[i] = -Xw[i]; /* J_v */
+        wr__koiter_mul(Fa, Xw, T, 0);             /* Fa J_v */
+        wr__koiter_mul(Xw, T, U, 1);              /* J_vᵀ Fa J_v */
+        wr__koiter_block(H, 0, 0, 1.0, U);
+        wr__koiter_mul(Fa, Xv, T, 0); /* Fa J_w */
+        wr__koiter_mul(Xv, T, U, 1);  /* J_wᵀ Fa J_w */
+        wr__koiter_block(H, 3, 3, 1.0, U);
+        wr__koiter_mul(Xw, T, U, 1); /* J_vᵀ Fa J_w */
+        wr__koiter_cross(ga, G);
+        for (i = 0; i < 3; ++i)
+            for (j = 0; j < 3; ++j) {
+                H[15 * i + 3 + j] += U[3 * i + j] - G[3 * i + j];
+                H[15 * (3 + j) + i] += U[3 * i + j] - G[3 * i + j];
+            }
+        /* (x_k, x_v) = S_k P J_v and (x_k, x_w) = S_k P J_w, with their transposes */
+        wr__koiter_mul(P, Xw, T, 0);
+        wr__koiter_mul(P, Xv, U, 0);
+        for (k = 0; k < 3; ++k)
+            for (i = 0; i < 3; ++i)
+                for (j = 0; j < 3; ++j) {
+                    int rk = 6 + 3 * k + i;
+                    H[15 * rk + j] += Sb[k] * T[3 * i + j];
+                    H[15 * j + rk] += Sb[k] * T[3 * i + j];
+                    H[15 * rk + 3 + j] += Sb[k] * U[3 * i + j];
+                    H[15 * (3 + j) + rk] += Sb[k] * U[3 * i + j];
+                }
+    }
+    for (i = 0; i < 225; ++i) H[i] *= sq;
+    return E;
 }
 
 /* Rows of the rest-frame gradient operator: F = Σ_v x_v ⊗ G[v], G[1] = dinv row 0, G[2] = row 1. */
