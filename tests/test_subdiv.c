@@ -345,3 +345,162 @@ Test(subdiv, koiter_point_gradient_and_hessian_match_finite_differences) {
             for (j = 0; j < i; ++j) cr_assert_float_eq(H[15 * i + j], H[15 * j + i], 1e-12 * hmax, "H symmetric");
     }
 }
+
+/* ---- the Loop element in wr_shell (shell.h ON THE LOOP ELEMENT) ----------------------------------- */
+
+static void loop_shell(wr_shell *s, const wr_mesh *m, int exact) {
+    wr_shell_desc sd;
+    wr_diag d;
+    memset(&sd, 0, sizeof sd);
+    sd.membrane = WR_MEMBRANE_STVK;
+    sd.bending = WR_BENDING_DIHEDRAL;
+    sd.young = 1e6;
+    sd.poisson = 0.3;
+    sd.thickness = 1e-3;
+    sd.loop_element = 1;
+    sd.loop_exact_hessian = exact;
+    cr_assert_eq(wr_shell_create(s, m, &sd, &d), WR_OK, "%s", d.message);
+}
+
+Test(subdiv, loop_shell_uniform_stretch_is_exact) {
+    /* an affine map of a planar mesh maps its limit surface affinely: uniform strain on Loop faces as on
+     * linear ones, so E = area · ½ Ym ε² (ε22 held at 0) exactly */
+    wr_mesh m;
+    wr_shell s;
+    wr_diag d;
+    double lam = 1.05, e = 0.5 * (lam * lam - 1.0), E, Ym;
+    int32_t v;
+    cr_assert_eq(wr_mesh_rectangle(&m, 1.0, 0.5, 10, 5, &d), WR_OK);
+    loop_shell(&s, &m, 0);
+    cr_assert_gt(s.n_loop_faces, 20, "Loop faces: %d of %d", s.n_loop_faces, m.nf);
+    for (v = 0; v < m.nv; ++v) m.pos[3 * v] *= lam;
+    cr_assert_eq(wr_shell_energy(&s, m.pos, &E, NULL, &d), WR_OK, "%s", d.message);
+    Ym = 1e6 * 1e-3 / (1.0 - 0.09);
+    cr_assert_float_eq(E, 0.5 * 0.5 * Ym * e * e, 1e-10 * E, "E = %.15g vs %.15g", E, 0.25 * Ym * e * e);
+    wr_shell_free(&s);
+    wr_mesh_free(&m);
+}
+
+/* Control points of m (rest scaled by `scale`) placed isometrically on a cylinder of radius 0.3 m
+ * about the y axis; the Loop faces' bending and membrane energies over ½ D / R² × their rest area. */
+static void cylinder_energies(const wr_mesh *m0, double scale, double out[2]) {
+    wr_mesh m;
+    wr_shell s;
+    wr_diag d;
+    double R = 0.3, D = 1e6 * 1e-9 / (12.0 * 0.91), area = 0.0, Eb = 0.0, Em = 0.0;
+    int32_t v, f;
+    cr_assert_eq(wr_mesh_copy(&m, m0, &d), WR_OK);
+    for (v = 0; v < 2 * m.nv; ++v) m.rest[v] *= scale;
+    loop_shell(&s, &m, 0);
+    for (v = 0; v < m.nv; ++v) {
+        double u = m.rest[2 * v];
+        m.pos[3 * v] = R * sin(u / R);
+        m.pos[3 * v + 1] = m.rest[2 * v + 1];
+        m.pos[3 * v + 2] = R * (1.0 - cos(u / R));
+    }
+    for (f = 0; f < m.nf; ++f) {
+        double em, eb;
+        if (s.loop_start[f + 1] == s.loop_start[f]) continue;
+        cr_assert_eq(wr_shell_face_energy(&s, f, m.pos, &em, &eb), WR_OK);
+        Em += em;
+        Eb += eb;
+        area += s.area[f];
+    }
+    out[0] = Eb / (0.5 * D / (R * R) * area);
+    out[1] = Em / (0.5 * D / (R * R) * area);
+    wr_shell_free(&s);
+    wr_mesh_free(&m);
+}
+
+Test(subdiv, loop_shell_bent_to_a_cylinder) {
+    /* The limit surface of control points on a cylinder is a slightly smaller cylinder (subdivision does
+     * not interpolate): on the valence-6 lattice the bending energy tends to ½ D / R² per unit area at
+     * second order in h and the membrane energy to 0 at fourth. On the union-jack grid every face
+     * touches valence-4 and valence-8 vertices, where Loop surfaces do not reproduce quadratics: the
+     * bending energy keeps a bias that does not refine away (measured +6.8 %; bounded here at 8 %, the
+     * element's known limitation on highly irregular meshes) while the membrane still converges. */
+    double lat[3][2], uj[2][2];
+    int level;
+    for (level = 0; level < 3; ++level) {
+        wr_mesh m;
+        int n = 20 << level;
+        lattice_mesh(&m, n, 1u);
+        cylinder_energies(&m, 0.4 / n, lat[level]);
+        wr_mesh_free(&m);
+    }
+    for (level = 0; level < 2; ++level) {
+        wr_mesh m;
+        wr_diag d;
+        cr_assert_eq(wr_mesh_rectangle(&m, 0.6, 0.4, 30 << level, 20 << level, &d), WR_OK);
+        cylinder_energies(&m, 1.0, uj[level]);
+        wr_mesh_free(&m);
+    }
+    cr_assert_lt(fabs(lat[0][0] - 1.0), 2e-3, "lattice h = 2 cm: bending / closed form %.6f", lat[0][0]);
+    cr_assert_lt(fabs(lat[2][0] - 1.0), 0.3 * 0.3 * fabs(lat[0][0] - 1.0), "bending error %.3g -> %.3g: not O(h^2)",
+                 fabs(lat[0][0] - 1.0), fabs(lat[2][0] - 1.0));
+    cr_assert_lt(lat[2][1], 0.1 * 0.1 * lat[0][1], "membrane %.3g -> %.3g: not O(h^4)", lat[0][1], lat[2][1]);
+    cr_assert_lt(fabs(uj[1][0] - 1.0), 0.08, "union jack: bending / closed form %.4f", uj[1][0]);
+    cr_assert_lt(uj[1][1], 0.1 * uj[0][1], "union jack membrane %.3g -> %.3g", uj[0][1], uj[1][1]);
+}
+
+/* Assembles the streamed blocks into a dense matrix */
+typedef struct dense_sink {
+    int32_t n;
+    double *H;
+} dense_sink;
+static wr_status dense_add(void *user, int32_t k, const int32_t *verts, const double *Ke) {
+    dense_sink *ds = (dense_sink *)user;
+    int32_t a, b, i, j;
+    for (a = 0; a < k; ++a)
+        for (b = 0; b < k; ++b)
+            for (i = 0; i < 3; ++i)
+                for (j = 0; j < 3; ++j) ds->H[(3 * verts[a] + i) * 3 * ds->n + 3 * verts[b] + j] += Ke[(3 * a + i) * 3 * k + 3 * b + j];
+    return WR_OK;
+}
+
+Test(subdiv, loop_shell_gradient_and_hessian_match_finite_differences) {
+    wr_mesh m;
+    wr_shell s;
+    wr_diag d;
+    wr_rng rng;
+    dense_sink ds;
+    wr_hess_sink hs;
+    double *g, *gp, *gm, gmax = 0.0, hmax = 0.0, h = 1e-7;
+    int32_t v, i, j, N;
+    cr_assert_eq(wr_mesh_rectangle(&m, 0.1, 0.1, 5, 5, &d), WR_OK);
+    loop_shell(&s, &m, 1);
+    wr_rng_seed(&rng, 5u);
+    for (v = 0; v < 3 * m.nv; ++v) m.pos[v] += 0.004 * (wr_rng_uniform(&rng) - 0.5);
+    N = 3 * m.nv;
+    g = (double *)calloc((size_t)N, sizeof(double));
+    gp = (double *)calloc((size_t)N, sizeof(double));
+    gm = (double *)calloc((size_t)N, sizeof(double));
+    ds.n = m.nv;
+    ds.H = (double *)calloc((size_t)N * (size_t)N, sizeof(double));
+    hs.user = &ds;
+    hs.add = dense_add;
+    cr_assert_eq(wr_shell_energy(&s, m.pos, NULL, g, &d), WR_OK);
+    cr_assert_eq(wr_shell_hessian_elements(&s, m.pos, 0, &hs, &d), WR_OK);
+    for (i = 0; i < N; ++i) {
+        gmax = fmax(gmax, fabs(g[i]));
+        for (j = 0; j < N; ++j) hmax = fmax(hmax, fabs(ds.H[(size_t)i * N + j]));
+    }
+    for (i = 0; i < N; ++i) {
+        double x0 = m.pos[i], Ep, Em;
+        m.pos[i] = x0 + h;
+        wr_shell_energy(&s, m.pos, &Ep, gp, NULL);
+        m.pos[i] = x0 - h;
+        wr_shell_energy(&s, m.pos, &Em, gm, NULL);
+        m.pos[i] = x0;
+        cr_assert_float_eq((Ep - Em) / (2 * h), g[i], 1e-5 * gmax, "dE/dx%d %.8g vs %.8g", i, (Ep - Em) / (2 * h), g[i]);
+        for (j = 0; j < N; ++j)
+            cr_assert_float_eq((gp[j] - gm[j]) / (2 * h), ds.H[(size_t)j * N + i], 1e-5 * hmax, "H[%d][%d] %.8g vs %.8g", j, i,
+                               (gp[j] - gm[j]) / (2 * h), ds.H[(size_t)j * N + i]);
+    }
+    free(g);
+    free(gp);
+    free(gm);
+    free(ds.H);
+    wr_shell_free(&s);
+    wr_mesh_free(&m);
+}

@@ -28,6 +28,7 @@
  *   wr_shell_free(s)                                free and zero (safe on a zeroed shell)
  *   wr_shell_energy(s, x, E, grad, diag)            total energy [J] and gradient (nv*3) at x (nv*3)
  *   wr_shell_energy_parts(s, x, Emem, Ebend, diag)  membrane and bending parts
+ *   wr_shell_face_energy(s, f, x, Emem, Ebend)      one face's membrane and bending energy
  *   wr_shell_hessian_elements(s, x, project, sink, diag)  element Hessians streamed to a callback
  *   wr_shell_hessian_elements_part(s, x, project, parts, sink, diag)  only the face blocks and/or
  *                                                   the (constant) quadratic-bending blocks
@@ -149,6 +150,25 @@
  *   (parts = WR_SHELL_HESS_FACES), only the quadratic stencils (WR_SHELL_HESS_QUADRATIC), or both
  *   (WR_SHELL_HESS_ALL, what wr_shell_hessian_elements does), each in the same order as above.
  *
+ * ON THE LOOP ELEMENT (desc.loop_element; issue 15, docs/design-higher-order-shell.md)
+ *   Cirak, Ortiz & Schröder 2000: the surface is the Loop limit surface of the mesh (subdiv.h), and
+ *   each face with three interior corners carries Koiter's energy (wr_shell_koiter_point: the StVK
+ *   membrane and plate bending written in the limit surface's own metric and second fundamental
+ *   form) at its centre, one quadrature point, weighted by the face's rest area. Strain and curvature
+ *   come from one smooth map, so a wave whose crests cross the edges has no interpolation strain —
+ *   the defect of linear triangles on unstructured meshes under strong tension. Faces with a corner
+ *   on the boundary keep the linear element (membrane + desc.bending): the ghost-vertex boundary of
+ *   Cirak & Ortiz 2001 is not implemented; the mix tiles the rest domain exactly (area weights), so a
+ *   uniform strain is exact everywhere. Needs the isotropic StVK membrane and a per-vertex rest
+ *   (WR_ERR_UNSUPPORTED otherwise); statics only (wr_shell_face_block, hence dynamics.h, refuses Loop
+ *   faces). Hessian blocks span the face's stencil (12 vertices on a regular patch, up to
+ *   WR_SUBDIV_MAX_STENCIL): projected PSD in the 15-D point space (x_v, x_w, x_vv, x_vw, x_ww) unless
+ *   desc.loop_exact_hessian is set and the call's project_spd is 0 (the stability test's exact
+ *   Hessian). Measured accuracy
+ *   (tests/test_subdiv.c): on a valence-6 lattice bent to a cylinder the bending energy converges at
+ *   O(h²), the membrane's at O(h⁴); where every face touches valence-4/8 vertices (union-jack grid) a
+ *   +6.8 % bending bias stays under refinement — Loop surfaces do not reproduce quadratics near
+ *   extraordinary vertices, a known limitation.
  * ON UNITS
  *   Y, E1, E2, G12 [Pa], h [m], B, B1, B2 [N·m], k_u, k_v, k_s [N/m], ρ [kg/m³], positions [m],
  *   energies [J], angles [rad].
@@ -161,6 +181,7 @@
 
 #include "core.h"
 #include "mesh.h"
+#include "subdiv.h"
 #include "tft.h"
 
 #ifdef __cplusplus
@@ -194,6 +215,14 @@ typedef enum wr_bending_model {
  *   given otherwise (bending_stiffness, bending_warp/weft, or no bending);
  *   bending_warp, bending_weft [N·m]: both 0 → isotropic (B, or h³/12·C when orthotropic); both > 0
  *   → warp/weft bending (ON ANISOTROPIC BENDING) with mid-edge or dihedral bending. */
+/* The rest data of one quadrature point of a smooth shell (issue 15's Loop element, subdiv.h):
+ * covariant rest metric A = (A11, A12, A22) and rest curvature B (b_ab = x_ab · n), in the surface
+ * parameters (v, w); membrane stiffness Ym = E h / (1 − ν²) [N/m], bending stiffness
+ * Db = E h³ / (12 (1 − ν²)) [N·m], Poisson ratio nu. */
+typedef struct wr_shell_koiter_rest {
+    double A[3], B[3], Ym, Db, nu;
+} wr_shell_koiter_rest;
+
 typedef struct wr_shell_desc {
     wr_membrane_model membrane;
     wr_bending_model bending;
@@ -208,6 +237,8 @@ typedef struct wr_shell_desc {
     const double *rest_pos3;   /* nv*3 [m], copied into rest data, not kept */
     double stretch_warp, stretch_weft, stretch_shear; /* Baraff–Witkin stiffnesses [N/m] */
     double bending_warp, bending_weft; /* [N·m]: anisotropic bending (mid-edge or dihedral) */
+    int32_t loop_element;      /* 1: Koiter energy on the Loop limit surface where it exists (ON THE LOOP ELEMENT) */
+    int32_t loop_exact_hessian; /* 1: Loop faces' Hessian blocks exact; 0: projected PSD in their 15-D point space */
 } wr_shell_desc;
 
 typedef struct wr_shell {
@@ -231,6 +262,12 @@ typedef struct wr_shell {
     double *qb_w;     /* cotangent weights L_vj (centre weight = −Σ) */
     double *qb_coef;  /* n_qb: B / A_v [N/m] */
     double total_area;
+    /* the Loop element (ON THE LOOP ELEMENT): face f's limit-surface stencil is loop_vert/loop_w
+     * [loop_start[f] .. loop_start[f+1]) (empty: the linear element); loop_w holds 6 weights per entry */
+    int32_t n_loop_faces, loop_exact_hessian;
+    int32_t *loop_start, *loop_vert;
+    double *loop_w, *loop_wt; /* loop_wt: nf quadrature weights, rest area / √det A (ON THE LOOP ELEMENT) */
+    wr_shell_koiter_rest *loop_rest;
 } wr_shell;
 
 /* Element Hessian consumer. Ke is 3k×3k row-major over verts[0..k). */
@@ -248,6 +285,9 @@ WRDEF void wr_shell_free(wr_shell *s);
 WRDEF wr_status wr_shell_energy(const wr_shell *s, const double *x, double *E, double *grad, wr_diag *diag);
 WRDEF wr_status wr_shell_energy_parts(const wr_shell *s, const double *x, double *E_membrane, double *E_bending,
                                       wr_diag *diag);
+/* One face's membrane and bending energy [J] at x (the face-block split of wr_shell_energy_parts; the
+ * quadratic bending model has no per-face part and gives 0). WR_ERR_INVALID_ARG, WR_ERR_GEOMETRY. */
+WRDEF wr_status wr_shell_face_energy(const wr_shell *s, int32_t f, const double *x, double *E_membrane, double *E_bending);
 WRDEF wr_status wr_shell_hessian_elements(const wr_shell *s, const double *x, int32_t project_spd,
                                           const wr_hess_sink *sink, wr_diag *diag);
 /* parts for wr_shell_hessian_elements_part (ON ELEMENT HESSIANS); any other bit is WR_ERR_INVALID_ARG */
@@ -288,13 +328,6 @@ WRDEF wr_status wr_shell_dihedral_element(const double x[18], int32_t mask, cons
 WRDEF int32_t wr_shell_hinge_angle(const double x[12], double *theta, double *g, double *H);
 /* ½ γᵀCγ with γ = (ε11, ε22, 2ε12); dW, d2W w.r.t. (ε11, ε22, ε12); either may be NULL. */
 WRDEF double wr_shell_stvk_density(const double C[9], const double eps[3], double *dW, double *d2W);
-/* The rest data of one quadrature point of a smooth shell (issue 15's Loop element, subdiv.h):
- * covariant rest metric A = (A11, A12, A22) and rest curvature B (b_ab = x_ab · n), in the surface
- * parameters (v, w); membrane stiffness Ym = E h / (1 − ν²) [N/m], bending stiffness
- * Db = E h³ / (12 (1 − ν²)) [N·m], Poisson ratio nu. */
-typedef struct wr_shell_koiter_rest {
-    double A[3], B[3], Ym, Db, nu;
-} wr_shell_koiter_rest;
 /* Koiter's isotropic thin-shell energy at one point, per unit parameter area: √det A · [Q_Ym(ε) +
  * Q_Db(κ)], ε = ½ (a − A), κ = b − B, Q_k(s) = ½ k [(1 − ν) tr((A⁻¹s)²) + ν (tr A⁻¹s)²] (the StVK
  * membrane and the plate bending density written covariantly). p (15) = (x_v, x_w, x_vv, x_vw, x_ww)
@@ -1144,8 +1177,144 @@ WRDEF void wr_shell_free(wr_shell *s) {
     wr_free(s->qb_vert);
     wr_free(s->qb_w);
     wr_free(s->qb_coef);
+    wr_free(s->loop_start);
+    wr_free(s->loop_vert);
+    wr_free(s->loop_w);
+    wr_free(s->loop_wt);
+    wr_free(s->loop_rest);
     memset(s, 0, sizeof *s);
 }
+
+/* ---- the Loop element (ON THE LOOP ELEMENT) ------------------------------------------------- */
+
+/* p = (x_v, x_w, x_vv, x_vw, x_ww) of face f's limit surface at its centre, from positions x */
+static void wr__shell_loop_p(const wr_shell *s, int32_t f, const double *x, double p[15]) {
+    int32_t j0 = s->loop_start[f], n = s->loop_start[f + 1] - j0, j, k, i;
+    const double *W = s->loop_w + 6 * (size_t)j0;
+    memset(p, 0, sizeof(double) * 15);
+    for (k = 0; k < 5; ++k)
+        for (j = 0; j < n; ++j) {
+            double w = W[(k + 1) * n + j];
+            for (i = 0; i < 3; ++i) p[3 * k + i] += w * x[3 * s->loop_vert[j0 + j] + i];
+        }
+}
+
+
+static wr_status wr__shell_build_loop(wr_shell *s, const wr_mesh *m, const wr_shell_desc *desc, wr_diag *diag) {
+    int32_t f, v, total = 0, n, verts[WR_SUBDIV_MAX_STENCIL];
+    double W[6 * WR_SUBDIV_MAX_STENCIL], *R = NULL, nu = s->poisson;
+    wr_status st = WR_OK;
+    if (s->orthotropic || s->membrane != WR_MEMBRANE_STVK || m->corner_rest)
+        return wr_fail(diag, WR_ERR_UNSUPPORTED, -1,
+                       "shell: the Loop element needs the isotropic StVK membrane and one rest position per vertex");
+    s->loop_start = (int32_t *)wr_calloc_array((size_t)m->nf + 1, sizeof(int32_t));
+    s->loop_rest = (wr_shell_koiter_rest *)wr_calloc_array((size_t)m->nf, sizeof(wr_shell_koiter_rest));
+    s->loop_wt = (double *)wr_calloc_array((size_t)m->nf, sizeof(double));
+    R = (double *)wr_alloc_array(3 * (size_t)m->nv, sizeof(double));
+    if (!s->loop_start || !s->loop_rest || !s->loop_wt || !R) {
+        st = wr_fail(diag, WR_ERR_NOMEM, -1, "shell: out of memory (Loop element)");
+        goto done;
+    }
+    for (v = 0; v < m->nv; ++v) { /* the rest surface: rest_pos3, else the pattern plane, else pos */
+        int i;
+        for (i = 0; i < 3; ++i)
+            R[3 * v + i] = desc->rest_pos3 ? desc->rest_pos3[3 * v + i]
+                           : m->rest      ? (i < 2 ? m->rest[2 * v + i] : 0.0)
+                                          : m->pos[3 * v + i];
+    }
+    for (f = 0; f < m->nf; ++f) { /* first pass: sizes */
+        s->loop_start[f] = total;
+        if (wr_subdiv_loop_stencil(m, f, &n, verts, W, NULL) == WR_OK) total += n;
+    }
+    s->loop_start[m->nf] = total;
+    s->loop_vert = (int32_t *)wr_alloc_array((size_t)total + 1, sizeof(int32_t));
+    s->loop_w = (double *)wr_alloc_array(6 * (size_t)total + 1, sizeof(double));
+    if (!s->loop_vert || !s->loop_w) {
+        st = wr_fail(diag, WR_ERR_NOMEM, -1, "shell: out of memory (Loop element)");
+        goto done;
+    }
+    s->loop_exact_hessian = desc->loop_exact_hessian != 0;
+    for (f = 0; f < m->nf; ++f) {
+        int32_t j0 = s->loop_start[f];
+        double p[15], a[3], r;
+        wr_shell_koiter_rest *kr = s->loop_rest + f;
+        int c;
+        if (s->loop_start[f + 1] == j0) continue;
+        wr_subdiv_loop_stencil(m, f, &n, verts, W, NULL);
+        memcpy(s->loop_vert + j0, verts, sizeof(int32_t) * (size_t)n);
+        memcpy(s->loop_w + 6 * (size_t)j0, W, sizeof(double) * 6 * (size_t)n);
+        wr__shell_loop_p(s, f, R, p);
+        kr->A[0] = p[0] * p[0] + p[1] * p[1] + p[2] * p[2];
+        kr->A[1] = p[0] * p[3] + p[1] * p[4] + p[2] * p[5];
+        kr->A[2] = p[3] * p[3] + p[4] * p[4] + p[5] * p[5];
+        a[0] = p[1] * p[5] - p[2] * p[4];
+        a[1] = p[2] * p[3] - p[0] * p[5];
+        a[2] = p[0] * p[4] - p[1] * p[3];
+        r = sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+        if (!(r > 0.0) || !(kr->A[0] * kr->A[2] - kr->A[1] * kr->A[1] > 0.0)) {
+            st = wr_fail(diag, WR_ERR_GEOMETRY, f, "shell: face %d's rest limit surface has no tangent plane", (int)f);
+            goto done;
+        }
+        for (c = 0; c < 3; ++c) kr->B[c] = (p[6 + 3 * c] * a[0] + p[7 + 3 * c] * a[1] + p[8 + 3 * c] * a[2]) / r;
+        kr->Ym = s->young * s->thickness / (1.0 - nu * nu);
+        kr->Db = s->bending == WR_BENDING_NONE ? 0.0 : s->bending_stiffness;
+        kr->nu = nu;
+        /* koiter_point is per unit parameter area (√det A built in): weighting by area / √det A makes
+         * each face count its rest area, so Loop and linear faces tile the rest domain exactly */
+        s->loop_wt[f] = s->area[f] / sqrt(kr->A[0] * kr->A[2] - kr->A[1] * kr->A[1]);
+        s->n_loop_faces++;
+    }
+done:
+    wr_free(R);
+    return st;
+}
+
+/* Face f's Loop energy (parts), gradient added to grad when non-NULL */
+static void wr__shell_loop_energy(const wr_shell *s, int32_t f, const double *x, double *em, double *eb, double *grad) {
+    int32_t j0 = s->loop_start[f], n = s->loop_start[f + 1] - j0, j, k, i;
+    const double *W = s->loop_w + 6 * (size_t)j0;
+    wr_shell_koiter_rest rm = s->loop_rest[f], rb = s->loop_rest[f];
+    double p[15], g[15];
+    wr__shell_loop_p(s, f, x, p);
+    rm.Db = 0.0;
+    rb.Ym = 0.0;
+    *em += s->loop_wt[f] * wr_shell_koiter_point(&rm, p, NULL, NULL);
+    *eb += s->loop_wt[f] * wr_shell_koiter_point(&rb, p, NULL, NULL);
+    if (!grad) return;
+    wr_shell_koiter_point(s->loop_rest + f, p, g, NULL);
+    for (k = 0; k < 5; ++k)
+        for (j = 0; j < n; ++j) {
+            double w = s->loop_wt[f] * W[(k + 1) * n + j];
+            for (i = 0; i < 3; ++i) grad[3 * s->loop_vert[j0 + j] + i] += w * g[3 * k + i];
+        }
+}
+
+/* Face f's Loop Hessian block over its stencil: loop_wt · Wᵀ H_p W, H_p projected PSD in the point
+ * space unless exact (Ke: (3n)² with n = the stencil size) */
+static void wr__shell_loop_block(const wr_shell *s, int32_t f, const double *x, int exact, double *Ke) {
+    int32_t j0 = s->loop_start[f], n = s->loop_start[f + 1] - j0, a, b, k, l, i, jj;
+    const double *W = s->loop_w + 6 * (size_t)j0;
+    double p[15], H[225], T[15 * 3 * WR_SUBDIV_MAX_STENCIL];
+    wr__shell_loop_p(s, f, x, p);
+    wr_shell_koiter_point(s->loop_rest + f, p, NULL, H);
+    if (!exact) wr_dense_project_spd(15, H, 0.0);
+    /* T = H_p (W ⊗ I): 15 × 3n, then Ke = (W ⊗ I)ᵀ T */
+    for (k = 0; k < 15; ++k)
+        for (b = 0; b < n; ++b)
+            for (jj = 0; jj < 3; ++jj) {
+                double t = 0.0;
+                for (l = 0; l < 5; ++l) t += H[15 * k + 3 * l + jj] * W[(l + 1) * n + b];
+                T[k * 3 * n + 3 * b + jj] = t;
+            }
+    for (a = 0; a < n; ++a)
+        for (i = 0; i < 3; ++i)
+            for (b = 0; b < 3 * n; ++b) {
+                double t = 0.0;
+                for (k = 0; k < 5; ++k) t += W[(k + 1) * n + a] * T[(3 * k + i) * 3 * n + b];
+                Ke[(3 * a + i) * 3 * n + b] = s->loop_wt[f] * t;
+            }
+}
+
 
 static double wr__cot2(const double *o, const double *p, const double *q) {
     /* cotangent of the angle at o in triangle (o, p, q), 2D */
@@ -1483,6 +1652,10 @@ WRDEF wr_status wr_shell_create(wr_shell *s, const wr_mesh *m, const wr_shell_de
         st = wr__shell_build_qb(s, m, uvall, diag);
         if (st != WR_OK) goto fail;
     }
+    if (desc->loop_element) {
+        st = wr__shell_build_loop(s, m, desc, diag);
+        if (st != WR_OK) goto fail;
+    }
     wr_free(uvall);
     return WR_OK;
 fail:
@@ -1493,40 +1666,61 @@ fail:
 
 /* ---- mesh-level evaluation ----------------------------------------------------------------- */
 
+/* Face f's membrane and bending energy added to *em, *eb (and its gradient to grad when non-NULL):
+ * the Loop element where the face has one, else the linear membrane and the face's bending stencil.
+ * WR_ERR_GEOMETRY when a normal of the bending stencil is undefined. */
+static wr_status wr__shell_face_eval(const wr_shell *s, int32_t f, const double *x, double *em, double *eb, double *grad) {
+    int32_t verts[6], mask, k, i;
+    double x18[18], g9[9], g18[18], e = 0.0;
+    if (s->loop_start && s->loop_start[f + 1] > s->loop_start[f]) {
+        wr__shell_loop_energy(s, f, x, em, eb, grad);
+        return WR_OK;
+    }
+    wr__shell_gather(s, f, x, verts, &mask, x18);
+    if (s->membrane != WR_MEMBRANE_NONE) {
+        *em += wr_shell_membrane_element(s, f, x18, grad ? g9 : NULL, NULL);
+        if (grad)
+            for (k = 0; k < 3; ++k)
+                for (i = 0; i < 3; ++i) grad[3 * verts[k] + i] += g9[3 * k + i];
+    }
+    if (s->bending == WR_BENDING_MIDEDGE || s->bending == WR_BENDING_DIHEDRAL) {
+        wr_status es = s->bending == WR_BENDING_MIDEDGE
+                           ? wr_shell_midedge_element(x18, mask, s->qbend + 9 * f, s->bbar ? s->bbar + 3 * f : NULL, &e,
+                                                      grad ? g18 : NULL, NULL, NULL)
+                           : wr_shell_dihedral_element(x18, mask, s->qbend + 9 * f, s->bbar ? s->bbar + 3 * f : NULL, &e,
+                                                       grad ? g18 : NULL, NULL, NULL);
+        if (es != WR_OK) return WR_ERR_GEOMETRY;
+        *eb += e;
+        if (grad)
+            for (k = 0; k < 6; ++k)
+                if (verts[k] >= 0)
+                    for (i = 0; i < 3; ++i) grad[3 * verts[k] + i] += g18[3 * k + i];
+    }
+    return WR_OK;
+}
+
+WRDEF wr_status wr_shell_face_energy(const wr_shell *s, int32_t f, const double *x, double *E_membrane, double *E_bending) {
+    double em = 0.0, eb = 0.0;
+    wr_status st;
+    if (!s || !x || f < 0 || f >= s->nf) return WR_ERR_INVALID_ARG;
+    st = wr__shell_face_eval(s, f, x, &em, &eb, NULL);
+    if (E_membrane) *E_membrane = em;
+    if (E_bending) *E_bending = eb;
+    return st;
+}
+
 static wr_status wr__shell_eval(const wr_shell *s, const double *x, double *Em, double *Eb, double *grad,
                                 wr_diag *diag) {
-    int32_t f, st, k, i;
+    int32_t f, st, i;
     double em = 0.0, eb = 0.0;
     if (!s || !x || !s->faces) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "shell energy: NULL shell or x");
     for (f = 0; f < 3 * s->nv; ++f)
         if (!wr__shell_finite(x[f]))
             return wr_fail(diag, WR_ERR_DOMAIN, f / 3, "shell energy: vertex %d has a non-finite coordinate", (int)(f / 3));
     if (grad) memset(grad, 0, sizeof(double) * 3 * (size_t)s->nv);
-    for (f = 0; f < s->nf; ++f) {
-        int32_t verts[6], mask;
-        double x18[18], g9[9], g18[18], e = 0.0;
-        wr__shell_gather(s, f, x, verts, &mask, x18);
-        if (s->membrane != WR_MEMBRANE_NONE) {
-            em += wr_shell_membrane_element(s, f, x18, grad ? g9 : NULL, NULL);
-            if (grad)
-                for (k = 0; k < 3; ++k)
-                    for (i = 0; i < 3; ++i) grad[3 * verts[k] + i] += g9[3 * k + i];
-        }
-        if (s->bending == WR_BENDING_MIDEDGE || s->bending == WR_BENDING_DIHEDRAL) {
-            wr_status es = s->bending == WR_BENDING_MIDEDGE
-                               ? wr_shell_midedge_element(x18, mask, s->qbend + 9 * f, s->bbar ? s->bbar + 3 * f : NULL,
-                                                          &e, grad ? g18 : NULL, NULL, NULL)
-                               : wr_shell_dihedral_element(x18, mask, s->qbend + 9 * f, s->bbar ? s->bbar + 3 * f : NULL,
-                                                           &e, grad ? g18 : NULL, NULL, NULL);
-            if (es != WR_OK)
-                return wr_fail(diag, WR_ERR_GEOMETRY, f, "shell energy: face %d has an undefined normal", (int)f);
-            eb += e;
-            if (grad)
-                for (k = 0; k < 6; ++k)
-                    if (verts[k] >= 0)
-                        for (i = 0; i < 3; ++i) grad[3 * verts[k] + i] += g18[3 * k + i];
-        }
-    }
+    for (f = 0; f < s->nf; ++f)
+        if (wr__shell_face_eval(s, f, x, &em, &eb, grad) != WR_OK)
+            return wr_fail(diag, WR_ERR_GEOMETRY, f, "shell energy: face %d has an undefined normal", (int)f);
     if (s->bending == WR_BENDING_QUADRATIC)
         for (st = 0; st < s->n_qb; ++st) {
             double lx[3] = {0.0, 0.0, 0.0};
@@ -1561,6 +1755,7 @@ WRDEF wr_status wr_shell_face_block(const wr_shell *s, int32_t f, const double *
     int32_t vs[6], mask, idx[6], k = 0, a, b, i, j;
     double x18[18], H18[324], H9[81];
     int bend = s->bending == WR_BENDING_MIDEDGE || s->bending == WR_BENDING_DIHEDRAL;
+    if (s->loop_start && s->loop_start[f + 1] > s->loop_start[f]) return WR_ERR_UNSUPPORTED; /* its stencil is larger */
     wr__shell_gather(s, f, x, vs, &mask, x18);
     if (bend) {
         wr_status es = s->bending == WR_BENDING_MIDEDGE
@@ -1610,6 +1805,16 @@ WRDEF wr_status wr_shell_hessian_elements_part(const wr_shell *s, const double *
             int32_t verts[6], n = 0;
             double Ke[324];
             wr_status rs;
+            if (s->loop_start && s->loop_start[f + 1] > s->loop_start[f]) {
+                int32_t nl = s->loop_start[f + 1] - s->loop_start[f];
+                double *KL = (double *)wr_alloc_array((size_t)9 * (size_t)nl * (size_t)nl, sizeof(double));
+                if (!KL) return wr_fail(diag, WR_ERR_NOMEM, f, "shell Hessian: out of memory");
+                wr__shell_loop_block(s, f, x, s->loop_exact_hessian && !project_spd, KL);
+                rs = sink->add(sink->user, nl, s->loop_vert + s->loop_start[f], KL);
+                wr_free(KL);
+                if (rs != WR_OK) return wr_fail(diag, rs, f, "shell Hessian: sink rejected face %d", (int)f);
+                continue;
+            }
             if (wr_shell_face_block(s, f, x, &n, verts, Ke) != WR_OK)
                 return wr_fail(diag, WR_ERR_GEOMETRY, f, "shell Hessian: face %d has an undefined normal", (int)f);
             if (project_spd) wr_dense_project_spd(3 * n, Ke, 0.0);

@@ -26,8 +26,9 @@
  * API
  *   wr_subdiv_loop_basis(v, w, N, dN, d2N)          regular-patch basis at (v, w): N[12], ∂/∂v, ∂/∂w
  *                                                   (dN[2i], dN[2i+1]) and ∂vv, ∂vw, ∂ww (d2N[3i..])
- *   wr_subdiv_loop_stencil(m, f, &n, verts, W, diag)  face f's stencil: n vertices, W (6 × n row-major:
- *                                                   position, x_v, x_w, x_vv, x_vw, x_ww weights)
+ *   wr_subdiv_loop_stencil(m, f, &n, verts, W, diag)  face f's stencil: n vertices (its corners first),
+ *                                                   W (6 × n row-major: position, x_v, x_w, x_vv, x_vw,
+ *                                                   x_ww weights)
  *
  * EXAMPLE
  *     wr_mesh m;  wr_diag d;  int32_t n, verts[WR_SUBDIV_MAX_STENCIL], i, k, f;  double x[6][3];
@@ -280,8 +281,10 @@ WRDEF wr_status wr_subdiv_loop_stencil(const wr_mesh *m, int32_t f, int32_t *n, 
     ok &= wr__subdiv_edge_point(&cp[9], A, rA, nA, 2);      /* e_AF */
     ok &= wr__subdiv_vertex_point(&cp[10], A, rA, nA);      /* A' */
     ok &= wr__subdiv_edge_point(&cp[11], A, rA, nA, nA - 1); /* e_AD */
-    /* the stencil: every vertex any control point uses, in first-use order */
+    /* the stencil: the face's corners first (callers that fold per-face terms into the block find
+     * them there), then every other vertex a control point uses, in first-use order */
     out.n = 0;
+    ok &= wr__subdiv_add(&out, A, 0.0) & wr__subdiv_add(&out, B, 0.0) & wr__subdiv_add(&out, C, 0.0);
     for (i = 0; i < 12 && ok; ++i)
         for (j = 0; j < cp[i].n && ok; ++j) ok &= wr__subdiv_add(&out, cp[i].v[j], 0.0);
     if (!ok)
