@@ -348,7 +348,7 @@ Test(subdiv, koiter_point_gradient_and_hessian_match_finite_differences) {
 
 /* ---- the Loop element in wr_shell (shell.h ON THE LOOP ELEMENT) ----------------------------------- */
 
-static void loop_shell(wr_shell *s, const wr_mesh *m, int exact) {
+static void loop_shell(wr_shell *s, const wr_mesh *m) {
     wr_shell_desc sd;
     wr_diag d;
     memset(&sd, 0, sizeof sd);
@@ -358,7 +358,6 @@ static void loop_shell(wr_shell *s, const wr_mesh *m, int exact) {
     sd.poisson = 0.3;
     sd.thickness = 1e-3;
     sd.loop_element = 1;
-    sd.loop_exact_hessian = exact;
     cr_assert_eq(wr_shell_create(s, m, &sd, &d), WR_OK, "%s", d.message);
 }
 
@@ -371,7 +370,7 @@ Test(subdiv, loop_shell_uniform_stretch_is_exact) {
     double lam = 1.05, e = 0.5 * (lam * lam - 1.0), E, Ym;
     int32_t v;
     cr_assert_eq(wr_mesh_rectangle(&m, 1.0, 0.5, 10, 5, &d), WR_OK);
-    loop_shell(&s, &m, 0);
+    loop_shell(&s, &m);
     cr_assert_gt(s.n_loop_faces, 20, "Loop faces: %d of %d", s.n_loop_faces, m.nf);
     for (v = 0; v < m.nv; ++v) m.pos[3 * v] *= lam;
     cr_assert_eq(wr_shell_energy(&s, m.pos, &E, NULL, &d), WR_OK, "%s", d.message);
@@ -391,7 +390,7 @@ static void cylinder_energies(const wr_mesh *m0, double scale, double out[2]) {
     int32_t v, f;
     cr_assert_eq(wr_mesh_copy(&m, m0, &d), WR_OK);
     for (v = 0; v < 2 * m.nv; ++v) m.rest[v] *= scale;
-    loop_shell(&s, &m, 0);
+    loop_shell(&s, &m);
     for (v = 0; v < m.nv; ++v) {
         double u = m.rest[2 * v];
         m.pos[3 * v] = R * sin(u / R);
@@ -468,7 +467,7 @@ Test(subdiv, loop_shell_gradient_and_hessian_match_finite_differences) {
     double *g, *gp, *gm, gmax = 0.0, hmax = 0.0, h = 1e-7;
     int32_t v, i, j, N;
     cr_assert_eq(wr_mesh_rectangle(&m, 0.1, 0.1, 5, 5, &d), WR_OK);
-    loop_shell(&s, &m, 1);
+    loop_shell(&s, &m);
     wr_rng_seed(&rng, 5u);
     for (v = 0; v < 3 * m.nv; ++v) m.pos[v] += 0.004 * (wr_rng_uniform(&rng) - 0.5);
     N = 3 * m.nv;

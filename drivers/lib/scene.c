@@ -167,6 +167,7 @@ wr_status wr_jin_str(wr_jin *c, const cJSON *obj, const char *key, const char *p
 static const char *const SC_MESH_TYPES[] = {"obj", "rectangle", "disk", "cylinder", "delaunay_rectangle", NULL};
 static const char *const SC_MEMBRANES[] = {"stvk", "tft", "none", NULL};
 static const char *const SC_BENDINGS[] = {"midedge", "quadratic", "none", NULL};
+static const char *const SC_ELEMENTS[] = {"linear", "loop", NULL}; /* shell.h ON THE LOOP ELEMENT */
 static const char *const SC_LINEAR[] = {"auto", "pcg-jacobi", "pcg-block3", "pcg-ic0", "cholmod", "pcg-amg", NULL};
 static const char *const SC_HESSIAN[] = {"exact", "projected", "hybrid", NULL};
 
@@ -424,7 +425,7 @@ static wr_status sc_parse_probe(wr_jin *c, const cJSON *o, const char *P, wr_sce
 wr_status wr_scene_parse(wr_scene *sc, const char *text, size_t len, const char *base_dir, wr_diag *diag) {
     static const char *const keys[] = {"name", "mesh", "material", "energy", "gravity", "ramp_gravity", "pressure",
                                        "boundary", "solver", "probes", NULL};
-    static const char *const ekeys[] = {"membrane", "bending", NULL};
+    static const char *const ekeys[] = {"membrane", "bending", "element", NULL};
     wr_jin c;
     cJSON *root;
     const cJSON *o, *e;
@@ -455,8 +456,10 @@ wr_status wr_scene_parse(wr_scene *sc, const char *text, size_t len, const char 
     if ((st = sc_parse_material(&c, o, sc)) != WR_OK) goto done;
     o = cJSON_GetObjectItemCaseSensitive(root, "energy");
     if (o) {
-        int mem = 0, ben = 0;
+        int mem = 0, ben = 0, elem = 0;
         if ((st = wr_jin_keys(&c, o, "$.energy", ekeys)) != WR_OK) goto done;
+        if ((st = wr_jin_enum(&c, o, "element", "$.energy", SC_ELEMENTS, &elem, 0)) != WR_OK) goto done;
+        sc->shell.loop_element = elem;
         if ((st = wr_jin_enum(&c, o, "membrane", "$.energy", SC_MEMBRANES, &mem, 0)) != WR_OK) goto done;
         if ((st = wr_jin_enum(&c, o, "bending", "$.energy", SC_BENDINGS, &ben, 0)) != WR_OK) goto done;
         sc->shell.membrane = (wr_membrane_model)mem;

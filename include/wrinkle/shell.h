@@ -143,8 +143,9 @@
  *   membrane (3 vertices) plus mid-edge or dihedral bending (3 face vertices + up to 3 across the
  *   edges, k <= 6) summed into one 3k×3k row-major block, dof order (v0x, v0y, v0z, v1x, …); and,
  *   with quadratic bending, one block per interior vertex stencil (the vertex and its neighbours).
- *   project_spd != 0 replaces each face block by its nearest PSD matrix (wr_dense_project_spd, floor
- *   0); the quadratic blocks are PSD by construction. A non-WR_OK return from add stops the loop.
+ *   project_spd == 1 replaces each face block by its nearest PSD matrix (wr_dense_project_spd, floor
+ *   0), WR_SHELL_PROJECT_LARGE only the Loop element's (ON THE LOOP ELEMENT); the quadratic blocks are
+ *   PSD by construction. A non-WR_OK return from add stops the loop.
  *   The quadratic-bending blocks do not depend on x (TFW Eq. 28 is quadratic in the positions), so a
  *   Newton loop can assemble them once: wr_shell_hessian_elements_part streams only the face blocks
  *   (parts = WR_SHELL_HESS_FACES), only the quadratic stencils (WR_SHELL_HESS_QUADRATIC), or both
@@ -162,9 +163,9 @@
  *   uniform strain is exact everywhere. Needs the isotropic StVK membrane and a per-vertex rest
  *   (WR_ERR_UNSUPPORTED otherwise); statics only (wr_shell_face_block, hence dynamics.h, refuses Loop
  *   faces). Hessian blocks span the face's stencil (12 vertices on a regular patch, up to
- *   WR_SUBDIV_MAX_STENCIL): projected PSD in the 15-D point space (x_v, x_w, x_vv, x_vw, x_ww) unless
- *   desc.loop_exact_hessian is set and the call's project_spd is 0 (the stability test's exact
- *   Hessian). Measured accuracy
+ *   WR_SUBDIV_MAX_STENCIL), larger than newton.h can project: with project_spd != 0 (1, or
+ *   WR_SHELL_PROJECT_LARGE as statics.h passes when its Newton step projects) they are projected PSD
+ *   in the 15-D point space (x_v, x_w, x_vv, x_vw, x_ww), with 0 they are exact. Measured accuracy
  *   (tests/test_subdiv.c): on a valence-6 lattice bent to a cylinder the bending energy converges at
  *   O(h²), the membrane's at O(h⁴); where every face touches valence-4/8 vertices (union-jack grid) a
  *   +6.8 % bending bias stays under refinement — Loop surfaces do not reproduce quadratics near
@@ -238,7 +239,6 @@ typedef struct wr_shell_desc {
     double stretch_warp, stretch_weft, stretch_shear; /* Baraff–Witkin stiffnesses [N/m] */
     double bending_warp, bending_weft; /* [N·m]: anisotropic bending (mid-edge or dihedral) */
     int32_t loop_element;      /* 1: Koiter energy on the Loop limit surface where it exists (ON THE LOOP ELEMENT) */
-    int32_t loop_exact_hessian; /* 1: Loop faces' Hessian blocks exact; 0: projected PSD in their 15-D point space */
 } wr_shell_desc;
 
 typedef struct wr_shell {
@@ -264,7 +264,7 @@ typedef struct wr_shell {
     double total_area;
     /* the Loop element (ON THE LOOP ELEMENT): face f's limit-surface stencil is loop_vert/loop_w
      * [loop_start[f] .. loop_start[f+1]) (empty: the linear element); loop_w holds 6 weights per entry */
-    int32_t n_loop_faces, loop_exact_hessian;
+    int32_t n_loop_faces;
     int32_t *loop_start, *loop_vert;
     double *loop_w, *loop_wt; /* loop_wt: nf quadrature weights, rest area / √det A (ON THE LOOP ELEMENT) */
     wr_shell_koiter_rest *loop_rest;
@@ -294,6 +294,9 @@ WRDEF wr_status wr_shell_hessian_elements(const wr_shell *s, const double *x, in
 #define WR_SHELL_HESS_FACES 1     /* per face: membrane + mid-edge bending */
 #define WR_SHELL_HESS_QUADRATIC 2 /* per interior vertex stencil: quadratic bending (constant in x) */
 #define WR_SHELL_HESS_ALL 3
+/* project_spd of wr_shell_hessian_elements(_part): 0 every block exact, 1 every block projected PSD,
+ * WR_SHELL_PROJECT_LARGE only the blocks too large for newton.h's projection (the Loop element's) */
+#define WR_SHELL_PROJECT_LARGE 2
 WRDEF wr_status wr_shell_hessian_elements_part(const wr_shell *s, const double *x, int32_t project_spd, int32_t parts,
                                                const wr_hess_sink *sink, wr_diag *diag);
 WRDEF void wr_shell_vertex_masses(const wr_shell *s, double *mass);
@@ -1233,7 +1236,6 @@ static wr_status wr__shell_build_loop(wr_shell *s, const wr_mesh *m, const wr_sh
         st = wr_fail(diag, WR_ERR_NOMEM, -1, "shell: out of memory (Loop element)");
         goto done;
     }
-    s->loop_exact_hessian = desc->loop_exact_hessian != 0;
     for (f = 0; f < m->nf; ++f) {
         int32_t j0 = s->loop_start[f];
         double p[15], a[3], r;
@@ -1809,7 +1811,7 @@ WRDEF wr_status wr_shell_hessian_elements_part(const wr_shell *s, const double *
                 int32_t nl = s->loop_start[f + 1] - s->loop_start[f];
                 double *KL = (double *)wr_alloc_array((size_t)9 * (size_t)nl * (size_t)nl, sizeof(double));
                 if (!KL) return wr_fail(diag, WR_ERR_NOMEM, f, "shell Hessian: out of memory");
-                wr__shell_loop_block(s, f, x, s->loop_exact_hessian && !project_spd, KL);
+                wr__shell_loop_block(s, f, x, project_spd == 0, KL);
                 rs = sink->add(sink->user, nl, s->loop_vert + s->loop_start[f], KL);
                 wr_free(KL);
                 if (rs != WR_OK) return wr_fail(diag, rs, f, "shell Hessian: sink rejected face %d", (int)f);
@@ -1817,7 +1819,7 @@ WRDEF wr_status wr_shell_hessian_elements_part(const wr_shell *s, const double *
             }
             if (wr_shell_face_block(s, f, x, &n, verts, Ke) != WR_OK)
                 return wr_fail(diag, WR_ERR_GEOMETRY, f, "shell Hessian: face %d has an undefined normal", (int)f);
-            if (project_spd) wr_dense_project_spd(3 * n, Ke, 0.0);
+            if (project_spd == 1) wr_dense_project_spd(3 * n, Ke, 0.0);
             rs = sink->add(sink->user, n, verts, Ke);
             if (rs != WR_OK) return wr_fail(diag, rs, f, "shell Hessian: sink rejected face %d", (int)f);
         }

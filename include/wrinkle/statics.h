@@ -703,7 +703,11 @@ static wr_status wr__statics_hessian(void *user, const double *x, wr_newton_hess
     c->face = 0;
     hs.user = c;
     hs.add = wr__statics_sink_add;
-    if ((rs = wr_shell_hessian_elements_part(c->s, x, 0, WR_SHELL_HESS_FACES, &hs, diag)) != WR_OK) return rs;
+    /* the sink projects blocks up to WR_DENSE_MAX per Newton's mode; larger ones (the Loop element)
+     * the shell projects in its own point space when Newton projects (shell.h ON THE LOOP ELEMENT) */
+    if ((rs = wr_shell_hessian_elements_part(c->s, x, wr_newton_hessian_exact(H) ? 0 : WR_SHELL_PROJECT_LARGE,
+                                             WR_SHELL_HESS_FACES, &hs, diag)) != WR_OK)
+        return rs;
     /* ON ASSEMBLY CACHE: the quadratic-bending blocks (TFW Eq. 28) do not depend on x and are PSD, so
      * the FAST projection and the exact Hessian keep them: summed once. Jacobi rounds them each time. */
     if (c->d->hessian.projection == WR_PROJECT_JACOBI) {
