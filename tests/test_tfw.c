@@ -150,9 +150,9 @@ Test(tfw, compressed_strip_amplitude_from_excess_length) {
  * again and keep the re-solve only with fewer folds (measured 63); no_unfold keeps the first solve.
  * The base is slack (compressed in every direction), which wr_tfw_fields refuses by default (ON
  * OUTCOMES, checked below); allow_slack solves it: the fold machinery is what is tested. */
-static void disk_case(wr_mesh *m, double **x, uint8_t **rim) {
+static void disk_case_rings(wr_mesh *m, int32_t rings, double **x, uint8_t **rim) {
     int32_t v;
-    cr_assert_eq(wr_mesh_disk(m, 0.1, 8, NULL), WR_OK);
+    cr_assert_eq(wr_mesh_disk(m, 0.1, rings, NULL), WR_OK);
     *x = (double *)malloc(sizeof(double) * 3 * (size_t)m->nv);
     *rim = (uint8_t *)calloc((size_t)m->nv, 1);
     for (v = 0; v < m->nv; ++v) {
@@ -162,6 +162,8 @@ static void disk_case(wr_mesh *m, double **x, uint8_t **rim) {
         (*rim)[v] = hypot(m->pos[3 * v], m->pos[3 * v + 1]) > 0.1 - 1e-6;
     }
 }
+
+static void disk_case(wr_mesh *m, double **x, uint8_t **rim) { disk_case_rings(m, 8, x, rim); }
 
 Test(tfw, fold_resolve_kept_only_with_fewer_folds) {
     wr_mesh m;
@@ -208,6 +210,103 @@ Test(tfw, fold_resolve_kept_only_with_fewer_folds) {
     wr_tfw_result_free(&r0);
     free(x);
     free(rim);
+    wr_mesh_free(&m);
+}
+
+/* The other half of "kept only with fewer folds": on the 4-ring disk (same 3 % compression, rim
+ * clamped, allow_slack) the first SQP converges with 18 fold edges and the re-solve from wr_wf_unfold
+ * converges with 23 (measured). wr_tfw_fields must discard the re-solve: unfolded = 0 and a, ω, the
+ * counts and the SQP statistics exactly those of the no_unfold run. The second solve is replayed by
+ * hand (wr_wf_unfold + wr_wf_solve from the first solve, as tfw.h does) so the test fails loudly if a
+ * solver change makes the re-solve better here and the case stops exercising the discard. */
+Test(tfw, fold_resolve_with_more_folds_is_discarded) {
+    wr_mesh m;
+    wr_wf_material mat;
+    wr_tfw_desc td;
+    wr_tfw_result r, r0;
+    wr_diag d;
+    wr_wf wf;
+    wr_wf_solve_stats ss;
+    double *x, *a2, *o2;
+    uint8_t *rim;
+    int32_t v, e, n2;
+    disk_case_rings(&m, 4, &x, &rim);
+    strip_material(&mat);
+    memset(&td, 0, sizeof td);
+    td.a_zero_vertices = rim;
+    td.no_upsample = 1;
+    td.solve.max_iter = 200;
+    td.allow_slack = 1;
+    cr_assert_eq(wr_tfw_fields(&m, x, &mat, &td, &r, &d), WR_OK, "%s", d.message);
+    td.no_unfold = 1;
+    cr_assert_eq(wr_tfw_fields(&m, x, &mat, &td, &r0, &d), WR_OK, "%s", d.message);
+    /* the replayed second solve */
+    cr_assert_eq(wr_wf_create(&wf, &m, x, &mat, NULL), WR_OK);
+    wr_wf_set_wrinkle_free(&wf, r0.wfree);
+    wr_wf_set_amplitude_zero(&wf, rim);
+    a2 = (double *)malloc(sizeof(double) * (size_t)m.nv);
+    o2 = (double *)malloc(sizeof(double) * (size_t)m.ne);
+    memcpy(a2, r0.a, sizeof(double) * (size_t)m.nv);
+    memcpy(o2, r0.omega, sizeof(double) * (size_t)m.ne);
+    cr_assert_eq(wr_wf_unfold(&wf, a2, o2, NULL), WR_OK);
+    cr_assert_eq(wr_wf_solve(&wf, &td.solve, a2, o2, &ss, NULL), WR_OK);
+    n2 = wr_wf_count_folds(&wf, a2, o2);
+    cr_log_info("4-ring disk: first solve %d it, %d folds; re-solve %d it, %d folds; returned %d folds, unfolded %d",
+                (int)r0.sqp.iterations, (int)r0.n_folds, (int)ss.iterations, (int)n2, (int)r.n_folds, (int)r.unfolded);
+    cr_assert(r.n_folds_first > 0, "the set-up must produce folds after the first SQP (got none)");
+    cr_assert(n2 >= r.n_folds_first, "set-up: the re-solve now has fewer folds (%d < %d); pick a case where it does not",
+              (int)n2, (int)r.n_folds_first);
+    cr_assert_eq(r.unfolded, 0, "a re-solve with %d folds replaced a first solve with %d", (int)n2, (int)r.n_folds_first);
+    cr_assert_eq(r.n_folds, r.n_folds_first);
+    cr_assert_eq(r.n_folds, r0.n_folds);
+    cr_assert_eq(r.sqp.iterations, r0.sqp.iterations, "the statistics are the first solve's");
+    cr_assert_eq(r.sqp.energy, r0.sqp.energy);
+    for (v = 0; v < m.nv; ++v) cr_assert_eq(r.a[v], r0.a[v], "vertex %d: a %.17g vs first solve %.17g", (int)v, r.a[v], r0.a[v]);
+    for (e = 0; e < m.ne; ++e)
+        cr_assert_eq(r.omega[e], r0.omega[e], "edge %d: omega %.17g vs first solve %.17g", (int)e, r.omega[e], r0.omega[e]);
+    wr_wf_free(&wf);
+    free(a2);
+    free(o2);
+    wr_tfw_result_free(&r);
+    wr_tfw_result_free(&r0);
+    free(x);
+    free(rim);
+    wr_mesh_free(&m);
+}
+
+/* An SQP stopped by its iteration limit: wr_tfw_fields still fills every output (ON RESULTS) and then
+ * returns WR_ERR_NOT_CONVERGED with the SQP's stop named in the diag. With max_iter = 1 the clamped
+ * strip of the first test cannot converge (it takes ~20 iterations). */
+Test(tfw, unconverged_sqp_status_and_message_reach_the_caller) {
+    wr_mesh m;
+    wr_wf_material mat;
+    wr_tfw_desc td;
+    wr_tfw_result r;
+    wr_diag d;
+    wr_status st;
+    double *x;
+    uint8_t *clamp;
+    strip_base(&m, &x, &clamp);
+    strip_material(&mat);
+    memset(&td, 0, sizeof td);
+    td.a_zero_vertices = clamp;
+    td.solve.max_iter = 1;
+    memset(&d, 0, sizeof d);
+    st = wr_tfw_fields(&m, x, &mat, &td, &r, &d);
+    cr_log_info("max_iter 1: status %s, stop %d, %d iterations, diag \"%s\"", wr_status_string(st), (int)r.sqp.stop,
+                (int)r.sqp.iterations, d.message);
+    cr_assert_eq(st, WR_ERR_NOT_CONVERGED, "status %s", wr_status_string(st));
+    cr_assert_eq(d.status, WR_ERR_NOT_CONVERGED);
+    cr_assert_eq(r.sqp.stop, WR_WF_STOP_MAX_ITER);
+    cr_assert_eq(r.sqp.iterations, 1);
+    cr_assert(strstr(d.message, "tfw: SQP stopped") != NULL && strstr(d.message, "after 1 iterations") != NULL, "diag: \"%s\"", d.message);
+    /* everything is filled although the status is an error */
+    cr_assert(r.a != NULL && r.omega != NULL && r.phi != NULL && r.wfree != NULL);
+    cr_assert_eq(r.wrinkled.nf, 16 * m.nf);
+    cr_assert(r.wrinkled_a != NULL);
+    wr_tfw_result_free(&r);
+    free(x);
+    free(clamp);
     wr_mesh_free(&m);
 }
 

@@ -1,4 +1,5 @@
-/* tests for triangulate.h: exact predicates against independent integer arithmetic, CDT properties
+/* tests for triangulate.h: exact predicates (predicates.h, which triangulate.h includes; more in
+ * test_predicates.c) against independent integer arithmetic, CDT properties
  * verified by wr_cdt_check (CCW, constrained Delaunay, segments present, Euler), carving, holes,
  * refinement, every error path, and the Triangle .poly reader. */
 #include <criterion/criterion.h>

@@ -1002,3 +1002,38 @@ Test(wrinkle_field, unfold_turns_zigzag_phase_monotone) {
     wr_wf_free(&wf);
     wr_mesh_free(&m);
 }
+
+/* A fold is a reversal of dφ's direction, whatever its length: the count of the zig-zag above must not
+ * change when the phase steps are scaled from 2.5 rad per row (|dφ| = 300 rad/m) down to 2.5e-4 rad
+ * (0.03 rad/m, dφ·dφ' ~ −1e-3 (rad/m)²) or up to 2.5e4 rad. Kills a fold test `dot < −tol` with a
+ * dimensional tolerance (the suite's fields have |dφ| ~ 1e2–1e3 rad/m, where such a tolerance hides). */
+Test(wrinkle_field, fold_count_does_not_depend_on_the_wave_number) {
+    const double L = 0.1, Hh = 0.05, scales[3] = {1e-4, 1.0, 1e4};
+    const int32_t nx = 8, ny = 6;
+    wr_mesh m;
+    wr_wf wf;
+    wr_wf_material mat = material();
+    double *a, *om, dy = Hh / ny;
+    int32_t v, e, k, n[3];
+    cr_assert_eq(wr_mesh_rectangle(&m, L, Hh, nx, ny, NULL), WR_OK);
+    cr_assert_eq(wr_wf_create(&wf, &m, NULL, &mat, NULL), WR_OK);
+    a = (double *)malloc(sizeof(double) * m.nv);
+    om = (double *)malloc(sizeof(double) * m.ne);
+    for (v = 0; v < m.nv; ++v) a[v] = 1e-3;
+    for (k = 0; k < 3; ++k) {
+        for (e = 0; e < m.ne; ++e) {
+            int32_t r0 = (int32_t)floor(m.pos[3 * m.edges[2 * e] + 1] / dy + 0.5);
+            int32_t r1 = (int32_t)floor(m.pos[3 * m.edges[2 * e + 1] + 1] / dy + 0.5);
+            om[e] = scales[k] * 2.5 * ((r1 % 2) - (r0 % 2));
+        }
+        n[k] = wr_wf_count_folds(&wf, a, om);
+    }
+    cr_log_info("zig-zag fold counts at phase steps 2.5e-4, 2.5, 2.5e4 rad: %d %d %d", n[0], n[1], n[2]);
+    cr_assert(n[1] >= nx, "zig-zag has %d fold edges", n[1]);
+    cr_assert_eq(n[0], n[1], "small |dphi|: %d folds vs %d", n[0], n[1]);
+    cr_assert_eq(n[2], n[1], "large |dphi|: %d folds vs %d", n[2], n[1]);
+    free(a);
+    free(om);
+    wr_wf_free(&wf);
+    wr_mesh_free(&m);
+}

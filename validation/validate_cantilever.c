@@ -267,7 +267,8 @@ int main(void) {
                  100.0 * (rows[I25].tip / cm.er.tip_deflection - 1.0));
     wr_vres_info(v, "shape error / L at r_opt", "%", NAN, 100.0 * rows[i_opt].shape);
     /* Style3D Sec. 6 / Fig. 18: the tip-vs-r curve flattens at r_opt. Read on our sweep (issue 20: a
-     * pass/fail row): the coarsest r from which every finer tip stays within 1 % of the 2.5 mm tip must
+     * pass/fail row): the coarsest r from which every finer tip stays within 1 % (issue 5's band against
+     * the 2.5 mm solve) of the 2.5 mm tip must
      * be r_opt itself — its sweep neighbours are 7.5 mm (coarser) and 5 mm (finer), so flattening at
      * 7.5 mm means r_opt is not where the curve flattens, and at 5 mm that r_opt is too coarse. */
     wr_vres_check(v, "curve flattens at r_opt, main strip (coarsest r with all finer tips within 1% of 2.5 mm)", "mm", 6.45,

@@ -35,7 +35,9 @@
 #define WANG_AMPLITUDE 0.35e-3 /* m, TFW Sec. 6.4 quoting Wang et al. 2018 */
 /* Peak out-of-plane amplitude [m] below which a solved sheet counts as flat: h/100. Wrinkled rows
  * here have 0.25-0.3 mm; flat rows (the 10 um seeded kick decayed) sit below 0.5 um, and their
- * spectrum is numerical noise whose "count" (5.6 on the old 2 r_opt row) means nothing. */
+ * spectrum is numerical noise whose "count" (5.6 on the old 2 r_opt row) means nothing. Set after
+ * those results were seen (f7b8294): any threshold between 0.5 um and 0.25 mm splits the rows the
+ * same way; h/100 is the round value inside that gap. */
 #define FLAT_AMPLITUDE 1.0e-6
 #define BAND_FRACTION 0.1 /* |w| >= 10 % of the probe's peak marks the wrinkled band */
 #define NRES 4

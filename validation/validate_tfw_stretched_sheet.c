@@ -216,6 +216,7 @@ int main(void) {
         }
         free(zv0);
     }
+    /* bands: issue 6 ("stretched sheet 5 ± 1 periods and peak amplitude 0.28–0.42 mm") */
     wr_vres_range(v, "wave periods across the width (FFT count on the probe)", "periods", 5.0,
                   s_sp ? NAN : sr.count, 4.0, 6.0);
     wr_vres_range(v, "peak amplitude (max |z| on the probe)", "mm", 0.42, s_sp ? NAN : 1e3 * zmax, 0.28, 0.42);

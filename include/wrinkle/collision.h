@@ -3,7 +3,7 @@
  * additive continuous collision detection (a conservative time of impact), and exact intersection
  * tests (segment–triangle, triangle–triangle, whole meshes) to certify "no penetration".
  * wrinkle v0.1.0 — MIT licence (see LICENSE). Needs only libc and libm (and core.h, shell.h for the
- * Hessian sink, triangulate.h for the expansion arithmetic behind the exact predicates).
+ * Hessian sink, predicates.h for the exact orientation tests).
  *
  * Models: Li et al. 2020, "Incremental Potential Contact" (IPC): contact as a barrier on the unsigned
  * distance between a vertex and a triangle and between two edges, active below d̂, with every
@@ -23,7 +23,7 @@
  *   wr_collision_distance_from_dist2(n, s, gs, Hs, gd, Hd)     d = √s and its derivatives
  *   wr_collision_barrier(d, dhat, kappa, b1, b2)               κ·b(d), b = −(d − d̂)² ln(d/d̂)
  *   wr_collision_accd(kind, x, dx, keep, t_max, max_iter, toi) additive CCD of one pair
- *   wr_orient3d(a, b, c, d)                                    exact sign of (b−a)×(c−a)·(d−a)
+ *   (wr_orient3d(a, b, c, d), exact sign of (b−a)×(c−a)·(d−a): predicates.h, included by this header)
  *   wr_collision_segment_triangle_intersect(p, q, a, b, c)     exact, closed sets
  *   wr_collision_triangle_triangle_intersect(a, b)             exact, closed sets
  *   wr_collision_mesh_create(cm, nv, nf, faces, obstacle, desc, diag)  faces + edges + BVHs
@@ -97,12 +97,10 @@
  *   but pessimistic; the mesh-level stats count such pairs.
  *
  * ON EXACT INTERSECTION TESTS
- *   wr_orient3d uses Shewchuk's static filter ((7 + 56ε)ε times the permanent) and otherwise
- *   evaluates exactly in expansion arithmetic (triangulate.h's): its sign is exact for finite input
- *   without overflow/underflow (coordinates within [1e-50, 1e50]); the same compiler flags as
- *   triangulate.h (no -ffast-math, -ffp-contract=off). Segment–triangle and triangle–triangle tests
- *   treat both as CLOSED sets (touching counts as intersecting) and are exact for non-degenerate
- *   triangles (coplanar cases go to 2D with the exact wr_orient2d on the dominant-axis projection).
+ *   Built on predicates.h's wr_orient3d and wr_orient2d (exact signs for coordinates within
+ *   [1e-50, 1e50]; the compiler flags predicates.h names: no -ffast-math, -ffp-contract=off).
+ *   Segment–triangle and triangle–triangle tests treat both as CLOSED sets (touching counts as
+ *   intersecting) and are exact for non-degenerate triangles (coplanar cases go to 2D with the exact wr_orient2d on the dominant-axis projection).
  *   Whole-mesh checks skip pairs of triangles that share a vertex or an edge unless they overlap
  *   beyond what they share (a fold that lays two neighbours exactly onto each other counts).
  *
@@ -122,6 +120,7 @@
 #define WRINKLE_COLLISION_H
 
 #include "core.h"
+#include "predicates.h" /* wr_orient2d, wr_orient3d (exact) */
 #include "shell.h"
 
 #ifdef __cplusplus
@@ -194,10 +193,7 @@ WRDEF int32_t wr_collision_accd(wr_contact_kind kind, const double x[12], const 
                                 double t_max, int32_t max_iter, double *toi);
 
 /* ---- exact tests ------------------------------------------------------------------------------- */
-/* Sign of det[b−a, c−a, d−a] = ((b−a)×(c−a))·(d−a): > 0 when d lies on the side the normal of
- * (a, b, c) (counter-clockwise seen from there) points to, exactly 0 iff coplanar. The magnitude is
- * approximate. */
-WRDEF double wr_orient3d(const double a[3], const double b[3], const double c[3], const double d[3]);
+/* wr_orient3d (predicates.h): sign of det[b−a, c−a, d−a] = ((b−a)×(c−a))·(d−a). */
 /* Closed segment pq against closed triangle abc: 1 if they share a point. Exact. */
 WRDEF int32_t wr_collision_segment_triangle_intersect(const double p[3], const double q[3], const double a[3],
                                                       const double b[3], const double c[3]);
@@ -289,7 +285,6 @@ WRDEF void wr_contact_set_free(wr_contact_set *set);
 #ifndef WRINKLE_COLLISION_IMPLEMENTATION_DONE
 #define WRINKLE_COLLISION_IMPLEMENTATION_DONE
 
-#include "triangulate.h" /* expansion arithmetic (wr__exp_*), wr_orient2d */
 
 #include <math.h>
 #include <string.h>
@@ -810,49 +805,7 @@ WRDEF int32_t wr_collision_accd(wr_contact_kind kind, const double x[12], const 
     return 1;
 }
 
-/* ==== exact predicates =========================================================================== */
-
-#ifndef WR__EPS /* triangulate.h's, when its implementation is in another unit */
-#define WR__EPS 1.1102230246251565e-16 /* 2^-53, half an ulp of 1 */
-#endif
-#define WR__O3D_BOUND ((7.0 + 56.0 * WR__EPS) * WR__EPS) /* Shewchuk's o3derrboundA */
-
-/* det[b−a, c−a, d−a] exactly, cofactor expansion along the first row (expansions by magnitude). */
-static double wr__orient3d_exact(const double *a, const double *b, const double *c, const double *d) {
-    double e[3][3][2], m1[8], m2[8], cof[16], term[3][64], s01[128], tot[192];
-    int ne[3][3], n1, n2, nc, nt[3], n01, ntot, r, k;
-    const double *P[3];
-    P[0] = b;
-    P[1] = c;
-    P[2] = d;
-    for (r = 0; r < 3; ++r)
-        for (k = 0; k < 3; ++k) ne[r][k] = wr__diff_exp(P[r][k], a[k], e[r][k]);
-    for (k = 0; k < 3; ++k) {
-        int k1 = (k + 1) % 3, k2 = (k + 2) % 3;
-        /* row 0 entry k times the minor of rows 1, 2 and columns k1, k2 */
-        n1 = wr__exp_mul(ne[1][k1], e[1][k1], ne[2][k2], e[2][k2], m1);
-        n2 = wr__exp_mul(ne[1][k2], e[1][k2], ne[2][k1], e[2][k1], m2);
-        wr__exp_neg(n2, m2);
-        nc = wr__exp_sum(n1, m1, n2, m2, cof);
-        nt[k] = wr__exp_mul(nc, cof, ne[0][k], e[0][k], term[k]);
-    }
-    n01 = wr__exp_sum(nt[0], term[0], nt[1], term[1], s01);
-    ntot = wr__exp_sum(n01, s01, nt[2], term[2], tot);
-    return tot[ntot - 1];
-}
-
-WRDEF double wr_orient3d(const double a[3], const double b[3], const double c[3], const double d[3]) {
-    double bx = b[0] - a[0], by = b[1] - a[1], bz = b[2] - a[2];
-    double cx = c[0] - a[0], cy = c[1] - a[1], cz = c[2] - a[2];
-    double dx = d[0] - a[0], dy = d[1] - a[1], dz = d[2] - a[2];
-    double m0a = cy * dz, m0b = cz * dy, m1a = cz * dx, m1b = cx * dz, m2a = cx * dy, m2b = cy * dx;
-    double det = bx * (m0a - m0b) + by * (m1a - m1b) + bz * (m2a - m2b);
-    double perm = fabs(bx) * (fabs(m0a) + fabs(m0b)) + fabs(by) * (fabs(m1a) + fabs(m1b)) +
-                  fabs(bz) * (fabs(m2a) + fabs(m2b));
-    double eb = WR__O3D_BOUND * perm;
-    if (det > eb || -det > eb) return det;
-    return wr__orient3d_exact(a, b, c, d);
-}
+/* ==== exact intersection tests (predicates.h) ==================================================== */
 
 /* Dominant-axis projection of a plane through a, b, c: drop the axis whose projected triangle is
  * exactly non-degenerate (tried z, y, x). Returns the dropped axis, or -1 if abc is collinear. */

@@ -1,18 +1,17 @@
-/* wrinkle/triangulate.h — exact geometric predicates and a constrained Delaunay triangulator with
- * optional Delaunay quality refinement (Ruppert/Shewchuk, Üngör off-centers). File I/O: polyfile.h.
- * wrinkle v0.1.0 — MIT licence (see LICENSE). Needs only libc and libm.
+/* wrinkle/triangulate.h — a constrained Delaunay triangulator with optional Delaunay quality
+ * refinement (Ruppert/Shewchuk, Üngör off-centers), on the exact predicates of predicates.h.
+ * File I/O: polyfile.h.
+ * wrinkle v0.1.0 — MIT licence (see LICENSE). Needs core.h, predicates.h; libc and libm.
  *
  * Style3D Sec. 4.3: "the resulting point cloud [Poisson samples of the sizing map], along with
  * boundary constraints, is then input into triangulation tools such as the Triangle library to
  * produce a triangular cloth mesh adhering to Delaunay triangulation rules." This header is that
- * step, written from the published ideas (Shewchuk 1997 expansion arithmetic and error bounds,
+ * step, written from the published ideas (Shewchuk 1997 exact predicates, in predicates.h;
  * Lawson flips, Sloan's flip-based edge recovery, BRIO/Hilbert insertion order, Ruppert 1995 and
  * Shewchuk 2002 Delaunay refinement with concentric-shell segment splitting, Üngör off-centers).
  *
  * API
- *   wr_orient2d(a, b, c)          exact sign: > 0 when a, b, c are counter-clockwise
- *   wr_incircle(a, b, c, d)       exact sign: > 0 when d is inside the circle through CCW a, b, c
- *   wr_orient2d_fast / wr_incircle_fast   plain floating-point (non-robust) versions
+ *   (wr_orient2d, wr_incircle and their _fast versions: predicates.h, included by this header)
  *   wr_cdt_triangulate(in, desc, out, diag)   CDT (+ carving, + refinement) -> wr_cdt_result
  *   wr_cdt_free(out)              release a result (also after a failed call)
  *   wr_cdt_check(res, expected_holes, info, diag)  exact verification of a result
@@ -32,22 +31,12 @@
  *     wr_cdt_free(&r);
  *
  * ON PREDICATES (the flags they need)
- *   wr_orient2d(a,b,c) = det[[ax-cx, ay-cy],[bx-cx, by-cy]], twice the signed area of abc: > 0 for
- *   counter-clockwise, < 0 clockwise, exactly 0 iff collinear. wr_incircle(a,b,c,d) = the 3×3 lifted
- *   determinant with rows (x-dx, y-dy, (x-dx)²+(y-dy)²) for x = a,b,c: for CCW a,b,c it is > 0 iff d is
- *   strictly inside their circumcircle, 0 iff cocircular. Each first evaluates in double precision
- *   and accepts the result when it exceeds Shewchuk's forward error bound ((3+16ε)ε and (10+96ε)ε
- *   times the permanent, ε = 2^-53); otherwise it re-evaluates exactly with floating-point expansion
- *   arithmetic (two-sum, Dekker's split two-product; no FMA, no long double), with each coordinate
- *   difference kept as one component when it is exact (lattice and grid input: the exact stage is
- *   then several times cheaper; a 1000×1000 grid triangulates in 0.9 s CPU). The sign is exact for
- *   all finite inputs provided no intermediate overflows or underflows: every nonzero |coordinate|
- *   within [1e-50, 1e50] is safe (the smallest expansion tail of incircle is about |coord·ε|⁴·ε²;
- *   cloth panels in metres are far inside; tests run at 1e-60 and 1e60). Needs strict IEEE-754
- *   binary64 round-to-nearest: compile WITHOUT -ffast-math / -Ofast / -funsafe-math-optimizations,
- *   WITH -ffp-contract=off (FMA contraction would break two-product and the error bounds), and on
- *   32-bit x86 with -msse2 -mfpmath=sse (no x87 extended precision). The returned magnitude is an
- *   approximation of the determinant; only the sign is guaranteed.
+ *   Every orientation and in-circle decision is exact (predicates.h: an error-bounded floating-point
+ *   filter, expansion arithmetic when it cannot decide). Hence the build needs what predicates.h
+ *   needs: no -ffast-math / -Ofast, -ffp-contract=off, SSE2 arithmetic on 32-bit x86; the sign of
+ *   every test is exact for coordinates within [1e-50, 1e50] (WR_CDT_MAX_COORD below refuses more).
+ *   Degenerate input costs little: a 1000×1000 grid (every in-circle test of it cocircular, so
+ *   every one goes to the exact stage) triangulates in 0.9 s CPU.
  *
  * ON THE TRIANGULATION
  *   Input: points (n×2), segments (m×2 point indices, 0-based), hole seeds (h×2). Exact duplicate
@@ -93,16 +82,11 @@
 #define WRINKLE_TRIANGULATE_H
 
 #include "core.h"
+#include "predicates.h" /* wr_orient2d, wr_incircle (exact), also for this header's users */
 
 #ifdef __cplusplus
 extern "C" {
 #endif
-
-/* ---- predicates (points are double[2]) ---- */
-WRDEF double wr_orient2d(const double *a, const double *b, const double *c);
-WRDEF double wr_incircle(const double *a, const double *b, const double *c, const double *d);
-WRDEF double wr_orient2d_fast(const double *a, const double *b, const double *c);
-WRDEF double wr_incircle_fast(const double *a, const double *b, const double *c, const double *d);
 
 /* ---- constrained Delaunay triangulation ---- */
 /* Largest |coordinate| wr_cdt_triangulate accepts (points and hole seeds; larger ones are
@@ -255,214 +239,6 @@ WRDEF wr_status wr_cdt_check(const wr_cdt_result *r, int32_t expected_holes, wr_
 #ifdef __cplusplus
 extern "C" {
 #endif
-
-/* ---- expansion arithmetic (Shewchuk 1997, "Adaptive precision floating-point arithmetic") ----
- * An expansion is an array of doubles, increasing magnitude, nonoverlapping, whose exact sum is the
- * value; its sign is the sign of its last (largest) component. */
-#define WR__EPS 1.1102230246251565e-16         /* 2^-53, half an ulp of 1 */
-#define WR__SPLITTER 134217729.0               /* 2^27 + 1: Dekker's split into 26+26 bits */
-#define WR__CCW_BOUND ((3.0 + 16.0 * WR__EPS) * WR__EPS)  /* Shewchuk's ccwerrboundA */
-#define WR__ICC_BOUND ((10.0 + 96.0 * WR__EPS) * WR__EPS) /* Shewchuk's iccerrboundA */
-
-static void wr__two_sum(double a, double b, double *x, double *y) {
-    double s = a + b, bv = s - a, av = s - bv;
-    *x = s;
-    *y = (a - av) + (b - bv);
-}
-static void wr__fast_two_sum(double a, double b, double *x, double *y) { /* needs |a| >= |b| */
-    double s = a + b;
-    *x = s;
-    *y = b - (s - a);
-}
-static void wr__two_diff(double a, double b, double *x, double *y) {
-    double s = a - b, bv = a - s, av = s + bv;
-    *x = s;
-    *y = (a - av) + (bv - b);
-}
-static void wr__split(double a, double *hi, double *lo) {
-    double c = WR__SPLITTER * a, big = c - a;
-    *hi = c - big;
-    *lo = a - *hi;
-}
-static void wr__two_prod(double a, double b, double *x, double *y) {
-    double p = a * b, ah, al, bh, bl, e1, e2, e3;
-    wr__split(a, &ah, &al);
-    wr__split(b, &bh, &bl);
-    e1 = p - ah * bh;
-    e2 = e1 - al * bh;
-    e3 = e2 - ah * bl;
-    *x = p;
-    *y = al * bl - e3;
-}
-/* h = e + f; merge by magnitude then one running two-sum (FAST-EXPANSION-SUM), zeros dropped. */
-static int wr__exp_sum(int ne, const double *e, int nf, const double *f, double *h) {
-    double q, qn, hh, g;
-    int i = 0, j = 0, k = 0;
-    if (ne == 0 && nf == 0) return 0;
-    if (j >= nf || (i < ne && fabs(e[i]) < fabs(f[j])))
-        q = e[i++];
-    else
-        q = f[j++];
-    while (i < ne || j < nf) {
-        if (j >= nf || (i < ne && fabs(e[i]) < fabs(f[j])))
-            g = e[i++];
-        else
-            g = f[j++];
-        wr__two_sum(q, g, &qn, &hh);
-        q = qn;
-        if (hh != 0.0) h[k++] = hh;
-    }
-    if (q != 0.0 || k == 0) h[k++] = q;
-    return k;
-}
-/* h = e * b (SCALE-EXPANSION), zeros dropped. h has room for 2·ne. */
-static int wr__exp_scale(int ne, const double *e, double b, double *h) {
-    double q, hh, p1, p0, s, t;
-    int i, k = 0;
-    if (ne == 0) return 0;
-    wr__two_prod(e[0], b, &q, &hh);
-    if (hh != 0.0) h[k++] = hh;
-    for (i = 1; i < ne; ++i) {
-        wr__two_prod(e[i], b, &p1, &p0);
-        wr__two_sum(q, p0, &s, &hh);
-        if (hh != 0.0) h[k++] = hh;
-        wr__fast_two_sum(p1, s, &q, &t);
-        if (t != 0.0) h[k++] = t;
-    }
-    if (q != 0.0 || k == 0) h[k++] = q;
-    return k;
-}
-/* h = e * f with e, f short; h has room for 2·ne·nf (<= 512 here). */
-#define WR__EXP_MAX 512
-static int wr__exp_mul(int ne, const double *e, int nf, const double *f, double *h) {
-    double sc[64], acc[WR__EXP_MAX];
-    int j, ns, nh = 0;
-    for (j = 0; j < nf; ++j) {
-        ns = wr__exp_scale(ne, e, f[j], sc);
-        nh = wr__exp_sum(nh, h, ns, sc, acc);
-        memcpy(h, acc, sizeof(double) * (size_t)nh);
-    }
-    if (nh == 0) h[nh++] = 0.0;
-    return nh;
-}
-static void wr__exp_neg(int n, double *e) {
-    int i;
-    for (i = 0; i < n; ++i) e[i] = -e[i];
-}
-
-/* a - b as an expansion of 1 or 2 components (1 when the difference is exact, which is the common
- * case for lattice-like input: the exact stage then costs a fraction of the general one) */
-static int wr__diff_exp(double a, double b, double *e) {
-    double hi, lo;
-    wr__two_diff(a, b, &hi, &lo);
-    if (lo == 0.0) {
-        e[0] = hi;
-        return 1;
-    }
-    e[0] = lo;
-    e[1] = hi;
-    return 2;
-}
-
-/* The orientation determinant as an exact expansion s[0..n) (components by increasing magnitude). */
-static int wr__orient_expansion(const double *a, const double *b, const double *c, double *s) {
-    double acx[2], acy[2], bcx[2], bcy[2], l[8], r[8];
-    int nl, nr, n1, n2, n3, n4;
-    n1 = wr__diff_exp(a[0], c[0], acx);
-    n2 = wr__diff_exp(a[1], c[1], acy);
-    n3 = wr__diff_exp(b[0], c[0], bcx);
-    n4 = wr__diff_exp(b[1], c[1], bcy);
-    nl = wr__exp_mul(n1, acx, n4, bcy, l);
-    nr = wr__exp_mul(n2, acy, n3, bcx, r);
-    wr__exp_neg(nr, r);
-    return wr__exp_sum(nl, l, nr, r, s);
-}
-
-static double wr__orient_exact(const double *a, const double *b, const double *c) {
-    double s[16];
-    int ns = wr__orient_expansion(a, b, c, s);
-    return s[ns - 1]; /* the sign (all callers need) is the largest component's */
-}
-
-/* The orientation determinant's value to a few ulps (the fast filter's value may be off by a large
- * relative amount when it only certifies the sign): where a crossing point is computed from two of
- * them, its rounding error is then a few ulps of its own coordinates. */
-static double wr__orient_value(const double *a, const double *b, const double *c) {
-    double s[16], v = 0.0;
-    int ns = wr__orient_expansion(a, b, c, s), i;
-    for (i = 0; i < ns; ++i) v += s[i];
-    return v;
-}
-
-static double wr__incircle_exact(const double *a, const double *b, const double *c, const double *d) {
-    double dx[3][2], dy[3][2], t1[8], t2[8], lift[16], c1[16], c2[16], cr[32], term[3][WR__EXP_MAX],
-        s01[2 * WR__EXP_MAX], tot[3 * WR__EXP_MAX];
-    const double *p[3];
-    int nterm[3], nx[3], ny[3], i, n1, n2, nl, ncr, n01, ntot;
-    p[0] = a;
-    p[1] = b;
-    p[2] = c;
-    for (i = 0; i < 3; ++i) {
-        nx[i] = wr__diff_exp(p[i][0], d[0], dx[i]);
-        ny[i] = wr__diff_exp(p[i][1], d[1], dy[i]);
-    }
-    for (i = 0; i < 3; ++i) {
-        int j = (i + 1) % 3, k = (i + 2) % 3;
-        /* lift_i · (dx_j dy_k - dy_j dx_k): cofactor expansion along the lifted column */
-        n1 = wr__exp_mul(nx[i], dx[i], nx[i], dx[i], t1);
-        n2 = wr__exp_mul(ny[i], dy[i], ny[i], dy[i], t2);
-        nl = wr__exp_sum(n1, t1, n2, t2, lift);
-        n1 = wr__exp_mul(nx[j], dx[j], ny[k], dy[k], c1);
-        n2 = wr__exp_mul(ny[j], dy[j], nx[k], dx[k], c2);
-        wr__exp_neg(n2, c2);
-        ncr = wr__exp_sum(n1, c1, n2, c2, cr);
-        nterm[i] = wr__exp_mul(nl, lift, ncr, cr, term[i]);
-    }
-    n01 = wr__exp_sum(nterm[0], term[0], nterm[1], term[1], s01);
-    ntot = wr__exp_sum(n01, s01, nterm[2], term[2], tot);
-    return tot[ntot - 1];
-}
-
-static double wr__orient(const double *a, const double *b, const double *c) {
-    double l = (a[0] - c[0]) * (b[1] - c[1]), r = (a[1] - c[1]) * (b[0] - c[0]), det = l - r, sum;
-    if (l > 0.0) {
-        if (r <= 0.0) return det;
-        sum = l + r;
-    } else if (l < 0.0) {
-        if (r >= 0.0) return det;
-        sum = -l - r;
-    } else {
-        return det;
-    }
-    if (det >= WR__CCW_BOUND * sum || -det >= WR__CCW_BOUND * sum) return det;
-    return wr__orient_exact(a, b, c);
-}
-
-static double wr__incircle(const double *a, const double *b, const double *c, const double *d) {
-    double adx = a[0] - d[0], ady = a[1] - d[1], bdx = b[0] - d[0], bdy = b[1] - d[1];
-    double cdx = c[0] - d[0], cdy = c[1] - d[1];
-    double bc1 = bdx * cdy, bc2 = cdx * bdy, ca1 = cdx * ady, ca2 = adx * cdy, ab1 = adx * bdy, ab2 = bdx * ady;
-    double al = adx * adx + ady * ady, bl = bdx * bdx + bdy * bdy, cl = cdx * cdx + cdy * cdy;
-    double det = al * (bc1 - bc2) + bl * (ca1 - ca2) + cl * (ab1 - ab2);
-    double perm = (fabs(bc1) + fabs(bc2)) * al + (fabs(ca1) + fabs(ca2)) * bl + (fabs(ab1) + fabs(ab2)) * cl;
-    double eb = WR__ICC_BOUND * perm;
-    if (det > eb || -det > eb) return det;
-    return wr__incircle_exact(a, b, c, d);
-}
-
-WRDEF double wr_orient2d(const double *a, const double *b, const double *c) { return wr__orient(a, b, c); }
-WRDEF double wr_incircle(const double *a, const double *b, const double *c, const double *d) {
-    return wr__incircle(a, b, c, d);
-}
-WRDEF double wr_orient2d_fast(const double *a, const double *b, const double *c) {
-    return (a[0] - c[0]) * (b[1] - c[1]) - (a[1] - c[1]) * (b[0] - c[0]);
-}
-WRDEF double wr_incircle_fast(const double *a, const double *b, const double *c, const double *d) {
-    double adx = a[0] - d[0], ady = a[1] - d[1], bdx = b[0] - d[0], bdy = b[1] - d[1];
-    double cdx = c[0] - d[0], cdy = c[1] - d[1];
-    return (adx * adx + ady * ady) * (bdx * cdy - cdx * bdy) + (bdx * bdx + bdy * bdy) * (cdx * ady - adx * cdy) +
-           (cdx * cdx + cdy * cdy) * (adx * bdy - bdx * ady);
-}
 
 /* ---- triangulation data structure ----
  * Triangles are vertex triples tv[3t..3t+2] in CCW order; tn[3t+k] is the half-edge (3u+j) of the
@@ -644,9 +420,9 @@ static void wr__attr_bary(wr__cdt *S, int32_t q, int32_t a, int32_t b, int32_t c
 static int wr__conflict(const wr__cdt *S, int32_t u, const double *p) {
     const int32_t *v = S->tv + 3 * u;
     int g;
-    if (v[0] >= 0 && v[1] >= 0 && v[2] >= 0) return wr__incircle(WR__P(S, v[0]), WR__P(S, v[1]), WR__P(S, v[2]), p) > 0.0;
+    if (v[0] >= 0 && v[1] >= 0 && v[2] >= 0) return wr_incircle(WR__P(S, v[0]), WR__P(S, v[1]), WR__P(S, v[2]), p) > 0.0;
     g = v[0] < 0 ? 0 : v[1] < 0 ? 1 : 2;
-    return wr__orient(WR__P(S, v[wr__n1[g]]), WR__P(S, v[wr__n2[g]]), p) > 0.0;
+    return wr_orient2d(WR__P(S, v[wr__n1[g]]), WR__P(S, v[wr__n2[g]]), p) > 0.0;
 }
 
 /* Flip the edge half-edge he = (t, k) across to its twin: (a,b,c)+(d,c,b) -> (a,b,d)+(d,c,a). a ends
@@ -839,7 +615,7 @@ static int wr__locate(wr__cdt *S, const double *p, int32_t start, int blocking, 
             int g = v[0] < 0 ? 0 : v[1] < 0 ? 1 : 2;
             int32_t x = v[wr__n1[g]], y = v[wr__n2[g]];
             const double *px = WR__P(S, x), *py = WR__P(S, y);
-            double o = wr__orient(px, py, p);
+            double o = wr_orient2d(px, py, p);
             if (o > 0.0) {
                 *res = t;
                 return WR__LOC_TRI;
@@ -885,7 +661,7 @@ static int wr__locate(wr__cdt *S, const double *p, int32_t start, int blocking, 
                     o[k] = 1.0;
                     continue;
                 }
-                o[k] = wr__orient(WR__P(S, v[wr__n1[k]]), WR__P(S, v[wr__n2[k]]), p);
+                o[k] = wr_orient2d(WR__P(S, v[wr__n1[k]]), WR__P(S, v[wr__n2[k]]), p);
                 if (o[k] < 0.0) {
                     if (blocking && wr__cmark(S, he) != -1) {
                         *res = he;
@@ -1174,7 +950,7 @@ static int wr__restore_delaunay(wr__cdt *S, wr__ivec *fresh) {
         v = S->tv + 3 * t;
         p = S->tv[he];
         d = S->tv[S->tn[he]];
-        if (wr__incircle(WR__P(S, v[0]), WR__P(S, v[1]), WR__P(S, v[2]), WR__P(S, d)) <= 0.0) continue;
+        if (wr_incircle(WR__P(S, v[0]), WR__P(S, v[1]), WR__P(S, v[2]), WR__P(S, d)) <= 0.0) continue;
         wr__flip(S, he, &t, &u);
         if (!wr__ivec_push(fresh, x) || !wr__ivec_push(fresh, d) || !wr__ivec_push(fresh, d) ||
             !wr__ivec_push(fresh, y) || !wr__ivec_push(fresh, y) || !wr__ivec_push(fresh, p) ||
@@ -1194,12 +970,12 @@ static int wr__push3(wr__ivec *v, int32_t a, int32_t b, int32_t c) {
  * (7.1e-15) covers them with margin while staying far below any feature the predicates resolve
  * as distinct in practice. (Fuzzer finding cdt_crossing_chain_split: junctions 1e-16..1e-15 from a
  * segment's end vertex made that segment's chain overshoot its end.) */
-#define WR__CROSS_SNAP (64.0 * WR__EPS)
+#define WR__CROSS_SNAP (64.0 * WR_PRED_EPS)
 
 /* x lies exactly on segment p-q strictly between its ends (exact orientation; for collinear points
  * the sign of (p-x)·(q-x) is exact: both terms are <= 0, each a correctly rounded product). */
 static int wr__strictly_on(const double *p, const double *q, const double *x) {
-    return wr__orient(p, q, x) == 0.0 && wr__dot3(x, p, q) < 0.0;
+    return wr_orient2d(p, q, x) == 0.0 && wr__dot3(x, p, q) < 0.0;
 }
 
 /* Input segment o lies on input segment s's line (exact orientation of its input end points):
@@ -1209,8 +985,8 @@ static int wr__same_line(const wr__cdt *S, const wr__segctx *C, int32_t s, int32
     if (s < 0 || o < 0 || !C->seg) return 0;
     p = WR__P(S, C->in2int[C->seg[2 * s]]);
     q = WR__P(S, C->in2int[C->seg[2 * s + 1]]);
-    return wr__orient(p, q, WR__P(S, C->in2int[C->seg[2 * o]])) == 0.0 &&
-           wr__orient(p, q, WR__P(S, C->in2int[C->seg[2 * o + 1]])) == 0.0;
+    return wr_orient2d(p, q, WR__P(S, C->in2int[C->seg[2 * o]])) == 0.0 &&
+           wr_orient2d(p, q, WR__P(S, C->in2int[C->seg[2 * o + 1]])) == 0.0;
 }
 
 /* u-v is an edge constrained by an input segment other than s and not on its line. */
@@ -1352,7 +1128,7 @@ static wr_status wr__recover(wr__cdt *S, wr__segctx *C, int32_t a0, int32_t b0, 
             x = v[wr__n1[i]];
             y = v[wr__n2[i]];
             if (x >= 0 && y >= 0) {
-                double ox = wr__orient(pa, pb, WR__P(S, x)), oy = wr__orient(pa, pb, WR__P(S, y));
+                double ox = wr_orient2d(pa, pb, WR__P(S, x)), oy = wr_orient2d(pa, pb, WR__P(S, y));
                 if (ox == 0.0 && wr__dot3(pa, WR__P(S, x), pb) > 0.0) {
                     wr_status cs = wr__claim(S, C, 3 * t + wr__n2[i], a, x, s, sid, diag);
                     if (cs != WR_OK) return cs;
@@ -1396,8 +1172,8 @@ static wr_status wr__recover(wr__cdt *S, wr__segctx *C, int32_t a0, int32_t b0, 
                                    "segments %d and %d cross (self-intersecting boundary); set split_intersections "
                                    "to split them",
                                    sid, s2);
-                oa = wr__orient_value(WR__P(S, xr), WR__P(S, yl), pa);
-                ob = wr__orient_value(WR__P(S, xr), WR__P(S, yl), pb);
+                oa = wr_orient2d_value(WR__P(S, xr), WR__P(S, yl), pa);
+                ob = wr_orient2d_value(WR__P(S, xr), WR__P(S, yl), pb);
                 tt = oa / (oa - ob); /* oa, ob have strictly opposite signs here */
                 px = py = 0.0;
                 wr__cross_vertex(S, C, s, s2, a, b, xr, yl, tt, &px, &py, &vq, &on_s);
@@ -1462,7 +1238,7 @@ static wr_status wr__recover(wr__cdt *S, wr__segctx *C, int32_t a0, int32_t b0, 
             if (d < 0)
                 return wr_fail(diag, WR_ERR_GEOMETRY, sid, "segment %d: the walk along it left the triangulation",
                                sid);
-            o = wr__orient(pa, pb, WR__P(S, d));
+            o = wr_orient2d(pa, pb, WR__P(S, d));
             if (o == 0.0) { /* d lies on the segment: recover a-d now, d-b later */
                 bend = d;
                 if (!wr__push3(&C->pieces, d, b, s)) return wr_fail(diag, WR_ERR_NOMEM, sid, "out of memory");
@@ -1496,14 +1272,14 @@ static wr_status wr__recover(wr__cdt *S, wr__segctx *C, int32_t a0, int32_t b0, 
             if (he < 0) return wr_fail(diag, WR_ERR_GEOMETRY, sid, "segment %d: lost a crossing edge", sid);
             p = S->tv[he];
             q = S->tv[S->tn[he]];
-            o1 = wr__orient(WR__P(S, p), WR__P(S, q), WR__P(S, ex));
-            o2 = wr__orient(WR__P(S, p), WR__P(S, q), WR__P(S, ey));
+            o1 = wr_orient2d(WR__P(S, p), WR__P(S, q), WR__P(S, ex));
+            o2 = wr_orient2d(WR__P(S, p), WR__P(S, q), WR__P(S, ey));
             if ((o1 > 0.0 && o2 < 0.0) || (o1 < 0.0 && o2 > 0.0)) {
                 int32_t t1, t2;
                 double op, oq;
                 wr__flip(S, he, &t1, &t2);
-                op = wr__orient(pa, pb, WR__P(S, p));
-                oq = wr__orient(pa, pb, WR__P(S, q));
+                op = wr_orient2d(pa, pb, WR__P(S, p));
+                oq = wr_orient2d(pa, pb, WR__P(S, q));
                 if ((op > 0.0 && oq < 0.0) || (op < 0.0 && oq > 0.0)) {
                     if (!wr__ivec_push(&C->cross, p) || !wr__ivec_push(&C->cross, q))
                         return wr_fail(diag, WR_ERR_NOMEM, sid, "out of memory");
@@ -1618,8 +1394,8 @@ static int wr__segs_meet_sharply(const wr__cdt *S, const wr__ref *R, int32_t s1,
     double c = ux * vx + uy * vy, nn = (ux * ux + uy * uy) * (vx * vx + vy * vy);
     int meet = A[0] == B[0] || A[0] == B[1] || A[1] == B[0] || A[1] == B[1];
     if (!meet) {
-        double o1 = wr__orient(a0, a1, b0), o2 = wr__orient(a0, a1, b1), o3 = wr__orient(b0, b1, a0),
-               o4 = wr__orient(b0, b1, a1);
+        double o1 = wr_orient2d(a0, a1, b0), o2 = wr_orient2d(a0, a1, b1), o3 = wr_orient2d(b0, b1, a0),
+               o4 = wr_orient2d(b0, b1, a1);
         meet = ((o1 > 0 && o2 < 0) || (o1 < 0 && o2 > 0)) && ((o3 > 0 && o4 < 0) || (o3 < 0 && o4 > 0));
         if (!meet) return 0;
         return c * c > 0.25 * nn; /* crossing lines: the acute angle between them */
@@ -1773,7 +1549,7 @@ static int wr__continues(const wr__cdt *S, int32_t x, int32_t y) {
         int i = v[0] == x ? 0 : v[1] == x ? 1 : 2;
         int32_t w = v[wr__n1[i]];
         if (w >= 0 && w != y && S->cm[3 * t + wr__n2[i]] != -1 &&
-            wr__orient(WR__P(S, x), WR__P(S, y), WR__P(S, w)) == 0.0 && wr__dot3(WR__P(S, x), WR__P(S, y), WR__P(S, w)) < 0.0)
+            wr_orient2d(WR__P(S, x), WR__P(S, y), WR__P(S, w)) == 0.0 && wr__dot3(WR__P(S, x), WR__P(S, y), WR__P(S, w)) < 0.0)
             return 1;
         t = S->tn[3 * t + wr__n1[i]] / 3;
     } while (t != t0 && ++guard < 1 << 20);
@@ -1842,8 +1618,8 @@ static int wr__split_segment(wr__cdt *S, wr__ref *R, int32_t he) {
         p[1] = px[1] + f * (py[1] - px[1]);
     }
     if (!wr__coord_ok(R, p)) return 0;
-    if (a >= 0 && !(wr__orient(WR__P(S, a), px, p) > 0.0 && wr__orient(WR__P(S, a), p, py) > 0.0)) return 0;
-    if (d >= 0 && !(wr__orient(WR__P(S, d), py, p) > 0.0 && wr__orient(WR__P(S, d), p, px) > 0.0)) return 0;
+    if (a >= 0 && !(wr_orient2d(WR__P(S, a), px, p) > 0.0 && wr_orient2d(WR__P(S, a), p, py) > 0.0)) return 0;
+    if (d >= 0 && !(wr_orient2d(WR__P(S, d), py, p) > 0.0 && wr_orient2d(WR__P(S, d), p, px) > 0.0)) return 0;
     if (S->nv >= S->max_vertices) return -1;
     if (!wr__reserve_verts(S, 1)) return -2;
     q = S->nv++;
@@ -2378,7 +2154,7 @@ static int wr__prev_boundary(wr__tctx *X) {
     if (!e) return -1;
     for (i = 0; i < nt; ++i) {
         const int32_t *v = in->triangles + 3 * i;
-        int ccw = wr__orient(in->points + 2 * v[0], in->points + 2 * v[1], in->points + 2 * v[2]) > 0.0;
+        int ccw = wr_orient2d(in->points + 2 * v[0], in->points + 2 * v[1], in->points + 2 * v[2]) > 0.0;
         for (k = 0; k < 3; ++k) {
             int32_t a = v[wr__n1[k]], b = v[wr__n2[k]];
             e[6 * i + 2 * k] = ccw ? a : b;
@@ -2450,11 +2226,11 @@ static wr_status wr__cdt_delaunay(wr__tctx *X, wr_diag *diag) {
     for (i = 1; i < nid && i1 < 0; ++i)
         if (S->xy[2 * i] != S->xy[0] || S->xy[2 * i + 1] != S->xy[1]) i1 = i;
     for (i = 1; i < nid && i1 >= 0 && i2 < 0; ++i)
-        if (wr__orient(WR__P(S, i0), WR__P(S, i1), WR__P(S, i)) != 0.0) i2 = i;
+        if (wr_orient2d(WR__P(S, i0), WR__P(S, i1), WR__P(S, i)) != 0.0) i2 = i;
     if (i1 < 0) return wr_fail(diag, WR_ERR_GEOMETRY, -1, "fewer than 3 distinct points (%d given, all coincide)", n);
     if (i2 < 0) return wr_fail(diag, WR_ERR_GEOMETRY, -1, "all %d distinct points are collinear: no triangle exists", nid);
     if (!wr__reserve_tris(S, 2 * nid + 16)) return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory (%d points)", n);
-    if (wr__orient(WR__P(S, i0), WR__P(S, i1), WR__P(S, i2)) > 0.0)
+    if (wr_orient2d(WR__P(S, i0), WR__P(S, i1), WR__P(S, i2)) > 0.0)
         wr__init_tri(S, i0, i1, i2);
     else
         wr__init_tri(S, i0, i2, i1);
@@ -2829,7 +2605,7 @@ WRDEF wr_status wr_cdt_check(const wr_cdt_result *r, int32_t expected_holes, wr_
                 st = wr_fail(diag, WR_ERR_TOPOLOGY, t, "triangle %d: vertex %d out of range [0, %d)", t, v[k], nP);
                 goto done;
             }
-        a = wr__orient(r->points + 2 * v[0], r->points + 2 * v[1], r->points + 2 * v[2]);
+        a = wr_orient2d(r->points + 2 * v[0], r->points + 2 * v[1], r->points + 2 * v[2]);
         if (!(a > 0.0)) {
             st = wr_fail(diag, WR_ERR_GEOMETRY, t, "triangle %d (%d, %d, %d) is %s", t, v[0], v[1], v[2],
                          a == 0.0 ? "degenerate (zero area)" : "clockwise (inverted)");
@@ -2869,7 +2645,7 @@ WRDEF wr_status wr_cdt_check(const wr_cdt_result *r, int32_t expected_holes, wr_
                     ++E;
                     if (m >= 0) ++ncon;
                     uf[wr__uf_find(uf, t)] = wr__uf_find(uf, nb);
-                    if (m < 0 && wr__incircle(r->points + 2 * v[0], r->points + 2 * v[1], r->points + 2 * v[2],
+                    if (m < 0 && wr_incircle(r->points + 2 * v[0], r->points + 2 * v[1], r->points + 2 * v[2],
                                               r->points + 2 * w[k2]) > 0.0) {
                         st = wr_fail(diag, WR_ERR_GEOMETRY, t,
                                      "edge (%d, %d) between triangles %d and %d is not locally Delaunay", a, b, t, nb);
@@ -3008,8 +2784,8 @@ WRDEF wr_status wr_cdt_check(const wr_cdt_result *r, int32_t expected_holes, wr_
                     const int32_t *e;
                     if (o < 0 || o >= r->n_input_segments) continue;
                     e = r->input_segments + 2 * o;
-                    if (!(wr__orient(r->points + 2 * a, r->points + 2 * b, r->points + 2 * e[0]) == 0.0 &&
-                          wr__orient(r->points + 2 * a, r->points + 2 * b, r->points + 2 * e[1]) == 0.0))
+                    if (!(wr_orient2d(r->points + 2 * a, r->points + 2 * b, r->points + 2 * e[0]) == 0.0 &&
+                          wr_orient2d(r->points + 2 * a, r->points + 2 * b, r->points + 2 * e[1]) == 0.0))
                         continue;
                 }
                 if (y == b) {

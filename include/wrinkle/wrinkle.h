@@ -6,8 +6,8 @@
  *
  * WHAT IS INCLUDED
  *   Always (libc + libm only, MIT): core, mesh, sparse, pcg (iterative solvers), resolution,
- *   transition, tft, shell, poisson, triangulate, eigen (its solvers opt-in), statics, dynamics,
- *   body, garment, wrinkle_field, mesher, tfw, collision, render.
+ *   transition, tft, shell, poisson, predicates, triangulate, eigen (its solvers opt-in), statics,
+ *   dynamics, body, garment, wrinkle_field, mesher, tfw, collision, render.
  *   Link with -lm (pkg-config: wrinkle-core).
  *   Opt-in backends, each behind a macro so that a binary without them carries no GPL code:
  *     -DWR_USE_FFTW=1     also include spectrum.h (wrinkle counting; FFTW 3, GPL-2+, -lfftw3)
@@ -36,6 +36,7 @@
 #include "tft.h"
 #include "shell.h"
 #include "poisson.h"
+#include "predicates.h"
 #include "triangulate.h"
 #include "polyfile.h"
 #include "eigen.h"
