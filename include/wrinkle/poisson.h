@@ -996,16 +996,20 @@ static int wr__pz_level(const wr__pz *z, double r) {
 
 /* Mean rule: does (qx,qy) with radius rq conflict with any stored sample? */
 
+/* Grow the neighbour list (out of the hot path of wr__pz_nb_push). */
+static wr_status wr__pz_nb_grow(wr__pz *z) {
+    int32_t nc = z->nb_cap ? 2 * z->nb_cap : 64;
+    wr__pz_nbr *a = (wr__pz_nbr *)wr_realloc_array(z->nb, (size_t)nc, sizeof(wr__pz_nbr));
+    if (!a) return wr_fail(z->diag, WR_ERR_NOMEM, -1, "neighbour list: out of memory");
+    z->nb = a;
+    z->nb_cap = nc;
+    return WR_OK;
+}
+
 /* Append sample i to the neighbour list. */
-static wr_status wr__pz_nb_push(wr__pz *z, int32_t i, int32_t cut) {
+static inline wr_status wr__pz_nb_push(wr__pz *z, int32_t i, int32_t cut) {
     wr__pz_nbr *e;
-    if (z->nb_n == z->nb_cap) {
-        int32_t nc = z->nb_cap ? 2 * z->nb_cap : 64;
-        wr__pz_nbr *a = (wr__pz_nbr *)wr_realloc_array(z->nb, (size_t)nc, sizeof(wr__pz_nbr));
-        if (!a) return wr_fail(z->diag, WR_ERR_NOMEM, -1, "neighbour list: out of memory");
-        z->nb = a;
-        z->nb_cap = nc;
-    }
+    if (z->nb_n == z->nb_cap && wr__pz_nb_grow(z) != WR_OK) return WR_ERR_NOMEM;
     e = &z->nb[z->nb_n++];
     e->x = z->sm[i].x;
     e->y = z->sm[i].y;
@@ -1138,8 +1142,11 @@ static void wr__pz_arcs_cut1(wr__pz_arcs *A, double a, double b) {
         if (a >= h) continue;
         if (a > l && b < h) { /* strictly inside: split */
             if (A->n < WR__PZ_ARCS) {
-                memmove(A->lo + i + 1, A->lo + i, sizeof(double) * (size_t)(A->n - i));
-                memmove(A->hi + i + 1, A->hi + i, sizeof(double) * (size_t)(A->n - i));
+                int32_t j;
+                for (j = A->n; j > i; --j) { /* a few arcs: a loop beats two memmove calls */
+                    A->lo[j] = A->lo[j - 1];
+                    A->hi[j] = A->hi[j - 1];
+                }
                 A->hi[i] = a;
                 A->lo[i + 1] = b;
                 ++A->n;
@@ -1156,8 +1163,11 @@ static void wr__pz_arcs_cut1(wr__pz_arcs *A, double a, double b) {
             A->lo[i] = b; /* the bottom goes */
             return;
         } else { /* covered */
-            memmove(A->lo + i, A->lo + i + 1, sizeof(double) * (size_t)(A->n - i - 1));
-            memmove(A->hi + i, A->hi + i + 1, sizeof(double) * (size_t)(A->n - i - 1));
+            int32_t j;
+            for (j = i; j + 1 < A->n; ++j) {
+                A->lo[j] = A->lo[j + 1];
+                A->hi[j] = A->hi[j + 1];
+            }
             --A->n;
             --i;
         }
@@ -1293,7 +1303,7 @@ static int32_t wr__pz_nb_conflict(const wr__pz *z, double qx, double qy, double 
     for (i = 0; i < z->nb_n; ++i) {
         const wr__pz_nbr *S = &z->nb[i];
         double dx = S->x - qx, dy = S->y - qy, md = 0.5 * (rq + S->r);
-        if ((all || !S->cut) && dx * dx + dy * dy < md * md) return i;
+        if (dx * dx + dy * dy < md * md && (all || !S->cut)) return i; /* the flag only on a hit */
     }
     return -1;
 }
