@@ -1196,6 +1196,25 @@ static void wr__pz_arcs_cut(wr__pz_arcs *A, double c, double half) {
     }
 }
 
+/* wr__pz_arcs_cut(A, th, WR__PZ_TINY_ARC) for a drawn direction th in [0, 2π): the same cut, but
+ * without the wrap arithmetic, and nothing at all when no free arc is within the tiny arc (the
+ * usual case: th was just removed with a neighbour's or a new sample's lens). */
+static void wr__pz_arcs_cut_tiny(wr__pz_arcs *A, double th) {
+    double a = th - WR__PZ_TINY_ARC, b = th + WR__PZ_TINY_ARC;
+    int32_t i;
+    if (a < 0.0 || b > WR__PZ_TWO_PI) {
+        wr__pz_arcs_cut(A, th, WR__PZ_TINY_ARC);
+        return;
+    }
+    for (i = 0; i < A->n; ++i) {
+        if (b <= A->lo[i]) return;
+        if (a < A->hi[i]) {
+            wr__pz_arcs_cut1(A, a, b);
+            return;
+        }
+    }
+}
+
 /* A direction uniform over the free arcs (u uniform in [0, 1)). */
 static double wr__pz_arcs_pick(const wr__pz_arcs *A, double u) {
     double total = 0.0, t;
@@ -1413,7 +1432,7 @@ static wr_status wr__pz_activate(wr__pz *z, int32_t ip) {
             wr__pz_nbr *S = &z->nb[q];
             S->cut = 1;
             wr__pz_arcs_cut_disk(&A, px, py, rho0, S->x, S->y, 0.5 * (rc + S->r));
-            wr__pz_arcs_cut(&A, th, WR__PZ_TINY_ARC);
+            wr__pz_arcs_cut_tiny(&A, th);
             continue;
         }
         if (curves && !wr__pz_inside_at(z->segs, x, y)) goto failed;
@@ -1456,7 +1475,7 @@ static wr_status wr__pz_activate(wr__pz *z, int32_t ip) {
         if ((st = wr__pz_insert(z, x, y, hx, rx)) != WR_OK) return st;
         if ((st = wr__pz_nb_push(z, z->n - 1, 1)) != WR_OK) return st;
         wr__pz_arcs_cut_disk(&A, px, py, rho0, x, y, 0.5 * (rc + rx));
-        wr__pz_arcs_cut(&A, th, WR__PZ_TINY_ARC);
+        wr__pz_arcs_cut_tiny(&A, th);
         continue;
     failed:
         ++fails;
