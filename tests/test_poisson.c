@@ -308,6 +308,62 @@ Test(poisson, calibration_mean_edge_matches_sizing) {
     cr_assert(fabs(q2 - 1.0) <= 0.02, "graded: mean edge / sizing = %.4f", q2);
 }
 
+/* mean over Delaunay edges joining a fixed point to a sample of |e| / ((h_i + h_j)/2), and the mean
+ * height of those samples (the first ring) above the unit square's outline / own sizing */
+static double first_ring_ratio(const wr_poisson_result *res, double *height, int32_t *n_used) {
+    int32_t *E, ne = bw_edges(res->points, res->n_points, &E), e, i, used = 0, nr = 0;
+    char *ring = (char *)calloc((size_t)res->n_points, 1);
+    double sum = 0.0, hs = 0.0;
+    for (e = 0; e < ne; ++e) {
+        int32_t a = E[2 * e], b = E[2 * e + 1];
+        if ((a < res->n_fixed) == (b < res->n_fixed)) continue;
+        sum += hypot(res->points[2 * a] - res->points[2 * b], res->points[2 * a + 1] - res->points[2 * b + 1]) /
+               (0.5 * (res->sizing[a] + res->sizing[b]));
+        ++used;
+        ring[a < res->n_fixed ? b : a] = 1;
+    }
+    for (i = res->n_fixed; i < res->n_points; ++i)
+        if (ring[i]) {
+            double x = res->points[2 * i], y = res->points[2 * i + 1];
+            hs += fmin(fmin(x, 1.0 - x), fmin(y, 1.0 - y)) / res->sizing[i];
+            ++nr;
+        }
+    free(E);
+    free(ring);
+    *height = hs / nr;
+    *n_used = used;
+    return sum / used;
+}
+
+/* fixed_distance calibration (header: ON THE FIRST RING): the mean Delaunay edge between the outline's
+ * points and the first ring of samples / sizing within ±2 % of 1, the interior's target and band
+ * (issue 20), constant and 20x-graded sizing. Measured with 3 seeds at D = 0.93: 0.995-1.001
+ * (constant), 0.986 (graded); the interior rule there (D = c = 0.855) gives 0.93 / 0.92 and D = 1
+ * about 1.07, both outside. The ring's mean height (0.85 h; 0.77 h under the interior rule) is
+ * printed. */
+Test(poisson, first_ring_calibration) {
+    wr_poisson_domain dom;
+    wr_poisson_desc desc;
+    wr_poisson_result res;
+    wr_diag d;
+    double h = 0.01, h0 = 0.0025, q1, q2, t1, t2;
+    int32_t u1, u2;
+    dom_square(&dom);
+    memset(&desc, 0, sizeof desc);
+    desc.seed = 21;
+    cr_assert_eq(wr_poisson_sample(&dom, size_const, &h, &desc, &res, &d), WR_OK, "%s", d.message);
+    q1 = first_ring_ratio(&res, &t1, &u1);
+    wr_poisson_free(&res);
+    cr_assert_eq(wr_poisson_sample(&dom, size_ramp, &h0, &desc, &res, &d), WR_OK, "%s", d.message);
+    q2 = first_ring_ratio(&res, &t2, &u2);
+    wr_poisson_free(&res);
+    printf("[poisson] first ring fixed_distance=%.3f: mean edge outline-sample / sizing = %.4f (constant, %d edges, "
+           "ring height %.3f h), %.4f (20x graded, %d edges, ring height %.3f h)\n",
+           WR_POISSON_DEFAULT_FIXED_DISTANCE, q1, u1, t1, q2, u2, t2);
+    cr_assert(fabs(q1 - 1.0) <= 0.02, "constant: first-ring edge / sizing = %.4f", q1);
+    cr_assert(fabs(q2 - 1.0) <= 0.02, "graded: first-ring edge / sizing = %.4f", q2);
+}
+
 Test(poisson, deterministic_for_seed) {
     wr_poisson_domain dom;
     wr_poisson_desc desc;
@@ -481,6 +537,26 @@ Test(poisson, holes_and_polylines) {
     /* interior samples inside the domain, outside the holes, and off the constraint lines */
     md = min_distance_ratio(&res);
     cr_assert(md >= 1.0, "min distance ratio %.9f", md);
+    /* the first ring (header: ON THE FIRST RING): samples keep (r_f + r)/2, r_f = (2 D - c) h_f, from
+     * every loop point (outer, holes); line points keep the interior rule, so some sample is nearer
+     * to a line point than the loop rule would allow */
+    {
+        const double c = WR_POISSON_DEFAULT_RADIUS_FACTOR, D = WR_POISSON_DEFAULT_FIXED_DISTANCE;
+        double loop_min = HUGE_VAL, line_min = HUGE_VAL;
+        int32_t f;
+        for (f = 0; f < res.n_fixed; ++f)
+            for (i = res.n_fixed; i < res.n_points; ++i) {
+                double dd = hypot(res.points[2 * f] - res.points[2 * i], res.points[2 * f + 1] - res.points[2 * i + 1]);
+                double q = dd / (0.5 * ((2.0 * D - c) * res.sizing[f] + c * res.sizing[i]));
+                if (f < curve_first[3])
+                    loop_min = fmin(loop_min, q);
+                else
+                    line_min = fmin(line_min, q);
+            }
+        cr_assert(loop_min >= 1.0 - 1e-12, "a sample at %.6f of the loop-point distance", loop_min);
+        cr_assert(line_min < 0.97, "line points: closest sample at %.4f of the loop rule (interior rule expected)",
+                  line_min);
+    }
     for (i = res.n_fixed; i < res.n_points; ++i) {
         const double *p = res.points + 2 * i;
         cr_assert(inside_loops(&res, 2, p[0], p[1]), "sample %d at (%g, %g) outside the domain", i, p[0], p[1]);
@@ -661,6 +737,10 @@ Test(poisson, error_invalid_args) {
     memset(&desc, 0, sizeof desc);
     desc.k = -1;
     cr_assert_eq(wr_poisson_sample(&dom, size_const, &h, &desc, &res, &d), WR_ERR_INVALID_ARG);
+    desc.k = 0;
+    desc.fixed_distance = 0.4; /* below radius_factor / 2: a loop point's radius would be negative */
+    cr_assert_eq(wr_poisson_sample(&dom, size_const, &h, &desc, &res, &d), WR_ERR_INVALID_ARG);
+    cr_assert(strstr(d.message, "fixed_distance=0.4") != NULL, "%s", d.message);
     dom.n_holes = 1; /* holes == NULL */
     cr_assert_eq(wr_poisson_sample(&dom, size_const, &h, NULL, &res, &d), WR_ERR_INVALID_ARG);
 }

@@ -1196,8 +1196,10 @@ static wr_status wr__msh_assemble(wr__msh_ctx *c) {
 /* ---- report: quality in pattern and metric space, edge ratios ---------------------------------------- */
 /* Smallest and largest angle [deg] of the triangle w[6]: at the corners opposite its shortest and
  * its longest edge, each one atan2(|u × v|, u · v) (exact at any shape, unlike acos of the cosine
- * rule near 0 and 180 deg). */
-static void wr__msh_tri_angles(const double *w, double *amin, double *amax) {
+ * rule near 0 and 180 deg). The largest only feeds a running maximum: where its cosine exceeds
+ * cos_skip (the running maximum's cosine plus a margin far above rounding) it cannot raise it, and
+ * *amax = 0 without the atan2 (half of the report's time was libm's atan2). */
+static void wr__msh_tri_angles(const double *w, double cos_skip, double *amin, double *amax) {
     double L[3];
     int k, s = 0, g = 0, pass;
     for (k = 0; k < 3; ++k) { /* L[k]: squared length of the edge opposite corner k */
@@ -1211,8 +1213,12 @@ static void wr__msh_tri_angles(const double *w, double *amin, double *amax) {
     for (pass = 0; pass < (amax ? 2 : 1); ++pass) { /* amax == NULL: the smallest only */
         int q = pass ? g : s;
         const double *o = w + 2 * q, *a = w + 2 * ((q + 1) % 3), *b = w + 2 * ((q + 2) % 3);
-        double ux = a[0] - o[0], uy = a[1] - o[1], vx = b[0] - o[0], vy = b[1] - o[1];
-        double ang = atan2(fabs(ux * vy - uy * vx), ux * vx + uy * vy) * 57.29577951308232;
+        double ux = a[0] - o[0], uy = a[1] - o[1], vx = b[0] - o[0], vy = b[1] - o[1], ang;
+        if (pass && ux * vx + uy * vy > cos_skip * sqrt((ux * ux + uy * uy) * (vx * vx + vy * vy))) {
+            *amax = 0.0;
+            continue;
+        }
+        ang = atan2(fabs(ux * vy - uy * vx), ux * vx + uy * vy) * 57.29577951308232;
         if (pass)
             *amax = ang;
         else
@@ -1263,6 +1269,7 @@ static wr_status wr__msh_report(wr__msh_ctx *c) {
     const wr_mesh *M = &res->mesh;
     wr__msh_quality qa;
     int32_t f, j, k;
+    double cos_skip = 2.0; /* see wr__msh_tri_angles; 2: no face skipped before the first maximum */
     char *bnd = (char *)wr_calloc_array((size_t)M->nv, 1);
     if (!bnd) return wr__msh_nomem(c, -1);
     for (j = 0; j < M->n_loops; ++j)
@@ -1277,7 +1284,7 @@ static wr_status wr__msh_report(wr__msh_ctx *c) {
         const double *T = res->panels[M->face_panel[f]].T;
         double uv[6], w[6], amin, amax, amin_m, area, lmax = 0.0;
         wr_mesh_face_rest(M, f, uv);
-        wr__msh_tri_angles(uv, &amin, &amax);
+        wr__msh_tri_angles(uv, cos_skip, &amin, &amax);
         if (T[1] == 0.0 && T[2] == 0.0 && T[0] == T[3]) { /* isotropic panel: a similarity keeps angles */
             amin_m = amin;
         } else {
@@ -1285,17 +1292,21 @@ static wr_status wr__msh_report(wr__msh_ctx *c) {
                 w[2 * k] = T[0] * uv[2 * k] + T[1] * uv[2 * k + 1];
                 w[2 * k + 1] = T[2] * uv[2 * k] + T[3] * uv[2 * k + 1];
             }
-            wr__msh_tri_angles(w, &amin_m, NULL);
+            wr__msh_tri_angles(w, 2.0, &amin_m, NULL);
         }
         rp->min_angle_deg = fmin(rp->min_angle_deg, amin);
-        rp->max_angle_deg = fmax(rp->max_angle_deg, amax);
+        if (amax > rp->max_angle_deg) {
+            rp->max_angle_deg = amax;
+            cos_skip = cos(amax / 57.29577951308232) + 1e-9;
+        }
         rp->min_angle_metric_deg = fmin(rp->min_angle_metric_deg, amin_m);
         qa.sum_min += amin;
         qa.sum_min_metric += amin_m;
         area = 0.5 * ((uv[2] - uv[0]) * (uv[5] - uv[1]) - (uv[3] - uv[1]) * (uv[4] - uv[0]));
         for (k = 0; k < 3; ++k) {
             const double *a = uv + 2 * k, *b = uv + 2 * ((k + 1) % 3);
-            lmax = fmax(lmax, (b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]));
+            double l2 = (b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]);
+            lmax = l2 > lmax ? l2 : lmax;
         }
         if (fabs(area) <= WR_MESH_ZERO_AREA_REL * lmax)
             ++rp->n_zero_area;

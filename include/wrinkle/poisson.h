@@ -66,12 +66,28 @@
  * ON THE CONFLICT RULE (varying radius) AND THE CLEARANCE
  *   Two points p, q conflict when |p − q| < (r(p) + r(q)) / 2 (the symmetric "mean" rule; it is
  *   well defined, independent of insertion order, and equals the classical rule for constant r).
- *   Every pair in which at least one point is an interior sample satisfies |p − q| >= (r(p)+r(q))/2.
+ *   Every pair in which at least one point is an interior sample satisfies |p − q| >= (r(p)+r(q))/2,
+ *   with r = c h for samples and line points and r = (2 D − c) h for loop points (ON THE FIRST RING).
  *   Fixed points are not tested against each other (they are the caller's geometry). Every sample is
  *   at least desc.clearance · h from every constraint segment (default 0.35: a triangle on a segment
  *   of length h with its apex 0.35 h away keeps angles >= 35°; between fixed points h apart the mean
- *   rule alone keeps samples sqrt(0.855² − 0.5²) h = 0.69 h away, so the clearance acts only where a
- *   segment is longer than about 1.6 h).
+ *   rule alone keeps samples sqrt(0.855² − 0.5²) h = 0.69 h away from a line, sqrt(0.93² − 0.5²) h =
+ *   0.78 h from a loop, so the clearance acts only where a segment is longer than about 1.6 h).
+ *
+ * ON THE FIRST RING (samples next to the outer loop and the holes)
+ *   Style3D Sec. 4.3 asks that "the average vertex spacing locally aligns with the sizing values";
+ *   the radius factor does that for the interior, where Bridson's disks of radius r = 0.855 h pack
+ *   at random and their mean Delaunay edge is h. Next to a loop the curve points are a regular row
+ *   h apart, and the front places samples on the circle of the mean-rule distance around them: at
+ *   0.855 h from two points h apart a sample sits 0.69 h above the curve (mean ring height 0.77 h,
+ *   the equilateral apex is at 0.866 h) and its edges to the curve average 0.93 h. So a sample and
+ *   a loop point f conflict below (r_f + r_q)/2 with r_f = (2 D − c) h_f: the distance is D h at
+ *   equal sizing, and D (desc.fixed_distance) is calibrated like the radius factor, to the same
+ *   target: the mean Delaunay edge from loop points to samples = h (D = 0.93: mean ring height
+ *   0.85 h). Points of constraint lines keep the interior rule (r_f = c h): around shirring lines
+ *   the sizing grows steeply and their edges to the samples are already at h (1.01 on the
+ *   examples), and a fold's three lines 0.5 mm apart would add up their exclusions (measurements:
+ *   docs/notes-mesher.md). Fixed points are still not tested against each other.
  *
  * ON COVERAGE (what is, and is not, guaranteed)
  *   The front stops at a point when no free direction is left, so gaps are closed up to the
@@ -159,6 +175,10 @@ typedef double (*wr_poisson_sizing_fn)(void *user, double x, double y);
 /* Minimum distance sample → constraint segment, in units of the sample's sizing h (see ON THE
  * CONFLICT RULE AND THE CLEARANCE for the 35° reading of 0.35). */
 #define WR_POISSON_DEFAULT_CLEARANCE 0.35
+/* D: a sample keeps (r_f + r)/2 = D h from a point of the outer loop or a hole (ON THE FIRST RING);
+ * 0.93 makes the mean Delaunay edge between such points and the first ring = the sizing (±2 %,
+ * tests/test_poisson.c "first_ring_calibration"), the interior's calibration target. */
+#define WR_POISSON_DEFAULT_FIXED_DISTANCE 0.93
 /* κ: samples per r² of area for this sampler, N ≈ κ ∫ dA / r²: 0.885 measured in test_poisson.c
  * "density" (unit square, h = 0.01; 0.883 at h = 0.002); used for the budget estimate. */
 #define WR_POISSON_DENSITY 0.885
@@ -192,7 +212,9 @@ typedef struct wr_poisson_domain {
  *   max_points    WR_POISSON_DEFAULT_MAX_POINTS (fixed + interior)
  *   corner_angle  WR_POISSON_DEFAULT_CORNER_ANGLE [rad] (wr_poisson_sample only); a tiny positive
  *                 value keeps every vertex
- *   clearance     WR_POISSON_DEFAULT_CLEARANCE (× h); must stay below radius_factor / 2 */
+ *   clearance     WR_POISSON_DEFAULT_CLEARANCE (× h); must stay below radius_factor / 2
+ *   fixed_distance WR_POISSON_DEFAULT_FIXED_DISTANCE (× h): sample to loop point; in
+ *                 (radius_factor / 2, 4); radius_factor itself gives the interior rule there too */
 typedef struct wr_poisson_desc {
     uint64_t seed;
     int32_t k;
@@ -200,6 +222,7 @@ typedef struct wr_poisson_desc {
     int32_t max_points;
     double corner_angle;
     double clearance;
+    double fixed_distance;
 } wr_poisson_desc;
 
 typedef struct wr_poisson_result {
@@ -725,6 +748,7 @@ typedef struct wr__pz {
     const wr__pz_segs *segs;
     wr_rng rng;
     double clearance; /* minimum sample-to-segment distance / h */
+    double fixed_d;   /* D: sample-to-loop-point distance / h (ON THE FIRST RING) */
     int32_t k;        /* placement attempts per point */
     wr__pz_nbr *nb; /* neighbours of the point being processed (copies: scanned for every draw) */
     int32_t nb_n, nb_cap;
@@ -972,16 +996,20 @@ static int wr__pz_level(const wr__pz *z, double r) {
 
 /* Mean rule: does (qx,qy) with radius rq conflict with any stored sample? */
 
+/* Grow the neighbour list (out of the hot path of wr__pz_nb_push). */
+static wr_status wr__pz_nb_grow(wr__pz *z) {
+    int32_t nc = z->nb_cap ? 2 * z->nb_cap : 64;
+    wr__pz_nbr *a = (wr__pz_nbr *)wr_realloc_array(z->nb, (size_t)nc, sizeof(wr__pz_nbr));
+    if (!a) return wr_fail(z->diag, WR_ERR_NOMEM, -1, "neighbour list: out of memory");
+    z->nb = a;
+    z->nb_cap = nc;
+    return WR_OK;
+}
+
 /* Append sample i to the neighbour list. */
-static wr_status wr__pz_nb_push(wr__pz *z, int32_t i, int32_t cut) {
+static inline wr_status wr__pz_nb_push(wr__pz *z, int32_t i, int32_t cut) {
     wr__pz_nbr *e;
-    if (z->nb_n == z->nb_cap) {
-        int32_t nc = z->nb_cap ? 2 * z->nb_cap : 64;
-        wr__pz_nbr *a = (wr__pz_nbr *)wr_realloc_array(z->nb, (size_t)nc, sizeof(wr__pz_nbr));
-        if (!a) return wr_fail(z->diag, WR_ERR_NOMEM, -1, "neighbour list: out of memory");
-        z->nb = a;
-        z->nb_cap = nc;
-    }
+    if (z->nb_n == z->nb_cap && wr__pz_nb_grow(z) != WR_OK) return WR_ERR_NOMEM;
     e = &z->nb[z->nb_n++];
     e->x = z->sm[i].x;
     e->y = z->sm[i].y;
@@ -1114,8 +1142,11 @@ static void wr__pz_arcs_cut1(wr__pz_arcs *A, double a, double b) {
         if (a >= h) continue;
         if (a > l && b < h) { /* strictly inside: split */
             if (A->n < WR__PZ_ARCS) {
-                memmove(A->lo + i + 1, A->lo + i, sizeof(double) * (size_t)(A->n - i));
-                memmove(A->hi + i + 1, A->hi + i, sizeof(double) * (size_t)(A->n - i));
+                int32_t j;
+                for (j = A->n; j > i; --j) { /* a few arcs: a loop beats two memmove calls */
+                    A->lo[j] = A->lo[j - 1];
+                    A->hi[j] = A->hi[j - 1];
+                }
                 A->hi[i] = a;
                 A->lo[i + 1] = b;
                 ++A->n;
@@ -1132,8 +1163,11 @@ static void wr__pz_arcs_cut1(wr__pz_arcs *A, double a, double b) {
             A->lo[i] = b; /* the bottom goes */
             return;
         } else { /* covered */
-            memmove(A->lo + i, A->lo + i + 1, sizeof(double) * (size_t)(A->n - i - 1));
-            memmove(A->hi + i, A->hi + i + 1, sizeof(double) * (size_t)(A->n - i - 1));
+            int32_t j;
+            for (j = i; j + 1 < A->n; ++j) {
+                A->lo[j] = A->lo[j + 1];
+                A->hi[j] = A->hi[j + 1];
+            }
             --A->n;
             --i;
         }
@@ -1159,6 +1193,25 @@ static void wr__pz_arcs_cut(wr__pz_arcs *A, double c, double half) {
         wr__pz_arcs_cut1(A, 0.0, b - WR__PZ_TWO_PI);
     } else {
         wr__pz_arcs_cut1(A, a, b);
+    }
+}
+
+/* wr__pz_arcs_cut(A, th, WR__PZ_TINY_ARC) for a drawn direction th in [0, 2π): the same cut, but
+ * without the wrap arithmetic, and nothing at all when no free arc is within the tiny arc (the
+ * usual case: th was just removed with a neighbour's or a new sample's lens). */
+static void wr__pz_arcs_cut_tiny(wr__pz_arcs *A, double th) {
+    double a = th - WR__PZ_TINY_ARC, b = th + WR__PZ_TINY_ARC;
+    int32_t i;
+    if (a < 0.0 || b > WR__PZ_TWO_PI) {
+        wr__pz_arcs_cut(A, th, WR__PZ_TINY_ARC);
+        return;
+    }
+    for (i = 0; i < A->n; ++i) {
+        if (b <= A->lo[i]) return;
+        if (a < A->hi[i]) {
+            wr__pz_arcs_cut1(A, a, b);
+            return;
+        }
     }
 }
 
@@ -1269,13 +1322,15 @@ static int32_t wr__pz_nb_conflict(const wr__pz *z, double qx, double qy, double 
     for (i = 0; i < z->nb_n; ++i) {
         const wr__pz_nbr *S = &z->nb[i];
         double dx = S->x - qx, dy = S->y - qy, md = 0.5 * (rq + S->r);
-        if ((all || !S->cut) && dx * dx + dy * dy < md * md) return i;
+        if (dx * dx + dy * dy < md * md && (all || !S->cut)) return i; /* the flag only on a hit */
     }
     return -1;
 }
-static wr_status wr__pz_insert(wr__pz *z, double x, double y, double h) {
-    double r = z->c * h;
-    int l = wr__pz_level(z, r);
+/* Store a point of sizing h with conflict radius r (samples: r = c h; fixed points: see
+ * wr__pz_fixed_radius). The level is that of c h in both cases, so a constant sizing stays one
+ * level; the level's rmax covers r, so the queries still reach every conflict. */
+static wr_status wr__pz_insert(wr__pz *z, double x, double y, double h, double r) {
+    int l = wr__pz_level(z, z->c * h);
     int64_t cx, cy;
     uint64_t key;
     size_t s;
@@ -1338,6 +1393,10 @@ nomem:
 }
 
 
+/* Conflict radius of a fixed point of the outer loop or a hole, sizing h: (2 D − c) h, so that the
+ * mean-rule distance to a sample of the same sizing, (r_f + c h)/2, is D h (ON THE FIRST RING). */
+static double wr__pz_fixed_radius(const wr__pz *z, double h) { return (2.0 * z->fixed_d - z->c) * h; }
+
 /* One step of the front (Dunbar & Humphreys 2006, boundary sampling, generalised to a varying
  * radius): place new samples on the circle of radius ρ = r_p around point p until no direction is
  * left. The free directions are kept as arcs; a neighbour's arc (the directions in which a sample
@@ -1347,8 +1406,10 @@ nomem:
  * there differs from r_p by more than WR__PZ_REPLACE and the point moves to the mean-rule
  * distance), clearance from the segments, mean rule against every neighbour. */
 static wr_status wr__pz_activate(wr__pz *z, int32_t ip) {
-    const double px = z->sm[ip].x, py = z->sm[ip].y, rp = z->sm[ip].r;
-    const double rho0 = rp * (1.0 + WR__PZ_GAP), rb = WR__PZ_RBOUND * rp, rho_max = 0.5 * (rp + rb);
+    /* rp: p's conflict radius; rc: the radius a new sample here would have (c h_p; = rp for a
+     * sample, smaller for a fixed point) — the arcs are cut for candidates of radius rc */
+    const double px = z->sm[ip].x, py = z->sm[ip].y, rp = z->sm[ip].r, rc = z->c * z->h[ip];
+    const double rho0 = 0.5 * (rp + rc) * (1.0 + WR__PZ_GAP), rb = WR__PZ_RBOUND * rc, rho_max = 0.5 * (rp + rb);
     wr__pz_arcs A;
     int32_t fails = 0, moves;
     int curves, far;
@@ -1366,12 +1427,12 @@ static wr_status wr__pz_activate(wr__pz *z, int32_t ip) {
         wr__pz_sincos(th, &uy, &ux);
         x = px + rho * ux;
         y = py + rho * uy;
-        q = wr__pz_nb_conflict(z, x, y, rp, 0);
+        q = wr__pz_nb_conflict(z, x, y, rc, 0);
         if (q >= 0) { /* this neighbour's whole arc goes (no sizing evaluated) */
             wr__pz_nbr *S = &z->nb[q];
             S->cut = 1;
-            wr__pz_arcs_cut_disk(&A, px, py, rho0, S->x, S->y, 0.5 * (rp + S->r));
-            wr__pz_arcs_cut(&A, th, WR__PZ_TINY_ARC);
+            wr__pz_arcs_cut_disk(&A, px, py, rho0, S->x, S->y, 0.5 * (rc + S->r));
+            wr__pz_arcs_cut_tiny(&A, th);
             continue;
         }
         if (curves && !wr__pz_inside_at(z->segs, x, y)) goto failed;
@@ -1402,7 +1463,7 @@ static wr_status wr__pz_activate(wr__pz *z, int32_t ip) {
                 if (!z->nb[q].cut && z->nb[q].id != ip) {
                     wr__pz_nbr *S = &z->nb[q];
                     S->cut = 1;
-                    wr__pz_arcs_cut_disk(&A, px, py, rho0, S->x, S->y, 0.5 * (rp + S->r));
+                    wr__pz_arcs_cut_disk(&A, px, py, rho0, S->x, S->y, 0.5 * (rc + S->r));
                 }
                 goto failed;
             }
@@ -1411,10 +1472,10 @@ static wr_status wr__pz_activate(wr__pz *z, int32_t ip) {
             if (hit < 0) return wr_fail(z->diag, WR_ERR_NOMEM, -1, "neighbours: out of memory");
             if (hit) goto failed; /* the grid decides */
         }
-        if ((st = wr__pz_insert(z, x, y, hx)) != WR_OK) return st;
+        if ((st = wr__pz_insert(z, x, y, hx, rx)) != WR_OK) return st;
         if ((st = wr__pz_nb_push(z, z->n - 1, 1)) != WR_OK) return st;
-        wr__pz_arcs_cut_disk(&A, px, py, rho0, x, y, 0.5 * (rp + rx));
-        wr__pz_arcs_cut(&A, th, WR__PZ_TINY_ARC);
+        wr__pz_arcs_cut_disk(&A, px, py, rho0, x, y, 0.5 * (rc + rx));
+        wr__pz_arcs_cut_tiny(&A, th);
         continue;
     failed:
         ++fails;
@@ -1459,10 +1520,15 @@ static wr_status wr__pz_grids_init(wr__pz *z, double x0, double y0, double W, do
  * points first, then every point in order of creation is a front step (first in, first out: the
  * front advances from the curves inwards, and consecutive steps touch nearby memory). */
 static wr_status wr__pz_fill(wr__pz *z, const wr__pz_curves *dc, const double *hfix, wr_poisson_result *res) {
-    int32_t i, c, s = 0, ns = 0;
+    int32_t i, c, s = 0, ns = 0, n_loop;
     wr_status st;
-    for (i = 0; i < dc->np; ++i)
-        if ((st = wr__pz_insert(z, dc->xy[2 * i], dc->xy[2 * i + 1], hfix[i])) != WR_OK) return st;
+    /* loop points (curves 0..n_holes come first) keep the first ring at D h; the points of
+     * constraint lines keep the interior rule (ON THE FIRST RING) */
+    n_loop = dc->nc > dc->n_holes + 1 ? dc->off[dc->n_holes + 1] : dc->np;
+    for (i = 0; i < dc->np; ++i) {
+        double r = i < n_loop ? wr__pz_fixed_radius(z, hfix[i]) : z->c * hfix[i];
+        if ((st = wr__pz_insert(z, dc->xy[2 * i], dc->xy[2 * i + 1], hfix[i], r)) != WR_OK) return st;
+    }
     for (i = 0; i < z->n; ++i)
         if ((st = wr__pz_activate(z, i)) != WR_OK) return st;
     for (c = 0; c < dc->nc; ++c) ns += wr__pz_nseg(dc, c);
@@ -1764,11 +1830,15 @@ static wr_status wr__pz_setup(wr__pz *z, const wr_poisson_domain *dom, wr_poisso
     if (desc->max_points == 0) desc->max_points = WR_POISSON_DEFAULT_MAX_POINTS;
     if (desc->corner_angle == 0.0) desc->corner_angle = WR_POISSON_DEFAULT_CORNER_ANGLE;
     if (desc->clearance == 0.0) desc->clearance = WR_POISSON_DEFAULT_CLEARANCE;
+    if (desc->fixed_distance == 0.0) desc->fixed_distance = WR_POISSON_DEFAULT_FIXED_DISTANCE;
     if (desc->k < 1 || !(desc->radius_factor > 0.0) || !isfinite(desc->radius_factor) || desc->max_points < 1 ||
-        !(desc->corner_angle > 0.0) || !(desc->clearance >= 0.0) || !(desc->clearance < 0.5 * desc->radius_factor))
+        !(desc->corner_angle > 0.0) || !(desc->clearance >= 0.0) || !(desc->clearance < 0.5 * desc->radius_factor) ||
+        !(desc->fixed_distance > 0.5 * desc->radius_factor) || !(desc->fixed_distance < 4.0))
         return wr_fail(diag, WR_ERR_INVALID_ARG, -1,
-                       "wr_poisson_desc: k=%d radius_factor=%g max_points=%d corner_angle=%g clearance=%g", (int)desc->k,
-                       desc->radius_factor, (int)desc->max_points, desc->corner_angle, desc->clearance);
+                       "wr_poisson_desc: k=%d radius_factor=%g max_points=%d corner_angle=%g clearance=%g "
+                       "fixed_distance=%g",
+                       (int)desc->k, desc->radius_factor, (int)desc->max_points, desc->corner_angle, desc->clearance,
+                       desc->fixed_distance);
     z->fn = sizing;
     z->user = user;
     z->diag = diag;
@@ -1776,6 +1846,7 @@ static wr_status wr__pz_setup(wr__pz *z, const wr_poisson_domain *dom, wr_poisso
     z->max_points = desc->max_points;
     z->k = desc->k;
     z->clearance = desc->clearance;
+    z->fixed_d = desc->fixed_distance;
     wr_rng_seed(&z->rng, desc->seed);
     return WR_OK;
 }
