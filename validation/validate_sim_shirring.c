@@ -39,7 +39,9 @@
  *
  * Options: --quick (uniform 9 mm only, 0.4 s: smoke, sim_shirring_quick.json), --case N (0 9 mm,
  * 1 4.5 mm, 2 ours, 3 2.5 mm), --seconds S (default 2), --no-png, --pcg (PCG block-Jacobi
- * instead of CHOLMOD), --immediate (threads at ρ from the first frame, no ramp), --verbose.
+ * instead of CHOLMOD), --immediate (threads at ρ from the first frame, no ramp), --seed N (the
+ * jitter's seed, default 15), --resolution MM (one uniform run at that size instead of the
+ * cases: a diagnostic, use with a WRINKLE_RESULTS_DIR of its own), --verbose.
  * Outputs: validation/results/sim_shirring.json, sim_shirring_<k>.dat (probe heights),
  * validation/figures/sim_shirring_<k>.png and sim_shirring.png (the four squares). */
 #include <math.h>
@@ -77,13 +79,16 @@ typedef struct srun {
     const scase *c;
     wr_mesh mesh; /* the pattern mesh (rest) */
     double *x;    /* final positions */
+    double *sizing; /* the mesher's per-vertex sizing [m] */
     int32_t nv, nf, frames, newton, halvings, ok;
     double cpu, seconds, gathered[3], h_min, min_sizing, max_sizing;
-    double lam[NPROBE], count[NPROBE], amp[NPROBE];
+    double lam[NPROBE], count[NPROBE], amp[NPROBE], probe_sizing[NPROBE]; /* probe_sizing: mean mesher sizing along it */
     int measured[NPROBE];
 } srun;
 
 static int g_verbose = 0, g_immediate = 0;
+static unsigned long g_seed = 15; /* the jitter's seed */
+static scase g_adhoc = {"uniform (--resolution)", 0.0};
 static wr_solver_method g_linear = WR_SOLVER_CHOLMOD;
 
 /* probe p of the pattern: line (1, 2, 3 → index 0..2) shifted in y, clipped to [X0, X1] in x */
@@ -170,7 +175,7 @@ static int shirring_simulate(srun *R, const wr_pattern_file *pf0) {
         fprintf(stderr, "validate_sim_shirring: garment: %s\n", d.message);
         return -1;
     }
-    wr_rng_seed(&rng, 15);
+    wr_rng_seed(&rng, (uint64_t)g_seed);
     for (i = 0; i < gs.mesh.nv; ++i) gs.x[3 * i + 2] += JITTER * (2.0 * wr_rng_uniform(&rng) - 1.0);
     R->nv = gs.mesh.nv, R->nf = gs.mesh.nf, R->h_min = HUGE_VAL, R->ok = 1;
     cpu0 = (double)clock() / CLOCKS_PER_SEC;
@@ -195,7 +200,9 @@ static int shirring_simulate(srun *R, const wr_pattern_file *pf0) {
         R->gathered[L] = now / (rest / ln[L].rho); /* thread length / its pattern length */
     }
     R->x = (double *)malloc(sizeof(double) * 3 * (size_t)gs.mesh.nv);
-    if (!R->x || wr_mesh_copy(&R->mesh, &mr.mesh, &d) != WR_OK) return -1;
+    R->sizing = (double *)malloc(sizeof(double) * (size_t)gs.mesh.nv);
+    if (!R->x || !R->sizing || wr_mesh_copy(&R->mesh, &mr.mesh, &d) != WR_OK) return -1;
+    memcpy(R->sizing, mr.sizing, sizeof(double) * (size_t)gs.mesh.nv);
     memcpy(R->x, gs.x, sizeof(double) * 3 * (size_t)gs.mesh.nv);
     wr_garment_sim_free(&gs);
     for (L = 0; L < 3; ++L) wr_free(chain[L]);
@@ -221,6 +228,15 @@ static int shirring_measure(srun *R, const wr_pattern *pat, const char *dat) {
         if (!s[p] || wr_probe_sample(&pr, z, pts[p], np[p], s[p], &out, &d) != WR_OK) return -1;
         run = wr_probe_longest_run(s[p], np[p], &st0);
         if (np[p] > nmax) nmax = np[p];
+        {   /* the mean sizing along the probe (a diagnostic of what the mesh offers there) */
+            double *hz = (double *)malloc(sizeof(double) * (size_t)np[p]), sum = 0.0;
+            int32_t k, cnt = 0;
+            if (hz && wr_probe_sample(&pr, R->sizing, pts[p], np[p], hz, NULL, &d) == WR_OK)
+                for (k = 0; k < np[p]; ++k)
+                    if (hz[k] == hz[k]) sum += hz[k], cnt++;
+            R->probe_sizing[p] = cnt ? sum / cnt : NAN;
+            free(hz);
+        }
         if (wr_spectrum_analyze(s[p] + st0, run, PROBE_DS, 0, NULL, &res, NULL, 0, &d) != WR_OK) {
             fprintf(stderr, "   probe %s: %s\n", PROBES[p], d.message);
             continue;
@@ -304,6 +320,11 @@ static void report(wr_vres *v, srun *runs, const int *idx, int n, int quick) {
         wr_vres_info(v, name, "", NAN, R->nv);
         snprintf(name, sizeof name, "%s: gathered length of shirring line 2 / its pattern length (thread rho = 0.5)", R->c->name);
         wr_vres_info(v, name, "", NAN, R->gathered[1]);
+        if (R->c->res == 0.0)
+            for (p = 0; p < NPROBE; ++p) {
+                snprintf(name, sizeof name, "%s: mean mesh sizing along probe %s", R->c->name, PROBES[p]);
+                wr_vres_info(v, name, "mm", NAN, 1e3 * R->probe_sizing[p]);
+            }
         for (p = 0; p < NPROBE; ++p) {
             int pass_row = R == ours && ref && p < 2 && ref->measured[p];
             if (!R->measured[p]) continue;
@@ -369,8 +390,10 @@ int main(int argc, char **argv) {
         else if (strcmp(argv[i], "--pcg") == 0) g_linear = WR_SOLVER_PCG_BLOCK3;
         else if (strcmp(argv[i], "--verbose") == 0) g_verbose = 1;
         else if (strcmp(argv[i], "--immediate") == 0) g_immediate = 1;
+        else if (strcmp(argv[i], "--seed") == 0 && i + 1 < argc) g_seed = strtoul(argv[++i], NULL, 10);
+        else if (strcmp(argv[i], "--resolution") == 0 && i + 1 < argc) g_adhoc.res = 1e-3 * atof(argv[++i]);
         else if (strcmp(argv[i], "--help") == 0) {
-            printf("usage: validate_sim_shirring [--quick] [--case N] [--seconds S] [--no-png] [--pcg] [--immediate] [--verbose]\n"
+            printf("usage: validate_sim_shirring [--quick] [--case N] [--seconds S] [--no-png] [--pcg] [--immediate] [--seed N] [--resolution MM] [--verbose]\n"
                    "  Style3D Fig. 15 with the dynamic simulator; writes validation/results/sim_shirring.json\n"
                    "  (--quick: sim_shirring_quick.json, uniform 9 mm for 0.4 s, smoke only).\n");
             return 0;
@@ -384,6 +407,7 @@ int main(int argc, char **argv) {
         return 2;
     }
     if (quick) case_id = "sim_shirring_quick", only = 0, seconds = 0.4;
+    if (g_adhoc.res > 0.0) only = 0;
     for (i = 0; i < NCASE; ++i)
         if (only < 0 || only == i) idx[n++] = i;
     if (wr_pattern_load(PATTERN, &pf, &d) != WR_OK || pf.pattern.n_shirrings != 3) {
@@ -394,7 +418,7 @@ int main(int argc, char **argv) {
     if (!v) return 2;
     for (i = 0; i < n; ++i) {
         srun *R = &runs[i];
-        R->c = &CASES[idx[i]];
+        R->c = g_adhoc.res > 0.0 ? &g_adhoc : &CASES[idx[i]];
         R->seconds = seconds;
         fprintf(stderr, "== case %d: %s\n", idx[i], R->c->name);
         if (shirring_simulate(R, &pf) != 0) return 2;
@@ -404,8 +428,8 @@ int main(int argc, char **argv) {
                 (int)R->frames, (int)R->newton, (int)R->halvings, R->cpu, R->gathered[0], R->gathered[1], R->gathered[2]);
         for (p = 0; p < NPROBE; ++p)
             if (R->measured[p])
-                fprintf(stderr, "   %s: %.1f wrinkles, lambda %.2f mm, amplitude %.2f mm\n", PROBES[p], R->count[p], 1e3 * R->lam[p],
-                        1e3 * R->amp[p]);
+                fprintf(stderr, "   %s: %.1f wrinkles, lambda %.2f mm, amplitude %.2f mm, mean sizing %.2f mm\n", PROBES[p], R->count[p],
+                        1e3 * R->lam[p], 1e3 * R->amp[p], 1e3 * R->probe_sizing[p]);
         rp[i] = R;
         if (png) {
             snprintf(path, sizeof path, "%s/../figures/%s_%d.png", wr_vres_dir(), case_id, idx[i]);
@@ -426,6 +450,7 @@ int main(int argc, char **argv) {
     report(v, runs, idx, n, quick);
     for (i = 0; i < n; ++i) {
         free(runs[i].x);
+        free(runs[i].sizing);
         wr_mesh_free(&runs[i].mesh);
     }
     wr_pattern_file_free(&pf);
