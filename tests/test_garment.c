@@ -871,3 +871,48 @@ Test(gather, threads_carried_across_the_weld) {
     free(pairs);
     free(seam);
 }
+
+/* The scene reader gathers the pattern's shirring lines: a one-panel pattern with one shirring
+ * line gives one gathered line on run_create (its chain, rho and E_sh from the pattern, the
+ * stitches every other vertex), "gathering": {"enabled": false} none, and the summary's thread
+ * count follows. */
+Test(gather, scene_gathers_the_patterns_shirring_lines) {
+    static const char *pat = "{\"units\": \"mm\", \"fabrics\": {\"c\": {\"B\": 1e-5, \"E\": 1e6}},"
+                             " \"panels\": [{\"name\": \"sq\", \"fabric\": \"c\", \"outer\": [[0, 0], [200, 0], [200, 200], [0, 200]]}],"
+                             " \"shirring\": [{\"panel\": \"sq\", \"line\": [[20, 100], [180, 100]], \"rho\": 0.6, \"E_sh\": 5e5}],"
+                             " \"mesher\": {\"uniform_resolution\": 20}}";
+    const char *on[2] = {"", ", \"gathering\": {\"enabled\": false}"};
+    char dir[512], path[600], text[1024];
+    FILE *f;
+    int k;
+    snprintf(dir, sizeof dir, "/tmp/wr_gather_scene_XXXXXX");
+    cr_assert(mkdtemp(dir) != NULL);
+    snprintf(path, sizeof path, "%s/sq.json", dir);
+    cr_assert((f = fopen(path, "w")) != NULL);
+    fputs(pat, f);
+    fclose(f);
+    for (k = 0; k < 2; ++k) {
+        wr_simscene sc;
+        wr_simscene_run run;
+        wr_diag d;
+        snprintf(text, sizeof text,
+                 "{\"garment\": {\"pattern\": \"sq.json\", " GAR_MAT ", \"placements\": [{\"panel\": \"sq\", \"rigid\": {}}]%s}}", on[k]);
+        cr_assert_eq(wr_simscene_parse(&sc, text, strlen(text), dir, &d), WR_OK, "%s", d.message);
+        cr_assert_eq(wr_simscene_run_create(&run, &sc, &d), WR_OK, "%s", d.message);
+        if (k == 0) {
+            cr_assert_eq(run.gs.n_lines, 1);
+            cr_assert_eq(run.n_glines, 1);
+            cr_assert_float_eq(run.glines[0].rho, 0.6, 0.0);
+            cr_assert_float_eq(run.glines[0].modulus, 5e5, 0.0);
+            cr_assert_eq(run.gs.n_thr, (run.glines[0].n_vertices - 1 + 1) / 2);
+            cr_assert_float_eq(run.gs.thr_axial[0], 5e5 * 5e-4 * 5e-4, 1e-15);
+        } else {
+            cr_assert_eq(run.gs.n_lines, 0);
+            cr_assert_eq(run.gs.n_thr, 0);
+        }
+        wr_simscene_run_free(&run);
+        wr_simscene_free(&sc);
+    }
+    remove(path);
+    remove(dir);
+}
