@@ -99,14 +99,15 @@
  *   Hessian blocks. Both are wall-clock sums over the frame's Newton iterations.
  *
  * ON GATHERING (threads: Style3D Sec. 4.2.2 shirring, 4.2.5 quilt stitches)
- *   desc.threads lists elastic thread segments sewn between vertex pairs (a shirring line's chain
- *   of mesh edges, garment.h ON GATHERING): segment s with rest length L_s [m] and axial stiffness
- *   EA_s [N] stores E_thr = EA_s/(2 L_s) · max(0, ℓ − L_s)², ℓ = ‖x_a − x_b‖. Tension only: a
- *   thread shorter than its rest length is slack (a thread buckles at no load). Gradient
- *   k (ℓ − L)₊ u, k = EA/L, u = (x_a − x_b)/ℓ; Hessian block k [u uᵀ + (1 − L/ℓ)(I − u uᵀ)] for
- *   ℓ > L (both eigenvalues ≥ 0: PSD as it stands, never projected), 0 when slack. The rest
- *   lengths are copied into sim->thread_rest, which the caller may change between steps (a
- *   gathering schedule ramps them from the pattern length to ρ times it).
+ *   desc.threads lists elastic thread segments between stitched vertex pairs (garment.h ON
+ *   GATHERING: stitches along a shirring line's chain of mesh edges): segment s with rest length
+ *   L_s [m] and axial stiffness EA_s [N] stores E_thr = EA_s/(2 L_s) · max(0, ℓ − L_s)²,
+ *   ℓ = ‖x_a − x_b‖. Tension only: a thread shorter than its rest length is slack (a thread
+ *   buckles at no load). Gradient k (ℓ − L)₊ u, k = EA/L, u = (x_a − x_b)/ℓ; Hessian block
+ *   k [u uᵀ + (1 − L/ℓ)(I − u uᵀ)] for ℓ > L (both eigenvalues ≥ 0: PSD as it stands, never
+ *   projected), 0 when slack. The rest lengths are copied into sim->thread_rest, which the
+ *   caller may change between steps (a gathering schedule ramps them from the pattern length to
+ *   ρ times it).
  *
  * ON UNITS
  *   SI: m, s, kg (shell density), N/m (κ, sewing), N (thread EA), 1/s (α), s (β), m/s (tolerances).
