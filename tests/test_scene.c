@@ -93,6 +93,9 @@ Test(scene, every_error_names_the_json_path) {
         {"{\"mesh\": {\"type\": \"rectangle\", \"width\": 1, \"height\": 1, \"nx\": 2.5, \"ny\": 2}, " BASE_MAT "}", "$.mesh.nx: must be an integer"},
         {"{\"mesh\": {\"type\": \"disk\", \"resolution\": 0.1}, " BASE_MAT "}", "$.mesh.radius: is required"},
         {"{\"mesh\": {\"type\": \"cylinder\", \"radius\": 1, \"resolution\": 0.1}, " BASE_MAT "}", "$.mesh.height: is required"},
+        {"{\"mesh\": {\"type\": \"rectangle\", \"width\": 1, \"height\": 1, \"resolution\": 0.1, \"angle\": 15}, " BASE_MAT "}", "$.mesh.angle: only for type lattice"},
+        {"{\"mesh\": {\"type\": \"lattice\", \"width\": 1, \"resolution\": 0.1}, " BASE_MAT "}", "$.mesh.height: is required"},
+        {"{" BASE_MESH ", " BASE_MAT ", \"energy\": {\"element\": \"quad\"}}", "$.energy.element: must be one of"},
         {"{\"mesh\": {\"type\": \"rectangle\", \"width\": 1, \"height\": 1, \"resolution\": \"x\"}, " BASE_MAT "}", "$.mesh.resolution: must be a finite number"},
         {"{" BASE_MESH ", \"material\": {\"poisson\": 0.3, \"thickness\": 1e-4}}", "$.material.young: is required"},
         {"{" BASE_MESH ", \"material\": {\"young\": 1e6}}", "$.material: needs thickness or bending_stiffness"},
@@ -191,6 +194,34 @@ Test(scene, build_errors) {
     cr_assert_eq(parse(t4, &sc, &d), WR_OK);
     cr_assert_eq(wr_scene_run_create(&run, &sc, &d), WR_ERR_IO);
     cr_assert_eq(wr_scene_load(&sc, "/nonexistent/scene.json", &d), WR_ERR_IO);
+}
+
+/* $.mesh.type lattice: interior triangles equilateral with edges at the requested angle; and
+ * $.energy.element loop reaches the shell (its Loop faces exist) */
+Test(scene, rotated_lattice_and_loop_element) {
+    wr_scene sc;
+    wr_scene_run run;
+    wr_diag d;
+    const char *t = "{\"mesh\": {\"type\": \"lattice\", \"width\": 0.1, \"height\": 0.05, \"resolution\": 0.005, "
+                    "\"angle\": 15}, " BASE_MAT ", \"energy\": {\"element\": \"loop\"}}";
+    int32_t e, n_at = 0, n_int = 0;
+    cr_assert_eq(parse(t, &sc, &d), WR_OK, "%s", d.message);
+    cr_assert_eq(sc.shell.loop_element, 1);
+    cr_assert_eq(wr_scene_run_create(&run, &sc, &d), WR_OK, "%s", d.message);
+    cr_assert_gt(run.shell.n_loop_faces, run.mesh.nf / 2, "Loop faces %d of %d", run.shell.n_loop_faces, run.mesh.nf);
+    for (e = 0; e < run.mesh.ne; ++e) {
+        const double *a = run.mesh.rest + 2 * run.mesh.edges[2 * e], *b = run.mesh.rest + 2 * run.mesh.edges[2 * e + 1];
+        double dx = b[0] - a[0], dy = b[1] - a[1], len = sqrt(dx * dx + dy * dy), ang;
+        if (a[0] < 0.004 || a[0] > 0.096 || a[1] < 0.004 || a[1] > 0.046) continue; /* interior edges only */
+        if (b[0] < 0.004 || b[0] > 0.096 || b[1] < 0.004 || b[1] > 0.046) continue;
+        ++n_int;
+        ang = fmod(atan2(dy, dx) * 180.0 / 3.14159265358979323846 + 360.0, 60.0); /* lattice directions mod 60 */
+        if (fabs(len - 0.005) < 1e-9 && fabs(ang - 15.0) < 1e-6) ++n_at;
+    }
+    cr_assert_gt(n_int, 100);
+    cr_assert_eq(n_at, n_int, "%d of %d interior edges are lattice edges at 15 deg (mod 60)", n_at, n_int);
+    wr_scene_run_free(&run);
+    wr_scene_free(&sc);
 }
 
 /* Uniform stretch of a membrane-only sheet clamped on both short edges with ν = 0: the exact

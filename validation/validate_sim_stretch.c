@@ -42,6 +42,7 @@
 #include <time.h>
 
 #include "wrinkle/wrinkle.h"
+#include "scene.h"
 #include "vresult.h"
 
 #define PI 3.14159265358979323846
@@ -125,46 +126,9 @@ static wr_status mesh_delaunay(wr_mesh *m, double r, wr_diag *d) {
     return st;
 }
 
-/* Equilateral lattice of spacing r rotated by theta, clipped r/2 inside, plus boundary points. */
+/* Equilateral lattice of spacing r rotated by theta (scene.h wr_scene_mesh_lattice). */
 static wr_status mesh_lattice(wr_mesh *m, double r, double theta_deg, wr_diag *d) {
-    double c = cos(theta_deg * PI / 180.0), s = sin(theta_deg * PI / 180.0), R = sqrt(LEN * LEN + WID * WID);
-    int32_t nb_x = (int32_t)floor(LEN / r + 0.5), nb_y = (int32_t)floor(WID / r + 0.5), cap, np = 0, nseg, i, j, k;
-    int32_t jmax = (int32_t)ceil(R / (r * 0.8660254037844386)) + 2, imax = (int32_t)ceil(R / r) + jmax + 2;
-    double *pts;
-    int32_t *seg;
-    wr_cdt_input in;
-    wr_cdt_desc cd;
-    wr_cdt_result cr;
-    wr_status st;
-    nseg = 2 * (nb_x + nb_y);
-    cap = nseg + (2 * imax + 1) * (2 * jmax + 1);
-    pts = (double *)malloc(sizeof(double) * 2 * (size_t)cap);
-    seg = (int32_t *)malloc(sizeof(int32_t) * 2 * (size_t)nseg);
-    if (!pts || !seg) {
-        free(pts), free(seg);
-        return wr_fail(d, WR_ERR_NOMEM, -1, "lattice: out of memory");
-    }
-    /* boundary loop, counter-clockwise: bottom, right, top, left */
-    for (k = 0; k < nb_x; ++k) pts[2 * np] = LEN * k / nb_x, pts[2 * np + 1] = 0.0, ++np;
-    for (k = 0; k < nb_y; ++k) pts[2 * np] = LEN, pts[2 * np + 1] = WID * k / nb_y, ++np;
-    for (k = 0; k < nb_x; ++k) pts[2 * np] = LEN - LEN * k / nb_x, pts[2 * np + 1] = WID, ++np;
-    for (k = 0; k < nb_y; ++k) pts[2 * np] = 0.0, pts[2 * np + 1] = WID - WID * k / nb_y, ++np;
-    for (k = 0; k < nseg; ++k) seg[2 * k] = k, seg[2 * k + 1] = (k + 1) % nseg;
-    for (j = -jmax; j <= jmax; ++j)
-        for (i = -imax; i <= imax; ++i) {
-            double u = (i + 0.5 * j) * r, w = j * 0.8660254037844386 * r;
-            double x = 0.5 * LEN + c * u - s * w, y = 0.5 * WID + s * u + c * w;
-            if (x >= 0.5 * r && x <= LEN - 0.5 * r && y >= 0.5 * r && y <= WID - 0.5 * r && np < cap)
-                pts[2 * np] = x, pts[2 * np + 1] = y, ++np;
-        }
-    memset(&in, 0, sizeof in), memset(&cd, 0, sizeof cd), memset(&cr, 0, sizeof cr);
-    in.points = pts, in.n_points = np, in.segments = seg, in.n_segments = nseg;
-    cd.seed = 1;
-    st = wr_cdt_triangulate(&in, &cd, &cr, d);
-    if (st == WR_OK) st = wr_mesh_create(m, cr.n_points, NULL, cr.points, cr.n_triangles, cr.triangles, d);
-    wr_cdt_free(&cr);
-    free(pts), free(seg);
-    return st;
+    return wr_scene_mesh_lattice(m, LEN, WID, r, theta_deg, d);
 }
 
 static double max_speed(const double *v, int32_t nv) {

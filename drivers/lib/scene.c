@@ -164,7 +164,7 @@ wr_status wr_jin_str(wr_jin *c, const cJSON *obj, const char *key, const char *p
     return WR_OK;
 }
 
-static const char *const SC_MESH_TYPES[] = {"obj", "rectangle", "disk", "cylinder", "delaunay_rectangle", NULL};
+static const char *const SC_MESH_TYPES[] = {"obj", "rectangle", "disk", "cylinder", "delaunay_rectangle", "lattice", NULL};
 static const char *const SC_MEMBRANES[] = {"stvk", "tft", "none", NULL};
 static const char *const SC_BENDINGS[] = {"midedge", "quadratic", "none", NULL};
 static const char *const SC_ELEMENTS[] = {"linear", "loop", NULL}; /* shell.h ON THE LOOP ELEMENT */
@@ -172,7 +172,7 @@ static const char *const SC_LINEAR[] = {"auto", "pcg-jacobi", "pcg-block3", "pcg
 static const char *const SC_HESSIAN[] = {"exact", "projected", "hybrid", NULL};
 
 const char *wr_scene_mesh_kind_name(wr_scene_mesh_kind k) {
-    return (k >= WR_SCENE_MESH_OBJ && k <= WR_SCENE_MESH_DELAUNAY_RECTANGLE) ? SC_MESH_TYPES[k] : "?";
+    return (k >= WR_SCENE_MESH_OBJ && k <= WR_SCENE_MESH_LATTICE) ? SC_MESH_TYPES[k] : "?";
 }
 
 void wr_scene_defaults(wr_scene *sc) {
@@ -198,10 +198,10 @@ void wr_scene_free(wr_scene *sc) {
 
 static wr_status sc_parse_mesh(wr_jin *c, const cJSON *o, const char *base_dir, wr_scene_mesh *m) {
     static const char *const keys[] = {"type", "path", "width", "height", "radius", "resolution", "nx", "ny",
-                                       "seed", "pillow", NULL};
+                                       "seed", "pillow", "angle", NULL};
     const char *P = "$.mesh";
     wr_status st;
-    int kind = 0, fw = 0, fh = 0, fr = 0, fres = 0, fnx = 0, fny = 0, fs = 0, fp = 0;
+    int kind = 0, fw = 0, fh = 0, fr = 0, fres = 0, fnx = 0, fny = 0, fs = 0, fp = 0, fa = 0;
     int32_t seed = 0;
     if ((st = wr_jin_keys(c, o, P, keys)) != WR_OK) return st;
     if ((st = wr_jin_enum(c, o, "type", P, SC_MESH_TYPES, &kind, 1)) != WR_OK) return st;
@@ -215,6 +215,8 @@ static wr_status sc_parse_mesh(wr_jin *c, const cJSON *o, const char *base_dir, 
     if ((st = wr_jin_int(c, o, "seed", P, 0, 2147483647L, &seed, &fs)) != WR_OK) return st;
     m->seed = (uint64_t)seed;
     if ((st = wr_jin_num(c, o, "pillow", P, WR_JIN_POS, &m->pillow_lift, &fp)) != WR_OK) return st;
+    if ((st = wr_jin_num(c, o, "angle", P, WR_JIN_ANY, &m->angle_deg, &fa)) != WR_OK) return st;
+    if (fa && m->kind != WR_SCENE_MESH_LATTICE) return wr_jin_err(c, "$.mesh.angle", "only for type lattice");
     /* a pillow doubles a flat panel with a boundary (statics.h ON PRESSURE needs a closed surface) */
     if (fp && m->kind != WR_SCENE_MESH_RECTANGLE && m->kind != WR_SCENE_MESH_DISK &&
         m->kind != WR_SCENE_MESH_DELAUNAY_RECTANGLE)
@@ -237,6 +239,7 @@ static wr_status sc_parse_mesh(wr_jin *c, const cJSON *o, const char *base_dir, 
     }
     case WR_SCENE_MESH_RECTANGLE:
     case WR_SCENE_MESH_DELAUNAY_RECTANGLE:
+    case WR_SCENE_MESH_LATTICE:
         if (!fw) return wr_jin_err(c, "$.mesh.width", "is required for type %s", SC_MESH_TYPES[kind]);
         if (!fh) return wr_jin_err(c, "$.mesh.height", "is required for type %s", SC_MESH_TYPES[kind]);
         if (m->kind == WR_SCENE_MESH_RECTANGLE && (fnx || fny)) {
@@ -578,6 +581,49 @@ static wr_status sc_mesh_delaunay(wr_mesh *m, double w, double h, double r, uint
     return st;
 }
 
+wr_status wr_scene_mesh_lattice(wr_mesh *m, double w, double h, double r, double theta_deg, wr_diag *diag) {
+    double c = cos(theta_deg * SC_PI / 180.0), s = sin(theta_deg * SC_PI / 180.0), R = sqrt(w * w + h * h);
+    int32_t nb_x = (int32_t)floor(w / r + 0.5), nb_y = (int32_t)floor(h / r + 0.5), cap, np = 0, nseg, i, j, k;
+    int32_t jmax = (int32_t)ceil(R / (r * 0.8660254037844386)) + 2, imax = (int32_t)ceil(R / r) + jmax + 2;
+    double *pts;
+    int32_t *seg;
+    wr_cdt_input in;
+    wr_cdt_desc cd;
+    wr_cdt_result cr;
+    wr_status st;
+    if (nb_x < 1) nb_x = 1;
+    if (nb_y < 1) nb_y = 1;
+    nseg = 2 * (nb_x + nb_y);
+    cap = nseg + (2 * imax + 1) * (2 * jmax + 1);
+    pts = (double *)malloc(sizeof(double) * 2 * (size_t)cap);
+    seg = (int32_t *)malloc(sizeof(int32_t) * 2 * (size_t)nseg);
+    if (!pts || !seg) {
+        free(pts), free(seg);
+        return wr_fail(diag, WR_ERR_NOMEM, -1, "lattice: out of memory");
+    }
+    /* boundary loop, counter-clockwise: bottom, right, top, left */
+    for (k = 0; k < nb_x; ++k) pts[2 * np] = w * k / nb_x, pts[2 * np + 1] = 0.0, ++np;
+    for (k = 0; k < nb_y; ++k) pts[2 * np] = w, pts[2 * np + 1] = h * k / nb_y, ++np;
+    for (k = 0; k < nb_x; ++k) pts[2 * np] = w - w * k / nb_x, pts[2 * np + 1] = h, ++np;
+    for (k = 0; k < nb_y; ++k) pts[2 * np] = 0.0, pts[2 * np + 1] = h - h * k / nb_y, ++np;
+    for (k = 0; k < nseg; ++k) seg[2 * k] = k, seg[2 * k + 1] = (k + 1) % nseg;
+    for (j = -jmax; j <= jmax; ++j)
+        for (i = -imax; i <= imax; ++i) {
+            double u = (i + 0.5 * j) * r, v = j * 0.8660254037844386 * r;
+            double x = 0.5 * w + c * u - s * v, y = 0.5 * h + s * u + c * v;
+            if (x >= 0.5 * r && x <= w - 0.5 * r && y >= 0.5 * r && y <= h - 0.5 * r && np < cap)
+                pts[2 * np] = x, pts[2 * np + 1] = y, ++np;
+        }
+    memset(&in, 0, sizeof in), memset(&cd, 0, sizeof cd), memset(&cr, 0, sizeof cr);
+    in.points = pts, in.n_points = np, in.segments = seg, in.n_segments = nseg;
+    cd.seed = 1;
+    st = wr_cdt_triangulate(&in, &cd, &cr, diag);
+    if (st == WR_OK) st = wr_mesh_create(m, cr.n_points, NULL, cr.points, cr.n_triangles, cr.triangles, diag);
+    wr_cdt_free(&cr);
+    free(pts), free(seg);
+    return st;
+}
+
 static wr_status sc_build_panel(const wr_scene_mesh *g, wr_mesh *m, wr_diag *diag);
 
 /* The scene's mesh: the generated or read one, doubled into a pillow when asked. */
@@ -623,6 +669,10 @@ static wr_status sc_build_panel(const wr_scene_mesh *g, wr_mesh *m, wr_diag *dia
         est = 1.2 * g->width * g->height / (r * r);
         if (est > SC_MAX_VERTICES) break;
         return sc_mesh_delaunay(m, g->width, g->height, r, g->seed, diag);
+    case WR_SCENE_MESH_LATTICE:
+        est = 1.2 * g->width * g->height / (0.8660254037844386 * r * r);
+        if (est > SC_MAX_VERTICES) break;
+        return wr_scene_mesh_lattice(m, g->width, g->height, r, g->angle_deg, diag);
     }
     return wr_fail(diag, WR_ERR_BUDGET, -1, "$.mesh.resolution: %g m would need ~%.3g vertices (limit %d)", r, est,
                    SC_MAX_VERTICES);

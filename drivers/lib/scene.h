@@ -39,7 +39,8 @@ typedef enum wr_scene_mesh_kind {
     WR_SCENE_MESH_RECTANGLE,          /* regular union-jack grid (wr_mesh_rectangle) */
     WR_SCENE_MESH_DISK,               /* hexagonal rings (wr_mesh_disk) */
     WR_SCENE_MESH_CYLINDER,           /* closed tube (wr_mesh_cylinder_flat) */
-    WR_SCENE_MESH_DELAUNAY_RECTANGLE  /* Poisson samples (poisson.h) + Delaunay (triangulate.h) */
+    WR_SCENE_MESH_DELAUNAY_RECTANGLE, /* Poisson samples (poisson.h) + Delaunay (triangulate.h) */
+    WR_SCENE_MESH_LATTICE             /* equilateral lattice rotated by angle_deg, CDT to the rectangle */
 } wr_scene_mesh_kind;
 
 typedef struct wr_scene_mesh {
@@ -50,6 +51,7 @@ typedef struct wr_scene_mesh {
     double resolution;            /* target edge length [m] (generators) */
     int32_t nx, ny;               /* rectangle: explicit cell counts (override resolution when > 0) */
     uint64_t seed;                /* delaunay_rectangle sampling seed */
+    double angle_deg;             /* lattice: rotation of the lattice rows from the x axis [deg] */
     double pillow_lift;           /* > 0: the flat panel doubled into a closed pillow (wr_mesh_pillow) [m] */
 } wr_scene_mesh;
 
@@ -145,6 +147,10 @@ typedef struct wr_scene_run {
 
 typedef void (*wr_scene_progress_fn)(void *user, int32_t step, int32_t n_steps, const wr_statics_stats *st);
 
+/* An equilateral lattice of spacing r (rows along x rotated by theta_deg about the rectangle's
+ * centre), the points at least r/2 inside [0,w]×[0,h], plus boundary points every ≈ r, constrained
+ * Delaunay: interior triangles are the lattice's own (the stretch test's aligned / rotated meshes). */
+wr_status wr_scene_mesh_lattice(wr_mesh *m, double w, double h, double r, double theta_deg, wr_diag *diag);
 void wr_scene_defaults(wr_scene *sc);
 wr_status wr_scene_parse(wr_scene *sc, const char *text, size_t len, const char *base_dir, wr_diag *diag);
 wr_status wr_scene_load(wr_scene *sc, const char *path, wr_diag *diag);
