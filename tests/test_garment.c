@@ -508,7 +508,11 @@ Test(garment_scene, parse_errors_name_the_path) {
          "\"body\": {\"type\": \"mannequin\", \"target_faces\": 500}}",
          "$.body.target_faces: must be an integer in [10000"},
         {"{\"garment\": {\"pattern\": \"p.json\", " GAR_MAT ", \"placements\": [" GAR_FRONT "]}, \"obstacles\": [{\"type\": \"mesh\"}]}",
-         "$.obstacles[0].path: is required"}};
+         "$.obstacles[0].path: is required"},
+        {"{\"garment\": {\"pattern\": \"p.json\", " GAR_MAT ", \"placements\": [" GAR_FRONT "], \"gathering\": {\"time\": -1}}}",
+         "$.garment.gathering.time: must be > 0"},
+        {"{\"garment\": {\"pattern\": \"p.json\", " GAR_MAT ", \"placements\": [" GAR_FRONT "], \"gathering\": {\"rho\": 0.5}}}",
+         "$.garment.gathering"}};
     size_t i;
     for (i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
         wr_simscene sc;
@@ -611,4 +615,259 @@ Test(garment_scene, obj_bodies_and_mesh_obstacles) {
         remove(path);
     }
     remove(dir);
+}
+
+/* ---- gathering threads (garment.h ON GATHERING, dynamics.h ON GATHERING) ------------------------ */
+
+/* One thread segment: the gradient against central differences of the energy and the Hessian
+ * against central differences of the gradient (1e-6 relative: h = 1e-7 m on a ~0.1 m segment),
+ * in tension at random orientations; the Hessian is PSD (random quadratic forms >= 0, the
+ * transverse eigenvalue k(1 − L/ℓ) along a direction orthogonal to the segment); slack (ℓ <= L)
+ * is zero energy, gradient and Hessian. */
+Test(gather, thread_segment_fd_and_psd) {
+    double xa[3], xb[3], g[6], H[36], gp[6], gm[6], x[6], hstep = 1e-7;
+    int trial, i, j;
+    for (trial = 0; trial < 6; ++trial) {
+        double L = 0.05 + 0.01 * trial, EA = 0.3 + trial, l = 0.0, E;
+        for (i = 0; i < 3; ++i) {
+            xa[i] = 0.02 * sin(1.0 + 3.0 * trial + i);
+            xb[i] = xa[i] + 0.06 * cos(2.0 + 5.0 * trial + 2.0 * i);
+            l += (xa[i] - xb[i]) * (xa[i] - xb[i]);
+        }
+        l = sqrt(l);
+        L = trial < 4 ? 0.8 * l : 1.2 * l; /* four taut, two slack */
+        E = wr_dyn_thread_segment(xa, xb, L, EA, g, H);
+        if (trial >= 4) {
+            cr_assert_eq(E, 0.0);
+            for (i = 0; i < 36; ++i) cr_assert_eq(H[i], 0.0);
+            for (i = 0; i < 6; ++i) cr_assert_eq(g[i], 0.0);
+            continue;
+        }
+        cr_assert_float_eq(E, EA / (2.0 * L) * (l - L) * (l - L), 1e-14);
+        for (i = 0; i < 6; ++i) {
+            double *p = i < 3 ? xa + i : xb + i - 3, keep = *p, Ep, Em;
+            *p = keep + hstep;
+            Ep = wr_dyn_thread_segment(xa, xb, L, EA, gp, NULL);
+            *p = keep - hstep;
+            Em = wr_dyn_thread_segment(xa, xb, L, EA, gm, NULL);
+            *p = keep;
+            cr_assert_float_eq(g[i], (Ep - Em) / (2.0 * hstep), 1e-6 * (fabs(g[i]) + EA * 1e-3), "trial %d grad %d", trial, i);
+            for (j = 0; j < 6; ++j)
+                cr_assert_float_eq(H[6 * j + i], (gp[j] - gm[j]) / (2.0 * hstep), 1e-6 * EA / L, "trial %d H %d %d", trial, j, i);
+        }
+        for (j = 0; j < 20; ++j) { /* PSD */
+            double q = 0.0;
+            for (i = 0; i < 6; ++i) x[i] = sin(0.7 * j + 1.3 * i + trial);
+            for (i = 0; i < 36; ++i) q += x[i / 6] * H[i] * x[i % 6];
+            cr_assert_geq(q, -1e-12 * EA / L, "trial %d: xᵀHx = %g", trial, q);
+        }
+        {   /* the transverse eigenvalue: a unit direction t ⟂ (xa − xb), moved as (t, −t)/√2 */
+            double d[3], t[3], q = 0.0, tl;
+            for (i = 0; i < 3; ++i) d[i] = (xa[i] - xb[i]) / l;
+            t[0] = -d[1], t[1] = d[0], t[2] = 0.0;
+            tl = sqrt(t[0] * t[0] + t[1] * t[1]);
+            for (i = 0; i < 3; ++i) x[i] = t[i] / tl / sqrt(2.0), x[3 + i] = -x[i];
+            for (i = 0; i < 36; ++i) q += x[i / 6] * H[i] * x[i % 6];
+            cr_assert_float_eq(q, 2.0 * (EA / L) * (1.0 - L / l), 1e-9 * EA / L);
+        }
+    }
+}
+
+/* A flat strip L × W, one cell wide, with a thread along each long edge (ν = 0, no gravity,
+ * no bending): the homogeneous uniaxial state is an exact discrete equilibrium, so the gathered
+ * length λL solves the balance of the two threads' tension against the strip's StVK compression,
+ * d/dλ [W L h E/8 (λ² − 1)² + EA L (λ − ρ)²/ρ] = 0, i.e. (W h E/2)(λ² − 1)λ + 2 EA (λ − ρ)/ρ = 0
+ * (here W h E = 1 N, EA = 0.5 N, ρ = 0.8: λ = 0.870, between ρ and 1, so a thread too weak, too
+ * strong or not gathering at all would miss it). Checked to 1e-3 (Newton's step tolerance
+ * velocity_tol·h = 5e-8 m; the damped run to rest). Then the same strip with a fabric 1e4 times
+ * softer: the thread alone shortens to ρL (to 1e-3). Through the garment API: the chains come
+ * from wr_garment_line_chain on the strip's boundary edges, the rest length follows the schedule. */
+static void gar_strip_run(double young, double EA, double rho, int32_t stitch, double *lambda, double *zmax) {
+    wr_mesh m;
+    wr_garment_placement pl;
+    wr_garment g;
+    wr_garment_line ln[2];
+    wr_garment_sim gs;
+    wr_shell_desc sd;
+    wr_dyn_desc dd;
+    wr_garment_desc gd;
+    wr_dyn_stats fs;
+    wr_diag d;
+    int32_t *segs, ns = 0, *chain[2], nc[2], f, i, k, nx = 20;
+    double L = 0.2, W = 0.02, xy[4], now, rest;
+    cr_assert_eq(wr_mesh_rectangle(&m, L, W, nx, 1, &d), WR_OK, "%s", d.message);
+    segs = (int32_t *)malloc(sizeof(int32_t) * 2 * (size_t)m.ne);
+    for (i = 0; i < m.ne; ++i) { /* the boundary edges, as the mesher's constraint segments would be */
+        int32_t a = m.edges[2 * i], b = m.edges[2 * i + 1];
+        double ya = m.rest[2 * a + 1], yb = m.rest[2 * b + 1];
+        if ((ya == yb && (ya == 0.0 || ya == W)) || (m.rest[2 * a] == m.rest[2 * b] && (m.rest[2 * a] == 0.0 || fabs(m.rest[2 * a] - L) < 1e-15)))
+            segs[2 * ns] = a, segs[2 * ns + 1] = b, ns++;
+    }
+    for (k = 0; k < 2; ++k) {
+        xy[0] = 0.0, xy[1] = k * W, xy[2] = L, xy[3] = k * W;
+        cr_assert_eq(wr_garment_line_chain(&m, segs, ns, xy, 2, &chain[k], &nc[k], &d), WR_OK, "%s", d.message);
+        cr_assert_eq(nc[k], nx + 1, "edge %d: chain of %d vertices", (int)k, (int)nc[k]);
+        cr_assert_float_eq(m.rest[2 * chain[k][0]], 0.0, 1e-15, "the chain starts at the line's first point");
+        ln[k].vertices = chain[k], ln[k].n_vertices = nc[k], ln[k].rho = rho, ln[k].modulus = 0.0;
+    }
+    memset(&pl, 0, sizeof pl);
+    memset(&g, 0, sizeof g);
+    g.pattern = &m, g.placements = &pl, g.n_placements = 1, g.lines = ln, g.n_lines = 2;
+    memset(&sd, 0, sizeof sd);
+    sd.young = young, sd.poisson = 0.0, sd.thickness = 5e-4, sd.density = 300.0, sd.bending = WR_BENDING_NONE;
+    memset(&dd, 0, sizeof dd);
+    dd.time.dt = 0.05, dd.damping.mass = 20.0, dd.newton.velocity_tol = 1e-6, dd.contact.no_self = 1;
+    memset(&gd, 0, sizeof gd);
+    gd.thread_area = EA / young; /* EA = E · area with modulus 0 → the shell's E */
+    gd.stitch_edges = stitch;
+    if (stitch > 1) sd.bending = WR_BENDING_MIDEDGE; /* the skipped vertices fold out against bending */
+    cr_assert_eq(wr_garment_sim_create(&gs, &g, &sd, &dd, &gd, &d), WR_OK, "%s", d.message);
+    cr_assert_eq(gs.n_thr, 2 * nx / stitch);
+    if (stitch > 1) /* out of the plane by 0.1 mm at the skipped vertices: the fold's seed */
+        for (i = 0; i < gs.nv0; ++i) gs.x[3 * i + 2] = (i % 2) ? 1e-4 * (i % 4 == 1 ? 1.0 : -1.0) : 0.0;
+    for (f = 0; f < 80; ++f) cr_assert_eq(wr_garment_sim_step(&gs, &fs, &d), WR_OK, "frame %d: %s", (int)f, d.message);
+    cr_assert_float_eq(gs.gather, 1.0, 0.0);
+    wr_garment_sim_thread_length(&gs, 0, &now, &rest);
+    cr_assert_float_eq(rest, rho * L, 1e-12);
+    *lambda = now / L;
+    *zmax = 0.0;
+    for (i = 0; i < gs.mesh.nv; ++i) *zmax = fmax(*zmax, fabs(gs.x[3 * i + 2]));
+    wr_garment_sim_free(&gs);
+    for (k = 0; k < 2; ++k) wr_free(chain[k]);
+    free(segs);
+    wr_mesh_free(&m);
+}
+
+Test(gather, strip_balance_closed_form_and_thread_alone) {
+    double rho = 0.8, EA = 0.5, lo = rho, hi = 1.0, lam, z;
+    int it;
+    for (it = 0; it < 200; ++it) { /* the balance, bisected on (ρ, 1) */
+        double mid = 0.5 * (lo + hi), F = 0.5 * (mid * mid - 1.0) * mid + 2.0 * EA * (mid - rho) / rho;
+        if (F > 0.0) hi = mid; else lo = mid;
+    }
+    gar_strip_run(1e5, EA, rho, 1, &lam, &z); /* W h E = 0.02 · 5e-4 · 1e5 = 1 N */
+    cr_assert_float_eq(lam, 0.5 * (lo + hi), 1e-3, "gathered λ = %.5f, closed form %.5f", lam, 0.5 * (lo + hi));
+    cr_assert_lt(z, 1e-9, "the strip left its plane (%g m)", z);
+    gar_strip_run(10.0, EA, rho, 1, &lam, &z); /* W h E = 1e-4 N: the thread alone */
+    cr_assert_float_eq(lam, rho, 1e-3, "thread alone: λ = %.5f, ρ = %.3f", lam, rho);
+    /* stitches every other vertex (the default): the skipped vertices fold out of the plane and the
+     * same stiff strip gathers to ρL, the thread now against bending only (1 % of ρL) */
+    gar_strip_run(1e5, EA, rho, 2, &lam, &z);
+    cr_assert_float_eq(lam, rho, 1e-2 * rho, "stitch every 2nd vertex: λ = %.5f, ρ = %.3f", lam, rho);
+    cr_assert_gt(z, 1e-3, "the line folded out of its plane (%g m)", z);
+}
+
+/* The mesher's constraint segments give each shirring line as one chain along it: every vertex on
+ * the polyline (1e-9 m), consecutive vertices joined by a mesh edge, the chain's length the
+ * polyline's (an interior line: no trim) to 1e-9, starting at its first point; a polyline that is
+ * not a constraint is refused. A garment line with rho outside (0, 1] is refused naming it. */
+Test(gather, line_chain_from_the_mesher) {
+    double sq[8] = {0, 0, 0.25, 0, 0.25, 0.25, 0, 0.25}, line[6] = {0.03, 0.1, 0.125, 0.14, 0.22, 0.1}, other[4] = {0.03, 0.2, 0.22, 0.2};
+    double len = 0.0, plen = hypot(0.095, 0.04) * 2.0;
+    wr_pattern_panel pn;
+    wr_pattern_shirring sh;
+    wr_pattern pat;
+    wr_mesher_result res;
+    wr_garment_placement pl;
+    wr_garment g;
+    wr_garment_line ln;
+    wr_garment_sim gs;
+    wr_shell_desc sd;
+    wr_diag d;
+    int32_t *c, *c2, n, n2, i, e;
+    memset(&pn, 0, sizeof pn), memset(&sh, 0, sizeof sh), memset(&pat, 0, sizeof pat);
+    pn.outer.xy = sq, pn.outer.n = 4, pn.fabric.B = 2.6e-6, pn.fabric.E = 2.0e6;
+    sh.panel = 0, sh.xy = line, sh.n = 3, sh.E_sh = 2.0e6, sh.rho = 0.5;
+    pat.panels = &pn, pat.n_panels = 1, pat.shirrings = &sh, pat.n_shirrings = 1;
+    cr_assert_eq(wr_mesher_run(&pat, NULL, &res, &d), WR_OK, "%s", d.message);
+    cr_assert_eq(wr_garment_line_chain(&res.mesh, res.constraint_segments, res.n_constraint_segments, line, 3, &c, &n, &d), WR_OK,
+                 "%s", d.message);
+    cr_assert_gt(n, 10);
+    cr_assert_float_eq(res.mesh.rest[2 * c[0]], line[0], 1e-9);
+    cr_assert_float_eq(res.mesh.rest[2 * c[0] + 1], line[1], 1e-9);
+    for (i = 0; i + 1 < n; ++i) {
+        int32_t a = c[i] < c[i + 1] ? c[i] : c[i + 1], b = c[i] < c[i + 1] ? c[i + 1] : c[i], found = 0;
+        for (e = 0; e < res.mesh.ne && !found; ++e) found = res.mesh.edges[2 * e] == a && res.mesh.edges[2 * e + 1] == b;
+        cr_assert(found, "chain step %d (%d, %d) is no mesh edge", (int)i, (int)a, (int)b);
+        len += hypot(res.mesh.rest[2 * a] - res.mesh.rest[2 * b], res.mesh.rest[2 * a + 1] - res.mesh.rest[2 * b + 1]);
+    }
+    cr_assert_float_eq(len, plen, 1e-9, "chain length %.9f, polyline %.9f", len, plen);
+    cr_assert_eq(wr_garment_line_chain(&res.mesh, res.constraint_segments, res.n_constraint_segments, other, 2, &c2, &n2, &d),
+                 WR_ERR_GEOMETRY);
+    cr_assert(c2 == NULL && n2 == 0);
+    /* a bad line refused, naming it */
+    memset(&pl, 0, sizeof pl), memset(&g, 0, sizeof g), memset(&sd, 0, sizeof sd);
+    ln.vertices = c, ln.n_vertices = n, ln.rho = 1.5, ln.modulus = 0.0;
+    g.pattern = &res.mesh, g.placements = &pl, g.n_placements = 1, g.lines = &ln, g.n_lines = 1;
+    gar_fabric(&sd);
+    cr_assert_eq(wr_garment_sim_create(&gs, &g, &sd, NULL, NULL, &d), WR_ERR_INVALID_ARG);
+    cr_assert(strstr(d.message, "line 0") != NULL && d.item == 0, "%s", d.message);
+    {   /* the dynamics refuses a thread segment joining a vertex to itself, naming the segment */
+        wr_shell sh;
+        wr_dyn sim;
+        wr_dyn_desc dd;
+        int32_t seg[4] = {0, 1, 2, 2};
+        double rest[2] = {0.01, 0.01}, ax[2] = {1.0, 1.0};
+        cr_assert_eq(wr_shell_create(&sh, &res.mesh, &sd, &d), WR_OK, "%s", d.message);
+        memset(&dd, 0, sizeof dd);
+        dd.threads.segments = seg, dd.threads.rest = rest, dd.threads.axial = ax, dd.threads.n_segments = 2;
+        cr_assert_eq(wr_dyn_create(&sim, &sh, &dd, &d), WR_ERR_INVALID_ARG);
+        cr_assert(d.item == 1 && strstr(d.message, "thread segment 1") != NULL, "%s", d.message);
+        wr_shell_free(&sh);
+    }
+    wr_free(c);
+    wr_mesher_free(&res);
+}
+
+/* The threads survive the weld: a gathered line along one panel of the sewn tube keeps its five
+ * stitches on the welded vertices, their rest lengths follow the schedule to ρ·l (exactly, after
+ * gather_time), and the line keeps shortening across the weld (its stitch-to-stitch length after
+ * 15 frames below 0.9 of the pattern length). */
+Test(gather, threads_carried_across_the_weld) {
+    wr_mesh m;
+    wr_garment_placement pl[2];
+    wr_garment g;
+    wr_garment_line ln;
+    wr_garment_sim gs;
+    wr_shell_desc sd;
+    wr_dyn_desc dd;
+    wr_garment_desc gd;
+    wr_dyn_stats fs;
+    wr_diag d;
+    int32_t *pairs, *seam, np, f, i, row[11];
+    double w = 0.3, now, rest;
+    gar_tube(&m, &pairs, &seam, &np, w, 10, 6);
+    gar_tube_placements(pl, w, 0.04);
+    for (i = 0; i <= 10; ++i) row[i] = 3 * 11 + i;
+    ln.vertices = row, ln.n_vertices = 11, ln.rho = 0.7, ln.modulus = 0.0;
+    memset(&g, 0, sizeof g);
+    g.pattern = &m, g.seam_pairs = pairs, g.seam_pair_seam = seam, g.n_seam_pairs = np;
+    g.placements = pl, g.n_placements = 2, g.lines = &ln, g.n_lines = 1;
+    gar_fabric(&sd);
+    memset(&dd, 0, sizeof dd);
+    memset(&gd, 0, sizeof gd);
+    gd.thread_area = 1e-5; /* EA = 10 N: stronger than the tube's hoop ring (E h √(R h) ≈ 3.5 N) */
+    gd.gather_time = 0.2;  /* 6 frames */
+    cr_assert_eq(wr_garment_sim_create(&gs, &g, &sd, &dd, &gd, &d), WR_OK, "%s", d.message);
+    cr_assert_eq(gs.dyn.desc.threads.n_segments, 5);
+    for (f = 0; f < 15; ++f) {
+        cr_assert_eq(wr_garment_sim_step(&gs, &fs, &d), WR_OK, "frame %d: %s", (int)f, d.message);
+        if (gs.welded && f >= 6) break;
+    }
+    cr_log_info("tube: welded after frame %d, stopped after %d", (int)gs.weld_frame, (int)f + 1);
+    cr_assert(gs.welded, "welded by frame 15");
+    cr_assert_eq(gs.dyn.desc.threads.n_segments, 5);
+    for (i = 0; i < 5; ++i) { /* stitches at every other vertex */
+        cr_assert_eq(gs.thr_dyn[i], i);
+        cr_assert_eq(gs.dyn.thread_seg[2 * i], gs.vmap[row[2 * i]]);
+        cr_assert_float_eq(gs.dyn.thread_rest[i], 0.7 * 2.0 * w / 10, 1e-15);
+    }
+    wr_garment_sim_thread_length(&gs, 0, &now, &rest);
+    cr_assert_float_eq(rest, 0.7 * w, 1e-14);
+    cr_assert_lt(now, 0.9 * w, "line length %.4f m after 15 frames", now);
+    cr_assert_gt(now, 0.5 * w, "line length %.4f m: no thread pulls below its rest ρ·l = 0.21 m by much", now);
+    wr_garment_sim_free(&gs);
+    wr_mesh_free(&m);
+    free(pairs);
+    free(seam);
 }

@@ -373,10 +373,12 @@ static wr_status ss_parse_placement(wr_jin *d, const cJSON *e, const char *P, wr
 
 /* $.garment */
 static wr_status ss_parse_garment(wr_jin *d, const cJSON *o, const char *base_dir, wr_simscene_garment *g) {
-    static const char *const keys[] = {"pattern", "resolution", "seed", "material", "placements", "sewing", "velocity", "pins", NULL};
+    static const char *const keys[] = {"pattern", "resolution", "seed", "material", "placements", "sewing", "gathering", "velocity",
+                                       "pins", NULL};
+    static const char *const gkeys[] = {"enabled", "thread_area", "time", "immediate", "stitch_edges", NULL};
     static const char *const skeys[] = {"stiffness", "start_stiffness", "weld_tolerance", "max_time", "weld",
                                         "self_contact", NULL};
-    const cJSON *m, *arr, *e, *sw, *pins;
+    const cJSON *m, *arr, *e, *sw, *pins, *ga;
     wr_status st;
     int32_t k = 0;
     if ((st = wr_jin_keys(d, o, "$.garment", keys)) != WR_OK) return st;
@@ -411,6 +413,18 @@ static wr_status ss_parse_garment(wr_jin *d, const cJSON *o, const char *base_di
         if ((st = wr_jin_bool(d, sw, "self_contact", S, &self)) != WR_OK) return st;
         g->sewing.no_weld = !weld;
         g->sewing.no_self_while_sewing = !self;
+    }
+    if ((ga = cJSON_GetObjectItemCaseSensitive(o, "gathering"))) { /* garment.h ON GATHERING */
+        const char *S = "$.garment.gathering";
+        int on = 1, imm = 0;
+        if ((st = wr_jin_keys(d, ga, S, gkeys)) != WR_OK) return st;
+        if ((st = wr_jin_bool(d, ga, "enabled", S, &on)) != WR_OK) return st;
+        if ((st = wr_jin_num(d, ga, "thread_area", S, WR_JIN_POS, &g->sewing.thread_area, NULL)) != WR_OK) return st;
+        if ((st = wr_jin_num(d, ga, "time", S, WR_JIN_POS, &g->sewing.gather_time, NULL)) != WR_OK) return st;
+        if ((st = wr_jin_bool(d, ga, "immediate", S, &imm)) != WR_OK) return st;
+        if ((st = wr_jin_int(d, ga, "stitch_edges", S, 1, 1000, &g->sewing.stitch_edges, NULL)) != WR_OK) return st;
+        g->no_gathering = !on;
+        g->sewing.gather_immediate = imm;
     }
     return WR_OK;
 }
@@ -637,6 +651,9 @@ void wr_simscene_run_free(wr_simscene_run *run) {
     wr_shell_free(&run->shell);
     wr_garment_sim_free(&run->gs);
     wr_mesher_free(&run->mr);
+    for (i = 0; i < run->n_glines; ++i) wr_free(run->gline_verts[i]);
+    wr_free(run->gline_verts);
+    wr_free(run->glines);
     for (i = 0; i < run->n_panels; ++i) wr_free(run->panel_names ? run->panel_names[i] : NULL);
     wr_free(run->panel_names);
     for (i = 0; i < 1 + WR_SIMSCENE_MAX_OBSTACLES; ++i) wr_mesh_free(&run->bodies[i]);
@@ -804,6 +821,40 @@ static wr_status ss_placements(wr_simscene_run *run, wr_garment_placement *pl, i
     return WR_OK;
 }
 
+/* The pattern's shirring lines, then every quilt's stitch lines, as gathered lines on the mesher's
+ * mesh (garment.h ON GATHERING): each polyline's vertex chain from the constraint segments. */
+static wr_status ss_gather_lines(wr_simscene_run *run, const wr_pattern *pat, wr_diag *diag) {
+    int32_t n = pat->n_shirrings, i, u, k = 0;
+    wr_status st;
+    for (i = 0; i < pat->n_quilts; ++i) n += pat->quilts[i].n_lines;
+    if (n == 0) return WR_OK;
+    run->glines = (wr_garment_line *)wr_calloc_array((size_t)n, sizeof(wr_garment_line));
+    run->gline_verts = (int32_t **)wr_calloc_array((size_t)n, sizeof(int32_t *));
+    if (!run->glines || !run->gline_verts) return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
+    for (i = 0; i < pat->n_shirrings + pat->n_quilts; ++i) {
+        int quilt = i >= pat->n_shirrings;
+        int32_t q = i - pat->n_shirrings, nl = quilt ? pat->quilts[q].n_lines : 1;
+        for (u = 0; u < nl; ++u, ++k) {
+            const double *xy = quilt ? pat->quilts[q].lines[u].xy : pat->shirrings[i].xy;
+            int32_t np = quilt ? pat->quilts[q].lines[u].n : pat->shirrings[i].n, nv;
+            run->n_glines = k + 1;
+            st = wr_garment_line_chain(&run->mr.mesh, run->mr.constraint_segments, run->mr.n_constraint_segments, xy, np,
+                                       &run->gline_verts[k], &nv, diag);
+            if (st != WR_OK) {
+                char msg[WR_DIAG_MESSAGE_LEN];
+                snprintf(msg, sizeof msg, "%s", diag ? diag->message : "");
+                return quilt ? wr_fail(diag, st, q, "quilts[%d].lines[%d]: %s", (int)q, (int)u, msg)
+                             : wr_fail(diag, st, i, "shirring[%d]: %s", (int)i, msg);
+            }
+            run->glines[k].vertices = run->gline_verts[k];
+            run->glines[k].n_vertices = nv;
+            run->glines[k].rho = quilt ? pat->quilts[q].rho : pat->shirrings[i].rho;
+            run->glines[k].modulus = quilt ? pat->quilts[q].E_sh : pat->shirrings[i].E_sh;
+        }
+    }
+    return WR_OK;
+}
+
 /* Pattern → mesher → placements → pins → garment sim (garment.h). */
 static wr_status ss_garment(wr_simscene_run *run, wr_dyn_desc *dd, wr_diag *diag) {
     const wr_simscene_garment *g = &run->sc->garment;
@@ -822,6 +873,7 @@ static wr_status ss_garment(wr_simscene_run *run, wr_dyn_desc *dd, wr_diag *diag
     if (g->has_seed) pf.desc.seed = (uint64_t)g->seed;
     if (pf.desc.max_vertices <= 0 || pf.desc.max_vertices > WR_SIMSCENE_MAX_VERTICES) pf.desc.max_vertices = WR_SIMSCENE_MAX_VERTICES;
     st = wr_mesher_run(&pf.pattern, &pf.desc, &run->mr, diag);
+    if (st == WR_OK && !g->no_gathering) st = ss_gather_lines(run, &pf.pattern, diag);
     run->n_panels = pf.pattern.n_panels;
     run->panel_names = (char **)wr_calloc_array((size_t)run->n_panels + 1, sizeof(char *));
     if (st == WR_OK && !run->panel_names) st = wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
@@ -868,6 +920,8 @@ static wr_status ss_garment(wr_simscene_run *run, wr_dyn_desc *dd, wr_diag *diag
     gm.n_seam_pairs = run->mr.n_seam_pairs;
     gm.placements = pl;
     gm.n_placements = run->n_panels;
+    gm.lines = run->glines;
+    gm.n_lines = run->n_glines;
     dd->fixed = run->fixed;
     if ((st = wr_garment_sim_create(&run->gs, &gm, &g->shell, dd, &g->sewing, diag)) != WR_OK) {
         snprintf(msg, sizeof msg, "%s", diag ? diag->message : "");
@@ -1140,6 +1194,22 @@ wr_status wr_simscene_write_summary(const wr_simscene_run *run, const char *path
         cJSON_AddNumberToObject(g, "sewing_stiffness", gs->k_full);
         cJSON_AddNumberToObject(g, "weld_tolerance", gs->desc.weld_tol);
         cJSON_AddBoolToObject(g, "welded", gs->welded);
+        cJSON_AddNumberToObject(g, "gathered_lines", gs->n_lines);
+        cJSON_AddNumberToObject(g, "thread_segments", gs->n_thr);
+        if (gs->n_lines > 0) {
+            cJSON *ls = cJSON_AddArrayToObject(g, "lines");
+            int32_t L;
+            for (L = 0; L < gs->n_lines; ++L) {
+                cJSON *o = cJSON_CreateObject();
+                double now, rest;
+                wr_garment_sim_thread_length(gs, L, &now, &rest);
+                cJSON_AddNumberToObject(o, "vertices", run->glines[L].n_vertices);
+                cJSON_AddNumberToObject(o, "rho", run->glines[L].rho);
+                cJSON_AddNumberToObject(o, "rest_length", rest);
+                cJSON_AddNumberToObject(o, "length", now);
+                cJSON_AddItemToArray(ls, o);
+            }
+        }
         if (gs->welded) {
             cJSON_AddNumberToObject(g, "weld_frame", gs->weld_frame);
             cJSON_AddNumberToObject(g, "weld_gap", gs->weld_gap);

@@ -93,7 +93,8 @@ typedef struct wr_simscene_garment {
     double areal_density;
     wr_simscene_placement *placements; /* owned */
     int32_t n_placements;
-    wr_garment_desc sewing;
+    wr_garment_desc sewing;             /* also the gathering settings (thread_area, gather_time, ...) */
+    int no_gathering;                   /* $.garment.gathering.enabled = false */
     double velocity[3];
     wr_simscene_pin pin[WR_SIMSCENE_MAX_PINS];
     int32_t n_pins;
@@ -153,6 +154,9 @@ typedef struct wr_simscene_run {
     wr_mesher_result mr;   /* the garment's pattern mesh and seams */
     char **panel_names;    /* the pattern's panel names (owned copies) */
     int32_t n_panels;
+    wr_garment_line *glines; /* the pattern's shirring lines, then its quilt stitches (garment.h ON GATHERING) */
+    int32_t **gline_verts;   /* their vertex chains (owned) */
+    int32_t n_glines;
     wr_mesh bodies[1 + WR_SIMSCENE_MAX_OBSTACLES]; /* triangle-mesh bodies: $.body, then mesh obstacles */
     wr_dyn_body dbodies[1 + WR_SIMSCENE_MAX_OBSTACLES];
     double *body_key_pos, *body_key_time; /* a keyframed $.body */

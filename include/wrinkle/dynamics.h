@@ -11,7 +11,7 @@
  * size h from (x_n, v_n) minimises (Martin et al. 2011, "Example-based elastic materials"; IPC, Li
  * et al. 2020, Eq. 3)
  *     Φ(x) = 1/(2h²) ‖x − x̃‖²_M + E_el(x) − Σ_v m_v g·x_v + α/(2h) ‖x − x_n‖²_M
- *            + β/(2h) (x − x_n)ᵀ K_n (x − x_n) + E_sew(x) + B(x) + D(x),     x̃ = x_n + h v_n,
+ *            + β/(2h) (x − x_n)ᵀ K_n (x − x_n) + E_sew(x) + E_thr(x) + B(x) + D(x),  x̃ = x_n + h v_n,
  * then v_{n+1} = (x − x_n)/h. ∇Φ = 0 is exactly backward Euler M(v_{n+1} − v_n)/h = f(x_{n+1}) −
  * αM v_{n+1} − βK_n v_{n+1}: Rayleigh damping with mass coefficient α [1/s] and stiffness
  * coefficient β [s], K_n the PSD-projected elastic Hessian at x_n (lagged over the step, so the
@@ -23,9 +23,11 @@
  *   wr_dyn_state_init(sim, state, x, v)            point a state at caller arrays (x, v: nv*3), t = 0
  *   wr_dyn_step(sim, state, stats, diag)           advance one frame (desc.time.dt) in place
  *   wr_dyn_run(sim, state, t_end, progress, user, total, diag)   frames until t_end, callback per frame
- *   wr_dyn_energy(sim, state, kinetic, potential)  ½vᵀMv and E_el − Σ m g·x [J]
+ *   wr_dyn_energy(sim, state, kinetic, potential)  ½vᵀMv and E_el + E_thr − Σ m g·x [J]
  *   wr_dyn_min_distance(sim, x)                    smallest contact distance at x [m]
  *   wr_dyn_sew_gap(sim, x)                         largest distance between sewn vertex pairs [m]
+ *   wr_dyn_thread_segment(xa, xb, rest, axial, g, H)   one gathering-thread segment: energy,
+ *                                                  gradient (6), PSD Hessian (36) (ON GATHERING)
  *
  * EXAMPLE (a sheet dropped on a ball)
  *     wr_mesh m;  wr_shell sh;  wr_shell_desc sd;  wr_dyn_desc dd;  wr_dyn sim;  wr_dyn_state st;
@@ -96,8 +98,18 @@
  *   phase), CCD step limits, and the contact barrier and friction terms' values, gradients and
  *   Hessian blocks. Both are wall-clock sums over the frame's Newton iterations.
  *
+ * ON GATHERING (threads: Style3D Sec. 4.2.2 shirring, 4.2.5 quilt stitches)
+ *   desc.threads lists elastic thread segments sewn between vertex pairs (a shirring line's chain
+ *   of mesh edges, garment.h ON GATHERING): segment s with rest length L_s [m] and axial stiffness
+ *   EA_s [N] stores E_thr = EA_s/(2 L_s) · max(0, ℓ − L_s)², ℓ = ‖x_a − x_b‖. Tension only: a
+ *   thread shorter than its rest length is slack (a thread buckles at no load). Gradient
+ *   k (ℓ − L)₊ u, k = EA/L, u = (x_a − x_b)/ℓ; Hessian block k [u uᵀ + (1 − L/ℓ)(I − u uᵀ)] for
+ *   ℓ > L (both eigenvalues ≥ 0: PSD as it stands, never projected), 0 when slack. The rest
+ *   lengths are copied into sim->thread_rest, which the caller may change between steps (a
+ *   gathering schedule ramps them from the pattern length to ρ times it).
+ *
  * ON UNITS
- *   SI: m, s, kg (shell density), N/m (κ, sewing), 1/s (α), s (β), m/s (tolerances).
+ *   SI: m, s, kg (shell density), N/m (κ, sewing), N (thread EA), 1/s (α), s (β), m/s (tolerances).
  *
  * ON THREADS
  *   A created sim is used by one thread at a time; several sims may run concurrently. Built with
@@ -175,6 +187,15 @@ typedef struct wr_dyn_sewing_desc {
     double duration;  /* [s] */
 } wr_dyn_sewing_desc;
 
+/* Gathering threads (ON GATHERING): n_segments × 2 vertex ids, a rest length [m] (> 0) and an
+ * axial stiffness EA [N] (>= 0) per segment; copied. */
+typedef struct wr_dyn_thread_desc {
+    const int32_t *segments;
+    const double *rest;
+    const double *axial;
+    int32_t n_segments;
+} wr_dyn_thread_desc;
+
 /* Defaults: max_iter 50; velocity_tol 1e-2 m/s; grad_tol 1e-9 (relative to ‖∇Φ‖ at the step's
  * start); projection WR_PROJECT_FAST (newton.h: per-element PSD projection, exact near the end). */
 typedef struct wr_dyn_newton_desc {
@@ -197,6 +218,7 @@ typedef struct wr_dyn_desc {
     wr_dyn_sewing_desc sewing;
     wr_dyn_newton_desc newton;
     wr_spd_desc linear;
+    wr_dyn_thread_desc threads; /* none by default */
 } wr_dyn_desc;
 
 /* Caller-owned state: x, v point at nv*3 arrays [m], [m/s] that the caller allocates and frees. */
@@ -243,6 +265,9 @@ typedef struct wr_dyn {
     struct wr__dyn_body *bodies; /* copies */
     double kappa, dhat, sew_k, mean_mass, kin_k;
     struct wr__dyn_work *w; /* private work state */
+    int32_t *thread_seg;    /* copy of desc.threads.segments */
+    double *thread_rest;    /* rest lengths [m]; may be changed between steps (ON GATHERING) */
+    double *thread_axial;   /* EA [N] */
 } wr_dyn;
 
 WRDEF wr_status wr_dyn_create(wr_dyn *sim, const wr_shell *shell, const wr_dyn_desc *desc, wr_diag *diag);
@@ -260,6 +285,10 @@ WRDEF wr_status wr_dyn_energy(const wr_dyn *sim, const wr_dyn_state *state, doub
  * nothing is within d̂ of anything (and no analytic obstacle exists). */
 WRDEF double wr_dyn_min_distance(wr_dyn *sim, const double *x);
 WRDEF double wr_dyn_sew_gap(const wr_dyn *sim, const double *x);
+/* One thread segment (ON GATHERING) between xa and xb: returns its energy [J]; g (6, may be
+ * NULL) receives the gradient w.r.t. (xa, xb), H (36 row-major, may be NULL) the PSD Hessian. */
+WRDEF double wr_dyn_thread_segment(const double xa[3], const double xb[3], double rest, double axial, double g[6],
+                                   double H[36]);
 
 #ifdef __cplusplus
 }
@@ -433,7 +462,23 @@ static wr_status wr__dyn_stream_stiffness(const wr_dyn *sim, wr_newton_hessian *
 
 /* ---- the incremental potential Φ (file top block) -------------------------------------------- */
 
-/* Inertia, mass damping, gravity, stiffness damping, sewing: value added to *E, gradient to g. */
+/* Gathering threads (ON GATHERING): their energy, gradient added to g (may be NULL). */
+static double wr__dyn_threads(const wr_dyn *sim, const double *z, double *g) {
+    double e = 0.0, gs[6];
+    int32_t s, i;
+    for (s = 0; s < sim->desc.threads.n_segments; ++s) {
+        int32_t a = sim->thread_seg[2 * s], b = sim->thread_seg[2 * s + 1];
+        e += wr_dyn_thread_segment(z + 3 * a, z + 3 * b, sim->thread_rest[s], sim->thread_axial[s], g ? gs : NULL, NULL);
+        if (g)
+            for (i = 0; i < 3; ++i) {
+                g[3 * a + i] += gs[i];
+                g[3 * b + i] += gs[3 + i];
+            }
+    }
+    return e;
+}
+
+/* Inertia, mass damping, gravity, stiffness damping, sewing, threads: value added to *E, gradient to g. */
 static void wr__dyn_smooth_terms(const wr_dyn *sim, const double *z, double *E, double *g) {
     const wr__dyn_work *w = sim->w;
     double h = w->h, ci = 1.0 / (2.0 * h * h), cd = sim->desc.damping.mass / (2.0 * h), e = 0.0;
@@ -475,6 +520,7 @@ static void wr__dyn_smooth_terms(const wr_dyn *sim, const double *z, double *E, 
                 }
             }
         }
+    e += wr__dyn_threads(sim, z, g);
     *E += e;
 }
 
@@ -821,6 +867,13 @@ static wr_status wr__dyn_hessian_cb(void *user, const double *z, wr_newton_hessi
             if ((st = wr_newton_add_element_psd(H, 2, vv, S)) != WR_OK) return st;
         }
     }
+    for (p = 0; p < sim->desc.threads.n_segments; ++p) { /* ON GATHERING: PSD as computed */
+        double T[36];
+        vv[0] = sim->thread_seg[2 * p];
+        vv[1] = sim->thread_seg[2 * p + 1];
+        wr_dyn_thread_segment(z + 3 * vv[0], z + 3 * vv[1], sim->thread_rest[p], sim->thread_axial[p], NULL, T);
+        if ((st = wr_newton_add_element_psd(H, 2, vv, T)) != WR_OK) return st;
+    }
     t0 = wr__dyn_now();
     st = wr__dyn_contact_hessian(sim, z, H, diag);
     w->t_ch += wr__dyn_now() - t0;
@@ -1073,6 +1126,15 @@ static wr_status wr__dyn_check_desc(const wr_dyn_desc *d, int32_t nv, wr_diag *d
         if (d->sewing.pairs[i] < 0 || d->sewing.pairs[i] >= nv || (i % 2 && d->sewing.pairs[i] == d->sewing.pairs[i - 1]))
             return wr_fail(diag, WR_ERR_INVALID_ARG, i / 2, "dynamics: sewing pair %d (%d, %d) is invalid", (int)(i / 2),
                            (int)d->sewing.pairs[i - i % 2], (int)d->sewing.pairs[i - i % 2 + 1]);
+    if (d->threads.n_segments < 0 || (d->threads.n_segments > 0 && (!d->threads.segments || !d->threads.rest || !d->threads.axial)))
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "dynamics: %d thread segments with a NULL array", (int)d->threads.n_segments);
+    for (i = 0; i < d->threads.n_segments; ++i) {
+        int32_t a = d->threads.segments[2 * i], b = d->threads.segments[2 * i + 1];
+        double L = d->threads.rest[i], k = d->threads.axial[i];
+        if (a < 0 || a >= nv || b < 0 || b >= nv || a == b || !(L > 0.0) || !(k >= 0.0) || L - L != 0.0 || k - k != 0.0)
+            return wr_fail(diag, WR_ERR_INVALID_ARG, i, "dynamics: thread segment %d (%d, %d, rest %g m, EA %g N) is invalid",
+                           (int)i, (int)a, (int)b, L, k);
+    }
     if (d->newton.max_iter < 1 || !(d->newton.velocity_tol > 0.0) || !(d->newton.grad_tol > 0.0) ||
         (int)d->newton.projection < 0 || (int)d->newton.projection > (int)WR_PROJECT_NONE)
         return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "dynamics: newton max_iter %d, velocity_tol %g, grad_tol %g invalid",
@@ -1125,6 +1187,9 @@ WRDEF void wr_dyn_free(wr_dyn *sim) {
     wr_free(sim->mass);
     wr_free(sim->fixed);
     wr_free(sim->sew_pairs);
+    wr_free(sim->thread_seg);
+    wr_free(sim->thread_rest);
+    wr_free(sim->thread_axial);
     wr_free(sim->analytic);
     if (sim->bodies) {
         int32_t b;
@@ -1227,9 +1292,14 @@ WRDEF wr_status wr_dyn_create(wr_dyn *sim, const wr_shell *shell, const wr_dyn_d
     sim->fixed = (uint8_t *)wr_calloc_array((size_t)shell->nv, 1);
     sim->sew_pairs = (int32_t *)wr_alloc_array(2 * (size_t)d.sewing.n_pairs + 1, sizeof(int32_t));
     sim->analytic = (wr_obstacle *)wr_alloc_array((size_t)d.contact.n_analytic + 1, sizeof(wr_obstacle));
+    sim->thread_seg = (int32_t *)wr_alloc_array(2 * (size_t)d.threads.n_segments + 1, sizeof(int32_t));
+    sim->thread_rest = (double *)wr_alloc_array((size_t)d.threads.n_segments + 1, sizeof(double));
+    sim->thread_axial = (double *)wr_alloc_array((size_t)d.threads.n_segments + 1, sizeof(double));
     w = (wr__dyn_work *)wr_calloc_array(1, sizeof(wr__dyn_work));
     sim->w = w;
-    if (!sim->mass || !sim->fixed || !sim->sew_pairs || !sim->analytic || !w) goto nomem;
+    if (!sim->mass || !sim->fixed || !sim->sew_pairs || !sim->analytic || !sim->thread_seg || !sim->thread_rest ||
+        !sim->thread_axial || !w)
+        goto nomem;
     if ((st = wr__dyn_copy_bodies(sim, &d, diag)) != WR_OK) goto fail;
     n = 3 * (shell->nv + sim->nb);
     w->n = n;
@@ -1269,6 +1339,14 @@ WRDEF wr_status wr_dyn_create(wr_dyn *sim, const wr_shell *shell, const wr_dyn_d
     w->nn = w->moving ? n : 3 * shell->nv; /* held bodies stay out of Newton's vector (and its PCG) */
     if (d.sewing.n_pairs) memcpy(sim->sew_pairs, d.sewing.pairs, sizeof(int32_t) * 2 * (size_t)d.sewing.n_pairs);
     if (d.contact.n_analytic) memcpy(sim->analytic, d.contact.analytic, sizeof(wr_obstacle) * (size_t)d.contact.n_analytic);
+    if (d.threads.n_segments) {
+        memcpy(sim->thread_seg, d.threads.segments, sizeof(int32_t) * 2 * (size_t)d.threads.n_segments);
+        memcpy(sim->thread_rest, d.threads.rest, sizeof(double) * (size_t)d.threads.n_segments);
+        memcpy(sim->thread_axial, d.threads.axial, sizeof(double) * (size_t)d.threads.n_segments);
+    }
+    sim->desc.threads.segments = sim->thread_seg;
+    sim->desc.threads.rest = sim->thread_rest;
+    sim->desc.threads.axial = sim->thread_axial;
     sim->desc.fixed = sim->fixed;
     sim->desc.sewing.pairs = sim->sew_pairs;
     sim->desc.contact.analytic = sim->analytic;
@@ -1422,6 +1500,7 @@ WRDEF wr_status wr_dyn_energy(const wr_dyn *sim, const wr_dyn_state *state, doub
     if (!sim || !sim->w || !state || !state->x || !state->v)
         return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "dynamics: NULL sim or state");
     if ((st = wr_shell_energy(sim->shell, state->x, &E, NULL, diag)) != WR_OK) return st;
+    E += wr__dyn_threads(sim, state->x, NULL);
     for (v = 0; v < sim->nv; ++v)
         for (i = 0; i < 3; ++i) {
             K += 0.5 * sim->mass[v] * state->v[3 * v + i] * state->v[3 * v + i];
@@ -1435,6 +1514,36 @@ WRDEF wr_status wr_dyn_energy(const wr_dyn *sim, const wr_dyn_state *state, doub
 WRDEF double wr_dyn_min_distance(wr_dyn *sim, const double *x) {
     if (!sim || !sim->w || !x) return HUGE_VAL;
     return wr__dyn_gap(sim, x, NULL);
+}
+
+WRDEF double wr_dyn_thread_segment(const double xa[3], const double xb[3], double rest, double axial, double g[6],
+                                   double H[36]) {
+    double d[3], l = 0.0, k = axial / rest, s, c;
+    int32_t i, j;
+    for (i = 0; i < 3; ++i) {
+        d[i] = xa[i] - xb[i];
+        l += d[i] * d[i];
+    }
+    l = sqrt(l);
+    s = l - rest;
+    if (g) memset(g, 0, sizeof(double) * 6);
+    if (H) memset(H, 0, sizeof(double) * 36);
+    if (!(s > 0.0)) return 0.0; /* slack (ON GATHERING) */
+    for (i = 0; i < 3; ++i) d[i] /= l;
+    if (g)
+        for (i = 0; i < 3; ++i) {
+            g[i] = k * s * d[i];
+            g[3 + i] = -g[i];
+        }
+    c = 1.0 - rest / l; /* > 0: the transverse eigenvalue k(1 − L/ℓ) */
+    if (H)
+        for (i = 0; i < 3; ++i)
+            for (j = 0; j < 3; ++j) {
+                double b = k * (d[i] * d[j] + c * ((i == j ? 1.0 : 0.0) - d[i] * d[j]));
+                H[6 * i + j] = H[6 * (3 + i) + 3 + j] = b;
+                H[6 * i + 3 + j] = H[6 * (3 + i) + j] = -b;
+            }
+    return 0.5 * k * s * s;
 }
 
 WRDEF double wr_dyn_sew_gap(const wr_dyn *sim, const double *x) {

@@ -1,7 +1,7 @@
 /* wrinkle/garment.h — a garment on a body: the mesher's flat pattern mesh placed panel by panel in
  * 3D (a rigid transform, or a wrap onto a cylinder around a body part), its seams pulled shut by
  * the dynamic simulator's sewing springs over the first frames, then welded into one mesh on which
- * the simulation continues.
+ * the simulation continues; shirring lines and quilt stitches gathered by elastic threads.
  * wrinkle v0.1.0 — MIT licence (see LICENSE). Needs core.h, mesh.h, shell.h, dynamics.h and
  * collision.h; otherwise libc and libm.
  *
@@ -17,8 +17,15 @@
  *   wr_garment_sewing_pairs(mesh, pairs, seam, n, out, out_seam, n_out, diag)  the mesher's seam
  *                                                 pairs → the dynamics' sewing pairs (checked,
  *                                                 duplicates dropped; caller frees with wr_free)
+ *   wr_garment_line_chain(mesh, segs, n_segs, xy, n, out, n_out, diag)   the mesh vertices on a
+ *                                                 pattern polyline (a shirring line, a quilt
+ *                                                 stitch), in order along it, from the mesher's
+ *                                                 constraint segments (caller frees with wr_free)
  *   wr_garment_sim_create(gs, garment, shell, dyn, desc, diag)   place, pair, shell, simulator
- *   wr_garment_sim_step(gs, stats, diag)          one frame: sewing schedule, step, seam gap, weld
+ *   wr_garment_sim_step(gs, stats, diag)          one frame: sewing and gathering schedules, step,
+ *                                                 seam gap, weld
+ *   wr_garment_sim_thread_length(gs, line, &now, &rest)   a gathered line's current length and its
+ *                                                 thread's final rest length ρ·l [m]
  *   wr_garment_sim_weld(gs, diag)                 weld now (called by _step once the gap is small)
  *   wr_garment_sim_seam_gap(gs, seam)             largest gap of the seam's pairs (−1: all) [m]
  *   wr_garment_sim_unsewn_positions(gs, out)      current positions on the pattern mesh's vertices
@@ -106,6 +113,42 @@
  *   WR_ERR_NOT_CONVERGED naming the seam and its gap. desc.no_weld = 1 keeps the springs for the
  *   whole run instead.
 
+ * ON GATHERING (shirring Style3D Sec. 4.2.2, quilt stitches Sec. 4.2.5; the paper only meshes them)
+ *   A gathered line (wr_garment_line: the pattern-mesh vertices along it, wr_garment_line_chain)
+ *   is an elastic thread stitched to every desc.stitch_edges-th vertex of the chain (default
+ *   WR_GARMENT_STITCH_EDGES = 2): one dynamics.h thread segment per stitch, tension only, final
+ *   rest length ρ × the pattern length of the chain between its two stitches, axial stiffness
+ *   EA = E_sh · A; the thread does not slide through its stitches, as shirring elastic is
+ *   stitched down. Why not a stitch at every vertex: the thread segment and the fabric's own mesh
+ *   edge would then join the same two vertices, so the edge could only shorten by crushing the
+ *   triangles beside it in their plane (the thread against the membrane E h, a 1D balance that
+ *   tests/test_garment.c checks in closed form: at the Table 1 stiffnesses the line stays within
+ *   a few % of its length). With a stitch every other vertex, the vertex between two stitches
+ *   folds out of the plane and the line gathers as a pucker at the mesh's finest scale; the
+ *   fabric beside the line is gathered with it and wrinkles at the wavelength its bending
+ *   selects.
+ *   E_sh [Pa]: the paper adds it to E (y_sh = B/(E + E_sh) in Eq. 4), so it is a modulus of the
+ *   same kind as E, N/m² (docs/pattern-format.md). We read it as the thread's Young's modulus and
+ *   give the thread the cross-section A = h² (desc.thread_area overrides): a thread as thick as
+ *   the fabric it gathers (0.25–0.4 mm for the Table 1 fabrics, the size of a sewing thread). Why
+ *   h²: the pattern gives no thread size, h is the only length at the line that belongs to the
+ *   material rather than to the mesh, so the thread is the same at 9 mm and at 2.5 mm (a
+ *   cross-section tied to the edge length would make the gathering depend on the resolution it
+ *   is meant to test). line.modulus 0 (the down coat's E_sh = 0: a quilt stitch is a plain,
+ *   not an elastic, thread) takes the fabric's E instead.
+ *   Schedule: the rest length ramps linearly from the pattern length to ρ times it over the first
+ *   desc.gather_time seconds (default WR_GARMENT_GATHER_TIME; the rest at frame k uses the frame's
+ *   end time), like the sewing stiffness doubling: a thread at ρ from the start loads the flat
+ *   fabric with its full compression in one step (docs/garments.md: the Newton iterations and
+ *   halvings measured both ways). desc.gather_immediate = 1 starts at ρ.
+ *   Quilts: the stitch lines are gathered the same way (E_sh, ρ of the quilt). The down pressure p
+ *   is NOT modelled as a load: the paper's p is a dimensionless exponent of its transition rule
+ *   (m' = 2^p m, L_w' = L_w^(2^-p)), not a pressure in Pa, and a single quilted layer encloses no
+ *   volume, so a normal pressure on it would be a net force blowing the panel like a sail rather
+ *   than puffing its packs (that needs the two layers and the down between them).
+ *   At the weld the threads are carried over to the welded vertices (a segment whose two ends
+ *   merge is dropped).
+ *
  * ON ERRORS (wr_status + wr_diag, item = the offending index)
  *   WR_ERR_INVALID_ARG: a placement that is not finite, a radius <= 0, an unknown kind (item =
  *   placement); fewer placements than panels (item = first panel without one); a pattern mesh
@@ -147,6 +190,13 @@ extern "C" {
 /* give up sewing after this simulated time [s]: 30 frames at 1/30 s (the skirt examples weld
  * after 7–12 frames, docs/garments.md) */
 #define WR_GARMENT_MAX_SEW_TIME 1.0
+/* gathering threads reach their rest length ρ·l after this time [s] (ON GATHERING): 10 frames */
+#define WR_GARMENT_GATHER_TIME (1.0 / 3.0)
+/* mesh edges of a gathered line per thread stitch (ON GATHERING) */
+#define WR_GARMENT_STITCH_EDGES 2
+/* a mesh vertex lies on a pattern polyline when within this distance of it [m]: the mesher maps
+ * its constraint points back from the stretched space, exact to rounding (1e-16 m here) */
+#define WR_GARMENT_LINE_TOL 1e-9
 
 typedef enum wr_garment_wrap {
     WR_GARMENT_RIGID = 0,   /* ON PLACEMENT */
@@ -178,6 +228,15 @@ typedef struct wr_garment_placement {
  * vertex, face_panel; face_panel may be NULL with one placement). seam_pairs: n_seam_pairs × 2
  * vertex ids (mesher result.seam_pairs); seam_pair_seam: the seam of each pair (may be NULL: all
  * seam 0). placements: one per panel. */
+/* A gathered line (ON GATHERING): vertices (n_vertices >= 2) of the pattern mesh in order along
+ * it (wr_garment_line_chain), rho in (0, 1], modulus E_sh [Pa] (0: the shell's Young's modulus). */
+typedef struct wr_garment_line {
+    const int32_t *vertices;
+    int32_t n_vertices;
+    double rho;
+    double modulus;
+} wr_garment_line;
+
 typedef struct wr_garment {
     const wr_mesh *pattern;
     const int32_t *seam_pairs;
@@ -185,12 +244,15 @@ typedef struct wr_garment {
     int32_t n_seam_pairs;
     const wr_garment_placement *placements;
     int32_t n_placements;
+    const wr_garment_line *lines; /* gathered lines (may be NULL / 0) */
+    int32_t n_lines;
 } wr_garment;
 
 /* Defaults (zero means default): stiffness → WR_GARMENT_SEW_MEMBRANE_FACTOR · E h/(1 − ν²);
  * start_stiffness → WR_DYN_SEW_FACTOR · m̄/dt² (capped at stiffness); weld_tol →
  * WR_GARMENT_WELD_FRACTION · d̂; max_time → WR_GARMENT_MAX_SEW_TIME; no_weld 0;
- * no_self_while_sewing 0. */
+ * no_self_while_sewing 0; thread_area → h² (the shell's thickness squared); gather_time →
+ * WR_GARMENT_GATHER_TIME; gather_immediate 0; stitch_edges → WR_GARMENT_STITCH_EDGES (ON GATHERING). */
 typedef struct wr_garment_desc {
     double stiffness;       /* [N/m] */
     double start_stiffness; /* [N/m] */
@@ -198,6 +260,10 @@ typedef struct wr_garment_desc {
     double max_time;        /* [s] */
     int32_t no_weld;
     int32_t no_self_while_sewing; /* 1: cloth self-contact off until the weld (ON SEWING) */
+    double thread_area;     /* gathering thread cross-section [m²] */
+    double gather_time;     /* [s] */
+    int32_t gather_immediate; /* 1: threads at ρ·l from the first frame */
+    int32_t stitch_edges;   /* mesh edges per stitch, >= 1 */
 } wr_garment_desc;
 
 typedef struct wr_garment_sim {
@@ -220,6 +286,12 @@ typedef struct wr_garment_sim {
     wr_dyn_desc dyn_desc;
     wr_garment_desc desc;
     uint8_t *fixed0;     /* nv0 pins of the pattern mesh (copy), or NULL */
+    /* gathering threads (ON GATHERING): segments over pattern vertices, their pattern lengths,
+     * ρ, EA [N], their line, and their index in dyn's thread list (-1: dropped at the weld) */
+    int32_t *thr_seg, *thr_line, *thr_dyn;
+    double *thr_len, *thr_rho, *thr_axial;
+    int32_t n_thr, n_lines;
+    double gather;       /* the schedule's fraction of 1 − ρ applied in the last frame */
 } wr_garment_sim;
 
 WRDEF void wr_garment_place_point(const wr_garment_placement *pl, double u, double v, double x[3]);
@@ -227,6 +299,13 @@ WRDEF wr_status wr_garment_placement_check(const wr_garment_placement *pl, int32
 WRDEF wr_status wr_garment_place(wr_mesh *m, const wr_garment_placement *pl, int32_t n_pl, wr_diag *diag);
 WRDEF wr_status wr_garment_sewing_pairs(const wr_mesh *m, const int32_t *pairs, const int32_t *seam, int32_t n,
                                         int32_t **out, int32_t **out_seam, int32_t *n_out, wr_diag *diag);
+/* The vertices of mesh m (rest coordinates) along the pattern polyline xy (n points [m]): the
+ * segments among segs (n_segs × 2, the mesher's constraint_segments) whose two ends and midpoint
+ * lie within WR_GARMENT_LINE_TOL of the polyline, chained from the end nearest xy's first point.
+ * *out (wr_free) gets *n_out >= 2 vertices. WR_ERR_GEOMETRY (item = -1) when fewer than one
+ * segment lies on the line or the segments on it do not form one open chain. */
+WRDEF wr_status wr_garment_line_chain(const wr_mesh *m, const int32_t *segs, int32_t n_segs, const double *xy, int32_t n,
+                                      int32_t **out, int32_t *n_out, wr_diag *diag);
 /* Joins two meshes into one with face_panel 0 (a's faces) and 1 (b's), b's vertices after a's;
  * rest coordinates kept (a helper for hand-made two-panel garments and the EXAMPLE). */
 WRDEF wr_status wr_garment_example_join(wr_mesh *out, const wr_mesh *a, const wr_mesh *b, wr_diag *diag);
@@ -235,6 +314,9 @@ WRDEF wr_status wr_garment_sim_create(wr_garment_sim *gs, const wr_garment *g, c
 WRDEF wr_status wr_garment_sim_step(wr_garment_sim *gs, wr_dyn_stats *stats, wr_diag *diag);
 WRDEF wr_status wr_garment_sim_weld(wr_garment_sim *gs, wr_diag *diag);
 WRDEF double wr_garment_sim_seam_gap(const wr_garment_sim *gs, int32_t seam);
+/* Line `line`'s current length along its thread (*now) and the thread's final rest length ρ·l
+ * (*rest) [m]; both 0 for a line index out of range. */
+WRDEF void wr_garment_sim_thread_length(const wr_garment_sim *gs, int32_t line, double *now, double *rest);
 WRDEF void wr_garment_sim_unsewn_positions(const wr_garment_sim *gs, double *out);
 WRDEF void wr_garment_sim_free(wr_garment_sim *gs);
 
@@ -437,6 +519,153 @@ done:
     return st;
 }
 
+/* ---- gathered lines (ON GATHERING) --------------------------------------------------------- */
+
+/* distance from point p to the polyline xy (n points) */
+static double wr__gar_poly_dist(const double *xy, int32_t n, const double p[2]) {
+    double best = HUGE_VAL;
+    int32_t i;
+    for (i = 0; i + 1 < n; ++i) {
+        const double *a = xy + 2 * i, *b = a + 2;
+        double ux = b[0] - a[0], uy = b[1] - a[1], l2 = ux * ux + uy * uy, t = 0.0, dx, dy;
+        if (l2 > 0.0) t = fmin(1.0, fmax(0.0, ((p[0] - a[0]) * ux + (p[1] - a[1]) * uy) / l2));
+        dx = a[0] + t * ux - p[0];
+        dy = a[1] + t * uy - p[1];
+        best = fmin(best, sqrt(dx * dx + dy * dy));
+    }
+    return best;
+}
+
+WRDEF wr_status wr_garment_line_chain(const wr_mesh *m, const int32_t *segs, int32_t n_segs, const double *xy, int32_t n,
+                                      int32_t **out, int32_t *n_out, wr_diag *diag) {
+    int32_t *adj = NULL, *deg = NULL, *o = NULL, k, v, ends[2], n_ends = 0, n_on = 0, prev, cur, len = 0;
+    wr_status st = WR_OK;
+    *out = NULL;
+    *n_out = 0;
+    if (!m || !m->rest || !xy || n < 2 || (n_segs > 0 && !segs))
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "garment: line chain needs a mesh with rest coordinates and >= 2 points");
+    adj = (int32_t *)wr_alloc_array(2 * (size_t)m->nv, sizeof(int32_t));
+    deg = (int32_t *)wr_calloc_array((size_t)m->nv, sizeof(int32_t));
+    o = (int32_t *)wr_alloc_array((size_t)m->nv, sizeof(int32_t));
+    if (!adj || !deg || !o) {
+        st = wr_fail(diag, WR_ERR_NOMEM, -1, "garment: out of memory");
+        goto done;
+    }
+    for (k = 0; k < n_segs; ++k) {
+        int32_t a = segs[2 * k], b = segs[2 * k + 1];
+        double mid[2];
+        if (a < 0 || b < 0 || a >= m->nv || b >= m->nv || a == b) continue;
+        mid[0] = 0.5 * (m->rest[2 * a] + m->rest[2 * b]);
+        mid[1] = 0.5 * (m->rest[2 * a + 1] + m->rest[2 * b + 1]);
+        if (wr__gar_poly_dist(xy, n, m->rest + 2 * a) > WR_GARMENT_LINE_TOL ||
+            wr__gar_poly_dist(xy, n, m->rest + 2 * b) > WR_GARMENT_LINE_TOL || wr__gar_poly_dist(xy, n, mid) > WR_GARMENT_LINE_TOL)
+            continue;
+        if (deg[a] >= 2 || deg[b] >= 2) {
+            st = wr_fail(diag, WR_ERR_GEOMETRY, -1, "garment: the mesh segments on the line branch at vertex %d",
+                         (int)(deg[a] >= 2 ? a : b));
+            goto done;
+        }
+        adj[2 * a + deg[a]++] = b;
+        adj[2 * b + deg[b]++] = a;
+        n_on++;
+    }
+    for (v = 0; v < m->nv; ++v)
+        if (deg[v] == 1) {
+            if (n_ends == 2) {
+                st = wr_fail(diag, WR_ERR_GEOMETRY, -1, "garment: the mesh segments on the line form more than one piece");
+                goto done;
+            }
+            ends[n_ends++] = v;
+        }
+    if (n_on < 1 || n_ends != 2) {
+        st = wr_fail(diag, WR_ERR_GEOMETRY, -1, "garment: %d mesh segments on the line, not one open chain (is it a mesher constraint?)",
+                     (int)n_on);
+        goto done;
+    }
+    {   /* start from the end nearer the polyline's first point */
+        double d0 = hypot(m->rest[2 * ends[0]] - xy[0], m->rest[2 * ends[0] + 1] - xy[1]);
+        double d1 = hypot(m->rest[2 * ends[1]] - xy[0], m->rest[2 * ends[1] + 1] - xy[1]);
+        cur = d1 < d0 ? ends[1] : ends[0];
+    }
+    prev = -1;
+    while (cur >= 0) {
+        int32_t next = -1;
+        o[len++] = cur;
+        for (k = 0; k < deg[cur]; ++k)
+            if (adj[2 * cur + k] != prev) next = adj[2 * cur + k];
+        prev = cur;
+        cur = next;
+    }
+    if (len != n_on + 1) {
+        st = wr_fail(diag, WR_ERR_GEOMETRY, -1, "garment: the mesh segments on the line form more than one piece");
+        goto done;
+    }
+    *out = o;
+    *n_out = len;
+    o = NULL;
+done:
+    wr_free(adj);
+    wr_free(deg);
+    wr_free(o);
+    return st;
+}
+
+/* The threads of the garment's lines (ON GATHERING), checked against the pattern mesh. */
+static wr_status wr__gar_threads(wr_garment_sim *gs, const wr_garment *g, wr_diag *diag) {
+    const wr_mesh *m = g->pattern;
+    double area = gs->desc.thread_area > 0.0 ? gs->desc.thread_area : gs->shell.thickness * gs->shell.thickness;
+    int32_t L, i, n = 0, se = gs->desc.stitch_edges > 0 ? gs->desc.stitch_edges : WR_GARMENT_STITCH_EDGES;
+    if (g->n_lines > 0 && !g->lines) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "garment: %d lines with a NULL array", (int)g->n_lines);
+    for (L = 0; L < g->n_lines; ++L) {
+        const wr_garment_line *ln = g->lines + L;
+        if (ln->n_vertices < 2 || !ln->vertices || !(ln->rho > 0.0 && ln->rho <= 1.0) || !(ln->modulus >= 0.0) ||
+            ln->modulus - ln->modulus != 0.0)
+            return wr_fail(diag, WR_ERR_INVALID_ARG, L, "garment: line %d (%d vertices, rho %g, modulus %g) is invalid", (int)L,
+                           (int)ln->n_vertices, ln->rho, ln->modulus);
+        for (i = 0; i < ln->n_vertices; ++i)
+            if (ln->vertices[i] < 0 || ln->vertices[i] >= m->nv || (i > 0 && ln->vertices[i] == ln->vertices[i - 1]))
+                return wr_fail(diag, WR_ERR_INVALID_ARG, L, "garment: line %d vertex %d (%d) is invalid", (int)L, (int)i,
+                               (int)ln->vertices[i]);
+        n += (ln->n_vertices - 1 + se - 1) / se;
+    }
+    gs->n_lines = g->n_lines;
+    if (n == 0) return WR_OK;
+    gs->thr_seg = (int32_t *)wr_alloc_array(2 * (size_t)n, sizeof(int32_t));
+    gs->thr_line = (int32_t *)wr_alloc_array((size_t)n, sizeof(int32_t));
+    gs->thr_dyn = (int32_t *)wr_alloc_array((size_t)n, sizeof(int32_t));
+    gs->thr_len = (double *)wr_alloc_array((size_t)n, sizeof(double));
+    gs->thr_rho = (double *)wr_alloc_array((size_t)n, sizeof(double));
+    gs->thr_axial = (double *)wr_alloc_array((size_t)n, sizeof(double));
+    if (!gs->thr_seg || !gs->thr_line || !gs->thr_dyn || !gs->thr_len || !gs->thr_rho || !gs->thr_axial)
+        return wr_fail(diag, WR_ERR_NOMEM, -1, "garment: out of memory (%d thread segments)", (int)n);
+    for (L = 0; L < g->n_lines; ++L) {
+        const wr_garment_line *ln = g->lines + L;
+        double E = ln->modulus > 0.0 ? ln->modulus : gs->shell.young > 0.0 ? gs->shell.young : gs->shell_desc.young_warp;
+        for (i = 0; i + 1 < ln->n_vertices; i += se) {
+            int32_t j, e = i + se < ln->n_vertices ? i + se : ln->n_vertices - 1, a = ln->vertices[i], b = ln->vertices[e];
+            int32_t s = gs->n_thr++;
+            gs->thr_seg[2 * s] = a;
+            gs->thr_seg[2 * s + 1] = b;
+            gs->thr_line[s] = L;
+            gs->thr_len[s] = 0.0; /* the pattern length of the chain between the two stitches */
+            for (j = i; j < e; ++j) {
+                const double *p = m->rest + 2 * ln->vertices[j], *q = m->rest + 2 * ln->vertices[j + 1];
+                gs->thr_len[s] += hypot(p[0] - q[0], p[1] - q[1]);
+            }
+            gs->thr_rho[s] = ln->rho;
+            gs->thr_axial[s] = E * area;
+            if (!(gs->thr_len[s] > 0.0))
+                return wr_fail(diag, WR_ERR_INVALID_ARG, L, "garment: line %d has a zero-length edge at vertex %d", (int)L, (int)a);
+        }
+    }
+    return WR_OK;
+}
+
+/* rest length of thread segment s under the schedule's fraction gather (ON GATHERING) */
+static double wr__gar_thread_rest(const wr_garment_sim *gs, int32_t s, double gather) {
+    return gs->thr_len[s] * (1.0 - gather * (1.0 - gs->thr_rho[s]));
+}
+
 /* ---- the simulation (ON SEWING, ON WELDING) -------------------------------------------------- */
 
 static void wr__gar_desc_defaults(wr_garment_desc *d) {
@@ -464,9 +693,13 @@ static wr_status wr__gar_body_hits(const wr_dyn *sim, const wr_mesh *m, const do
     return st;
 }
 
-/* The simulator on gs->mesh/shell (sewing on before the weld, self-contact off then). */
-static wr_status wr__gar_build(wr_garment_sim *gs, const uint8_t *fixed, wr_diag *diag) {
+/* The simulator on gs->mesh/shell (sewing on before the weld, self-contact off then), with the
+ * threads on the vertices vmap gives their pattern vertices (NULL: identity). */
+static wr_status wr__gar_build(wr_garment_sim *gs, const uint8_t *fixed, const int32_t *vmap, wr_diag *diag) {
     wr_dyn_desc dd = gs->dyn_desc;
+    int32_t *seg = NULL, s, n = 0;
+    double *rest = NULL, *ax = NULL;
+    wr_status st;
     dd.fixed = fixed;
     if (!gs->welded && gs->desc.no_self_while_sewing) dd.contact.no_self = 1;
     if (!gs->welded) {
@@ -477,7 +710,36 @@ static wr_status wr__gar_build(wr_garment_sim *gs, const uint8_t *fixed, wr_diag
     } else {
         memset(&dd.sewing, 0, sizeof dd.sewing);
     }
-    return wr_dyn_create(&gs->dyn, &gs->shell, &dd, diag);
+    memset(&dd.threads, 0, sizeof dd.threads);
+    if (gs->n_thr > 0) {
+        seg = (int32_t *)wr_alloc_array(2 * (size_t)gs->n_thr, sizeof(int32_t));
+        rest = (double *)wr_alloc_array((size_t)gs->n_thr, sizeof(double));
+        ax = (double *)wr_alloc_array((size_t)gs->n_thr, sizeof(double));
+        if (!seg || !rest || !ax) {
+            st = wr_fail(diag, WR_ERR_NOMEM, -1, "garment: out of memory (%d thread segments)", (int)gs->n_thr);
+            goto done;
+        }
+        for (s = 0; s < gs->n_thr; ++s) {
+            int32_t a = gs->thr_seg[2 * s], b = gs->thr_seg[2 * s + 1];
+            if (vmap) a = vmap[a], b = vmap[b];
+            gs->thr_dyn[s] = a == b ? -1 : n; /* both ends welded into one vertex: nothing to gather */
+            if (a == b) continue;
+            seg[2 * n] = a;
+            seg[2 * n + 1] = b;
+            rest[n] = wr__gar_thread_rest(gs, s, gs->gather);
+            ax[n++] = gs->thr_axial[s];
+        }
+        dd.threads.segments = seg;
+        dd.threads.rest = rest;
+        dd.threads.axial = ax;
+        dd.threads.n_segments = n;
+    }
+    st = wr_dyn_create(&gs->dyn, &gs->shell, &dd, diag);
+done:
+    wr_free(seg);
+    wr_free(rest);
+    wr_free(ax);
+    return st;
 }
 
 WRDEF void wr_garment_sim_free(wr_garment_sim *gs) {
@@ -491,6 +753,12 @@ WRDEF void wr_garment_sim_free(wr_garment_sim *gs) {
     wr_free(gs->pairs);
     wr_free(gs->pair_seam);
     wr_free(gs->fixed0);
+    wr_free(gs->thr_seg);
+    wr_free(gs->thr_line);
+    wr_free(gs->thr_dyn);
+    wr_free(gs->thr_len);
+    wr_free(gs->thr_rho);
+    wr_free(gs->thr_axial);
     memset(gs, 0, sizeof *gs);
 }
 
@@ -543,7 +811,8 @@ WRDEF wr_status wr_garment_sim_create(wr_garment_sim *gs, const wr_garment *g, c
     for (v = 0; v < gs->nv0; ++v) gs->vmap[v] = v;
     memcpy(gs->x, gs->mesh.pos, sizeof(double) * 3 * (size_t)gs->nv0);
     if ((st = wr_shell_create(&gs->shell, &gs->mesh, &gs->shell_desc, diag)) != WR_OK) goto fail;
-    if ((st = wr__gar_build(gs, gs->fixed0, diag)) != WR_OK) goto fail;
+    if ((st = wr__gar_threads(gs, g, diag)) != WR_OK) goto fail;
+    if ((st = wr__gar_build(gs, gs->fixed0, NULL, diag)) != WR_OK) goto fail;
     wr__gar_stiffness(gs);
     gs->dyn.sew_k = gs->sew_k;
     if (!(gs->desc.weld_tol > 0.0)) gs->desc.weld_tol = WR_GARMENT_WELD_FRACTION * gs->dyn.dhat;
@@ -661,7 +930,7 @@ WRDEF wr_status wr_garment_sim_weld(wr_garment_sim *gs, wr_diag *diag) {
         gs->shell = sh;
         gs->mesh = wm;
         gs->welded = 1;
-        st = wr__gar_build(gs, fixed, diag);
+        st = wr__gar_build(gs, fixed, vmap, diag);
         if (st != WR_OK) {
             wr_shell_free(&gs->shell);
             wr_mesh_free(&gs->mesh);
@@ -701,8 +970,31 @@ fail:
     return st;
 }
 
+WRDEF void wr_garment_sim_thread_length(const wr_garment_sim *gs, int32_t line, double *now, double *rest) {
+    int32_t s, i;
+    *now = *rest = 0.0;
+    for (s = 0; s < gs->n_thr; ++s) {
+        const double *a = gs->x + 3 * gs->vmap[gs->thr_seg[2 * s]], *b = gs->x + 3 * gs->vmap[gs->thr_seg[2 * s + 1]];
+        double d = 0.0;
+        if (gs->thr_line[s] != line) continue;
+        for (i = 0; i < 3; ++i) d += (a[i] - b[i]) * (a[i] - b[i]);
+        *now += sqrt(d);
+        *rest += gs->thr_rho[s] * gs->thr_len[s];
+    }
+}
+
+/* ON GATHERING: the rest lengths for the frame ending at t + dt */
+static void wr__gar_gather_schedule(wr_garment_sim *gs) {
+    double T = gs->desc.gather_time > 0.0 ? gs->desc.gather_time : WR_GARMENT_GATHER_TIME;
+    int32_t s;
+    gs->gather = gs->desc.gather_immediate ? 1.0 : fmin(1.0, (gs->state.t + gs->dyn.desc.time.dt) / T);
+    for (s = 0; s < gs->n_thr; ++s)
+        if (gs->thr_dyn[s] >= 0) gs->dyn.thread_rest[gs->thr_dyn[s]] = wr__gar_thread_rest(gs, s, gs->gather);
+}
+
 WRDEF wr_status wr_garment_sim_step(wr_garment_sim *gs, wr_dyn_stats *stats, wr_diag *diag) {
     wr_status st;
+    wr__gar_gather_schedule(gs);
     if (!gs->welded && gs->n_pairs > 0) {
         /* ON SEWING: the stiffness doubles per frame from k_start to k_full */
         gs->dyn.sew_k = gs->sew_k;
