@@ -100,6 +100,7 @@
 #define QUICK_SECONDS 0.4
 #define MAXPANEL 4
 #define MAXPROBE 8
+#define MAXLINES 64
 #define MAXFRAMES 400
 
 static int g_verbose = 0;
@@ -117,6 +118,7 @@ typedef struct gprobe {
 
 typedef struct gspec {
     const char *name, *pattern, *title;
+    double young, thickness;  /* the simulated fabric [Pa], [m] (B = E h³/(12(1 − ν²)) ≈ the pattern's) */
     double scale;             /* mannequin height / 1.7 m, and the placement lengths */
     double radius, hem_z;     /* placement cylinder round the torso axis, at full scale [m] */
     double angle[MAXPANEL];   /* θ of each panel's origin (its bottom centre) [rad] */
@@ -129,9 +131,15 @@ typedef struct gspec {
  * scaled lengths; the placement and crop numbers here are the full-size ones, scaled at run time). */
 #define SKIRT_SCALE 0.25
 static const gspec GARMENTS[] = {
-    {"skirt", "examples/sim/skirt_table1_pattern.json", "A-line skirt (2 panels, side seams), scaled",
+    {"skirt", "examples/sim/skirt_table1_pattern.json", "A-line skirt (2 panels, side seams), scaled", 1e6, 5e-4,
      SKIRT_SCALE, 0.201, 0.55, {-PI / 2, PI / 2, 0, 0}, {0.35, 1.25}, 0.30, 4,
      {{"front_hem", 0, 0.10}, {"back_hem", 1, 0.10}, {"front_mid", 0, 0.50}, {"back_mid", 1, 0.50}}},
+    /* the shirred dress reduced to its shirred skirt: the same skirt in the dress's Wine Style fabric
+     * (B = 2e-6 N m, E = 3e5 Pa: h = 0.418 mm) with three shirring lines per panel below the waist,
+     * gathered by garment.h's threads (ON GATHERING); probes under the lines and at the hem */
+    {"shirred", "examples/sim/skirt_shirred_table1_pattern.json", "shirred skirt (the dress's skirt panels and shirring, scaled)",
+     3e5, 4.18e-4, SKIRT_SCALE, 0.201, 0.55, {-PI / 2, PI / 2, 0, 0}, {0.35, 1.25}, 0.30, 4,
+     {{"front_hem", 0, 0.10}, {"back_hem", 1, 0.10}, {"front_below_shirring", 0, 0.80}, {"back_below_shirring", 1, 0.80}}},
 };
 #define NGARMENT ((int)(sizeof GARMENTS / sizeof GARMENTS[0]))
 
@@ -268,12 +276,43 @@ static void place_panels(const gspec *g, const wr_mesh *m, int32_t n_panels, wr_
     }
 }
 
-static void fabric(wr_shell_desc *sd) {
+static void fabric(const gspec *g, wr_shell_desc *sd) {
     memset(sd, 0, sizeof *sd);
-    sd->young = 1e6;
+    sd->young = g->young;
     sd->poisson = 0.3;
-    sd->thickness = 5e-4;
+    sd->thickness = g->thickness;
     sd->density = 300.0;
+}
+
+/* The pattern's shirring lines and quilt stitch lines as gathered lines (garment.h ON GATHERING):
+ * each polyline's vertex chain among the mesher's constraint segments. */
+static int gather_lines(const wr_pattern *pat, const wr_mesher_result *mr, wr_garment_line *lines, int32_t **chains,
+                        int32_t *n_lines) {
+    int32_t i, u, nv;
+    wr_diag d;
+    *n_lines = 0;
+    for (i = 0; i < pat->n_shirrings + pat->n_quilts; ++i) {
+        int quilt = i >= pat->n_shirrings;
+        int32_t q = i - pat->n_shirrings, nl = quilt ? pat->quilts[q].n_lines : 1;
+        for (u = 0; u < nl; ++u) {
+            const double *xy = quilt ? pat->quilts[q].lines[u].xy : pat->shirrings[i].xy;
+            int32_t np = quilt ? pat->quilts[q].lines[u].n : pat->shirrings[i].n;
+            if (*n_lines >= MAXLINES ||
+                wr_garment_line_chain(&mr->mesh, mr->constraint_segments, mr->n_constraint_segments, xy, np, &chains[*n_lines], &nv,
+                                      &d) != WR_OK) {
+                fprintf(stderr, "validate_sim_garments: gathered line %d: %s\n", (int)*n_lines,
+                        *n_lines >= MAXLINES ? "too many" : d.message);
+                for (u = 0; u < *n_lines; ++u) wr_free(chains[u]);
+                return -1;
+            }
+            lines[*n_lines].vertices = chains[*n_lines];
+            lines[*n_lines].n_vertices = nv;
+            lines[*n_lines].rho = quilt ? pat->quilts[q].rho : pat->shirrings[i].rho;
+            lines[*n_lines].modulus = quilt ? pat->quilts[q].E_sh : pat->shirrings[i].E_sh;
+            (*n_lines)++;
+        }
+    }
+    return 0;
 }
 
 /* ---- one run: mesh, sew, drape ------------------------------------------------------------------ */
@@ -290,6 +329,9 @@ static int garment_simulate(grun *R, const wr_mesh *bm, const wr_dyn_body *body,
     wr_dyn_stats fs;
     wr_diag d;
     double cpu0 = (double)clock() / CLOCKS_PER_SEC, wall0 = wr_time_seconds(), *el = NULL;
+    wr_garment_line lines[MAXLINES];
+    int32_t *chains[MAXLINES], n_lines = 0;
+    wr_status st;
     int32_t f, i, n_frames, np;
     memset(&gs, 0, sizeof gs);
     if (wr_pattern_load(R->g->pattern, &pf, &d) != WR_OK) {
@@ -302,6 +344,10 @@ static int garment_simulate(grun *R, const wr_mesh *bm, const wr_dyn_body *body,
     np = pf.pattern.n_panels;
     if (np > MAXPANEL || wr_mesher_run(&pf.pattern, &pf.desc, &R->mr, &d) != WR_OK) {
         fprintf(stderr, "validate_sim_garments: mesher: %s\n", np > MAXPANEL ? "too many panels" : d.message);
+        wr_pattern_file_free(&pf);
+        return -1;
+    }
+    if (gather_lines(&pf.pattern, &R->mr, lines, chains, &n_lines) != 0) {
         wr_pattern_file_free(&pf);
         return -1;
     }
@@ -324,7 +370,9 @@ static int garment_simulate(grun *R, const wr_mesh *bm, const wr_dyn_body *body,
     gm.n_seam_pairs = R->mr.n_seam_pairs;
     gm.placements = pl;
     gm.n_placements = np;
-    fabric(&sd);
+    gm.lines = lines;
+    gm.n_lines = n_lines;
+    fabric(R->g, &sd);
     memset(&dd, 0, sizeof dd);
     dd.gravity[2] = -GRAV;
     dd.damping.mass = 1.0;
@@ -335,7 +383,9 @@ static int garment_simulate(grun *R, const wr_mesh *bm, const wr_dyn_body *body,
     memset(&gd, 0, sizeof gd);
     gd.weld_tol = g_weld_tol;
     gd.no_weld = g_no_weld;
-    if (wr_garment_sim_create(&gs, &gm, &sd, &dd, &gd, &d) != WR_OK) {
+    st = wr_garment_sim_create(&gs, &gm, &sd, &dd, &gd, &d);
+    for (i = 0; i < n_lines; ++i) wr_free(chains[i]); /* the garment is a view read during create */
+    if (st != WR_OK) {
         fprintf(stderr, "validate_sim_garments: garment: %s\n", d.message);
         return -1;
     }
@@ -367,7 +417,7 @@ static int garment_simulate(grun *R, const wr_mesh *bm, const wr_dyn_body *body,
         R->frames++;
         R->newton += fs.newton_iterations;
         R->halvings += fs.halvings;
-        if (gs.welded) R->min_dist = fmin(R->min_dist, fs.min_distance);
+        R->min_dist = fmin(R->min_dist, fs.min_distance);
         if (g_verbose || f % 5 == 0 || f + 1 == n_frames)
             fprintf(stderr, "%s   %s frame %d/%d  NS %.0f ms  CH %.0f ms  Newton %d  contacts %d  %s  cpu %.0f s   ",
                     g_verbose ? "\n" : "\r", R->label, (int)(f + 1), (int)n_frames, 1e3 * fs.t_ns, 1e3 * fs.t_ch,
@@ -698,7 +748,8 @@ int main(int argc, char **argv) {
     int i, quick = 0, png = 1, floor_run = 1, gi;
     double seconds = 2.0;
     char buf[4096], path[4096];
-    const char *case_id = "sim_garments";
+    const char *case_id = "sim_garments", *only = NULL;
+    static char case_buf[128];
     static char reflabel[48];
     wr_vres *v;
     for (i = 1; i < argc; ++i) {
@@ -707,6 +758,7 @@ int main(int argc, char **argv) {
         else if (strcmp(argv[i], "--no-png") == 0) png = 0;
         else if (strcmp(argv[i], "--weld-tol") == 0 && i + 1 < argc) g_weld_tol = atof(argv[++i]);
         else if (strcmp(argv[i], "--weld") == 0) g_no_weld = 0;
+        else if (strcmp(argv[i], "--garment") == 0 && i + 1 < argc) only = argv[++i];
         else if (strcmp(argv[i], "--pcg") == 0) g_linear = WR_SOLVER_PCG_BLOCK3;
         else if (strcmp(argv[i], "--opt-only") == 0) g_opt_only = 1;
         else if (strcmp(argv[i], "--ref") == 0 && i + 1 < argc) g_ref = atof(argv[++i]);
@@ -714,7 +766,7 @@ int main(int argc, char **argv) {
         else if (strcmp(argv[i], "--verbose") == 0) g_verbose = 1;
         else if (strcmp(argv[i], "--help") == 0) {
             printf("usage: validate_sim_garments [--quick] [--seconds S] [--ref R] [--pcg] [--weld] [--no-floor] [--no-png]\n"
-                   "       [--verbose] [--opt-only] [--weld-tol T]\n"
+                   "       [--verbose] [--opt-only] [--weld-tol T] [--garment skirt|shirred]\n"
                    "  Style3D Table 1 / Fig. 19 with the dynamic simulator: garments at r_opt and at uniform 2.5 mm;\n"
                    "  writes validation/results/sim_garments.json (--quick: sim_garments_quick.json, smoke only).\n");
             return 0;
@@ -728,17 +780,27 @@ int main(int argc, char **argv) {
         return 2;
     }
     snprintf(reflabel, sizeof reflabel, "uniform %.1f mm", 1e3 * g_ref);
+    if (only) { /* one garment: its own result file, sim_garments_<name>[_quick].json */
+        for (gi = 0; gi < NGARMENT && strcmp(GARMENTS[gi].name, only) != 0; ++gi) {}
+        if (gi == NGARMENT) {
+            fprintf(stderr, "validate_sim_garments: no garment '%s' (skirt, shirred)\n", only);
+            return 2;
+        }
+        snprintf(case_buf, sizeof case_buf, "sim_garments_%s%s", only, quick ? "_quick" : "");
+    }
     if (quick) case_id = "sim_garments_quick", seconds = QUICK_SECONDS, floor_run = 0;
+    if (only) case_id = case_buf;
     v = wr_vres_begin(case_id, "Style3D Table 1 / Fig. 19: garments at r_opt vs uniform 2.5 mm, dynamic simulator (cost, drape distance, wrinkle wavelength)");
     if (!v) return 2;
     snprintf(table, sizeof table,
              "| garment | mesh | vertices simulated | vertices once sewn | median sizing [mm] | mean edge [mm] | frames | weld frame | Newton | "
              "NS CPU mean [ms] | CH CPU mean [ms] | NS wall mean [ms] | CH wall mean [ms] | NS wall median [ms] | CH wall median [ms] | "
-             "CPU [s] | wall [s] | min body distance [mm] | halvings | penetrations |\n"
+             "CPU [s] | wall [s] | min contact distance incl. seams [mm] | halvings | penetrations |\n"
              "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     for (gi = 0; gi < NGARMENT; ++gi) {
         const gspec *g = &GARMENTS[gi];
         wr_mesh bm;
+        if (only && strcmp(g->name, only) != 0) continue;
         wr_body_desc bd;
         wr_dyn_body body;
         wr_diag d;
@@ -813,10 +875,11 @@ int main(int argc, char **argv) {
                  "%s set-up: %s; pattern %s meshed by the kit's mesher (unsewn, garment.h sews); mannequin (body.h) of height %.3f m "
                  "(x%.2f), the simulation sees its %d triangles with every corner in z in [%.3f, %.3f] m and |x| <= %.3f m (of %d); "
                  "each panel on a cylinder of radius %.4f m about the torso axis, its bottom centre at z = %.4f m. Fabric in the "
-                 "simulation: StVK, E = 1 MPa, nu = 0.3, h = 0.5 mm, 300 kg/m^3; gravity, mass damping 1/s, friction 0.5, self-contact "
+                 "simulation: E = %.2g Pa, nu = 0.3, h = %.3f mm, 300 kg/m^3%s; gravity, mass damping 1/s, friction 0.5, self-contact "
                  "on, d^ = 1 mm; %s; %.2f s simulated (%d frames of 1/30 s) for every mesh.",
                  g->name, g->title, g->pattern, bd.height, g->scale, (int)nbf, crop_lo[2], crop_hi[2], crop_hi[0], (int)bm.nf,
-                 g->scale * g->radius, g->scale * g->hem_z,
+                 g->scale * g->radius, g->scale * g->hem_z, g->young, 1e3 * g->thickness,
+                 strstr(g->pattern, "shirred") ? ", shirring lines gathered by garment.h threads (E_sh, rho of the pattern)" : "",
                  g_linear == WR_SOLVER_PCG_BLOCK3 ? "PCG + 3x3 block Jacobi to 1e-5 (the paper's linear solver)" : "CHOLMOD", seconds,
                  (int)floor(seconds * 30.0 + 0.5));
         wr_vres_note(v, buf);
