@@ -29,7 +29,11 @@
  * was refused on this small body, at r_opt (24 cloth-body triangle pairs after merging, none
  * before), at 5 mm (19) and with a 0.1 mm weld tolerance (6), see docs/notes-sim-garments.md;
  * --weld tries it. dynamics.h backward Euler at 1/30 s frames, gravity, mass damping 1/s,
- * friction μ = 0.5, cloth self-contact on, d̂ = 1 mm, Newton's defaults (velocity_tol 1e-2 m/s),
+ * friction μ = 0.5, cloth self-contact on, d̂ = scale × 1 mm (dynamics.h's default 1 mm scaled with
+ * the garment: 0.25 mm for the skirts; with 1 mm, 40 % of a 2.5 mm edge, the 2.5 mm skirt kept
+ * 12-29 Newton steps per frame and ~5000 active barriers and took 1396 CPU s for 1.4 s, with 0.25 mm
+ * it settles like the r_opt run, 227 CPU s for 2 s; docs/notes-sim-garments.md; --dhat overrides and
+ * names the result file sim_garments_<name>_dhat.json), Newton's defaults (velocity_tol 1e-2 m/s),
  * CHOLMOD linear solves: the paper's PCG + 3×3 block Jacobi to 1e-5 (--pcg) cost 2.7x the CPU in
  * the 2.5 mm run's first frame (19 s vs 7 s) and > 6x in its second (> 100 s vs 16 s), its iteration
  * count growing with the resolution and the stiff seam springs; the solver is the same for every
@@ -107,7 +111,7 @@ static int g_verbose = 0;
 static double g_weld_tol = 0.0; /* --weld-tol [m]: garment.h's weld tolerance (0: its default) */
 static int g_no_weld = 1;       /* keep the sewing springs for the whole run (--weld: weld, see SIMULATION) */
 static int g_opt_only = 0;
-static double g_dhat = 0.0;     /* --dhat [m]: contact barrier thickness (0: dynamics.h's 1 mm) */      /* --opt-only: skip the uniform reference (set-up experiments) */
+static double g_dhat = 0.0;     /* --dhat [m]: contact barrier thickness (0: the garment's scale × 1 mm, SIMULATION) */      /* --opt-only: skip the uniform reference (set-up experiments) */
 static double g_ref = R_FINE; /* --ref: the uniform reference resolution [m] (cost measurements) */
 static wr_solver_method g_linear = WR_SOLVER_CHOLMOD; /* --pcg: the paper's PCG + block Jacobi (SIMULATION) */
 
@@ -380,7 +384,7 @@ static int garment_simulate(grun *R, const wr_mesh *bm, const wr_dyn_body *body,
     dd.contact.bodies = body;
     dd.contact.n_bodies = 1;
     dd.contact.friction = 0.5;
-    dd.contact.dhat = g_dhat;
+    dd.contact.dhat = g_dhat > 0.0 ? g_dhat : R->g->scale * 1e-3;
     dd.linear.method = g_linear;
     memset(&gd, 0, sizeof gd);
     gd.weld_tol = g_weld_tol;
@@ -882,11 +886,11 @@ int main(int argc, char **argv) {
                  "(x%.2f), the simulation sees its %d triangles with every corner in z in [%.3f, %.3f] m and |x| <= %.3f m (of %d); "
                  "each panel on a cylinder of radius %.4f m about the torso axis, its bottom centre at z = %.4f m. Fabric in the "
                  "simulation: E = %.2g Pa, nu = 0.3, h = %.3f mm, 300 kg/m^3%s; gravity, mass damping 1/s, friction 0.5, self-contact "
-                 "on, d^ = 1 mm; %s; %.2f s simulated (%d frames of 1/30 s) for every mesh.",
+                 "on, d^ = %.3g mm; %s; %.2f s simulated (%d frames of 1/30 s) for every mesh.",
                  g->name, g->title, g->pattern, bd.height, g->scale, (int)nbf, crop_lo[2], crop_hi[2], crop_hi[0], (int)bm.nf,
                  g->scale * g->radius, g->scale * g->hem_z, g->young, 1e3 * g->thickness,
                  strstr(g->pattern, "shirred") ? ", shirring lines gathered by garment.h threads (E_sh, rho of the pattern)" : "",
-                 g_linear == WR_SOLVER_PCG_BLOCK3 ? "PCG + 3x3 block Jacobi to 1e-5 (the paper's linear solver)" : "CHOLMOD", seconds,
+                 1e3 * (g_dhat > 0.0 ? g_dhat : g->scale * 1e-3), g_linear == WR_SOLVER_PCG_BLOCK3 ? "PCG + 3x3 block Jacobi to 1e-5 (the paper's linear solver)" : "CHOLMOD", seconds,
                  (int)floor(seconds * 30.0 + 0.5));
         wr_vres_note(v, buf);
         for (r = 0; r < nrun; ++r) {
