@@ -30,10 +30,10 @@
 
 #include "meshout.h"
 #include "scene.h"
+#include "stretch_probe.h"
 #include "vresult.h"
 
 #define SCENE_PATH "examples/scenes/stretch.json"
-#define NPROBE 5
 #define FLAT_AMPLITUDE 1.0e-6 /* m, h/100 (validate_stretch) */
 #define CONVERGED_REL 0.05    /* issue 15: "converged to within 5 % across two refinements" */
 #define ALIGN_ABS 0.5         /* issue 15: "the same count (±0.5)" */
@@ -50,35 +50,10 @@ typedef struct lrow {
     wr_mesh mesh;
 } lrow;
 
-static void progress(void *user, int32_t step, int32_t n, const wr_statics_stats *st) {
-    (void)user;
-    fprintf(stderr, "\r   step %d/%d Newton %3d |g|/ref %.1e %.1f s   ", (int)step, (int)n, (int)st->iterations,
-            st->grad_ref > 0 ? st->grad_norm / st->grad_ref : 0.0, st->t_total);
-}
-
-static int cmp_d(const void *a, const void *b) {
-    double x = *(const double *)a, y = *(const double *)b;
-    return x < y ? -1 : x > y;
-}
-
 static void measure(const wr_scene_run *run, lrow *R) {
-    double c[NPROBE], l[NPROBE];
-    int k, np = 0;
-    int32_t i;
-    wr_diag d;
-    R->amplitude = 0.0;
-    for (k = 0; k < NPROBE; ++k) {
-        wr_spectrum_result rk;
-        if (wr_scene_run_probe(run, k, &rk, &d) != WR_OK) continue;
-        if (k == 0) R->amplitude = 0.5 * rk.amplitude_p2p;
-        c[np] = rk.count, l[np] = rk.wavelength, np++;
-    }
-    qsort(c, (size_t)np, sizeof *c, cmp_d);
-    qsort(l, (size_t)np, sizeof *l, cmp_d);
-    R->count = np ? c[np / 2] : NAN;
-    R->wavelength = np ? l[np / 2] : NAN;
-    R->zmax = 0.0;
-    for (i = 0; i < run->mesh.nv; ++i) R->zmax = fmax(R->zmax, fabs(run->x[3 * i + 2]));
+    double p2p;
+    sp_measure(run, &R->count, &R->wavelength, &p2p, &R->zmax, NULL);
+    R->amplitude = 0.5 * p2p;
     R->flat = R->zmax < FLAT_AMPLITUDE;
     if (R->flat) R->count = 0.0, R->wavelength = NAN;
 }
@@ -87,18 +62,12 @@ static int run_row(const wr_scene *base, lrow *R) {
     wr_scene sc = *base;
     wr_scene_run run;
     wr_diag d;
-    int32_t k;
-    static const int off[NPROBE] = {0, -1, 1, -2, 2};
     sc.mesh.resolution = R->r;
     sc.mesh.nx = sc.mesh.ny = 0;
     if (R->delaunay) sc.mesh.kind = WR_SCENE_MESH_DELAUNAY_RECTANGLE, sc.mesh.seed = 1;
     else sc.mesh.kind = WR_SCENE_MESH_LATTICE, sc.mesh.angle_deg = R->angle;
     sc.shell.loop_element = R->loop;
-    sc.n_probes = NPROBE;
-    for (k = 0; k < NPROBE; ++k) {
-        sc.probe[k] = base->probe[0];
-        sc.probe[k].from[0] = sc.probe[k].to[0] = 0.125 + off[k] * 0.0125;
-    }
+    sp_place_probes(&sc, base);
     if (wr_scene_run_create(&run, &sc, &d) != WR_OK) {
         fprintf(stderr, "validate_statics_loop: %s\n", d.message);
         return -1;
@@ -106,7 +75,7 @@ static int run_row(const wr_scene *base, lrow *R) {
     R->nv = run.mesh.nv;
     fprintf(stderr, "== %s %s, %s element: %d vertices\n", R->delaunay ? "Delaunay" : "lattice", R->label,
             R->loop ? "Loop" : "linear", (int)R->nv);
-    R->status = wr_scene_run_solve(&run, progress, NULL, &d);
+    R->status = wr_scene_run_solve(&run, sp_progress, NULL, &d);
     fprintf(stderr, "\n");
     if (R->status != WR_OK) fprintf(stderr, "   solve: %s\n", d.message);
     R->t_solve = run.t_solve;

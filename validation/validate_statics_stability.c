@@ -37,10 +37,10 @@
 #include <string.h>
 
 #include "scene.h"
+#include "stretch_probe.h"
 #include "vresult.h"
 
 #define SCENE_PATH "examples/scenes/stretch.json"
-#define NPROBE 5
 #define FLAT_AMPLITUDE 1.0e-6 /* m, h/100 (validate_stretch) */
 #define ENERGY_SLACK 1e-12    /* relative: Π(with) <= Π(without) up to round-off */
 #define MAXSTEP 8
@@ -60,40 +60,12 @@ typedef struct srow {
     int32_t neg_final, escapes, modes, checks;
 } srow;
 
-static void progress(void *user, int32_t step, int32_t n, const wr_statics_stats *st) {
-    (void)user;
-    fprintf(stderr, "\r   step %d/%d Newton %3d |g|/ref %.1e %.1f s   ", (int)step, (int)n, (int)st->iterations,
-            st->grad_ref > 0 ? st->grad_norm / st->grad_ref : 0.0, st->t_total);
-}
-
-static int cmp_d(const void *a, const void *b) {
-    double x = *(const double *)a, y = *(const double *)b;
-    return x < y ? -1 : x > y;
-}
-
-/* median count and wavelength over the probes (validate_stretch's definition); amplitude at L/2 */
+/* median count and wavelength over the probes (stretch_probe.h, validate_stretch's definition);
+ * amplitude at L/2; flat = the whole sheet's peak |w| below FLAT_AMPLITUDE */
 static void measure(const wr_scene_run *run, srow *R) {
-    double c[NPROBE], l[NPROBE];
-    int k, np = 0;
-    wr_diag d;
-    R->amplitude = 0.0;
-    for (k = 0; k < NPROBE; ++k) {
-        wr_spectrum_result rk;
-        if (wr_scene_run_probe(run, k, &rk, &d) != WR_OK) continue;
-        if (k == 0) R->amplitude = rk.amplitude_p2p;
-        c[np] = rk.count, l[np] = rk.wavelength, np++;
-    }
-    qsort(c, (size_t)np, sizeof *c, cmp_d);
-    qsort(l, (size_t)np, sizeof *l, cmp_d);
-    R->count = np ? c[np / 2] : NAN;
-    R->wavelength = np ? l[np / 2] : NAN;
-    {
-        /* flat = the whole sheet's peak |w| below FLAT_AMPLITUDE */
-        double zmax = 0.0;
-        int32_t i;
-        for (i = 0; i < run->mesh.nv; ++i) zmax = fmax(zmax, fabs(run->x[3 * i + 2]));
-        R->flat = zmax < FLAT_AMPLITUDE;
-    }
+    double zmax;
+    sp_measure(run, &R->count, &R->wavelength, &R->amplitude, &zmax, NULL);
+    R->flat = zmax < FLAT_AMPLITUDE;
     if (R->flat) R->count = 0.0, R->wavelength = NAN;
 }
 
@@ -102,15 +74,10 @@ static int run_row(const wr_scene *base, srow *R) {
     wr_scene_run run;
     wr_diag d;
     int32_t k;
-    static const int off[NPROBE] = {0, -1, 1, -2, 2};
     sc.mesh.resolution = R->r;
     sc.mesh.nx = sc.mesh.ny = 0;
     if (R->delaunay) sc.mesh.kind = WR_SCENE_MESH_DELAUNAY_RECTANGLE, sc.mesh.seed = 1;
-    sc.n_probes = NPROBE;
-    for (k = 0; k < NPROBE; ++k) {
-        sc.probe[k] = base->probe[0];
-        sc.probe[k].from[0] = sc.probe[k].to[0] = 0.125 + off[k] * 0.0125;
-    }
+    sp_place_probes(&sc, base);
     memset(&sc.stability, 0, sizeof sc.stability);
     sc.stability.check = R->final_only ? 0 : R->check;
     if (R->no_kick) sc.perturb = 0.0;
@@ -122,7 +89,7 @@ static int run_row(const wr_scene *base, srow *R) {
     R->nv = run.mesh.nv;
     fprintf(stderr, "== %s %s, stability %s: r = %.3f mm, %d vertices\n", R->delaunay ? "delaunay" : "grid", R->label,
             R->check == 1 ? "ON" : "report-only", 1e3 * R->r, (int)R->nv);
-    R->status = wr_scene_run_solve(&run, progress, NULL, &d);
+    R->status = wr_scene_run_solve(&run, sp_progress, NULL, &d);
     fprintf(stderr, "\n");
     if (R->status != WR_OK) fprintf(stderr, "   solve: %s\n", d.message);
     R->t_solve = run.t_solve;

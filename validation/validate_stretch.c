@@ -26,10 +26,11 @@
 #include <string.h>
 
 #include "scene.h"
+#include "stretch_probe.h"
 #include "vresult.h"
 
 #define SCENE_PATH "examples/scenes/stretch.json"
-#define NPROBE 5
+#define NPROBE SP_NPROBE
 #define GAMMA 0.1278 /* imposed stretch (Style3D Fig. 16) */
 #define PAPER_COUNT_25 7.0
 #define WANG_AMPLITUDE 0.35e-3 /* m, TFW Sec. 6.4 quoting Wang et al. 2018 */
@@ -59,27 +60,6 @@ typedef struct row {
     int ok;
 } row;
 
-static void progress(void *user, int32_t step, int32_t n, const wr_statics_stats *st) {
-    (void)user;
-    fprintf(stderr, "\r   step %d/%d Newton %3d |g|/ref %.1e %.1f s   ", (int)step, (int)n, (int)st->iterations,
-            st->grad_ref > 0 ? st->grad_norm / st->grad_ref : 0.0, st->t_total);
-}
-
-/* Probe lines across the width at several x through the wrinkled central band (x = L/2 + k·L/20,
- * k = -2..2): the wrinkles sit in the middle of the sheet, so one line at L/2 is as good as its luck;
- * we report the median count and wavelength of the five and their spread. */
-static int cmp_d(const void *a, const void *b) {
-    double x = *(const double *)a, y = *(const double *)b;
-    return x < y ? -1 : x > y;
-}
-static double median5(const double *v, int n) {
-    double t[NPROBE];
-    int i;
-    for (i = 0; i < n; ++i) t[i] = v[i];
-    qsort(t, (size_t)n, sizeof *t, cmp_d);
-    return n % 2 ? t[n / 2] : 0.5 * (t[n / 2 - 1] + t[n / 2]);
-}
-
 static int run_row(const wr_scene *base, row *R, const char *datpath) {
     wr_scene sc = *base;
     wr_scene_run run;
@@ -89,16 +69,7 @@ static int run_row(const wr_scene *base, row *R, const char *datpath) {
     sc.mesh.nx = sc.mesh.ny = 0;
     if (R->delaunay) sc.mesh.kind = WR_SCENE_MESH_DELAUNAY_RECTANGLE, sc.mesh.seed = 1;
     R->ok = 0;
-    {
-        /* probe 0 stays at L/2 (profile, amplitude and zero crossings are read there) */
-        static const int off[NPROBE] = {0, -1, 1, -2, 2};
-        int k;
-        sc.n_probes = NPROBE;
-        for (k = 0; k < NPROBE; ++k) {
-            sc.probe[k] = base->probe[0];
-            sc.probe[k].from[0] = sc.probe[k].to[0] = 0.125 + off[k] * 0.0125;
-        }
-    }
+    sp_place_probes(&sc, base); /* probe 0 stays at L/2 (profile, amplitude and zero crossings are read there) */
     if (wr_scene_run_create(&run, &sc, &d) != WR_OK) {
         fprintf(stderr, "validate_stretch: %s\n", d.message);
         return -1;
@@ -116,7 +87,7 @@ static int run_row(const wr_scene *base, row *R, const char *datpath) {
     }
     fprintf(stderr, "== %s %s: r = %.3f mm, %d vertices, mean edge %.3f mm\n", R->delaunay ? "delaunay" : "grid", R->label,
             1e3 * R->r, (int)R->nv, 1e3 * R->mean_edge);
-    R->status = wr_scene_run_solve(&run, progress, NULL, &d);
+    R->status = wr_scene_run_solve(&run, sp_progress, NULL, &d);
     fprintf(stderr, "\n");
     R->t_solve = run.t_solve;
     R->newton = run.newton_iterations;
@@ -153,8 +124,8 @@ static int run_row(const wr_scene *base, row *R, const char *datpath) {
                 if (wr_scene_run_probe(&run, k, &rk, &d) != WR_OK) continue;
                 R->count_p[R->np] = rk.count, R->lambda_p[R->np] = rk.wavelength, R->np++;
             }
-            R->count = median5(R->count_p, R->np);
-            R->wavelength = median5(R->lambda_p, R->np);
+            R->count = sp_median(R->count_p, R->np);
+            R->wavelength = sp_median(R->lambda_p, R->np);
             R->count_min = R->count_max = R->count_p[0];
             for (k = 1; k < R->np; ++k) R->count_min = fmin(R->count_min, R->count_p[k]), R->count_max = fmax(R->count_max, R->count_p[k]);
             R->wavelength_ls = res.wavelength_ls;

@@ -1,0 +1,71 @@
+/* stretch_probe.h — validation-side helpers shared by the statics stretch-test drivers
+ * (validate_stretch, validate_statics_stability, validate_statics_loop): the Newton progress line,
+ * the five probe lines across the width through the wrinkled central band, and their median crest
+ * count and wavelength. Static functions only (each driver is its own program). */
+#ifndef WRINKLE_VALIDATION_STRETCH_PROBE_H
+#define WRINKLE_VALIDATION_STRETCH_PROBE_H
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "scene.h"
+
+#define SP_NPROBE 5 /* probe lines at x = L/2 + k L/20, k = 0, −1, 1, −2, 2 (probe 0 at L/2) */
+
+static inline void sp_progress(void *user, int32_t step, int32_t n, const wr_statics_stats *st) {
+    (void)user;
+    fprintf(stderr, "\r   step %d/%d Newton %3d |g|/ref %.1e %.1f s   ", (int)step, (int)n, (int)st->iterations,
+            st->grad_ref > 0 ? st->grad_norm / st->grad_ref : 0.0, st->t_total);
+}
+
+static inline int sp_cmp_d(const void *a, const void *b) {
+    double x = *(const double *)a, y = *(const double *)b;
+    return x < y ? -1 : x > y;
+}
+
+/* median of n <= SP_NPROBE values (the mean of the middle two for even n) */
+static inline double sp_median(const double *v, int n) {
+    double t[SP_NPROBE];
+    int i;
+    for (i = 0; i < n; ++i) t[i] = v[i];
+    qsort(t, (size_t)n, sizeof *t, sp_cmp_d);
+    return n % 2 ? t[n / 2] : 0.5 * (t[n / 2 - 1] + t[n / 2]);
+}
+
+/* the scene's first probe (the mid-width line of examples/scenes/stretch.json) copied to the five
+ * lines across the width; the wrinkles sit in the middle of the sheet, so one line at L/2 is as good
+ * as its luck */
+static inline void sp_place_probes(wr_scene *sc, const wr_scene *base) {
+    static const int off[SP_NPROBE] = {0, -1, 1, -2, 2};
+    int k;
+    sc->n_probes = SP_NPROBE;
+    for (k = 0; k < SP_NPROBE; ++k) {
+        sc->probe[k] = base->probe[0];
+        sc->probe[k].from[0] = sc->probe[k].to[0] = 0.125 + off[k] * 0.0125;
+    }
+}
+
+/* median count and wavelength over the probes that could be analysed (*np of them; NAN when none),
+ * probe 0's peak-to-peak amplitude, and the sheet's peak |w| */
+static inline void sp_measure(const wr_scene_run *run, double *count, double *wavelength, double *amp_p2p, double *zmax,
+                              int *np_out) {
+    double c[SP_NPROBE], l[SP_NPROBE];
+    int k, np = 0;
+    int32_t i;
+    wr_diag d;
+    *amp_p2p = 0.0;
+    for (k = 0; k < SP_NPROBE; ++k) {
+        wr_spectrum_result rk;
+        if (wr_scene_run_probe(run, k, &rk, &d) != WR_OK) continue;
+        if (k == 0) *amp_p2p = rk.amplitude_p2p;
+        c[np] = rk.count, l[np] = rk.wavelength, np++;
+    }
+    *count = np ? sp_median(c, np) : NAN;
+    *wavelength = np ? sp_median(l, np) : NAN;
+    *zmax = 0.0;
+    for (i = 0; i < run->mesh.nv; ++i) *zmax = fmax(*zmax, fabs(run->x[3 * i + 2]));
+    if (np_out) *np_out = np;
+}
+
+#endif /* WRINKLE_VALIDATION_STRETCH_PROBE_H */
