@@ -114,7 +114,7 @@ Test(loads, cantilever_deflection_linear_in_weight) {
  * at 20, −0.002 % at 40, i.e. second order to the model's −0.01 % floor. Tolerance 0.3 % at nx = 20
  * (the nx = 10 error plus the model term, rounded up) and 0.1 % at nx = 40. Halved gravity gives
  * 2^(−1/3): −21 %. */
-static double hanging_sag(int32_t nx, wr_statics_stats *out, double *resid_rel) {
+static double hanging_sag(int32_t nx, double grad_tol, wr_statics_stats *out, double *resid_rel) {
     const double L = 1.0, W = 0.1, E = 3e6, h = 1e-3, rhoA = 0.1;
     wr_mesh m;
     wr_shell s;
@@ -143,7 +143,7 @@ static double hanging_sag(int32_t nx, wr_statics_stats *out, double *resid_rel) 
     memset(&sd, 0, sizeof sd);
     sd.loads.gravity[2] = -G_;
     sd.loads.fixed = fixed;
-    sd.stop.grad_tol = 1e-10;
+    sd.stop.grad_tol = grad_tol;
     sd.stop.max_iter = 100;
     cr_assert_eq(wr_statics_solve(&s, x, &sd, &st, &dg), WR_OK, "nx %d: %s", (int)nx, dg.message);
     for (v = 0; v < m.nv; ++v)
@@ -183,7 +183,7 @@ Test(loads, hanging_membrane_sag_elastic_cable) {
     const double L = 1.0, E = 3e6, h = 1e-3, rhoA = 0.1;
     const double ref = L * cbrt(3.0 * rhoA * G_ * L / (64.0 * E * h));
     wr_statics_stats s20, s40;
-    double r20, r40, d20 = hanging_sag(20, &s20, &r20), d40 = hanging_sag(40, &s40, &r40);
+    double r20, r40, d20 = hanging_sag(20, 1e-10, &s20, &r20), d40 = hanging_sag(40, 1e-10, &s40, &r40);
     cr_log_info("hanging membrane: cable sag %.6e m (d/L %.4f); nx 20: %.6e (%+.3f %%), nx 40: %.6e (%+.3f %%); "
                 "independent residual %.1e / %.1e of |f_ext|",
                 ref, ref / L, d20, 100 * (d20 / ref - 1), d40, 100 * (d40 / ref - 1), r20, r40);
@@ -193,19 +193,21 @@ Test(loads, hanging_membrane_sag_elastic_cable) {
 
 /* The Newton stop, seen from outside the solver: at the returned state of a converged solve
  * (stop = GRADIENT), the equilibrium residual recomputed from shell.h's gradient and lumped masses
- * computed here must be within grad_tol (1e-10) of |f_ext| — the solver's own rule, since at the flat
- * start ∇Π = −f_ext. 1.5x slack for the different summation order. A stop rule loosened by any
- * factor above ~2 leaves a residual the rule does not allow (the well-conditioned membrane converges
+ * computed here must be within grad_tol (1e-8) of |f_ext| — the solver's own rule, since at the flat
+ * start ∇Π = −f_ext. 1.5x slack for the different summation order. grad_tol sits well above this
+ * problem's round-off floor (~1.2e-10 of |f_ext| on some machines, where a 1e-10 target ends on the
+ * step rule instead), so the gradient rule is the one tested. A stop rule loosened by any factor
+ * above ~2 leaves a residual the rule does not allow (the well-conditioned membrane converges
  * quadratically, so a loose stop is seen whenever it stops a step early). */
 Test(loads, newton_stop_residual_checked_independently) {
     wr_statics_stats st;
     double r;
-    (void)hanging_sag(20, &st, &r);
+    (void)hanging_sag(20, 1e-8, &st, &r);
     cr_log_info("membrane nx 20: stop %d after %d Newton steps, solver |g|/ref %.2e, independent %.2e", (int)st.stop,
                 (int)st.iterations, st.grad_norm / st.grad_ref, r);
     cr_assert_eq(st.stop, WR_NEWTON_STOP_GRADIENT, "well-conditioned membrane: expected the gradient rule, got %d",
                  (int)st.stop);
-    cr_assert(r <= 1.5e-10, "independent equilibrium residual %.3e of |f_ext| above grad_tol 1e-10", r);
+    cr_assert(r <= 1.5e-8, "independent equilibrium residual %.3e of |f_ext| above grad_tol 1e-8", r);
 }
 
 /* ---- pressurised sphere: exact for StVK ----------------------------------------------------------------
