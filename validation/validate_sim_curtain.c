@@ -53,6 +53,7 @@
 
 #include "wrinkle/wrinkle.h"
 #include "vresult.h"
+#include "zc_probe.h"
 
 #define PI 3.14159265358979323846
 #define GRAV 9.81
@@ -148,20 +149,6 @@ static void detrend_cubic(double *z, int32_t n) {
     }
 }
 
-/* 2 · length / sign changes; a sign change counts once the signal leaves ±ZC_BAND of its peak. */
-static double zc_wavelength(const double *v, int32_t n, double length) {
-    double vmax = 0.0, band;
-    int32_t i, nc = 0, sgn = 0;
-    for (i = 0; i < n; ++i) vmax = fmax(vmax, fabs(v[i]));
-    if (!(vmax > 0.0)) return NAN;
-    band = ZC_BAND * vmax;
-    for (i = 0; i < n; ++i) {
-        int32_t s = v[i] > band ? 1 : v[i] < -band ? -1 : 0;
-        if (s && sgn && s != sgn) ++nc;
-        if (s) sgn = s;
-    }
-    return nc > 0 ? 2.0 * length / nc : NAN;
-}
 
 static double max_speed(const double *v, int32_t nv) {
     double s = 0.0;
@@ -303,7 +290,7 @@ static int curtain_measure(crun *R) {
         else
             R->lfft[R->nd] = NAN, R->amp[R->nd] = 0.0;
         detrend_cubic(z, NPROBE_SAMPLES);
-        R->lzc[R->nd] = zc_wavelength(z, NPROBE_SAMPLES, len);
+        R->lzc[R->nd] = zc_wavelength(z, NPROBE_SAMPLES, len, ZC_BAND, NULL);
         R->nd++;
     }
     R->L_zc = R->L_fft = NAN;

@@ -90,6 +90,7 @@
 #include "wrinkle/wrinkle.h"
 #include "pattern.h"
 #include "vresult.h"
+#include "zc_probe.h"
 
 #define PI 3.14159265358979323846
 #define GRAV 9.81
@@ -221,22 +222,6 @@ static void detrend_cubic(double *z, int32_t n) {
     }
 }
 
-/* D2: sign changes with a ±ZC_BAND hysteresis band (count in *nc); 2 L / nc, NaN without any. */
-static double zc_wavelength(const double *v, int32_t n, double length, int32_t *ncross) {
-    double vmax = 0.0, band;
-    int32_t i, nc = 0, sgn = 0;
-    for (i = 0; i < n; ++i) vmax = fmax(vmax, fabs(v[i]));
-    *ncross = 0;
-    if (!(vmax > 0.0)) return NAN;
-    band = ZC_BAND * vmax;
-    for (i = 0; i < n; ++i) {
-        int32_t s = v[i] > band ? 1 : v[i] < -band ? -1 : 0;
-        if (s && sgn && s != sgn) ++nc;
-        if (s) sgn = s;
-    }
-    *ncross = nc;
-    return nc > 0 ? 2.0 * length / nc : NAN;
-}
 
 /* ---- set-up ------------------------------------------------------------------------------------ */
 
@@ -513,7 +498,7 @@ static int garment_probes(grun *R) {
         else R->lfft[k] = NAN;
         R->amp[k] = 0.0;
         for (i = 0; i < NPROBE; ++i) R->amp[k] = fmax(R->amp[k], fabs(rho[i]));
-        R->lzc[k] = zc_wavelength(rho, NPROBE, R->plen[k], &R->ncross[k]);
+        R->lzc[k] = zc_wavelength(rho, NPROBE, R->plen[k], ZC_BAND, &R->ncross[k]);
     }
     wr_probe_free(&pr);
     free(comp);
