@@ -8,6 +8,16 @@ mkdir -p validation/results validation/figures
 # not cap those teams, OMP_THREAD_LIMIT does. A caller's own settings win.
 : "${OMP_THREAD_LIMIT:=1}" "${OMP_NUM_THREADS:=1}" "${OPENBLAS_NUM_THREADS:=1}" "${OMP_WAIT_POLICY:=PASSIVE}"
 export OMP_THREAD_LIMIT OMP_NUM_THREADS OPENBLAS_NUM_THREADS OMP_WAIT_POLICY
+# OpenBLAS chooses its kernels from the CPU at run time, and kernels for different CPUs round
+# differently: the same binaries gave results differing at ~1e-5 relative on two 2-core EPYC machines
+# (SkylakeX kernels on one, Haswell/Zen on the other), enough to move TFW's nearly flat wave-count
+# optimum by a few waves. Pinning the Haswell kernels (AVX2 + FMA, what the committed results use)
+# makes the numbers the same on every such CPU; a CPU without AVX2/FMA keeps its own choice (a forced
+# core it cannot run would fault), and each result file names the core it ran with ("machine").
+if [ -z "${OPENBLAS_CORETYPE:-}" ] && grep -q ' avx2' /proc/cpuinfo 2>/dev/null && grep -q ' fma' /proc/cpuinfo 2>/dev/null; then
+    OPENBLAS_CORETYPE=Haswell
+    export OPENBLAS_CORETYPE
+fi
 status=0
 # The dynamic-simulator cases (validate_sim_*) run --quick here (a smoke version, its own result
 # file <case>_quick.json); `sh validation/run_all.sh --long` (make validate-long) runs only them,

@@ -1,8 +1,9 @@
 /* vresult.c — see vresult.h. Uses cJSON (Debian libcjson-dev). */
-#define _POSIX_C_SOURCE 200809L
+#define _GNU_SOURCE /* RTLD_DEFAULT */
 #include "vresult.h"
 
 #include <cjson/cJSON.h>
+#include <dlfcn.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -21,6 +22,21 @@ struct wr_vres {
 const char *wr_vres_dir(void) {
     const char *d = getenv("WRINKLE_RESULTS_DIR");
     return (d && *d) ? d : "validation/results";
+}
+
+/* Appends ", OpenBLAS core NAME" when OpenBLAS is the BLAS in this process. OpenBLAS picks its
+ * kernels at run time from the CPU (DYNAMIC_ARCH), and the kernels sum in different orders: the same
+ * binary gave tfw_stretched_sheet's peak amplitude 0.34535165 mm with the SkylakeX kernels and
+ * 0.34531994 mm with the Haswell/Zen ones (2026-12-02, OPENBLAS_CORETYPE forced on one machine), and
+ * TFW's nearly flat wave-count optimum moves with such round-off. So a result names its kernel.
+ * Looked up with dlsym so that this file does not link OpenBLAS itself (libblas.so.3 may be any BLAS). */
+static void blas_core(char *out, size_t n) {
+    void *sym = dlsym(RTLD_DEFAULT, "openblas_get_corename");
+    char *(*corename)(void);
+    size_t k = strlen(out);
+    if (!sym || k + 1 >= n) return;
+    memcpy(&corename, &sym, sizeof corename); /* object to function pointer without a pedantic cast */
+    snprintf(out + k, n - k, ", OpenBLAS core %s", corename());
 }
 
 static void machine_string(char *out, size_t n) {
@@ -43,6 +59,7 @@ static void machine_string(char *out, size_t n) {
         fclose(f);
     }
     snprintf(out, n, "%s, %ld cores", model, cores);
+    blas_core(out, n);
 }
 
 wr_vres *wr_vres_begin(const char *case_id, const char *title) {
