@@ -113,6 +113,19 @@ for d in "$root"/bin/wrinkle-*; do
 done
 [ $found -gt 0 ] || { echo "driver-check: no drivers in bin/ (run make all)"; exit 2; }
 
+# The validation drivers rewrite their result files when they run, so --help must print usage and
+# write nothing, and an unknown argument must be refused (exit 2, one line), not ignored into a run.
+mkdir -p "$tmp/vres"
+for d in "$root"/bin/validate_*; do
+    [ -x "$d" ] || continue
+    n=$(basename "$d")
+    if (cd "$tmp/cwd" && WRINKLE_RESULTS_DIR="$tmp/vres" "$d" --help) >"$tmp/out" 2>"$tmp/err" </dev/null &&
+       grep -qi usage "$tmp/out" && [ -z "$(ls -A "$tmp/vres")" ]; then ok
+    else bad "$n --help: non-zero exit, no usage text, or a result written"; rm -rf "$tmp/vres"/*; fi
+    expect_fail "$n unknown option" env WRINKLE_RESULTS_DIR="$tmp/vres" "$d" --definitely-not-an-option
+    [ -z "$(ls -A "$tmp/vres")" ] && ok || { bad "$n unknown option: a result written"; rm -rf "$tmp/vres"/*; }
+done
+
 B=$root/bin
 if [ -x "$B/wrinkle-resolution" ]; then
     expect_fail "wrinkle-resolution negative B" "$B/wrinkle-resolution" --bending -1 --young 1e6

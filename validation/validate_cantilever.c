@@ -46,6 +46,7 @@
 #include "elastica_ref.h"
 #include "scene.h"
 #include "vresult.h"
+#include "vargs.h"
 
 #define SCENE_PATH "examples/scenes/cantilever.json"
 #define L_MAIN 0.100
@@ -181,7 +182,7 @@ static void cant_table(wr_vres *v, const cant_case *cc, const cant_row *rows, in
     wr_vres_table_md(v, table);
 }
 
-int main(void) {
+static int validation_main(void) {
     wr_scene sc;
     wr_diag d;
     wr_resolution_model mdl = wr_resolution_model_paper();
@@ -352,4 +353,11 @@ int main(void) {
         }
     wr_scene_free(&sc);
     return wr_vres_finish(v);
+}
+
+int main(int argc, char **argv) {
+    int rc = wr_vargs(argc, argv, "validate_cantilever",
+                      "Style3D Fig. 18a-c: cantilever tip deflection against the heavy elastica, over mesh resolution.",
+                      "cantilever", NULL, NULL, NULL);
+    return rc >= 0 ? rc : validation_main();
 }

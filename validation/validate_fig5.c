@@ -19,6 +19,7 @@
 
 #include "vresult.h"
 #include "wrinkle/resolution.h"
+#include "vargs.h"
 
 #define NB 61 /* B samples: 10 per decade over 6 decades */
 #define NE 41 /* E samples: 10 per decade over 4 decades */
@@ -29,7 +30,7 @@
 
 static double grid_r[NB][NE];
 
-int main(void) {
+static int validation_main(void) {
     wr_vres *v = wr_vres_begin("style3d_fig5", "Style3D Fig. 5: resolution r over bending stiffness B and Young's modulus E");
     wr_resolution_model m = wr_resolution_model_paper();
     wr_resolution_domain_info dom;
@@ -157,4 +158,11 @@ int main(void) {
     if (failed < 0) return 2;
     printf("failed quantities: %d\n", failed);
     return failed;
+}
+
+int main(int argc, char **argv) {
+    int rc = wr_vargs(argc, argv, "validate_fig5",
+                      "Style3D Fig. 5: the resolution r over bending stiffness B and Young's modulus E (Eq. 4).",
+                      "style3d_fig5", NULL, NULL, NULL);
+    return rc >= 0 ? rc : validation_main();
 }

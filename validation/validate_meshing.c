@@ -24,6 +24,7 @@
 #include "pattern.h"
 #include "vresult.h"
 #include "wrinkle/mesher.h"
+#include "vargs.h"
 
 typedef struct fabric_row {
     const char *name;
@@ -74,7 +75,7 @@ static void figure_path(char *out, size_t n, const char *file) {
     snprintf(out, n, "%s/../figures/%s", wr_vres_dir(), file);
 }
 
-int main(void) {
+static int validation_main(void) {
     wr_vres *v = wr_vres_begin("style3d_meshing", "Style3D Sec. 4.3: pattern -> optimal mesh (Table 1 squares, Fig. 14, garment examples)");
     char md[8192], line[2048], fig[4096], name[256];
     size_t len;
@@ -273,4 +274,11 @@ int main(void) {
         wr_vres_check(v, "meshing runs that failed", "runs", 0.0, failed_runs, "must be 0", 0);
     }
     return wr_vres_finish(v) == 0 && failed_runs == 0 ? 0 : 1;
+}
+
+int main(int argc, char **argv) {
+    int rc = wr_vargs(argc, argv, "validate_meshing",
+                      "Style3D Sec. 4.3: patterns meshed at the optimal resolution (Table 1 squares, Fig. 14, garments).",
+                      "style3d_meshing", NULL, NULL, NULL);
+    return rc >= 0 ? rc : validation_main();
 }

@@ -28,6 +28,7 @@
 #include "scene.h"
 #include "stretch_probe.h"
 #include "vresult.h"
+#include "vargs.h"
 
 #define SCENE_PATH "examples/scenes/stretch.json"
 #define NPROBE SP_NPROBE
@@ -171,13 +172,13 @@ static const char *fmt_count(char *b, size_t n, const row *R) {
     return b;
 }
 
-int main(int argc, char **argv) {
+static int validation_main(int quick) {
     wr_scene sc;
     wr_diag d;
     wr_resolution_model mdl = wr_resolution_model_paper();
     double B, r_opt, lam_cm, T, L = 0.25, W = 0.1, E, h, nu;
     row rows[2 * NRES]; /* [0, NRES): grid, [NRES, 2 NRES): Delaunay; 2.5 mm, r_opt, 2 r_opt, 5 mm */
-    int nrows = 2 * NRES, i, quick = argc > 1 && strcmp(argv[1], "--quick") == 0;
+    int nrows = 2 * NRES, i;
     char dat[2 * NRES][4096], buf[4096], table[8192], figdir[4096];
     const row *g25 = &rows[0], *gop = &rows[1];
     wr_vres *v;
@@ -367,4 +368,12 @@ int main(int argc, char **argv) {
     }
     wr_scene_free(&sc);
     return wr_vres_finish(v);
+}
+
+int main(int argc, char **argv) {
+    static const char *const flags[] = {"--quick", NULL};
+    int set[1], rc = wr_vargs(argc, argv, "validate_stretch",
+                              "Style3D Fig. 16 stretch test: wrinkle count over mesh resolution (StVK statics).",
+                              "stretch", flags, "  --quick: 5 mm and r_opt only (a smoke test).\n", set);
+    return rc >= 0 ? rc : validation_main(set[0]);
 }

@@ -14,6 +14,7 @@
 
 #include "vresult.h"
 #include "wrinkle/resolution.h"
+#include "vargs.h"
 
 /* Table 1 transcribed from the paper text (B in N·m, E in N/m², r in mm). */
 typedef struct row {
@@ -34,7 +35,7 @@ static const row rows[] = {
                       * up to 0.3 %), c1 and c2 4 digits; the rest is room for the paper's unstated rounding of
                       * the constants it solved with (this driver's original band, kept) */
 
-int main(void) {
+static int validation_main(void) {
     wr_vres *v = wr_vres_begin("style3d_table1", "Style3D Table 1: optimal resolution from B and E (Eq. 4)");
     wr_resolution_model m = wr_resolution_model_paper();
     wr_resolution_domain_info dom;
@@ -94,4 +95,11 @@ int main(void) {
     if (failed < 0) return 2;
     printf("failed quantities: %d\n", failed);
     return failed;
+}
+
+int main(int argc, char **argv) {
+    int rc = wr_vargs(argc, argv, "validate_table1",
+                      "Style3D Table 1: the optimal resolution of each fabric from B and E (Eq. 4).",
+                      "style3d_table1", NULL, NULL, NULL);
+    return rc >= 0 ? rc : validation_main();
 }

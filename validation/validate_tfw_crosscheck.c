@@ -20,6 +20,7 @@
 #include <cjson/cJSON.h>
 
 #include "tfw_probe.h"
+#include "vargs.h"
 
 #define WALL_BUDGET 200.0
 #define NPROBE 512
@@ -202,7 +203,7 @@ static void cylinder(res *o) {
     wr_mesh_free(&m);
 }
 
-int main(void) {
+static int validation_main(void) {
     static const int32_t snx[NS] = {40, 56, 84}, sny[NS] = {16, 23, 34};
     static const int32_t cnu[NC] = {40, 56, 84}, cnh[NC] = {32, 44, 66};
     /* job order (sheet s0 s2, cylinder c0 = TFW's 1.3k grid, then sheet s1, cylinder c1 c2; the
@@ -308,4 +309,11 @@ int main(void) {
         }
     }
     return wr_vres_finish(v) < 0 ? 1 : 0;
+}
+
+int main(int argc, char **argv) {
+    int rc = wr_vargs(argc, argv, "validate_tfw_crosscheck",
+                      "TFW against the kit's StVK reference at increasing resolution (reads other cases' results).",
+                      "tfw_crosscheck", NULL, NULL, NULL);
+    return rc >= 0 ? rc : validation_main();
 }

@@ -32,6 +32,7 @@
  * 0.78 + 7.32 s (936). StVK references (paper: 40k / 40k / 30k vertices) are not run here.
  * Output: validation/results/tfw_inflatables.json, figures/tfw_inflatables.png. */
 #include "tfw_probe.h"
+#include "vargs.h"
 
 #define NSAMP 4096
 #define NF 3
@@ -244,7 +245,7 @@ static void run(infl *c, const wr_mesh *panel, double rho_split_rel) {
     free(x);
 }
 
-int main(void) {
+static int validation_main(void) {
     static infl cs[4];
     wr_mesh pan[4];
     wr_diag d;
@@ -399,4 +400,11 @@ int main(void) {
         }
     for (i = 0; i < 4; ++i) wr_mesh_free(&pan[i]);
     return wr_vres_finish(v) < 0 ? 1 : 0;
+}
+
+int main(int argc, char **argv) {
+    int rc = wr_vargs(argc, argv, "validate_tfw_inflatables",
+                      "TFW Sec. 6 inflated structures: torus, Mylar balloon, teabag (Figs. 11-13).",
+                      "tfw_inflatables", NULL, NULL, NULL);
+    return rc >= 0 ? rc : validation_main();
 }

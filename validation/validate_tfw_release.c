@@ -25,6 +25,7 @@
 #include "wrinkle/tfw.h"
 #include "tfw_probe.h"
 #include "vresult.h"
+#include "vargs.h"
 
 /* per-vertex numbers, one per line (their amplitude / phase files) */
 static double *read_column(const char *path, int32_t n) {
@@ -284,7 +285,7 @@ static dress_out run_dress(const char *dir, wr_wf_kappa kappa_alt) {
     return o;
 }
 
-int main(void) {
+static int validation_main(void) {
     const char *dir = getenv("WR_TFW_RELEASE_DATA");
     char p_rest[4096], p_base[4096], p_clamp[4096], p_phi[4096], buf[512];
     double *their_om, *their_a;
@@ -398,4 +399,11 @@ int main(void) {
     wr_mesh_free(&rest);
     wr_mesh_free(&base);
     return wr_vres_finish(vr) < 0 ? 1 : 0;
+}
+
+int main(int argc, char **argv) {
+    int rc = wr_vargs(argc, argv, "validate_tfw_release",
+                      "TFW against the authors' release on their pressurised disk ($WR_TFW_RELEASE_DATA).",
+                      "tfw_release", NULL, NULL, NULL);
+    return rc >= 0 ? rc : validation_main();
 }

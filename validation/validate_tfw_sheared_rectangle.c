@@ -24,6 +24,7 @@
 #include "wrinkle/tfw.h"
 #include "vresult.h"
 #include "tfw_probe.h"
+#include "vargs.h"
 
 #define L_SHEET 0.38
 #define H_SHEET 0.128
@@ -33,7 +34,7 @@
 #define NU 0.3
 #define THICK 25e-6
 
-int main(void) {
+static int validation_main(void) {
     wr_diag d;
     wr_mesh m;
     wr_shell sh;
@@ -171,4 +172,11 @@ int main(void) {
     wr_shell_free(&sh);
     wr_mesh_free(&m);
     return i < 0 ? 1 : 0;
+}
+
+int main(int argc, char **argv) {
+    int rc = wr_vargs(argc, argv, "validate_tfw_sheared_rectangle",
+                      "TFW Sec. 6 sheared rectangle (Fig. 9): wrinkle count.",
+                      "tfw_sheared_rectangle", NULL, NULL, NULL);
+    return rc >= 0 ? rc : validation_main();
 }

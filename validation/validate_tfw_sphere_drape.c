@@ -25,6 +25,7 @@
  * where one converges); sanity checks: base converged, no vertex inside the sphere.
  * Output: validation/results/tfw_sphere_drape.json, figures/tfw_sphere_drape.png. */
 #include "tfw_probe.h"
+#include "vargs.h"
 
 #define SIDE 1.0
 #define RBALL 0.2
@@ -210,7 +211,7 @@ static void rho_field(const wr_mesh *m, double *out) {
     for (v = 0; v < m->nv; ++v) out[v] = hypot(m->pos[3 * v], m->pos[3 * v + 1]);
 }
 
-int main(void) {
+static int validation_main(void) {
     wr_diag d;
     wr_mesh m, mref, sm;
     wr_wf_material mat;
@@ -446,4 +447,11 @@ int main(void) {
     free(sig_r);
     for (i = 0; i < NRAD; ++i) free(sig_n[i]);
     return i < 0 ? 1 : 0;
+}
+
+int main(int argc, char **argv) {
+    int rc = wr_vargs(argc, argv, "validate_tfw_sphere_drape",
+                      "TFW Sec. 6 sphere drape (Fig. 5): radial wrinkles.",
+                      "tfw_sphere_drape", NULL, NULL, NULL);
+    return rc >= 0 ? rc : validation_main();
 }

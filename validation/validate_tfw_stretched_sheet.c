@@ -21,6 +21,7 @@
 #include "wrinkle/tfw.h"
 #include "vresult.h"
 #include "tfw_probe.h"
+#include "vargs.h"
 
 #define L_SHEET 0.25
 #define H_SHEET 0.1
@@ -121,7 +122,7 @@ done:
     return fail;
 }
 
-int main(void) {
+static int validation_main(void) {
     wr_diag d;
     wr_mesh m;
     wr_shell sh;
@@ -293,4 +294,11 @@ int main(void) {
     wr_shell_free(&sh);
     wr_mesh_free(&m);
     return i < 0 ? 1 : 0;
+}
+
+int main(int argc, char **argv) {
+    int rc = wr_vargs(argc, argv, "validate_tfw_stretched_sheet",
+                      "TFW Sec. 6 stretched sheet (Fig. 6): wave periods and peak amplitude.",
+                      "tfw_stretched_sheet", NULL, NULL, NULL);
+    return rc >= 0 ? rc : validation_main();
 }

@@ -32,6 +32,7 @@
 #include "wrinkle/mesher.h"
 #include "vresult.h"
 #include "tfw_probe.h"
+#include "vargs.h"
 
 #define PI_ 3.14159265358979323846
 #define R_CYL 1.0
@@ -324,7 +325,7 @@ static const char *kind_name(int k) {
                                                                      : "regular, diagonals against the wrinkles";
 }
 
-int main(void) {
+static int validation_main(void) {
     /* Delaunay resolutions aimed at the paper's 180 / 344 / 688 / 1309 / 2543 vertices (our meshes
      * have ~7 % more vertices than the lattice count 2A/(√3 r²) at r, validate_meshing) */
     static const double paper_nv[5] = {180, 344, 688, 1309, 2543}, paper_del[5] = {46, 46, 47, 46, 45};
@@ -456,4 +457,11 @@ int main(void) {
     }
     free(profile);
     return wr_vres_finish(v) < 0 ? 1 : 0;
+}
+
+int main(int argc, char **argv) {
+    int rc = wr_vargs(argc, argv, "validate_tfw_twisted_cylinder",
+                      "TFW Sec. 6 twisted cylinder: wave count over a resolution sweep.",
+                      "tfw_twisted_cylinder", NULL, NULL, NULL);
+    return rc >= 0 ? rc : validation_main();
 }
