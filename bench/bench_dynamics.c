@@ -168,6 +168,11 @@ static int case_run(const char *kind, int32_t n, double mu, int frames, int verb
     memset(out, 0, sizeof *out);
     if (case_make(&c, kind, n, mu)) return 1;
     if (getenv("BENCH_NO_HALVING")) c.dd.time.has_max_halvings = 1, c.dd.time.max_halvings = 0;
+    if (getenv("BENCH_LINEAR")) { /* the linear method by name (wr_solver_method_name), default pcg-block3 */
+        int m;
+        for (m = 1; m < WR_SOLVER_METHOD_COUNT; ++m)
+            if (!strcmp(getenv("BENCH_LINEAR"), wr_solver_method_name((wr_solver_method)m))) c.dd.linear.method = (wr_solver_method)m;
+    }
     if (wr_dyn_create(&sim, &c.s, &c.dd, &dg) != WR_OK) {
         fprintf(stderr, "%s\n", dg.message);
         case_free(&c);
