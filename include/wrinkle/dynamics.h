@@ -118,8 +118,10 @@
  *   IC(0) cuts PCG iterations per Newton step 5–8× on the contact frames (5k vertices: 448 → 74
  *   sphere, 418 → 59 mannequin) and the solve time 20–35 %, but the solves are only ~25–30 % of NS
  *   (assembly and projection dominate), its factorisation loses on easy steps, and per-frame cost
- *   follows the Newton count the trajectory sets; with no clear per-frame win up to 5k vertices
- *   block-Jacobi stays the default. wr_dyn_stats.t_linear reports the solves' share of t_ns.
+ *   follows the Newton count the trajectory sets; no clear per-frame win up to 5k vertices. At 20k
+ *   (solves 55 % of NS) IC(0) gave −27 % solve time and −8 % CPU per frame over 3 contact frames,
+ *   so block-Jacobi stays the default and IC(0) is the option for ≥ 2e4 vertices.
+ *   wr_dyn_stats.t_linear reports the solves' share of t_ns.
  *
  * ON UNITS
  *   SI: m, s, kg (shell density), N/m (κ, sewing), N (thread EA), 1/s (α), s (β), m/s (tolerances).
