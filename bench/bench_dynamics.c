@@ -23,7 +23,9 @@
  *
  * Usage: bench_dynamics [max_vertices]          the whole bench (a few minutes at 1e5)
  *        bench_dynamics frames CASE N FRAMES [mu] per-frame detail of one case (profiling):
- *                                               CASE sphere|mannequin, N grid cells per side */
+ *                                               CASE sphere|mannequin, N grid cells per side
+ *        BENCH_LINEAR=pcg-ic0 (any wr_solver_method_name) picks desc.linear.method (default
+ *        pcg-block3); per-frame lines show the linear solves' wall time (lin, part of NS). */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdio.h>
@@ -168,6 +170,11 @@ static int case_run(const char *kind, int32_t n, double mu, int frames, int verb
     memset(out, 0, sizeof *out);
     if (case_make(&c, kind, n, mu)) return 1;
     if (getenv("BENCH_NO_HALVING")) c.dd.time.has_max_halvings = 1, c.dd.time.max_halvings = 0;
+    if (getenv("BENCH_LINEAR")) { /* the linear method by name (wr_solver_method_name), default pcg-block3 */
+        int m;
+        for (m = 1; m < WR_SOLVER_METHOD_COUNT; ++m)
+            if (!strcmp(getenv("BENCH_LINEAR"), wr_solver_method_name((wr_solver_method)m))) c.dd.linear.method = (wr_solver_method)m;
+    }
     if (wr_dyn_create(&sim, &c.s, &c.dd, &dg) != WR_OK) {
         fprintf(stderr, "%s\n", dg.message);
         case_free(&c);
@@ -180,9 +187,9 @@ static int case_run(const char *kind, int32_t n, double mu, int frames, int verb
         if (f == WR_BENCH_WARM) c0 = cpu_seconds();
         s = wr_dyn_step(&sim, &st, &fs, &dg);
         if (verbose)
-            printf("  frame %2d  NS %8.1f ms  CH %8.1f ms  steps %d halv %d  Newton %3d  PCG %5d  LS %3d  contacts %6d  "
+            printf("  frame %2d  NS %8.1f ms  lin %8.1f ms  CH %8.1f ms  steps %d halv %d  Newton %3d  PCG %5d  LS %3d  contacts %6d  "
                    "dmin %.2e  ccd %.2e  pat %d proj %d  %s\n",
-                   f, 1e3 * fs.t_ns, 1e3 * fs.t_ch, (int)fs.steps, (int)fs.halvings, (int)fs.newton_iterations,
+                   f, 1e3 * fs.t_ns, 1e3 * fs.t_linear, 1e3 * fs.t_ch, (int)fs.steps, (int)fs.halvings, (int)fs.newton_iterations,
                    (int)fs.linear_iterations, (int)fs.line_search_evals, (int)fs.n_contacts, fs.min_distance,
                    fs.ccd_alpha_min, (int)fs.pattern_builds, (int)fs.elements_projected, wr_newton_stop_name(fs.stop));
         if (s != WR_OK) {

@@ -109,6 +109,20 @@
  *   caller may change between steps (a gathering schedule ramps them from the pattern length to
  *   ρ times it).
  *
+ * ON THE LINEAR SOLVE
+ *   desc.linear.method picks Newton's linear solver (spd.h); zero means WR_SOLVER_PCG_BLOCK3, the
+ *   paper's 3×3 block-Jacobi PCG, and rel_tol zero means its 1e-5, so the paper's setup is the
+ *   default. WR_SOLVER_PCG_IC0 (incomplete Cholesky on the 3×3-block pattern, spd.h ON BLOCKED
+ *   KERNELS) and WR_SOLVER_CHOLMOD (a fresh factorisation per Newton step) are the alternatives,
+ *   also as "linear" in the scene's solver object. Measured (bench/RESULTS.md, "Preconditioner"):
+ *   IC(0) cuts PCG iterations per Newton step 5–8× on the contact frames (5k vertices: 448 → 74
+ *   sphere, 418 → 59 mannequin) and the solve time 20–35 %, but the solves are only ~25–30 % of NS
+ *   (assembly and projection dominate), its factorisation loses on easy steps, and per-frame cost
+ *   follows the Newton count the trajectory sets; no clear per-frame win up to 5k vertices. At 20k
+ *   (solves 55 % of NS) IC(0) gave −27 % solve time and −8 % CPU per frame over 3 contact frames,
+ *   so block-Jacobi stays the default and IC(0) is the option for ≥ 2e4 vertices.
+ *   wr_dyn_stats.t_linear reports the solves' share of t_ns.
+ *
  * ON UNITS
  *   SI: m, s, kg (shell density), N/m (κ, sewing), N (thread EA), 1/s (α), s (β), m/s (tolerances).
  *
@@ -238,6 +252,7 @@ typedef struct wr_dyn_stats {
     double residual_rel;  /* ... relative to ‖∇Φ‖ at its start */
     wr_newton_stop stop;  /* why the last solve stopped (newton.h; STEP is the velocity criterion) */
     double t_ns, t_ch, t_total; /* ON TIMING */
+    double t_linear;      /* the linear solves alone (factor + PCG; part of t_ns) */
     int32_t n_contacts;   /* active contacts (d < d̂) at the end of the frame */
     double min_distance;  /* smallest contact distance at the end of the frame [m] (HUGE_VAL: none) */
     double ccd_alpha_min; /* smallest CCD step cut (1 = never cut) */
@@ -1375,6 +1390,7 @@ static void wr__dyn_stats_add(wr_dyn_stats *to, const wr_newton_stats *ns) {
     to->residual_rel = ns->grad_norm0 > 0.0 ? ns->grad_norm / ns->grad_norm0 : 0.0;
     to->stop = ns->stop;
     to->t_ns += ns->t_total;
+    to->t_linear += ns->t_linear;
     to->pattern_builds += ns->pattern_builds;
     to->elements_projected += ns->elements_projected;
     if (ns->iterations > 0 && ns->max_step_min < to->ccd_alpha_min) to->ccd_alpha_min = ns->max_step_min;
@@ -1450,6 +1466,7 @@ WRDEF wr_status wr_dyn_run(wr_dyn *sim, wr_dyn_state *state, double t_end, wr_dy
         tot.residual_rel = fs.residual_rel;
         tot.stop = fs.stop;
         tot.t_ns += fs.t_ns;
+        tot.t_linear += fs.t_linear;
         tot.t_ch += fs.t_ch;
         tot.t_total += fs.t_total;
         tot.n_contacts = fs.n_contacts;
