@@ -38,6 +38,8 @@
  * and the old metric, the first depth where the FFT peak wavelength reaches 2λ0 — which turned out to
  * be the jump of the peak from the λ0 bin to the sheet-scale bow (λ ≈ 30–50 mm), not a 2λ0 wrinkle.
  * Pass (issue 5): |L_measured − L_w| ≤ 25 % of L_w for each stiffness, checked against both forms.
+ * Columns (issue 20): the forms' values are computed, not printed by Style3D, so they stand in the
+ * "reference" column with the formula as source; "paper" holds only Fig. 18d's 26.7 / 25 mm.
  * Options: --res R [m] (default λ0/8), --quick (coarser grid, one stiffness; smoke only), experiment
  * switches --B, --waves, --sides, --young, --rho, --height, --dump FILE (z grid).
  * Exit = failed quantities, 2 on errors.
@@ -310,6 +312,18 @@ static int curtain_run(double B, double r, int load_steps, curtain_row *R, const
 }
 
 /* least-squares slope of ln y over ln x (n points, finite ones only) */
+/* Sources of the formula values the rows compare with: computed by transition.h, not printed in a
+ * paper, so they go in the "reference" column (issue 20), the "paper" column stays empty. */
+#define SRC_TENSION "formula: tension form L_w = lambda0^2 sqrt(T/B), prefactor 1 (Style3D Sec. 4.2.1, transition.h)"
+#define SRC_COMPRESSION \
+    "formula: compression form L_w = lambda0^1.5 (delta/h^2)^0.25, prefactor 1 (Style3D Sec. 4.2.1, transition.h)"
+
+/* A pass/fail row ±rel_tol around a formula's value: the band is built on the reference, paper = NAN. */
+static void rel_reference(wr_vres *v, const char *name, double ref_mm, double ours_mm, double rel_tol, const char *source) {
+    wr_vres_range(v, name, "mm", NAN, ours_mm, ref_mm - rel_tol * fabs(ref_mm), ref_mm + rel_tol * fabs(ref_mm));
+    wr_vres_reference(v, ref_mm, source);
+}
+
 static double loglog_slope(const double *x, const double *y, int n) {
     double sx = 0, sy = 0, sxx = 0, sxy = 0;
     int i, m = 0;
@@ -406,18 +420,19 @@ int main(int argc, char **argv) {
     wr_vres_table_md(v, table);
     for (i = 0; i < nb; ++i) {
         snprintf(name, sizeof name, "transition distance, B = %.1e N m: measured vs tension form lambda0^2 sqrt(T/B)", rows[i].B);
-        wr_vres_rel(v, name, "mm", 1e3 * rows[i].Lw_pred, 1e3 * rows[i].L_zc, 0.25); /* ±25 %: issue 5; the "paper" column
-                                                                                     * holds the formula's value (issue 20: a reference, see REPORT) */
+        rel_reference(v, name, 1e3 * rows[i].Lw_pred, 1e3 * rows[i].L_zc, 0.25, SRC_TENSION); /* ±25 %: issue 5 */
     }
     for (i = 0; i < nb; ++i) {
         snprintf(name, sizeof name, "transition distance, B = %.1e N m: measured vs compression form lambda0^1.5 (delta/h^2)^0.25",
                  rows[i].B);
-        wr_vres_rel(v, name, "mm", 1e3 * rows[i].Lw_comp, 1e3 * rows[i].L_zc, 0.25); /* ±25 %: issue 5, as above */
+        rel_reference(v, name, 1e3 * rows[i].Lw_comp, 1e3 * rows[i].L_zc, 0.25, SRC_COMPRESSION); /* ±25 %: issue 5 */
     }
     for (i = 0; i < nb; ++i) {
         snprintf(name, sizeof name, "B = %.1e N m: measured vs lambda0 (A/h)^0.5 (PRL light-curtain law, exact gather amplitude; info)",
                  rows[i].B);
-        wr_vres_info(v, name, "mm", 1e3 * rows[i].Lw_amp, 1e3 * rows[i].L_zc);
+        wr_vres_info(v, name, "mm", NAN, 1e3 * rows[i].L_zc);
+        wr_vres_reference(v, 1e3 * rows[i].Lw_amp, "formula: PRL light-curtain law lambda0 (A/h)^0.5, prefactor 1, A the exact "
+                                                   "gather amplitude (transition.h)");
         snprintf(name, sizeof name, "B = %.1e N m: depth where the lambda0 amplitude a1 has halved", rows[i].B);
         wr_vres_info(v, name, "mm", NAN, 1e3 * rows[i].L_a1half);
         snprintf(name, sizeof name, "B = %.1e N m: depth of the largest 2 lambda0 amplitude a2", rows[i].B);
@@ -427,19 +442,23 @@ int main(int argc, char **argv) {
     }
     if (nb >= 2) {
         for (i = 0; i < nb; ++i) x[i] = rows[i].B, y[i] = rows[i].L_zc;
-        wr_vres_info(v, "exponent of L vs B (tension form -1/2, compression form -1/6 via h ~ B^(1/3))", "", -0.5,
+        wr_vres_info(v, "exponent of L vs B (tension form -1/2, compression form -1/6 via h ~ B^(1/3))", "", NAN,
                      loglog_slope(x, y, nb));
+        wr_vres_reference(v, -0.5, "formula: the tension form's exponent, L_w = lambda0^2 sqrt(T/B) (Style3D Sec. 4.2.1)");
     }
     if (heavy_check) {
-        wr_vres_info(v, "L(4 rho_A) / L(rho_A) at B = 2e-6 (tension form 2, compression form 1)", "", 2.0,
+        wr_vres_info(v, "L(4 rho_A) / L(rho_A) at B = 2e-6 (tension form 2, compression form 1)", "", NAN,
                      rows[nb].L_zc / rows[1].L_zc);
+        wr_vres_reference(v, 2.0, "formula: the tension form L_w ~ sqrt(T), T = rho_A g H: sqrt(4) (Style3D Sec. 4.2.1)");
         snprintf(name, sizeof name,
                  "tension-dominated curtain (H = %.0f mm, rho_A = %.1f kg/m^2, T = %.2f N/m, B = 2e-6): measured vs tension form",
                  1e3 * HEAVY_HEIGHT, HEAVY_RHO, rows[nb + 1].T);
-        wr_vres_rel(v, name, "mm", 1e3 * rows[nb + 1].Lw_pred, 1e3 * rows[nb + 1].L_zc, 0.25); /* ±25 %: issue 5 */
-        wr_vres_info(v, "exponent of L vs T, B = 2e-6, T = 0.118 -> 4.9 N/m (tension form 1/2, compression form 0)", "", 0.5,
+        rel_reference(v, name, 1e3 * rows[nb + 1].Lw_pred, 1e3 * rows[nb + 1].L_zc, 0.25, SRC_TENSION); /* ±25 %: issue 5 */
+        wr_vres_info(v, "exponent of L vs T, B = 2e-6, T = 0.118 -> 4.9 N/m (tension form 1/2, compression form 0)", "", NAN,
                      log(rows[nb + 1].L_zc / rows[1].L_zc) / log(rows[nb + 1].T / rows[1].T));
+        wr_vres_reference(v, 0.5, "formula: the tension form's exponent, L_w = lambda0^2 sqrt(T/B) (Style3D Sec. 4.2.1)");
     }
+    /* the two numbers Style3D prints for its own curtain (Fig. 18d): paper values */
     wr_vres_info(v, "paper's case: predicted L_w", "mm", 26.7, NAN);
     wr_vres_info(v, "paper's case: measured", "mm", 25.0, NAN);
     wr_vres_info(v, "mesh resolution", "mm", NAN, 1e3 * r);
