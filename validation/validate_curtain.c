@@ -38,6 +38,8 @@
  * and the old metric, the first depth where the FFT peak wavelength reaches 2λ0 — which turned out to
  * be the jump of the peak from the λ0 bin to the sheet-scale bow (λ ≈ 30–50 mm), not a 2λ0 wrinkle.
  * Pass (issue 5): |L_measured − L_w| ≤ 25 % of L_w for each stiffness, checked against both forms.
+ * Columns (issue 20): the forms' values are computed, not printed by Style3D, so they stand in the
+ * "reference" column with the formula as source; "paper" holds only Fig. 18d's 26.7 / 25 mm.
  * Options: --res R [m] (default λ0/8), --quick (coarser grid, one stiffness; smoke only), experiment
  * switches --B, --waves, --sides, --young, --rho, --height, --dump FILE (z grid).
  * Exit = failed quantities, 2 on errors.
@@ -310,6 +312,18 @@ static int curtain_run(double B, double r, int load_steps, curtain_row *R, const
 }
 
 /* least-squares slope of ln y over ln x (n points, finite ones only) */
+/* Sources of the formula values the rows compare with: computed by transition.h, not printed in a
+ * paper, so they go in the "reference" column (issue 20), the "paper" column stays empty. */
+#define SRC_TENSION "formula: tension form L_w = lambda0^2 sqrt(T/B), prefactor 1 (Style3D Sec. 4.2.1, transition.h)"
+#define SRC_COMPRESSION \
+    "formula: compression form L_w = lambda0^1.5 (delta/h^2)^0.25, prefactor 1 (Style3D Sec. 4.2.1, transition.h)"
+
+/* A pass/fail row ±rel_tol around a formula's value: the band is built on the reference, paper = NAN. */
+static void rel_reference(wr_vres *v, const char *name, double ref_mm, double ours_mm, double rel_tol, const char *source) {
+    wr_vres_range(v, name, "mm", NAN, ours_mm, ref_mm - rel_tol * fabs(ref_mm), ref_mm + rel_tol * fabs(ref_mm));
+    wr_vres_reference(v, ref_mm, source);
+}
+
 static double loglog_slope(const double *x, const double *y, int n) {
     double sx = 0, sy = 0, sxx = 0, sxy = 0;
     int i, m = 0;
@@ -322,13 +336,20 @@ static double loglog_slope(const double *x, const double *y, int n) {
     return (m * sxy - sx * sy) / (m * sxx - sx * sx);
 }
 
-int main(int argc, char **argv) {
-    static curtain_row rows[NB + 2];
-    double Bs[NB] = {1.0e-6, 2.0e-6, 4.0e-6}, r = LAMBDA0 / 8.0, Bone = 0.0, x[NB], y[NB];
-    double A = LAMBDA0 * sqrt(GATHER) / PI;
-    int i, nb = NB, quick = 0, load_steps = 6, heavy_check = 1, nrun;
-    char dat[NB + 2][4096], table[8192], buf[2048], name[256], field[4096];
-    wr_vres *v;
+/* What one invocation runs: the options, then the curtains and their result rows. */
+typedef struct {
+    curtain_row rows[NB + 2];
+    double Bs[NB], r, A; /* stiffnesses [N m], mesh resolution [m], gather amplitude [m] */
+    int nb, quick, load_steps, heavy_check, nrun;
+    char dat[NB + 2][4096], field[4096];
+} curtain_ctx;
+
+/* Stage 1: options (and the globals they set); 0, or 2 with the usage printed. */
+static int curtain_args(curtain_ctx *c, int argc, char **argv) {
+    double r = LAMBDA0 / 8.0, Bone = 0.0;
+    int i, nb = NB, quick = 0, heavy_check = 1;
+    double *Bs = c->Bs;
+    Bs[0] = 1.0e-6, Bs[1] = 2.0e-6, Bs[2] = 4.0e-6;
     for (i = 1; i < argc; ++i) {
         if (strcmp(argv[i], "--quick") == 0) quick = 1;
         else if (strcmp(argv[i], "--res") == 0 && i + 1 < argc) r = atof(argv[++i]);
@@ -359,9 +380,21 @@ int main(int argc, char **argv) {
         Bs[0] = Bone;
     }
     if (quick || Bone > 0.0) heavy_check = 0;
-    v = wr_vres_begin("curtain", "Style3D Fig. 17/18d hanging curtain: lambda -> 2 lambda transition distance vs wrinklon L_w");
-    if (!v) return 2;
-    snprintf(field, sizeof field, "%s/curtain_field.dat", wr_vres_dir());
+    c->r = r, c->nb = nb, c->quick = quick, c->heavy_check = heavy_check;
+    c->load_steps = 6;
+    c->A = LAMBDA0 * sqrt(GATHER) / PI;
+    return 0;
+}
+
+/* Stage 2: the curtains — nb stiffnesses, then (full run) 4x the areal density and the
+ * tension-dominated curtain; 0, or 2 when a run could not be set up. */
+static int curtain_runs(curtain_ctx *c) {
+    curtain_row *rows = c->rows;
+    const double *Bs = c->Bs, r = c->r;
+    int i, nb = c->nb, load_steps = c->load_steps, heavy_check = c->heavy_check, nrun;
+    char (*dat)[4096] = c->dat, *field = c->field;
+    size_t field_size = sizeof c->field;
+    snprintf(field, field_size, "%s/curtain_field.dat", wr_vres_dir());
     for (i = 0; i < nb; ++i) {
         snprintf(dat[i], sizeof dat[i], "%s/curtain_%d.dat", wr_vres_dir(), i);
         if (!g_dump && (nb == 1 || i == 1)) g_dump = field; /* heat map of the middle stiffness */
@@ -387,6 +420,16 @@ int main(int argc, char **argv) {
             nrun = nb + 2;
         }
     }
+    c->nrun = nrun;
+    return 0;
+}
+
+/* Stage 3: the per-run table. */
+static void curtain_table(wr_vres *v, const curtain_ctx *c) {
+    const curtain_row *rows = c->rows;
+    const double A = c->A;
+    int i, nrun = c->nrun;
+    char table[8192], buf[2048];
     snprintf(table, sizeof table,
              "| B [N m] | rho_A [kg/m^2] | T = rho_A g H [N/m] | h (K-L) [mm] | L_w tension form [mm] | L_w compression form [mm] | "
              "lambda0 (A/h)^0.5 [mm] | "
@@ -394,7 +437,7 @@ int main(int argc, char **argv) {
              "FFT peak >= 2 lambda0 [mm] | T/(E h) vs (A/L)^2 | vertices | Newton | status | solve [s] |\n"
              "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     for (i = 0; i < nrun; ++i) {
-        curtain_row *R = &rows[i];
+        const curtain_row *R = &rows[i];
         double Eh = g_young * R->h, LL = R->L_zc > 0.0 ? R->L_zc : R->Lw_comp;
         snprintf(buf, sizeof buf,
                  "| %.1e | %.2f | %.4f | %.3f | %.2f | %.2f | %.2f | %.2f | %.2f / %.2f | %.2f | %.2f | %.2f | %.2f | %.1e vs %.1e | %d | %d | %s | %.1f |\n",
@@ -404,20 +447,30 @@ int main(int argc, char **argv) {
         strncat(table, buf, sizeof table - strlen(table) - 1);
     }
     wr_vres_table_md(v, table);
+}
+
+/* Stage 4: the quantities — pass/fail rows against the two forms (reference column), the rest reported. */
+static void curtain_quantities(wr_vres *v, const curtain_ctx *c) {
+    const curtain_row *rows = c->rows;
+    const double r = c->r;
+    int i, nb = c->nb, heavy_check = c->heavy_check;
+    double x[NB], y[NB];
+    char name[256];
     for (i = 0; i < nb; ++i) {
         snprintf(name, sizeof name, "transition distance, B = %.1e N m: measured vs tension form lambda0^2 sqrt(T/B)", rows[i].B);
-        wr_vres_rel(v, name, "mm", 1e3 * rows[i].Lw_pred, 1e3 * rows[i].L_zc, 0.25); /* ±25 %: issue 5; the "paper" column
-                                                                                     * holds the formula's value (issue 20: a reference, see REPORT) */
+        rel_reference(v, name, 1e3 * rows[i].Lw_pred, 1e3 * rows[i].L_zc, 0.25, SRC_TENSION); /* ±25 %: issue 5 */
     }
     for (i = 0; i < nb; ++i) {
         snprintf(name, sizeof name, "transition distance, B = %.1e N m: measured vs compression form lambda0^1.5 (delta/h^2)^0.25",
                  rows[i].B);
-        wr_vres_rel(v, name, "mm", 1e3 * rows[i].Lw_comp, 1e3 * rows[i].L_zc, 0.25); /* ±25 %: issue 5, as above */
+        rel_reference(v, name, 1e3 * rows[i].Lw_comp, 1e3 * rows[i].L_zc, 0.25, SRC_COMPRESSION); /* ±25 %: issue 5 */
     }
     for (i = 0; i < nb; ++i) {
         snprintf(name, sizeof name, "B = %.1e N m: measured vs lambda0 (A/h)^0.5 (PRL light-curtain law, exact gather amplitude; info)",
                  rows[i].B);
-        wr_vres_info(v, name, "mm", 1e3 * rows[i].Lw_amp, 1e3 * rows[i].L_zc);
+        wr_vres_info(v, name, "mm", NAN, 1e3 * rows[i].L_zc);
+        wr_vres_reference(v, 1e3 * rows[i].Lw_amp, "formula: PRL light-curtain law lambda0 (A/h)^0.5, prefactor 1, A the exact "
+                                                   "gather amplitude (transition.h)");
         snprintf(name, sizeof name, "B = %.1e N m: depth where the lambda0 amplitude a1 has halved", rows[i].B);
         wr_vres_info(v, name, "mm", NAN, 1e3 * rows[i].L_a1half);
         snprintf(name, sizeof name, "B = %.1e N m: depth of the largest 2 lambda0 amplitude a2", rows[i].B);
@@ -427,22 +480,35 @@ int main(int argc, char **argv) {
     }
     if (nb >= 2) {
         for (i = 0; i < nb; ++i) x[i] = rows[i].B, y[i] = rows[i].L_zc;
-        wr_vres_info(v, "exponent of L vs B (tension form -1/2, compression form -1/6 via h ~ B^(1/3))", "", -0.5,
+        wr_vres_info(v, "exponent of L vs B (tension form -1/2, compression form -1/6 via h ~ B^(1/3))", "", NAN,
                      loglog_slope(x, y, nb));
+        wr_vres_reference(v, -0.5, "formula: the tension form's exponent, L_w = lambda0^2 sqrt(T/B) (Style3D Sec. 4.2.1)");
     }
     if (heavy_check) {
-        wr_vres_info(v, "L(4 rho_A) / L(rho_A) at B = 2e-6 (tension form 2, compression form 1)", "", 2.0,
+        wr_vres_info(v, "L(4 rho_A) / L(rho_A) at B = 2e-6 (tension form 2, compression form 1)", "", NAN,
                      rows[nb].L_zc / rows[1].L_zc);
+        wr_vres_reference(v, 2.0, "formula: the tension form L_w ~ sqrt(T), T = rho_A g H: sqrt(4) (Style3D Sec. 4.2.1)");
         snprintf(name, sizeof name,
                  "tension-dominated curtain (H = %.0f mm, rho_A = %.1f kg/m^2, T = %.2f N/m, B = 2e-6): measured vs tension form",
                  1e3 * HEAVY_HEIGHT, HEAVY_RHO, rows[nb + 1].T);
-        wr_vres_rel(v, name, "mm", 1e3 * rows[nb + 1].Lw_pred, 1e3 * rows[nb + 1].L_zc, 0.25); /* ±25 %: issue 5 */
-        wr_vres_info(v, "exponent of L vs T, B = 2e-6, T = 0.118 -> 4.9 N/m (tension form 1/2, compression form 0)", "", 0.5,
+        rel_reference(v, name, 1e3 * rows[nb + 1].Lw_pred, 1e3 * rows[nb + 1].L_zc, 0.25, SRC_TENSION); /* ±25 %: issue 5 */
+        wr_vres_info(v, "exponent of L vs T, B = 2e-6, T = 0.118 -> 4.9 N/m (tension form 1/2, compression form 0)", "", NAN,
                      log(rows[nb + 1].L_zc / rows[1].L_zc) / log(rows[nb + 1].T / rows[1].T));
+        wr_vres_reference(v, 0.5, "formula: the tension form's exponent, L_w = lambda0^2 sqrt(T/B) (Style3D Sec. 4.2.1)");
     }
+    /* the two numbers Style3D prints for its own curtain (Fig. 18d): paper values */
     wr_vres_info(v, "paper's case: predicted L_w", "mm", 26.7, NAN);
     wr_vres_info(v, "paper's case: measured", "mm", 25.0, NAN);
     wr_vres_info(v, "mesh resolution", "mm", NAN, 1e3 * r);
+}
+
+/* Stage 5: the notes — set-up, metric, predictions, regime and result read-outs. */
+static void curtain_notes(wr_vres *v, const curtain_ctx *c) {
+    const curtain_row *rows = c->rows;
+    const double r = c->r, A = c->A;
+    int i, nb = c->nb, quick = c->quick, load_steps = c->load_steps, heavy_check = c->heavy_check, nrun = c->nrun;
+    double x[NB], y[NB];
+    char buf[2048];
     snprintf(buf, sizeof buf,
              "Curtain %.0f x %.0f mm (W = %d lambda0), lambda0 = %.0f mm, gather delta = %.2f (top edge x scaled by 1 - delta, "
              "z = A sin(2 pi x / lambda0), A = lambda0 sqrt(delta)/pi = %.3f mm), rho_A = %.2f kg/m^2, E = %.0e Pa, nu = %.1f, "
@@ -488,7 +554,7 @@ int main(int argc, char **argv) {
                  rows[nb].T, rows[1].T, rows[nb].L_zc / rows[1].L_zc, rows[nb].L_a1half / rows[1].L_a1half);
         wr_vres_note(v, buf);
         {
-            curtain_row *R = &rows[nb + 1];
+            const curtain_row *R = &rows[nb + 1];
             double q = A / R->L_zc;
             snprintf(buf, sizeof buf,
                      "Tension-dominated run: H = %.0f mm, rho_A = %.1f kg/m^2, T = %.2f N/m at the top, T/(E h) = %.1e vs (A/L)^2 = "
@@ -553,61 +619,79 @@ int main(int argc, char **argv) {
                      rows[i].rho, wr_status_string(rows[i].st));
             wr_vres_note(v, buf);
         }
-    {
-        char gp[4200], png[4200], cmd[9000];
-        wr_afile f;
-        wr_diag d;
-        snprintf(gp, sizeof gp, "%s/../figures/curtain.gp", wr_vres_dir());
-        snprintf(png, sizeof png, "%s/../figures/curtain.png", wr_vres_dir());
-        if (wr_afile_open(&f, gp, &d) == WR_OK) {
-            fprintf(f.fp, "set terminal pngcairo size 1000,520\nset output '%s'\nset grid\nset key bottom right\n", png);
-            fprintf(f.fp, "set xlabel 'depth below the gathered top edge [mm]'\nset ylabel 'crest-count wavelength [mm]'\n");
-            fprintf(f.fp, "set xrange [0:%g]\nset yrange [0:%g]\nplot ", 1e3 * g_height, 6e3 * LAMBDA0);
-            for (i = 0; i < nrun; ++i)
-                fprintf(f.fp, "%s'%s' u 1:6 w l lw 2 lc %d t 'B = %.0e, rho_A = %.2f: 2 lambda0 at %.1f mm (L_w tension %.1f, compression %.1f)'",
-                        i ? ", " : "", dat[i], i + 1, rows[i].B, rows[i].rho, 1e3 * rows[i].L_zc, 1e3 * rows[i].Lw_pred,
-                        1e3 * rows[i].Lw_comp);
-            fprintf(f.fp, ", %g w l dt 2 lc rgb 'black' t '2 lambda0'\n", 2e3 * LAMBDA0);
-            if (wr_afile_commit(&f, &d) == WR_OK) {
-                snprintf(cmd, sizeof cmd, "gnuplot '%s' 2>/dev/null", gp);
-                if (system(cmd) == 0)
-                    wr_vres_figure(v, "figures/curtain.png", "wavelength (crest count of the detrended probe) vs depth");
-            }
-        }
-        snprintf(gp, sizeof gp, "%s/../figures/curtain_modes.gp", wr_vres_dir());
-        snprintf(png, sizeof png, "%s/../figures/curtain_modes.png", wr_vres_dir());
-        if (wr_afile_open(&f, gp, &d) == WR_OK) {
-            fprintf(f.fp, "set terminal pngcairo size 1000,520\nset output '%s'\nset grid\nset key top right\n", png);
-            fprintf(f.fp, "set xlabel 'depth below the gathered top edge [mm]'\nset ylabel 'modal amplitude [mm]'\n");
-            fprintf(f.fp, "set xrange [0:%g]\nplot ", 1e3 * g_height);
-            for (i = 0; i < nrun; ++i)
-                fprintf(f.fp,
-                        "%s'%s' u 1:4 w l lw 2 lc %d t 'lambda0 mode, B = %.0e, rho_A = %.2f', '%s' u 1:5 w l lw 2 dt 2 lc %d "
-                        "t '2 lambda0 mode (max: %.1f mm; L_w tension %.1f / compression %.1f mm)'",
-                        i ? ", " : "", dat[i], i + 1, rows[i].B, rows[i].rho, dat[i], i + 1, 1e3 * rows[i].L_end,
-                        1e3 * rows[i].Lw_pred, 1e3 * rows[i].Lw_comp);
-            fprintf(f.fp, "\n");
-            if (wr_afile_commit(&f, &d) == WR_OK) {
-                snprintf(cmd, sizeof cmd, "gnuplot '%s' 2>/dev/null", gp);
-                if (system(cmd) == 0)
-                    wr_vres_figure(v, "figures/curtain_modes.png",
-                                   "lambda0 (solid) and 2 lambda0 (dashed) wrinkle amplitudes vs depth, per stiffness");
-            }
-        }
-        snprintf(gp, sizeof gp, "%s/../figures/curtain_field.gp", wr_vres_dir());
-        snprintf(png, sizeof png, "%s/../figures/curtain_field.png", wr_vres_dir());
-        if (wr_afile_open(&f, gp, &d) == WR_OK) {
-            fprintf(f.fp, "set terminal pngcairo size 700,700\nset output '%s'\nset view map\nset size ratio -1\n", png);
-            fprintf(f.fp, "set xlabel 'x [mm]'\nset ylabel 'depth [mm]'\nset yrange [%g:0]\nset cblabel 'z [mm]'\n", 1e3 * g_height);
-            fprintf(f.fp, "set palette defined (-1 'blue', 0 'white', 1 'red')\nset title 'out-of-plane z, B = %.0e N m'\n",
-                    rows[nb == 1 ? 0 : 1].B);
-            fprintf(f.fp, "splot '%s' u 2:1:3 w pm3d notitle\n", field);
-            if (wr_afile_commit(&f, &d) == WR_OK) {
-                snprintf(cmd, sizeof cmd, "gnuplot '%s' 2>/dev/null", gp);
-                if (system(cmd) == 0)
-                    wr_vres_figure(v, "figures/curtain_field.png", "out-of-plane displacement over the curtain (probe window)");
-            }
+}
+
+/* Stage 6: the three gnuplot figures (wavelength, modal amplitudes, field), each attached once drawn. */
+static void curtain_figures(wr_vres *v, const curtain_ctx *c) {
+    const curtain_row *rows = c->rows;
+    const char(*dat)[4096] = c->dat, *field = c->field;
+    int i, nb = c->nb, nrun = c->nrun;
+    char gp[4200], png[4200], cmd[9000];
+    wr_afile f;
+    wr_diag d;
+    snprintf(gp, sizeof gp, "%s/../figures/curtain.gp", wr_vres_dir());
+    snprintf(png, sizeof png, "%s/../figures/curtain.png", wr_vres_dir());
+    if (wr_afile_open(&f, gp, &d) == WR_OK) {
+        fprintf(f.fp, "set terminal pngcairo size 1000,520\nset output '%s'\nset grid\nset key bottom right\n", png);
+        fprintf(f.fp, "set xlabel 'depth below the gathered top edge [mm]'\nset ylabel 'crest-count wavelength [mm]'\n");
+        fprintf(f.fp, "set xrange [0:%g]\nset yrange [0:%g]\nplot ", 1e3 * g_height, 6e3 * LAMBDA0);
+        for (i = 0; i < nrun; ++i)
+            fprintf(f.fp, "%s'%s' u 1:6 w l lw 2 lc %d t 'B = %.0e, rho_A = %.2f: 2 lambda0 at %.1f mm (L_w tension %.1f, compression %.1f)'",
+                    i ? ", " : "", dat[i], i + 1, rows[i].B, rows[i].rho, 1e3 * rows[i].L_zc, 1e3 * rows[i].Lw_pred,
+                    1e3 * rows[i].Lw_comp);
+        fprintf(f.fp, ", %g w l dt 2 lc rgb 'black' t '2 lambda0'\n", 2e3 * LAMBDA0);
+        if (wr_afile_commit(&f, &d) == WR_OK) {
+            snprintf(cmd, sizeof cmd, "gnuplot '%s' 2>/dev/null", gp);
+            if (system(cmd) == 0)
+                wr_vres_figure(v, "figures/curtain.png", "wavelength (crest count of the detrended probe) vs depth");
         }
     }
+    snprintf(gp, sizeof gp, "%s/../figures/curtain_modes.gp", wr_vres_dir());
+    snprintf(png, sizeof png, "%s/../figures/curtain_modes.png", wr_vres_dir());
+    if (wr_afile_open(&f, gp, &d) == WR_OK) {
+        fprintf(f.fp, "set terminal pngcairo size 1000,520\nset output '%s'\nset grid\nset key top right\n", png);
+        fprintf(f.fp, "set xlabel 'depth below the gathered top edge [mm]'\nset ylabel 'modal amplitude [mm]'\n");
+        fprintf(f.fp, "set xrange [0:%g]\nplot ", 1e3 * g_height);
+        for (i = 0; i < nrun; ++i)
+            fprintf(f.fp,
+                    "%s'%s' u 1:4 w l lw 2 lc %d t 'lambda0 mode, B = %.0e, rho_A = %.2f', '%s' u 1:5 w l lw 2 dt 2 lc %d "
+                    "t '2 lambda0 mode (max: %.1f mm; L_w tension %.1f / compression %.1f mm)'",
+                    i ? ", " : "", dat[i], i + 1, rows[i].B, rows[i].rho, dat[i], i + 1, 1e3 * rows[i].L_end,
+                    1e3 * rows[i].Lw_pred, 1e3 * rows[i].Lw_comp);
+        fprintf(f.fp, "\n");
+        if (wr_afile_commit(&f, &d) == WR_OK) {
+            snprintf(cmd, sizeof cmd, "gnuplot '%s' 2>/dev/null", gp);
+            if (system(cmd) == 0)
+                wr_vres_figure(v, "figures/curtain_modes.png",
+                               "lambda0 (solid) and 2 lambda0 (dashed) wrinkle amplitudes vs depth, per stiffness");
+        }
+    }
+    snprintf(gp, sizeof gp, "%s/../figures/curtain_field.gp", wr_vres_dir());
+    snprintf(png, sizeof png, "%s/../figures/curtain_field.png", wr_vres_dir());
+    if (wr_afile_open(&f, gp, &d) == WR_OK) {
+        fprintf(f.fp, "set terminal pngcairo size 700,700\nset output '%s'\nset view map\nset size ratio -1\n", png);
+        fprintf(f.fp, "set xlabel 'x [mm]'\nset ylabel 'depth [mm]'\nset yrange [%g:0]\nset cblabel 'z [mm]'\n", 1e3 * g_height);
+        fprintf(f.fp, "set palette defined (-1 'blue', 0 'white', 1 'red')\nset title 'out-of-plane z, B = %.0e N m'\n",
+                rows[nb == 1 ? 0 : 1].B);
+        fprintf(f.fp, "splot '%s' u 2:1:3 w pm3d notitle\n", field);
+        if (wr_afile_commit(&f, &d) == WR_OK) {
+            snprintf(cmd, sizeof cmd, "gnuplot '%s' 2>/dev/null", gp);
+            if (system(cmd) == 0)
+                wr_vres_figure(v, "figures/curtain_field.png", "out-of-plane displacement over the curtain (probe window)");
+        }
+    }
+}
+
+int main(int argc, char **argv) {
+    static curtain_ctx c;
+    wr_vres *v;
+    if (curtain_args(&c, argc, argv) != 0) return 2;
+    v = wr_vres_begin("curtain", "Style3D Fig. 17/18d hanging curtain: lambda -> 2 lambda transition distance vs wrinklon L_w");
+    if (!v) return 2;
+    if (curtain_runs(&c) != 0) return 2;
+    curtain_table(v, &c);
+    curtain_quantities(v, &c);
+    curtain_notes(v, &c);
+    curtain_figures(v, &c);
     return wr_vres_finish(v);
 }

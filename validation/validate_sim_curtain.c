@@ -121,35 +121,6 @@ static void top_target(const crun *R, double u, double s, double out[3]) {
     out[2] = s * R->A * sin(2.0 * PI * u / R->c.lambda0);
 }
 
-/* Least-squares cubic of z over ξ ∈ [−1, 1], subtracted in place (the sheet-scale bow). */
-static void detrend_cubic(double *z, int32_t n) {
-    double M[4][5], p[4];
-    int32_t i, j, k, r;
-    memset(M, 0, sizeof M);
-    for (i = 0; i < n; ++i) {
-        double xi = -1.0 + 2.0 * i / (n - 1.0);
-        p[0] = 1.0, p[1] = xi, p[2] = xi * xi, p[3] = xi * xi * xi;
-        for (j = 0; j < 4; ++j) {
-            for (k = 0; k < 4; ++k) M[j][k] += p[j] * p[k];
-            M[j][4] += p[j] * z[i];
-        }
-    }
-    for (k = 0; k < 4; ++k) /* the Gram matrix is SPD and well conditioned on [−1, 1]: no pivoting */
-        for (r = k + 1; r < 4; ++r) {
-            double f = M[r][k] / M[k][k];
-            for (j = k; j < 5; ++j) M[r][j] -= f * M[k][j];
-        }
-    for (k = 3; k >= 0; --k) {
-        for (j = k + 1; j < 4; ++j) M[k][4] -= M[k][j] * M[j][4];
-        M[k][4] /= M[k][k];
-    }
-    for (i = 0; i < n; ++i) {
-        double xi = -1.0 + 2.0 * i / (n - 1.0);
-        z[i] -= M[0][4] + xi * (M[1][4] + xi * (M[2][4] + xi * M[3][4]));
-    }
-}
-
-
 static double max_speed(const double *v, int32_t nv) {
     double s = 0.0;
     int32_t i;
@@ -289,7 +260,7 @@ static int curtain_measure(crun *R) {
             R->lfft[R->nd] = res.wavelength, R->amp[R->nd] = res.amplitude_p2p;
         else
             R->lfft[R->nd] = NAN, R->amp[R->nd] = 0.0;
-        detrend_cubic(z, NPROBE_SAMPLES);
+        zc_detrend_cubic(z, NPROBE_SAMPLES);
         R->lzc[R->nd] = zc_wavelength(z, NPROBE_SAMPLES, len, ZC_BAND, NULL);
         R->nd++;
     }

@@ -194,35 +194,6 @@ static double median(const double *a, int32_t n) {
     return m;
 }
 
-/* Least-squares cubic over ξ ∈ [−1, 1], subtracted in place (D2: the panel-scale shape). */
-static void detrend_cubic(double *z, int32_t n) {
-    double M[4][5], p[4];
-    int32_t i, j, k, r;
-    memset(M, 0, sizeof M);
-    for (i = 0; i < n; ++i) {
-        double xi = -1.0 + 2.0 * i / (n - 1.0);
-        p[0] = 1.0, p[1] = xi, p[2] = xi * xi, p[3] = xi * xi * xi;
-        for (j = 0; j < 4; ++j) {
-            for (k = 0; k < 4; ++k) M[j][k] += p[j] * p[k];
-            M[j][4] += p[j] * z[i];
-        }
-    }
-    for (k = 0; k < 4; ++k) /* SPD, well conditioned on [−1, 1]: no pivoting */
-        for (r = k + 1; r < 4; ++r) {
-            double f = M[r][k] / M[k][k];
-            for (j = k; j < 5; ++j) M[r][j] -= f * M[k][j];
-        }
-    for (k = 3; k >= 0; --k) {
-        for (j = k + 1; j < 4; ++j) M[k][4] -= M[k][j] * M[j][4];
-        M[k][4] /= M[k][k];
-    }
-    for (i = 0; i < n; ++i) {
-        double xi = -1.0 + 2.0 * i / (n - 1.0);
-        z[i] -= M[0][4] + xi * (M[1][4] + xi * (M[2][4] + xi * M[3][4]));
-    }
-}
-
-
 /* ---- set-up ------------------------------------------------------------------------------------ */
 
 /* The mannequin's triangles with every corner inside the crop box (gspec, scaled). */
@@ -493,7 +464,7 @@ static int garment_probes(grun *R) {
             if (wr_probe_sample(&pr, comp, pts, NPROBE, xs[c], &nout, &d) != WR_OK || nout) goto fail;
         }
         for (i = 0; i < NPROBE; ++i) rho[i] = sqrt(xs[0][i] * xs[0][i] + xs[1][i] * xs[1][i]);
-        detrend_cubic(rho, NPROBE);
+        zc_detrend_cubic(rho, NPROBE);
         if (wr_spectrum_analyze(rho, NPROBE, ds, 0, NULL, &res, NULL, 0, &d) == WR_OK) R->lfft[k] = res.wavelength;
         else R->lfft[k] = NAN;
         R->amp[k] = 0.0;
