@@ -344,7 +344,10 @@ typedef struct {
     char dat[NB + 2][4096], field[4096];
 } curtain_ctx;
 
-/* Stage 1: options (and the globals they set); 0, or 2 with the usage printed. */
+#define CURTAIN_USAGE "[--quick] [--res METRES] [--B NM] [--waves N] [--sides] [--young PA] [--rho KG_M2] [--height M] [--dump FILE]"
+
+/* Stage 1: options (and the globals they set); 0, 1 after --help (usage on stdout), or 2 with the
+ * error on stderr. */
 static int curtain_args(curtain_ctx *c, int argc, char **argv) {
     double r = LAMBDA0 / 8.0, Bone = 0.0;
     int i, nb = NB, quick = 0, heavy_check = 1;
@@ -360,9 +363,15 @@ static int curtain_args(curtain_ctx *c, int argc, char **argv) {
         else if (strcmp(argv[i], "--young") == 0 && i + 1 < argc) g_young = atof(argv[++i]);
         else if (strcmp(argv[i], "--rho") == 0 && i + 1 < argc) g_rho = atof(argv[++i]);
         else if (strcmp(argv[i], "--dump") == 0 && i + 1 < argc) g_dump = argv[++i];
-        else {
-            fprintf(stderr, "usage: validate_curtain [--quick] [--res METRES] [--B NM] [--waves N] [--sides] [--young PA] "
-                            "[--rho KG_M2] [--height M] [--dump FILE]\n");
+        else if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
+            printf("usage: validate_curtain %s\n"
+                   "  Style3D Fig. 17/18d hanging curtain (StVK statics): the lambda -> 2 lambda transition distance\n"
+                   "  against the wrinklon length. Writes validation/results/curtain.json (or under\n"
+                   "  $WRINKLE_RESULTS_DIR) and its figures; `make validate` runs it.\n", CURTAIN_USAGE);
+            return 1;
+        } else {
+            fprintf(stderr, "validate_curtain: unknown or incomplete argument '%s'; usage: validate_curtain %s\n", argv[i],
+                    CURTAIN_USAGE);
             return 2;
         }
     }
@@ -685,7 +694,8 @@ static void curtain_figures(wr_vres *v, const curtain_ctx *c) {
 int main(int argc, char **argv) {
     static curtain_ctx c;
     wr_vres *v;
-    if (curtain_args(&c, argc, argv) != 0) return 2;
+    int rc = curtain_args(&c, argc, argv);
+    if (rc != 0) return rc == 1 ? 0 : 2;
     v = wr_vres_begin("curtain", "Style3D Fig. 17/18d hanging curtain: lambda -> 2 lambda transition distance vs wrinklon L_w");
     if (!v) return 2;
     if (curtain_runs(&c) != 0) return 2;
