@@ -107,9 +107,21 @@
  *   0.16 mm. A merged vertex gets the mass-weighted mean position and velocity of its class (mass
  *   and momentum are kept), pins are OR-ed, the shell and the simulator are rebuilt on the welded
  *   mesh (same materials and contact settings, no sewing springs), bodies keep their current
- *   positions, and time goes on. The welded mesh is checked exactly against every body and, when
- *   self-contact is on, against itself: an intersection there is WR_ERR_GEOMETRY (the barriers
- *   would lock it in). A seam still open after desc.max_time (default WR_GARMENT_MAX_SEW_TIME) is
+ *   positions, and time goes on. The midpoint is not always feasible: sewing springs at full
+ *   stiffness press a seam line onto the body far inside d̂, and on a small faceted body (the 0.25
+ *   mannequin of validate_sim_garments, d̂ = 0.25 mm) a body ridge within half the gap of the seam
+ *   line put midpoint-welded faces through it (measured: 11-24 body triangle pairs, 0 before the
+ *   merge). So a merged vertex whose faces meet a body is moved to the candidate m + t (x_u − m)
+ *   (m the midpoint, x_u a member's own position, t = 1/2 or 1) whose faces meet the body least,
+ *   for up to WR_GARMENT_WELD_SWEEPS sweeps: at t = 1 that member's panel faces are exactly as they
+ *   were before the merge (intersection-free), though the other panel's faces then move by the
+ *   whole gap, hence the exact check below (weld_mid_hits, weld_moved report it; momentum is kept, the position is no longer the mass
+ *   mean there). The welded mesh is then checked exactly against every body and, when
+ *   self-contact is on, against itself: an intersection there is WR_ERR_GEOMETRY from
+ *   wr_garment_sim_weld (the barriers would lock it in) and the sim is left unwelded; wr_garment_sim_step
+ *   then defers the weld (weld_deferred counts it, sewing goes on, the gap keeps closing) and
+ *   retries next frame, so a weld never introduces an intersection. A seam still open (or a weld
+ *   still refused) after desc.max_time (default WR_GARMENT_MAX_SEW_TIME) is
  *   WR_ERR_NOT_CONVERGED naming the seam and its gap. desc.no_weld = 1 keeps the springs for the
  *   whole run instead.
 
@@ -187,6 +199,8 @@ extern "C" {
 #define WR_GARMENT_SEW_GROWTH 2.0
 /* weld when every seam pair is closer than this fraction of the barrier thickness d̂ (ON WELDING) */
 #define WR_GARMENT_WELD_FRACTION 0.5
+/* sweeps of the feasible merge over the merged vertices whose faces meet a body (ON WELDING) */
+#define WR_GARMENT_WELD_SWEEPS 4
 /* give up sewing after this simulated time [s]: 30 frames at 1/30 s (the skirt examples weld
  * after 7–12 frames, docs/garments.md) */
 #define WR_GARMENT_MAX_SEW_TIME 1.0
@@ -278,6 +292,9 @@ typedef struct wr_garment_sim {
     int32_t n_pairs, n_seams;
     int32_t welded, weld_frame; /* 1 once welded, and the frame after which it happened */
     double weld_gap;     /* the largest seam gap when welded [m] */
+    int32_t weld_mid_hits; /* last weld: body triangle pairs a midpoint merge would meet (ON WELDING) */
+    int32_t weld_moved;  /* last weld: merged vertices moved off the midpoint to stay feasible */
+    int32_t weld_deferred; /* frames whose weld was refused as intersecting and deferred */
     double gap;          /* the largest seam gap at the end of the last frame [m] (0 after the weld) */
     double sew_k;        /* the sewing stiffness of the last frame [N/m] */
     double k_start, k_full;
@@ -876,6 +893,99 @@ static void wr__gar_remap(const wr_garment_sim *gs, const int32_t *vmap, int32_t
         }
 }
 
+/* Body triangles (boxes bb, nbf × 6) that cloth face f of wm at positions x meets (exact tri–tri). */
+static int32_t wr__gar_face_hits(const wr_dyn *sim, const double *bb, const wr_mesh *wm, const double *x, int32_t f) {
+    double ta[9], tb[9], lo[3], hi[3];
+    int32_t b, k, i, n = 0;
+    for (k = 0; k < 3; ++k)
+        for (i = 0; i < 3; ++i) ta[3 * k + i] = x[3 * wm->faces[3 * f + k] + i];
+    for (i = 0; i < 3; ++i) {
+        lo[i] = fmin(ta[i], fmin(ta[3 + i], ta[6 + i]));
+        hi[i] = fmax(ta[i], fmax(ta[3 + i], ta[6 + i]));
+    }
+    for (b = 0; b < sim->nbf; ++b) {
+        const double *q = bb + 6 * b;
+        if (q[0] > hi[0] || q[1] > hi[1] || q[2] > hi[2] || q[3] < lo[0] || q[4] < lo[1] || q[5] < lo[2]) continue;
+        for (k = 0; k < 3; ++k)
+            for (i = 0; i < 3; ++i) tb[3 * k + i] = sim->body_x[3 * sim->body_faces[3 * b + k] + i];
+        n += wr_collision_triangle_triangle_intersect(ta, tb);
+    }
+    return n;
+}
+
+static int32_t wr__gar_vertex_hits(const wr_dyn *sim, const double *bb, const wr_mesh *wm, const double *x, int32_t j) {
+    int32_t k, n = 0;
+    for (k = wm->vf_start[j]; k < wm->vf_start[j + 1]; ++k) n += wr__gar_face_hits(sim, bb, wm, x, wm->vf[k]);
+    return n;
+}
+
+/* ON WELDING, the feasible merge: the midpoint of a seam pair pressed onto a faceted body can put
+ * the welded faces through it (a body vertex or ridge within half the gap of the seam line), while
+ * each member's own position keeps that member's panel faces as they were, intersection-free.
+ * A merged vertex whose faces meet the body is moved, in up to WR_GARMENT_WELD_SWEEPS sweeps, to the
+ * candidate m + t (x_u − m) (m the midpoint, u a member, t = 1/2, 1) with the fewest body hits over
+ * its faces (ties: the smaller move). *mid_hits gets the hits of the midpoint weld on merged
+ * vertices' faces, *moved the vertices left off the midpoint. The caller still checks the whole
+ * result exactly. */
+static wr_status wr__gar_weld_feasible(const wr_garment_sim *gs, const wr_mesh *wm, const int32_t *vmap, double *x,
+                                       int32_t *mid_hits, int32_t *moved, wr_diag *diag) {
+    const wr_dyn *sim = &gs->dyn;
+    int32_t nn = wm->nv, *start = NULL, *mem = NULL, j, u, k, i, sweep, changed = 1;
+    double *bb = NULL, *mid = NULL;
+    *mid_hits = *moved = 0;
+    if (sim->nbf < 1) return WR_OK;
+    bb = (double *)wr_alloc_array(6 * (size_t)sim->nbf, sizeof(double));
+    mid = (double *)wr_alloc_array(3 * (size_t)nn, sizeof(double));
+    start = (int32_t *)wr_calloc_array((size_t)nn + 1, sizeof(int32_t));
+    mem = (int32_t *)wr_alloc_array((size_t)gs->nv0, sizeof(int32_t));
+    if (!bb || !mid || !start || !mem) {
+        wr_free(bb), wr_free(mid), wr_free(start), wr_free(mem);
+        return wr_fail(diag, WR_ERR_NOMEM, -1, "garment: out of memory");
+    }
+    for (k = 0; k < sim->nbf; ++k)
+        for (i = 0; i < 3; ++i) {
+            const double *p0 = sim->body_x + 3 * sim->body_faces[3 * k], *p1 = sim->body_x + 3 * sim->body_faces[3 * k + 1],
+                         *p2 = sim->body_x + 3 * sim->body_faces[3 * k + 2];
+            bb[6 * k + i] = fmin(p0[i], fmin(p1[i], p2[i]));
+            bb[6 * k + 3 + i] = fmax(p0[i], fmax(p1[i], p2[i]));
+        }
+    memcpy(mid, x, sizeof(double) * 3 * (size_t)nn);
+    for (u = 0; u < gs->nv0; ++u) start[vmap[u] + 1]++; /* members per welded vertex, CSR */
+    for (j = 0; j < nn; ++j) start[j + 1] += start[j];
+    for (u = 0; u < gs->nv0; ++u) mem[start[vmap[u]]++] = u;
+    for (j = nn; j > 0; --j) start[j] = start[j - 1];
+    start[0] = 0;
+    for (j = 0; j < nn; ++j)
+        if (start[j + 1] - start[j] > 1) *mid_hits += wr__gar_vertex_hits(sim, bb, wm, x, j);
+    for (sweep = 0; sweep < WR_GARMENT_WELD_SWEEPS && changed; ++sweep) {
+        changed = 0;
+        for (j = 0; j < nn; ++j) {
+            double best[3], bmove = 0.0, c[3];
+            int32_t bh, h, t;
+            if (start[j + 1] - start[j] < 2 || (bh = wr__gar_vertex_hits(sim, bb, wm, x, j)) == 0) continue;
+            memcpy(best, x + 3 * j, sizeof best);
+            for (i = 0; i < 3; ++i) bmove += (best[i] - mid[3 * j + i]) * (best[i] - mid[3 * j + i]);
+            for (k = start[j]; k < start[j + 1]; ++k)
+                for (t = 1; t <= 2; ++t) {
+                    double mv = 0.0;
+                    for (i = 0; i < 3; ++i) {
+                        c[i] = mid[3 * j + i] + 0.5 * t * (gs->x[3 * mem[k] + i] - mid[3 * j + i]);
+                        mv += (c[i] - mid[3 * j + i]) * (c[i] - mid[3 * j + i]);
+                        x[3 * j + i] = c[i];
+                    }
+                    h = wr__gar_vertex_hits(sim, bb, wm, x, j);
+                    if (h < bh || (h == bh && mv < bmove)) bh = h, bmove = mv, memcpy(best, c, sizeof best);
+                }
+            memcpy(x + 3 * j, best, sizeof best);
+            changed = 1;
+        }
+    }
+    for (j = 0; j < nn; ++j)
+        if (x[3 * j] != mid[3 * j] || x[3 * j + 1] != mid[3 * j + 1] || x[3 * j + 2] != mid[3 * j + 2]) (*moved)++;
+    wr_free(bb), wr_free(mid), wr_free(start), wr_free(mem);
+    return WR_OK;
+}
+
 /* Refuse a welded state that intersects a body or (self-contact on) itself (ON WELDING). */
 static wr_status wr__gar_weld_check(const wr_garment_sim *gs, wr_dyn *sim, const wr_mesh *wm, const double *x, wr_diag *diag) {
     int32_t hit = 0;
@@ -919,6 +1029,7 @@ WRDEF wr_status wr_garment_sim_weld(wr_garment_sim *gs, wr_diag *diag) {
         goto fail;
     }
     wr__gar_remap(gs, vmap, nn, x, vel, msum, fixed);
+    if ((st = wr__gar_weld_feasible(gs, &wm, vmap, x, &gs->weld_mid_hits, &gs->weld_moved, diag)) != WR_OK) goto fail;
     memcpy(wm.pos, x, sizeof(double) * 3 * (size_t)nn);
     if ((st = wr__gar_weld_check(gs, &gs->dyn, &wm, x, diag)) != WR_OK) goto fail;
     if ((st = wr_shell_create(&sh, &wm, &gs->shell_desc, diag)) != WR_OK) goto fail;
@@ -1005,7 +1116,12 @@ WRDEF wr_status wr_garment_sim_step(wr_garment_sim *gs, wr_dyn_stats *stats, wr_
     gs->gap = wr_garment_sim_seam_gap(gs, -1);
     gs->sew_k = fmin(gs->k_full, gs->sew_k * WR_GARMENT_SEW_GROWTH);
     if (gs->desc.no_weld) return WR_OK;
-    if (gs->gap < gs->desc.weld_tol) return wr_garment_sim_weld(gs, diag);
+    if (gs->gap < gs->desc.weld_tol) {
+        /* a weld that would intersect is deferred (ON WELDING): sewing goes on, the gap keeps closing */
+        st = wr_garment_sim_weld(gs, diag);
+        if (st != WR_ERR_GEOMETRY) return st;
+        gs->weld_deferred++;
+    }
     if (gs->state.t >= gs->desc.max_time - 1e-9 * gs->dyn.desc.time.dt) {
         int32_t s, worst = 0;
         double gw = -1.0;
