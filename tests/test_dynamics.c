@@ -13,6 +13,25 @@
 
 /* A flat nx×ny sheet of side w in z = 0 with a fabric-like shell (Y = 1e5 Pa, h = 0.5 mm, 300 kg/m³:
  * 0.15 kg/m², stiff enough that a draped sheet barely stretches). */
+/* A hanging sheet: the n x n rectangle rotated into the x–z plane, rest (u, w) -> (u, 0, w), so gravity
+ * (-z) pulls along the sheet. */
+static void dyn_hang(wr_mesh *m) {
+    int32_t v;
+    for (v = 0; v < m->nv; ++v) {
+        m->pos[3 * v + 2] = m->pos[3 * v + 1];
+        m->pos[3 * v + 1] = 0.0;
+    }
+}
+
+/* Pin flags (caller frees) for the top row of an n x n rectangle mesh (its last n + 1 vertices). */
+static uint8_t *dyn_top_row(const wr_mesh *m, int32_t n) {
+    uint8_t *fixed = (uint8_t *)calloc((size_t)m->nv, 1);
+    int32_t v;
+    cr_assert(fixed);
+    for (v = n * (n + 1); v < m->nv; ++v) fixed[v] = 1;
+    return fixed;
+}
+
 static void dyn_sheet(wr_mesh *m, wr_shell *s, double w, int32_t n, wr_membrane_model mem, wr_bending_model bend) {
     wr_shell_desc d;
     cr_assert_eq(wr_mesh_rectangle(m, w, w, n, n, NULL), WR_OK);
@@ -213,18 +232,14 @@ Test(dynamics, hanging_sheet_rests_at_statics_equilibrium) {
     uint8_t *fixed;
     double *x, *vel, *xs, err = 0.0, speed = 1.0;
     cr_assert_eq(wr_mesh_rectangle(&m, 0.2, 0.2, n, n, NULL), WR_OK);
-    for (v = 0; v < m.nv; ++v) { /* rotate into the x–z plane: rest (u, w) → (u, 0, w) */
-        m.pos[3 * v + 2] = m.pos[3 * v + 1];
-        m.pos[3 * v + 1] = 0.0;
-    }
+    dyn_hang(&m);
     memset(&d, 0, sizeof d);
     d.young = 1e5;
     d.poisson = 0.3;
     d.thickness = 5e-4;
     d.density = 300.0;
     cr_assert_eq(wr_shell_create(&s, &m, &d, NULL), WR_OK);
-    fixed = (uint8_t *)calloc((size_t)m.nv, 1);
-    for (v = n * (n + 1); v < m.nv; ++v) fixed[v] = 1; /* top edge (w = 0.2) */
+    fixed = dyn_top_row(&m, n);
     x = dyn_copy(m.pos, 3 * m.nv);
     xs = dyn_copy(m.pos, 3 * m.nv);
     vel = (double *)calloc(3 * (size_t)m.nv, sizeof(double));
@@ -692,12 +707,8 @@ Test(dynamics, ic0_preconditioner_same_answer_fewer_pcg) {
     double *x[2], err = 0.0, sag = 0.0;
     int c;
     dyn_sheet(&m, &s, 0.3, n, WR_MEMBRANE_STVK, WR_BENDING_MIDEDGE);
-    for (v = 0; v < m.nv; ++v) { /* rotate into the x–z plane, as the hanging-sheet test */
-        m.pos[3 * v + 2] = m.pos[3 * v + 1];
-        m.pos[3 * v + 1] = 0.0;
-    }
-    fixed = (uint8_t *)calloc((size_t)m.nv, 1);
-    for (v = n * (n + 1); v < m.nv; ++v) fixed[v] = 1;
+    dyn_hang(&m);
+    fixed = dyn_top_row(&m, n);
     for (c = 0; c < 2; ++c) {
         wr_dyn_desc dd;
         wr_dyn sim;
