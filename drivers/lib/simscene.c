@@ -1006,7 +1006,7 @@ wr_status wr_simscene_run_frames(wr_simscene_run *run, wr_simscene_frame_fn fn, 
             st = wr_dyn_step(&run->sim, &run->state, &fs, diag);
         if (st != WR_OK) {
             run->status = st;
-            snprintf(run->status_message, sizeof run->status_message, "frame %d: %s", (int)(run->n_frames + 1),
+            snprintf(run->status_message, sizeof run->status_message, "frame %d: %.490s", (int)(run->n_frames + 1),
                      diag ? diag->message : wr_status_text(st));
             break;
         }
