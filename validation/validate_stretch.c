@@ -172,119 +172,135 @@ static const char *fmt_count(char *b, size_t n, const row *R) {
     return b;
 }
 
-static int validation_main(int quick) {
+/* The sheet's constants and what the theory says of it. */
+typedef struct stretch_case {
     wr_scene sc;
-    wr_diag d;
+    double B, r_opt, lam_cm, T; /* Kirchhoff-Love bending, Style3D Eq. 4, Cerda-Mahadevan λ, tension per width */
+    row rows[2 * NRES];         /* [0, NRES): grid, [NRES, 2 NRES): Delaunay; 2.5 mm, r_opt, 2 r_opt, 5 mm */
+    char dat[2 * NRES][4096];   /* each row's probe profile */
+} stretch_case;
+
+#define NROWS (2 * NRES)
+#define SHEET_L 0.25
+#define SHEET_W 0.1
+
+/* Loads the scene and derives B, r_opt (Eq. 4, paper calibration), T = E h γ and λ_CM; labels the rows. */
+static int case_setup(stretch_case *c, wr_diag *d) {
+    static const char *const lab[NRES] = {"2.5 mm", "r_opt", "2 r_opt", "5 mm"};
     wr_resolution_model mdl = wr_resolution_model_paper();
-    double B, r_opt, lam_cm, T, L = 0.25, W = 0.1, E, h, nu;
-    row rows[2 * NRES]; /* [0, NRES): grid, [NRES, 2 NRES): Delaunay; 2.5 mm, r_opt, 2 r_opt, 5 mm */
-    int nrows = 2 * NRES, i;
-    char dat[2 * NRES][4096], buf[4096], table[8192], figdir[4096];
-    const row *g25 = &rows[0], *gop = &rows[1];
-    wr_vres *v;
-    if (wr_scene_load(&sc, SCENE_PATH, &d) != WR_OK) {
-        fprintf(stderr, "validate_stretch: %s\n", d.message);
-        return 2;
+    double E, h, nu, rr[NRES];
+    int i;
+    if (wr_scene_load(&c->sc, SCENE_PATH, d) != WR_OK) return 0;
+    E = c->sc.shell.young, h = c->sc.shell.thickness, nu = c->sc.shell.poisson;
+    if (wr_kl_bending(E, h, nu, &c->B, d) != WR_OK || wr_resolution_from_BE(&mdl, c->B, E, NULL, &c->r_opt, d) != WR_OK) {
+        wr_scene_free(&c->sc);
+        return 0;
     }
-    E = sc.shell.young, h = sc.shell.thickness, nu = sc.shell.poisson;
-    if (wr_kl_bending(E, h, nu, &B, &d) != WR_OK || wr_resolution_from_BE(&mdl, B, E, NULL, &r_opt, &d) != WR_OK) {
-        fprintf(stderr, "validate_stretch: %s\n", d.message);
-        return 2;
-    }
-    T = E * h * GAMMA;
-    wr_cm_wavelength(B, T, L, &lam_cm, &d);
-    fprintf(stderr, "B = %.4e N·m, r_opt = %.3f mm, Cerda–Mahadevan λ = %.2f mm (%.2f across W)\n", B, 1e3 * r_opt,
-            1e3 * lam_cm, W / lam_cm);
-    memset(rows, 0, sizeof rows);
-    for (i = 0; i < nrows; ++i) {
-        static const char *const lab[NRES] = {"2.5 mm", "r_opt", "2 r_opt", "5 mm"};
-        const double rr[NRES] = {2.5e-3, r_opt, 2.0 * r_opt, 5.0e-3};
-        rows[i].label = lab[i % NRES];
-        rows[i].r = rr[i % NRES];
-        rows[i].delaunay = i >= NRES;
-    }
-    v = wr_vres_begin("stretch", "Style3D Fig. 16 stretch test: wrinkle count vs mesh resolution (StVK statics)");
-    if (!v) return 2;
-    snprintf(figdir, sizeof figdir, "%s/../figures", wr_vres_dir());
-    for (i = 0; i < nrows; ++i) {
-        snprintf(dat[i], sizeof dat[i], "%s/stretch_profile_%s%d.dat", wr_vres_dir(), rows[i].delaunay ? "del" : "",
+    c->T = E * h * GAMMA;
+    wr_cm_wavelength(c->B, c->T, SHEET_L, &c->lam_cm, d);
+    fprintf(stderr, "B = %.4e N·m, r_opt = %.3f mm, Cerda–Mahadevan λ = %.2f mm (%.2f across W)\n", c->B, 1e3 * c->r_opt,
+            1e3 * c->lam_cm, SHEET_W / c->lam_cm);
+    rr[0] = 2.5e-3, rr[1] = c->r_opt, rr[2] = 2.0 * c->r_opt, rr[3] = 5.0e-3;
+    memset(c->rows, 0, sizeof c->rows);
+    for (i = 0; i < NROWS; ++i) {
+        c->rows[i].label = lab[i % NRES];
+        c->rows[i].r = rr[i % NRES];
+        c->rows[i].delaunay = i >= NRES;
+        snprintf(c->dat[i], sizeof c->dat[i], "%s/stretch_profile_%s%d.dat", wr_vres_dir(), c->rows[i].delaunay ? "del" : "",
                  i % NRES);
-        if (quick && (i % NRES == 0 || i % NRES == 2)) continue;
-        if (run_row(&sc, &rows[i], dat[i]) != 0) return 2;
     }
+    return 1;
+}
+
+/* Solves every row (--quick: r_opt and 5 mm only); 0 when a row cannot be run at all. */
+static int case_run(stretch_case *c, int quick) {
+    int i;
+    for (i = 0; i < NROWS; ++i) {
+        if (quick && (i % NRES == 0 || i % NRES == 2)) continue;
+        if (run_row(&c->sc, &c->rows[i], c->dat[i]) != 0) return 0;
+    }
+    return 1;
+}
+
+static void report_table(wr_vres *v, const stretch_case *c) {
+    char table[8192], buf[4096];
+    int i;
     snprintf(table, sizeof table,
              "| mesh | r [mm] | mean edge [mm] | vertices | median count W/λ (5 probes) | count range | band [mm] | band/λ | zero-crossing waves (L/2) | median λ [mm] | amplitude [mm] | Newton | steps not converged | final abs. residual [N] | solve [s] |\n"
              "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
-    for (i = 0; i < nrows; ++i) {
-        const row *R = &rows[i];
+    for (i = 0; i < NROWS; ++i) {
+        const row *R = &c->rows[i];
         if (!R->nv) continue;
         if (R->flat)
             snprintf(buf, sizeof buf, "| %s %s | %.3f | %.3f | %d | 0 (flat) | - | - | - | - | - | %.1e | %d | %d of %d | %.1e | %.1f |\n",
                      R->delaunay ? "Delaunay" : "grid", R->label, 1e3 * R->r, 1e3 * R->mean_edge, (int)R->nv,
-                     1e3 * R->amplitude, R->newton, R->bad_steps, sc.load_steps, R->grad_final, R->t_solve);
+                     1e3 * R->amplitude, R->newton, R->bad_steps, c->sc.load_steps, R->grad_final, R->t_solve);
         else
             snprintf(buf, sizeof buf, "| %s %s | %.3f | %.3f | %d | %.2f | %.2f-%.2f | %.1f | %.2f | %.1f | %.2f | %.3f | %d | %d of %d | %.1e | %.1f |\n",
                      R->delaunay ? "Delaunay" : "grid", R->label, 1e3 * R->r, 1e3 * R->mean_edge, (int)R->nv, R->count,
                      R->count_min, R->count_max, 1e3 * R->band, R->band_count, R->zc_waves, 1e3 * R->wavelength,
-                     1e3 * R->amplitude, R->newton, R->bad_steps, sc.load_steps, R->grad_final, R->t_solve);
+                     1e3 * R->amplitude, R->newton, R->bad_steps, c->sc.load_steps, R->grad_final, R->t_solve);
         strncat(table, buf, sizeof table - strlen(table) - 1);
     }
     wr_vres_table_md(v, table);
-    wr_vres_info(v, "bending stiffness B (Kirchhoff-Love)", "N m", NAN, B);
-    wr_vres_info(v, "r_opt (Style3D Eq. 4, paper calibration)", "mm", 3.8, 1e3 * r_opt);
-    wr_vres_info(v, "Cerda-Mahadevan wavelength (T = E h gamma, L = 0.25 m)", "mm", NAN, 1e3 * lam_cm);
-    if (!quick) {
-        int both = g25->ok && gop->ok && !g25->flat && !gop->flat;
-        /* bands from issue 5 (set before the runs): ±1 wrinkle between r_opt and 2.5 mm (the paper's claim
-         * that r_opt keeps the count), ±2 of the paper's 7 at 2.5 mm, 20 % of the Cerda–Mahadevan λ
-         * (the scaling law's prefactor uncertainty as the issue states it) */
-        wr_vres_check(v, "count at r_opt vs count at 2.5 mm (grid)", "wrinkles", g25->flat ? 0.0 : g25->count,
-                      gop->flat ? 0.0 : gop->count, "within +-1", both && fabs(gop->count - g25->count) <= 1.0);
-        wr_vres_check(v, "count at 2.5 mm (grid)", "wrinkles", PAPER_COUNT_25, g25->flat ? 0.0 : g25->count,
-                      "within +-2 of 7", g25->ok && !g25->flat && fabs(g25->count - PAPER_COUNT_25) <= 2.0);
-        wr_vres_check(v, "wavelength at 2.5 mm vs Cerda-Mahadevan (grid)", "mm", 1e3 * lam_cm, 1e3 * g25->wavelength,
-                      "within 20%", g25->ok && !g25->flat && fabs(g25->wavelength - lam_cm) <= 0.2 * lam_cm);
-        wr_vres_info(v, "peak amplitude at 2.5 mm (grid; Wang et al. 2018)", "mm", 1e3 * WANG_AMPLITUDE, 1e3 * g25->amplitude);
-        wr_vres_info(v, "wrinkled band / wavelength at 2.5 mm (grid; second count, reported only)", "wrinkles", NAN,
-                     g25->band_count);
-        {
-            double lam_zone = NAN;
-            if (g25->zone_len > 0.0) wr_cm_wavelength(B, T, g25->zone_len, &lam_zone, &d);
-            wr_vres_info(v, "wrinkled zone length along x at 2.5 mm (grid, rest coordinates)", "mm", NAN, 1e3 * g25->zone_len);
-            wr_vres_info(v, "Cerda-Mahadevan wavelength with L = wrinkled zone length (diagnostic, reported only)", "mm",
-                         NAN, 1e3 * lam_zone);
-        }
-        wr_vres_info(v, "count at 2 r_opt (grid; 0 = flat)", "wrinkles", NAN, rows[2].flat ? 0.0 : rows[2].count);
-        wr_vres_info(v, "count at 5 mm (grid)", "wrinkles", 4.0, rows[3].flat ? 0.0 : rows[3].count);
-        for (i = NRES; i < nrows; ++i) {
-            snprintf(buf, sizeof buf, "count at %s (Delaunay; 0 = flat)", rows[i].label);
-            wr_vres_info(v, buf, "wrinkles", i == NRES ? PAPER_COUNT_25 : (i == NRES + 3 ? 4.0 : NAN),
-                         rows[i].flat ? 0.0 : rows[i].count);
-        }
-        wr_vres_info(v, "solve time ratio t(2.5 mm) / t(r_opt), grid, same run", "", NAN, g25->t_solve / gop->t_solve);
-        wr_vres_info(v, "vertex ratio n(2.5 mm) / n(r_opt), grid", "", NAN, (double)g25->nv / gop->nv);
-        wr_vres_info(v, "solve time ratio t(2.5 mm) / t(r_opt), Delaunay, same run", "", NAN,
-                     rows[NRES].t_solve / rows[NRES + 1].t_solve);
-    } else {
-        wr_vres_note(v, "--quick run: only r_opt and 5 mm were solved; the pass bands need the 2.5 mm row.");
-        wr_vres_info(v, "count at r_opt (grid)", "wrinkles", 6.0, gop->flat ? 0.0 : gop->count);
-        wr_vres_info(v, "count at 5 mm (grid)", "wrinkles", 4.0, rows[3].flat ? 0.0 : rows[3].count);
+}
+
+/* The pass bands of issue 5 (set before the runs) and the full run's reported rows. */
+static void report_bands(wr_vres *v, const stretch_case *c, wr_diag *d) {
+    const row *g25 = &c->rows[0], *gop = &c->rows[1];
+    const int both = g25->ok && gop->ok && !g25->flat && !gop->flat;
+    double lam_zone = NAN;
+    char buf[256];
+    int i;
+    /* ±1 wrinkle between r_opt and 2.5 mm (the paper's claim that r_opt keeps the count), ±2 of the
+     * paper's 7 at 2.5 mm, 20 % of the Cerda–Mahadevan λ (the scaling law's prefactor uncertainty as
+     * the issue states it) */
+    wr_vres_check(v, "count at r_opt vs count at 2.5 mm (grid)", "wrinkles", g25->flat ? 0.0 : g25->count,
+                  gop->flat ? 0.0 : gop->count, "within +-1", both && fabs(gop->count - g25->count) <= 1.0);
+    wr_vres_check(v, "count at 2.5 mm (grid)", "wrinkles", PAPER_COUNT_25, g25->flat ? 0.0 : g25->count,
+                  "within +-2 of 7", g25->ok && !g25->flat && fabs(g25->count - PAPER_COUNT_25) <= 2.0);
+    wr_vres_check(v, "wavelength at 2.5 mm vs Cerda-Mahadevan (grid)", "mm", 1e3 * c->lam_cm, 1e3 * g25->wavelength,
+                  "within 20%", g25->ok && !g25->flat && fabs(g25->wavelength - c->lam_cm) <= 0.2 * c->lam_cm);
+    wr_vres_info(v, "peak amplitude at 2.5 mm (grid; Wang et al. 2018)", "mm", 1e3 * WANG_AMPLITUDE, 1e3 * g25->amplitude);
+    wr_vres_info(v, "wrinkled band / wavelength at 2.5 mm (grid; second count, reported only)", "wrinkles", NAN,
+                 g25->band_count);
+    if (g25->zone_len > 0.0) wr_cm_wavelength(c->B, c->T, g25->zone_len, &lam_zone, d);
+    wr_vres_info(v, "wrinkled zone length along x at 2.5 mm (grid, rest coordinates)", "mm", NAN, 1e3 * g25->zone_len);
+    wr_vres_info(v, "Cerda-Mahadevan wavelength with L = wrinkled zone length (diagnostic, reported only)", "mm", NAN,
+                 1e3 * lam_zone);
+    wr_vres_info(v, "count at 2 r_opt (grid; 0 = flat)", "wrinkles", NAN, c->rows[2].flat ? 0.0 : c->rows[2].count);
+    wr_vres_info(v, "count at 5 mm (grid)", "wrinkles", 4.0, c->rows[3].flat ? 0.0 : c->rows[3].count);
+    for (i = NRES; i < NROWS; ++i) {
+        snprintf(buf, sizeof buf, "count at %s (Delaunay; 0 = flat)", c->rows[i].label);
+        wr_vres_info(v, buf, "wrinkles", i == NRES ? PAPER_COUNT_25 : (i == NRES + 3 ? 4.0 : NAN),
+                     c->rows[i].flat ? 0.0 : c->rows[i].count);
     }
-    for (i = 0; i < nrows; ++i)
-        if (rows[i].nv && rows[i].status != WR_OK) {
-            snprintf(buf, sizeof buf, "%s %s row: %d of %d load steps ended %s (best iterate analysed; final residual %.1e N, reference %.1e N)",
-                     rows[i].delaunay ? "Delaunay" : "grid", rows[i].label, rows[i].bad_steps, sc.load_steps,
-                     wr_status_string(rows[i].status), rows[i].grad_final, rows[i].grad_ref);
-            wr_vres_note(v, buf);
-        }
-    {
-        char a[4][24], b4[4][24];
-        int k;
-        for (k = 0; k < NRES; ++k) fmt_count(a[k], sizeof a[k], &rows[k]), fmt_count(b4[k], sizeof b4[k], &rows[NRES + k]);
-        snprintf(buf, sizeof buf, "Counts W/lambda: grid %s / %s / %s / %s, Delaunay %s / %s / %s / %s at 2.5 mm / r_opt / 2 r_opt / 5 mm "
-                 "(paper: 7 / 6 at its 3.8 mm / - / 4).", a[0], a[1], a[2], a[3], b4[0], b4[1], b4[2], b4[3]);
+    wr_vres_info(v, "solve time ratio t(2.5 mm) / t(r_opt), grid, same run", "", NAN, g25->t_solve / gop->t_solve);
+    wr_vres_info(v, "vertex ratio n(2.5 mm) / n(r_opt), grid", "", NAN, (double)g25->nv / gop->nv);
+    wr_vres_info(v, "solve time ratio t(2.5 mm) / t(r_opt), Delaunay, same run", "", NAN,
+                 c->rows[NRES].t_solve / c->rows[NRES + 1].t_solve);
+}
+
+/* A note per row whose load steps did not all converge, then every row's count in one line. */
+static void report_row_notes(wr_vres *v, const stretch_case *c) {
+    char buf[4096], a[NRES][24], b4[NRES][24];
+    int i;
+    for (i = 0; i < NROWS; ++i) {
+        const row *R = &c->rows[i];
+        if (!R->nv || R->status == WR_OK) continue;
+        snprintf(buf, sizeof buf, "%s %s row: %d of %d load steps ended %s (best iterate analysed; final residual %.1e N, reference %.1e N)",
+                 R->delaunay ? "Delaunay" : "grid", R->label, R->bad_steps, c->sc.load_steps, wr_status_string(R->status),
+                 R->grad_final, R->grad_ref);
         wr_vres_note(v, buf);
     }
+    for (i = 0; i < NRES; ++i) fmt_count(a[i], sizeof a[i], &c->rows[i]), fmt_count(b4[i], sizeof b4[i], &c->rows[NRES + i]);
+    snprintf(buf, sizeof buf, "Counts W/lambda: grid %s / %s / %s / %s, Delaunay %s / %s / %s / %s at 2.5 mm / r_opt / 2 r_opt / 5 mm "
+             "(paper: 7 / 6 at its 3.8 mm / - / 4).", a[0], a[1], a[2], a[3], b4[0], b4[1], b4[2], b4[3]);
+    wr_vres_note(v, buf);
+}
+
+/* What the meshes, the count and the solver are, and what was measured about why the counts differ. */
+static void report_method_notes(wr_vres *v) {
     wr_vres_note(v, "Meshes: (grid) regular union-jack grids (wr_mesh_rectangle), nx = round(0.25/r), ny = round(0.1/r), vertex spacing r, "
                     "diagonals sqrt(2) r; (Delaunay) Poisson-disk samples with radius r plus constrained Delaunay (scene type "
                     "delaunay_rectangle, seed 1), mean edge = r. Same family at every resolution.");
@@ -340,34 +356,66 @@ static int validation_main(int quick) {
     wr_vres_note(v, "TFT variant not run: the tension-field membrane has no compressive stiffness at all, so a flat "
                     "sheet is already its minimiser and it cannot buckle into wrinkles (it is TFW's coarse base "
                     "surface, not a reduced-compression StVK).");
-    /* figure */
-    {
-        char gp[4200], png[4200], cmd[9000];
-        wr_afile f;
-        snprintf(gp, sizeof gp, "%s/stretch.gp", figdir);
-        snprintf(png, sizeof png, "%s/stretch.png", figdir);
-        if (wr_afile_open(&f, gp, &d) == WR_OK) {
-            int first = 1;
-            fprintf(f.fp, "set terminal pngcairo size 900,500 noenhanced\nset output '%s'\n", png);
-            fprintf(f.fp, "set xlabel 'y across the width [mm]'\nset ylabel 'out-of-plane displacement [mm]'\n");
-            fprintf(f.fp, "set title 'Stretch test, x = L/2 (solid: union-jack grid, dashed: Delaunay)'\nplot ");
-            for (i = 0; i < nrows; ++i) {
-                if (!rows[i].ok) continue;
-                fprintf(f.fp, "%s'%s' w l %st '%s %s (%.2f mm, %d vertices%s)'", first ? "" : ", ", dat[i],
-                        rows[i].delaunay ? "dt 2 " : "", rows[i].delaunay ? "Delaunay" : "grid", rows[i].label,
-                        1e3 * rows[i].r, (int)rows[i].nv, rows[i].flat ? ", flat" : "");
-                first = 0;
-            }
-            fprintf(f.fp, "\n");
-            if (wr_afile_commit(&f, &d) == WR_OK) {
-                snprintf(cmd, sizeof cmd, "gnuplot '%s' 2>/dev/null", gp);
-                if (system(cmd) == 0) wr_vres_figure(v, "figures/stretch.png", "probe profiles across the width at mid-length, both mesh families");
-                else wr_vres_note(v, "gnuplot failed; figure not drawn");
-            }
-        }
+}
+
+/* The probe profiles across the width at mid-length, both mesh families, as one gnuplot figure. */
+static void profile_figure(wr_vres *v, const stretch_case *c, wr_diag *d) {
+    char figdir[4096], gp[4200], png[4200], cmd[9000];
+    wr_afile f;
+    int first = 1, i;
+    snprintf(figdir, sizeof figdir, "%s/../figures", wr_vres_dir());
+    snprintf(gp, sizeof gp, "%s/stretch.gp", figdir);
+    snprintf(png, sizeof png, "%s/stretch.png", figdir);
+    if (wr_afile_open(&f, gp, d) != WR_OK) return;
+    fprintf(f.fp, "set terminal pngcairo size 900,500 noenhanced\nset output '%s'\n", png);
+    fprintf(f.fp, "set xlabel 'y across the width [mm]'\nset ylabel 'out-of-plane displacement [mm]'\n");
+    fprintf(f.fp, "set title 'Stretch test, x = L/2 (solid: union-jack grid, dashed: Delaunay)'\nplot ");
+    for (i = 0; i < NROWS; ++i) {
+        const row *R = &c->rows[i];
+        if (!R->ok) continue;
+        fprintf(f.fp, "%s'%s' w l %st '%s %s (%.2f mm, %d vertices%s)'", first ? "" : ", ", c->dat[i],
+                R->delaunay ? "dt 2 " : "", R->delaunay ? "Delaunay" : "grid", R->label, 1e3 * R->r, (int)R->nv,
+                R->flat ? ", flat" : "");
+        first = 0;
     }
-    wr_scene_free(&sc);
-    return wr_vres_finish(v);
+    fprintf(f.fp, "\n");
+    if (wr_afile_commit(&f, d) != WR_OK) return;
+    snprintf(cmd, sizeof cmd, "gnuplot '%s' 2>/dev/null", gp);
+    if (system(cmd) == 0) wr_vres_figure(v, "figures/stretch.png", "probe profiles across the width at mid-length, both mesh families");
+    else wr_vres_note(v, "gnuplot failed; figure not drawn");
+}
+
+static int validation_main(int quick) {
+    static stretch_case c; /* ~40 kB of paths: off the stack */
+    wr_diag d;
+    wr_vres *v;
+    int failed;
+    if (!case_setup(&c, &d)) {
+        fprintf(stderr, "validate_stretch: %s\n", d.message);
+        return 2;
+    }
+    v = wr_vres_begin("stretch", "Style3D Fig. 16 stretch test: wrinkle count vs mesh resolution (StVK statics)");
+    if (!v || !case_run(&c, quick)) {
+        wr_scene_free(&c.sc);
+        return 2;
+    }
+    report_table(v, &c);
+    wr_vres_info(v, "bending stiffness B (Kirchhoff-Love)", "N m", NAN, c.B);
+    wr_vres_info(v, "r_opt (Style3D Eq. 4, paper calibration)", "mm", 3.8, 1e3 * c.r_opt);
+    wr_vres_info(v, "Cerda-Mahadevan wavelength (T = E h gamma, L = 0.25 m)", "mm", NAN, 1e3 * c.lam_cm);
+    if (!quick) {
+        report_bands(v, &c, &d);
+    } else {
+        wr_vres_note(v, "--quick run: only r_opt and 5 mm were solved; the pass bands need the 2.5 mm row.");
+        wr_vres_info(v, "count at r_opt (grid)", "wrinkles", 6.0, c.rows[1].flat ? 0.0 : c.rows[1].count);
+        wr_vres_info(v, "count at 5 mm (grid)", "wrinkles", 4.0, c.rows[3].flat ? 0.0 : c.rows[3].count);
+    }
+    report_row_notes(v, &c);
+    report_method_notes(v);
+    profile_figure(v, &c, &d);
+    wr_scene_free(&c.sc);
+    failed = wr_vres_finish(v);
+    return failed;
 }
 
 int main(int argc, char **argv) {
