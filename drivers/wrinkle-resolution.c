@@ -208,65 +208,59 @@ bad:
     return WR_CLI_EXIT_USAGE;
 }
 
-int main(int argc, char **argv) {
-    opts o;
-    wr_resolution_model m;
-    wr_resolution_desc desc;
-    wr_diag d;
-    int i, k, modes, has_range = 0;
-    memset(&o, 0, sizeof o);
-    wr_cli_set_program(argv[0]);
-    o.E_min = WR_RESOLUTION_PAPER_E_MIN;
-    o.E_max = WR_RESOLUTION_PAPER_E_MAX;
-    o.B_min = WR_RESOLUTION_PAPER_B_MIN;
-    o.B_max = WR_RESOLUTION_PAPER_B_MAX;
-    o.r_min_mm = 1e3 * WR_RESOLUTION_PAPER_R_MIN;
-    o.r_max_mm = 1e3 * WR_RESOLUTION_PAPER_R_MAX;
-
-    {
-        /* one table, the shared loop (cli.h): name, kind, destination, range, "given" flag */
+/* The command line into o (defaults: the paper's design ranges); -1 to go on, else the exit code. */
+static int parse_opts(opts *o, int *has_range, int argc, char **argv) {
+    /* one table, the shared loop (cli.h): name, kind, destination, range, "given" flag */
 #define OPT(nm, kd, dst, flag)                                                                   \
-    opts[n].name = nm, opts[n].kind = kd, opts[n].out = (void *)(dst), opts[n].lo = 1.0, opts[n].hi = 0.0, \
-    opts[n].given = flag, ++n
-        wr_cli_opt opts[32];
-        int n = 0, npos = 0;
-        memset(opts, 0, sizeof opts);
-        OPT("--json", WR_CLI_FLAG, &o.json, NULL);
-        OPT("--calibrate", WR_CLI_FLAG, &o.calibrate, NULL);
-        OPT("--clamp", WR_CLI_FLAG, &o.clamp, NULL);
-        OPT("--csv", WR_CLI_STRING, &o.csv, NULL);
-        OPT("--bending", WR_CLI_NUMBER, &o.B, &o.has_B);
-        OPT("--young", WR_CLI_NUMBER, &o.E, &o.has_E);
-        OPT("--thickness", WR_CLI_NUMBER, &o.h, &o.has_h);
-        OPT("--poisson", WR_CLI_NUMBER, &o.nu, &o.has_nu);
-        OPT("--warp-bending", WR_CLI_NUMBER, &o.Bw, &o.has_Bw);
-        OPT("--warp-young", WR_CLI_NUMBER, &o.Ew, &o.has_Ew);
-        OPT("--weft-bending", WR_CLI_NUMBER, &o.Bf, &o.has_Bf);
-        OPT("--weft-young", WR_CLI_NUMBER, &o.Ef, &o.has_Ef);
-        OPT("--E-min", WR_CLI_NUMBER, &o.E_min, &has_range);
-        OPT("--E-max", WR_CLI_NUMBER, &o.E_max, &has_range);
-        OPT("--B-min", WR_CLI_NUMBER, &o.B_min, &has_range);
-        OPT("--B-max", WR_CLI_NUMBER, &o.B_max, &has_range);
-        OPT("--r-min-mm", WR_CLI_NUMBER, &o.r_min_mm, &has_range);
-        OPT("--r-max-mm", WR_CLI_NUMBER, &o.r_max_mm, &has_range);
-        OPT("--inverse-mm", WR_CLI_NUMBER, &o.inverse_mm, &o.has_inverse);
-        OPT("--c1", WR_CLI_NUMBER, &o.c1, &o.has_c1);
-        OPT("--c2", WR_CLI_NUMBER, &o.c2, &o.has_c2);
-        OPT("--r-lo-mm", WR_CLI_NUMBER, &o.r_lo_mm, &o.has_lo);
-        OPT("--r-hi-mm", WR_CLI_NUMBER, &o.r_hi_mm, &o.has_hi);
+    tab[n].name = nm, tab[n].kind = kd, tab[n].out = (void *)(dst), tab[n].lo = 1.0, tab[n].hi = 0.0, \
+    tab[n].given = flag, ++n
+    wr_cli_opt tab[32];
+    int n = 0, npos = 0, k;
+    memset(o, 0, sizeof *o);
+    o->E_min = WR_RESOLUTION_PAPER_E_MIN;
+    o->E_max = WR_RESOLUTION_PAPER_E_MAX;
+    o->B_min = WR_RESOLUTION_PAPER_B_MIN;
+    o->B_max = WR_RESOLUTION_PAPER_B_MAX;
+    o->r_min_mm = 1e3 * WR_RESOLUTION_PAPER_R_MIN;
+    o->r_max_mm = 1e3 * WR_RESOLUTION_PAPER_R_MAX;
+    memset(tab, 0, sizeof tab);
+    OPT("--json", WR_CLI_FLAG, &o->json, NULL);
+    OPT("--calibrate", WR_CLI_FLAG, &o->calibrate, NULL);
+    OPT("--clamp", WR_CLI_FLAG, &o->clamp, NULL);
+    OPT("--csv", WR_CLI_STRING, &o->csv, NULL);
+    OPT("--bending", WR_CLI_NUMBER, &o->B, &o->has_B);
+    OPT("--young", WR_CLI_NUMBER, &o->E, &o->has_E);
+    OPT("--thickness", WR_CLI_NUMBER, &o->h, &o->has_h);
+    OPT("--poisson", WR_CLI_NUMBER, &o->nu, &o->has_nu);
+    OPT("--warp-bending", WR_CLI_NUMBER, &o->Bw, &o->has_Bw);
+    OPT("--warp-young", WR_CLI_NUMBER, &o->Ew, &o->has_Ew);
+    OPT("--weft-bending", WR_CLI_NUMBER, &o->Bf, &o->has_Bf);
+    OPT("--weft-young", WR_CLI_NUMBER, &o->Ef, &o->has_Ef);
+    OPT("--E-min", WR_CLI_NUMBER, &o->E_min, has_range);
+    OPT("--E-max", WR_CLI_NUMBER, &o->E_max, has_range);
+    OPT("--B-min", WR_CLI_NUMBER, &o->B_min, has_range);
+    OPT("--B-max", WR_CLI_NUMBER, &o->B_max, has_range);
+    OPT("--r-min-mm", WR_CLI_NUMBER, &o->r_min_mm, has_range);
+    OPT("--r-max-mm", WR_CLI_NUMBER, &o->r_max_mm, has_range);
+    OPT("--inverse-mm", WR_CLI_NUMBER, &o->inverse_mm, &o->has_inverse);
+    OPT("--c1", WR_CLI_NUMBER, &o->c1, &o->has_c1);
+    OPT("--c2", WR_CLI_NUMBER, &o->c2, &o->has_c2);
+    OPT("--r-lo-mm", WR_CLI_NUMBER, &o->r_lo_mm, &o->has_lo);
+    OPT("--r-hi-mm", WR_CLI_NUMBER, &o->r_hi_mm, &o->has_hi);
 #undef OPT
-        if ((k = wr_cli_parse(argc, argv, opts, n, NULL, 0, &npos, usage)) <= 0) return k < 0 ? WR_CLI_EXIT_USAGE : 0;
-        (void)i;
-    }
+    if ((k = wr_cli_parse(argc, argv, tab, n, NULL, 0, &npos, usage)) <= 0) return k < 0 ? WR_CLI_EXIT_USAGE : 0;
+    return -1;
+}
 
-    /* exactly one mode */
-    modes = (o.has_B || o.has_E || o.has_h || o.has_nu) + (o.has_Bw || o.has_Ew || o.has_Bf || o.has_Ef) +
-            o.calibrate + o.has_inverse + (o.csv != NULL);
+/* Exactly one mode; -1 when so, else the exit code. */
+static int check_mode(const opts *o, int has_range) {
+    const int modes = (o->has_B || o->has_E || o->has_h || o->has_nu) + (o->has_Bw || o->has_Ew || o->has_Bf || o->has_Ef) +
+                      o->calibrate + o->has_inverse + (o->csv != NULL);
     if (modes == 0) {
         wr_cli_error("nothing to do: give --bending and --young (see --help)");
         return WR_CLI_EXIT_USAGE;
     }
-    if (has_range && !o.calibrate) {
+    if (has_range && !o->calibrate) {
         wr_cli_error("--E-min/--E-max/--B-min/--B-max/--r-min-mm/--r-max-mm only apply with --calibrate");
         return WR_CLI_EXIT_USAGE;
     }
@@ -274,165 +268,193 @@ int main(int argc, char **argv) {
         wr_cli_error("choose one mode: single fabric, warp/weft, --calibrate, --inverse-mm or --csv");
         return WR_CLI_EXIT_USAGE;
     }
+    return -1;
+}
 
-    if (o.calibrate) {
-        if (wr_resolution_calibrate(o.E_min, o.E_max, o.B_min, o.B_max, 1e-3 * o.r_min_mm, 1e-3 * o.r_max_mm, &m,
-                                    &d) != WR_OK)
-            return fail_status(NULL, &d);
-        if (o.json) {
-            cJSON *j = cJSON_CreateObject();
-            cJSON_AddNumberToObject(j, "c1", m.c1);
-            cJSON_AddNumberToObject(j, "c2", m.c2);
-            cJSON_AddNumberToObject(j, "y_min", o.B_min / o.E_max);
-            cJSON_AddNumberToObject(j, "y_max", o.B_max / o.E_min);
-            cJSON_AddNumberToObject(j, "r_min_mm", o.r_min_mm);
-            cJSON_AddNumberToObject(j, "r_max_mm", o.r_max_mm);
-            return print_json(j);
-        }
-        printf("E in [%g, %g] N/m^2, B in [%g, %g] N*m, r in [%g, %g] mm\n", o.E_min, o.E_max, o.B_min, o.B_max,
-               o.r_min_mm, o.r_max_mm);
-        printf("y_min = B_min/E_max = %.6g m^3, y_max = B_max/E_min = %.6g m^3\n", o.B_min / o.E_max,
-               o.B_max / o.E_min);
-        printf("c1 = %.6g m^-3\nc2 = %.6g m^-1\n", m.c1, m.c2);
-        printf("%.10g %.10g\n", m.c1, m.c2);
-        return wr_cli_exit(0);
+/* --calibrate: c1, c2 from the design ranges (resolution.h). */
+static int run_calibrate(const opts *o) {
+    wr_resolution_model m;
+    wr_diag d;
+    if (wr_resolution_calibrate(o->E_min, o->E_max, o->B_min, o->B_max, 1e-3 * o->r_min_mm, 1e-3 * o->r_max_mm, &m, &d) !=
+        WR_OK)
+        return fail_status(NULL, &d);
+    if (o->json) {
+        cJSON *j = cJSON_CreateObject();
+        cJSON_AddNumberToObject(j, "c1", m.c1);
+        cJSON_AddNumberToObject(j, "c2", m.c2);
+        cJSON_AddNumberToObject(j, "y_min", o->B_min / o->E_max);
+        cJSON_AddNumberToObject(j, "y_max", o->B_max / o->E_min);
+        cJSON_AddNumberToObject(j, "r_min_mm", o->r_min_mm);
+        cJSON_AddNumberToObject(j, "r_max_mm", o->r_max_mm);
+        return print_json(j);
     }
+    printf("E in [%g, %g] N/m^2, B in [%g, %g] N*m, r in [%g, %g] mm\n", o->E_min, o->E_max, o->B_min, o->B_max,
+           o->r_min_mm, o->r_max_mm);
+    printf("y_min = B_min/E_max = %.6g m^3, y_max = B_max/E_min = %.6g m^3\n", o->B_min / o->E_max, o->B_max / o->E_min);
+    printf("c1 = %.6g m^-3\nc2 = %.6g m^-1\n", m.c1, m.c2);
+    printf("%.10g %.10g\n", m.c1, m.c2);
+    return wr_cli_exit(0);
+}
 
-    /* the model */
-    if (o.has_c1 != o.has_c2) {
+/* The model (--c1/--c2 or the paper's) and the design band; -1 to go on, else the exit code. */
+static int build_model(const opts *o, wr_resolution_model *m, wr_resolution_desc *desc) {
+    wr_diag d;
+    if (o->has_c1 != o->has_c2) {
         wr_cli_error("--c1 and --c2 must be given together");
         return WR_CLI_EXIT_USAGE;
     }
-    if (o.has_c1) {
+    if (o->has_c1) {
         wr_resolution_domain_info dom;
-        m.c1 = o.c1;
-        m.c2 = o.c2;
-        if (wr_resolution_domain(&m, &dom, &d) != WR_OK) return fail_status(NULL, &d);
+        m->c1 = o->c1;
+        m->c2 = o->c2;
+        if (wr_resolution_domain(m, &dom, &d) != WR_OK) return fail_status(NULL, &d);
     } else {
-        m = wr_resolution_model_paper();
+        *m = wr_resolution_model_paper();
     }
-    memset(&desc, 0, sizeof desc);
-    desc.clamp = o.clamp;
-    if (o.has_lo) {
-        if (!(o.r_lo_mm > 0.0)) {
-            wr_cli_error("--r-lo-mm must be > 0, got %g", o.r_lo_mm);
+    memset(desc, 0, sizeof *desc);
+    desc->clamp = o->clamp;
+    if (o->has_lo) {
+        if (!(o->r_lo_mm > 0.0)) {
+            wr_cli_error("--r-lo-mm must be > 0, got %g", o->r_lo_mm);
             return WR_CLI_EXIT_USAGE;
         }
-        desc.r_lo = 1e-3 * o.r_lo_mm;
+        desc->r_lo = 1e-3 * o->r_lo_mm;
     }
-    if (o.has_hi) {
-        if (!(o.r_hi_mm > 0.0)) {
-            wr_cli_error("--r-hi-mm must be > 0, got %g", o.r_hi_mm);
+    if (o->has_hi) {
+        if (!(o->r_hi_mm > 0.0)) {
+            wr_cli_error("--r-hi-mm must be > 0, got %g", o->r_hi_mm);
             return WR_CLI_EXIT_USAGE;
         }
-        desc.r_hi = 1e-3 * o.r_hi_mm;
+        desc->r_hi = 1e-3 * o->r_hi_mm;
     }
-    if (o.has_lo && o.has_hi && !(o.r_lo_mm < o.r_hi_mm)) {
-        wr_cli_error("inverted design band: --r-lo-mm %g >= --r-hi-mm %g", o.r_lo_mm, o.r_hi_mm);
+    if (o->has_lo && o->has_hi && !(o->r_lo_mm < o->r_hi_mm)) {
+        wr_cli_error("inverted design band: --r-lo-mm %g >= --r-hi-mm %g", o->r_lo_mm, o->r_hi_mm);
         return WR_CLI_EXIT_USAGE;
     }
+    return -1;
+}
 
+/* --inverse-mm: y = c1 r^6 + c2 r^4 for the given r. */
+static int run_inverse(const opts *o, const wr_resolution_model *m) {
+    double y;
+    wr_diag d;
+    if (wr_resolution_y(m, 1e-3 * o->inverse_mm, &y, &d) != WR_OK) return fail_status(NULL, &d);
+    if (o->json) {
+        cJSON *j = cJSON_CreateObject();
+        cJSON_AddNumberToObject(j, "r_mm", o->inverse_mm);
+        cJSON_AddNumberToObject(j, "r_m", 1e-3 * o->inverse_mm);
+        cJSON_AddNumberToObject(j, "y", y);
+        cJSON_AddNumberToObject(j, "c1", m->c1);
+        cJSON_AddNumberToObject(j, "c2", m->c2);
+        return print_json(j);
+    }
+    printf("r = %g mm, c1 = %.6g m^-3, c2 = %.6g m^-1\n", o->inverse_mm, m->c1, m->c2);
+    printf("y = B/E [m^3]:\n%.10g\n", y);
+    return wr_cli_exit(0);
+}
+
+/* Warp/weft pairs: one resolution per direction (Style3D Sec. 4.2.1). */
+static int run_orthotropic(const opts *o, const wr_resolution_model *m, const wr_resolution_desc *desc) {
+    double rw, rf;
+    wr_diag d;
+    if (!(o->has_Bw && o->has_Ew && o->has_Bf && o->has_Ef)) {
+        wr_cli_error("orthotropic input needs all of --warp-bending --warp-young --weft-bending --weft-young");
+        return WR_CLI_EXIT_USAGE;
+    }
+    if (wr_resolution_orthotropic(m, o->Bw, o->Ew, o->Bf, o->Ef, desc, &rw, &rf, &d) != WR_OK)
+        return fail_status(d.item == 0 ? "warp" : "weft", &d);
+    warn_band("r_warp", rw);
+    warn_band("r_weft", rf);
+    if (o->json) {
+        cJSON *j = cJSON_CreateObject();
+        cJSON_AddNumberToObject(j, "r_warp_mm", 1e3 * rw);
+        cJSON_AddNumberToObject(j, "r_weft_mm", 1e3 * rf);
+        cJSON_AddNumberToObject(j, "r_warp_m", rw);
+        cJSON_AddNumberToObject(j, "r_weft_m", rf);
+        cJSON_AddNumberToObject(j, "y_warp", o->Bw / o->Ew);
+        cJSON_AddNumberToObject(j, "y_weft", o->Bf / o->Ef);
+        cJSON_AddNumberToObject(j, "c1", m->c1);
+        cJSON_AddNumberToObject(j, "c2", m->c2);
+        return print_json(j);
+    }
+    printf("warp: B = %g N*m, E = %g N/m^2 -> r_warp = %.4f mm (edge length along the warp)\n", o->Bw, o->Ew, 1e3 * rw);
+    printf("weft: B = %g N*m, E = %g N/m^2 -> r_weft = %.4f mm (edge length along the weft)\n", o->Bf, o->Ef, 1e3 * rf);
+    printf("%.4f %.4f\n", 1e3 * rw, 1e3 * rf);
+    return wr_cli_exit(0);
+}
+
+/* B from --bending or Kirchhoff-Love (--thickness, --poisson); -1 to go on, else the exit code. */
+static int single_bending(const opts *o, double *B) {
+    wr_diag d;
+    if (!o->has_E) {
+        wr_cli_error("--young E is required");
+        return WR_CLI_EXIT_USAGE;
+    }
+    if (o->has_B && (o->has_h || o->has_nu)) {
+        wr_cli_error("give either --bending or --thickness/--poisson, not both");
+        return WR_CLI_EXIT_USAGE;
+    }
+    if (o->has_h != o->has_nu) {
+        wr_cli_error("--thickness and --poisson must be given together");
+        return WR_CLI_EXIT_USAGE;
+    }
+    if (!o->has_B && !o->has_h) {
+        wr_cli_error("--bending B (or --thickness h --poisson nu) is required");
+        return WR_CLI_EXIT_USAGE;
+    }
+    if (!o->has_h) {
+        *B = o->B;
+        return -1;
+    }
+    if (o->h > 0.01) wr_cli_warn("--thickness %g m is over 1 cm: the option is in metres (0.3 mm is 3e-4)", o->h);
+    return wr_kl_bending(o->E, o->h, o->nu, B, &d) == WR_OK ? -1 : fail_status(NULL, &d);
+}
+
+/* One fabric: r from Eq. 4. */
+static int run_single(const opts *o, const wr_resolution_model *m, const wr_resolution_desc *desc) {
+    double B, r;
+    wr_diag d;
+    int e;
+    if ((e = single_bending(o, &B)) >= 0) return e;
+    if (wr_resolution_from_BE(m, B, o->E, desc, &r, &d) != WR_OK) return fail_status(NULL, &d);
+    warn_band("r", r);
+    if (o->json) {
+        cJSON *j = cJSON_CreateObject();
+        wr_resolution_domain_info dom;
+        cJSON_AddNumberToObject(j, "r_mm", 1e3 * r);
+        cJSON_AddNumberToObject(j, "r_m", r);
+        cJSON_AddNumberToObject(j, "y", B / o->E);
+        cJSON_AddNumberToObject(j, "c1", m->c1);
+        cJSON_AddNumberToObject(j, "c2", m->c2);
+        cJSON_AddNumberToObject(j, "B", B);
+        cJSON_AddNumberToObject(j, "E", o->E);
+        if (o->has_h) {
+            cJSON_AddNumberToObject(j, "thickness", o->h);
+            cJSON_AddNumberToObject(j, "poisson", o->nu);
+        }
+        if (wr_resolution_domain(m, &dom, NULL) == WR_OK) cJSON_AddNumberToObject(j, "r_zero_mm", 1e3 * dom.r_zero);
+        cJSON_AddBoolToObject(j, "paper_model", !o->has_c1);
+        return print_json(j);
+    }
+    if (o->has_h) printf("Kirchhoff-Love: h = %g m, nu = %g -> B = %.6g N*m\n", o->h, o->nu, B);
+    printf("B = %g N*m, E = %g N/m^2, y = B/E = %.6g m^3\n", B, o->E, B / o->E);
+    printf("model (Eq. 4): c1 = %.6g m^-3, c2 = %.6g m^-1%s\n", m->c1, m->c2, o->has_c1 ? "" : " (paper)");
+    printf("optimal resolution [mm]:\n%.4f\n", 1e3 * r);
+    return wr_cli_exit(0);
+}
+
+int main(int argc, char **argv) {
+    opts o;
+    wr_resolution_model m;
+    wr_resolution_desc desc;
+    int e, has_range = 0;
+    wr_cli_set_program(argv[0]);
+    if ((e = parse_opts(&o, &has_range, argc, argv)) >= 0) return e;
+    if ((e = check_mode(&o, has_range)) >= 0) return e;
+    if (o.calibrate) return run_calibrate(&o);
+    if ((e = build_model(&o, &m, &desc)) >= 0) return e;
     if (o.csv) return run_csv(&o, &m, &desc);
-
-    if (o.has_inverse) {
-        double y;
-        if (wr_resolution_y(&m, 1e-3 * o.inverse_mm, &y, &d) != WR_OK) return fail_status(NULL, &d);
-        if (o.json) {
-            cJSON *j = cJSON_CreateObject();
-            cJSON_AddNumberToObject(j, "r_mm", o.inverse_mm);
-            cJSON_AddNumberToObject(j, "r_m", 1e-3 * o.inverse_mm);
-            cJSON_AddNumberToObject(j, "y", y);
-            cJSON_AddNumberToObject(j, "c1", m.c1);
-            cJSON_AddNumberToObject(j, "c2", m.c2);
-            return print_json(j);
-        }
-        printf("r = %g mm, c1 = %.6g m^-3, c2 = %.6g m^-1\n", o.inverse_mm, m.c1, m.c2);
-        printf("y = B/E [m^3]:\n%.10g\n", y);
-        return wr_cli_exit(0);
-    }
-
-    if (o.has_Bw || o.has_Ew || o.has_Bf || o.has_Ef) {
-        double rw, rf;
-        if (!(o.has_Bw && o.has_Ew && o.has_Bf && o.has_Ef)) {
-            wr_cli_error("orthotropic input needs all of --warp-bending --warp-young --weft-bending --weft-young");
-            return WR_CLI_EXIT_USAGE;
-        }
-        if (wr_resolution_orthotropic(&m, o.Bw, o.Ew, o.Bf, o.Ef, &desc, &rw, &rf, &d) != WR_OK)
-            return fail_status(d.item == 0 ? "warp" : "weft", &d);
-        warn_band("r_warp", rw);
-        warn_band("r_weft", rf);
-        if (o.json) {
-            cJSON *j = cJSON_CreateObject();
-            cJSON_AddNumberToObject(j, "r_warp_mm", 1e3 * rw);
-            cJSON_AddNumberToObject(j, "r_weft_mm", 1e3 * rf);
-            cJSON_AddNumberToObject(j, "r_warp_m", rw);
-            cJSON_AddNumberToObject(j, "r_weft_m", rf);
-            cJSON_AddNumberToObject(j, "y_warp", o.Bw / o.Ew);
-            cJSON_AddNumberToObject(j, "y_weft", o.Bf / o.Ef);
-            cJSON_AddNumberToObject(j, "c1", m.c1);
-            cJSON_AddNumberToObject(j, "c2", m.c2);
-            return print_json(j);
-        }
-        printf("warp: B = %g N*m, E = %g N/m^2 -> r_warp = %.4f mm (edge length along the warp)\n", o.Bw, o.Ew,
-               1e3 * rw);
-        printf("weft: B = %g N*m, E = %g N/m^2 -> r_weft = %.4f mm (edge length along the weft)\n", o.Bf, o.Ef,
-               1e3 * rf);
-        printf("%.4f %.4f\n", 1e3 * rw, 1e3 * rf);
-        return wr_cli_exit(0);
-    }
-
-    /* single fabric */
-    {
-        double B, r;
-        if (!o.has_E) {
-            wr_cli_error("--young E is required");
-            return WR_CLI_EXIT_USAGE;
-        }
-        if (o.has_B && (o.has_h || o.has_nu)) {
-            wr_cli_error("give either --bending or --thickness/--poisson, not both");
-            return WR_CLI_EXIT_USAGE;
-        }
-        if (o.has_h != o.has_nu) {
-            wr_cli_error("--thickness and --poisson must be given together");
-            return WR_CLI_EXIT_USAGE;
-        }
-        if (!o.has_B && !o.has_h) {
-            wr_cli_error("--bending B (or --thickness h --poisson nu) is required");
-            return WR_CLI_EXIT_USAGE;
-        }
-        if (o.has_h) {
-            if (o.h > 0.01)
-                wr_cli_warn("--thickness %g m is over 1 cm: the option is in metres (0.3 mm is 3e-4)", o.h);
-            if (wr_kl_bending(o.E, o.h, o.nu, &B, &d) != WR_OK) return fail_status(NULL, &d);
-        } else {
-            B = o.B;
-        }
-        if (wr_resolution_from_BE(&m, B, o.E, &desc, &r, &d) != WR_OK) return fail_status(NULL, &d);
-        warn_band("r", r);
-        if (o.json) {
-            cJSON *j = cJSON_CreateObject();
-            wr_resolution_domain_info dom;
-            cJSON_AddNumberToObject(j, "r_mm", 1e3 * r);
-            cJSON_AddNumberToObject(j, "r_m", r);
-            cJSON_AddNumberToObject(j, "y", B / o.E);
-            cJSON_AddNumberToObject(j, "c1", m.c1);
-            cJSON_AddNumberToObject(j, "c2", m.c2);
-            cJSON_AddNumberToObject(j, "B", B);
-            cJSON_AddNumberToObject(j, "E", o.E);
-            if (o.has_h) {
-                cJSON_AddNumberToObject(j, "thickness", o.h);
-                cJSON_AddNumberToObject(j, "poisson", o.nu);
-            }
-            if (wr_resolution_domain(&m, &dom, NULL) == WR_OK)
-                cJSON_AddNumberToObject(j, "r_zero_mm", 1e3 * dom.r_zero);
-            cJSON_AddBoolToObject(j, "paper_model", !o.has_c1);
-            return print_json(j);
-        }
-        if (o.has_h)
-            printf("Kirchhoff-Love: h = %g m, nu = %g -> B = %.6g N*m\n", o.h, o.nu, B);
-        printf("B = %g N*m, E = %g N/m^2, y = B/E = %.6g m^3\n", B, o.E, B / o.E);
-        printf("model (Eq. 4): c1 = %.6g m^-3, c2 = %.6g m^-1%s\n", m.c1, m.c2, o.has_c1 ? "" : " (paper)");
-        printf("optimal resolution [mm]:\n%.4f\n", 1e3 * r);
-        return wr_cli_exit(0);
-    }
+    if (o.has_inverse) return run_inverse(&o, &m);
+    if (o.has_Bw || o.has_Ew || o.has_Bf || o.has_Ef) return run_orthotropic(&o, &m, &desc);
+    return run_single(&o, &m, &desc);
 }
