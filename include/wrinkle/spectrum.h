@@ -939,16 +939,140 @@ static int32_t wr__zero_crossings(const double *v, int32_t n, double thr, int pe
     return count;
 }
 
-WRDEF wr_status wr_spectrum_analyze(const double *x, int32_t n, double ds, int periodic, const wr_spectrum_desc *desc_in,
-                                    wr_spectrum_result *res_out, double *power, int32_t power_cap, wr_diag *diag) {
-    wr_spectrum_desc desc;
-    wr_spectrum_result r;
-    wr_status st;
-    double *y = NULL, *yw = NULL, *pw = NULL, *sm = NULL, *xsc = NULL, ymin, ymax, sumw = 0.0, total = 0.0, band;
+/* Half the peak-to-peak range of v: the (max − min)/2 amplitude. */
+static double wr__sp_half_range(const double *v, int32_t n) {
+    double lo = v[0], hi = v[0];
+    int32_t i;
+    for (i = 1; i < n; ++i) {
+        lo = fmin(lo, v[i]);
+        hi = fmax(hi, v[i]);
+    }
+    return 0.5 * (hi - lo);
+}
+
+/* The bins [k_min, k_max] of the wavelength band (default: 2 ds to the probe length). */
+static wr_status wr__sp_band(const wr_spectrum_desc *desc, wr_spectrum_result *r, wr_diag *diag) {
+    double lmin = desc->min_wavelength > 0.0 ? desc->min_wavelength : 2.0 * r->ds;
+    double lmax = desc->max_wavelength > 0.0 ? desc->max_wavelength : r->length;
+    double kmin_d, kmax_d;
+    const int32_t nb = r->n_bins;
+    if (!(lmin < lmax))
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "spectrum: min_wavelength %g >= max_wavelength %g", lmin, lmax);
+    /* bin k <-> wavelength nfft·ds/k; the slack keeps a band edge that falls on a bin inclusive */
+    kmin_d = ceil((double)r->nfft * r->ds / lmax - WR__SP_BAND_EDGE_SLACK);
+    kmax_d = floor((double)r->nfft * r->ds / lmin + WR__SP_BAND_EDGE_SLACK);
+    r->k_min = kmin_d < 1.0 ? 1 : (int32_t)fmin(kmin_d, (double)nb);
+    r->k_max = kmax_d > (double)(nb - 1) ? nb - 1 : (int32_t)kmax_d;
+    if (r->k_min > r->k_max)
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "spectrum: band [%g, %g] m holds no frequency bin (ds=%g, n=%d)", lmin,
+                       lmax, r->ds, (int)r->n);
+    return WR_OK;
+}
+
+/* The power-of-two exponent e by which x is analysed as x·2^-e (0 when |x| needs no scaling; see
+ * WR__SP_SCALE_EXP). */
+static int wr__sp_scale_exponent(const double *x, int32_t n) {
     double xmax_abs = 0.0;
-    int32_t i, k, nfft, nb, deg;
-    int scale_e = 0;
-    if (!x || !res_out) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "spectrum: NULL signal or result");
+    int32_t i;
+    int e = 0;
+    for (i = 0; i < n; ++i) xmax_abs = fmax(xmax_abs, fabs(x[i]));
+    if (xmax_abs > 0.0) {
+        (void)frexp(xmax_abs, &e);
+        if (e >= -WR__SP_SCALE_EXP && e <= WR__SP_SCALE_EXP) e = 0;
+    }
+    return e;
+}
+
+/* The fractional offset of the true peak from bin kp: a parabola through the peak and its two
+ * neighbours (in log power for WR_PEAK_GAUSSIAN, in magnitude for WR_PEAK_QUADRATIC), within ±1. */
+static double wr__sp_peak_offset(const double *pw, int32_t kp, int32_t nb, int32_t fit) {
+    double a, b, c, den, off = 0.0;
+    if (fit == WR_PEAK_NONE || kp < 1 || kp + 1 >= nb) return 0.0;
+    if (fit == WR_PEAK_GAUSSIAN) {
+        /* Parabola through log power: δ = ½(a−c)/(a−2b+c). Neighbours below 1e-24 of the peak
+         * power (1e-12 in magnitude) are FFT rounding noise (a tone exactly on a bin of a
+         * closed curve, whose true neighbours are 0): they are floored to the same value so
+         * the noise cannot tilt the parabola; then δ = 0. */
+        double fl = pw[kp] * WR__SP_NOISE_FLOOR + DBL_MIN;
+        a = log(fmax(pw[kp - 1], fl));
+        b = log(fmax(pw[kp], fl));
+        c = log(fmax(pw[kp + 1], fl));
+    } else {
+        a = sqrt(pw[kp - 1]);
+        b = sqrt(pw[kp]);
+        c = sqrt(pw[kp + 1]);
+    }
+    den = a - 2.0 * b + c;
+    if (den < 0.0) off = 0.5 * (a - c) / den;
+    if (off > 1.0) off = 1.0;
+    if (off < -1.0) off = -1.0;
+    return off;
+}
+
+/* The dominant bin in the band, its refined frequency, the wavelength and count it gives, the share
+ * of the non-DC power its lobe holds, and the tone's amplitude by a direct DFT of the windowed
+ * signal yw at the refined frequency (no scalloping loss). */
+static wr_status wr__sp_peak(const double *pw, const double *yw, const wr_spectrum_desc *desc, wr_spectrum_result *r,
+                             wr_diag *diag) {
+    const int32_t nb = r->n_bins, n = r->n;
+    double total = 0.0, band = 0.0, fr, re = 0.0, im = 0.0;
+    int32_t k, kp, hw, lo, hi, i;
+    r->peak_bin = r->k_min;
+    for (k = r->k_min; k <= r->k_max; ++k)
+        if (pw[k] > pw[r->peak_bin]) r->peak_bin = k;
+    for (k = 1; k < nb; ++k) total += pw[k];
+    if (!(pw[r->peak_bin] > 0.0)) return wr_fail(diag, WR_ERR_DOMAIN, -1, "spectrum: no power inside the wavelength band");
+    kp = r->peak_bin;
+    if ((kp == r->k_min && kp - 1 >= 1 && pw[kp - 1] > pw[kp]) || (kp == r->k_max && kp + 1 < nb && pw[kp + 1] > pw[kp]))
+        r->peak_at_band_edge = 1;
+    r->peak_offset = wr__sp_peak_offset(pw, kp, nb, desc->peak_fit);
+    r->wavenumber = ((double)kp + r->peak_offset) / ((double)r->nfft * r->ds);
+    r->wavelength = 1.0 / r->wavenumber;
+    r->count = r->length / r->wavelength;
+    r->count_rounded = r->periodic ? kp : (int32_t)floor(r->count + 0.5);
+    hw = 2 * desc->pad_factor, lo = kp - hw < 1 ? 1 : kp - hw, hi = kp + hw > nb - 1 ? nb - 1 : kp + hw;
+    for (k = lo; k <= hi; ++k) band += pw[k];
+    r->peak_power_fraction = total > 0.0 ? band / total : 0.0;
+    fr = ((double)kp + r->peak_offset) / (double)r->nfft;
+    for (i = 0; i < n; ++i) {
+        double ph = 2.0 * WR__SP_PI * fr * (double)i;
+        re += yw[i] * cos(ph);
+        im -= yw[i] * sin(ph);
+    }
+    r->amplitude_spectral = 2.0 * sqrt(re * re + im * im) / r->window_sum;
+    return WR_OK;
+}
+
+/* Zero crossings of the detrended (not windowed) signal y, smoothed over desc->zc_smooth
+ * wavelengths (an odd window, sm is its n-sample scratch), with a Schmitt trigger at
+ * desc->zc_hysteresis of the smoothed half range. */
+static void wr__sp_zero_crossing_stage(const double *y, const wr_spectrum_desc *desc, wr_spectrum_result *r, double *sm) {
+    const int32_t n = r->n;
+    int32_t m = (int32_t)floor(desc->zc_smooth * r->wavelength / r->ds + 0.5);
+    double thr, p0, p1;
+    if (m < 2) m = 1;
+    if (m % 2 == 0) ++m;
+    if (m > n) m = (n % 2) ? n : n - 1;
+    r->zc_smooth_samples = m;
+    if (m > 1)
+        wr__moving_average(y, n, m, r->periodic, sm);
+    else
+        memcpy(sm, y, sizeof(double) * (size_t)n);
+    thr = desc->zc_hysteresis * wr__sp_half_range(sm, n);
+    r->n_zero_crossings = wr__zero_crossings(sm, n, thr, r->periodic, &p0, &p1);
+    r->zc_waves = 0.5 * (double)r->n_zero_crossings;
+    if (r->periodic)
+        r->zc_wavelength = r->n_zero_crossings > 0 ? r->length / r->zc_waves : 0.0;
+    else
+        r->zc_wavelength = r->n_zero_crossings > 1 ? 2.0 * (p1 - p0) * r->ds / (double)(r->n_zero_crossings - 1) : 0.0;
+}
+
+/* Checks the arguments and fills the result's geometry (n, length, nfft, bins, band); r arrives zeroed. */
+static wr_status wr__sp_setup(const double *x, int32_t n, double ds, int periodic, const wr_spectrum_desc *desc_in,
+                              wr_spectrum_desc *desc, wr_spectrum_result *r, int32_t power_cap, int want_power,
+                              wr_diag *diag) {
+    wr_status st;
+    int32_t i;
     if (n < WR_SPECTRUM_MIN_SAMPLES)
         return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "spectrum: n=%d samples, need >= %d", (int)n,
                        WR_SPECTRUM_MIN_SAMPLES);
@@ -956,36 +1080,34 @@ WRDEF wr_status wr_spectrum_analyze(const double *x, int32_t n, double ds, int p
     for (i = 0; i < n; ++i)
         if (!isfinite(x[i]))
             return wr_fail(diag, WR_ERR_INVALID_ARG, i, "spectrum: sample %d is %g (outside the mesh?)", (int)i, x[i]);
-    st = wr__spectrum_desc_defaults(desc_in, periodic, &desc, diag);
+    st = wr__spectrum_desc_defaults(desc_in, periodic, desc, diag);
     if (st != WR_OK) return st;
-    if ((int64_t)n * desc.pad_factor > (int64_t)INT32_MAX / 2)
-        return wr_fail(diag, WR_ERR_OVERFLOW, -1, "spectrum: n=%d × pad_factor=%d too large", (int)n, (int)desc.pad_factor);
+    if ((int64_t)n * desc->pad_factor > (int64_t)INT32_MAX / 2)
+        return wr_fail(diag, WR_ERR_OVERFLOW, -1, "spectrum: n=%d × pad_factor=%d too large", (int)n, (int)desc->pad_factor);
+    r->n = n;
+    r->periodic = periodic ? 1 : 0;
+    r->ds = ds;
+    r->length = periodic ? (double)n * ds : (double)(n - 1) * ds;
+    r->nfft = n * desc->pad_factor;
+    r->n_bins = r->nfft / 2 + 1;
+    if (want_power && power_cap < r->n_bins)
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "spectrum: power capacity %d < %d bins", (int)power_cap, (int)r->n_bins);
+    return wr__sp_band(desc, r, diag);
+}
+
+WRDEF wr_status wr_spectrum_analyze(const double *x, int32_t n, double ds, int periodic, const wr_spectrum_desc *desc_in,
+                                    wr_spectrum_result *res_out, double *power, int32_t power_cap, wr_diag *diag) {
+    wr_spectrum_desc desc;
+    wr_spectrum_result r;
+    wr_status st;
+    double *y = NULL, *yw = NULL, *pw = NULL, *sm = NULL, *xsc = NULL, xs = 0.0;
+    int32_t i, k, nb, deg;
+    int scale_e;
+    if (!x || !res_out) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "spectrum: NULL signal or result");
     memset(&r, 0, sizeof r);
-    r.n = n;
-    r.periodic = periodic ? 1 : 0;
-    r.ds = ds;
-    r.length = periodic ? (double)n * ds : (double)(n - 1) * ds;
-    nfft = n * desc.pad_factor;
-    nb = nfft / 2 + 1;
-    r.nfft = nfft;
-    r.n_bins = nb;
-    if (power && power_cap < nb)
-        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "spectrum: power capacity %d < %d bins", (int)power_cap, (int)nb);
-    {
-        double lmin = desc.min_wavelength > 0.0 ? desc.min_wavelength : 2.0 * ds;
-        double lmax = desc.max_wavelength > 0.0 ? desc.max_wavelength : r.length;
-        double kmin_d, kmax_d;
-        if (!(lmin < lmax))
-            return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "spectrum: min_wavelength %g >= max_wavelength %g", lmin, lmax);
-        /* bin k <-> wavelength nfft·ds/k; the slack keeps a band edge that falls on a bin inclusive */
-        kmin_d = ceil((double)nfft * ds / lmax - WR__SP_BAND_EDGE_SLACK);
-        kmax_d = floor((double)nfft * ds / lmin + WR__SP_BAND_EDGE_SLACK);
-        r.k_min = kmin_d < 1.0 ? 1 : (int32_t)fmin(kmin_d, (double)nb);
-        r.k_max = kmax_d > (double)(nb - 1) ? nb - 1 : (int32_t)kmax_d;
-        if (r.k_min > r.k_max)
-            return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "spectrum: band [%g, %g] m holds no frequency bin (ds=%g, n=%d)",
-                           lmin, lmax, ds, (int)n);
-    }
+    st = wr__sp_setup(x, n, ds, periodic, desc_in, &desc, &r, power_cap, power != NULL, diag);
+    if (st != WR_OK) return st;
+    nb = r.n_bins;
     y = (double *)wr_alloc_array((size_t)n, sizeof(double));
     yw = (double *)wr_alloc_array((size_t)n, sizeof(double));
     sm = (double *)wr_alloc_array((size_t)n, sizeof(double));
@@ -994,11 +1116,7 @@ WRDEF wr_status wr_spectrum_analyze(const double *x, int32_t n, double ds, int p
         st = wr_fail(diag, WR_ERR_NOMEM, -1, "spectrum: out of memory for n=%d", (int)n);
         goto done;
     }
-    for (i = 0; i < n; ++i) xmax_abs = fmax(xmax_abs, fabs(x[i]));
-    if (xmax_abs > 0.0) {
-        (void)frexp(xmax_abs, &scale_e);
-        if (scale_e >= -WR__SP_SCALE_EXP && scale_e <= WR__SP_SCALE_EXP) scale_e = 0;
-    }
+    scale_e = wr__sp_scale_exponent(x, n);
     if (scale_e != 0) { /* see WR__SP_SCALE_EXP: analyse x·2^-e, x itself is not modified */
         xsc = (double *)wr_alloc_array((size_t)n, sizeof(double));
         if (!xsc) {
@@ -1008,6 +1126,7 @@ WRDEF wr_status wr_spectrum_analyze(const double *x, int32_t n, double ds, int p
         for (i = 0; i < n; ++i) xsc[i] = ldexp(x[i], -scale_e);
         x = xsc;
     }
+    /* 1. detrend */
     memcpy(y, x, sizeof(double) * (size_t)n);
     deg = desc.detrend == WR_DETREND_NONE ? -1
                                           : (desc.detrend == WR_DETREND_MEAN ? 0 : (desc.detrend == WR_DETREND_LINEAR ? 1 : 2));
@@ -1015,89 +1134,27 @@ WRDEF wr_status wr_spectrum_analyze(const double *x, int32_t n, double ds, int p
         st = wr_fail(diag, WR_ERR_NOMEM, -1, "spectrum: out of memory for detrending");
         goto done;
     }
-    ymin = ymax = y[0];
-    for (i = 1; i < n; ++i) {
-        ymin = fmin(ymin, y[i]);
-        ymax = fmax(ymax, y[i]);
-    }
-    r.amplitude_p2p = 0.5 * (ymax - ymin);
-    {
-        /* "No oscillation": what is left after detrending is rounding noise of the input's size. */
-        double xs = 0.0;
-        for (i = 0; i < n; ++i) xs = fmax(xs, fabs(x[i]));
-        if (!(r.amplitude_p2p > WR__SP_FLAT_REL * xs) || r.amplitude_p2p == 0.0) {
-            st = wr_fail(diag, WR_ERR_DOMAIN, -1, "spectrum: signal is flat after detrending (amplitude %g)",
-                         ldexp(r.amplitude_p2p, scale_e));
-            goto done;
-        }
-    }
-    for (i = 0; i < n; ++i) {
-        /* symmetric Hann: zero at both ends of an open probe */
-        double w = desc.window == WR_WINDOW_HANN ? 0.5 - 0.5 * cos(2.0 * WR__SP_PI * (double)i / (double)(n - 1)) : 1.0;
-        yw[i] = y[i] * w;
-        sumw += w;
-    }
-    r.window_sum = sumw;
-    st = wr__rfft_power(yw, n, nfft, pw, diag);
-    if (st != WR_OK) goto done;
-    /* peak in band */
-    r.peak_bin = r.k_min;
-    for (k = r.k_min; k <= r.k_max; ++k)
-        if (pw[k] > pw[r.peak_bin]) r.peak_bin = k;
-    for (k = 1; k < nb; ++k) total += pw[k];
-    if (!(pw[r.peak_bin] > 0.0)) {
-        st = wr_fail(diag, WR_ERR_DOMAIN, -1, "spectrum: no power inside the wavelength band");
+    /* "No oscillation": what is left after detrending is rounding noise of the input's size. */
+    r.amplitude_p2p = wr__sp_half_range(y, n);
+    for (i = 0; i < n; ++i) xs = fmax(xs, fabs(x[i]));
+    if (!(r.amplitude_p2p > WR__SP_FLAT_REL * xs) || r.amplitude_p2p == 0.0) {
+        st = wr_fail(diag, WR_ERR_DOMAIN, -1, "spectrum: signal is flat after detrending (amplitude %g)",
+                     ldexp(r.amplitude_p2p, scale_e));
         goto done;
     }
-    {
-        int32_t kp = r.peak_bin;
-        if ((kp == r.k_min && kp - 1 >= 1 && pw[kp - 1] > pw[kp]) || (kp == r.k_max && kp + 1 < nb && pw[kp + 1] > pw[kp]))
-            r.peak_at_band_edge = 1;
-        r.peak_offset = 0.0;
-        if (desc.peak_fit != WR_PEAK_NONE && kp >= 1 && kp + 1 < nb) {
-            double a, b, c, den;
-            if (desc.peak_fit == WR_PEAK_GAUSSIAN) {
-                /* Parabola through log power: δ = ½(a−c)/(a−2b+c). Neighbours below 1e-24 of the peak
-                 * power (1e-12 in magnitude) are FFT rounding noise (a tone exactly on a bin of a
-                 * closed curve, whose true neighbours are 0): they are floored to the same value so
-                 * the noise cannot tilt the parabola; then δ = 0. */
-                double fl = pw[kp] * WR__SP_NOISE_FLOOR + DBL_MIN;
-                a = log(fmax(pw[kp - 1], fl));
-                b = log(fmax(pw[kp], fl));
-                c = log(fmax(pw[kp + 1], fl));
-            } else {
-                a = sqrt(pw[kp - 1]);
-                b = sqrt(pw[kp]);
-                c = sqrt(pw[kp + 1]);
-            }
-            den = a - 2.0 * b + c;
-            if (den < 0.0) r.peak_offset = 0.5 * (a - c) / den;
-            if (r.peak_offset > 1.0) r.peak_offset = 1.0;
-            if (r.peak_offset < -1.0) r.peak_offset = -1.0;
-        }
-        r.wavenumber = ((double)kp + r.peak_offset) / ((double)nfft * ds);
-        r.wavelength = 1.0 / r.wavenumber;
-        r.count = r.length / r.wavelength;
-        r.count_rounded = periodic ? kp : (int32_t)floor(r.count + 0.5);
-        /* peak_power_fraction: how much of the (non-DC) power the dominant lobe holds */
-        {
-            int32_t hw = 2 * desc.pad_factor, lo = kp - hw < 1 ? 1 : kp - hw, hi = kp + hw > nb - 1 ? nb - 1 : kp + hw;
-            band = 0.0;
-            for (k = lo; k <= hi; ++k) band += pw[k];
-            r.peak_power_fraction = total > 0.0 ? band / total : 0.0;
-        }
-        /* spectral amplitude from a direct DFT at the refined frequency (no scalloping loss) */
-        {
-            double fr = ((double)kp + r.peak_offset) / (double)nfft, re = 0.0, im = 0.0;
-            for (i = 0; i < n; ++i) {
-                double ph = 2.0 * WR__SP_PI * fr * (double)i;
-                re += yw[i] * cos(ph);
-                im -= yw[i] * sin(ph);
-            }
-            r.amplitude_spectral = 2.0 * sqrt(re * re + im * im) / sumw;
-        }
+    /* 2. window (symmetric Hann: zero at both ends of an open probe) and zero-padded power spectrum */
+    r.window_sum = 0.0;
+    for (i = 0; i < n; ++i) {
+        double w = desc.window == WR_WINDOW_HANN ? 0.5 - 0.5 * cos(2.0 * WR__SP_PI * (double)i / (double)(n - 1)) : 1.0;
+        yw[i] = y[i] * w;
+        r.window_sum += w;
     }
-    /* Least-squares frequency of the joint model {trend polynomial, cos, sin}, searched within ±half
+    st = wr__rfft_power(yw, n, r.nfft, pw, diag);
+    if (st != WR_OK) goto done;
+    /* 3. the peak in the band */
+    st = wr__sp_peak(pw, yw, &desc, &r, diag);
+    if (st != WR_OK) goto done;
+    /* 4. Least-squares frequency of the joint model {trend polynomial, cos, sin}, searched within ±half
      * an unpadded bin of the FFT estimate f*: window-free, so it stays accurate on probes holding only
      * 2–3 waves, where the FFT peak is pulled by its own negative-frequency image (measured: 8 % at
      * 2 periods). Then the joint refit at that frequency: plain detrending removes the part of a sine
@@ -1106,43 +1163,15 @@ WRDEF wr_status wr_spectrum_analyze(const double *x, int32_t n, double ds, int p
      * removes only the true trend. The tone's LS amplitude is amplitude_fit. If the small system is
      * singular, y stays the plain detrended signal. Cost: ~62 fits of O(25 N) each. */
     {
-        double f0 = ((double)r.peak_bin + r.peak_offset) / (double)nfft, half = 0.5 / (double)n;
+        double f0 = ((double)r.peak_bin + r.peak_offset) / (double)r.nfft, half = 0.5 / (double)n;
         double fls = wr__ls_frequency(x, n, deg, fmax(f0 - half, 0.25 / (double)n), fmin(f0 + half, 0.5));
         r.wavelength_ls = ds / fls;
         r.count_ls = r.length / r.wavelength_ls;
         wr__trend_refit(x, n, deg, fls, y, &r.amplitude_fit);
     }
-    ymin = ymax = y[0];
-    for (i = 1; i < n; ++i) {
-        ymin = fmin(ymin, y[i]);
-        ymax = fmax(ymax, y[i]);
-    }
-    r.amplitude_p2p = 0.5 * (ymax - ymin);
-    /* zero crossings on the detrended (not windowed) signal */
-    {
-        int32_t m = (int32_t)floor(desc.zc_smooth * r.wavelength / ds + 0.5);
-        double smin, smax, thr, p0, p1;
-        if (m < 2) m = 1;
-        if (m % 2 == 0) ++m;
-        if (m > n) m = (n % 2) ? n : n - 1;
-        r.zc_smooth_samples = m;
-        if (m > 1)
-            wr__moving_average(y, n, m, periodic, sm);
-        else
-            memcpy(sm, y, sizeof(double) * (size_t)n);
-        smin = smax = sm[0];
-        for (i = 1; i < n; ++i) {
-            smin = fmin(smin, sm[i]);
-            smax = fmax(smax, sm[i]);
-        }
-        thr = desc.zc_hysteresis * 0.5 * (smax - smin);
-        r.n_zero_crossings = wr__zero_crossings(sm, n, thr, periodic, &p0, &p1);
-        r.zc_waves = 0.5 * (double)r.n_zero_crossings;
-        if (periodic)
-            r.zc_wavelength = r.n_zero_crossings > 0 ? r.length / r.zc_waves : 0.0;
-        else
-            r.zc_wavelength = r.n_zero_crossings > 1 ? 2.0 * (p1 - p0) * ds / (double)(r.n_zero_crossings - 1) : 0.0;
-    }
+    r.amplitude_p2p = wr__sp_half_range(y, n);
+    /* 5. zero crossings */
+    wr__sp_zero_crossing_stage(y, &desc, &r, sm);
     if (scale_e != 0) { /* back to the caller's units (power may over/underflow there: its own range) */
         r.amplitude_p2p = ldexp(r.amplitude_p2p, scale_e);
         r.amplitude_spectral = ldexp(r.amplitude_spectral, scale_e);
