@@ -2575,253 +2575,268 @@ static int32_t wr__uf_find(int32_t *p, int32_t x) {
     return x;
 }
 
-WRDEF wr_status wr_cdt_check(const wr_cdt_result *r, int32_t expected_holes, wr_cdt_check_info *info, wr_diag *diag) {
-    int32_t nT, nP, t, k, *bout = NULL, *bnext = NULL, *uf = NULL, *used = NULL, *cstart = NULL, *cadj = NULL,
-                              *cmk = NULL, *stamp = NULL, *dfs = NULL, *sstart = NULL;
-    int32_t E = 0, V = 0, C = 0, B = 0, pinched = 0, ncon = 0, s;
-    double minang = 1.0; /* sin² of the smallest angle seen */
-    wr_status st = WR_OK;
-    wr_cdt_check_info loc;
-    if (!info) info = &loc;
-    memset(info, 0, sizeof *info);
-    if (!r) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "result is NULL");
-    nT = r->n_triangles;
-    nP = r->n_points;
-    if (nT < 0 || nP < 0 || (nT > 0 && (!r->triangles || !r->neighbors || !r->edge_segment)) || (nP > 0 && !r->points))
-        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "result arrays missing");
-    bout = (int32_t *)wr_calloc_array((size_t)nP, sizeof(int32_t));
-    bnext = (int32_t *)wr_alloc_array((size_t)nP, sizeof(int32_t));
-    used = (int32_t *)wr_calloc_array((size_t)nP, sizeof(int32_t));
-    uf = (int32_t *)wr_alloc_array((size_t)nT, sizeof(int32_t));
-    cstart = (int32_t *)wr_calloc_array((size_t)nP + 1, sizeof(int32_t));
-    stamp = (int32_t *)wr_calloc_array((size_t)nP, sizeof(int32_t));
-    if (!bout || !bnext || !used || !uf || !cstart || !stamp) goto nomem;
-    for (t = 0; t < nT; ++t) {
+/* The checker's state: the result, its counts (V used vertices, E edges, C components, B boundary
+ * loops, pinched boundary vertices), per-vertex boundary successor, union-find over triangles, and
+ * the two adjacency lists of the subsegment checks. */
+typedef struct wr__cdtchk {
+    const wr_cdt_result *r;
+    int32_t nT, nP, V, E, C, B, pinched;
+    double minang; /* sin² of the smallest angle seen */
+    int32_t *bout, *bnext, *used, *uf, *stamp;
+    /* CSR 1 (cstart, adj[0..nhe)): every mesh half-edge a -> b with its mark; CSR 2 (sstart,
+     * adj[nhe..)): subsegments, both directions */
+    int32_t nhe, *cstart, *sstart, *adj, *mk, *dfs;
+} wr__cdtchk;
+
+/* Every triangle's vertices in range and counter-clockwise; the smallest angle; the used vertices. */
+static wr_status wr__chk_triangles(wr__cdtchk *K, wr_diag *diag) {
+    const wr_cdt_result *r = K->r;
+    int32_t t, k;
+    for (t = 0; t < K->nT; ++t) {
         const int32_t *v = r->triangles + 3 * t;
-        double a;
-        uf[t] = t;
+        double a, s2;
+        K->uf[t] = t;
         for (k = 0; k < 3; ++k)
-            if (v[k] < 0 || v[k] >= nP) {
-                st = wr_fail(diag, WR_ERR_TOPOLOGY, t, "triangle %d: vertex %d out of range [0, %d)", t, v[k], nP);
-                goto done;
-            }
+            if (v[k] < 0 || v[k] >= K->nP)
+                return wr_fail(diag, WR_ERR_TOPOLOGY, t, "triangle %d: vertex %d out of range [0, %d)", t, v[k], K->nP);
         a = wr_orient2d(r->points + 2 * v[0], r->points + 2 * v[1], r->points + 2 * v[2]);
-        if (!(a > 0.0)) {
-            st = wr_fail(diag, WR_ERR_GEOMETRY, t, "triangle %d (%d, %d, %d) is %s", t, v[0], v[1], v[2],
-                         a == 0.0 ? "degenerate (zero area)" : "clockwise (inverted)");
-            goto done;
-        }
-        {
-            double s2 = wr__tri_sin2_min(r->points + 2 * v[0], r->points + 2 * v[1], r->points + 2 * v[2]);
-            if (s2 < minang) minang = s2;
-        }
-        for (k = 0; k < 3; ++k) used[v[k]] = 1;
+        if (!(a > 0.0))
+            return wr_fail(diag, WR_ERR_GEOMETRY, t, "triangle %d (%d, %d, %d) is %s", t, v[0], v[1], v[2],
+                           a == 0.0 ? "degenerate (zero area)" : "clockwise (inverted)");
+        s2 = wr__tri_sin2_min(r->points + 2 * v[0], r->points + 2 * v[1], r->points + 2 * v[2]);
+        if (s2 < K->minang) K->minang = s2;
+        for (k = 0; k < 3; ++k) K->used[v[k]] = 1;
     }
-    for (t = 0; t < nT; ++t) {
+    return WR_OK;
+}
+
+/* Neighbours are mutual across the same edge with the same segment mark; every unconstrained
+ * interior edge is locally Delaunay; counts edges, joins components, records the boundary edges. */
+static wr_status wr__chk_adjacency(wr__cdtchk *K, wr_diag *diag) {
+    const wr_cdt_result *r = K->r;
+    int32_t t, k;
+    for (t = 0; t < K->nT; ++t) {
         const int32_t *v = r->triangles + 3 * t;
         for (k = 0; k < 3; ++k) {
             int32_t nb = r->neighbors[3 * t + k], a = v[wr__n1[k]], b = v[wr__n2[k]], k2, m = r->edge_segment[3 * t + k];
-            if (nb < -1 || nb >= nT) {
-                st = wr_fail(diag, WR_ERR_TOPOLOGY, t, "triangle %d: neighbor %d out of range", t, nb);
-                goto done;
-            }
+            const int32_t *w;
+            if (nb < -1 || nb >= K->nT) return wr_fail(diag, WR_ERR_TOPOLOGY, t, "triangle %d: neighbor %d out of range", t, nb);
             if (nb < 0) {
-                ++E;
-                if (m >= 0) ++ncon;
-                if (bout[a]++) ++pinched;
-                bnext[a] = b;
+                ++K->E;
+                if (K->bout[a]++) ++K->pinched;
+                K->bnext[a] = b;
                 continue;
             }
-            {
-                const int32_t *w = r->triangles + 3 * nb;
-                for (k2 = 0; k2 < 3; ++k2)
-                    if (w[wr__n1[k2]] == b && w[wr__n2[k2]] == a) break;
-                if (k2 == 3 || r->neighbors[3 * nb + k2] != t || r->edge_segment[3 * nb + k2] != m) {
-                    st = wr_fail(diag, WR_ERR_TOPOLOGY, t,
-                                 "triangles %d and %d are not mutual neighbors across edge (%d, %d)", t, nb, a, b);
-                    goto done;
-                }
-                if (t < nb) {
-                    ++E;
-                    if (m >= 0) ++ncon;
-                    uf[wr__uf_find(uf, t)] = wr__uf_find(uf, nb);
-                    if (m < 0 && wr_incircle(r->points + 2 * v[0], r->points + 2 * v[1], r->points + 2 * v[2],
-                                              r->points + 2 * w[k2]) > 0.0) {
-                        st = wr_fail(diag, WR_ERR_GEOMETRY, t,
-                                     "edge (%d, %d) between triangles %d and %d is not locally Delaunay", a, b, t, nb);
-                        goto done;
-                    }
-                }
-            }
+            w = r->triangles + 3 * nb;
+            for (k2 = 0; k2 < 3; ++k2)
+                if (w[wr__n1[k2]] == b && w[wr__n2[k2]] == a) break;
+            if (k2 == 3 || r->neighbors[3 * nb + k2] != t || r->edge_segment[3 * nb + k2] != m)
+                return wr_fail(diag, WR_ERR_TOPOLOGY, t, "triangles %d and %d are not mutual neighbors across edge (%d, %d)",
+                               t, nb, a, b);
+            if (t >= nb) continue; /* each interior edge once, from its lower triangle */
+            ++K->E;
+            K->uf[wr__uf_find(K->uf, t)] = wr__uf_find(K->uf, nb);
+            if (m < 0 && wr_incircle(r->points + 2 * v[0], r->points + 2 * v[1], r->points + 2 * v[2],
+                                      r->points + 2 * w[k2]) > 0.0)
+                return wr_fail(diag, WR_ERR_GEOMETRY, t, "edge (%d, %d) between triangles %d and %d is not locally Delaunay",
+                               a, b, t, nb);
         }
     }
-    for (t = 0; t < nT; ++t) C += wr__uf_find(uf, t) == t;
-    for (s = 0; s < nP; ++s) V += used[s];
-    if (!pinched) { /* count boundary cycles; each vertex has one outgoing boundary edge at most */
-        for (s = 0; s < nP; ++s) stamp[s] = 0;
-        for (s = 0; s < nP; ++s) {
-            int32_t x = s, len = 0;
-            if (!bout[s] || stamp[s]) continue;
-            do {
-                stamp[x] = 1;
-                if (!bout[x]) {
-                    st = wr_fail(diag, WR_ERR_TOPOLOGY, x, "boundary is not closed at vertex %d", x);
-                    goto done;
-                }
-                x = bnext[x];
-            } while (!stamp[x] && ++len <= nP);
-            if (x != s) {
-                st = wr_fail(diag, WR_ERR_TOPOLOGY, s, "boundary through vertex %d is not a simple cycle", s);
-                goto done;
-            }
-            ++B;
-        }
-        if (V - E + nT != 2 * C - B) {
-            st = wr_fail(diag, WR_ERR_TOPOLOGY, -1, "Euler characteristic V-E+F = %d, expected 2*components-loops = %d",
-                         V - E + nT, 2 * C - B);
-            goto done;
-        }
-        if (expected_holes >= 0 && B - C != expected_holes) {
-            st = wr_fail(diag, WR_ERR_TOPOLOGY, -1, "%d holes found (boundary loops %d, components %d), expected %d",
-                         B - C, B, C, expected_holes);
-            goto done;
-        }
+    return WR_OK;
+}
+
+/* Components, used vertices, and (when no boundary vertex is pinched, so each vertex has at most one
+ * outgoing boundary edge) the boundary cycles, the Euler characteristic and the hole count. */
+static wr_status wr__chk_euler(wr__cdtchk *K, int32_t expected_holes, wr_diag *diag) {
+    int32_t t, s;
+    for (t = 0; t < K->nT; ++t) K->C += wr__uf_find(K->uf, t) == t;
+    for (s = 0; s < K->nP; ++s) K->V += K->used[s];
+    if (K->pinched) return WR_OK;
+    for (s = 0; s < K->nP; ++s) K->stamp[s] = 0;
+    for (s = 0; s < K->nP; ++s) {
+        int32_t x = s, len = 0;
+        if (!K->bout[s] || K->stamp[s]) continue;
+        do {
+            K->stamp[x] = 1;
+            if (!K->bout[x]) return wr_fail(diag, WR_ERR_TOPOLOGY, x, "boundary is not closed at vertex %d", x);
+            x = K->bnext[x];
+        } while (!K->stamp[x] && ++len <= K->nP);
+        if (x != s) return wr_fail(diag, WR_ERR_TOPOLOGY, s, "boundary through vertex %d is not a simple cycle", s);
+        ++K->B;
     }
-    /* (1) constrained triangle edges and subsegments list each other, with the same segment id;
-     * (2) every input segment is a chain of subsegments (DFS). */
-    if (r->n_segments < 0 || (r->n_segments > 0 && (!r->segments || !r->segment_id))) {
-        st = wr_fail(diag, WR_ERR_INVALID_ARG, -1, "subsegment arrays missing");
-        goto done;
-    }
-    for (s = 0; s < 2 * r->n_segments; ++s)
-        if (r->segments[s] < 0 || r->segments[s] >= nP) {
-            st = wr_fail(diag, WR_ERR_TOPOLOGY, s / 2, "subsegment %d has an out-of-range end", s / 2);
-            goto done;
-        }
-    /* CSR 1 (cstart, cadj[0..3nT)): every mesh half-edge a -> b with its mark; CSR 2 (sstart,
-     * cadj[3nT..)): subsegments, both directions */
-    ncon = 3 * nT;
-    cadj = (int32_t *)wr_alloc_array((size_t)ncon + 2 * (size_t)r->n_segments, sizeof(int32_t));
-    cmk = (int32_t *)wr_alloc_array((size_t)ncon + 2 * (size_t)r->n_segments, sizeof(int32_t));
-    dfs = (int32_t *)wr_alloc_array((size_t)nP, sizeof(int32_t));
-    sstart = (int32_t *)wr_calloc_array((size_t)nP + 1, sizeof(int32_t));
-    if (!cadj || !cmk || !dfs || !sstart) goto nomem;
-    for (t = 0; t < nT; ++t)
-        for (k = 0; k < 3; ++k) cstart[r->triangles[3 * t + wr__n1[k]] + 1]++;
-    for (s = 0; s < r->n_segments; ++s) {
-        sstart[r->segments[2 * s] + 1]++;
-        sstart[r->segments[2 * s + 1] + 1]++;
+    if (K->V - K->E + K->nT != 2 * K->C - K->B)
+        return wr_fail(diag, WR_ERR_TOPOLOGY, -1, "Euler characteristic V-E+F = %d, expected 2*components-loops = %d",
+                       K->V - K->E + K->nT, 2 * K->C - K->B);
+    if (expected_holes >= 0 && K->B - K->C != expected_holes)
+        return wr_fail(diag, WR_ERR_TOPOLOGY, -1, "%d holes found (boundary loops %d, components %d), expected %d",
+                       K->B - K->C, K->B, K->C, expected_holes);
+    return WR_OK;
+}
+
+/* Checks the subsegment arrays and builds the two adjacency lists (half-edges, subsegments). */
+static wr_status wr__chk_build_lists(wr__cdtchk *K, wr_diag *diag) {
+    const wr_cdt_result *r = K->r;
+    const int32_t nP = K->nP, ns = r->n_segments;
+    int32_t s, t, k;
+    if (ns < 0 || (ns > 0 && (!r->segments || !r->segment_id)))
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "subsegment arrays missing");
+    for (s = 0; s < 2 * ns; ++s)
+        if (r->segments[s] < 0 || r->segments[s] >= nP)
+            return wr_fail(diag, WR_ERR_TOPOLOGY, s / 2, "subsegment %d has an out-of-range end", s / 2);
+    K->nhe = 3 * K->nT;
+    K->adj = (int32_t *)wr_alloc_array((size_t)K->nhe + 2 * (size_t)ns, sizeof(int32_t));
+    K->mk = (int32_t *)wr_alloc_array((size_t)K->nhe + 2 * (size_t)ns, sizeof(int32_t));
+    K->dfs = (int32_t *)wr_alloc_array((size_t)nP, sizeof(int32_t));
+    K->sstart = (int32_t *)wr_calloc_array((size_t)nP + 1, sizeof(int32_t));
+    if (!K->adj || !K->mk || !K->dfs || !K->sstart) return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
+    for (t = 0; t < K->nT; ++t)
+        for (k = 0; k < 3; ++k) K->cstart[r->triangles[3 * t + wr__n1[k]] + 1]++;
+    for (s = 0; s < ns; ++s) {
+        K->sstart[r->segments[2 * s] + 1]++;
+        K->sstart[r->segments[2 * s + 1] + 1]++;
     }
     for (s = 0; s < nP; ++s) {
-        cstart[s + 1] += cstart[s];
-        sstart[s + 1] += sstart[s];
+        K->cstart[s + 1] += K->cstart[s];
+        K->sstart[s + 1] += K->sstart[s];
     }
-    for (s = 0; s < nP; ++s) stamp[s] = cstart[s];
-    for (t = 0; t < nT; ++t)
+    for (s = 0; s < nP; ++s) K->stamp[s] = K->cstart[s];
+    for (t = 0; t < K->nT; ++t)
         for (k = 0; k < 3; ++k) {
             int32_t a = r->triangles[3 * t + wr__n1[k]], b = r->triangles[3 * t + wr__n2[k]];
-            cadj[stamp[a]] = b;
-            cmk[stamp[a]++] = r->edge_segment[3 * t + k];
+            K->adj[K->stamp[a]] = b;
+            K->mk[K->stamp[a]++] = r->edge_segment[3 * t + k];
         }
-    for (s = 0; s < nP; ++s) stamp[s] = ncon + sstart[s];
-    for (s = 0; s < r->n_segments; ++s) {
+    for (s = 0; s < nP; ++s) K->stamp[s] = K->nhe + K->sstart[s];
+    for (s = 0; s < ns; ++s) {
         int32_t a = r->segments[2 * s], b = r->segments[2 * s + 1], m = r->segment_id[s];
-        cadj[stamp[a]] = b;
-        cmk[stamp[a]++] = m;
-        cadj[stamp[b]] = a;
-        cmk[stamp[b]++] = m;
+        K->adj[K->stamp[a]] = b;
+        K->mk[K->stamp[a]++] = m;
+        K->adj[K->stamp[b]] = a;
+        K->mk[K->stamp[b]++] = m;
     }
-    for (s = 0; s < nP; ++s) { /* (1) */
-        int32_t j, j2;
-        for (j = cstart[s]; j < cstart[s + 1]; ++j) { /* constrained mesh edge -> listed subsegment */
-            if (cmk[j] < 0) continue;
-            for (j2 = ncon + sstart[s]; j2 < ncon + sstart[s + 1]; ++j2)
-                if (cadj[j2] == cadj[j] && cmk[j2] == cmk[j]) break;
-            if (j2 == ncon + sstart[s + 1]) {
-                st = wr_fail(diag, WR_ERR_TOPOLOGY, cmk[j], "constrained edge (%d, %d) of segment %d is not in the subsegment list",
-                             s, cadj[j], cmk[j]);
-                goto done;
-            }
+    return WR_OK;
+}
+
+/* (1) constrained triangle edges and subsegments list each other, with the same segment id (a
+ * subsegment that is no mesh edge at all is allowed only where triangles were removed). */
+static wr_status wr__chk_subsegments(const wr__cdtchk *K, wr_diag *diag) {
+    const wr_cdt_result *r = K->r;
+    const int32_t *adj = K->adj, *mk = K->mk, *cs = K->cstart, o = K->nhe;
+    int32_t s, j, j2;
+    for (s = 0; s < K->nP; ++s) {
+        for (j = cs[s]; j < cs[s + 1]; ++j) { /* constrained mesh edge -> listed subsegment */
+            if (mk[j] < 0) continue;
+            for (j2 = o + K->sstart[s]; j2 < o + K->sstart[s + 1]; ++j2)
+                if (adj[j2] == adj[j] && mk[j2] == mk[j]) break;
+            if (j2 == o + K->sstart[s + 1])
+                return wr_fail(diag, WR_ERR_TOPOLOGY, mk[j], "constrained edge (%d, %d) of segment %d is not in the subsegment list",
+                               s, adj[j], mk[j]);
         }
-        for (j2 = ncon + sstart[s]; j2 < ncon + sstart[s + 1]; ++j2) { /* subsegment -> constrained edge */
-            int32_t y = cadj[j2], found = 0;
-            for (j = cstart[s]; j < cstart[s + 1] && !found; ++j)
-                if (cadj[j] == y) found = cmk[j] == cmk[j2] ? 1 : -1;
-            for (j = cstart[y]; j < cstart[y + 1] && !found; ++j)
-                if (cadj[j] == s) found = cmk[j] == cmk[j2] ? 1 : -1;
-            /* not a mesh edge at all: only allowed where triangles were removed */
-            if (found < 0 || (found == 0 && !r->exterior_carved && !r->holes_carved && used[s] && used[y])) {
-                st = wr_fail(diag, WR_ERR_GEOMETRY, cmk[j2], "subsegment (%d, %d) of segment %d is not a constrained mesh edge",
-                             s, y, cmk[j2]);
-                goto done;
-            }
+        for (j2 = o + K->sstart[s]; j2 < o + K->sstart[s + 1]; ++j2) { /* subsegment -> constrained edge */
+            int32_t y = adj[j2], found = 0;
+            for (j = cs[s]; j < cs[s + 1] && !found; ++j)
+                if (adj[j] == y) found = mk[j] == mk[j2] ? 1 : -1;
+            for (j = cs[y]; j < cs[y + 1] && !found; ++j)
+                if (adj[j] == s) found = mk[j] == mk[j2] ? 1 : -1;
+            if (found < 0 || (found == 0 && !r->exterior_carved && !r->holes_carved && K->used[s] && K->used[y]))
+                return wr_fail(diag, WR_ERR_GEOMETRY, mk[j2], "subsegment (%d, %d) of segment %d is not a constrained mesh edge",
+                               s, y, mk[j2]);
         }
     }
-    /* Input segments overlapping on one line (a segment given twice, also through merged duplicate
-     * points, or one passing through another's end point) share their common pieces, which carry the
-     * lowest id among them (see segment_id). A piece therefore counts for input segment s when its id
-     * is s or names an input segment whose two end points lie exactly on s's line (exact orient of
-     * the input end points, not of the piece's own end points, which refinement rounds a few ulps
-     * off the line: fuzzer finding cdt_overlapping_segments_refine). */
+    return WR_OK;
+}
+
+/* (2) every input segment is a chain of subsegments (a DFS from one end to the other over pieces
+ * that count for it). Input segments overlapping on one line (a segment given twice, also through
+ * merged duplicate points, or one passing through another's end point) share their common pieces,
+ * which carry the lowest id among them (see segment_id). A piece therefore counts for input segment
+ * s when its id is s or names an input segment whose two end points lie exactly on s's line (exact
+ * orient of the input end points, not of the piece's own end points, which refinement rounds a few
+ * ulps off the line: fuzzer finding cdt_overlapping_segments_refine). */
+static wr_status wr__chk_input_chains(wr__cdtchk *K, wr_diag *diag) {
+    const wr_cdt_result *r = K->r;
+    const double *P = r->points;
+    int32_t s;
     for (s = 0; s < r->n_input_segments; ++s) {
         int32_t a = r->input_segments[2 * s], b = r->input_segments[2 * s + 1];
-        if (a < 0 || a >= nP || b < 0 || b >= nP) {
-            st = wr_fail(diag, WR_ERR_TOPOLOGY, s, "input segment %d has an out-of-range end", s);
-            goto done;
-        }
+        if (a < 0 || a >= K->nP || b < 0 || b >= K->nP)
+            return wr_fail(diag, WR_ERR_TOPOLOGY, s, "input segment %d has an out-of-range end", s);
     }
-    for (s = 0; s < nP; ++s) stamp[s] = -1;
-    for (s = 0; s < r->n_input_segments; ++s) { /* (2) */
+    for (s = 0; s < K->nP; ++s) K->stamp[s] = -1;
+    for (s = 0; s < r->n_input_segments; ++s) {
         int32_t a = r->input_segments[2 * s], b = r->input_segments[2 * s + 1], nd = 0, ok = 0;
-        dfs[nd++] = a;
-        stamp[a] = s;
+        K->dfs[nd++] = a;
+        K->stamp[a] = s;
         while (nd && !ok) {
-            int32_t x = dfs[--nd], j;
-            for (j = ncon + sstart[x]; j < ncon + sstart[x + 1]; ++j) {
-                int32_t y = cadj[j], o = cmk[j];
-                if (stamp[y] == s) continue;
+            int32_t x = K->dfs[--nd], j;
+            for (j = K->nhe + K->sstart[x]; j < K->nhe + K->sstart[x + 1]; ++j) {
+                int32_t y = K->adj[j], o = K->mk[j];
+                if (K->stamp[y] == s) continue;
                 if (o != s) {
                     const int32_t *e;
                     if (o < 0 || o >= r->n_input_segments) continue;
                     e = r->input_segments + 2 * o;
-                    if (!(wr_orient2d(r->points + 2 * a, r->points + 2 * b, r->points + 2 * e[0]) == 0.0 &&
-                          wr_orient2d(r->points + 2 * a, r->points + 2 * b, r->points + 2 * e[1]) == 0.0))
+                    if (!(wr_orient2d(P + 2 * a, P + 2 * b, P + 2 * e[0]) == 0.0 &&
+                          wr_orient2d(P + 2 * a, P + 2 * b, P + 2 * e[1]) == 0.0))
                         continue;
                 }
                 if (y == b) {
                     ok = 1;
                     break;
                 }
-                stamp[y] = s;
-                dfs[nd++] = y;
+                K->stamp[y] = s;
+                K->dfs[nd++] = y;
             }
         }
-        if (!ok) {
-            st = wr_fail(diag, WR_ERR_GEOMETRY, s, "input segment %d (%d-%d) is not a chain of subsegments", s, a, b);
-            goto done;
-        }
+        if (!ok) return wr_fail(diag, WR_ERR_GEOMETRY, s, "input segment %d (%d-%d) is not a chain of subsegments", s, a, b);
     }
-    goto done;
-nomem:
-    st = wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
-done:
-    info->n_vertices_used = V;
-    info->n_edges = E;
-    info->n_components = C;
-    info->n_boundary_loops = B;
-    info->n_pinched = pinched;
-    info->euler = V - E + nT;
-    info->min_angle_deg = nT ? wr__sin2_to_deg(minang) : 0.0;
-    wr_free(bout);
-    wr_free(bnext);
-    wr_free(uf);
-    wr_free(used);
-    wr_free(cstart);
-    wr_free(cadj);
-    wr_free(cmk);
-    wr_free(stamp);
-    wr_free(dfs);
-    wr_free(sstart);
+    return WR_OK;
+}
+
+WRDEF wr_status wr_cdt_check(const wr_cdt_result *r, int32_t expected_holes, wr_cdt_check_info *info, wr_diag *diag) {
+    wr__cdtchk K;
+    wr_status st;
+    wr_cdt_check_info loc;
+    if (!info) info = &loc;
+    memset(info, 0, sizeof *info);
+    if (!r) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "result is NULL");
+    memset(&K, 0, sizeof K);
+    K.r = r;
+    K.nT = r->n_triangles;
+    K.nP = r->n_points;
+    K.minang = 1.0;
+    if (K.nT < 0 || K.nP < 0 || (K.nT > 0 && (!r->triangles || !r->neighbors || !r->edge_segment)) ||
+        (K.nP > 0 && !r->points))
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "result arrays missing");
+    K.bout = (int32_t *)wr_calloc_array((size_t)K.nP, sizeof(int32_t));
+    K.bnext = (int32_t *)wr_alloc_array((size_t)K.nP, sizeof(int32_t));
+    K.used = (int32_t *)wr_calloc_array((size_t)K.nP, sizeof(int32_t));
+    K.uf = (int32_t *)wr_alloc_array((size_t)K.nT, sizeof(int32_t));
+    K.cstart = (int32_t *)wr_calloc_array((size_t)K.nP + 1, sizeof(int32_t));
+    K.stamp = (int32_t *)wr_calloc_array((size_t)K.nP, sizeof(int32_t));
+    if (!K.bout || !K.bnext || !K.used || !K.uf || !K.cstart || !K.stamp)
+        st = wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
+    else if ((st = wr__chk_triangles(&K, diag)) == WR_OK && (st = wr__chk_adjacency(&K, diag)) == WR_OK &&
+             (st = wr__chk_euler(&K, expected_holes, diag)) == WR_OK && (st = wr__chk_build_lists(&K, diag)) == WR_OK &&
+             (st = wr__chk_subsegments(&K, diag)) == WR_OK)
+        st = wr__chk_input_chains(&K, diag);
+    info->n_vertices_used = K.V;
+    info->n_edges = K.E;
+    info->n_components = K.C;
+    info->n_boundary_loops = K.B;
+    info->n_pinched = K.pinched;
+    info->euler = K.V - K.E + K.nT;
+    info->min_angle_deg = K.nT ? wr__sin2_to_deg(K.minang) : 0.0;
+    wr_free(K.bout);
+    wr_free(K.bnext);
+    wr_free(K.uf);
+    wr_free(K.used);
+    wr_free(K.cstart);
+    wr_free(K.adj);
+    wr_free(K.mk);
+    wr_free(K.stamp);
+    wr_free(K.dfs);
+    wr_free(K.sstart);
     return st;
 }
 
