@@ -1101,199 +1101,236 @@ static void wr__cross_vertex(const wr__cdt *S, const wr__segctx *C, int32_t s, i
     }
 }
 
+/* One piece a -> b of segment s being recovered (sid: the input segment, for messages), and where
+ * the walk along it is: the crossed half-edge he with its right and left vertices xr, yl. */
+typedef struct wr__rcpiece {
+    int32_t a, b, s, sid;
+    int32_t he, xr, yl;
+} wr__rcpiece;
+
+/* How the piece leaves a's star: *how = 1 through the wedge whose far edge it crosses (P->he, xr,
+ * yl set), 2 along a star edge to a vertex lying on it (that edge claimed, the rest pushed as a new
+ * piece), 0 when no wedge of the star faces b. */
+static wr_status wr__rc_leave_star(wr__cdt *S, wr__segctx *C, wr__rcpiece *P, int *how, wr_diag *diag) {
+    const double *pa = WR__P(S, P->a), *pb = WR__P(S, P->b);
+    int32_t t0, t, i;
+    *how = 0;
+    t0 = t = S->vtri[P->a];
+    do {
+        const int32_t *v = S->tv + 3 * t;
+        int32_t x, y;
+        i = v[0] == P->a ? 0 : v[1] == P->a ? 1 : 2;
+        x = v[wr__n1[i]];
+        y = v[wr__n2[i]];
+        if (x >= 0 && y >= 0) {
+            double ox = wr_orient2d(pa, pb, WR__P(S, x)), oy = wr_orient2d(pa, pb, WR__P(S, y));
+            int32_t on = -1, hon = -1;
+            if (ox == 0.0 && wr__dot3(pa, WR__P(S, x), pb) > 0.0)
+                on = x, hon = 3 * t + wr__n2[i];
+            else if (oy == 0.0 && wr__dot3(pa, WR__P(S, y), pb) > 0.0)
+                on = y, hon = 3 * t + wr__n1[i];
+            if (on >= 0) {
+                wr_status cs = wr__claim(S, C, hon, P->a, on, P->s, P->sid, diag);
+                if (cs != WR_OK) return cs;
+                if (!wr__push3(&C->pieces, on, P->b, P->s)) return wr_fail(diag, WR_ERR_NOMEM, P->sid, "out of memory");
+                *how = 2;
+                return WR_OK;
+            }
+            if (ox < 0.0 && oy > 0.0) {
+                P->he = 3 * t + i;
+                P->xr = x;
+                P->yl = y;
+                *how = 1;
+                return WR_OK;
+            }
+        }
+        t = S->tn[3 * t + wr__n1[i]] / 3;
+    } while (t != t0);
+    return WR_OK;
+}
+
+/* The walk met the constrained edge P->he of another segment s2: the two cross. Split at the
+ * junction -- an existing vertex within snapping distance (wr__cross_vertex) or a new vertex -- and
+ * push the pieces of both to recover. Needs split_intersections; without it this is an error. */
+static wr_status wr__rc_cross_constraint(wr__cdt *S, wr__segctx *C, const wr__rcpiece *P, wr_diag *diag) {
+    const int32_t he = P->he, xr = P->xr, yl = P->yl, a = P->a, b = P->b, s = P->s, sid = P->sid, s2 = S->cm[he];
+    const double *pa = WR__P(S, a), *pb = WR__P(S, b);
+    double oa, ob, tt, px = 0.0, py = 0.0;
+    int32_t q, vq;
+    int on_s;
+    if (!C->split)
+        return wr_fail(diag, WR_ERR_GEOMETRY, sid,
+                       "segments %d and %d cross (self-intersecting boundary); set split_intersections to split them",
+                       sid, s2);
+    oa = wr_orient2d_value(WR__P(S, xr), WR__P(S, yl), pa);
+    ob = wr_orient2d_value(WR__P(S, xr), WR__P(S, yl), pb);
+    tt = oa / (oa - ob); /* oa, ob have strictly opposite signs here */
+    wr__cross_vertex(S, C, s, s2, a, b, xr, yl, tt, &px, &py, &vq, &on_s);
+    if (vq >= 0 && on_s) { /* the junction is an end of the crossed edge: split the piece */
+        if (!wr__push3(&C->pieces, a, vq, s) || !wr__push3(&C->pieces, vq, b, s))
+            return wr_fail(diag, WR_ERR_NOMEM, sid, "out of memory");
+        return WR_OK;
+    }
+    if (vq >= 0) { /* the junction is an end of the piece: split the crossed edge there */
+        /* The edge is no longer a constraint: make it locally Delaunay now (a constrained
+         * edge need not be, and if the next walk stops at another crossing first, nothing
+         * else would look at it). */
+        S->cm[he] = S->cm[S->tn[he]] = -1;
+        C->fresh.n = 0;
+        if (!wr__ivec_push(&C->fresh, xr) || !wr__ivec_push(&C->fresh, yl) || !wr__restore_delaunay(S, &C->fresh))
+            return wr_fail(diag, WR_ERR_NOMEM, sid, "out of memory");
+        if (!wr__push3(&C->pieces, xr, vq, s2) || !wr__push3(&C->pieces, vq, yl, s2) || !wr__push3(&C->pieces, a, b, s))
+            return wr_fail(diag, WR_ERR_NOMEM, sid, "out of memory");
+        return WR_OK;
+    }
+    if (S->nv >= S->max_vertices)
+        return wr_fail(diag, WR_ERR_BUDGET, sid, "vertex budget %d reached while splitting crossing segments",
+                       S->max_vertices);
+    if (!wr__reserve_verts(S, 1)) return wr_fail(diag, WR_ERR_NOMEM, sid, "out of memory");
+    pa = WR__P(S, a); /* xy may have moved */
+    pb = WR__P(S, b);
+    q = S->nv++;
+    S->xy[2 * q] = px;
+    S->xy[2 * q + 1] = py;
+    S->vtri[q] = -1;
+    S->vseg[q] = -3 - sid; /* a junction of two segments: an apex for concentric shells */
+    if (S->na > 0) {
+        double ex = pb[0] - pa[0], ey = pb[1] - pa[1], l2 = ex * ex + ey * ey;
+        wr__attr_lerp(S, q, a, b, l2 > 0.0 ? ((px - pa[0]) * ex + (py - pa[1]) * ey) / l2 : 0.5);
+    }
+    S->cm[he] = S->cm[S->tn[he]] = -1;
+    if (!wr__insert(S, q, he / 3, &vq)) return wr_fail(diag, WR_ERR_NOMEM, sid, "out of memory");
+    if (vq != q)
+        S->nv--;
+    else
+        C->n_steiner++;
+    if (!wr__push3(&C->pieces, xr, vq, s2) || !wr__push3(&C->pieces, vq, yl, s2) || !wr__push3(&C->pieces, a, vq, s) ||
+        !wr__push3(&C->pieces, vq, b, s))
+        return wr_fail(diag, WR_ERR_NOMEM, sid, "out of memory");
+    return WR_OK;
+}
+
+/* Walks from a's wedge along the piece, collecting the crossed edges as (right, left) vertex pairs
+ * in C->cross. *bend is where the walk ended: b; a vertex d lying on the piece (the rest d -> b
+ * pushed, recovered later); or -1 when it met a constrained edge (the split's pieces pushed). */
+static wr_status wr__rc_walk(wr__cdt *S, wr__segctx *C, wr__rcpiece *P, int32_t *bend, wr_diag *diag) {
+    const double *pa = WR__P(S, P->a), *pb = WR__P(S, P->b);
+    *bend = P->b;
+    C->cross.n = 0;
+    for (;;) {
+        int32_t tw, u, j, d;
+        double o;
+        if (S->cm[P->he] != -1) { /* the segment crosses a constrained edge */
+            *bend = -1;
+            return wr__rc_cross_constraint(S, C, P, diag);
+        }
+        if (!wr__ivec_push(&C->cross, P->xr) || !wr__ivec_push(&C->cross, P->yl))
+            return wr_fail(diag, WR_ERR_NOMEM, P->sid, "out of memory");
+        tw = S->tn[P->he];
+        u = tw / 3;
+        j = tw % 3;
+        d = S->tv[tw];
+        if (d == P->b) return WR_OK;
+        /* The segment joins two vertices of a convex triangulation, so with exact predicates the
+         * walk stays inside the hull; reaching the vertex at infinity means the predicates were
+         * wrong (overflow), and its coordinates must not be read. */
+        if (d < 0)
+            return wr_fail(diag, WR_ERR_GEOMETRY, P->sid, "segment %d: the walk along it left the triangulation", P->sid);
+        o = wr_orient2d(pa, pb, WR__P(S, d));
+        if (o == 0.0) { /* d lies on the segment: recover a-d now, d-b later */
+            *bend = d;
+            if (!wr__push3(&C->pieces, d, P->b, P->s)) return wr_fail(diag, WR_ERR_NOMEM, P->sid, "out of memory");
+            return WR_OK;
+        }
+        if (o < 0.0) {
+            P->he = 3 * u + wr__n2[j];
+            P->xr = d;
+        } else {
+            P->he = 3 * u + wr__n1[j];
+            P->yl = d;
+        }
+    }
+}
+
+/* Flips the crossed edges of C->cross away until a-bend is an edge (Sloan 1993: an edge whose quad
+ * is convex is flipped; one still crossing goes back in the queue), marks it as segment s and
+ * restores the Delaunay property around the new edges by Lawson flips. */
+static wr_status wr__rc_flip_away(wr__cdt *S, wr__segctx *C, int32_t a, int32_t bend, int32_t s, int32_t sid,
+                                  wr_diag *diag) {
+    const double *pa = WR__P(S, a), *pb = WR__P(S, bend);
+    int32_t head = 0, he;
+    int64_t iter, cap = (int64_t)64 * (C->cross.n + 2) * (C->cross.n + 2) + 4096;
+    C->fresh.n = 0;
+    for (iter = 0; head < C->cross.n; ++iter) {
+        int32_t ex = C->cross.a[head], ey = C->cross.a[head + 1], p, q;
+        double o1, o2;
+        head += 2;
+        if (iter > cap) return wr_fail(diag, WR_ERR_GEOMETRY, sid, "segment %d: edge recovery did not finish", sid);
+        if (head > 4096 && head > C->cross.n / 2) {
+            memmove(C->cross.a, C->cross.a + head, sizeof(int32_t) * (size_t)(C->cross.n - head));
+            C->cross.n -= head;
+            head = 0;
+        }
+        he = wr__find_edge(S, ex, ey);
+        if (he < 0) return wr_fail(diag, WR_ERR_GEOMETRY, sid, "segment %d: lost a crossing edge", sid);
+        p = S->tv[he];
+        q = S->tv[S->tn[he]];
+        o1 = wr_orient2d(WR__P(S, p), WR__P(S, q), WR__P(S, ex));
+        o2 = wr_orient2d(WR__P(S, p), WR__P(S, q), WR__P(S, ey));
+        if ((o1 > 0.0 && o2 < 0.0) || (o1 < 0.0 && o2 > 0.0)) {
+            int32_t t1, t2;
+            double op, oq;
+            wr__flip(S, he, &t1, &t2);
+            op = wr_orient2d(pa, pb, WR__P(S, p));
+            oq = wr_orient2d(pa, pb, WR__P(S, q));
+            if ((op > 0.0 && oq < 0.0) || (op < 0.0 && oq > 0.0)) {
+                if (!wr__ivec_push(&C->cross, p) || !wr__ivec_push(&C->cross, q))
+                    return wr_fail(diag, WR_ERR_NOMEM, sid, "out of memory");
+            } else if (!wr__ivec_push(&C->fresh, p) || !wr__ivec_push(&C->fresh, q)) {
+                return wr_fail(diag, WR_ERR_NOMEM, sid, "out of memory");
+            }
+        } else if (!wr__ivec_push(&C->cross, ex) || !wr__ivec_push(&C->cross, ey)) {
+            return wr_fail(diag, WR_ERR_NOMEM, sid, "out of memory");
+        }
+    }
+    he = wr__find_edge(S, a, bend);
+    if (he < 0) return wr_fail(diag, WR_ERR_GEOMETRY, sid, "segment %d: recovery failed", sid);
+    wr__mark_both(S, he, s);
+    if (!wr__restore_delaunay(S, &C->fresh)) return wr_fail(diag, WR_ERR_NOMEM, sid, "out of memory");
+    return WR_OK;
+}
+
 /* Make segment (a0, b0) a chain of constrained edges: split it at vertices lying exactly on it,
  * collect the edges it crosses, flip them away (Sloan 1993: a convex quad's diagonal can always be
- * flipped, and some crossing edge always has a convex quad), then restore the CDT by Lawson flips. */
+ * flipped, and some crossing edge always has a convex quad), then restore the CDT by Lawson flips.
+ * The pieces still to recover are a stack; splitting (at vertices on the segment, or where it
+ * crosses another segment) pushes the parts. */
 static wr_status wr__recover(wr__cdt *S, wr__segctx *C, int32_t a0, int32_t b0, int32_t sid, wr_diag *diag) {
     C->pieces.n = 0;
     if (!wr__push3(&C->pieces, a0, b0, sid)) return wr_fail(diag, WR_ERR_NOMEM, sid, "out of memory");
     while (C->pieces.n >= 3) {
-        int32_t s = C->pieces.a[--C->pieces.n], b = C->pieces.a[--C->pieces.n], a = C->pieces.a[--C->pieces.n];
-        int32_t he, t0, t, i = 0, x = -1, y = -1, xr, yl, bend, head, found = 0;
-        int64_t iter, cap;
-        const double *pa, *pb;
-        if (a == b) continue;
-        he = wr__find_edge(S, a, b);
-        if (he >= 0) {
-            wr_status cs = wr__claim(S, C, he, a, b, s, sid, diag);
-            if (cs != WR_OK) return cs;
+        wr__rcpiece P;
+        int32_t he, bend;
+        int how;
+        wr_status st;
+        P.s = C->pieces.a[--C->pieces.n];
+        P.b = C->pieces.a[--C->pieces.n];
+        P.a = C->pieces.a[--C->pieces.n];
+        P.sid = sid;
+        if (P.a == P.b) continue;
+        he = wr__find_edge(S, P.a, P.b);
+        if (he >= 0) { /* already an edge: claim it for s */
+            if ((st = wr__claim(S, C, he, P.a, P.b, P.s, sid, diag)) != WR_OK) return st;
             continue;
         }
-        pa = WR__P(S, a);
-        pb = WR__P(S, b);
-        t0 = t = S->vtri[a];
-        do { /* the wedge of a's star that the segment leaves through, or a vertex on it */
-            const int32_t *v = S->tv + 3 * t;
-            i = v[0] == a ? 0 : v[1] == a ? 1 : 2;
-            x = v[wr__n1[i]];
-            y = v[wr__n2[i]];
-            if (x >= 0 && y >= 0) {
-                double ox = wr_orient2d(pa, pb, WR__P(S, x)), oy = wr_orient2d(pa, pb, WR__P(S, y));
-                if (ox == 0.0 && wr__dot3(pa, WR__P(S, x), pb) > 0.0) {
-                    wr_status cs = wr__claim(S, C, 3 * t + wr__n2[i], a, x, s, sid, diag);
-                    if (cs != WR_OK) return cs;
-                    if (!wr__push3(&C->pieces, x, b, s)) return wr_fail(diag, WR_ERR_NOMEM, sid, "out of memory");
-                    found = 2;
-                    break;
-                }
-                if (oy == 0.0 && wr__dot3(pa, WR__P(S, y), pb) > 0.0) {
-                    wr_status cs = wr__claim(S, C, 3 * t + wr__n1[i], a, y, s, sid, diag);
-                    if (cs != WR_OK) return cs;
-                    if (!wr__push3(&C->pieces, y, b, s)) return wr_fail(diag, WR_ERR_NOMEM, sid, "out of memory");
-                    found = 2;
-                    break;
-                }
-                if (ox < 0.0 && oy > 0.0) {
-                    found = 1;
-                    break;
-                }
-            }
-            t = S->tn[3 * t + wr__n1[i]] / 3;
-        } while (t != t0);
-        if (found == 2) continue;
-        if (found == 0)
-            return wr_fail(diag, WR_ERR_GEOMETRY, sid, "segment %d: no triangle around vertex %d faces vertex %d",
-                           sid, a, b);
-        /* walk along the segment collecting crossed edges as (right, left) vertex pairs */
-        he = 3 * t + i;
-        xr = x;
-        yl = y;
-        bend = b;
-        C->cross.n = 0;
-        for (;;) {
-            int32_t m = S->cm[he], tw, u, j, d;
-            double o;
-            if (m != -1) { /* the segment crosses a constrained edge */
-                double oa, ob, tt, px, py;
-                int32_t q, vq, s2 = m;
-                int on_s;
-                if (!C->split)
-                    return wr_fail(diag, WR_ERR_GEOMETRY, sid,
-                                   "segments %d and %d cross (self-intersecting boundary); set split_intersections "
-                                   "to split them",
-                                   sid, s2);
-                oa = wr_orient2d_value(WR__P(S, xr), WR__P(S, yl), pa);
-                ob = wr_orient2d_value(WR__P(S, xr), WR__P(S, yl), pb);
-                tt = oa / (oa - ob); /* oa, ob have strictly opposite signs here */
-                px = py = 0.0;
-                wr__cross_vertex(S, C, s, s2, a, b, xr, yl, tt, &px, &py, &vq, &on_s);
-                if (vq >= 0 && on_s) { /* the junction is an end of the crossed edge: split the piece */
-                    if (!wr__push3(&C->pieces, a, vq, s) || !wr__push3(&C->pieces, vq, b, s))
-                        return wr_fail(diag, WR_ERR_NOMEM, sid, "out of memory");
-                    bend = -1;
-                    break;
-                }
-                if (vq >= 0) { /* the junction is an end of the piece: split the crossed edge there */
-                    /* The edge is no longer a constraint: make it locally Delaunay now (a constrained
-                     * edge need not be, and if the next walk stops at another crossing first, nothing
-                     * else would look at it). */
-                    S->cm[he] = S->cm[S->tn[he]] = -1;
-                    C->fresh.n = 0;
-                    if (!wr__ivec_push(&C->fresh, xr) || !wr__ivec_push(&C->fresh, yl) ||
-                        !wr__restore_delaunay(S, &C->fresh))
-                        return wr_fail(diag, WR_ERR_NOMEM, sid, "out of memory");
-                    if (!wr__push3(&C->pieces, xr, vq, s2) || !wr__push3(&C->pieces, vq, yl, s2) ||
-                        !wr__push3(&C->pieces, a, b, s))
-                        return wr_fail(diag, WR_ERR_NOMEM, sid, "out of memory");
-                    bend = -1;
-                    break;
-                }
-                if (S->nv >= S->max_vertices)
-                    return wr_fail(diag, WR_ERR_BUDGET, sid, "vertex budget %d reached while splitting crossing segments",
-                                   S->max_vertices);
-                if (!wr__reserve_verts(S, 1)) return wr_fail(diag, WR_ERR_NOMEM, sid, "out of memory");
-                pa = WR__P(S, a); /* xy may have moved */
-                pb = WR__P(S, b);
-                q = S->nv++;
-                S->xy[2 * q] = px;
-                S->xy[2 * q + 1] = py;
-                S->vtri[q] = -1;
-                S->vseg[q] = -3 - sid; /* a junction of two segments: an apex for concentric shells */
-                if (S->na > 0) {
-                    double ex = pb[0] - pa[0], ey = pb[1] - pa[1], l2 = ex * ex + ey * ey;
-                    wr__attr_lerp(S, q, a, b, l2 > 0.0 ? ((px - pa[0]) * ex + (py - pa[1]) * ey) / l2 : 0.5);
-                }
-                S->cm[he] = S->cm[S->tn[he]] = -1;
-                if (!wr__insert(S, q, he / 3, &vq)) return wr_fail(diag, WR_ERR_NOMEM, sid, "out of memory");
-                if (vq != q)
-                    S->nv--;
-                else
-                    C->n_steiner++;
-                if (!wr__push3(&C->pieces, xr, vq, s2) || !wr__push3(&C->pieces, vq, yl, s2) ||
-                    !wr__push3(&C->pieces, a, vq, s) || !wr__push3(&C->pieces, vq, b, s))
-                    return wr_fail(diag, WR_ERR_NOMEM, sid, "out of memory");
-                bend = -1;
-                break;
-            }
-            if (!wr__ivec_push(&C->cross, xr) || !wr__ivec_push(&C->cross, yl))
-                return wr_fail(diag, WR_ERR_NOMEM, sid, "out of memory");
-            tw = S->tn[he];
-            u = tw / 3;
-            j = tw % 3;
-            d = S->tv[tw];
-            if (d == b) break;
-            /* The segment joins two vertices of a convex triangulation, so with exact predicates the
-             * walk stays inside the hull; reaching the vertex at infinity means the predicates were
-             * wrong (overflow), and its coordinates must not be read. */
-            if (d < 0)
-                return wr_fail(diag, WR_ERR_GEOMETRY, sid, "segment %d: the walk along it left the triangulation",
-                               sid);
-            o = wr_orient2d(pa, pb, WR__P(S, d));
-            if (o == 0.0) { /* d lies on the segment: recover a-d now, d-b later */
-                bend = d;
-                if (!wr__push3(&C->pieces, d, b, s)) return wr_fail(diag, WR_ERR_NOMEM, sid, "out of memory");
-                break;
-            }
-            if (o < 0.0) {
-                he = 3 * u + wr__n2[j];
-                xr = d;
-            } else {
-                he = 3 * u + wr__n1[j];
-                yl = d;
-            }
-        }
+        if ((st = wr__rc_leave_star(S, C, &P, &how, diag)) != WR_OK) return st;
+        if (how == 2) continue;
+        if (how == 0)
+            return wr_fail(diag, WR_ERR_GEOMETRY, sid, "segment %d: no triangle around vertex %d faces vertex %d", sid, P.a,
+                           P.b);
+        if ((st = wr__rc_walk(S, C, &P, &bend, diag)) != WR_OK) return st;
         if (bend < 0) continue;
-        pb = WR__P(S, bend);
-        C->fresh.n = 0;
-        head = 0;
-        cap = (int64_t)64 * (C->cross.n + 2) * (C->cross.n + 2) + 4096;
-        for (iter = 0; head < C->cross.n; ++iter) {
-            int32_t ex = C->cross.a[head], ey = C->cross.a[head + 1], p, q;
-            double o1, o2;
-            head += 2;
-            if (iter > cap)
-                return wr_fail(diag, WR_ERR_GEOMETRY, sid, "segment %d: edge recovery did not finish", sid);
-            if (head > 4096 && head > C->cross.n / 2) {
-                memmove(C->cross.a, C->cross.a + head, sizeof(int32_t) * (size_t)(C->cross.n - head));
-                C->cross.n -= head;
-                head = 0;
-            }
-            he = wr__find_edge(S, ex, ey);
-            if (he < 0) return wr_fail(diag, WR_ERR_GEOMETRY, sid, "segment %d: lost a crossing edge", sid);
-            p = S->tv[he];
-            q = S->tv[S->tn[he]];
-            o1 = wr_orient2d(WR__P(S, p), WR__P(S, q), WR__P(S, ex));
-            o2 = wr_orient2d(WR__P(S, p), WR__P(S, q), WR__P(S, ey));
-            if ((o1 > 0.0 && o2 < 0.0) || (o1 < 0.0 && o2 > 0.0)) {
-                int32_t t1, t2;
-                double op, oq;
-                wr__flip(S, he, &t1, &t2);
-                op = wr_orient2d(pa, pb, WR__P(S, p));
-                oq = wr_orient2d(pa, pb, WR__P(S, q));
-                if ((op > 0.0 && oq < 0.0) || (op < 0.0 && oq > 0.0)) {
-                    if (!wr__ivec_push(&C->cross, p) || !wr__ivec_push(&C->cross, q))
-                        return wr_fail(diag, WR_ERR_NOMEM, sid, "out of memory");
-                } else if (!wr__ivec_push(&C->fresh, p) || !wr__ivec_push(&C->fresh, q)) {
-                    return wr_fail(diag, WR_ERR_NOMEM, sid, "out of memory");
-                }
-            } else if (!wr__ivec_push(&C->cross, ex) || !wr__ivec_push(&C->cross, ey)) {
-                return wr_fail(diag, WR_ERR_NOMEM, sid, "out of memory");
-            }
-        }
-        he = wr__find_edge(S, a, bend);
-        if (he < 0) return wr_fail(diag, WR_ERR_GEOMETRY, sid, "segment %d: recovery failed", sid);
-        wr__mark_both(S, he, s);
-        if (!wr__restore_delaunay(S, &C->fresh)) return wr_fail(diag, WR_ERR_NOMEM, sid, "out of memory");
+        if ((st = wr__rc_flip_away(S, C, P.a, bend, P.s, sid, diag)) != WR_OK) return st;
     }
     return WR_OK;
 }
