@@ -667,51 +667,172 @@ static wr_vec3 wr__wf_face_normal(const double *P, const int32_t *fv) {
     return wr_v3_cross(wr_v3_sub(p1, p0), wr_v3_sub(p2, p0));
 }
 
-WRDEF wr_status wr_wf_create(wr_wf *wf, const wr_mesh *m, const double *base_pos, const wr_wf_material *mat,
-                             wr_diag *diag) {
-    int32_t f, v, nf;
-    double E, nu, h;
-    if (!wf) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "wrinkle field: NULL output");
-    memset(wf, 0, sizeof *wf);
-    if (!m || !mat || !m->faces || m->nf < 1 || m->nv < 1)
-        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "wrinkle field: NULL or empty mesh/material");
-    E = mat->young;
-    nu = mat->poisson;
-    h = mat->thickness;
+/* w⊥ᵀ S w⊥ for a symmetric chart tensor S = (s00, s01, s11) of face f. */
+static double wr__wf_perp_form(const wr_wf *wf, int32_t f, const double *S) {
+    double px = wf->wperp[2 * f], py = wf->wperp[2 * f + 1];
+    return S[0] * px * px + 2.0 * S[1] * px * py + S[2] * py * py;
+}
+
+/* The mid-edge reading of κ⊥ on face f (curvature of the base across the wrinkles, w⊥ᵀ II_b w⊥ /
+ * w⊥ᵀ I_b w⊥) and the Eq. 22 W_s^2 coefficient it gives (ignored in pure tension, Sec. 4.2). */
+static void wr__wf_kappa_midedge_face(wr_wf *wf, int32_t f) {
+    double wIbw = wr__wf_perp_form(wf, f, wf->ib + 3 * f), wIuw = wr__wf_perp_form(wf, f, wf->iu + 3 * f);
+    wf->kperp[f] = wIbw > 0.0 ? wr__wf_perp_form(wf, f, wf->iib + 3 * f) / wIbw : 0.0;
+    wf->c2[f] = wf->lambda[2 * f] < 0.0 ? wr__wf_c2(wf, wf->kperp[f], wIbw / wIuw) : 0.0;
+}
+
+static wr_status wr__wf_check_material(const wr_wf_material *mat, wr_diag *diag) {
+    const double E = mat->young, nu = mat->poisson, h = mat->thickness;
     if (!(E > 0.0) || !isfinite(E))
         return wr_fail(diag, WR_ERR_DOMAIN, -1, "wrinkle field: Young's modulus %g Pa must be > 0", E);
     if (!(nu > -1.0 && nu < 1.0))
         return wr_fail(diag, WR_ERR_DOMAIN, -1, "wrinkle field: Poisson ratio %g outside (-1, 1)", nu);
-    if (!(h > 0.0) || !isfinite(h))
-        return wr_fail(diag, WR_ERR_DOMAIN, -1, "wrinkle field: thickness %g m must be > 0", h);
+    if (!(h > 0.0) || !isfinite(h)) return wr_fail(diag, WR_ERR_DOMAIN, -1, "wrinkle field: thickness %g m must be > 0", h);
+    return WR_OK;
+}
+
+/* The per-vertex and per-face arrays of wf (nv, nf set); 0 when out of memory. */
+static int wr__wf_alloc(wr_wf *wf) {
+    const size_t nv = (size_t)wf->nv, nf = (size_t)wf->nf;
+    wf->base = (double *)wr_alloc_array(nv * 3, sizeof(double));
+    wf->iu = (double *)wr_alloc_array(nf * 3, sizeof(double));
+    wf->iu_inv = (double *)wr_alloc_array(nf * 3, sizeof(double));
+    wf->ib = (double *)wr_alloc_array(nf * 3, sizeof(double));
+    wf->iib = (double *)wr_alloc_array(nf * 3, sizeof(double));
+    wf->area = (double *)wr_alloc_array(nf, sizeof(double));
+    wf->lambda = (double *)wr_alloc_array(nf * 2, sizeof(double));
+    wf->wdir = (double *)wr_alloc_array(nf * 2, sizeof(double));
+    wf->wperp = (double *)wr_alloc_array(nf * 2, sizeof(double));
+    wf->kperp = (double *)wr_alloc_array(nf, sizeof(double));
+    wf->c2 = (double *)wr_alloc_array(nf, sizeof(double));
+    wf->wb1 = (double *)wr_alloc_array(nf, sizeof(double));
+    wf->qf = (double *)wr_alloc_array(nf * 9, sizeof(double));
+    wf->wfree = (uint8_t *)wr_calloc_array(nf, sizeof(uint8_t));
+    wf->azero = (uint8_t *)wr_calloc_array(nv, sizeof(uint8_t));
+    return wf->base && wf->iu && wf->iu_inv && wf->ib && wf->iib && wf->area && wf->lambda && wf->wdir && wf->wperp &&
+           wf->kperp && wf->c2 && wf->wb1 && wf->qf && wf->wfree && wf->azero;
+}
+
+/* The first fundamental forms of face f: I_u (rest chart, with its inverse and the rest area) and
+ * I_b (base surface); a degenerate rest or base triangle is an error naming the face. */
+static wr_status wr__wf_face_forms(wr_wf *wf, int32_t f, wr_diag *diag) {
+    const wr_mesh *m = wf->mesh;
+    const int32_t *fv = m->faces + 3 * f;
+    double uv[6], e1[2], e2[2], det, *Iu = wf->iu + 3 * f, *Ib = wf->ib + 3 * f;
+    wr_vec3 P0, E1, E2;
+    wr_mesh_face_rest(m, f, uv);
+    e1[0] = uv[2] - uv[0];
+    e1[1] = uv[3] - uv[1];
+    e2[0] = uv[4] - uv[0];
+    e2[1] = uv[5] - uv[1];
+    Iu[0] = e1[0] * e1[0] + e1[1] * e1[1];
+    Iu[1] = e1[0] * e2[0] + e1[1] * e2[1];
+    Iu[2] = e2[0] * e2[0] + e2[1] * e2[1];
+    det = Iu[0] * Iu[2] - Iu[1] * Iu[1];
+    if (!(det > 1e-24 * Iu[0] * Iu[2]) || !(Iu[0] > 0.0))
+        return wr_fail(diag, WR_ERR_GEOMETRY, f, "wrinkle field: face %d has a degenerate rest triangle", (int)f);
+    wf->area[f] = 0.5 * sqrt(det);
+    wf->iu_inv[3 * f + 0] = Iu[2] / det;
+    wf->iu_inv[3 * f + 1] = -Iu[1] / det;
+    wf->iu_inv[3 * f + 2] = Iu[0] / det;
+    P0 = wr_v3_load(wf->base + 3 * fv[0]);
+    E1 = wr_v3_sub(wr_v3_load(wf->base + 3 * fv[1]), P0);
+    E2 = wr_v3_sub(wr_v3_load(wf->base + 3 * fv[2]), P0);
+    Ib[0] = wr_v3_dot(E1, E1);
+    Ib[1] = wr_v3_dot(E1, E2);
+    Ib[2] = wr_v3_dot(E2, E2);
+    if (!(wr_v3_norm(wr__wf_face_normal(wf->base, fv)) > 1e-12 * (Ib[0] + Ib[2])))
+        return wr_fail(diag, WR_ERR_GEOMETRY, f, "wrinkle field: face %d is degenerate on the base surface", (int)f);
+    return WR_OK;
+}
+
+/* App. A: the second fundamental form of face f from mid-edge normals, n̂_k on the edge opposite
+ * corner k: the face normal on boundary edges, the normalised average of the two face normals
+ * otherwise; II_b = 2 [(v1-v0)·(n1-n0), (v2-v0)·(n1-n0); ·, (v2-v0)·(n2-n0)] (off-diagonal
+ * symmetrised). Its sign convention only enters squared (W_s^2, W_b^1). */
+static void wr__wf_face_iib(wr_wf *wf, int32_t f) {
+    const wr_mesh *m = wf->mesh;
+    const int32_t *fv = m->faces + 3 * f;
+    const wr_vec3 P0 = wr_v3_load(wf->base + 3 * fv[0]);
+    const wr_vec3 E1 = wr_v3_sub(wr_v3_load(wf->base + 3 * fv[1]), P0), E2 = wr_v3_sub(wr_v3_load(wf->base + 3 * fv[2]), P0);
+    const wr_vec3 nf0 = wr_v3_normalized(wr__wf_face_normal(wf->base, fv));
+    wr_vec3 nhat[3];
+    double *II = wf->iib + 3 * f;
+    int k;
+    for (k = 0; k < 3; ++k) {
+        int32_t e = m->face_edges[3 * f + k];
+        int32_t g = m->edge_faces[2 * e] == f ? m->edge_faces[2 * e + 1] : m->edge_faces[2 * e];
+        nhat[k] = nf0;
+        if (g >= 0) {
+            wr_vec3 ng = wr_v3_normalized(wr__wf_face_normal(wf->base, m->faces + 3 * g));
+            wr_vec3 avg = wr_v3_add(nf0, ng);
+            if (wr_v3_norm(avg) > 1e-12) nhat[k] = wr_v3_normalized(avg);
+        }
+    }
+    II[0] = 2.0 * wr_v3_dot(E1, wr_v3_sub(nhat[1], nhat[0]));
+    II[1] = wr_v3_dot(E2, wr_v3_sub(nhat[1], nhat[0])) + wr_v3_dot(E1, wr_v3_sub(nhat[2], nhat[0]));
+    II[2] = 2.0 * wr_v3_dot(E2, wr_v3_sub(nhat[2], nhat[0]));
+}
+
+/* Eq. 29 on face f: the principal strains λ and directions of I_b - I_u relative to I_u, through
+ * I_u = L Lᵀ: L⁻¹(I_b - I_u)L⁻ᵀ y = λ y, w = L⁻ᵀ y (so ||w||_{I_u} = ||y|| = 1); wdir belongs to
+ * the smaller λ (the most compressed direction), wperp to the other. */
+static void wr__wf_face_strain_eig(wr_wf *wf, int32_t f) {
+    const double *Iu = wf->iu + 3 * f, *Ib = wf->ib + 3 * f;
+    const double l00 = sqrt(Iu[0]), l10 = Iu[1] / l00, l11 = sqrt(Iu[2] - l10 * l10);
+    const double C00 = Ib[0] - Iu[0], C01 = Ib[1] - Iu[1], C11 = Ib[2] - Iu[2];
+    /* A = L⁻¹ C L⁻ᵀ with L⁻¹ = [1/l00, 0; -l10/(l00 l11), 1/l11] */
+    const double i00 = 1.0 / l00, i10 = -l10 / (l00 * l11), i11 = 1.0 / l11;
+    const double t00 = i00 * C00, t01 = i00 * C01;                         /* (L⁻¹C) row 0 */
+    const double t10 = i10 * C00 + i11 * C01, t11 = i10 * C01 + i11 * C11; /* row 1 */
+    const double a00 = t00 * i00, a01 = t00 * i10 + t01 * i11, a11 = t10 * i10 + t11 * i11;
+    double lam[2];
+    wr_vec2 evec[2];
+    wr_m2_sym_eig(wr_m2(a00, a01, a01, a11), lam, evec);
+    wf->lambda[2 * f] = lam[0];
+    wf->lambda[2 * f + 1] = lam[1];
+    /* w = L⁻ᵀ y: L⁻ᵀ = [1/l00, -l10/(l00 l11); 0, 1/l11] */
+    wf->wdir[2 * f] = evec[0].x / l00 - l10 / (l00 * l11) * evec[0].y;
+    wf->wdir[2 * f + 1] = evec[0].y / l11;
+    wf->wperp[2 * f] = evec[1].x / l00 - l10 / (l00 * l11) * evec[1].y;
+    wf->wperp[2 * f + 1] = evec[1].y / l11;
+}
+
+/* Face f's constant bending data: the quadratic form of I_u⁻¹ (reused by the SQP at every
+ * evaluation) and W_b^1 = ||I_u⁻¹ II_b||²_SV (II_u = 0, rest-flat). */
+static void wr__wf_face_bending(wr_wf *wf, int32_t f) {
+    const double *II = wf->iib + 3 * f;
+    double *Qm = wf->qf + 9 * (size_t)f, s = 0.0;
+    int c, d;
+    wr__wf_qform(wf->iu_inv + 3 * f, wf->alpha, wf->beta, Qm);
+    for (c = 0; c < 3; ++c)
+        for (d = 0; d < 3; ++d) s += II[c] * Qm[3 * c + d] * II[d];
+    wf->wb1[f] = s;
+}
+
+WRDEF wr_status wr_wf_create(wr_wf *wf, const wr_mesh *m, const double *base_pos, const wr_wf_material *mat,
+                             wr_diag *diag) {
+    int32_t f, v;
+    double E, nu;
+    wr_status st;
+    if (!wf) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "wrinkle field: NULL output");
+    memset(wf, 0, sizeof *wf);
+    if (!m || !mat || !m->faces || m->nf < 1 || m->nv < 1)
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "wrinkle field: NULL or empty mesh/material");
+    if ((st = wr__wf_check_material(mat, diag)) != WR_OK) return st;
     if (!base_pos) base_pos = m->pos;
-    nf = m->nf;
+    E = mat->young;
+    nu = mat->poisson;
     wf->mesh = m;
     wf->nv = m->nv;
     wf->ne = m->ne;
-    wf->nf = nf;
+    wf->nf = m->nf;
     wf->alpha = E * nu / (1.0 - nu * nu); /* Eq. 33 */
     wf->beta = E / (2.0 * (1.0 + nu));
-    wf->h = h;
-    wf->base = (double *)wr_alloc_array((size_t)m->nv * 3, sizeof(double));
-    wf->iu = (double *)wr_alloc_array((size_t)nf * 3, sizeof(double));
-    wf->iu_inv = (double *)wr_alloc_array((size_t)nf * 3, sizeof(double));
-    wf->ib = (double *)wr_alloc_array((size_t)nf * 3, sizeof(double));
-    wf->iib = (double *)wr_alloc_array((size_t)nf * 3, sizeof(double));
-    wf->area = (double *)wr_alloc_array((size_t)nf, sizeof(double));
-    wf->lambda = (double *)wr_alloc_array((size_t)nf * 2, sizeof(double));
-    wf->wdir = (double *)wr_alloc_array((size_t)nf * 2, sizeof(double));
-    wf->wperp = (double *)wr_alloc_array((size_t)nf * 2, sizeof(double));
-    wf->kperp = (double *)wr_alloc_array((size_t)nf, sizeof(double));
-    wf->c2 = (double *)wr_alloc_array((size_t)nf, sizeof(double));
-    wf->wb1 = (double *)wr_alloc_array((size_t)nf, sizeof(double));
-    wf->qf = (double *)wr_alloc_array((size_t)nf * 9, sizeof(double));
-    wf->wfree = (uint8_t *)wr_calloc_array((size_t)nf, sizeof(uint8_t));
-    wf->azero = (uint8_t *)wr_calloc_array((size_t)m->nv, sizeof(uint8_t));
-    if (!wf->base || !wf->iu || !wf->iu_inv || !wf->ib || !wf->iib || !wf->area || !wf->lambda || !wf->wdir ||
-        !wf->wperp || !wf->kperp || !wf->c2 || !wf->wb1 || !wf->qf || !wf->wfree || !wf->azero) {
+    wf->h = mat->thickness;
+    if (!wr__wf_alloc(wf)) {
         wr_wf_free(wf);
-        return wr_fail(diag, WR_ERR_NOMEM, -1, "wrinkle field: out of memory for %d faces", (int)nf);
+        return wr_fail(diag, WR_ERR_NOMEM, -1, "wrinkle field: out of memory for %d faces", (int)m->nf);
     }
     for (v = 0; v < 3 * m->nv; ++v) {
         if (!isfinite(base_pos[v])) {
@@ -721,112 +842,17 @@ WRDEF wr_status wr_wf_create(wr_wf *wf, const wr_mesh *m, const double *base_pos
         }
         wf->base[v] = base_pos[v];
     }
-    for (f = 0; f < nf; ++f) {
-        const int32_t *fv = m->faces + 3 * f;
-        double uv[6], e1[2], e2[2], det, l00, l10, l11, Iu[3], Ib[3], II[3], Qm[9];
-        wr_vec3 P[3], E1, E2, nf0, nhat[3];
-        wr_mat2 M;
-        double lam[2];
-        wr_vec2 evec[2];
-        int k;
-        wr_mesh_face_rest(m, f, uv);
-        e1[0] = uv[2] - uv[0];
-        e1[1] = uv[3] - uv[1];
-        e2[0] = uv[4] - uv[0];
-        e2[1] = uv[5] - uv[1];
-        Iu[0] = e1[0] * e1[0] + e1[1] * e1[1];
-        Iu[1] = e1[0] * e2[0] + e1[1] * e2[1];
-        Iu[2] = e2[0] * e2[0] + e2[1] * e2[1];
-        det = Iu[0] * Iu[2] - Iu[1] * Iu[1];
-        if (!(det > 1e-24 * Iu[0] * Iu[2]) || !(Iu[0] > 0.0)) {
+    for (f = 0; f < m->nf; ++f) { /* per face: the two forms, II_b, Eq. 29, κ⊥ and Eq. 22, bending */
+        if ((st = wr__wf_face_forms(wf, f, diag)) != WR_OK) {
             wr_wf_free(wf);
-            return wr_fail(diag, WR_ERR_GEOMETRY, f, "wrinkle field: face %d has a degenerate rest triangle", (int)f);
+            return st;
         }
-        wf->area[f] = 0.5 * sqrt(det);
-        memcpy(wf->iu + 3 * f, Iu, sizeof Iu);
-        wf->iu_inv[3 * f + 0] = Iu[2] / det;
-        wf->iu_inv[3 * f + 1] = -Iu[1] / det;
-        wf->iu_inv[3 * f + 2] = Iu[0] / det;
-        for (k = 0; k < 3; ++k) P[k] = wr_v3_load(wf->base + 3 * fv[k]);
-        E1 = wr_v3_sub(P[1], P[0]);
-        E2 = wr_v3_sub(P[2], P[0]);
-        Ib[0] = wr_v3_dot(E1, E1);
-        Ib[1] = wr_v3_dot(E1, E2);
-        Ib[2] = wr_v3_dot(E2, E2);
-        memcpy(wf->ib + 3 * f, Ib, sizeof Ib);
-        nf0 = wr__wf_face_normal(wf->base, fv);
-        if (!(wr_v3_norm(nf0) > 1e-12 * (Ib[0] + Ib[2]))) {
-            wr_wf_free(wf);
-            return wr_fail(diag, WR_ERR_GEOMETRY, f, "wrinkle field: face %d is degenerate on the base surface",
-                           (int)f);
-        }
-        nf0 = wr_v3_normalized(nf0);
-        /* App. A: mid-edge normal n̂_k on the edge opposite corner k: the face normal on boundary edges,
-         * the normalised average of the two face normals otherwise. */
-        for (k = 0; k < 3; ++k) {
-            int32_t e = m->face_edges[3 * f + k];
-            int32_t g = m->edge_faces[2 * e] == f ? m->edge_faces[2 * e + 1] : m->edge_faces[2 * e];
-            nhat[k] = nf0;
-            if (g >= 0) {
-                wr_vec3 ng = wr_v3_normalized(wr__wf_face_normal(wf->base, m->faces + 3 * g));
-                wr_vec3 avg = wr_v3_add(nf0, ng);
-                if (wr_v3_norm(avg) > 1e-12) nhat[k] = wr_v3_normalized(avg);
-            }
-        }
-        /* App. A: II_b = 2 [(v1-v0)·(n1-n0), (v2-v0)·(n1-n0); ·, (v2-v0)·(n2-n0)] (off-diagonal
-         * symmetrised). Its sign convention only enters squared (W_s^2, W_b^1). */
-        II[0] = 2.0 * wr_v3_dot(E1, wr_v3_sub(nhat[1], nhat[0]));
-        II[1] = wr_v3_dot(E2, wr_v3_sub(nhat[1], nhat[0])) + wr_v3_dot(E1, wr_v3_sub(nhat[2], nhat[0]));
-        II[2] = 2.0 * wr_v3_dot(E2, wr_v3_sub(nhat[2], nhat[0]));
-        memcpy(wf->iib + 3 * f, II, sizeof II);
-        /* Eq. 29 via I_u = L Lᵀ: L⁻¹(I_b - I_u)L⁻ᵀ y = λ y, w = L⁻ᵀ y (so ||w||_{I_u} = ||y|| = 1). */
-        l00 = sqrt(Iu[0]);
-        l10 = Iu[1] / l00;
-        l11 = sqrt(Iu[2] - l10 * l10);
-        {
-            double C00 = Ib[0] - Iu[0], C01 = Ib[1] - Iu[1], C11 = Ib[2] - Iu[2];
-            /* A = L⁻¹ C L⁻ᵀ with L⁻¹ = [1/l00, 0; -l10/(l00 l11), 1/l11] */
-            double i00 = 1.0 / l00, i10 = -l10 / (l00 * l11), i11 = 1.0 / l11;
-            double t00 = i00 * C00, t01 = i00 * C01;                         /* (L⁻¹C) row 0 */
-            double t10 = i10 * C00 + i11 * C01, t11 = i10 * C01 + i11 * C11; /* row 1 */
-            double a00 = t00 * i00, a01 = t00 * i10 + t01 * i11, a11 = t10 * i10 + t11 * i11;
-            M = wr_m2(a00, a01, a01, a11);
-        }
-        wr_m2_sym_eig(M, lam, evec);
-        wf->lambda[2 * f] = lam[0];
-        wf->lambda[2 * f + 1] = lam[1];
-        /* w = L⁻ᵀ y: L⁻ᵀ = [1/l00, -l10/(l00 l11); 0, 1/l11] */
-        wf->wdir[2 * f] = evec[0].x / l00 - l10 / (l00 * l11) * evec[0].y;
-        wf->wdir[2 * f + 1] = evec[0].y / l11;
-        wf->wperp[2 * f] = evec[1].x / l00 - l10 / (l00 * l11) * evec[1].y;
-        wf->wperp[2 * f + 1] = evec[1].y / l11;
-        {
-            double px = wf->wperp[2 * f], py = wf->wperp[2 * f + 1];
-            double wIIw = II[0] * px * px + 2.0 * II[1] * px * py + II[2] * py * py;
-            double wIbw = Ib[0] * px * px + 2.0 * Ib[1] * px * py + Ib[2] * py * py; /* = 1 + λ1 */
-            double wIuw = Iu[0] * px * px + 2.0 * Iu[1] * px * py + Iu[2] * py * py; /* = 1 */
-            double ratio = wIbw / wIuw;
-            wf->kperp[f] = wIbw > 0.0 ? wIIw / wIbw : 0.0;
-            /* Eq. 22 coefficient; W_s^2 ignored in pure tension (Sec. 4.2). */
-            wf->c2[f] = lam[0] < 0.0 ? wr__wf_c2(wf, wf->kperp[f], ratio) : 0.0;
-        }
-        wr__wf_qform(wf->iu_inv + 3 * f, wf->alpha, wf->beta, Qm);
-        memcpy(wf->qf + 9 * (size_t)f, Qm, sizeof Qm); /* constant per face: the SQP reuses it every evaluation */
-        {
-            int c, d;
-            double s = 0.0;
-            for (c = 0; c < 3; ++c)
-                for (d = 0; d < 3; ++d) s += II[c] * Qm[3 * c + d] * II[d];
-            wf->wb1[f] = s; /* W_b^1 = ||I_u⁻¹ II_b||²_SV (II_u = 0, rest-flat) */
-        }
+        wr__wf_face_iib(wf, f);
+        wr__wf_face_strain_eig(wf, f);
+        wr__wf_kappa_midedge_face(wf, f);
+        wr__wf_face_bending(wf, f);
     }
     return WR_OK;
-}
-
-/* w⊥ᵀ S w⊥ for a symmetric chart tensor S = (s00, s01, s11) of face f. */
-static double wr__wf_perp_form(const wr_wf *wf, int32_t f, const double *S) {
-    double px = wf->wperp[2 * f], py = wf->wperp[2 * f + 1];
-    return S[0] * px * px + 2.0 * S[1] * px * py + S[2] * py * py;
 }
 
 WRDEF wr_status wr_wf_set_kappa(wr_wf *wf, wr_wf_kappa reading, wr_diag *diag) {
@@ -835,11 +861,7 @@ WRDEF wr_status wr_wf_set_kappa(wr_wf *wf, wr_wf_kappa reading, wr_diag *diag) {
     int32_t f;
     wr_status st;
     if (reading == WR_WF_KAPPA_MIDEDGE) {
-        for (f = 0; f < wf->nf; ++f) {
-            double wIbw = wr__wf_perp_form(wf, f, wf->ib + 3 * f), wIuw = wr__wf_perp_form(wf, f, wf->iu + 3 * f);
-            wf->kperp[f] = wIbw > 0.0 ? wr__wf_perp_form(wf, f, wf->iib + 3 * f) / wIbw : 0.0;
-            wf->c2[f] = wf->lambda[2 * f] < 0.0 ? wr__wf_c2(wf, wf->kperp[f], wIbw / wIuw) : 0.0;
-        }
+        for (f = 0; f < wf->nf; ++f) wr__wf_kappa_midedge_face(wf, f);
         return WR_OK;
     }
     if (reading != WR_WF_KAPPA_VERTEX_FIT)
