@@ -182,128 +182,140 @@ static void cant_table(wr_vres *v, const cant_case *cc, const cant_row *rows, in
     wr_vres_table_md(v, table);
 }
 
-static int validation_main(void) {
+/* The sweep index from which the tip "flattens": the coarsest row i such that every row i..last
+ * (finer, up to the last) has |tip / ref - 1| <= tol; -1 when not even the last one does. ref <= 0
+ * means the last row's own tip. */
+static int coarsest_within(const cant_row *rows, int last, double ref, double tol) {
+    int i, j, found = -1;
+    if (!(ref > 0.0)) ref = rows[last].tip;
+    for (i = last; i >= 0; --i) {
+        int ok = 1;
+        for (j = i; j <= last; ++j)
+            if (fabs(rows[j].tip / ref - 1.0) > tol) ok = 0;
+        if (!ok) break;
+        found = i;
+    }
+    return found;
+}
+
+/* Both sweeps and their references: the main strip over res (n_main, r_opt at I_OPT) and the 25 mm
+ * strip over sres (NSHORT, r_opt at 1), plus the former one-sided clamp at 2.5 mm for the record. */
+typedef struct cant_run {
     wr_scene sc;
-    wr_diag d;
-    wr_resolution_model mdl = wr_resolution_model_paper();
-    static cant_case cm, cs;
-    double B, E, g, r_opt, res_list[NRES] = {20e-3, 15e-3, 10e-3, 7.5e-3, 0.0, 5e-3, 4e-3, 3e-3, 2.5e-3, 1.25e-3};
-    double short_list[NSHORT] = {10e-3, 0.0, 5e-3, 2.5e-3, 1.25e-3};
+    double B, E, g, r_opt;
+    double res[NRES], sres[NSHORT];
+    cant_case cm, cs;
     cant_row rows[NRES], srows[NSHORT], hinge;
-    char buf[512], dat[4096], gp[4200], png[4200], cmd[9000];
-    int i, j, i_opt = 4, flat = -1, within2 = -1;
-    wr_vres *v;
-    if (wr_scene_load(&sc, SCENE_PATH, &d) != WR_OK) {
+} cant_run;
+
+#define I_OPT 4 /* r_opt's row in the main sweep (between 7.5 and 5 mm) */
+
+/* Scene, r_opt (Eq. 4) and both elastica references; 0 on failure (said on stderr). */
+static int run_setup(cant_run *R) {
+    static const double res[NRES] = {20e-3, 15e-3, 10e-3, 7.5e-3, 0.0, 5e-3, 4e-3, 3e-3, 2.5e-3, 1.25e-3};
+    static const double sres[NSHORT] = {10e-3, 0.0, 5e-3, 2.5e-3, 1.25e-3};
+    wr_resolution_model mdl = wr_resolution_model_paper();
+    wr_diag d;
+    if (wr_scene_load(&R->sc, SCENE_PATH, &d) != WR_OK) {
         fprintf(stderr, "validate_cantilever: %s\n", d.message);
-        return 2;
+        return 0;
     }
-    B = sc.shell.bending_stiffness, E = sc.shell.young, g = -sc.gravity[2];
-    if (wr_resolution_from_BE(&mdl, B, E, NULL, &r_opt, &d) != WR_OK) {
+    R->B = R->sc.shell.bending_stiffness, R->E = R->sc.shell.young, R->g = -R->sc.gravity[2];
+    if (wr_resolution_from_BE(&mdl, R->B, R->E, NULL, &R->r_opt, &d) != WR_OK) {
         fprintf(stderr, "validate_cantilever: %s\n", d.message);
-        return 2;
+        return 0;
     }
-    res_list[i_opt] = r_opt;
-    short_list[1] = r_opt;
-    cm.L = L_MAIN, cm.rhoA = RHOA_MAIN;
-    cs.L = L_SHORT, cs.rhoA = RHOA_SHORT;
-    if (cant_ref(&cm, B, g) != 0 || cant_ref(&cs, B, g) != 0) return 2;
-    fprintf(stderr, "r_opt %.3f mm\n", 1e3 * r_opt);
-    v = wr_vres_begin("cantilever", "Style3D Fig. 18a-c cantilever: tip deflection vs mesh resolution against the heavy elastica");
-    if (!v) return 2;
+    memcpy(R->res, res, sizeof res);
+    memcpy(R->sres, sres, sizeof sres);
+    R->res[I_OPT] = R->r_opt;
+    R->sres[1] = R->r_opt;
+    R->cm.L = L_MAIN, R->cm.rhoA = RHOA_MAIN;
+    R->cs.L = L_SHORT, R->cs.rhoA = RHOA_SHORT;
+    if (cant_ref(&R->cm, R->B, R->g) != 0 || cant_ref(&R->cs, R->B, R->g) != 0) return 0;
+    fprintf(stderr, "r_opt %.3f mm\n", 1e3 * R->r_opt);
+    return 1;
+}
+
+static int run_solves(cant_run *R) {
+    int i;
     for (i = 0; i < NRES; ++i)
-        if (cant_solve(&sc, &cm, res_list[i], 0, &rows[i]) != 0) return 2;
+        if (cant_solve(&R->sc, &R->cm, R->res[i], 0, &R->rows[i]) != 0) return 0;
     for (i = 0; i < NSHORT; ++i)
-        if (cant_solve(&sc, &cs, short_list[i], 0, &srows[i]) != 0) return 2;
-    if (cant_solve(&sc, &cs, 2.5e-3, 1, &hinge) != 0) return 2;
-    /* "flattens": coarsest r from which every finer r (to 2.5 mm) stays within 1 % of the 2.5 mm tip */
-    for (i = I25; i >= 0; --i) {
-        int ok = 1;
-        for (j = i; j <= I25; ++j)
-            if (fabs(rows[j].tip / rows[I25].tip - 1.0) > 0.01) ok = 0;
-        if (ok) flat = i;
-        else break;
-    }
-    for (i = I25; i >= 0; --i) {
-        int ok = 1;
-        for (j = i; j <= I25; ++j)
-            if (fabs(rows[j].tip / cm.er.tip_deflection - 1.0) > 0.02) ok = 0;
-        if (ok) within2 = i;
-        else break;
-    }
-    cant_table(v, &cm, rows, NRES, i_opt,
-               "Main sweep: L = 100 mm, b = 25 mm, rho_A = 0.0025 kg/m^2 (kappa = 12.3), mirror-symmetric clamp");
-    cant_table(v, &cs, srows, NSHORT, 1,
-               "Second sweep: L = 25 mm, b = 25 mm, rho_A = 0.15 kg/m^2 (kappa = 11.5), mirror-symmetric clamp");
-    snprintf(dat, sizeof dat, "%s/cantilever.dat", wr_vres_dir());
-    {
-        wr_afile f;
-        if (wr_afile_open(&f, dat, &d) == WR_OK) {
-            fprintf(f.fp, "# r[mm] tip_err_L100[%%] shape_err_L100[%%L]\n");
-            for (i = 0; i < NRES; ++i)
-                fprintf(f.fp, "%.6f %.6f %.6f\n", 1e3 * rows[i].r, 100.0 * (rows[i].tip / cm.er.tip_deflection - 1.0),
-                        100.0 * rows[i].shape);
-            fprintf(f.fp, "\n\n# L = 25 mm sweep\n");
-            for (i = 0; i < NSHORT; ++i)
-                fprintf(f.fp, "%.6f %.6f %.6f\n", 1e3 * srows[i].r, 100.0 * (srows[i].tip / cs.er.tip_deflection - 1.0),
-                        100.0 * srows[i].shape);
-            wr_afile_commit(&f, &d);
-        }
-    }
-    wr_vres_info(v, "elastica tip deflection (L = 100 mm, rho_A = 0.0025 kg/m^2)", "mm", NAN, 1e3 * cm.er.tip_deflection);
-    wr_vres_info(v, "self-weight parameter kappa = rho_A g L^3 / B (main sweep)", "", NAN, cm.er.kappa);
-    wr_vres_info(v, "r_opt (Style3D Eq. 4)", "mm", 6.45, 1e3 * r_opt);
-    /* issue 5's bands: tip at r_opt within 2 % of the elastica and within 1 % of the 2.5 mm solve; the
-     * elastica and the 2.5 mm solve are references, not paper values (issue 20) */
-    {
-        const double te = 1e3 * cm.er.tip_deflection, t25 = 1e3 * rows[I25].tip;
-        wr_vres_range(v, "tip deflection at r_opt vs elastica, main strip (OUR CHOSEN geometry: L = 100 mm, rho_A = 0.0025 "
-                         "kg/m^2, 60x lighter than fabric)",
-                      "mm", NAN, 1e3 * rows[i_opt].tip, 0.98 * te, 1.02 * te);
-        wr_vres_reference(v, te, "heavy elastica, validation/elastica_ref.h");
-        wr_vres_range(v, "tip deflection at r_opt vs 2.5 mm solve, main strip (our chosen geometry)", "mm", NAN,
-                      1e3 * rows[i_opt].tip, 0.99 * t25, 1.01 * t25);
-        wr_vres_reference(v, t25, "our 2.5 mm solve");
-    }
+        if (cant_solve(&R->sc, &R->cs, R->sres[i], 0, &R->srows[i]) != 0) return 0;
+    return cant_solve(&R->sc, &R->cs, 2.5e-3, 1, &R->hinge) == 0;
+}
+
+/* Tip and shape errors per resolution of both sweeps, for the figure. */
+static void write_dat(const cant_run *R, const char *dat) {
+    wr_afile f;
+    wr_diag d;
+    int i;
+    if (wr_afile_open(&f, dat, &d) != WR_OK) return;
+    fprintf(f.fp, "# r[mm] tip_err_L100[%%] shape_err_L100[%%L]\n");
+    for (i = 0; i < NRES; ++i)
+        fprintf(f.fp, "%.6f %.6f %.6f\n", 1e3 * R->rows[i].r, 100.0 * (R->rows[i].tip / R->cm.er.tip_deflection - 1.0),
+                100.0 * R->rows[i].shape);
+    fprintf(f.fp, "\n\n# L = 25 mm sweep\n");
+    for (i = 0; i < NSHORT; ++i)
+        fprintf(f.fp, "%.6f %.6f %.6f\n", 1e3 * R->srows[i].r, 100.0 * (R->srows[i].tip / R->cs.er.tip_deflection - 1.0),
+                100.0 * R->srows[i].shape);
+    wr_afile_commit(&f, &d);
+}
+
+/* Issue 5's bands on one strip: the tip at r_opt within 2 % of the elastica and within 1 % of the
+ * 2.5 mm solve (the elastica and the 2.5 mm solve are references, not paper values; issue 20). */
+static void report_tip_bands(wr_vres *v, const char *strip, const char *strip_short, const cant_case *cc,
+                             const cant_row *at_opt, const cant_row *at25) {
+    const double te = 1e3 * cc->er.tip_deflection, t25 = 1e3 * at25->tip;
+    char name[512];
+    snprintf(name, sizeof name, "tip deflection at r_opt vs elastica, %s", strip);
+    wr_vres_range(v, name, "mm", NAN, 1e3 * at_opt->tip, 0.98 * te, 1.02 * te);
+    wr_vres_reference(v, te, "heavy elastica, validation/elastica_ref.h");
+    snprintf(name, sizeof name, "tip deflection at r_opt vs 2.5 mm solve, %s", strip_short);
+    wr_vres_range(v, name, "mm", NAN, 1e3 * at_opt->tip, 0.99 * t25, 1.01 * t25);
+    wr_vres_reference(v, t25, "our 2.5 mm solve");
+}
+
+/* Style3D Sec. 6 / Fig. 18: the tip-vs-r curve flattens at r_opt. Read on each sweep (issue 20: a
+ * pass/fail row): the coarsest r from which every finer tip stays within 1 % (issue 5's band against
+ * the 2.5 mm solve) of the 2.5 mm tip must be r_opt itself — on the main sweep its neighbours are
+ * 7.5 mm (coarser) and 5 mm (finer), so flattening at 7.5 mm means r_opt is not where the curve
+ * flattens, and at 5 mm that r_opt is too coarse. */
+static void report_main(wr_vres *v, const cant_run *R) {
+    const cant_row *rows = R->rows;
+    const int flat = coarsest_within(rows, I25, 0.0, 0.01), within2 = coarsest_within(rows, I25, R->cm.er.tip_deflection, 0.02);
+    wr_vres_info(v, "elastica tip deflection (L = 100 mm, rho_A = 0.0025 kg/m^2)", "mm", NAN, 1e3 * R->cm.er.tip_deflection);
+    wr_vres_info(v, "self-weight parameter kappa = rho_A g L^3 / B (main sweep)", "", NAN, R->cm.er.kappa);
+    wr_vres_info(v, "r_opt (Style3D Eq. 4)", "mm", 6.45, 1e3 * R->r_opt);
+    report_tip_bands(v, "main strip (OUR CHOSEN geometry: L = 100 mm, rho_A = 0.0025 kg/m^2, 60x lighter than fabric)",
+                     "main strip (our chosen geometry)", &R->cm, &rows[I_OPT], &rows[I25]);
     wr_vres_info(v, "tip deflection at 2.5 mm vs elastica (relative error)", "%", NAN,
-                 100.0 * (rows[I25].tip / cm.er.tip_deflection - 1.0));
-    wr_vres_info(v, "shape error / L at r_opt", "%", NAN, 100.0 * rows[i_opt].shape);
-    /* Style3D Sec. 6 / Fig. 18: the tip-vs-r curve flattens at r_opt. Read on our sweep (issue 20: a
-     * pass/fail row): the coarsest r from which every finer tip stays within 1 % (issue 5's band against
-     * the 2.5 mm solve) of the 2.5 mm tip must
-     * be r_opt itself — its sweep neighbours are 7.5 mm (coarser) and 5 mm (finer), so flattening at
-     * 7.5 mm means r_opt is not where the curve flattens, and at 5 mm that r_opt is too coarse. */
+                 100.0 * (rows[I25].tip / R->cm.er.tip_deflection - 1.0));
+    wr_vres_info(v, "shape error / L at r_opt", "%", NAN, 100.0 * rows[I_OPT].shape);
     wr_vres_check(v, "curve flattens at r_opt, main strip (coarsest r with all finer tips within 1% of 2.5 mm)", "mm", 6.45,
-                  flat >= 0 ? 1e3 * res_list[flat] : NAN, "= r_opt on the sweep (neighbours 7.5, 5 mm)", flat == i_opt);
+                  flat >= 0 ? 1e3 * R->res[flat] : NAN, "= r_opt on the sweep (neighbours 7.5, 5 mm)", flat == I_OPT);
     wr_vres_info(v, "coarsest r with all finer tips within 2% of the elastica", "mm", 6.45,
-                 within2 >= 0 ? 1e3 * res_list[within2] : NAN);
-    /* the realistic-density strip (real fabric rho_A at the D1388 overhang): the main strip's bands
-     * (issue 5), now pass/fail rows (issue 20) */
-    {
-        const double te = 1e3 * cs.er.tip_deflection, t25 = 1e3 * srows[3].tip;
-        int flat_s = -1;
-        wr_vres_range(v, "tip deflection at r_opt vs elastica, realistic strip (L = 25 mm, rho_A = 0.15 kg/m^2)", "mm", NAN,
-                      1e3 * srows[1].tip, 0.98 * te, 1.02 * te);
-        wr_vres_reference(v, te, "heavy elastica, validation/elastica_ref.h");
-        wr_vres_range(v, "tip deflection at r_opt vs 2.5 mm solve, realistic strip", "mm", NAN, 1e3 * srows[1].tip, 0.99 * t25,
-                      1.01 * t25);
-        wr_vres_reference(v, t25, "our 2.5 mm solve");
-        for (i = 3; i >= 0; --i) {
-            int ok = 1;
-            for (j = i; j <= 3; ++j)
-                if (fabs(srows[j].tip / srows[3].tip - 1.0) > 0.01) ok = 0;
-            if (ok) flat_s = i;
-            else break;
-        }
-        wr_vres_check(v, "curve flattens at r_opt, realistic strip (coarsest r with all finer tips within 1% of 2.5 mm)", "mm",
-                      6.45, flat_s >= 0 ? 1e3 * short_list[flat_s] : NAN, "= r_opt on the sweep (neighbours 10, 5 mm)",
-                      flat_s == 1);
-    }
+                 within2 >= 0 ? 1e3 * R->res[within2] : NAN);
+}
+
+/* The realistic-density strip (real fabric rho_A at the D1388 overhang): the main strip's bands
+ * (issue 5), pass/fail rows since issue 20; and the former one-sided clamp for the record. */
+static void report_short(wr_vres *v, const cant_run *R) {
+    const cant_row *srows = R->srows;
+    const int flat_s = coarsest_within(srows, 3, 0.0, 0.01);
+    report_tip_bands(v, "realistic strip (L = 25 mm, rho_A = 0.15 kg/m^2)", "realistic strip", &R->cs, &srows[1], &srows[3]);
+    wr_vres_check(v, "curve flattens at r_opt, realistic strip (coarsest r with all finer tips within 1% of 2.5 mm)", "mm",
+                  6.45, flat_s >= 0 ? 1e3 * R->sres[flat_s] : NAN, "= r_opt on the sweep (neighbours 10, 5 mm)",
+                  flat_s == 1);
     wr_vres_info(v, "L = 25 mm sweep: tip error vs elastica at r_opt", "%", NAN,
-                 100.0 * (srows[1].tip / cs.er.tip_deflection - 1.0));
+                 100.0 * (srows[1].tip / R->cs.er.tip_deflection - 1.0));
     wr_vres_info(v, "L = 25 mm sweep: tip error vs elastica at 2.5 mm", "%", NAN,
-                 100.0 * (srows[3].tip / cs.er.tip_deflection - 1.0));
+                 100.0 * (srows[3].tip / R->cs.er.tip_deflection - 1.0));
     wr_vres_info(v, "L = 25 mm, 2.5 mm, former one-sided clamp (fixed cell column): tip error vs elastica", "%", NAN,
-                 100.0 * (hinge.tip / cs.er.tip_deflection - 1.0));
+                 100.0 * (R->hinge.tip / R->cs.er.tip_deflection - 1.0));
+}
+
+static void report_notes(wr_vres *v) {
     wr_vres_note(v, "Main strip: free length 100 mm, width 25 mm, areal density 0.0025 kg/m^2 (kappa = 12.3; chosen so "
                     "the deflection is large, tip ~0.74 L, but not a vertical hang, and 20 mm is 5 cells), nu = 0.3, "
                     "h from Kirchhoff-Love (0.28 mm). Second sweep: 25 mm overhang at 0.15 kg/m^2 (kappa = 11.5).");
@@ -323,36 +335,68 @@ static int validation_main(void) {
                     "WR_ERR_NOT_CONVERGED after 460-990 Newton steps (2.5 mm: 593 steps, 49 s; 1.25 mm: 991 steps, "
                     "369 s): a Newton step that rotates a part of the strip is linear in the positions and stretches "
                     "it quadratically, so the membrane limited every step to ~1-2 mm of an 80 mm tip travel.");
+}
+
+/* Tip and shape error vs r on log axes, r_opt dashed. */
+static void error_figure(wr_vres *v, const cant_run *R, const char *dat) {
+    char gp[4200], png[4200], cmd[9000];
+    wr_afile f;
+    wr_diag d;
     snprintf(gp, sizeof gp, "%s/../figures/cantilever.gp", wr_vres_dir());
     snprintf(png, sizeof png, "%s/../figures/cantilever.png", wr_vres_dir());
-    {
-        wr_afile f;
-        if (wr_afile_open(&f, gp, &d) == WR_OK) {
-            fprintf(f.fp, "set terminal pngcairo size 800,500\nset output '%s'\nset logscale xy\n", png);
-            fprintf(f.fp, "set xlabel 'mesh resolution r [mm]'\nset ylabel '|error| [%%]'\nset grid\nset key top left\n");
-            fprintf(f.fp, "set arrow from %.4f, graph 0 to %.4f, graph 1 nohead dt 2\n", 1e3 * r_opt, 1e3 * r_opt);
-            fprintf(f.fp, "plot '%s' i 0 u 1:(abs($2)) w lp t 'tip vs elastica, L = 100 mm', '%s' i 0 u 1:3 w lp t "
-                          "'shape error / L, L = 100 mm', '%s' i 1 u 1:(abs($2)) w lp t 'tip vs elastica, L = 25 mm'\n",
-                    dat, dat, dat);
-            if (wr_afile_commit(&f, &d) == WR_OK) {
-                snprintf(cmd, sizeof cmd, "gnuplot '%s' 2>/dev/null", gp);
-                if (system(cmd) == 0)
-                    wr_vres_figure(v, "figures/cantilever.png", "tip-deflection and shape error vs resolution (dashed: r_opt)");
-            }
-        }
-    }
+    if (wr_afile_open(&f, gp, &d) != WR_OK) return;
+    fprintf(f.fp, "set terminal pngcairo size 800,500\nset output '%s'\nset logscale xy\n", png);
+    fprintf(f.fp, "set xlabel 'mesh resolution r [mm]'\nset ylabel '|error| [%%]'\nset grid\nset key top left\n");
+    fprintf(f.fp, "set arrow from %.4f, graph 0 to %.4f, graph 1 nohead dt 2\n", 1e3 * R->r_opt, 1e3 * R->r_opt);
+    fprintf(f.fp, "plot '%s' i 0 u 1:(abs($2)) w lp t 'tip vs elastica, L = 100 mm', '%s' i 0 u 1:3 w lp t "
+                  "'shape error / L, L = 100 mm', '%s' i 1 u 1:(abs($2)) w lp t 'tip vs elastica, L = 25 mm'\n",
+            dat, dat, dat);
+    if (wr_afile_commit(&f, &d) != WR_OK) return;
+    snprintf(cmd, sizeof cmd, "gnuplot '%s' 2>/dev/null", gp);
+    if (system(cmd) == 0) wr_vres_figure(v, "figures/cantilever.png", "tip-deflection and shape error vs resolution (dashed: r_opt)");
+}
+
+/* A note per solve that did not converge. */
+static void report_status_notes(wr_vres *v, const cant_run *R) {
+    char buf[512];
+    int i;
     for (i = 0; i < NRES; ++i)
-        if (rows[i].st != WR_OK) {
-            snprintf(buf, sizeof buf, "L = 100 mm, r = %.2f mm ended %s", 1e3 * rows[i].r, wr_status_string(rows[i].st));
+        if (R->rows[i].st != WR_OK) {
+            snprintf(buf, sizeof buf, "L = 100 mm, r = %.2f mm ended %s", 1e3 * R->rows[i].r, wr_status_string(R->rows[i].st));
             wr_vres_note(v, buf);
         }
     for (i = 0; i < NSHORT; ++i)
-        if (srows[i].st != WR_OK) {
-            snprintf(buf, sizeof buf, "L = 25 mm, r = %.2f mm ended %s", 1e3 * srows[i].r, wr_status_string(srows[i].st));
+        if (R->srows[i].st != WR_OK) {
+            snprintf(buf, sizeof buf, "L = 25 mm, r = %.2f mm ended %s", 1e3 * R->srows[i].r, wr_status_string(R->srows[i].st));
             wr_vres_note(v, buf);
         }
-    wr_scene_free(&sc);
-    return wr_vres_finish(v);
+}
+
+static int validation_main(void) {
+    static cant_run R; /* ~200 kB of reference curves: off the stack */
+    char dat[4096];
+    wr_vres *v;
+    int failed;
+    if (!run_setup(&R)) return 2;
+    v = wr_vres_begin("cantilever", "Style3D Fig. 18a-c cantilever: tip deflection vs mesh resolution against the heavy elastica");
+    if (!v || !run_solves(&R)) {
+        wr_scene_free(&R.sc);
+        return 2;
+    }
+    cant_table(v, &R.cm, R.rows, NRES, I_OPT,
+               "Main sweep: L = 100 mm, b = 25 mm, rho_A = 0.0025 kg/m^2 (kappa = 12.3), mirror-symmetric clamp");
+    cant_table(v, &R.cs, R.srows, NSHORT, 1,
+               "Second sweep: L = 25 mm, b = 25 mm, rho_A = 0.15 kg/m^2 (kappa = 11.5), mirror-symmetric clamp");
+    snprintf(dat, sizeof dat, "%s/cantilever.dat", wr_vres_dir());
+    write_dat(&R, dat);
+    report_main(v, &R);
+    report_short(v, &R);
+    report_notes(v);
+    error_figure(v, &R, dat);
+    report_status_notes(v, &R);
+    wr_scene_free(&R.sc);
+    failed = wr_vres_finish(v);
+    return failed;
 }
 
 int main(int argc, char **argv) {

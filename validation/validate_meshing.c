@@ -17,7 +17,6 @@
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
-#include <sys/stat.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -323,14 +322,9 @@ static int example_patterns(wr_vres *v) {
 
 static int validation_main(void) {
     wr_vres *v = wr_vres_begin("style3d_meshing", "Style3D Sec. 4.3: pattern -> optimal mesh (Table 1 squares, Fig. 14, garment examples)");
-    char fig[4096], line[256];
+    char line[256];
     int failed_runs;
     if (!v) return 2;
-    /* results/../figures (run_all.sh makes it too; a custom WRINKLE_RESULTS_DIR may not): the results
-     * directory first, since "results/.." only resolves once it exists */
-    mkdir(wr_vres_dir(), 0777);
-    figure_path(fig, sizeof fig, "");
-    mkdir(fig, 0777);
     wr_vres_note(v, "Meshes: poisson.h variable-radius Bridson sampling (radius = WR_POISSON_DEFAULT_RADIUS_FACTOR x sizing, "
                     "the calibrated default) + triangulate.h CDT, through mesher.h; seed 1; paper model c1 = 32.08 m^-3, "
                     "c2 = -1.876e-4 m^-1. Vertex counts include boundary vertices (the paper's #V does too, we assume).");

@@ -68,6 +68,12 @@ wr_vres *wr_vres_begin(const char *case_id, const char *title) {
     time_t t = time(NULL);
     struct tm tmv;
     if (!v) return NULL;
+    mkdir(wr_vres_dir(), 0777); /* may exist already; a real failure shows when a file is opened */
+    {
+        char fig[4200];
+        snprintf(fig, sizeof fig, "%s/../figures", wr_vres_dir());
+        mkdir(fig, 0777);
+    }
     snprintf(v->id, sizeof v->id, "%s", case_id);
     v->root = cJSON_CreateObject();
     cJSON_AddStringToObject(v->root, "case", case_id);

@@ -21,6 +21,9 @@
 
 typedef struct wr_vres wr_vres;
 
+/* Starts a result; also makes the results directory and <results>/../figures when missing (one
+ * level each, not mkdir -p), so a driver's data files and figures can be written before
+ * wr_vres_finish. */
 wr_vres *wr_vres_begin(const char *case_id, const char *title);
 /* |ours - paper| <= rel_tol * |paper| */
 void wr_vres_rel(wr_vres *v, const char *name, const char *unit, double paper, double ours, double rel_tol);
