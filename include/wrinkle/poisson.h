@@ -737,7 +737,7 @@ typedef struct wr__pz {
     int hbits;
     double x0, y0, W, H, s_base;
     double cs[64], inv_cs[64], rmax[64], rmax_all;
-    uint64_t tw[64]; /* tiles per row at each level (home slot of a tile) */
+    uint64_t tw[64], th[64]; /* tiles per row and rows at each level (home slot of a tile) */
     /* presence grid */
     uint64_t *mask, levels; /* levels: every level in use */
     int32_t mx, my;
@@ -950,10 +950,14 @@ static uint64_t wr__pz_key(int l, int64_t tx, int64_t ty) {
 /* Home slot = the tile's row-major index in its level's tile grid (plus a per-level offset), so
  * tiles that are neighbours along x are neighbours in memory and a single level covering the domain
  * fills the table without collisions; linear probing resolves the rest. (A multiplicative hash made
- * every tile lookup a cache miss: 17 % of a step's time.) */
+ * every tile lookup a cache miss: 17 % of a step's time.) A level whose tile grid is larger than the
+ * table (the fine levels of a graded sizing, which fill only a band of the box) would wrap its rows
+ * onto each other and into long probe runs: its rows start at hashed slots instead (20×-graded
+ * square: 65 → 43 instructions per lookup). */
 static size_t wr__pz_slot(const wr__pz *z, uint64_t key) {
     uint64_t k = key - 1u, l = k >> 58, tx = (k >> 29) & (uint64_t)0x1FFFFFFF, ty = k & (uint64_t)0x1FFFFFFF;
-    size_t m = z->hcap - 1, s = (size_t)(tx + ty * z->tw[l] + l * 0x9E3779B1u) & m;
+    uint64_t row = z->tw[l] * z->th[l] <= z->hcap ? ty * z->tw[l] : (ty + 1u) * 0x9E3779B97F4A7C15u >> 20;
+    size_t m = z->hcap - 1, s = (size_t)(tx + row + l * 0x9E3779B1u) & m;
     while (z->tiles[s].key != 0 && z->tiles[s].key != key) s = (s + 1) & m;
     return s;
 }
@@ -1569,6 +1573,7 @@ static wr_status wr__pz_grids_init(wr__pz *z, double x0, double y0, double W, do
         z->inv_cs[i] = 1.0 / z->cs[i];
         z->rmax[i] = 0.0;
         z->tw[i] = (uint64_t)fmin(W * z->inv_cs[i] / WR__PZ_TILE, 1e9) + 2u;
+        z->th[i] = (uint64_t)fmin(H * z->inv_cs[i] / WR__PZ_TILE, 1e9) + 2u;
     }
     z->mg = 2.0 * rmax;
     while ((W / z->mg + 1.0) * (H / z->mg + 1.0) > cells_cap) z->mg *= 1.5;
