@@ -1096,7 +1096,7 @@ static int wr__pz_near(wr__pz *z, double qx, double qy, double R0, double rq, in
  * step; the arcs only steer where candidates are drawn and every candidate is checked exactly, so
  * 1e-7 rad is ample. */
 #define WR__PZ_HALF_PI 1.5707963267948966
-static double wr__pz_atan2(double y, double x) {
+static inline double wr__pz_atan2(double y, double x) {
     double ax = fabs(x), ay = fabs(y), a, s, r;
     if (ax == 0.0 && ay == 0.0) return 0.0;
     a = ax >= ay ? ay / ax : ax / ay;
@@ -1138,7 +1138,7 @@ typedef struct wr__pz_arcs {
 } wr__pz_arcs;
 
 /* Remove [a, b] (0 <= a < b <= 2π), in place. A split beyond the capacity keeps the longer side. */
-static void wr__pz_arcs_cut1(wr__pz_arcs *A, double a, double b) {
+static inline void wr__pz_arcs_cut1(wr__pz_arcs *A, double a, double b) {
     int32_t i;
     for (i = 0; i < A->n; ++i) {
         double l = A->lo[i], h = A->hi[i];
@@ -1339,7 +1339,7 @@ static double wr__pz_pseudo(double x, double y) {
 }
 
 /* The polar angle in [0, 2π] of pseudo-angle t in [0, 4] (the ends map exactly to 0 and 2π). */
-static double wr__pz_pseudo_angle(double t) {
+static inline double wr__pz_pseudo_angle(double t) {
     double th;
     if (t <= 0.0) return 0.0;
     if (t >= 4.0) return WR__PZ_TWO_PI;
