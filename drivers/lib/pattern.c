@@ -357,180 +357,175 @@ static wr_status get_tl(pctx *c, const cJSON *o, const char *p, double *out) {
     return st;
 }
 
-static wr_status parse_techniques(pctx *c, const cJSON *root) {
+/* One technique entry of a list: the object at path p, already checked against its keys. */
+typedef wr_status (*tech_item_fn)(pctx *c, const cJSON *it, const char *p, void *item);
+
+/* The optional top-level list "kind": each entry an object with only the given keys, parsed by fn into
+ * an array of items of `size` bytes (*items stays NULL when the key is absent). */
+static wr_status parse_list(pctx *c, const cJSON *root, const char *kind, const char *const *keys, size_t size,
+                            tech_item_fn fn, void **items, int32_t *n_items) {
     const cJSON *arr, *it;
+    unsigned char *a;
     wr_status st;
-    int i, n;
-    char p[512], q[512];
-    /* shirring */
-    if ((st = get_array(c, root, "$", "shirring", &arr)) != WR_OK) return st;
-    if (arr) {
-        static const char *const keys[] = {"panel", "line", "E_sh", "rho", "n", "transition_length", NULL};
-        wr_pattern_shirring *a;
-        n = cJSON_GetArraySize(arr);
-        a = (wr_pattern_shirring *)pf_alloc(c->f, (size_t)n, sizeof *a);
-        if (!a) return perr(c, WR_ERR_NOMEM, "shirring", "out of memory");
-        i = 0;
-        cJSON_ArrayForEach(it, arr) {
-            joini(p, sizeof p, "shirring", i);
-            if ((st = need_object(c, it, p)) != WR_OK || (st = check_keys(c, it, p, keys)) != WR_OK) return st;
-            if ((st = get_panel_ref(c, it, p, &a[i].panel)) != WR_OK) return st;
-            join(q, sizeof q, p, "line");
-            if ((st = get_points(c, cJSON_GetObjectItemCaseSensitive(it, "line"), q, 2, (double **)&a[i].xy, &a[i].n)) !=
-                WR_OK)
-                return st;
-            if ((st = get_range(c, it, p, "E_sh", 0, 0.0, 0, HUGE_VAL, 1, &a[i].E_sh, NULL)) != WR_OK) return st;
-            if ((st = get_range(c, it, p, "rho", 1, 0.0, 1, 1.0, 0, &a[i].rho, NULL)) != WR_OK) return st;
-            if ((st = get_range(c, it, p, "n", 0, 0.0, 1, HUGE_VAL, 1, &a[i].n_exp, NULL)) != WR_OK) return st;
-            if ((st = get_tl(c, it, p, &a[i].transition_length)) != WR_OK) return st;
-            ++i;
-        }
-        c->f->pattern.shirrings = a;
-        c->f->pattern.n_shirrings = n;
+    char p[512];
+    int i = 0, n;
+    if ((st = get_array(c, root, "$", kind, &arr)) != WR_OK || !arr) return st;
+    n = cJSON_GetArraySize(arr);
+    a = (unsigned char *)pf_alloc(c->f, (size_t)n, size);
+    if (!a) return perr(c, WR_ERR_NOMEM, kind, "out of memory");
+    cJSON_ArrayForEach(it, arr) {
+        joini(p, sizeof p, kind, i);
+        if ((st = need_object(c, it, p)) != WR_OK || (st = check_keys(c, it, p, keys)) != WR_OK) return st;
+        if ((st = fn(c, it, p, a + (size_t)i * size)) != WR_OK) return st;
+        ++i;
     }
-    /* folds */
-    if ((st = get_array(c, root, "$", "folds", &arr)) != WR_OK) return st;
-    if (arr) {
-        static const char *const keys[] = {"panel", "line", "angle_deg", "offset", "curvature_radius",
-                                           "transition_length", NULL};
-        wr_pattern_fold *a;
-        n = cJSON_GetArraySize(arr);
-        a = (wr_pattern_fold *)pf_alloc(c->f, (size_t)n, sizeof *a);
-        if (!a) return perr(c, WR_ERR_NOMEM, "folds", "out of memory");
-        i = 0;
-        cJSON_ArrayForEach(it, arr) {
-            double x;
-            int pr;
-            joini(p, sizeof p, "folds", i);
-            if ((st = need_object(c, it, p)) != WR_OK || (st = check_keys(c, it, p, keys)) != WR_OK) return st;
-            if ((st = get_panel_ref(c, it, p, &a[i].panel)) != WR_OK) return st;
-            join(q, sizeof q, p, "line");
-            if ((st = get_points(c, cJSON_GetObjectItemCaseSensitive(it, "line"), q, 2, (double **)&a[i].xy, &a[i].n)) !=
-                WR_OK)
-                return st;
-            if ((st = get_range(c, it, p, "angle_deg", 0, 0.0, 1, 360.0, 0, &a[i].angle_deg, NULL)) != WR_OK) return st;
-            if ((st = get_range(c, it, p, "offset", 0, 0.0, 1, HUGE_VAL, 1, &x, &pr)) != WR_OK) return st;
-            if (pr) a[i].offset = x * MM;
-            if ((st = get_range(c, it, p, "curvature_radius", 0, 0.0, 1, HUGE_VAL, 1, &x, &pr)) != WR_OK) return st;
-            if (pr) a[i].curvature_radius = x * MM;
-            if ((st = get_tl(c, it, p, &a[i].transition_length)) != WR_OK) return st;
-            ++i;
-        }
-        c->f->pattern.folds = a;
-        c->f->pattern.n_folds = n;
+    *items = a;
+    *n_items = n;
+    return WR_OK;
+}
+
+/* The polyline under key `key` of it (at least min_points points). */
+static wr_status get_line(pctx *c, const cJSON *it, const char *p, const char *key, int min_points, const double **xy,
+                          int32_t *n) {
+    char q[512];
+    join(q, sizeof q, p, key);
+    return get_points(c, cJSON_GetObjectItemCaseSensitive(it, key), q, min_points, (double **)xy, n);
+}
+
+static wr_status shirring_item(pctx *c, const cJSON *it, const char *p, void *item) {
+    wr_pattern_shirring *a = (wr_pattern_shirring *)item;
+    wr_status st;
+    if ((st = get_panel_ref(c, it, p, &a->panel)) != WR_OK || (st = get_line(c, it, p, "line", 2, &a->xy, &a->n)) != WR_OK)
+        return st;
+    if ((st = get_range(c, it, p, "E_sh", 0, 0.0, 0, HUGE_VAL, 1, &a->E_sh, NULL)) != WR_OK) return st;
+    if ((st = get_range(c, it, p, "rho", 1, 0.0, 1, 1.0, 0, &a->rho, NULL)) != WR_OK) return st;
+    if ((st = get_range(c, it, p, "n", 0, 0.0, 1, HUGE_VAL, 1, &a->n_exp, NULL)) != WR_OK) return st;
+    return get_tl(c, it, p, &a->transition_length);
+}
+
+static wr_status fold_item(pctx *c, const cJSON *it, const char *p, void *item) {
+    wr_pattern_fold *a = (wr_pattern_fold *)item;
+    wr_status st;
+    double x;
+    int pr;
+    if ((st = get_panel_ref(c, it, p, &a->panel)) != WR_OK || (st = get_line(c, it, p, "line", 2, &a->xy, &a->n)) != WR_OK)
+        return st;
+    if ((st = get_range(c, it, p, "angle_deg", 0, 0.0, 1, 360.0, 0, &a->angle_deg, NULL)) != WR_OK) return st;
+    if ((st = get_range(c, it, p, "offset", 0, 0.0, 1, HUGE_VAL, 1, &x, &pr)) != WR_OK) return st;
+    if (pr) a->offset = x * MM;
+    if ((st = get_range(c, it, p, "curvature_radius", 0, 0.0, 1, HUGE_VAL, 1, &x, &pr)) != WR_OK) return st;
+    if (pr) a->curvature_radius = x * MM;
+    return get_tl(c, it, p, &a->transition_length);
+}
+
+/* One side of a seam: a panel and the boundary stretch from -> to (optionally reversed). */
+static wr_status seam_side(pctx *c, const cJSON *it, const char *p, int s, wr_pattern_seam_side *ss) {
+    static const char *const skeys[] = {"panel", "from", "to", "reverse", NULL};
+    const cJSON *sd = cJSON_GetObjectItemCaseSensitive(it, s ? "b" : "a");
+    char q[512], r[512];
+    wr_status st;
+    join(q, sizeof q, p, s ? "b" : "a");
+    if (!sd) return perr(c, WR_ERR_PARSE, q, "missing");
+    if ((st = need_object(c, sd, q)) != WR_OK || (st = check_keys(c, sd, q, skeys)) != WR_OK) return st;
+    if ((st = get_panel_ref(c, sd, q, &ss->panel)) != WR_OK) return st;
+    join(r, sizeof r, q, "from");
+    if (!cJSON_GetObjectItemCaseSensitive(sd, "from")) return perr(c, WR_ERR_PARSE, r, "missing");
+    if ((st = get_point(c, cJSON_GetObjectItemCaseSensitive(sd, "from"), r, ss->from)) != WR_OK) return st;
+    join(r, sizeof r, q, "to");
+    if (!cJSON_GetObjectItemCaseSensitive(sd, "to")) return perr(c, WR_ERR_PARSE, r, "missing");
+    if ((st = get_point(c, cJSON_GetObjectItemCaseSensitive(sd, "to"), r, ss->to)) != WR_OK) return st;
+    return get_bool(c, sd, q, "reverse", &ss->reverse);
+}
+
+static wr_status seam_item(pctx *c, const cJSON *it, const char *p, void *item) {
+    wr_pattern_seam *a = (wr_pattern_seam *)item;
+    wr_status st;
+    if ((st = seam_side(c, it, p, 0, &a->a)) != WR_OK || (st = seam_side(c, it, p, 1, &a->b)) != WR_OK) return st;
+    return get_tl(c, it, p, &a->transition_length);
+}
+
+/* quilts (down-filling): a panel and its quilting lines */
+static wr_status quilt_item(pctx *c, const cJSON *it, const char *p, void *item) {
+    wr_pattern_quilt *a = (wr_pattern_quilt *)item;
+    const cJSON *ls, *l;
+    wr_pattern_curve *lc;
+    char q[512];
+    wr_status st;
+    int k = 0, nl;
+    if ((st = get_panel_ref(c, it, p, &a->panel)) != WR_OK) return st;
+    join(q, sizeof q, p, "lines");
+    ls = cJSON_GetObjectItemCaseSensitive(it, "lines");
+    if (!ls) return perr(c, WR_ERR_PARSE, q, "missing");
+    if (!cJSON_IsArray(ls) || (nl = cJSON_GetArraySize(ls)) < 1)
+        return perr(c, WR_ERR_PARSE, q, "expected a non-empty array of polylines");
+    lc = (wr_pattern_curve *)pf_alloc(c->f, (size_t)nl, sizeof *lc);
+    if (!lc) return perr(c, WR_ERR_NOMEM, q, "out of memory");
+    cJSON_ArrayForEach(l, ls) {
+        char r[512];
+        joini(r, sizeof r, q, k);
+        if ((st = get_points(c, l, r, 2, (double **)&lc[k].xy, &lc[k].n)) != WR_OK) return st;
+        ++k;
     }
-    /* seams */
-    if ((st = get_array(c, root, "$", "seams", &arr)) != WR_OK) return st;
-    if (arr) {
-        static const char *const keys[] = {"a", "b", "transition_length", NULL};
-        static const char *const skeys[] = {"panel", "from", "to", "reverse", NULL};
-        wr_pattern_seam *a;
-        n = cJSON_GetArraySize(arr);
-        a = (wr_pattern_seam *)pf_alloc(c->f, (size_t)n, sizeof *a);
-        if (!a) return perr(c, WR_ERR_NOMEM, "seams", "out of memory");
-        i = 0;
-        cJSON_ArrayForEach(it, arr) {
-            int s;
-            joini(p, sizeof p, "seams", i);
-            if ((st = need_object(c, it, p)) != WR_OK || (st = check_keys(c, it, p, keys)) != WR_OK) return st;
-            for (s = 0; s < 2; ++s) {
-                const cJSON *sd = cJSON_GetObjectItemCaseSensitive(it, s ? "b" : "a");
-                wr_pattern_seam_side *ss = s ? &a[i].b : &a[i].a;
-                char r[512];
-                join(q, sizeof q, p, s ? "b" : "a");
-                if (!sd) return perr(c, WR_ERR_PARSE, q, "missing");
-                if ((st = need_object(c, sd, q)) != WR_OK || (st = check_keys(c, sd, q, skeys)) != WR_OK) return st;
-                if ((st = get_panel_ref(c, sd, q, &ss->panel)) != WR_OK) return st;
-                join(r, sizeof r, q, "from");
-                if (!cJSON_GetObjectItemCaseSensitive(sd, "from")) return perr(c, WR_ERR_PARSE, r, "missing");
-                if ((st = get_point(c, cJSON_GetObjectItemCaseSensitive(sd, "from"), r, ss->from)) != WR_OK) return st;
-                join(r, sizeof r, q, "to");
-                if (!cJSON_GetObjectItemCaseSensitive(sd, "to")) return perr(c, WR_ERR_PARSE, r, "missing");
-                if ((st = get_point(c, cJSON_GetObjectItemCaseSensitive(sd, "to"), r, ss->to)) != WR_OK) return st;
-                if ((st = get_bool(c, sd, q, "reverse", &ss->reverse)) != WR_OK) return st;
-            }
-            if ((st = get_tl(c, it, p, &a[i].transition_length)) != WR_OK) return st;
-            ++i;
-        }
-        c->f->pattern.seams = a;
-        c->f->pattern.n_seams = n;
+    a->lines = lc;
+    a->n_lines = nl;
+    if ((st = get_range(c, it, p, "rho", 1, 0.0, 1, 1.0, 0, &a->rho, NULL)) != WR_OK) return st;
+    if ((st = get_range(c, it, p, "E_sh", 0, 0.0, 0, HUGE_VAL, 1, &a->E_sh, NULL)) != WR_OK) return st;
+    if ((st = get_range(c, it, p, "pressure", 0, 0.0, 0, HUGE_VAL, 1, &a->pressure, NULL)) != WR_OK) return st;
+    return get_tl(c, it, p, &a->transition_length);
+}
+
+/* collisions: a polygon, or a circle given by center + radius */
+static wr_status collision_item(pctx *c, const cJSON *it, const char *p, void *item) {
+    wr_pattern_collision *a = (wr_pattern_collision *)item;
+    const cJSON *poly = cJSON_GetObjectItemCaseSensitive(it, "polygon"), *ctr = cJSON_GetObjectItemCaseSensitive(it, "center");
+    char q[512];
+    wr_status st;
+    if ((st = get_panel_ref(c, it, p, &a->panel)) != WR_OK) return st;
+    if ((poly != NULL) == (ctr != NULL || cJSON_GetObjectItemCaseSensitive(it, "radius") != NULL))
+        return perr(c, WR_ERR_PARSE, p, "give either \"polygon\" or \"center\" + \"radius\"");
+    if (poly) {
+        join(q, sizeof q, p, "polygon");
+        if ((st = get_points(c, poly, q, 3, (double **)&a->xy, &a->n)) != WR_OK) return st;
+    } else {
+        join(q, sizeof q, p, "center");
+        if (!ctr) return perr(c, WR_ERR_PARSE, q, "missing");
+        if ((st = get_point(c, ctr, q, a->center)) != WR_OK) return st;
+        if ((st = get_range(c, it, p, "radius", 1, 0.0, 1, HUGE_VAL, 1, &a->radius, NULL)) != WR_OK) return st;
+        a->radius *= MM;
     }
-    /* quilts (down-filling) */
-    if ((st = get_array(c, root, "$", "quilts", &arr)) != WR_OK) return st;
-    if (arr) {
-        static const char *const keys[] = {"panel", "lines", "rho", "E_sh", "pressure", "transition_length", NULL};
-        wr_pattern_quilt *a;
-        n = cJSON_GetArraySize(arr);
-        a = (wr_pattern_quilt *)pf_alloc(c->f, (size_t)n, sizeof *a);
-        if (!a) return perr(c, WR_ERR_NOMEM, "quilts", "out of memory");
-        i = 0;
-        cJSON_ArrayForEach(it, arr) {
-            const cJSON *ls, *l;
-            wr_pattern_curve *lc;
-            int k = 0, nl;
-            joini(p, sizeof p, "quilts", i);
-            if ((st = need_object(c, it, p)) != WR_OK || (st = check_keys(c, it, p, keys)) != WR_OK) return st;
-            if ((st = get_panel_ref(c, it, p, &a[i].panel)) != WR_OK) return st;
-            join(q, sizeof q, p, "lines");
-            ls = cJSON_GetObjectItemCaseSensitive(it, "lines");
-            if (!ls) return perr(c, WR_ERR_PARSE, q, "missing");
-            if (!cJSON_IsArray(ls) || (nl = cJSON_GetArraySize(ls)) < 1)
-                return perr(c, WR_ERR_PARSE, q, "expected a non-empty array of polylines");
-            lc = (wr_pattern_curve *)pf_alloc(c->f, (size_t)nl, sizeof *lc);
-            if (!lc) return perr(c, WR_ERR_NOMEM, q, "out of memory");
-            cJSON_ArrayForEach(l, ls) {
-                char r[512];
-                joini(r, sizeof r, q, k);
-                if ((st = get_points(c, l, r, 2, (double **)&lc[k].xy, &lc[k].n)) != WR_OK) return st;
-                ++k;
-            }
-            a[i].lines = lc;
-            a[i].n_lines = nl;
-            if ((st = get_range(c, it, p, "rho", 1, 0.0, 1, 1.0, 0, &a[i].rho, NULL)) != WR_OK) return st;
-            if ((st = get_range(c, it, p, "E_sh", 0, 0.0, 0, HUGE_VAL, 1, &a[i].E_sh, NULL)) != WR_OK) return st;
-            if ((st = get_range(c, it, p, "pressure", 0, 0.0, 0, HUGE_VAL, 1, &a[i].pressure, NULL)) != WR_OK) return st;
-            if ((st = get_tl(c, it, p, &a[i].transition_length)) != WR_OK) return st;
-            ++i;
-        }
-        c->f->pattern.quilts = a;
-        c->f->pattern.n_quilts = n;
-    }
-    /* collisions */
-    if ((st = get_array(c, root, "$", "collisions", &arr)) != WR_OK) return st;
-    if (arr) {
-        static const char *const keys[] = {"panel", "polygon", "center", "radius", "compression", "transition_length",
-                                           NULL};
-        wr_pattern_collision *a;
-        n = cJSON_GetArraySize(arr);
-        a = (wr_pattern_collision *)pf_alloc(c->f, (size_t)n, sizeof *a);
-        if (!a) return perr(c, WR_ERR_NOMEM, "collisions", "out of memory");
-        i = 0;
-        cJSON_ArrayForEach(it, arr) {
-            const cJSON *poly, *ctr;
-            joini(p, sizeof p, "collisions", i);
-            if ((st = need_object(c, it, p)) != WR_OK || (st = check_keys(c, it, p, keys)) != WR_OK) return st;
-            if ((st = get_panel_ref(c, it, p, &a[i].panel)) != WR_OK) return st;
-            poly = cJSON_GetObjectItemCaseSensitive(it, "polygon");
-            ctr = cJSON_GetObjectItemCaseSensitive(it, "center");
-            if ((poly != NULL) == (ctr != NULL || cJSON_GetObjectItemCaseSensitive(it, "radius") != NULL))
-                return perr(c, WR_ERR_PARSE, p, "give either \"polygon\" or \"center\" + \"radius\"");
-            if (poly) {
-                join(q, sizeof q, p, "polygon");
-                if ((st = get_points(c, poly, q, 3, (double **)&a[i].xy, &a[i].n)) != WR_OK) return st;
-            } else {
-                join(q, sizeof q, p, "center");
-                if (!ctr) return perr(c, WR_ERR_PARSE, q, "missing");
-                if ((st = get_point(c, ctr, q, a[i].center)) != WR_OK) return st;
-                if ((st = get_range(c, it, p, "radius", 1, 0.0, 1, HUGE_VAL, 1, &a[i].radius, NULL)) != WR_OK) return st;
-                a[i].radius *= MM;
-            }
-            if ((st = get_range(c, it, p, "compression", 1, 0.0, 1, 1.0, 1, &a[i].compression, NULL)) != WR_OK) return st;
-            if ((st = get_tl(c, it, p, &a[i].transition_length)) != WR_OK) return st;
-            ++i;
-        }
-        c->f->pattern.collisions = a;
-        c->f->pattern.n_collisions = n;
-    }
+    if ((st = get_range(c, it, p, "compression", 1, 0.0, 1, 1.0, 1, &a->compression, NULL)) != WR_OK) return st;
+    return get_tl(c, it, p, &a->transition_length);
+}
+
+/* The garment techniques of Style3D Sec. 4.2, each an optional list, in this order. */
+static wr_status parse_techniques(pctx *c, const cJSON *root) {
+    static const char *const shirring_keys[] = {"panel", "line", "E_sh", "rho", "n", "transition_length", NULL};
+    static const char *const fold_keys[] = {"panel", "line", "angle_deg", "offset", "curvature_radius", "transition_length",
+                                            NULL};
+    static const char *const seam_keys[] = {"a", "b", "transition_length", NULL};
+    static const char *const quilt_keys[] = {"panel", "lines", "rho", "E_sh", "pressure", "transition_length", NULL};
+    static const char *const collision_keys[] = {"panel", "polygon", "center", "radius", "compression",
+                                                 "transition_length", NULL};
+    wr_pattern *pt = &c->f->pattern;
+    void *sh = NULL, *fo = NULL, *se = NULL, *qu = NULL, *co = NULL;
+    wr_status st;
+    if ((st = parse_list(c, root, "shirring", shirring_keys, sizeof(wr_pattern_shirring), shirring_item, &sh,
+                         &pt->n_shirrings)) != WR_OK)
+        return st;
+    if (sh) pt->shirrings = (const wr_pattern_shirring *)sh;
+    if ((st = parse_list(c, root, "folds", fold_keys, sizeof(wr_pattern_fold), fold_item, &fo, &pt->n_folds)) != WR_OK)
+        return st;
+    if (fo) pt->folds = (const wr_pattern_fold *)fo;
+    if ((st = parse_list(c, root, "seams", seam_keys, sizeof(wr_pattern_seam), seam_item, &se, &pt->n_seams)) != WR_OK)
+        return st;
+    if (se) pt->seams = (const wr_pattern_seam *)se;
+    if ((st = parse_list(c, root, "quilts", quilt_keys, sizeof(wr_pattern_quilt), quilt_item, &qu, &pt->n_quilts)) != WR_OK)
+        return st;
+    if (qu) pt->quilts = (const wr_pattern_quilt *)qu;
+    if ((st = parse_list(c, root, "collisions", collision_keys, sizeof(wr_pattern_collision), collision_item, &co,
+                         &pt->n_collisions)) != WR_OK)
+        return st;
+    if (co) pt->collisions = (const wr_pattern_collision *)co;
     return WR_OK;
 }
 
