@@ -49,160 +49,187 @@ static void gp_quote(FILE *f, const char *s) {
     fputc('\'', f);
 }
 
-wr_status wr_meshout_render_png(const wr_mesher_result *res, const char *png_path, const char *title,
-                                int draw_edges, wr_diag *diag) {
+/* The sizing map sampled on a square grid over the rest-space extent of the mesh, in mm (NaN
+ * outside every face: holes and gaps stay undefined). */
+typedef struct sizing_raster {
+    double x0, y0, x1, y1, cell, vmin, vmax, *val;
+    int32_t nx, ny;
+} sizing_raster;
+
+/* Sample every grid point inside face f with the sizing map of the face's panel. */
+static void raster_face(const wr_mesher_result *res, int32_t f, sizing_raster *R) {
     const wr_mesh *m = &res->mesh;
-    char tmpl[] = "/tmp/wrinkle-mesh-plotXXXXXX", gpath[WR_PATH_MAX], epath[WR_PATH_MAX], spath[WR_PATH_MAX],
-         tpng[WR_PATH_MAX + 16], cmd[3 * WR_PATH_MAX];
-    double x0 = HUGE_VAL, y0 = HUGE_VAL, x1 = -HUGE_VAL, y1 = -HUGE_VAL, cell, *val = NULL, vmin = HUGE_VAL,
-           vmax = -HUGE_VAL;
-    int32_t f, k, nx, ny, i, j, e;
-    FILE *fp;
-    int rc;
-    wr_status st = WR_OK;
-    if (!have_gnuplot()) return wr_fail(diag, WR_ERR_UNSUPPORTED, -1, "gnuplot not found on PATH: picture skipped");
-    if (m->nf < 1) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "empty mesh");
+    double uv[6], bx0, bx1, by0, by1, det;
+    int32_t p = m->face_panel ? m->face_panel[f] : 0, a0, a1, b0, b1, i, j;
+    wr_mesh_face_rest(m, f, uv);
+    bx0 = fmin(uv[0], fmin(uv[2], uv[4]));
+    bx1 = fmax(uv[0], fmax(uv[2], uv[4]));
+    by0 = fmin(uv[1], fmin(uv[3], uv[5]));
+    by1 = fmax(uv[1], fmax(uv[3], uv[5]));
+    det = (uv[2] - uv[0]) * (uv[5] - uv[1]) - (uv[4] - uv[0]) * (uv[3] - uv[1]);
+    if (det == 0.0) return;
+    a0 = (int32_t)ceil((bx0 - R->x0) / R->cell);
+    a1 = (int32_t)floor((bx1 - R->x0) / R->cell);
+    b0 = (int32_t)ceil((by0 - R->y0) / R->cell);
+    b1 = (int32_t)floor((by1 - R->y0) / R->cell);
+    for (j = b0; j <= b1; ++j)
+        for (i = a0; i <= a1; ++i) {
+            double x = R->x0 + i * R->cell, y = R->y0 + j * R->cell, l1, l2, *v;
+            if (i < 0 || j < 0 || i >= R->nx || j >= R->ny) continue;
+            l1 = ((x - uv[0]) * (uv[5] - uv[1]) - (uv[4] - uv[0]) * (y - uv[1])) / det;
+            l2 = ((uv[2] - uv[0]) * (y - uv[1]) - (x - uv[0]) * (uv[3] - uv[1])) / det;
+            if (l1 < -1e-12 || l2 < -1e-12 || l1 + l2 > 1.0 + 1e-12) continue;
+            v = R->val + j * R->nx + i;
+            *v = 1e3 * wr_mesher_eval_sizing(res, p, x, y);
+            if (*v < R->vmin) R->vmin = *v;
+            if (*v > R->vmax) R->vmax = *v;
+        }
+}
+
+/* The extent, the grid (MESHOUT_GRID cells along the longer side) and its samples. */
+static wr_status raster_build(const wr_mesher_result *res, sizing_raster *R, wr_diag *diag) {
+    const wr_mesh *m = &res->mesh;
+    int32_t f, k, i;
+    R->x0 = R->y0 = R->vmin = HUGE_VAL;
+    R->x1 = R->y1 = R->vmax = -HUGE_VAL;
     for (f = 0; f < m->nf; ++f) {
         double uv[6];
         wr_mesh_face_rest(m, f, uv);
         for (k = 0; k < 3; ++k) {
-            x0 = fmin(x0, uv[2 * k]);
-            x1 = fmax(x1, uv[2 * k]);
-            y0 = fmin(y0, uv[2 * k + 1]);
-            y1 = fmax(y1, uv[2 * k + 1]);
+            R->x0 = fmin(R->x0, uv[2 * k]);
+            R->x1 = fmax(R->x1, uv[2 * k]);
+            R->y0 = fmin(R->y0, uv[2 * k + 1]);
+            R->y1 = fmax(R->y1, uv[2 * k + 1]);
         }
     }
-    cell = fmax(x1 - x0, y1 - y0) / MESHOUT_GRID;
-    if (!(cell > 0.0)) return wr_fail(diag, WR_ERR_GEOMETRY, -1, "degenerate mesh extent");
-    nx = (int32_t)ceil((x1 - x0) / cell) + 1;
-    ny = (int32_t)ceil((y1 - y0) / cell) + 1;
-    val = (double *)malloc((size_t)nx * (size_t)ny * sizeof(double));
-    if (!val) return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
-    for (i = 0; i < nx * ny; ++i) val[i] = NAN;
-    /* rasterise every face with its panel's sizing map (holes and gaps stay undefined) */
-    for (f = 0; f < m->nf; ++f) {
-        double uv[6], bx0, bx1, by0, by1, det;
-        int32_t p = m->face_panel ? m->face_panel[f] : 0, a0, a1, b0, b1;
-        wr_mesh_face_rest(m, f, uv);
-        bx0 = fmin(uv[0], fmin(uv[2], uv[4]));
-        bx1 = fmax(uv[0], fmax(uv[2], uv[4]));
-        by0 = fmin(uv[1], fmin(uv[3], uv[5]));
-        by1 = fmax(uv[1], fmax(uv[3], uv[5]));
-        det = (uv[2] - uv[0]) * (uv[5] - uv[1]) - (uv[4] - uv[0]) * (uv[3] - uv[1]);
-        if (det == 0.0) continue;
-        a0 = (int32_t)ceil((bx0 - x0) / cell);
-        a1 = (int32_t)floor((bx1 - x0) / cell);
-        b0 = (int32_t)ceil((by0 - y0) / cell);
-        b1 = (int32_t)floor((by1 - y0) / cell);
-        for (j = b0; j <= b1; ++j)
-            for (i = a0; i <= a1; ++i) {
-                double x = x0 + i * cell, y = y0 + j * cell, l1, l2;
-                if (i < 0 || j < 0 || i >= nx || j >= ny) continue;
-                l1 = ((x - uv[0]) * (uv[5] - uv[1]) - (uv[4] - uv[0]) * (y - uv[1])) / det;
-                l2 = ((uv[2] - uv[0]) * (y - uv[1]) - (x - uv[0]) * (uv[3] - uv[1])) / det;
-                if (l1 < -1e-12 || l2 < -1e-12 || l1 + l2 > 1.0 + 1e-12) continue;
-                val[j * nx + i] = 1e3 * wr_mesher_eval_sizing(res, p, x, y);
-                if (val[j * nx + i] < vmin) vmin = val[j * nx + i];
-                if (val[j * nx + i] > vmax) vmax = val[j * nx + i];
-            }
+    R->cell = fmax(R->x1 - R->x0, R->y1 - R->y0) / MESHOUT_GRID;
+    if (!(R->cell > 0.0)) return wr_fail(diag, WR_ERR_GEOMETRY, -1, "degenerate mesh extent");
+    R->nx = (int32_t)ceil((R->x1 - R->x0) / R->cell) + 1;
+    R->ny = (int32_t)ceil((R->y1 - R->y0) / R->cell) + 1;
+    R->val = (double *)malloc((size_t)R->nx * (size_t)R->ny * sizeof(double));
+    if (!R->val) return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
+    for (i = 0; i < R->nx * R->ny; ++i) R->val[i] = NAN;
+    for (f = 0; f < m->nf; ++f) raster_face(res, f, R);
+    if (!(R->vmax >= R->vmin)) R->vmin = R->vmax = 1.0;
+    if (R->vmax - R->vmin < 1e-9) R->vmax = R->vmin + 1e-3;
+    return WR_OK;
+}
+
+/* Closes fp and turns a failed close into an error naming path. */
+static wr_status close_checked(FILE *fp, const char *path, wr_diag *diag) {
+    return fclose(fp) != 0 ? wr_fail(diag, WR_ERR_IO, -1, "writing %s failed", path) : WR_OK;
+}
+
+/* gnuplot's image data: x, y, sizing [mm] per grid point, a blank line per row. */
+static wr_status write_grid(const char *path, const sizing_raster *R, wr_diag *diag) {
+    FILE *fp = fopen(path, "w");
+    int32_t i, j;
+    if (!fp) return wr_fail(diag, WR_ERR_IO, -1, "cannot write %s", path);
+    for (j = 0; j < R->ny; ++j) {
+        for (i = 0; i < R->nx; ++i) {
+            const double x = 1e3 * (R->x0 + i * R->cell), y = 1e3 * (R->y0 + j * R->cell), v = R->val[j * R->nx + i];
+            if (isnan(v))
+                fprintf(fp, "%.6g %.6g NaN\n", x, y);
+            else
+                fprintf(fp, "%.6g %.6g %.6g\n", x, y, v);
+        }
+        fputc('\n', fp);
     }
-    if (!(vmax >= vmin)) vmin = vmax = 1.0;
-    if (vmax - vmin < 1e-9) vmax = vmin + 1e-3;
+    return close_checked(fp, path, diag);
+}
+
+/* Every mesh edge as a rest-space segment [mm] (or one NaN point when edges are not drawn). */
+static wr_status write_edges(const char *path, const wr_mesh *m, int draw_edges, wr_diag *diag) {
+    FILE *fp = fopen(path, "w");
+    int32_t e, k;
+    if (!fp) return wr_fail(diag, WR_ERR_IO, -1, "cannot write %s", path);
+    if (!draw_edges) fprintf(fp, "NaN NaN\n");
+    for (e = 0; draw_edges && e < m->ne; ++e) {
+        int32_t ff = m->edge_faces[2 * e] >= 0 ? m->edge_faces[2 * e] : m->edge_faces[2 * e + 1], ka = 0, kb = 0;
+        double uv[6];
+        wr_mesh_face_rest(m, ff, uv);
+        for (k = 0; k < 3; ++k) {
+            if (m->faces[3 * ff + k] == m->edges[2 * e]) ka = k;
+            if (m->faces[3 * ff + k] == m->edges[2 * e + 1]) kb = k;
+        }
+        fprintf(fp, "%.6g %.6g\n%.6g %.6g\n\n", 1e3 * uv[2 * ka], 1e3 * uv[2 * ka + 1], 1e3 * uv[2 * kb],
+                1e3 * uv[2 * kb + 1]);
+    }
+    return close_checked(fp, path, diag);
+}
+
+/* The gnuplot script: a picture sized to the extent's aspect (1000 px wide, at most 1600 px high),
+ * the sizing as an image with its colour bar, the edges over it. */
+static wr_status write_script(const char *path, const sizing_raster *R, const char *tpng, const char *gpath,
+                              const char *epath, const char *title, int32_t nv, wr_diag *diag) {
+    const double w = 1e3 * (R->x1 - R->x0), h = 1e3 * (R->y1 - R->y0), c = 1e3 * R->cell;
+    int px = 1000, py = (int)(1000.0 * h / w) + 80;
+    FILE *fp = fopen(path, "w");
+    if (!fp) return wr_fail(diag, WR_ERR_IO, -1, "cannot write %s", path);
+    if (py > 1600) {
+        py = 1600;
+        px = (int)(1520.0 * w / h) + 120;
+    }
+    if (py < 300) py = 300;
+    fprintf(fp, "set terminal pngcairo size %d,%d font ',10'\nset output ", px, py);
+    gp_quote(fp, tpng);
+    fprintf(fp, "\nset title ");
+    gp_quote(fp, title ? title : "sizing map");
+    fprintf(fp, "\nset size ratio -1\nset xlabel 'x [mm]'\nset ylabel 'y [mm]'\nset cblabel 'sizing [mm]'\n"
+                "set palette rgbformulae 33,13,10\nset cbrange [%g:%g]\nset xrange [%g:%g]\nset yrange [%g:%g]\n"
+                "set key off\n",
+            R->vmin, R->vmax, 1e3 * R->x0 - c, 1e3 * R->x1 + c, 1e3 * R->y0 - c, 1e3 * R->y1 + c);
+    fprintf(fp, "plot ");
+    gp_quote(fp, gpath);
+    fprintf(fp, " using 1:2:3 with image, ");
+    gp_quote(fp, epath);
+    fprintf(fp, " using 1:2 with lines lc rgb '#202020' lw %s\n", nv > 20000 ? "0.2" : "0.5");
+    return close_checked(fp, path, diag);
+}
+
+/* Runs the script and renames its picture onto png_path (atomic: a failed run leaves no file). */
+static wr_status run_gnuplot(const char *spath, const char *tpng, const char *png_path, wr_diag *diag) {
+    char cmd[3 * WR_PATH_MAX];
+    int rc;
+    snprintf(cmd, sizeof cmd, "gnuplot '%s' >/dev/null 2>&1", spath);
+    rc = system(cmd);
+    if (rc == -1 || !WIFEXITED(rc) || WEXITSTATUS(rc) != 0) {
+        remove(tpng);
+        return wr_fail(diag, WR_ERR_BACKEND, -1, "gnuplot failed rendering %s", png_path);
+    }
+    if (rename(tpng, png_path) != 0) {
+        remove(tpng);
+        return wr_fail(diag, WR_ERR_IO, -1, "cannot rename the picture onto %s", png_path);
+    }
+    return WR_OK;
+}
+
+wr_status wr_meshout_render_png(const wr_mesher_result *res, const char *png_path, const char *title,
+                                int draw_edges, wr_diag *diag) {
+    const wr_mesh *m = &res->mesh;
+    char tmpl[] = "/tmp/wrinkle-mesh-plotXXXXXX", gpath[WR_PATH_MAX], epath[WR_PATH_MAX], spath[WR_PATH_MAX],
+         tpng[WR_PATH_MAX + 16];
+    sizing_raster R;
+    wr_status st;
+    if (!have_gnuplot()) return wr_fail(diag, WR_ERR_UNSUPPORTED, -1, "gnuplot not found on PATH: picture skipped");
+    if (m->nf < 1) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "empty mesh");
+    memset(&R, 0, sizeof R);
+    if ((st = raster_build(res, &R, diag)) != WR_OK) {
+        free(R.val);
+        return st;
+    }
     if (!mkdtemp(tmpl)) {
-        free(val);
+        free(R.val);
         return wr_fail(diag, WR_ERR_IO, -1, "cannot create a temporary directory for the plot data");
     }
     snprintf(gpath, sizeof gpath, "%s/grid.dat", tmpl);
     snprintf(epath, sizeof epath, "%s/edges.dat", tmpl);
     snprintf(spath, sizeof spath, "%s/plot.gp", tmpl);
     snprintf(tpng, sizeof tpng, "%s.wrtmp.png", png_path);
-    fp = fopen(gpath, "w");
-    if (!fp) {
-        st = wr_fail(diag, WR_ERR_IO, -1, "cannot write %s", gpath);
-        goto done;
-    }
-    for (j = 0; j < ny; ++j) {
-        for (i = 0; i < nx; ++i) {
-            if (isnan(val[j * nx + i]))
-                fprintf(fp, "%.6g %.6g NaN\n", 1e3 * (x0 + i * cell), 1e3 * (y0 + j * cell));
-            else
-                fprintf(fp, "%.6g %.6g %.6g\n", 1e3 * (x0 + i * cell), 1e3 * (y0 + j * cell), val[j * nx + i]);
-        }
-        fputc('\n', fp);
-    }
-    if (fclose(fp) != 0) {
-        st = wr_fail(diag, WR_ERR_IO, -1, "writing %s failed", gpath);
-        goto done;
-    }
-    fp = fopen(epath, "w");
-    if (!fp) {
-        st = wr_fail(diag, WR_ERR_IO, -1, "cannot write %s", epath);
-        goto done;
-    }
-    if (draw_edges)
-        for (e = 0; e < m->ne; ++e) {
-            int32_t ff = m->edge_faces[2 * e] >= 0 ? m->edge_faces[2 * e] : m->edge_faces[2 * e + 1], ka = 0, kb = 0;
-            double uv[6];
-            wr_mesh_face_rest(m, ff, uv);
-            for (k = 0; k < 3; ++k) {
-                if (m->faces[3 * ff + k] == m->edges[2 * e]) ka = k;
-                if (m->faces[3 * ff + k] == m->edges[2 * e + 1]) kb = k;
-            }
-            fprintf(fp, "%.6g %.6g\n%.6g %.6g\n\n", 1e3 * uv[2 * ka], 1e3 * uv[2 * ka + 1], 1e3 * uv[2 * kb],
-                    1e3 * uv[2 * kb + 1]);
-        }
-    else
-        fprintf(fp, "NaN NaN\n");
-    if (fclose(fp) != 0) {
-        st = wr_fail(diag, WR_ERR_IO, -1, "writing %s failed", epath);
-        goto done;
-    }
-    fp = fopen(spath, "w");
-    if (!fp) {
-        st = wr_fail(diag, WR_ERR_IO, -1, "cannot write %s", spath);
-        goto done;
-    }
-    {
-        double w = 1e3 * (x1 - x0), h = 1e3 * (y1 - y0);
-        int px = 1000, py = (int)(1000.0 * h / w) + 80;
-        if (py > 1600) {
-            py = 1600;
-            px = (int)(1520.0 * w / h) + 120;
-        }
-        if (py < 300) py = 300;
-        fprintf(fp, "set terminal pngcairo size %d,%d font ',10'\nset output ", px, py);
-        gp_quote(fp, tpng);
-        fprintf(fp, "\nset title ");
-        gp_quote(fp, title ? title : "sizing map");
-        fprintf(fp, "\nset size ratio -1\nset xlabel 'x [mm]'\nset ylabel 'y [mm]'\nset cblabel 'sizing [mm]'\n"
-                    "set palette rgbformulae 33,13,10\nset cbrange [%g:%g]\nset xrange [%g:%g]\nset yrange [%g:%g]\n"
-                    "set key off\n",
-                vmin, vmax, 1e3 * x0 - 1e3 * cell, 1e3 * x1 + 1e3 * cell, 1e3 * y0 - 1e3 * cell,
-                1e3 * y1 + 1e3 * cell);
-        fprintf(fp, "plot ");
-        gp_quote(fp, gpath);
-        fprintf(fp, " using 1:2:3 with image, ");
-        gp_quote(fp, epath);
-        fprintf(fp, " using 1:2 with lines lc rgb '#202020' lw %s\n", m->nv > 20000 ? "0.2" : "0.5");
-    }
-    if (fclose(fp) != 0) {
-        st = wr_fail(diag, WR_ERR_IO, -1, "writing %s failed", spath);
-        goto done;
-    }
-    snprintf(cmd, sizeof cmd, "gnuplot '%s' >/dev/null 2>&1", spath);
-    rc = system(cmd);
-    if (rc == -1 || !WIFEXITED(rc) || WEXITSTATUS(rc) != 0) {
-        remove(tpng);
-        st = wr_fail(diag, WR_ERR_BACKEND, -1, "gnuplot failed rendering %s", png_path);
-        goto done;
-    }
-    if (rename(tpng, png_path) != 0) {
-        remove(tpng);
-        st = wr_fail(diag, WR_ERR_IO, -1, "cannot rename the picture onto %s", png_path);
-        goto done;
-    }
-done:
-    free(val);
+    if ((st = write_grid(gpath, &R, diag)) == WR_OK && (st = write_edges(epath, m, draw_edges, diag)) == WR_OK &&
+        (st = write_script(spath, &R, tpng, gpath, epath, title, m->nv, diag)) == WR_OK)
+        st = run_gnuplot(spath, tpng, png_path, diag);
+    free(R.val);
     remove_tree(tmpl);
     return st;
 }
