@@ -1246,6 +1246,68 @@ Test(statics, affine_predictor_absolute_reference_hybrid) {
     wr_mesh_free(&m);
 }
 
+/* The hybrid increment's exact phase stops relative to the increment's reference, as the projected
+ * phase and a plain solve do: relative to its own start (already within hybrid_switch of equilibrium)
+ * grad_tol asked 1e-3 × less, 4e-14 N on the 15° lattice of validate_statics_loop, below the gradient's
+ * round-off (3e-13 N there), and that load step ended at max_iter. A sheet clamped at x = 0 and
+ * stretched 10 % at x = L (the free long edges contract, so every increment needs Newton steps). */
+#define HY_INC 3
+static double hy_ref[HY_INC + 1], hy_grad[HY_INC + 1];
+static int hy_stop[HY_INC + 1];
+static void hy_done(void *user, int32_t k, int32_t n, wr_status status, const wr_statics_stats *st, const wr_diag *d) {
+    (void)user, (void)n, (void)d;
+    cr_expect_eq(status, WR_OK, "increment %d: %s", (int)k, d ? d->message : "");
+    if (k < 1 || k > HY_INC) return;
+    hy_ref[k] = st->grad_ref, hy_grad[k] = st->grad_norm, hy_stop[k] = (int)st->stop;
+}
+
+Test(statics, hybrid_exact_phase_keeps_the_increment_reference) {
+    wr_mesh m;
+    wr_shell s;
+    wr_shell_desc d;
+    wr_statics_desc sd;
+    wr_statics_stats st;
+    wr_motion mo[2];
+    wr_diag dg;
+    int32_t nx = 12, ny = 5, i, n0 = 0, n1 = 0, *left, *right, k;
+    double *x, ref_plain[HY_INC + 1];
+    cr_assert_eq(wr_mesh_rectangle(&m, 1.0, 0.4, nx, ny, NULL), WR_OK);
+    memset(&d, 0, sizeof d);
+    d.young = 1e5, d.poisson = 0.3, d.thickness = 1e-3;
+    cr_assert_eq(wr_shell_create(&s, &m, &d, NULL), WR_OK);
+    left = (int32_t *)malloc(sizeof(int32_t) * m.nv);
+    right = (int32_t *)malloc(sizeof(int32_t) * m.nv);
+    x = (double *)malloc(sizeof(double) * 3 * m.nv);
+    for (i = 0; i < m.nv; ++i) {
+        if (m.pos[3 * i] < 1e-9) left[n0++] = i;
+        if (m.pos[3 * i] > 1.0 - 1e-9) right[n1++] = i;
+    }
+    memset(mo, 0, sizeof mo);
+    mo[0].kind = WR_MOTION_HOLD, mo[0].verts = left, mo[0].n_verts = n0;
+    mo[1].kind = WR_MOTION_STRETCH, mo[1].verts = right, mo[1].n_verts = n1;
+    mo[1].axis[0] = 1.0, mo[1].amount = 0.1;
+    memset(&sd, 0, sizeof sd);
+    sd.hessian.projection = WR_PROJECT_FAST;
+    sd.increments.predictor = WR_STATICS_PREDICT_AFFINE;
+    sd.increments.absolute_reference = 1;
+    sd.increments.done = hy_done;
+    memcpy(x, m.pos, sizeof(double) * 3 * m.nv);
+    cr_assert_eq(wr_statics_solve_incremental(&s, x, &sd, mo, 2, HY_INC, &st, &dg), WR_OK, "%s", dg.message);
+    memcpy(ref_plain, hy_ref, sizeof ref_plain);
+    sd.increments.hybrid_switch = 1e-3;
+    memcpy(x, m.pos, sizeof(double) * 3 * m.nv);
+    cr_assert_eq(wr_statics_solve_incremental(&s, x, &sd, mo, 2, HY_INC, &st, &dg), WR_OK, "%s", dg.message);
+    for (k = 1; k <= HY_INC; ++k) {
+        /* the same reference (the start differs only by the last increment's tolerance) */
+        cr_expect(hy_ref[k] > 0.5 * ref_plain[k] && hy_ref[k] < 2.0 * ref_plain[k],
+                  "increment %d: exact-phase reference %.3e N, projected solve's %.3e N", (int)k, hy_ref[k], ref_plain[k]);
+        cr_expect_eq(hy_stop[k], (int)WR_NEWTON_STOP_GRADIENT, "increment %d stop %d", (int)k, hy_stop[k]);
+    }
+    free(left), free(right), free(x);
+    wr_shell_free(&s);
+    wr_mesh_free(&m);
+}
+
 /* ---- stability (statics.h ON STABILITY) ---------------------------------------------------------
  * An Euler strip: L × W = 0.1 × 0.01 m, 40 × 4 union-jack grid, E = 1 MPa, ν = 0 (so plate and beam
  * bending agree: D = E h³/12), h = 0.5 mm, StVK + mid-edge bending, both short edges' vertices held

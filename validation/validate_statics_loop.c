@@ -129,7 +129,7 @@ static void figure(wr_vres *v, lrow *rows, int n) {
     if (wr_meshout_png(path, pn, np, 2, 640, 420, &vd, &d) == WR_OK)
         wr_vres_figure(v, "figures/statics_loop.png",
                        "The stretch test at full load, coloured by the out-of-plane height w (each panel its own scale): "
-                       "the linear element on the 2.5 mm Delaunay mesh is flat (its scale is round-off, 1e-30 mm), the "
+                       "the linear element on the 2.5 mm Delaunay mesh is flat (its scale is round-off, below 1e-15 mm), the "
                        "Loop element wrinkles on Delaunay meshes of 2.6k-9.7k vertices and on lattices at 0, 15 and 30 deg.");
     else
         wr_vres_note(v, "figure not drawn");

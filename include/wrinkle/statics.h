@@ -140,7 +140,10 @@
  *   path, so it is not the default. Intermediate increments use increments.grad_tol (default
  *   stop.grad_tol); an intermediate WR_ERR_NOT_CONVERGED is tolerated (its best iterate warm-starts
  *   the next increment, counted in stats.increments_failed); the status of the last increment is
- *   returned. The perturbation is applied in the first increment only.
+ *   returned. The perturbation is applied in the first increment only. increments.hybrid_switch =
+ *   s > 0 solves each increment with the given projection to s/grad_tol times the tolerance, then with
+ *   the exact Hessian to the tolerance; both phases stop relative to the projected phase's reference
+ *   (ON STOPPING, at the increment's start), so the exact phase ends where a plain solve would.
  *
  * ON STABILITY (stability.check = 1; needs eigen.h's ARPACK + CHOLMOD)
  *   Newton stops at any stationary point, and a flat start under compression is one: every
@@ -1588,17 +1591,22 @@ static void wr__statics_inc_progress(void *user, const wr_statics_stats *st) {
 
 /* One increment's solve: increments.hybrid_switch > 0 first runs the given projection to the loose
  * tolerance min(1, max(tol, tol · hybrid_switch / grad_tol)) (robust descent away from a flat saddle),
- * then the exact Hessian to tol; the stats are the exact phase's with the work of both. */
+ * then the exact Hessian to tol; the stats are the exact phase's with the work of both. Both phases
+ * stop relative to the projected phase's reference (its ‖∇Π(x0)‖, x0 the increment's start): the
+ * exact phase's own start is already within ~hybrid_switch of equilibrium, and tol relative to it
+ * asks ~hybrid_switch times less, below the gradient's round-off on a large sheet. */
 static wr_status wr__statics_inc_solve(wr__statics_inc *I, double *x, wr_statics_stats *sk, wr_diag *diag) {
     wr_statics_desc d1 = I->dk;
     wr_statics_stats s1;
     wr_status rs;
     if (!(I->dk.increments.hybrid_switch > 0.0)) return wr_statics_solve(I->s, x, &I->dk, sk, diag);
     d1.stop.grad_tol = fmin(1.0, fmax(I->dk.stop.grad_tol, I->dk.stop.grad_tol * I->dk.increments.hybrid_switch / I->grad_tol));
+    memset(&s1, 0, sizeof s1);
     wr_statics_solve(I->s, x, &d1, &s1, diag); /* its status is the exact phase's to decide */
     I->dk.start.perturb = 0.0;
     I->dk.hessian.projection = WR_PROJECT_NONE;
-    rs = wr_statics_solve(I->s, x, &I->dk, sk, diag);
+    /* no second membrane continuation: the projected phase ended on the real shell */
+    rs = wr__statics_solve_one(I->s, x, &I->dk, sk, diag, s1.grad_ref, 0);
     I->dk.hessian.projection = d1.hessian.projection;
     sk->iterations += s1.iterations;
     sk->linear_iterations += s1.linear_iterations;

@@ -29,6 +29,8 @@
  *   wr_subdiv_loop_stencil(m, f, &n, verts, W, diag)  face f's stencil: n vertices (its corners first),
  *                                                   W (6 × n row-major: position, x_v, x_w, x_vv, x_vw,
  *                                                   x_ww weights)
+ *   wr_subdiv_loop_stencil_ghost(m, f, &n, verts, W, diag)  the same, boundary corners completed by
+ *                                                   ghost vertices (ON GHOST VERTICES)
  *
  * EXAMPLE
  *     wr_mesh m;  wr_diag d;  int32_t n, verts[WR_SUBDIV_MAX_STENCIL], i, k, f;  double x[6][3];
@@ -63,8 +65,31 @@
  *   central child's own parameters (v, w): against the parent's they are −½ (first) and ¼ (second)
  *   of the parent patch's, which does not matter to a shell energy that measures strain against the
  *   rest configuration through the same map; the area weight is 4 × ½ × √det(a_rest) (the child is
- *   a quarter of the parent). Faces with a corner on the boundary are refused (WR_ERR_TOPOLOGY, item
- *   = face): their treatment (ghost vertices, Cirak & Ortiz 2001) is the caller's choice.
+ *   a quarter of the parent). wr_subdiv_loop_stencil refuses faces with a corner on the boundary
+ *   (WR_ERR_TOPOLOGY, item = face); wr_subdiv_loop_stencil_ghost gives them ghost vertices.
+ *
+ * ON GHOST VERTICES (wr_subdiv_loop_stencil_ghost)
+ *   Cirak & Ortiz 2001 (and Cirak, Ortiz & Schröder 2000 for boundary conditions) complete the
+ *   patches of boundary faces with a layer of ghost vertices outside the boundary placed by linear
+ *   extrapolation from the mesh, so the energy depends on mesh vertices only. The construction here
+ *   is our reading of that idea, not a transcription of their rules: for a boundary vertex v whose
+ *   faces form one open fan p = n_0, …, n_k = q (counter-clockwise, k faces): across each of its two
+ *   boundary edges a ghost, the parallelogram completion of that edge's face — v + q − n_(k−1)
+ *   across (v, q), v + p − n_1 across (v, p) — and one ghost face (v, ghost_q, ghost_p) closing the
+ *   ring, which then has valence k + 3 (6 at a straight boundary of a valence-6 lattice, whose
+ *   boundary vertices have k = 3). Loop's interior rules run on the closed ring and each ghost's
+ *   weight is folded onto its three mesh vertices. The ghost across a boundary edge is the same from
+ *   both its ends (the edge has one face), so the two corners of a boundary edge see one point there;
+ *   the ghost faces are each ring's own. The completion is affine (weights 1, 1, −1), so a patch of
+ *   an affine image of a planar mesh is the affine image of its patch: uniform strain is exact on
+ *   boundary faces too (tests/test_subdiv.c). It does not reproduce quadratics: the ghost across an
+ *   edge continues the face inside in its own plane (ghost − m = m − apex, m the edge's midpoint), a
+ *   zero second difference across the edge, so the limit surface's curvature across a boundary edge
+ *   is pulled towards zero — the free edge's natural condition (no bending moment), which is what an
+ *   edge with no held vertices gets. A clamped edge holds its boundary vertices and the
+ *   vertices of the faces along it (the ghosts are then fixed, so the tangent plane along the edge
+ *   is prescribed); holding the boundary row alone is a hinge (simply supported). Corner vertices of
+ *   one or two faces get the same construction (valence 4 or 5).
  *
  * ON UNITS AND OWNERSHIP
  *   Pure functions; W and verts are caller-owned arrays of WR_SUBDIV_MAX_STENCIL entries (6 × that
@@ -95,6 +120,11 @@ WRDEF void wr_subdiv_loop_basis(double v, double w, double N[12], double *dN, do
  * WR_SUBDIV_MAX_STENCIL / WR_SUBDIV_MAX_VALENCE. */
 WRDEF wr_status wr_subdiv_loop_stencil(const wr_mesh *m, int32_t f, int32_t *n, int32_t *verts, double *W,
                                        wr_diag *diag);
+/* The same where a corner is on the boundary: its 1-ring closed by ghost vertices folded onto mesh
+ * vertices (ON GHOST VERTICES); interior faces get wr_subdiv_loop_stencil's stencil. WR_ERR_TOPOLOGY
+ * (item = f) when a corner's faces are not one fan or a closed ring exceeds WR_SUBDIV_MAX_VALENCE. */
+WRDEF wr_status wr_subdiv_loop_stencil_ghost(const wr_mesh *m, int32_t f, int32_t *n, int32_t *verts, double *W,
+                                             wr_diag *diag);
 
 #ifdef __cplusplus
 }
@@ -176,6 +206,9 @@ WRDEF void wr_subdiv_loop_basis(double v, double w, double N[12], double *dN, do
     }
 }
 
+/* two ghosts per boundary corner of a face */
+#define WR__SUBDIV_MAX_GHOSTS 6
+
 /* A sparse row: weights over mesh vertices, merged by vertex. */
 typedef struct wr__subdiv_row {
     int32_t n, v[WR_SUBDIV_MAX_STENCIL];
@@ -193,6 +226,20 @@ static int wr__subdiv_add(wr__subdiv_row *r, int32_t v, double w) {
     r->v[r->n] = v;
     r->w[r->n++] = w;
     return 1;
+}
+
+/* Ghost vertices (ON GHOST VERTICES): ring entries >= 0 are mesh vertices, entry −1 − k is ghost k,
+ * the point x_a + x_b − x_c of the edge (a, b) with apex c. */
+typedef struct wr__subdiv_ghosts {
+    int32_t n, abc[3 * WR__SUBDIV_MAX_GHOSTS];
+} wr__subdiv_ghosts;
+
+/* adds w × (entry id) to r, a ghost as its three mesh vertices */
+static int wr__subdiv_add_id(wr__subdiv_row *r, const wr__subdiv_ghosts *G, int32_t id, double w) {
+    const int32_t *t;
+    if (id >= 0) return wr__subdiv_add(r, id, w);
+    t = G->abc + 3 * (-1 - id);
+    return wr__subdiv_add(r, t[0], w) & wr__subdiv_add(r, t[1], w) & wr__subdiv_add(r, t[2], -w);
 }
 
 /* The corner of face g that is vertex v, or -1. */
@@ -223,19 +270,63 @@ static int32_t wr__subdiv_ring(const wr_mesh *m, int32_t v, int32_t first, int32
     return n == nf ? n : -1; /* a closed fan has as many neighbours as faces */
 }
 
+/* Vertex v's ring closed by ghosts where v is on the boundary (ON GHOST VERTICES): the open fan
+ * p = n_0 … n_k = q (k faces, counter-clockwise), then the ghosts across (v, q) and (v, p), so the
+ * ring is n_0 … n_k, v + q − n_(k−1), v + p − n_1; rotated to start at `first` (a mesh neighbour).
+ * Returns the valence, or -1 (v's faces are not one fan, or the ring is longer than the maximum). */
+static int32_t wr__subdiv_ring_ghost(const wr_mesh *m, int32_t v, int32_t first, int32_t ring[WR_SUBDIV_MAX_VALENCE],
+                                     wr__subdiv_ghosts *G) {
+    int32_t fan[WR_SUBDIV_MAX_VALENCE], n = 0, k, j, p = -1, nf = m->vf_start[v + 1] - m->vf_start[v], start;
+    if ((n = wr__subdiv_ring(m, v, first, ring)) > 0) return n;
+    if (nf + 3 > WR_SUBDIV_MAX_VALENCE || nf < 1 || G->n + 2 > WR__SUBDIV_MAX_GHOSTS) return -1;
+    for (k = m->vf_start[v]; k < m->vf_start[v + 1] && p < 0; ++k) { /* p: a neighbour with no predecessor */
+        int32_t g = m->vf[k], a = m->faces[3 * g + (wr__subdiv_corner(m, g, v) + 1) % 3], has_pred = 0;
+        for (j = m->vf_start[v]; j < m->vf_start[v + 1]; ++j) {
+            int32_t h = m->vf[j];
+            if (m->faces[3 * h + (wr__subdiv_corner(m, h, v) + 2) % 3] == a) has_pred = 1;
+        }
+        if (!has_pred) p = a;
+    }
+    if (p < 0) return -1;
+    fan[0] = p;
+    for (n = 1; n <= nf; ++n) { /* walk face by face: (v, a, b) maps a → b */
+        int32_t next = -1;
+        for (k = m->vf_start[v]; k < m->vf_start[v + 1]; ++k) {
+            int32_t g = m->vf[k];
+            int c = wr__subdiv_corner(m, g, v);
+            if (m->faces[3 * g + (c + 1) % 3] == fan[n - 1]) next = m->faces[3 * g + (c + 2) % 3];
+        }
+        if (next < 0) break;
+        fan[n] = next;
+    }
+    if (n != nf + 1) return -1; /* more than one fan (a bow tie), or a closed ring met twice */
+    G->abc[3 * G->n] = v, G->abc[3 * G->n + 1] = fan[nf], G->abc[3 * G->n + 2] = fan[nf - 1];
+    G->abc[3 * G->n + 3] = v, G->abc[3 * G->n + 4] = fan[0], G->abc[3 * G->n + 5] = fan[1];
+    fan[nf + 1] = -1 - G->n;
+    fan[nf + 2] = -2 - G->n;
+    G->n += 2;
+    n = nf + 3;
+    for (start = 0; start < n && fan[start] != first; ++start) {}
+    if (start == n) return -1;
+    for (k = 0; k < n; ++k) ring[k] = fan[(start + k) % n];
+    return n;
+}
+
 /* Loop's vertex rule for v with its ring. */
-static int wr__subdiv_vertex_point(wr__subdiv_row *r, int32_t v, const int32_t *ring, int32_t n) {
+static int wr__subdiv_vertex_point(wr__subdiv_row *r, const wr__subdiv_ghosts *G, int32_t v, const int32_t *ring,
+                                   int32_t n) {
     double c = 0.375 + 0.25 * cos(2.0 * 3.14159265358979323846 / (double)n), beta = (0.625 - c * c) / (double)n;
     int32_t i;
     int ok = wr__subdiv_add(r, v, 1.0 - (double)n * beta);
-    for (i = 0; i < n; ++i) ok &= wr__subdiv_add(r, ring[i], beta);
+    for (i = 0; i < n; ++i) ok &= wr__subdiv_add_id(r, G, ring[i], beta);
     return ok;
 }
 
 /* Loop's edge rule for edge (x, y), y = ring_x[i]: the apexes are ring_x[i ± 1]. */
-static int wr__subdiv_edge_point(wr__subdiv_row *r, int32_t x, const int32_t *ring_x, int32_t n, int32_t i) {
-    return wr__subdiv_add(r, x, 0.375) & wr__subdiv_add(r, ring_x[i], 0.375) &
-           wr__subdiv_add(r, ring_x[(i + 1) % n], 0.125) & wr__subdiv_add(r, ring_x[(i + n - 1) % n], 0.125);
+static int wr__subdiv_edge_point(wr__subdiv_row *r, const wr__subdiv_ghosts *G, int32_t x, const int32_t *ring_x,
+                                 int32_t n, int32_t i) {
+    return wr__subdiv_add(r, x, 0.375) & wr__subdiv_add_id(r, G, ring_x[i], 0.375) &
+           wr__subdiv_add_id(r, G, ring_x[(i + 1) % n], 0.125) & wr__subdiv_add_id(r, G, ring_x[(i + n - 1) % n], 0.125);
 }
 
 /* Position of y in x's ring, or -1. */
@@ -246,10 +337,12 @@ static int32_t wr__subdiv_find(const int32_t *ring, int32_t n, int32_t y) {
     return -1;
 }
 
-WRDEF wr_status wr_subdiv_loop_stencil(const wr_mesh *m, int32_t f, int32_t *n, int32_t *verts, double *W,
-                                       wr_diag *diag) {
+/* Face f's stencil; ghost != 0 closes boundary corners' rings with ghost vertices (ON GHOST VERTICES) */
+static wr_status wr__subdiv_stencil(const wr_mesh *m, int32_t f, int ghost, int32_t *n, int32_t *verts, double *W,
+                                    wr_diag *diag) {
     int32_t A, B, C, rA[WR_SUBDIV_MAX_VALENCE], rB[WR_SUBDIV_MAX_VALENCE], rC[WR_SUBDIV_MAX_VALENCE], nA, nB, nC, i, j, k;
     wr__subdiv_row cp[12], out;
+    wr__subdiv_ghosts G;
     double N[12], dN[24], d2N[36];
     int ok = 1;
     if (!m || !n || !verts || !W) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "subdiv: NULL mesh or output");
@@ -257,30 +350,33 @@ WRDEF wr_status wr_subdiv_loop_stencil(const wr_mesh *m, int32_t f, int32_t *n, 
     A = m->faces[3 * f];
     B = m->faces[3 * f + 1];
     C = m->faces[3 * f + 2];
-    nA = wr__subdiv_ring(m, A, B, rA);
-    nB = wr__subdiv_ring(m, B, C, rB);
-    nC = wr__subdiv_ring(m, C, A, rC);
+    G.n = 0;
+    nA = ghost ? wr__subdiv_ring_ghost(m, A, B, rA, &G) : wr__subdiv_ring(m, A, B, rA);
+    nB = ghost ? wr__subdiv_ring_ghost(m, B, C, rB, &G) : wr__subdiv_ring(m, B, C, rB);
+    nC = ghost ? wr__subdiv_ring_ghost(m, C, A, rC, &G) : wr__subdiv_ring(m, C, A, rC);
     if (nA < 0 || nB < 0 || nC < 0)
         return wr_fail(diag, WR_ERR_TOPOLOGY, f,
-                       "subdiv: face %d has a corner on the boundary (or of valence > %d); its limit patch needs "
-                       "ghost vertices",
+                       ghost ? "subdiv: face %d has a corner whose faces are not one fan, or of valence > %d (ghosts "
+                               "included)"
+                             : "subdiv: face %d has a corner on the boundary (or of valence > %d); its limit patch needs "
+                               "ghost vertices",
                        (int)f, WR_SUBDIV_MAX_VALENCE);
     memset(cp, 0, sizeof cp);
     /* the 12 control points of the central child (ON THE STENCIL), in lattice order. The rings run
      * counter-clockwise from the face's next corner: rA = (B, C, F, ..., D), rB = (C, A, D, ..., E),
      * rC = (A, B, E, ..., F), so the edge to ring[i] has the apexes ring[i ± 1]. */
-    ok &= wr__subdiv_edge_point(&cp[0], C, rC, nC, 2);      /* e_CE */
-    ok &= wr__subdiv_edge_point(&cp[1], B, rB, nB, nB - 1); /* e_BE */
-    ok &= wr__subdiv_vertex_point(&cp[2], C, rC, nC);       /* C' */
-    ok &= wr__subdiv_edge_point(&cp[3], B, rB, nB, 0);      /* e_BC (corner u) */
-    ok &= wr__subdiv_vertex_point(&cp[4], B, rB, nB);       /* B' */
-    ok &= wr__subdiv_edge_point(&cp[5], C, rC, nC, nC - 1); /* e_CF */
-    ok &= wr__subdiv_edge_point(&cp[6], C, rC, nC, 0);      /* e_CA (corner v) */
-    ok &= wr__subdiv_edge_point(&cp[7], A, rA, nA, 0);      /* e_AB (corner w) */
-    ok &= wr__subdiv_edge_point(&cp[8], B, rB, nB, 2);      /* e_BD */
-    ok &= wr__subdiv_edge_point(&cp[9], A, rA, nA, 2);      /* e_AF */
-    ok &= wr__subdiv_vertex_point(&cp[10], A, rA, nA);      /* A' */
-    ok &= wr__subdiv_edge_point(&cp[11], A, rA, nA, nA - 1); /* e_AD */
+    ok &= wr__subdiv_edge_point(&cp[0], &G, C, rC, nC, 2);      /* e_CE */
+    ok &= wr__subdiv_edge_point(&cp[1], &G, B, rB, nB, nB - 1); /* e_BE */
+    ok &= wr__subdiv_vertex_point(&cp[2], &G, C, rC, nC);       /* C' */
+    ok &= wr__subdiv_edge_point(&cp[3], &G, B, rB, nB, 0);      /* e_BC (corner u) */
+    ok &= wr__subdiv_vertex_point(&cp[4], &G, B, rB, nB);       /* B' */
+    ok &= wr__subdiv_edge_point(&cp[5], &G, C, rC, nC, nC - 1); /* e_CF */
+    ok &= wr__subdiv_edge_point(&cp[6], &G, C, rC, nC, 0);      /* e_CA (corner v) */
+    ok &= wr__subdiv_edge_point(&cp[7], &G, A, rA, nA, 0);      /* e_AB (corner w) */
+    ok &= wr__subdiv_edge_point(&cp[8], &G, B, rB, nB, 2);      /* e_BD */
+    ok &= wr__subdiv_edge_point(&cp[9], &G, A, rA, nA, 2);      /* e_AF */
+    ok &= wr__subdiv_vertex_point(&cp[10], &G, A, rA, nA);      /* A' */
+    ok &= wr__subdiv_edge_point(&cp[11], &G, A, rA, nA, nA - 1); /* e_AD */
     /* the stencil: the face's corners first (callers that fold per-face terms into the block find
      * them there), then every other vertex a control point uses, in first-use order */
     out.n = 0;
@@ -308,6 +404,16 @@ WRDEF wr_status wr_subdiv_loop_stencil(const wr_mesh *m, int32_t f, int32_t *n, 
         }
     }
     return WR_OK;
+}
+
+WRDEF wr_status wr_subdiv_loop_stencil(const wr_mesh *m, int32_t f, int32_t *n, int32_t *verts, double *W,
+                                       wr_diag *diag) {
+    return wr__subdiv_stencil(m, f, 0, n, verts, W, diag);
+}
+
+WRDEF wr_status wr_subdiv_loop_stencil_ghost(const wr_mesh *m, int32_t f, int32_t *n, int32_t *verts, double *W,
+                                             wr_diag *diag) {
+    return wr__subdiv_stencil(m, f, 1, n, verts, W, diag);
 }
 
 #ifdef __cplusplus
