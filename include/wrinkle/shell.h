@@ -1446,14 +1446,8 @@ static wr_status wr__shell_build_qb(wr_shell *s, const wr_mesh *m, const double 
 
 static int wr__shell_finite(double v) { return v == v && v - v == 0.0; }
 
-WRDEF wr_status wr_shell_create(wr_shell *s, const wr_mesh *m, const wr_shell_desc *desc, wr_diag *diag) {
-    int32_t f, k, i;
-    int is3d, flat_pos = 1, aniso_bend, bw;
-    double *uvall = NULL;
-    wr_status st = WR_OK;
-    const double *R3;
-    if (!s) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "shell: NULL output");
-    memset(s, 0, sizeof *s);
+/* The arguments every model needs: known models, h > 0, ρ >= 0, B >= 0 (B = 0: derived). */
+static wr_status wr__shell_check_desc(const wr_mesh *m, const wr_shell_desc *desc, wr_diag *diag) {
     if (!m || !desc || !m->faces || m->nf < 1 || m->nv < 3)
         return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "shell: NULL mesh/desc or empty mesh");
     if ((int)desc->membrane < 0 || (int)desc->membrane > 3)
@@ -1467,6 +1461,251 @@ WRDEF wr_status wr_shell_create(wr_shell *s, const wr_mesh *m, const wr_shell_de
     if (!(desc->bending_stiffness >= 0.0) || !wr__shell_finite(desc->bending_stiffness))
         return wr_fail(diag, WR_ERR_DOMAIN, -1, "shell: bending_stiffness %g N*m must be >= 0",
                        desc->bending_stiffness);
+    return WR_OK;
+}
+
+/* Baraff–Witkin's warp, weft and shear stiffnesses [N/m]; the grain needs a 2D rest domain. */
+static wr_status wr__shell_bw_setup(wr_shell *s, const wr_mesh *m, const wr_shell_desc *desc, wr_diag *diag) {
+    double ku = desc->stretch_warp, kv = desc->stretch_weft, ks = desc->stretch_shear;
+    if (!(ku > 0.0) || !(kv > 0.0) || !(ks > 0.0) || !wr__shell_finite(ku + kv + ks))
+        return wr_fail(diag, WR_ERR_DOMAIN, -1,
+                       "shell: Baraff-Witkin stretch_warp=%g stretch_weft=%g stretch_shear=%g N/m must be > 0", ku, kv,
+                       ks);
+    if (desc->rest_pos3 || (!m->rest && !m->corner_rest))
+        return wr_fail(diag, WR_ERR_UNSUPPORTED, -1, "shell: Baraff-Witkin needs a 2D rest domain for warp/weft");
+    s->bw_k[0] = ku;
+    s->bw_k[1] = kv;
+    s->bw_k[2] = ks;
+    return WR_OK;
+}
+
+/* Warp/weft bending stiffnesses: both > 0, mid-edge or dihedral bending, not with a single B, and a
+ * 2D rest domain for the grain. */
+static wr_status wr__shell_check_aniso_bend(const wr_mesh *m, const wr_shell_desc *desc, wr_diag *diag) {
+    if (!(desc->bending_warp > 0.0) || !(desc->bending_weft > 0.0) ||
+        !wr__shell_finite(desc->bending_warp + desc->bending_weft))
+        return wr_fail(diag, WR_ERR_DOMAIN, -1, "shell: bending_warp %g and bending_weft %g N*m must both be > 0",
+                       desc->bending_warp, desc->bending_weft);
+    if (desc->bending != WR_BENDING_MIDEDGE && desc->bending != WR_BENDING_DIHEDRAL)
+        return wr_fail(diag, WR_ERR_UNSUPPORTED, -1, "shell: warp/weft bending needs mid-edge or dihedral bending");
+    if (desc->bending_stiffness > 0.0)
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "shell: give bending_stiffness or bending_warp/weft, not both");
+    if (desc->rest_pos3 || (!m->rest && !m->corner_rest))
+        return wr_fail(diag, WR_ERR_UNSUPPORTED, -1, "shell: warp/weft bending needs a 2D rest domain for the grain");
+    return WR_OK;
+}
+
+/* Isotropic plane stress: the membrane and bending Voigt matrices from Y, ν, h (B from Kirchhoff–Love
+ * unless given). Baraff–Witkin carries its own stretch stiffnesses: Y is then only needed for a
+ * default B, and an unset Y becomes the effective warp modulus, for downstream defaults. */
+static wr_status wr__shell_iso_material(wr_shell *s, const wr_shell_desc *desc, int bw, int aniso_bend, wr_diag *diag) {
+    double Y = desc->young, nu = desc->poisson, h = desc->thickness;
+    int need_y = !(bw && (desc->bending == WR_BENDING_NONE || desc->bending_stiffness > 0.0 || aniso_bend));
+    if (!need_y && Y == 0.0) Y = s->bw_k[0] / h;
+    if (!(Y > 0.0) || !wr__shell_finite(Y)) return wr_fail(diag, WR_ERR_DOMAIN, -1, "shell: young %g Pa must be > 0", Y);
+    if (!(nu > -1.0 && nu < 1.0))
+        return wr_fail(diag, WR_ERR_DOMAIN, -1, "shell: poisson %g outside (-1, 1) (plane-stress stability)", nu);
+    s->young = Y;
+    s->poisson = nu;
+    s->bending_stiffness = desc->bending_stiffness > 0.0 ? desc->bending_stiffness : Y * h * h * h / (12.0 * (1.0 - nu * nu));
+    wr__shell_voigt_iso(Y, nu, h, s->C_mem);
+    wr__shell_voigt_iso(1.0 - nu * nu, nu, s->bending_stiffness, s->C_bend); /* B·[[1,ν,0],[ν,1,0],[0,0,(1−ν)/2]] */
+    return WR_OK;
+}
+
+/* Orthotropic plane stress in the grain frame: E1 (warp), E2 (weft), G12, ν12 (ν21 = ν12 E2/E1). */
+static wr_status wr__shell_ortho_material(wr_shell *s, const wr_mesh *m, const wr_shell_desc *desc, wr_diag *diag) {
+    double E1 = desc->young_warp, E2 = desc->young_weft, G = desc->shear_modulus, n12 = desc->poisson_warp;
+    double h = desc->thickness, n21, den, C[9];
+    int i;
+    if (!(E1 > 0.0) || !(E2 > 0.0) || !(G > 0.0) || !wr__shell_finite(E1 + E2 + G))
+        return wr_fail(diag, WR_ERR_DOMAIN, -1, "shell: orthotropic moduli E1=%g E2=%g G12=%g Pa must be > 0", E1, E2, G);
+    if (!(n12 * n12 * E2 / E1 < 1.0))
+        return wr_fail(diag, WR_ERR_DOMAIN, -1, "shell: poisson_warp %g violates nu12^2*E2/E1 < 1", n12);
+    if (desc->membrane == WR_MEMBRANE_TFT || desc->bending == WR_BENDING_QUADRATIC)
+        return wr_fail(diag, WR_ERR_UNSUPPORTED, -1, "shell: TFT membrane and quadratic bending are isotropic-only");
+    if (desc->bending_stiffness > 0.0)
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "shell: bending_stiffness override is isotropic-only");
+    if (desc->rest_pos3 || (!m->rest && !m->corner_rest))
+        return wr_fail(diag, WR_ERR_UNSUPPORTED, -1, "shell: orthotropy needs a 2D rest domain for the grain");
+    n21 = n12 * E2 / E1;
+    den = 1.0 - n12 * n21;
+    C[0] = E1 / den;
+    C[1] = C[3] = n12 * E2 / den;
+    C[4] = E2 / den;
+    C[2] = C[5] = C[6] = C[7] = 0.0;
+    C[8] = G;
+    for (i = 0; i < 9; ++i) {
+        s->C_mem[i] = h * C[i];
+        s->C_bend[i] = h * h * h / 12.0 * C[i];
+    }
+    s->young = E1;
+    s->poisson = n12;
+    s->bending_stiffness = s->C_bend[0];
+    return WR_OK;
+}
+
+/* ON ANISOTROPIC BENDING: B1 warp, B2 weft, coupling ν√(B1B2), twist (1−ν)/2·√(B1B2). */
+static void wr__shell_aniso_bending(wr_shell *s, const wr_shell_desc *desc) {
+    double B1 = desc->bending_warp, B2 = desc->bending_weft, Bg = sqrt(B1 * B2), nu = s->poisson;
+    memset(s->C_bend, 0, sizeof s->C_bend);
+    s->C_bend[0] = B1;
+    s->C_bend[4] = B2;
+    s->C_bend[1] = s->C_bend[3] = nu * Bg;
+    s->C_bend[8] = 0.5 * (1.0 - nu) * Bg;
+    s->bending_stiffness = B1;
+}
+
+/* Whether the rest shape is 3D: given as rest_pos3 (checked finite), or the mesh has no 2D rest
+ * domain and its positions leave the z = 0 plane. */
+static wr_status wr__shell_rest_is_3d(const wr_mesh *m, const wr_shell_desc *desc, int *is3d, wr_diag *diag) {
+    int32_t i;
+    int flat_pos = 1;
+    if (desc->rest_pos3)
+        for (i = 0; i < 3 * m->nv; ++i)
+            if (!wr__shell_finite(desc->rest_pos3[i]))
+                return wr_fail(diag, WR_ERR_DOMAIN, i / 3, "shell: rest_pos3 of vertex %d is not finite", (int)(i / 3));
+    if (!m->rest && !m->corner_rest)
+        for (i = 0; i < m->nv; ++i)
+            if (m->pos[3 * i + 2] != 0.0) flat_pos = 0;
+    *is3d = desc->rest_pos3 != NULL || (!m->rest && !m->corner_rest && !flat_pos);
+    return WR_OK;
+}
+
+/* opp[3f + k]: the vertex across the edge opposite corner k of face f (-1 on the boundary). */
+static void wr__shell_opposites(wr_shell *s, const wr_mesh *m) {
+    int32_t f, k, c;
+    for (f = 0; f < m->nf; ++f)
+        for (k = 0; k < 3; ++k) {
+            int32_t e = m->face_edges[3 * f + k];
+            int32_t g = m->edge_faces[2 * e] == f ? m->edge_faces[2 * e + 1] : m->edge_faces[2 * e];
+            int32_t a = m->faces[3 * f + (k + 1) % 3], b = m->faces[3 * f + (k + 2) % 3], q = -1;
+            if (g >= 0)
+                for (c = 0; c < 3; ++c) {
+                    int32_t vv = m->faces[3 * g + c];
+                    if (vv != a && vv != b) q = vv;
+                }
+            s->opp[3 * f + k] = q;
+        }
+}
+
+/* Face f's rest triangle in a 2D chart: the rest domain, or for a 3D rest shape the in-plane frame
+ * (e1/|e1|, n̂ × e1/|e1|), where corner 2 lands at v = |e1×e2|/|e1| > 0. */
+static wr_status wr__shell_face_chart(const wr_mesh *m, int32_t f, const double *R3, int is3d, double uv[6], wr_diag *diag) {
+    const int32_t *t = m->faces + 3 * f;
+    double e1[3], e2[3], l1, n[3], nn, t2[3];
+    int i;
+    if (!is3d) {
+        wr_mesh_face_rest(m, f, uv);
+        return WR_OK;
+    }
+    for (i = 0; i < 3; ++i) {
+        e1[i] = R3[3 * t[1] + i] - R3[3 * t[0] + i];
+        e2[i] = R3[3 * t[2] + i] - R3[3 * t[0] + i];
+    }
+    l1 = sqrt(e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]);
+    n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+    n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+    n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+    nn = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    if (!(l1 > 0.0) || !(nn > 0.0)) return wr_fail(diag, WR_ERR_GEOMETRY, f, "shell: rest face %d is degenerate", (int)f);
+    t2[0] = (n[1] * e1[2] - n[2] * e1[1]) / (nn * l1);
+    t2[1] = (n[2] * e1[0] - n[0] * e1[2]) / (nn * l1);
+    t2[2] = (n[0] * e1[1] - n[1] * e1[0]) / (nn * l1);
+    uv[0] = uv[1] = 0.0;
+    uv[2] = l1;
+    uv[3] = 0.0;
+    uv[4] = (e1[0] * e2[0] + e1[1] * e2[1] + e1[2] * e2[2]) / l1;
+    uv[5] = t2[0] * e2[0] + t2[1] * e2[1] + t2[2] * e2[2];
+    return WR_OK;
+}
+
+/* Face f's rest data from its chart uv: the area, the inverse rest edge matrix in the material frame
+ * (coordinates along (cos θ, sin θ) and its left normal, dinv = D⁻¹ R(θ); θ the face's grain angle
+ * when the material has a grain), and the constant bending quadratic form of the model. */
+static wr_status wr__shell_face_rest(wr_shell *s, int32_t f, const double uv[6], double ang, wr_diag *diag) {
+    double D[4], det, cs, sn;
+    D[0] = uv[2] - uv[0];
+    D[1] = uv[4] - uv[0];
+    D[2] = uv[3] - uv[1];
+    D[3] = uv[5] - uv[1];
+    det = D[0] * D[3] - D[1] * D[2];
+    if (!(det > 0.0) || !wr__shell_finite(det))
+        return wr_fail(diag, WR_ERR_GEOMETRY, f, "shell: rest face %d has area %g (degenerate or clockwise)", (int)f,
+                       0.5 * det);
+    s->area[f] = 0.5 * det;
+    s->total_area += 0.5 * det;
+    if (!wr__shell_finite(ang)) return wr_fail(diag, WR_ERR_DOMAIN, f, "shell: grain_angle of face %d is not finite", (int)f);
+    cs = cos(ang);
+    sn = sin(ang);
+    {
+        double i00 = D[3] / det, i01 = -D[1] / det, i10 = -D[2] / det, i11 = D[0] / det;
+        double *di = s->dinv + 4 * f;
+        di[0] = i00 * cs + i01 * sn;
+        di[1] = -i00 * sn + i01 * cs;
+        di[2] = i10 * cs + i11 * sn;
+        di[3] = -i10 * sn + i11 * cs;
+    }
+    if (s->bending == WR_BENDING_MIDEDGE) wr__shell_qbend(s->dinv + 4 * f, s->area[f], s->C_bend, s->qbend + 9 * f);
+    if (s->bending == WR_BENDING_DIHEDRAL) wr__shell_mdih(s->dinv + 4 * f, s->area[f], uv, s->C_bend, s->qbend + 9 * f);
+    return WR_OK;
+}
+
+/* For a 3D rest shape, each face's rest bending measure (hinge angles or mid-edge normals), so that
+ * the rest shape is stress-free. */
+static wr_status wr__shell_rest_bbar(wr_shell *s, const double *R3, wr_diag *diag) {
+    int32_t f, verts[6], mask;
+    double x18[18];
+    for (f = 0; f < s->nf; ++f) {
+        wr__shell_gather(s, f, R3, verts, &mask, x18);
+        if (s->bending == WR_BENDING_DIHEDRAL) {
+            if (wr_shell_dihedral_element(x18, mask, NULL, NULL, NULL, NULL, NULL, s->bbar + 3 * f) != WR_OK)
+                return wr_fail(diag, WR_ERR_GEOMETRY, f, "shell: rest hinge angle of face %d undefined", (int)f);
+        } else if (wr_shell_midedge_element(x18, mask, NULL, NULL, NULL, NULL, NULL, s->bbar + 3 * f) != WR_OK) {
+            return wr_fail(diag, WR_ERR_GEOMETRY, f, "shell: rest mid-edge normal of face %d undefined", (int)f);
+        }
+    }
+    return WR_OK;
+}
+
+/* The material of s (Voigt matrices, B) from desc: Baraff–Witkin stiffnesses, isotropic or
+ * orthotropic plane stress, warp/weft bending. */
+static wr_status wr__shell_material(wr_shell *s, const wr_mesh *m, const wr_shell_desc *desc, int bw, int aniso_bend,
+                                    wr_diag *diag) {
+    wr_status st;
+    if (bw && (st = wr__shell_bw_setup(s, m, desc, diag)) != WR_OK) return st;
+    if (aniso_bend && (st = wr__shell_check_aniso_bend(m, desc, diag)) != WR_OK) return st;
+    st = s->orthotropic ? wr__shell_ortho_material(s, m, desc, diag) : wr__shell_iso_material(s, desc, bw, aniso_bend, diag);
+    if (st != WR_OK) return st;
+    if (aniso_bend) wr__shell_aniso_bending(s, desc);
+    return WR_OK;
+}
+
+/* Per-face rest data (chart, area, material frame, bending forms), the 3D rest bending measure, and
+ * the quadratic-bending and Loop-element data of the models that need them. */
+static wr_status wr__shell_rest_state(wr_shell *s, const wr_mesh *m, const wr_shell_desc *desc, int is3d, int grained,
+                                      double *uvall, wr_diag *diag) {
+    const double *R3 = desc->rest_pos3 ? desc->rest_pos3 : m->pos;
+    wr_status st;
+    int32_t f;
+    for (f = 0; f < m->nf; ++f) {
+        double *uv = uvall + 6 * f, ang = (grained && desc->grain_angle) ? desc->grain_angle[f] : 0.0;
+        if ((st = wr__shell_face_chart(m, f, R3, is3d, uv, diag)) != WR_OK) return st;
+        if ((st = wr__shell_face_rest(s, f, uv, ang, diag)) != WR_OK) return st;
+    }
+    if (is3d && (st = wr__shell_rest_bbar(s, R3, diag)) != WR_OK) return st;
+    if (s->bending == WR_BENDING_QUADRATIC && (st = wr__shell_build_qb(s, m, uvall, diag)) != WR_OK) return st;
+    if (desc->loop_element && (st = wr__shell_build_loop(s, m, desc, diag)) != WR_OK) return st;
+    return WR_OK;
+}
+
+WRDEF wr_status wr_shell_create(wr_shell *s, const wr_mesh *m, const wr_shell_desc *desc, wr_diag *diag) {
+    int is3d = 0, aniso_bend, bw;
+    double *uvall = NULL;
+    wr_status st;
+    if (!s) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "shell: NULL output");
+    memset(s, 0, sizeof *s);
+    if ((st = wr__shell_check_desc(m, desc, diag)) != WR_OK) return st;
     s->nv = m->nv;
     s->nf = m->nf;
     s->membrane = desc->membrane;
@@ -1476,97 +1715,10 @@ WRDEF wr_status wr_shell_create(wr_shell *s, const wr_mesh *m, const wr_shell_de
     s->orthotropic = desc->orthotropic != 0;
     aniso_bend = desc->bending_warp != 0.0 || desc->bending_weft != 0.0;
     bw = desc->membrane == WR_MEMBRANE_BARAFF_WITKIN;
-    if (bw) {
-        double ku = desc->stretch_warp, kv = desc->stretch_weft, ks = desc->stretch_shear;
-        if (!(ku > 0.0) || !(kv > 0.0) || !(ks > 0.0) || !wr__shell_finite(ku + kv + ks))
-            return wr_fail(diag, WR_ERR_DOMAIN, -1,
-                           "shell: Baraff-Witkin stretch_warp=%g stretch_weft=%g stretch_shear=%g N/m must be > 0", ku,
-                           kv, ks);
-        if (desc->rest_pos3 || (!m->rest && !m->corner_rest))
-            return wr_fail(diag, WR_ERR_UNSUPPORTED, -1, "shell: Baraff-Witkin needs a 2D rest domain for warp/weft");
-        s->bw_k[0] = ku;
-        s->bw_k[1] = kv;
-        s->bw_k[2] = ks;
-    }
-    if (aniso_bend) {
-        if (!(desc->bending_warp > 0.0) || !(desc->bending_weft > 0.0) ||
-            !wr__shell_finite(desc->bending_warp + desc->bending_weft))
-            return wr_fail(diag, WR_ERR_DOMAIN, -1, "shell: bending_warp %g and bending_weft %g N*m must both be > 0",
-                           desc->bending_warp, desc->bending_weft);
-        if (desc->bending != WR_BENDING_MIDEDGE && desc->bending != WR_BENDING_DIHEDRAL)
-            return wr_fail(diag, WR_ERR_UNSUPPORTED, -1, "shell: warp/weft bending needs mid-edge or dihedral bending");
-        if (desc->bending_stiffness > 0.0)
-            return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "shell: give bending_stiffness or bending_warp/weft, not both");
-        if (desc->rest_pos3 || (!m->rest && !m->corner_rest))
-            return wr_fail(diag, WR_ERR_UNSUPPORTED, -1, "shell: warp/weft bending needs a 2D rest domain for the grain");
-    }
-    if (!s->orthotropic) {
-        double Y = desc->young, nu = desc->poisson, h = desc->thickness;
-        /* Baraff–Witkin carries its own stretch stiffnesses: Y is only needed for a default B */
-        int need_y = !(bw && (desc->bending == WR_BENDING_NONE || desc->bending_stiffness > 0.0 || aniso_bend));
-        if (!need_y && Y == 0.0) Y = s->bw_k[0] / h; /* effective warp modulus, for downstream defaults */
-        if (!(Y > 0.0) || !wr__shell_finite(Y)) return wr_fail(diag, WR_ERR_DOMAIN, -1, "shell: young %g Pa must be > 0", Y);
-        if (!(nu > -1.0 && nu < 1.0))
-            return wr_fail(diag, WR_ERR_DOMAIN, -1, "shell: poisson %g outside (-1, 1) (plane-stress stability)", nu);
-        s->young = Y;
-        s->poisson = nu;
-        s->bending_stiffness =
-            desc->bending_stiffness > 0.0 ? desc->bending_stiffness : Y * h * h * h / (12.0 * (1.0 - nu * nu));
-        wr__shell_voigt_iso(Y, nu, h, s->C_mem);
-        wr__shell_voigt_iso(1.0 - nu * nu, nu, s->bending_stiffness, s->C_bend); /* B·[[1,ν,0],[ν,1,0],[0,0,(1−ν)/2]] */
-    } else {
-        double E1 = desc->young_warp, E2 = desc->young_weft, G = desc->shear_modulus, n12 = desc->poisson_warp;
-        double h = desc->thickness, n21, den, C[9];
-        if (!(E1 > 0.0) || !(E2 > 0.0) || !(G > 0.0) || !wr__shell_finite(E1 + E2 + G))
-            return wr_fail(diag, WR_ERR_DOMAIN, -1, "shell: orthotropic moduli E1=%g E2=%g G12=%g Pa must be > 0", E1,
-                           E2, G);
-        if (!(n12 * n12 * E2 / E1 < 1.0))
-            return wr_fail(diag, WR_ERR_DOMAIN, -1, "shell: poisson_warp %g violates nu12^2*E2/E1 < 1", n12);
-        if (desc->membrane == WR_MEMBRANE_TFT || desc->bending == WR_BENDING_QUADRATIC)
-            return wr_fail(diag, WR_ERR_UNSUPPORTED, -1, "shell: TFT membrane and quadratic bending are isotropic-only");
-        if (desc->bending_stiffness > 0.0)
-            return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "shell: bending_stiffness override is isotropic-only");
-        if (desc->rest_pos3 || (!m->rest && !m->corner_rest))
-            return wr_fail(diag, WR_ERR_UNSUPPORTED, -1, "shell: orthotropy needs a 2D rest domain for the grain");
-        n21 = n12 * E2 / E1;
-        den = 1.0 - n12 * n21;
-        C[0] = E1 / den;
-        C[1] = C[3] = n12 * E2 / den;
-        C[4] = E2 / den;
-        C[2] = C[5] = C[6] = C[7] = 0.0;
-        C[8] = G;
-        for (i = 0; i < 9; ++i) {
-            s->C_mem[i] = h * C[i];
-            s->C_bend[i] = h * h * h / 12.0 * C[i];
-        }
-        s->young = E1;
-        s->poisson = n12;
-        s->bending_stiffness = s->C_bend[0];
-    }
-    if (aniso_bend) {
-        /* ON ANISOTROPIC BENDING: B1 warp, B2 weft, coupling ν√(B1B2), twist (1−ν)/2·√(B1B2) */
-        double B1 = desc->bending_warp, B2 = desc->bending_weft, Bg = sqrt(B1 * B2), nu = s->poisson;
-        memset(s->C_bend, 0, sizeof s->C_bend);
-        s->C_bend[0] = B1;
-        s->C_bend[4] = B2;
-        s->C_bend[1] = s->C_bend[3] = nu * Bg;
-        s->C_bend[8] = 0.5 * (1.0 - nu) * Bg;
-        s->bending_stiffness = B1;
-    }
-    if (desc->rest_pos3) {
-        for (i = 0; i < 3 * m->nv; ++i)
-            if (!wr__shell_finite(desc->rest_pos3[i]))
-                return wr_fail(diag, WR_ERR_DOMAIN, i / 3, "shell: rest_pos3 of vertex %d is not finite", (int)(i / 3));
-    }
-    if (!m->rest && !m->corner_rest)
-        for (i = 0; i < m->nv; ++i)
-            if (m->pos[3 * i + 2] != 0.0) flat_pos = 0;
-    is3d = desc->rest_pos3 != NULL || (!m->rest && !m->corner_rest && !flat_pos);
-    R3 = desc->rest_pos3 ? desc->rest_pos3 : m->pos;
-    if (is3d && desc->bending == WR_BENDING_QUADRATIC) {
-        wr_shell_free(s);
+    if ((st = wr__shell_material(s, m, desc, bw, aniso_bend, diag)) != WR_OK) return st;
+    if ((st = wr__shell_rest_is_3d(m, desc, &is3d, diag)) != WR_OK) return st;
+    if (is3d && desc->bending == WR_BENDING_QUADRATIC)
         return wr_fail(diag, WR_ERR_UNSUPPORTED, -1, "shell: quadratic bending assumes a flat rest (TFW Sec. 4.1)");
-    }
     s->faces = (int32_t *)wr_alloc_array((size_t)m->nf * 3, sizeof(int32_t));
     s->opp = (int32_t *)wr_alloc_array((size_t)m->nf * 3, sizeof(int32_t));
     s->dinv = (double *)wr_alloc_array((size_t)m->nf * 4, sizeof(double));
@@ -1576,111 +1728,13 @@ WRDEF wr_status wr_shell_create(wr_shell *s, const wr_mesh *m, const wr_shell_de
     if (is3d) s->bbar = (double *)wr_calloc_array((size_t)m->nf * 3, sizeof(double));
     if (!s->faces || !s->opp || !s->dinv || !s->area || !s->qbend || !uvall || (is3d && !s->bbar)) {
         st = wr_fail(diag, WR_ERR_NOMEM, -1, "shell: out of memory (%d faces)", (int)m->nf);
-        goto fail;
-    }
-    memcpy(s->faces, m->faces, sizeof(int32_t) * 3 * (size_t)m->nf);
-    for (f = 0; f < m->nf; ++f)
-        for (k = 0; k < 3; ++k) {
-            int32_t e = m->face_edges[3 * f + k];
-            int32_t g = m->edge_faces[2 * e] == f ? m->edge_faces[2 * e + 1] : m->edge_faces[2 * e];
-            int32_t a = m->faces[3 * f + (k + 1) % 3], b = m->faces[3 * f + (k + 2) % 3], q = -1, c;
-            if (g >= 0)
-                for (c = 0; c < 3; ++c) {
-                    int32_t vv = m->faces[3 * g + c];
-                    if (vv != a && vv != b) q = vv;
-                }
-            s->opp[3 * f + k] = q;
-        }
-    for (f = 0; f < m->nf; ++f) {
-        double *uv = uvall + 6 * f, D[4], det, ang, cs, sn;
-        if (is3d) {
-            const int32_t *t = m->faces + 3 * f;
-            double e1[3], e2[3], l1, n[3], nn, t2[3];
-            for (i = 0; i < 3; ++i) {
-                e1[i] = R3[3 * t[1] + i] - R3[3 * t[0] + i];
-                e2[i] = R3[3 * t[2] + i] - R3[3 * t[0] + i];
-            }
-            l1 = sqrt(e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]);
-            n[0] = e1[1] * e2[2] - e1[2] * e2[1];
-            n[1] = e1[2] * e2[0] - e1[0] * e2[2];
-            n[2] = e1[0] * e2[1] - e1[1] * e2[0];
-            nn = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-            if (!(l1 > 0.0) || !(nn > 0.0)) {
-                st = wr_fail(diag, WR_ERR_GEOMETRY, f, "shell: rest face %d is degenerate", (int)f);
-                goto fail;
-            }
-            /* in-plane frame (e1/|e1|, n̂ × e1/|e1|): corner 2 lands at v = |e1×e2|/|e1| > 0 */
-            t2[0] = (n[1] * e1[2] - n[2] * e1[1]) / (nn * l1);
-            t2[1] = (n[2] * e1[0] - n[0] * e1[2]) / (nn * l1);
-            t2[2] = (n[0] * e1[1] - n[1] * e1[0]) / (nn * l1);
-            uv[0] = uv[1] = 0.0;
-            uv[2] = l1;
-            uv[3] = 0.0;
-            uv[4] = (e1[0] * e2[0] + e1[1] * e2[1] + e1[2] * e2[2]) / l1;
-            uv[5] = t2[0] * e2[0] + t2[1] * e2[1] + t2[2] * e2[2];
-        } else {
-            wr_mesh_face_rest(m, f, uv);
-        }
-        D[0] = uv[2] - uv[0];
-        D[1] = uv[4] - uv[0];
-        D[2] = uv[3] - uv[1];
-        D[3] = uv[5] - uv[1];
-        det = D[0] * D[3] - D[1] * D[2];
-        if (!(det > 0.0) || !wr__shell_finite(det)) {
-            st = wr_fail(diag, WR_ERR_GEOMETRY, f, "shell: rest face %d has area %g (degenerate or clockwise)", (int)f,
-                         0.5 * det);
-            goto fail;
-        }
-        s->area[f] = 0.5 * det;
-        s->total_area += 0.5 * det;
-        /* material frame: coordinates along (cos θ, sin θ) and its left normal, dinv = D⁻¹ R(θ) */
-        ang = ((s->orthotropic || bw || aniso_bend) && desc->grain_angle) ? desc->grain_angle[f] : 0.0;
-        if (!wr__shell_finite(ang)) {
-            st = wr_fail(diag, WR_ERR_DOMAIN, f, "shell: grain_angle of face %d is not finite", (int)f);
-            goto fail;
-        }
-        cs = cos(ang);
-        sn = sin(ang);
-        {
-            double i00 = D[3] / det, i01 = -D[1] / det, i10 = -D[2] / det, i11 = D[0] / det;
-            double *di = s->dinv + 4 * f;
-            di[0] = i00 * cs + i01 * sn;
-            di[1] = -i00 * sn + i01 * cs;
-            di[2] = i10 * cs + i11 * sn;
-            di[3] = -i10 * sn + i11 * cs;
-        }
-        if (s->bending == WR_BENDING_MIDEDGE) wr__shell_qbend(s->dinv + 4 * f, s->area[f], s->C_bend, s->qbend + 9 * f);
-        if (s->bending == WR_BENDING_DIHEDRAL) wr__shell_mdih(s->dinv + 4 * f, s->area[f], uv, s->C_bend, s->qbend + 9 * f);
-    }
-    if (is3d) {
-        for (f = 0; f < m->nf; ++f) {
-            int32_t verts[6], mask;
-            double x18[18];
-            wr__shell_gather(s, f, R3, verts, &mask, x18);
-            if (s->bending == WR_BENDING_DIHEDRAL) {
-                if (wr_shell_dihedral_element(x18, mask, NULL, NULL, NULL, NULL, NULL, s->bbar + 3 * f) != WR_OK) {
-                    st = wr_fail(diag, WR_ERR_GEOMETRY, f, "shell: rest hinge angle of face %d undefined", (int)f);
-                    goto fail;
-                }
-            } else if (wr_shell_midedge_element(x18, mask, NULL, NULL, NULL, NULL, NULL, s->bbar + 3 * f) != WR_OK) {
-                st = wr_fail(diag, WR_ERR_GEOMETRY, f, "shell: rest mid-edge normal of face %d undefined", (int)f);
-                goto fail;
-            }
-        }
-    }
-    if (s->bending == WR_BENDING_QUADRATIC) {
-        st = wr__shell_build_qb(s, m, uvall, diag);
-        if (st != WR_OK) goto fail;
-    }
-    if (desc->loop_element) {
-        st = wr__shell_build_loop(s, m, desc, diag);
-        if (st != WR_OK) goto fail;
+    } else {
+        memcpy(s->faces, m->faces, sizeof(int32_t) * 3 * (size_t)m->nf);
+        wr__shell_opposites(s, m);
+        st = wr__shell_rest_state(s, m, desc, is3d, s->orthotropic || bw || aniso_bend, uvall, diag);
     }
     wr_free(uvall);
-    return WR_OK;
-fail:
-    wr_free(uvall);
-    wr_shell_free(s);
+    if (st != WR_OK) wr_shell_free(s);
     return st;
 }
 
