@@ -350,6 +350,65 @@ Test(garment, weld_through_a_wall_is_refused) {
     free(seam);
 }
 
+/* ON WELDING, a merge that jumps through a body: two 10 cm square panels (one cell each), A at
+ * z = +5 mm and B at z = -5 mm, 1 cm apart across the seam (pairs 1-4 and 3-6), and a 2 mm body
+ * triangle in z = 0 round the middle of pair 3-6. Every candidate of that pair lies strictly inside
+ * the segment between its copies, so every merge move carries one copy across z = 0 at the
+ * segment's middle, through the triangle; yet the welded faces miss the triangle once the pair sits
+ * anywhere above z = 0 (checked below at 3/4 of the way to copy 3; the mass mean, the first
+ * candidate, is at z = h/3 since corner 3 carries two faces and corner 6 one), so a check of end
+ * positions alone accepts it. CCD blocks that pair (the weld is refused, WR_ERR_GEOMETRY, the sim
+ * left unwelded) while the other pair merges, and the exact check finds nothing. */
+Test(garment, weld_never_jumps_through_a_body) {
+    wr_mesh a, b, m;
+    wr_garment_placement pl[2];
+    wr_garment g;
+    wr_garment_sim gs;
+    wr_shell_desc sd;
+    wr_dyn_desc dd;
+    wr_dyn_body body;
+    wr_diag d;
+    int32_t pairs[4] = {1, 4, 3, 6}, tf[3] = {0, 1, 2}, cnt = -1, i;
+    const double h = 5e-3, mid[3] = {0.105, 0.1, 0.0};
+    double tri[9] = {mid[0] - 1e-3, mid[1] - 1e-3, 0, mid[0] + 1e-3, mid[1] - 1e-3, 0, mid[0], mid[1] + 1e-3, 0}, xs[24], p[3];
+    cr_assert_eq(wr_mesh_rectangle(&a, 0.1, 0.1, 1, 1, NULL), WR_OK);
+    cr_assert_eq(wr_mesh_rectangle(&b, 0.1, 0.1, 1, 1, NULL), WR_OK);
+    cr_assert_eq(wr_garment_example_join(&m, &a, &b, NULL), WR_OK);
+    memset(pl, 0, sizeof pl);
+    pl[0].rigid.translate[2] = h;
+    pl[1].rigid.translate[0] = 0.11, pl[1].rigid.translate[2] = -h;
+    memset(&g, 0, sizeof g);
+    g.pattern = &m, g.seam_pairs = pairs, g.n_seam_pairs = 2, g.placements = pl, g.n_placements = 2;
+    gar_fabric(&sd);
+    memset(&dd, 0, sizeof dd);
+    memset(&body, 0, sizeof body);
+    body.nv = 3, body.nf = 1, body.faces = tf, body.pos = tri;
+    dd.contact.bodies = &body, dd.contact.n_bodies = 1;
+    cr_assert_eq(wr_garment_sim_create(&gs, &g, &sd, &dd, NULL, &d), WR_OK, "%s", d.message);
+    for (i = 0; i < 3; ++i) cr_assert_float_eq(0.5 * (gs.x[9 + i] + gs.x[18 + i]), mid[i], 1e-15);
+    /* the premise: pair 3-6 at m + (x_3 - m)/2, pair 1-4 at its midpoint, is clear of the triangle
+     * (the end state an end-position check sees), while copy 6's path there crosses it */
+    memcpy(xs, gs.x, sizeof xs);
+    for (i = 0; i < 3; ++i) {
+        p[i] = mid[i] + 0.5 * (gs.x[9 + i] - mid[i]);
+        xs[9 + i] = xs[18 + i] = p[i];
+        xs[3 + i] = xs[12 + i] = 0.5 * (gs.x[3 + i] + gs.x[12 + i]);
+    }
+    cr_assert_eq(wr_collision_meshes_intersect(8, xs, m.nf, m.faces, 3, tri, 1, tf, &cnt, &d), WR_OK);
+    cr_assert_eq(cnt, 0, "the end state meets the triangle (%d pairs): not the case this test is about", (int)cnt);
+    cr_assert(wr_collision_segment_triangle_intersect(gs.x + 18, p, tri, tri + 3, tri + 6));
+    cr_assert_eq(wr_garment_sim_weld(&gs, &d), WR_ERR_GEOMETRY, "welded %d (moved %d)", (int)gs.welded, (int)gs.weld_moved);
+    cr_log_info("weld past a body triangle: %s", d.message);
+    cr_assert(!gs.welded);
+    cr_assert_eq(gs.weld_blocked, 1, "only pair 3-6 is blocked: %s", d.message);
+    cr_assert_eq(gs.weld_left, 0, "the end state is clean: only CCD can refuse it");
+    cr_assert_eq(gs.mesh.nv, 8);
+    wr_garment_sim_free(&gs);
+    wr_mesh_free(&a);
+    wr_mesh_free(&b);
+    wr_mesh_free(&m);
+}
+
 /* ---- the skirt on the mannequin ------------------------------------------------------------- */
 
 /* examples/sim/skirt_pattern.json in metres: two A-line panels, 0.43 m at the waist, 0.63 m at the

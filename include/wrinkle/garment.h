@@ -1068,7 +1068,7 @@ static wr_status wr__gar_weld_feasible(const wr_garment_sim *gs, const wr_mesh *
     for (sweep = 0; sweep < WR_GARMENT_WELD_SWEEPS && progress; ++sweep) {
         progress = 0;
         for (j = 0; j < nn; ++j)
-            for (t = 0; t <= 2 && !done[j]; ++t)
+            for (t = 0; t <= 2 && !done[j]; ++t) /* t/2 toward copy k; t = 0 is m itself, tried once */
                 for (k = t ? M.start[j] : M.start[j + 1] - 1; k < M.start[j + 1] && !done[j]; ++k) {
                     double c[3];
                     for (i = 0; i < 3; ++i) c[i] = x[3 * j + i] + 0.5 * t * (gs->x[3 * M.mem[k] + i] - x[3 * j + i]);
