@@ -1227,19 +1227,16 @@ typedef struct wr__coll_ctx {
     wr_collision_ccd_stats *stats;
 } wr__coll_ctx;
 
-/* ON PAIRS: 1 when the first na of v[0..4) and the rest share a vertex (a class with vertex_class) */
-static int wr__coll_share(const wr_collision_mesh *cm, const int32_t v[4], int na) {
-    int a, b;
-    for (a = 0; a < na; ++a)
-        for (b = na; b < 4; ++b)
-            if (cm->vclass ? cm->vclass[v[a]] == cm->vclass[v[b]] : v[a] == v[b]) return 1;
-    return 0;
-}
+/* ON PAIRS: the class of vertex v (itself without vertex_class); pairs sharing a class are skipped */
+static int32_t wr__coll_cls(const int32_t *cls, int32_t v) { return cls ? cls[v] : v; }
 
 /* The pair (PT: vertex i, face j; EE: edge i, edge j) as 4 vertex ids, or 0 when it is skipped. */
 static int wr__coll_pair(const wr_collision_mesh *cm, int kind, int32_t i, int32_t j, int32_t v[4]) {
+    const int32_t *c = cm->vclass;
     if (kind == WR_CONTACT_PT) {
         const int32_t *t = cm->faces + 3 * j;
+        int32_t p = wr__coll_cls(c, i);
+        if (p == wr__coll_cls(c, t[0]) || p == wr__coll_cls(c, t[1]) || p == wr__coll_cls(c, t[2])) return 0;
         if (!wr__coll_keep(cm, cm->obst_v[i], cm->obst_f[j])) return 0;
         v[0] = i;
         v[1] = t[0];
@@ -1247,13 +1244,15 @@ static int wr__coll_pair(const wr_collision_mesh *cm, int kind, int32_t i, int32
         v[3] = t[2];
     } else {
         const int32_t *a = cm->edges + 2 * i, *b = cm->edges + 2 * j;
+        int32_t a0 = wr__coll_cls(c, a[0]), a1 = wr__coll_cls(c, a[1]), b0 = wr__coll_cls(c, b[0]), b1 = wr__coll_cls(c, b[1]);
+        if (a0 == b0 || a0 == b1 || a1 == b0 || a1 == b1) return 0;
         if (!wr__coll_keep(cm, cm->obst_e[i], cm->obst_e[j])) return 0;
         v[0] = a[0];
         v[1] = a[1];
         v[2] = b[0];
         v[3] = b[1];
     }
-    return !wr__coll_share(cm, v, kind == WR_CONTACT_PT ? 1 : 2);
+    return 1;
 }
 
 static wr_status wr__coll_add_contact(wr__coll_ctx *c, int kind, int32_t i, int32_t j) {
