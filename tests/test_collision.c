@@ -316,6 +316,19 @@ static void co_soup(wr_rng *rng, int32_t n, double size, double *bx) {
         }
 }
 
+/* move every box coordinate by amp·sin(freq·i), then swap min and max where they crossed */
+static void co_jiggle(double *bx, int32_t n, double amp, double freq) {
+    int32_t i, j;
+    for (i = 0; i < 6 * n; ++i) bx[i] += amp * sin(freq * (double)i);
+    for (i = 0; i < n; ++i)
+        for (j = 0; j < 3; ++j)
+            if (bx[6 * i + j] > bx[6 * i + 3 + j]) {
+                double t = bx[6 * i + j];
+                bx[6 * i + j] = bx[6 * i + 3 + j];
+                bx[6 * i + 3 + j] = t;
+            }
+}
+
 Test(collision, bvh_candidates_equal_brute_force) {
     wr_rng rng;
     int round;
@@ -340,14 +353,7 @@ Test(collision, bvh_candidates_equal_brute_force) {
         cr_assert_eq(got.n, ref.n, "self pairs: BVH %d, brute force %d", got.n, ref.n);
         cr_expect(got.n == 0 || memcmp(got.k, ref.k, sizeof(int64_t) * (size_t)got.n) == 0);
         /* cross pairs, after moving every box (refit) */
-        for (i = 0; i < 6 * n; ++i) bx[i] += 0.01 * sin((double)i);
-        for (i = 0; i < n; ++i) /* keep min <= max */
-            for (j = 0; j < 3; ++j)
-                if (bx[6 * i + j] > bx[6 * i + 3 + j]) {
-                    double t = bx[6 * i + j];
-                    bx[6 * i + j] = bx[6 * i + 3 + j];
-                    bx[6 * i + 3 + j] = t;
-                }
+        co_jiggle(bx, n, 0.01, 1.0);
         wr_bvh_refit(&ta, bx);
         got.n = ref.n = 0;
         cr_assert_eq(wr_bvh_pairs(&ta, &tb, co_collect, &got, NULL), WR_OK);
@@ -363,6 +369,78 @@ Test(collision, bvh_candidates_equal_brute_force) {
         free(ref.k);
         free(bx);
         free(by);
+    }
+}
+
+/* ---- the single-box query against brute force ---- */
+static wr_status co_collect_prim(void *u, int32_t i) { return co_collect(u, 0, i); }
+static wr_status co_stop_prim(void *u, int32_t i) {
+    (void)i;
+    ++*(int32_t *)u;
+    return WR_ERR_BUDGET;
+}
+
+/* every id whose box overlaps q, in increasing order, from the tree (sorted) and by brute force */
+static void co_query_check(const wr_bvh *t, const double *bx, int32_t n, const double *q, const char *what) {
+    co_pairs got = {0, 0, NULL}, ref = {0, 0, NULL};
+    int32_t i;
+    cr_assert_eq(wr_bvh_box_query(t, q, co_collect_prim, &got, NULL), WR_OK);
+    for (i = 0; i < n; ++i)
+        if (co_ov(bx + 6 * i, q)) co_collect(&ref, 0, i);
+    if (got.n) qsort(got.k, (size_t)got.n, sizeof(int64_t), co_cmp);
+    cr_assert_eq(got.n, ref.n, "%s (n = %d): BVH %d boxes, brute force %d", what, (int)n, (int)got.n, (int)ref.n);
+    cr_assert(got.n == 0 || memcmp(got.k, ref.k, sizeof(int64_t) * (size_t)got.n) == 0, "%s: different ids", what);
+    free(got.k);
+    free(ref.k);
+}
+
+/* Random soups (n = 0 .. 2000, so leaves, one split and deep trees) and random query boxes of every
+ * size, plus queries that only touch a primitive's box face or are a single corner point (closed
+ * boxes: touching counts), before and after a refit: the query returns exactly the brute-force set,
+ * so a traversal that prunes a subtree it should enter (or reports one it should not) fails here.
+ * A callback's non-OK status stops the query at once and is returned; a NaN box meets nothing. */
+Test(collision, bvh_box_query_equals_brute_force) {
+    static const int32_t sizes[] = {0, 1, 4, 5, 9, 37, 600, 2000};
+    wr_rng rng;
+    size_t r;
+    wr_rng_seed(&rng, 29);
+    for (r = 0; r < sizeof sizes / sizeof sizes[0]; ++r) {
+        int32_t n = sizes[r], i, k, calls = 0;
+        double *bx = (double *)malloc(sizeof(double) * 6 * (size_t)(n > 0 ? n : 1)), q[6];
+        wr_bvh t;
+        co_soup(&rng, n, 0.02, bx);
+        for (i = 0; i + 1 < n && i < 10; ++i) memcpy(bx + 6 * (n - 1 - i), bx, 6 * sizeof(double)); /* equal keys */
+        cr_assert_eq(wr_bvh_build(&t, n, bx, NULL), WR_OK);
+        for (k = 0; k < 300; ++k) {
+            co_soup(&rng, 1, k % 3 == 0 ? 0.3 : (k % 3 == 1 ? 0.05 : 0.0), q);
+            co_query_check(&t, bx, n, q, "random box");
+        }
+        for (i = 0; i < n && i < 50; ++i) {
+            int a = (int)(i % 3);
+            memcpy(q, bx + 6 * i, sizeof q); /* a box whose min face touches box i's max face */
+            q[a] = q[3 + a];
+            q[3 + a] = q[a] + 0.01;
+            co_query_check(&t, bx, n, q, "touching box");
+            memcpy(q, bx + 6 * i, 3 * sizeof(double)); /* box i's min corner, a point */
+            memcpy(q + 3, bx + 6 * i, 3 * sizeof(double));
+            co_query_check(&t, bx, n, q, "corner point");
+        }
+        co_jiggle(bx, n, 0.05, 3.0);
+        wr_bvh_refit(&t, bx);
+        for (k = 0; k < 300; ++k) {
+            co_soup(&rng, 1, k % 2 ? 0.2 : 0.01, q);
+            co_query_check(&t, bx, n, q, "after refit");
+        }
+        q[0] = q[1] = q[2] = -1.0, q[3] = q[4] = q[5] = 2.0; /* everything: the callback stops at the first */
+        cr_expect_eq(wr_bvh_box_query(&t, q, co_stop_prim, &calls, NULL), n > 0 ? WR_ERR_BUDGET : WR_OK);
+        cr_expect_eq(calls, n > 0 ? 1 : 0);
+        q[0] = NAN;
+        calls = 0;
+        cr_expect_eq(wr_bvh_box_query(&t, q, co_stop_prim, &calls, NULL), WR_OK);
+        cr_expect_eq(calls, 0);
+        cr_expect_eq(wr_bvh_box_query(&t, NULL, co_stop_prim, &calls, NULL), WR_ERR_INVALID_ARG);
+        wr_bvh_free(&t);
+        free(bx);
     }
 }
 
@@ -520,6 +598,38 @@ Test(collision, self_contacts_only_when_asked) {
     free(x);
     free(f);
     free(ob);
+}
+
+/* desc.vertex_class: a cloth triangle B 1 mm above cloth triangle A, B's corner 3 a copy of A's
+ * corner 0 (one class) moving onto it, as garment.h's weld merges seam copies. Without classes the
+ * pair (3, A) reaches distance 0 and CCD stops the move before it; with them the pairs of 3 against
+ * A's faces, edges at 0 are skipped (they become adjacent at the merge), the move completes, and the
+ * merged state has no zero-distance contact. */
+Test(collision, vertex_class_lets_copies_meet) {
+    double x[18] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0.01, 0.01, 1e-3, 1.01, 0.01, 1e-3, 0.01, 1.01, 1e-3}, dx[18] = {0}, xe[18];
+    int32_t f[6] = {0, 1, 2, 3, 4, 5}, cls[6] = {0, 1, 2, 0, 4, 5}, i;
+    wr_collision_mesh cm;
+    wr_collision_desc d;
+    wr_contact_set cs;
+    double alpha;
+    for (i = 0; i < 3; ++i) dx[9 + i] = x[i] - x[9 + i];
+    for (i = 0; i < 18; ++i) xe[i] = x[i] + dx[i];
+    memset(&d, 0, sizeof d);
+    memset(&cs, 0, sizeof cs);
+    cr_assert_eq(wr_collision_mesh_create(&cm, 6, 2, f, NULL, &d, NULL), WR_OK);
+    cr_assert_eq(wr_collision_max_step(&cm, x, dx, &alpha, NULL, NULL), WR_OK);
+    cr_expect(alpha < 1.0, "alpha %g without classes", alpha);
+    cr_expect_eq(wr_collision_contacts(&cm, xe, 2e-3, &cs, NULL), WR_ERR_GEOMETRY); /* 3 touches A */
+    wr_collision_mesh_free(&cm);
+    d.vertex_class = cls;
+    cr_assert_eq(wr_collision_mesh_create(&cm, 6, 2, f, NULL, &d, NULL), WR_OK);
+    cls[3] = 3; /* copied at create */
+    cr_assert_eq(wr_collision_max_step(&cm, x, dx, &alpha, NULL, NULL), WR_OK);
+    cr_expect_eq(alpha, 1.0);
+    cr_assert_eq(wr_collision_contacts(&cm, xe, 2e-3, &cs, NULL), WR_OK);
+    for (i = 0; i < cs.n; ++i) cr_expect(cs.c[i].d > 0.0);
+    wr_contact_set_free(&cs);
+    wr_collision_mesh_free(&cm);
 }
 
 Test(collision, mesh_self_intersection_exact) {

@@ -25,10 +25,13 @@
  *   see docs/notes-sim-garments.md.)
  *
  * SIMULATION (both meshes alike). garment.h sewing (stiffness doubling from its default start to
- * 100 E h/(1 − ν²)), the seams kept as springs for the whole run (garment.h desc.no_weld): the weld
- * was refused on this small body, at r_opt (24 cloth-body triangle pairs after merging, none
- * before), at 5 mm (19) and with a 0.1 mm weld tolerance (6), see docs/notes-sim-garments.md;
- * --weld tries it. dynamics.h backward Euler at 1/30 s frames, gravity, mass damping 1/s,
+ * 100 E h/(1 − ν²)), the seams kept as springs for the whole run (garment.h desc.no_weld): the
+ * plain midpoint weld was refused on this small body, at r_opt (24 cloth-body triangle pairs after
+ * merging, none before), at 5 mm (19) and with a 0.1 mm weld tolerance (6), see
+ * docs/notes-sim-garments.md. --weld welds (garment.h ON WELDING, the CCD-limited merge) and
+ * reports per run the weld frame, the max seam gap when welded and at the end, the exact
+ * intersections right after the weld (whole mannequin, and the garment with itself), the refused
+ * (deferred) welds and the merge's midpoint hits and moved vertices; result files get "_weld". dynamics.h backward Euler at 1/30 s frames, gravity, mass damping 1/s,
  * friction μ = 0.5, cloth self-contact on, d̂ = scale × 1 mm (dynamics.h's default 1 mm scaled with
  * the garment: 0.25 mm for the skirts; with 1 mm, 40 % of a 2.5 mm edge, the 2.5 mm skirt kept
  * 12-29 Newton steps per frame and ~5000 active barriers and took 1396 CPU s for 1.4 s, with 0.25 mm
@@ -78,7 +81,9 @@
  * Options: --quick (smoke, sim_garments_quick.json: the skirt at uniform QUICK_REF and QUICK_OPT
  * for QUICK_SECONDS, no floor run, every quantity reported without a band), --seconds S (default
  * 2), --ref R (the uniform reference resolution, default 2.5 mm: for cost measurements), --no-floor,
- * --no-png, --verbose. Exit = failed quantities, 2 on errors.
+ * --no-png, --verbose, --opt-only (the r_opt run alone, no reference and no comparison: its row, D3
+ * and, with --weld, the weld rows; result file "_opt"; `--garment skirt --opt-only --no-floor
+ * --weld --seconds 1` is the cheap weld check at r_opt). Exit = failed quantities, 2 on errors.
  */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
@@ -164,6 +169,12 @@ typedef struct grun {
     double ns[MAXFRAMES], ch[MAXFRAMES], nsc[MAXFRAMES], chc[MAXFRAMES];
     double ns_mean, ch_mean, ns_med, ch_med, nsc_mean, chc_mean, cpu, wall, min_dist;
     int32_t penetrations, outside_crop;
+    /* --weld (garment.h ON WELDING): the seam gap when welded and at the end (0 once welded: one
+     * vertex per pair), refused and deferred welds, the last weld's midpoint body pairs and moved
+     * vertices, and the exact intersections right after the weld (whole mannequin; the welded mesh
+     * with itself) */
+    double weld_gap, gap_end, weld_tol;
+    int32_t weld_deferred, weld_mid_hits, weld_moved, weld_body_hits, weld_self_hits;
     char fail_msg[WR_DIAG_MESSAGE_LEN + 32];
     /* final state (owned) */
     double *xu;  /* nv0*3 positions on the pattern mesh */
@@ -278,6 +289,25 @@ static int gather_lines(const wr_pattern *pat, const wr_mesher_result *mr, wr_ga
 
 /* ---- one run: mesh, sew, drape ------------------------------------------------------------------ */
 
+/* Right after the weld: the welded drape against the whole mannequin and against itself (exact). */
+static int weld_hits(const wr_garment_sim *gs, const wr_mesh *bm, grun *R) {
+    wr_collision_mesh cm;
+    wr_diag d;
+    if (wr_collision_meshes_intersect(gs->mesh.nv, gs->x, gs->mesh.nf, gs->mesh.faces, bm->nv, bm->pos, bm->nf, bm->faces,
+                                      &R->weld_body_hits, &d) != WR_OK ||
+        wr_collision_mesh_create(&cm, gs->mesh.nv, gs->mesh.nf, gs->mesh.faces, NULL, NULL, &d) != WR_OK) {
+        fprintf(stderr, "validate_sim_garments: weld check: %s\n", d.message);
+        return -1;
+    }
+    if (wr_collision_mesh_self_intersects(&cm, gs->x, &R->weld_self_hits, NULL, &d) != WR_OK) {
+        fprintf(stderr, "validate_sim_garments: weld check: %s\n", d.message);
+        wr_collision_mesh_free(&cm);
+        return -1;
+    }
+    wr_collision_mesh_free(&cm);
+    return 0;
+}
+
 static int garment_simulate(grun *R, const wr_mesh *bm, const wr_dyn_body *body, const double crop_lo[3],
                             const double crop_hi[3]) {
     wr_pattern_file pf;
@@ -355,6 +385,7 @@ static int garment_simulate(grun *R, const wr_mesh *bm, const wr_dyn_body *body,
     if (n_frames > MAXFRAMES) n_frames = MAXFRAMES;
     R->frames = R->newton = R->halvings = 0;
     R->failed = 0;
+    R->weld_body_hits = R->weld_self_hits = -1;
     R->min_dist = HUGE_VAL;
     for (f = 0; f < n_frames; ++f) {
         double c0 = (double)clock() / CLOCKS_PER_SEC, cf;
@@ -377,6 +408,10 @@ static int garment_simulate(grun *R, const wr_mesh *bm, const wr_dyn_body *body,
         R->nsc[R->frames] = fs.t_total > 0.0 ? cf * fs.t_ns / fs.t_total : NAN;
         R->chc[R->frames] = fs.t_total > 0.0 ? cf * fs.t_ch / fs.t_total : NAN;
         R->frames++;
+        if (gs.welded && R->weld_body_hits < 0 && weld_hits(&gs, bm, R) != 0) {
+            wr_garment_sim_free(&gs);
+            return -1;
+        }
         R->newton += fs.newton_iterations;
         R->halvings += fs.halvings;
         R->min_dist = fmin(R->min_dist, fs.min_distance);
@@ -390,6 +425,10 @@ static int garment_simulate(grun *R, const wr_mesh *bm, const wr_dyn_body *body,
     R->cpu = (double)clock() / CLOCKS_PER_SEC - cpu0;
     R->wall = wr_time_seconds() - wall0;
     R->weld_frame = gs.welded ? gs.weld_frame : -1;
+    R->weld_gap = gs.welded ? gs.weld_gap : NAN;
+    R->weld_tol = gs.desc.weld_tol;
+    R->gap_end = wr_garment_sim_seam_gap(&gs, -1);
+    R->weld_deferred = gs.weld_deferred, R->weld_mid_hits = gs.weld_mid_hits, R->weld_moved = gs.weld_moved;
     R->ns_med = median(R->ns, R->frames), R->ch_med = median(R->ch, R->frames);
     R->ns_mean = R->ch_mean = R->nsc_mean = R->chc_mean = 0.0;
     for (f = 0; f < R->frames; ++f) {
@@ -617,6 +656,30 @@ typedef struct gdist {
     double ab_mean, ab_max, ba_mean, ba_max;
 } gdist;
 
+/* --weld: did the seams close and weld, and did the weld add an intersection (garment.h ON WELDING) */
+static void report_weld(wr_vres *v, const grun *R) {
+    char name[512];
+    double tol = R->weld_tol;
+    snprintf(name, sizeof name, "%s, %s: weld frame (-1: not welded)", R->g->name, R->label);
+    wr_vres_check(v, name, "", NAN, (double)R->weld_frame, ">= 0: every seam welded", R->weld_frame >= 0);
+    snprintf(name, sizeof name, "%s, %s: max seam gap when welded", R->g->name, R->label);
+    wr_vres_range(v, name, "mm", NAN, 1e3 * R->weld_gap, 0.0, 1e3 * tol);
+    wr_vres_reference(v, 1e3 * tol, "garment.h's weld tolerance (the weld happens below it)");
+    snprintf(name, sizeof name, "%s, %s: max seam gap at the end (0: one vertex per seam pair)", R->g->name, R->label);
+    wr_vres_check(v, name, "mm", NAN, 1e3 * R->gap_end, "= 0 (welded)", R->gap_end == 0.0);
+    snprintf(name, sizeof name, "%s, %s: triangle pairs intersecting right after the weld (whole mannequin + the garment itself)",
+             R->g->name, R->label);
+    wr_vres_check(v, name, "", NAN, (double)(R->weld_body_hits + R->weld_self_hits), "= 0 (measured only once welded)",
+                  R->weld_body_hits == 0 && R->weld_self_hits == 0);
+    snprintf(name, sizeof name, "%s, %s: welds refused and deferred to a later frame", R->g->name, R->label);
+    wr_vres_info(v, name, "", NAN, (double)R->weld_deferred);
+    snprintf(name, sizeof name, "%s, %s: body triangle pairs a plain midpoint merge would have met at the weld", R->g->name,
+             R->label);
+    wr_vres_info(v, name, "", NAN, (double)R->weld_mid_hits);
+    snprintf(name, sizeof name, "%s, %s: merged vertices the CCD-limited merge left off the midpoint", R->g->name, R->label);
+    wr_vres_info(v, name, "", NAN, (double)R->weld_moved);
+}
+
 static void report_garment(wr_vres *v, const grun *A, const grun *B, const grun *C, const gdist *dAB, const gdist *dBC,
                            int quick, char *table, size_t tn) {
     char name[512], buf[2048];
@@ -626,6 +689,10 @@ static void report_garment(wr_vres *v, const grun *A, const grun *B, const grun 
     run_row(buf, sizeof buf, A), strncat(table, buf, tn - strlen(table) - 1);
     run_row(buf, sizeof buf, B), strncat(table, buf, tn - strlen(table) - 1);
     if (C) run_row(buf, sizeof buf, C), strncat(table, buf, tn - strlen(table) - 1);
+    if (!g_no_weld) {
+        report_weld(v, A), report_weld(v, B);
+        if (C) report_weld(v, C);
+    }
 #define INFO(label, unit, val)                                                \
     do {                                                                      \
         snprintf(name, sizeof name, "%s: %s", g->name, label);               \
@@ -734,7 +801,10 @@ int main(int argc, char **argv) {
             printf("usage: validate_sim_garments [--quick] [--seconds S] [--ref R] [--pcg] [--weld] [--no-floor] [--no-png]\n"
                    "       [--verbose] [--opt-only] [--weld-tol T] [--garment skirt|shirred]\n"
                    "  Style3D Table 1 / Fig. 19 with the dynamic simulator: garments at r_opt and at uniform 2.5 mm;\n"
-                   "  writes validation/results/sim_garments.json (--quick: sim_garments_quick.json, smoke only).\n");
+                   "  writes validation/results/sim_garments.json (--quick: sim_garments_quick.json, smoke only;\n"
+                   "  --garment G: sim_garments_G[_dhat][_opt][_weld][_quick].json).\n"
+                   "  --weld: weld the seams (else springs all run) and report the weld; --opt-only: the r_opt run alone\n"
+                   "  (cheap weld check: --garment skirt --opt-only --no-floor --weld --seconds 1).\n");
             return 0;
         } else {
             fprintf(stderr, "validate_sim_garments: unknown option '%s' (see --help)\n", argv[i]);
@@ -752,10 +822,14 @@ int main(int argc, char **argv) {
             fprintf(stderr, "validate_sim_garments: no garment '%s' (skirt, shirred)\n", only);
             return 2;
         }
-        snprintf(case_buf, sizeof case_buf, "sim_garments_%s%s%s", only, g_dhat > 0.0 ? "_dhat" : "", quick ? "_quick" : "");
+        snprintf(case_buf, sizeof case_buf, "sim_garments_%s%s%s%s%s", only, g_dhat > 0.0 ? "_dhat" : "", g_opt_only ? "_opt" : "",
+                 g_no_weld ? "" : "_weld", quick ? "_quick" : "");
+    } else if (g_opt_only || !g_no_weld) { /* not the Table 1 result file */
+        snprintf(case_buf, sizeof case_buf, "sim_garments%s%s%s", g_opt_only ? "_opt" : "", g_no_weld ? "" : "_weld",
+                 quick ? "_quick" : "");
     }
     if (quick) case_id = "sim_garments_quick", seconds = QUICK_SECONDS, floor_run = 0;
-    if (only) case_id = case_buf;
+    if (case_buf[0]) case_id = case_buf;
     v = wr_vres_begin(case_id, "Style3D Table 1 / Fig. 19: garments at r_opt vs uniform 2.5 mm, dynamic simulator (cost, drape distance, wrinkle wavelength)");
     if (!v) return 2;
     snprintf(table, sizeof table,
@@ -801,14 +875,28 @@ int main(int argc, char **argv) {
         /* the cheap runs first: a set-up error shows in seconds, not after the 2.5 mm run */
         for (r = nrun - 1; r >= 0; --r) {
             grun *R = &runs[r];
-            if (g_opt_only && r == 0) {
-                fprintf(stderr, "--opt-only: no reference run, no comparison\n");
-                return 0;
-            }
+            if (g_opt_only && r == 0) break; /* no reference run, no comparison */
             if (garment_simulate(R, &bm, &body, crop_lo, crop_hi) != 0 || garment_probes(R) != 0) return 2;
             fprintf(stderr, "   %s: %d -> %d vertices, %d frames, weld frame %d, %d Newton, NS %.0f / CH %.0f ms mean, cpu %.0f s\n",
                     R->label, (int)R->nv0, (int)R->nv, (int)R->frames, (int)R->weld_frame, (int)R->newton, 1e3 * R->ns_mean,
                     1e3 * R->ch_mean, R->cpu);
+        }
+        if (g_opt_only) { /* the r_opt run(s) alone: their rows, and the weld's when --weld */
+            for (r = 1; r < nrun; ++r) {
+                run_row(buf, sizeof buf, &runs[r]), strncat(table, buf, sizeof table - strlen(table) - 1);
+                if (!g_no_weld) report_weld(v, &runs[r]);
+                snprintf(buf, sizeof buf, "%s, %s: D3 cloth-body triangle intersections of the final drape (whole mannequin)",
+                         g->name, runs[r].label);
+                wr_vres_check(v, buf, "", NAN, (double)runs[r].penetrations, "= 0", runs[r].penetrations == 0);
+                if (runs[r].failed) {
+                    snprintf(buf, sizeof buf, "%s, %s: the run stopped early: %s", g->name, runs[r].label, runs[r].fail_msg);
+                    wr_vres_note(v, buf);
+                }
+                free_run(&runs[r]);
+            }
+            free(bf);
+            wr_mesh_free(&bm);
+            continue;
         }
         dA = (double *)malloc(sizeof(double) * (size_t)runs[0].nv);
         dB = (double *)malloc(sizeof(double) * (size_t)runs[1].nv);
@@ -883,6 +971,10 @@ int main(int argc, char **argv) {
                  "(a finer-than-r_opt check, not the Table 1 comparison).", 1e3 * g_ref);
         wr_vres_note(v, buf);
     }
+    if (g_opt_only) wr_vres_note(v, "--opt-only: the r_opt run(s) alone, no uniform reference and no comparison (D1, D2 absent).");
+    if (!g_no_weld)
+        wr_vres_note(v, "--weld: the seams are welded once every seam pair is closer than garment.h's weld tolerance (ON WELDING: "
+                        "the CCD-limited merge; a refused weld is deferred to the next frame), not kept as springs.");
     if (quick) wr_vres_note(v, "--quick: the skirt at uniform 16 mm vs uniform 24 mm for 0.4 s, no floor run: a smoke run of the pipeline, "
                                "every accuracy quantity reported without a band.");
     return wr_vres_finish(v);

@@ -17,6 +17,7 @@
  *   wr_bvh_refit(b, boxes)                       same tree, new boxes (O(n), no rebuild)
  *   wr_bvh_self_pairs(b, fn, user, diag)         every pair i < j whose boxes overlap
  *   wr_bvh_pairs(a, b, fn, user, diag)           every (i in a, j in b) whose boxes overlap
+ *   wr_bvh_box_query(b, box, fn, user, diag)     every i whose box overlaps one query box (no allocation)
  *   wr_bvh_free(b)
  *   wr_collision_point_triangle_dist2(p, t0, t1, t2, g, H, w)  squared distance, ∇ (12), ∇² (144)
  *   wr_collision_edge_edge_dist2(a0, a1, b0, b1, g, H, w)      the same for two segments
@@ -58,6 +59,11 @@
  *   no table size to tune. The build is O(n log n) (quickselect per level), a refit O(n), a self
  *   query O(n + pairs) on cloth-like input. Measured in bench/bench_collision.c (bench/RESULTS.md).
  *   Traversal is iterative (a growable stack of node pairs), deterministic, single-threaded.
+ *   A single-box query (wr_bvh_box_query: what a caller needs for "which triangles near this one")
+ *   walks the tree depth first with a fixed stack on the C stack, so it allocates nothing and can
+ *   sit in an inner loop: the median split halves every node (children of ⌊m/2⌋ and ⌈m/2⌉
+ *   primitives), so the depth is at most ⌈log2 n⌉ <= 31 and the stack holds at most one pending
+ *   sibling per level (WR__BVH_QUERY_STACK = 64 covers every int32_t n).
  *
  * ON DISTANCES
  *   Point–triangle (p; t0, t1, t2) and edge–edge (a0, a1; b0, b1) squared unsigned distances with
@@ -109,7 +115,11 @@
  *   first, body after); obstacle[v] = 1 marks obstacle vertices. A primitive (vertex, edge, face) is
  *   an obstacle primitive when all its vertices are. Pairs of two obstacle primitives are never
  *   reported; pairs of two cloth primitives only with desc.self != 0 (default on); pairs that share
- *   a vertex are never reported (IPC's rule for the barrier).
+ *   a vertex are never reported (IPC's rule for the barrier). desc.vertex_class widens "share a
+ *   vertex" to "share a class": for a mesh holding several copies of a vertex that are about to be
+ *   merged (garment.h's seam weld moves the copies of each seam vertex together under CCD), the
+ *   pairs that become adjacent at the merge are meant to meet and are not contacts. It applies to
+ *   wr_collision_contacts and wr_collision_max_step; the exact intersection checks use the ids.
  *
  * ON UNITS AND THREADS
  *   Positions [m], distances [m], d̂ [m], κ [J/m²], energies [J]. A wr_collision_mesh keeps its BVHs
@@ -142,6 +152,8 @@ typedef struct wr_bvh {
 
 /* Pair callback: return WR_OK to continue; anything else stops the traversal and is returned. */
 typedef wr_status (*wr_bvh_pair_fn)(void *user, int32_t i, int32_t j);
+/* Primitive callback of a box query, the same contract. */
+typedef wr_status (*wr_bvh_prim_fn)(void *user, int32_t i);
 
 /* boxes: n*6 [min x, min y, min z, max x, max y, max z]; n >= 0 (n = 0 gives an empty tree).
  * WR_ERR_DOMAIN (item = box) for a non-finite or inverted box. */
@@ -150,6 +162,11 @@ WRDEF wr_status wr_bvh_build(wr_bvh *b, int32_t n, const double *boxes, wr_diag 
 WRDEF void wr_bvh_refit(wr_bvh *b, const double *boxes);
 WRDEF wr_status wr_bvh_self_pairs(const wr_bvh *b, wr_bvh_pair_fn fn, void *user, wr_diag *diag);
 WRDEF wr_status wr_bvh_pairs(const wr_bvh *a, const wr_bvh *b, wr_bvh_pair_fn fn, void *user, wr_diag *diag);
+/* fn(user, i) for every primitive i whose box overlaps the closed box q (6: min xyz, max xyz;
+ * touching counts, as in the pair queries), in tree order; after a refit, the refitted boxes.
+ * Allocates nothing (ON THE BROAD PHASE). A q with a NaN meets nothing. WR_ERR_INVALID_ARG for a
+ * NULL tree, box or callback. */
+WRDEF wr_status wr_bvh_box_query(const wr_bvh *b, const double q[6], wr_bvh_prim_fn fn, void *user, wr_diag *diag);
 WRDEF void wr_bvh_free(wr_bvh *b);
 
 /* ---- pair distances, barrier, CCD ------------------------------------------------------------- */
@@ -204,6 +221,9 @@ WRDEF int32_t wr_collision_triangle_triangle_intersect(const double ta[9], const
 /* Defaults (zero means default): self 0 → cloth self-contact ON (set no_self = 1 to switch it off). */
 typedef struct wr_collision_desc {
     int32_t no_self; /* 1: skip cloth–cloth pairs (cloth against obstacles only) */
+    /* nv or NULL (each vertex its own class): pairs in which a vertex of one primitive and a vertex
+     * of the other share a class are skipped (ON PAIRS), copied at create */
+    const int32_t *vertex_class;
 } wr_collision_desc;
 
 typedef struct wr_collision_mesh {
@@ -212,6 +232,7 @@ typedef struct wr_collision_mesh {
     int32_t *edges;   /* ne*2 unique edges (i < j) */
     uint8_t *obst_v;  /* nv: 1 = obstacle vertex */
     uint8_t *obst_e, *obst_f; /* ne, nf: 1 = all vertices obstacle */
+    int32_t *vclass;  /* nv copy of desc.vertex_class, or NULL */
     int32_t self;
     int32_t queries;  /* cloth trees are rebuilt every 64th query and refitted in between */
     /* ON THE BROAD PHASE: trees over cloth vertices, edges, faces (0–2) and obstacle vertices,
@@ -519,6 +540,29 @@ WRDEF wr_status wr_bvh_self_pairs(const wr_bvh *b, wr_bvh_pair_fn fn, void *user
 WRDEF wr_status wr_bvh_pairs(const wr_bvh *a, const wr_bvh *b, wr_bvh_pair_fn fn, void *user, wr_diag *diag) {
     if (!a || !b || !fn) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "bvh: NULL tree or callback");
     return wr__bvh_traverse(a, b, 0, fn, user, diag);
+}
+
+#define WR__BVH_QUERY_STACK 64 /* >= depth + 2 for any int32_t n (ON THE BROAD PHASE) */
+
+WRDEF wr_status wr_bvh_box_query(const wr_bvh *b, const double q[6], wr_bvh_prim_fn fn, void *user, wr_diag *diag) {
+    int32_t st[WR__BVH_QUERY_STACK], n = 0;
+    wr_status rs = WR_OK;
+    if (!b || !q || !fn) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "bvh: NULL tree, box or callback");
+    if (b->n == 0) return WR_OK;
+    st[n++] = 0;
+    while (n > 0 && rs == WR_OK) {
+        int32_t nd = st[--n], i;
+        if (!wr__bvh_overlap(b->box + 6 * nd, q)) continue;
+        if (b->left[nd] >= 0) {
+            if (n + 2 > WR__BVH_QUERY_STACK) return wr_fail(diag, WR_ERR_OVERFLOW, nd, "bvh: query deeper than its stack");
+            st[n++] = b->left[nd] + 1;
+            st[n++] = b->left[nd];
+            continue;
+        }
+        for (i = b->lo[nd]; i < b->hi[nd] && rs == WR_OK; ++i)
+            if (wr__bvh_overlap(b->pbox + 6 * i, q)) rs = fn(user, b->prim[i]);
+    }
+    return rs;
 }
 
 /* ==== pair distances ============================================================================ */
@@ -982,6 +1026,7 @@ WRDEF void wr_collision_mesh_free(wr_collision_mesh *cm) {
     wr_free(cm->obst_v);
     wr_free(cm->obst_e);
     wr_free(cm->obst_f);
+    wr_free(cm->vclass);
     wr_free(cm->boxes);
     wr_free(cm->ox);
     {
@@ -1020,6 +1065,10 @@ WRDEF wr_status wr_collision_mesh_create(wr_collision_mesh *cm, int32_t nv, int3
     cm->obst_v = (uint8_t *)wr_calloc_array((size_t)nv, 1);
     cm->obst_f = (uint8_t *)wr_calloc_array((size_t)(nf > 0 ? nf : 1), 1);
     if (!keys || !cm->faces || !cm->obst_v || !cm->obst_f) goto nomem;
+    if (desc && desc->vertex_class) {
+        if (!(cm->vclass = (int32_t *)wr_alloc_array((size_t)nv, sizeof(int32_t)))) goto nomem;
+        memcpy(cm->vclass, desc->vertex_class, sizeof(int32_t) * (size_t)nv);
+    }
     if (nf > 0) memcpy(cm->faces, faces, sizeof(int32_t) * 3 * (size_t)nf);
     if (obstacle)
         for (i = 0; i < nv; ++i) cm->obst_v[i] = obstacle[i] != 0;
@@ -1178,11 +1227,16 @@ typedef struct wr__coll_ctx {
     wr_collision_ccd_stats *stats;
 } wr__coll_ctx;
 
+/* ON PAIRS: the class of vertex v (itself without vertex_class); pairs sharing a class are skipped */
+static int32_t wr__coll_cls(const int32_t *cls, int32_t v) { return cls ? cls[v] : v; }
+
 /* The pair (PT: vertex i, face j; EE: edge i, edge j) as 4 vertex ids, or 0 when it is skipped. */
 static int wr__coll_pair(const wr_collision_mesh *cm, int kind, int32_t i, int32_t j, int32_t v[4]) {
+    const int32_t *c = cm->vclass;
     if (kind == WR_CONTACT_PT) {
         const int32_t *t = cm->faces + 3 * j;
-        if (i == t[0] || i == t[1] || i == t[2]) return 0;
+        int32_t p = wr__coll_cls(c, i);
+        if (p == wr__coll_cls(c, t[0]) || p == wr__coll_cls(c, t[1]) || p == wr__coll_cls(c, t[2])) return 0;
         if (!wr__coll_keep(cm, cm->obst_v[i], cm->obst_f[j])) return 0;
         v[0] = i;
         v[1] = t[0];
@@ -1190,7 +1244,8 @@ static int wr__coll_pair(const wr_collision_mesh *cm, int kind, int32_t i, int32
         v[3] = t[2];
     } else {
         const int32_t *a = cm->edges + 2 * i, *b = cm->edges + 2 * j;
-        if (a[0] == b[0] || a[0] == b[1] || a[1] == b[0] || a[1] == b[1]) return 0;
+        int32_t a0 = wr__coll_cls(c, a[0]), a1 = wr__coll_cls(c, a[1]), b0 = wr__coll_cls(c, b[0]), b1 = wr__coll_cls(c, b[1]);
+        if (a0 == b0 || a0 == b1 || a1 == b0 || a1 == b1) return 0;
         if (!wr__coll_keep(cm, cm->obst_e[i], cm->obst_e[j])) return 0;
         v[0] = a[0];
         v[1] = a[1];

@@ -192,6 +192,11 @@ typedef struct wr_dyn_contact_desc {
     double kinematic_stiffness; /* [N/m] per body vertex */
 } wr_dyn_contact_desc;
 
+/* sewing stiffness default, × m̄/dt² (garment.h starts its sewing there too): the spring's period
+ * 2π/√(k/m) is dt·2π/√k_rel ≈ 0.6 dt, so a seam closes within a few frames and backward Euler damps
+ * the oscillation (ratio 1/(1+100) per step) */
+#define WR_DYN_SEW_FACTOR 100.0
+
 /* Zero-rest-length springs k/2 ‖x_a − x_b‖² between vertex pairs, active while t < duration
  * (duration 0 → always). Defaults: stiffness 0 → WR_DYN_SEW_FACTOR · m̄/dt² (pulls a seam shut
  * over a few frames against inertia). pairs: n_pairs × 2 vertex indices, copied. */
@@ -335,9 +340,6 @@ extern "C" {
 /* κ default (ON CONTACT): the barrier force κ|b'| at |b'| = d̂ is this many times the larger of a
  * vertex's weight and the force that stops it within d̂ in one step (statics.h uses the same 10). */
 #define WR_DYN_KAPPA_FACTOR 10.0
-/* sewing stiffness default, × m̄/dt²: the spring's period 2π/√(k/m) is dt·2π/√k_rel ≈ 0.6 dt, so a
- * seam closes within a few frames and backward Euler damps the oscillation (ratio 1/(1+100) per step) */
-#define WR_DYN_SEW_FACTOR 100.0
 /* moving-body spring default, × m̄/h²: a body vertex held like a particle 1e4 times heavier than a
  * cloth vertex, so cloth pushing on it moves it by ~1e-4 of what it would move the cloth */
 #define WR_DYN_KINEMATIC_FACTOR 1e4

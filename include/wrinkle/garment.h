@@ -110,20 +110,30 @@
  *   positions, and time goes on. The midpoint is not always feasible: sewing springs at full
  *   stiffness press a seam line onto the body far inside d̂, and on a small faceted body (the 0.25
  *   mannequin of validate_sim_garments, d̂ = 0.25 mm) a body ridge within half the gap of the seam
- *   line put midpoint-welded faces through it (measured: 11-24 body triangle pairs, 0 before the
- *   merge). So a merged vertex whose faces meet a body is moved to the candidate m + t (x_u − m)
- *   (m the midpoint, x_u a member's own position, t = 1/2 or 1) whose faces meet the body least,
- *   for up to WR_GARMENT_WELD_SWEEPS sweeps: at t = 1 that member's panel faces are exactly as they
- *   were before the merge (intersection-free), though the other panel's faces then move by the
- *   whole gap, hence the exact check below (weld_mid_hits, weld_moved report it; momentum is kept, the position is no longer the mass
- *   mean there). The welded mesh is then checked exactly against every body and, when
- *   self-contact is on, against itself: an intersection there is WR_ERR_GEOMETRY from
- *   wr_garment_sim_weld (the barriers would lock it in) and the sim is left unwelded; wr_garment_sim_step
- *   then defers the weld (weld_deferred counts it, sewing goes on, the gap keeps closing) and
- *   retries next frame, so a weld never introduces an intersection. A seam still open (or a weld
- *   still refused) after desc.max_time (default WR_GARMENT_MAX_SEW_TIME) is
- *   WR_ERR_NOT_CONVERGED naming the seam and its gap. desc.no_weld = 1 keeps the springs for the
- *   whole run instead.
+ *   line put midpoint-welded faces through it (weld_mid_hits reports how many body triangle pairs
+ *   a plain midpoint merge would meet). So the merge is done as a motion and certified the way a
+ *   Newton step is (collision.h ON CCD): the copies of each seam vertex move along straight lines
+ *   from their own positions, which the simulator keeps intersection-free, to one common point,
+ *   in one collision mesh of the unwelded cloth and the bodies whose vertex classes are the welded
+ *   vertices (collision.h ON PAIRS: the copies are meant to meet, so the pairs that become
+ *   adjacent are not contacts). A move that CCD cuts short is not made. First every class moves to
+ *   its midpoint m at once; when CCD stops that, class by class, in up to WR_GARMENT_WELD_SWEEPS
+ *   sweeps, to the first of m, m + t (x_u − m) (x_u a copy's own position, t = 1/2, then 1) whose
+ *   move completes (weld_moved counts those left off m; momentum is kept, the position is no longer
+ *   the mass mean there). CCD checks every vertex–triangle and edge–edge pair, cloth against body
+ *   and, when the welded sim has self-contact, cloth against cloth, so no merge move sweeps a face
+ *   through the body or the garment: a triangle pair can only start to intersect through such a
+ *   contact. What CCD cannot see is a pair that shares a merged vertex (two faces folding over
+ *   each other at the seam), so the welded mesh is then checked exactly against every body and,
+ *   with self-contact, against itself. A class no move can merge (weld_blocked) or an
+ *   intersection found (weld_left, triangle pairs) is WR_ERR_GEOMETRY from wr_garment_sim_weld (the
+ *   barriers would lock it in) and the sim is left unwelded; wr_garment_sim_step then defers the
+ *   weld (weld_deferred counts it, sewing goes on, the gap keeps closing) and retries next frame,
+ *   so a weld never introduces an intersection. After desc.max_time (default
+ *   WR_GARMENT_MAX_SEW_TIME) the step is WR_ERR_NOT_CONVERGED: naming the widest seam and its gap
+ *   (item = seam) when a seam is still open, or (item = -1) saying that every seam is closed to
+ *   the tolerance but the weld is still refused, with the last refusal's weld_blocked and
+ *   weld_left. desc.no_weld = 1 keeps the springs for the whole run instead.
 
  * ON GATHERING (shirring Style3D Sec. 4.2.2, quilt stitches Sec. 4.2.5; the paper only meshes them)
  *   A gathered line (wr_garment_line: the pattern-mesh vertices along it, wr_garment_line_chain)
@@ -294,6 +304,8 @@ typedef struct wr_garment_sim {
     double weld_gap;     /* the largest seam gap when welded [m] */
     int32_t weld_mid_hits; /* last weld: body triangle pairs a midpoint merge would meet (ON WELDING) */
     int32_t weld_moved;  /* last weld: merged vertices moved off the midpoint to stay feasible */
+    int32_t weld_blocked; /* last weld attempt: merged vertices no CCD-safe move could merge */
+    int32_t weld_left;   /* last weld attempt: triangle pairs (body + self) its merge left intersecting */
     int32_t weld_deferred; /* frames whose weld was refused as intersecting and deferred */
     double gap;          /* the largest seam gap at the end of the last frame [m] (0 after the weld) */
     double sew_k;        /* the sewing stiffness of the last frame [N/m] */
@@ -893,55 +905,55 @@ static void wr__gar_remap(const wr_garment_sim *gs, const int32_t *vmap, int32_t
         }
 }
 
-/* Body triangles (boxes bb, nbf × 6) that cloth face f of wm at positions x meets (exact tri–tri). */
-static int32_t wr__gar_face_hits(const wr_dyn *sim, const double *bb, const wr_mesh *wm, const double *x, int32_t f) {
-    double ta[9], tb[9], lo[3], hi[3];
-    int32_t b, k, i, n = 0;
+/* ON WELDING, the midpoint diagnostic: body triangles (tree bt over the body faces) that the faces
+ * of welded vertex j meet at x, exact tri–tri on the box query's candidates. */
+typedef struct wr__gar_hitq {
+    const wr_dyn *sim;
+    double ta[9];
+    int32_t n;
+} wr__gar_hitq;
+
+static wr_status wr__gar_hit_fn(void *user, int32_t b) {
+    wr__gar_hitq *q = (wr__gar_hitq *)user;
+    double tb[9];
+    int32_t k, i;
     for (k = 0; k < 3; ++k)
-        for (i = 0; i < 3; ++i) ta[3 * k + i] = x[3 * wm->faces[3 * f + k] + i];
-    for (i = 0; i < 3; ++i) {
-        lo[i] = fmin(ta[i], fmin(ta[3 + i], ta[6 + i]));
-        hi[i] = fmax(ta[i], fmax(ta[3 + i], ta[6 + i]));
-    }
-    for (b = 0; b < sim->nbf; ++b) {
-        const double *q = bb + 6 * b;
-        if (q[0] > hi[0] || q[1] > hi[1] || q[2] > hi[2] || q[3] < lo[0] || q[4] < lo[1] || q[5] < lo[2]) continue;
+        for (i = 0; i < 3; ++i) tb[3 * k + i] = q->sim->body_x[3 * q->sim->body_faces[3 * b + k] + i];
+    q->n += wr_collision_triangle_triangle_intersect(q->ta, tb);
+    return WR_OK;
+}
+
+static int32_t wr__gar_vertex_hits(const wr_dyn *sim, const wr_bvh *bt, const wr_mesh *wm, const double *x, int32_t j) {
+    wr__gar_hitq q;
+    int32_t c, k, i, n = 0;
+    q.sim = sim;
+    for (c = wm->vf_start[j]; c < wm->vf_start[j + 1]; ++c) {
+        double box[6];
         for (k = 0; k < 3; ++k)
-            for (i = 0; i < 3; ++i) tb[3 * k + i] = sim->body_x[3 * sim->body_faces[3 * b + k] + i];
-        n += wr_collision_triangle_triangle_intersect(ta, tb);
+            for (i = 0; i < 3; ++i) q.ta[3 * k + i] = x[3 * wm->faces[3 * wm->vf[c] + k] + i];
+        for (i = 0; i < 3; ++i) {
+            box[i] = fmin(q.ta[i], fmin(q.ta[3 + i], q.ta[6 + i]));
+            box[3 + i] = fmax(q.ta[i], fmax(q.ta[3 + i], q.ta[6 + i]));
+        }
+        q.n = 0;
+        (void)wr_bvh_box_query(bt, box, wr__gar_hit_fn, &q, NULL); /* the callback never stops it */
+        n += q.n;
     }
     return n;
 }
 
-static int32_t wr__gar_vertex_hits(const wr_dyn *sim, const double *bb, const wr_mesh *wm, const double *x, int32_t j) {
-    int32_t k, n = 0;
-    for (k = wm->vf_start[j]; k < wm->vf_start[j + 1]; ++k) n += wr__gar_face_hits(sim, bb, wm, x, wm->vf[k]);
-    return n;
-}
-
-/* ON WELDING, the feasible merge: the midpoint of a seam pair pressed onto a faceted body can put
- * the welded faces through it (a body vertex or ridge within half the gap of the seam line), while
- * each member's own position keeps that member's panel faces as they were, intersection-free.
- * A merged vertex whose faces meet the body is moved, in up to WR_GARMENT_WELD_SWEEPS sweeps, to the
- * candidate m + t (x_u − m) (m the midpoint, u a member, t = 1/2, 1) with the fewest body hits over
- * its faces (ties: the smaller move). *mid_hits gets the hits of the midpoint weld on merged
- * vertices' faces, *moved the vertices left off the midpoint. The caller still checks the whole
- * result exactly. */
-static wr_status wr__gar_weld_feasible(const wr_garment_sim *gs, const wr_mesh *wm, const int32_t *vmap, double *x,
-                                       int32_t *mid_hits, int32_t *moved, wr_diag *diag) {
-    const wr_dyn *sim = &gs->dyn;
-    int32_t nn = wm->nv, *start = NULL, *mem = NULL, j, u, k, i, sweep, changed = 1;
-    double *bb = NULL, *mid = NULL;
-    *mid_hits = *moved = 0;
+/* Body triangle pairs that the faces of the merged vertices meet with every pair at its midpoint
+ * x (wm's positions): reported as weld_mid_hits, what a plain midpoint weld would do. */
+static wr_status wr__gar_mid_hits(const wr_dyn *sim, const wr_mesh *wm, const int32_t *start, const double *x, int32_t *hits,
+                                  wr_diag *diag) {
+    double *bb;
+    wr_bvh bt;
+    int32_t k, i, j;
+    wr_status st;
+    *hits = 0;
     if (sim->nbf < 1) return WR_OK;
-    bb = (double *)wr_alloc_array(6 * (size_t)sim->nbf, sizeof(double));
-    mid = (double *)wr_alloc_array(3 * (size_t)nn, sizeof(double));
-    start = (int32_t *)wr_calloc_array((size_t)nn + 1, sizeof(int32_t));
-    mem = (int32_t *)wr_alloc_array((size_t)gs->nv0, sizeof(int32_t));
-    if (!bb || !mid || !start || !mem) {
-        wr_free(bb), wr_free(mid), wr_free(start), wr_free(mem);
+    if (!(bb = (double *)wr_alloc_array(6 * (size_t)sim->nbf, sizeof(double))))
         return wr_fail(diag, WR_ERR_NOMEM, -1, "garment: out of memory");
-    }
     for (k = 0; k < sim->nbf; ++k)
         for (i = 0; i < 3; ++i) {
             const double *p0 = sim->body_x + 3 * sim->body_faces[3 * k], *p1 = sim->body_x + 3 * sim->body_faces[3 * k + 1],
@@ -949,59 +961,147 @@ static wr_status wr__gar_weld_feasible(const wr_garment_sim *gs, const wr_mesh *
             bb[6 * k + i] = fmin(p0[i], fmin(p1[i], p2[i]));
             bb[6 * k + 3 + i] = fmax(p0[i], fmax(p1[i], p2[i]));
         }
-    memcpy(mid, x, sizeof(double) * 3 * (size_t)nn);
-    for (u = 0; u < gs->nv0; ++u) start[vmap[u] + 1]++; /* members per welded vertex, CSR */
-    for (j = 0; j < nn; ++j) start[j + 1] += start[j];
-    for (u = 0; u < gs->nv0; ++u) mem[start[vmap[u]]++] = u;
-    for (j = nn; j > 0; --j) start[j] = start[j - 1];
-    start[0] = 0;
-    for (j = 0; j < nn; ++j)
-        if (start[j + 1] - start[j] > 1) *mid_hits += wr__gar_vertex_hits(sim, bb, wm, x, j);
-    for (sweep = 0; sweep < WR_GARMENT_WELD_SWEEPS && changed; ++sweep) {
-        changed = 0;
-        for (j = 0; j < nn; ++j) {
-            double best[3], bmove = 0.0, c[3];
-            int32_t bh, h, t;
-            if (start[j + 1] - start[j] < 2 || (bh = wr__gar_vertex_hits(sim, bb, wm, x, j)) == 0) continue;
-            memcpy(best, x + 3 * j, sizeof best);
-            for (i = 0; i < 3; ++i) bmove += (best[i] - mid[3 * j + i]) * (best[i] - mid[3 * j + i]);
-            for (k = start[j]; k < start[j + 1]; ++k)
-                for (t = 1; t <= 2; ++t) {
-                    double mv = 0.0;
-                    for (i = 0; i < 3; ++i) {
-                        c[i] = mid[3 * j + i] + 0.5 * t * (gs->x[3 * mem[k] + i] - mid[3 * j + i]);
-                        mv += (c[i] - mid[3 * j + i]) * (c[i] - mid[3 * j + i]);
-                        x[3 * j + i] = c[i];
-                    }
-                    h = wr__gar_vertex_hits(sim, bb, wm, x, j);
-                    if (h < bh || (h == bh && mv < bmove)) bh = h, bmove = mv, memcpy(best, c, sizeof best);
-                }
-            memcpy(x + 3 * j, best, sizeof best);
-            changed = 1;
-        }
-    }
-    for (j = 0; j < nn; ++j)
-        if (x[3 * j] != mid[3 * j] || x[3 * j + 1] != mid[3 * j + 1] || x[3 * j + 2] != mid[3 * j + 2]) (*moved)++;
-    wr_free(bb), wr_free(mid), wr_free(start), wr_free(mem);
+    st = wr_bvh_build(&bt, sim->nbf, bb, diag);
+    wr_free(bb);
+    if (st != WR_OK) return st;
+    for (j = 0; j < wm->nv; ++j)
+        if (start[j + 1] - start[j] > 1) *hits += wr__gar_vertex_hits(sim, &bt, wm, x, j);
+    wr_bvh_free(&bt);
     return WR_OK;
 }
 
-/* Refuse a welded state that intersects a body or (self-contact on) itself (ON WELDING). */
-static wr_status wr__gar_weld_check(const wr_garment_sim *gs, wr_dyn *sim, const wr_mesh *wm, const double *x, wr_diag *diag) {
-    int32_t hit = 0;
-    wr_status st = wr__gar_body_hits(sim, wm, x, -1, &hit, diag);
+/* ON WELDING, the merge as a motion: the unwelded cloth and the bodies in one collision mesh whose
+ * vertex classes are the welded vertices (collision.h ON PAIRS: the copies of a seam vertex are
+ * meant to meet), so CCD (wr_collision_max_step) certifies each move of a class's members. */
+typedef struct wr__gar_merge {
+    wr_collision_mesh cm;
+    double *X, *dX;       /* (nv0 + nb)*3: the members as they move, a trial motion (0 elsewhere) */
+    int32_t *start, *mem; /* members of welded vertex j: mem[start[j] .. start[j + 1]) */
+} wr__gar_merge;
+
+static void wr__gar_merge_free(wr__gar_merge *M) {
+    wr_collision_mesh_free(&M->cm);
+    wr_free(M->X), wr_free(M->dX), wr_free(M->start), wr_free(M->mem);
+}
+
+static wr_status wr__gar_merge_init(wr__gar_merge *M, const wr_garment_sim *gs, const int32_t *vmap, int32_t nn, wr_diag *diag) {
+    const wr_dyn *sim = &gs->dyn;
+    int32_t n = gs->nv0 + sim->nb, nf = gs->mesh.nf + sim->nbf, *F, *cls, u, j, i;
+    uint8_t *ob;
+    wr_collision_desc cd;
+    wr_status st;
+    memset(M, 0, sizeof *M);
+    F = (int32_t *)wr_alloc_array(3 * (size_t)nf, sizeof(int32_t));
+    cls = (int32_t *)wr_alloc_array((size_t)n, sizeof(int32_t));
+    ob = (uint8_t *)wr_calloc_array((size_t)n, 1);
+    M->X = (double *)wr_alloc_array(3 * (size_t)n, sizeof(double));
+    M->dX = (double *)wr_calloc_array(3 * (size_t)n, sizeof(double));
+    M->start = (int32_t *)wr_calloc_array((size_t)nn + 1, sizeof(int32_t));
+    M->mem = (int32_t *)wr_alloc_array((size_t)gs->nv0, sizeof(int32_t));
+    if (!F || !cls || !ob || !M->X || !M->dX || !M->start || !M->mem) {
+        st = wr_fail(diag, WR_ERR_NOMEM, -1, "garment: out of memory");
+        goto done;
+    }
+    memcpy(F, gs->mesh.faces, sizeof(int32_t) * 3 * (size_t)gs->mesh.nf);
+    for (i = 0; i < 3 * sim->nbf; ++i) F[3 * gs->mesh.nf + i] = sim->body_faces[i] + gs->nv0;
+    for (u = 0; u < n; ++u) cls[u] = u < gs->nv0 ? vmap[u] : nn + u, ob[u] = u >= gs->nv0;
+    memcpy(M->X, gs->x, sizeof(double) * 3 * (size_t)gs->nv0);
+    if (sim->nb) memcpy(M->X + 3 * gs->nv0, sim->body_x, sizeof(double) * 3 * (size_t)sim->nb);
+    for (u = 0; u < gs->nv0; ++u) M->start[vmap[u] + 1]++; /* CSR */
+    for (j = 0; j < nn; ++j) M->start[j + 1] += M->start[j];
+    for (u = 0; u < gs->nv0; ++u) M->mem[M->start[vmap[u]]++] = u;
+    for (j = nn; j > 0; --j) M->start[j] = M->start[j - 1];
+    M->start[0] = 0;
+    memset(&cd, 0, sizeof cd);
+    cd.no_self = gs->dyn_desc.contact.no_self; /* the welded sim's self-contact */
+    cd.vertex_class = cls;
+    st = wr_collision_mesh_create(&M->cm, n, nf, F, ob, &cd, diag);
+done:
+    wr_free(F), wr_free(cls), wr_free(ob);
+    if (st != WR_OK) wr__gar_merge_free(M);
+    return st;
+}
+
+/* Move the members of welded vertex j (all of them when j < 0) to p (p + 3k for vertex k when
+ * j < 0) if CCD lets the straight motion complete (*ok = 1); else leave them (*ok = 0). */
+static wr_status wr__gar_merge_move(wr__gar_merge *M, int32_t nn, int32_t j, const double *p, int32_t *ok, wr_diag *diag) {
+    int32_t k0 = j < 0 ? 0 : j, k1 = j < 0 ? nn : j + 1, k, c, i;
+    double alpha;
+    wr_status st;
+    for (k = k0; k < k1; ++k)
+        for (c = M->start[k]; c < M->start[k + 1] && M->start[k + 1] - M->start[k] > 1; ++c)
+            for (i = 0; i < 3; ++i) M->dX[3 * M->mem[c] + i] = p[3 * (j < 0 ? k : 0) + i] - M->X[3 * M->mem[c] + i];
+    st = wr_collision_max_step(&M->cm, M->X, M->dX, &alpha, NULL, diag);
+    *ok = st == WR_OK && alpha >= 1.0;
+    for (k = k0; k < k1; ++k)
+        for (c = M->start[k]; c < M->start[k + 1]; ++c)
+            for (i = 0; i < 3; ++i) {
+                int32_t q = 3 * M->mem[c] + i;
+                if (*ok && M->dX[q] != 0.0) M->X[q] = p[3 * (j < 0 ? k : 0) + i];
+                M->dX[q] = 0.0;
+            }
+    return st;
+}
+
+/* ON WELDING, the CCD-limited merge: the members of every merged vertex move along straight lines
+ * from their own (intersection-free) positions to a common point, each move certified by CCD, so
+ * no merge move can sweep a face through a body or through the cloth. First all classes at once
+ * to their midpoints m (x on entry); when CCD stops that, class by class in up to
+ * WR_GARMENT_WELD_SWEEPS sweeps, to the first of m, m + t (x_u − m) (u a member, t = 1/2, then 1)
+ * whose move completes. x gets the merged positions (blocked classes stay at m); *moved counts the
+ * classes left off m, *blocked those that no candidate could reach. */
+static wr_status wr__gar_weld_feasible(const wr_garment_sim *gs, const wr_mesh *wm, const int32_t *vmap, double *x,
+                                       int32_t *mid_hits, int32_t *moved, int32_t *blocked, wr_diag *diag) {
+    wr__gar_merge M;
+    int32_t nn = wm->nv, j, k, i, t, ok, sweep, progress = 1;
+    uint8_t *done;
+    wr_status st;
+    *mid_hits = *moved = *blocked = 0;
+    if ((st = wr__gar_merge_init(&M, gs, vmap, nn, diag)) != WR_OK) return st;
+    if (!(done = (uint8_t *)wr_calloc_array((size_t)nn, 1))) {
+        wr__gar_merge_free(&M);
+        return wr_fail(diag, WR_ERR_NOMEM, -1, "garment: out of memory");
+    }
+    if ((st = wr__gar_mid_hits(&gs->dyn, wm, M.start, x, mid_hits, diag)) != WR_OK) goto out;
+    if ((st = wr__gar_merge_move(&M, nn, -1, x, &ok, diag)) != WR_OK) goto out;
+    for (j = 0; j < nn; ++j) done[j] = ok || M.start[j + 1] - M.start[j] < 2;
+    for (sweep = 0; sweep < WR_GARMENT_WELD_SWEEPS && progress; ++sweep) {
+        progress = 0;
+        for (j = 0; j < nn; ++j)
+            for (t = 0; t <= 2 && !done[j]; ++t) /* t/2 toward copy k; t = 0 is m itself, tried once */
+                for (k = t ? M.start[j] : M.start[j + 1] - 1; k < M.start[j + 1] && !done[j]; ++k) {
+                    double c[3];
+                    for (i = 0; i < 3; ++i) c[i] = x[3 * j + i] + 0.5 * t * (gs->x[3 * M.mem[k] + i] - x[3 * j + i]);
+                    if ((st = wr__gar_merge_move(&M, nn, j, c, &ok, diag)) != WR_OK) goto out;
+                    if (ok) done[j] = 1, progress = 1, *moved += t > 0;
+                }
+    }
+    for (j = 0; j < nn; ++j) {
+        if (!done[j]) (*blocked)++;
+        else if (M.start[j + 1] - M.start[j] > 1) memcpy(x + 3 * j, M.X + 3 * M.mem[M.start[j]], 3 * sizeof(double));
+    }
+out:
+    wr_free(done);
+    wr__gar_merge_free(&M);
+    return st;
+}
+
+/* The exact check of the welded state (ON WELDING): triangle pairs meeting a body, and (self-contact
+ * on) pairs of the welded mesh meeting each other, into *left. */
+static wr_status wr__gar_weld_check(const wr_garment_sim *gs, const wr_mesh *wm, const double *x, int32_t *left, wr_diag *diag) {
+    int32_t hit = 0, self = 0;
+    wr_status st = wr__gar_body_hits(&gs->dyn, wm, x, -1, &hit, diag);
+    *left = 0;
     if (st != WR_OK) return st;
-    if (hit) return wr_fail(diag, WR_ERR_GEOMETRY, -1, "garment: the welded mesh intersects a body (%d triangle pairs)", (int)hit);
     if (!gs->dyn_desc.contact.no_self) {
         wr_collision_mesh cm;
         if ((st = wr_collision_mesh_create(&cm, wm->nv, wm->nf, wm->faces, NULL, NULL, diag)) != WR_OK) return st;
-        st = wr_collision_mesh_self_intersects(&cm, x, &hit, NULL, diag);
+        st = wr_collision_mesh_self_intersects(&cm, x, &self, NULL, diag);
         wr_collision_mesh_free(&cm);
-        if (st == WR_OK && hit)
-            st = wr_fail(diag, WR_ERR_GEOMETRY, -1,
-                         "garment: the sewn garment intersects itself (%d triangle pairs); self-contact would lock it in", (int)hit);
+        if (st != WR_OK) return st;
     }
-    return st;
+    *left = hit + self;
+    return WR_OK;
 }
 
 WRDEF wr_status wr_garment_sim_weld(wr_garment_sim *gs, wr_diag *diag) {
@@ -1029,9 +1129,17 @@ WRDEF wr_status wr_garment_sim_weld(wr_garment_sim *gs, wr_diag *diag) {
         goto fail;
     }
     wr__gar_remap(gs, vmap, nn, x, vel, msum, fixed);
-    if ((st = wr__gar_weld_feasible(gs, &wm, vmap, x, &gs->weld_mid_hits, &gs->weld_moved, diag)) != WR_OK) goto fail;
+    st = wr__gar_weld_feasible(gs, &wm, vmap, x, &gs->weld_mid_hits, &gs->weld_moved, &gs->weld_blocked, diag);
+    if (st != WR_OK) goto fail;
     memcpy(wm.pos, x, sizeof(double) * 3 * (size_t)nn);
-    if ((st = wr__gar_weld_check(gs, &gs->dyn, &wm, x, diag)) != WR_OK) goto fail;
+    if ((st = wr__gar_weld_check(gs, &wm, x, &gs->weld_left, diag)) != WR_OK) goto fail;
+    if (gs->weld_blocked || gs->weld_left) { /* the barriers would lock an intersection in */
+        st = wr_fail(diag, WR_ERR_GEOMETRY, -1,
+                     "garment: the weld is refused: %d merged vertices cannot reach a common point without crossing, "
+                     "%d triangle pairs of the welded mesh intersect",
+                     (int)gs->weld_blocked, (int)gs->weld_left);
+        goto fail;
+    }
     if ((st = wr_shell_create(&sh, &wm, &gs->shell_desc, diag)) != WR_OK) goto fail;
     /* swap in the welded mesh and rebuild the simulator on it; the old one is kept until it works */
     old = gs->dyn;
@@ -1121,6 +1229,13 @@ WRDEF wr_status wr_garment_sim_step(wr_garment_sim *gs, wr_dyn_stats *stats, wr_
         st = wr_garment_sim_weld(gs, diag);
         if (st != WR_ERR_GEOMETRY) return st;
         gs->weld_deferred++;
+        if (gs->state.t >= gs->desc.max_time - 1e-9 * gs->dyn.desc.time.dt)
+            /* closed to the tolerance but never weldable: say so, not "still open" */
+            return wr_fail(diag, WR_ERR_NOT_CONVERGED, -1,
+                           "garment: every seam is closed to %.3g mm (weld tolerance %.3g mm) but the weld was refused in %d "
+                           "frames up to %.3g s (last: %d merged vertices blocked, %d triangle pairs intersecting)",
+                           1e3 * gs->gap, 1e3 * gs->desc.weld_tol, (int)gs->weld_deferred, gs->state.t, (int)gs->weld_blocked,
+                           (int)gs->weld_left);
     }
     if (gs->state.t >= gs->desc.max_time - 1e-9 * gs->dyn.desc.time.dt) {
         int32_t s, worst = 0;
@@ -1130,8 +1245,8 @@ WRDEF wr_status wr_garment_sim_step(wr_garment_sim *gs, wr_dyn_stats *stats, wr_
             if (g > gw) gw = g, worst = s;
         }
         return wr_fail(diag, WR_ERR_NOT_CONVERGED, worst,
-                       "garment: seam %d still open by %.3g mm after %.3g s (weld tolerance %.3g mm)", (int)worst, 1e3 * gw,
-                       gs->state.t, 1e3 * gs->desc.weld_tol);
+                       "garment: seam %d still open by %.3g mm after %.3g s (weld tolerance %.3g mm, %d welds refused)", (int)worst,
+                       1e3 * gw, gs->state.t, 1e3 * gs->desc.weld_tol, (int)gs->weld_deferred);
     }
     return WR_OK;
 }
