@@ -381,6 +381,45 @@ Test(sizing_map, transition_profile_closed_form) {
     cr_expect_null(map.panels);
 }
 
+/* Sec. 4.2.1 with the compression law: the wrinklon size of a shirring line is L_w(λ) of the source
+ * WAVELENGTH λ = r_sh / c, c = sqrt(1/16 + 2δ/π²) (Fig. 4's r = sqrt(λ²/16 + A²), A = (√2/π) λ √δ),
+ * L_w = λ^{3/2} (δ/h²)^{1/4}, not L_w(r_sh). The Fig. 14 line: Table 1 Green (B = 2.6e-6 N m,
+ * E = 2 MPa, r_f = 6.03 mm), ρ = 0.5, E_sh = E: r_sh = 2.71 mm, λ = 6.69 mm, L_w = 29.6 mm, m = 0.294,
+ * so r(20 mm) = 5.12 mm and r(L_w) = 2 r_sh = 5.42 mm; with L_w(r_sh) = 7.6 mm the map reached r_f
+ * 11.6 mm from the line (the Fig. 15 miss, docs/garments.md). Tolerance 1e-9 relative: pow/log
+ * round-off of an independent evaluation in the paper's literal mm form r + x^m. */
+Test(sizing_map, shirring_transition_from_the_source_wavelength) {
+    wr_pattern pat;
+    wr_pattern_panel pn;
+    wr_pattern_shirring sh;
+    wr_sizing_map map;
+    wr_diag d;
+    const double B = 2.6e-6, E = 2.0e6, delta = 0.5, pi = 3.14159265358979323846;
+    double line[4] = {0.03, 0.125, 0.22, 0.125}, r_sh, h, lambda, L_mm, m, x_mm[3] = {5.0, 20.0, 0.0};
+    int k;
+    one_panel(&pat, &pn, 0.0);
+    pn.fabric.B = B, pn.fabric.E = E;
+    memset(&sh, 0, sizeof sh);
+    sh.xy = line, sh.n = 2, sh.rho = 0.5, sh.E_sh = E;
+    pat.shirrings = &sh, pat.n_shirrings = 1;
+    cr_assert_eq(wr_sizing_map_build(&pat, NULL, &map, &d), WR_OK, "%s", d.message);
+    r_sh = wr_sizing_map_eval(&map, 0, 0.1, 0.125); /* Sec. 4.2.2's value, tested in test_transition.c */
+    cr_expect(fabs(1e3 * r_sh - 2.709) < 1e-3 && fabs(1e3 * map.panels[0].r0 - 6.034) < 1e-3, "r_sh %g, r_f %g", r_sh,
+              map.panels[0].r0);
+    h = cbrt(12.0 * (1.0 - 0.3 * 0.3) * B / E);
+    lambda = r_sh / sqrt(1.0 / 16.0 + 2.0 * delta / (pi * pi));
+    L_mm = 1e3 * pow(lambda, 1.5) * pow(delta / (h * h), 0.25);
+    m = log(1e3 * r_sh) / log(L_mm);
+    cr_expect(fabs(L_mm - 29.59) < 0.01 && fabs(m - 0.294) < 1e-3, "L_w %g mm, m %g", L_mm, m);
+    x_mm[2] = L_mm;
+    for (k = 0; k < 3; ++k) {
+        double want = r_sh + 1e-3 * pow(x_mm[k], m), got = wr_sizing_map_eval(&map, 0, 0.1, 0.125 + 1e-3 * x_mm[k]);
+        cr_expect(rel(got, want) < 1e-9, "x = %g mm: %.12g vs %.12g m", x_mm[k], got, want);
+    }
+    cr_expect(rel(wr_sizing_map_eval(&map, 0, 0.1, 0.125 + 1e-3 * L_mm), 2.0 * r_sh) < 1e-9);
+    wr_sizing_map_free(&map);
+}
+
 /* Sec. 4.1.2: M = R diag(1/r_warp², 1/r_weft²) Rᵀ with no sources; eigenvalues 1/64 and 1/16 mm⁻²,
  * the smaller along the grain (30°). Tolerance 1e-12 relative: a handful of roundings in T, Tᵀ T. */
 Test(sizing_map, anisotropic_metric_eigenvalues) {

@@ -41,7 +41,10 @@
  * 1 4.5 mm, 2 ours, 3 2.5 mm), --seconds S (default 2), --no-png, --pcg (PCG block-Jacobi
  * instead of CHOLMOD), --immediate (threads at ρ from the first frame, no ramp), --seed N (the
  * jitter's seed, default 15), --resolution MM (one uniform run at that size instead of the
- * cases: a diagnostic, use with a WRINKLE_RESULTS_DIR of its own), --verbose.
+ * cases: a diagnostic, use with a WRINKLE_RESULTS_DIR of its own), --transition-length MM (every
+ * shirring line's transition_length set to MM instead of the compression law's L_w: a diagnostic of
+ * the sizing map's reach, e.g. the wavelength reading of Sec. 4.2.1 in docs/garments.md; own
+ * WRINKLE_RESULTS_DIR), --verbose.
  * Outputs: validation/results/sim_shirring.json, sim_shirring_<k>.dat (probe heights),
  * validation/figures/sim_shirring_<k>.png and sim_shirring.png (the four squares). */
 #include <math.h>
@@ -90,6 +93,7 @@ static int g_verbose = 0, g_immediate = 0;
 static unsigned long g_seed = 15; /* the jitter's seed */
 static scase g_adhoc = {"uniform (--resolution)", 0.0};
 static wr_solver_method g_linear = WR_SOLVER_CHOLMOD;
+static double g_transition_length = 0.0; /* --transition-length [m], 0: the pattern's (compression law) */
 
 /* probe p of the pattern: line (1, 2, 3 → index 0..2) shifted in y, clipped to [X0, X1] in x */
 static int probe_points(const wr_pattern *pat, int p, double **pts, int32_t *n) {
@@ -370,6 +374,11 @@ static void report(wr_vres *v, srun *runs, const int *idx, int n, int quick) {
             wr_vres_note(v, buf);
         }
     if (quick) wr_vres_note(v, "--quick: uniform 9 mm only, 0.4 s: a smoke run, no verdict.");
+    if (g_transition_length > 0.0) {
+        snprintf(buf, sizeof buf, "--transition-length %.2f mm: every shirring line's L_w set to it (a diagnostic, not the kit's map).",
+                 1e3 * g_transition_length);
+        wr_vres_note(v, buf);
+    }
 }
 
 int main(int argc, char **argv) {
@@ -392,8 +401,9 @@ int main(int argc, char **argv) {
         else if (strcmp(argv[i], "--immediate") == 0) g_immediate = 1;
         else if (strcmp(argv[i], "--seed") == 0 && i + 1 < argc) g_seed = strtoul(argv[++i], NULL, 10);
         else if (strcmp(argv[i], "--resolution") == 0 && i + 1 < argc) g_adhoc.res = 1e-3 * atof(argv[++i]);
+        else if (strcmp(argv[i], "--transition-length") == 0 && i + 1 < argc) g_transition_length = 1e-3 * atof(argv[++i]);
         else if (strcmp(argv[i], "--help") == 0) {
-            printf("usage: validate_sim_shirring [--quick] [--case N] [--seconds S] [--no-png] [--pcg] [--immediate] [--seed N] [--resolution MM] [--verbose]\n"
+            printf("usage: validate_sim_shirring [--quick] [--case N] [--seconds S] [--no-png] [--pcg] [--immediate] [--seed N] [--resolution MM] [--transition-length MM] [--verbose]\n"
                    "  Style3D Fig. 15 with the dynamic simulator; writes validation/results/sim_shirring.json\n"
                    "  (--quick: sim_shirring_quick.json, uniform 9 mm for 0.4 s, smoke only).\n");
             return 0;
@@ -402,8 +412,8 @@ int main(int argc, char **argv) {
             return 2;
         }
     }
-    if (!(seconds > 0.0) || only >= NCASE) {
-        fprintf(stderr, "validate_sim_shirring: invalid option value (--seconds > 0, --case < %d)\n", NCASE);
+    if (!(seconds > 0.0) || only >= NCASE || !(g_transition_length >= 0.0)) {
+        fprintf(stderr, "validate_sim_shirring: invalid option value (--seconds > 0, --case < %d, --transition-length >= 0)\n", NCASE);
         return 2;
     }
     if (quick) case_id = "sim_shirring_quick", only = 0, seconds = 0.4;
@@ -413,6 +423,11 @@ int main(int argc, char **argv) {
     if (wr_pattern_load(PATTERN, &pf, &d) != WR_OK || pf.pattern.n_shirrings != 3) {
         fprintf(stderr, "validate_sim_shirring: %s: %s\n", PATTERN, d.message);
         return 2;
+    }
+    if (g_transition_length > 0.0) { /* the diagnostic override: a copy of the lines with L_w given */
+        static wr_pattern_shirring lines[3];
+        for (i = 0; i < 3; ++i) lines[i] = pf.pattern.shirrings[i], lines[i].transition_length = g_transition_length;
+        pf.pattern.shirrings = lines;
     }
     v = wr_vres_begin(case_id, "Style3D Fig. 15 shirring square, dynamic simulator: 9 mm / 4.5 mm / sizing map vs uniform 2.5 mm");
     if (!v) return 2;

@@ -29,7 +29,7 @@ int main(void) {
     wr_diag d;
     wr_resolution_model model;
     double B = 2.6e-6, E = 2.0e6; /* Table 1 "Green" */
-    double r_f, r_sh, L_w, h;
+    double r_f, r_sh, L_w, h, A1, lambda;
     wr_transition t;
     wr_sizing *map = NULL;
 
@@ -45,13 +45,16 @@ int main(void) {
     CHECK(wr_source_shirring(&model, B, E, 2.0e6, 0.5, 1.0, NULL, &r_sh, &d));
     printf("step 3  shirring source r_sh = %.2f mm\n", 1e3 * r_sh);
 
-    /* Step 4 — how fast the refinement fades: wrinklon size (compression form, Sec. 4.2.1) and the
-     * transition power m = log r / log L_w (millimetres inside transition.h). */
+    /* Step 4 — how fast the refinement fades: the source's wavelength (Fig. 4's r = sqrt(λ²/16 + A²)
+     * with A = (√2/π) λ √δ, inverted: r = c λ), its wrinklon size (compression form, Sec. 4.2.1) and
+     * the transition power m = log r / log L_w (millimetres inside transition.h). */
     h = cbrt(12.0 * (1.0 - 0.09) * B / E); /* Kirchhoff–Love thickness: B/E = h³/(12(1-ν²)), ν = 0.3 */
-    CHECK(wr_wrinklon_size_compression(r_sh, 0.5, h, &L_w, &d));
+    CHECK(wr_cm_amplitude(1.0, 0.5, &A1, &d)); /* amplitude per unit wavelength at δ = 1 − ρ = 0.5 */
+    lambda = r_sh / wr_cm_optimal_resolution(1.0, A1);
+    CHECK(wr_wrinklon_size_compression(lambda, 0.5, h, &L_w, &d));
     CHECK(wr_transition_make(r_sh, L_w, NULL, &t, &d));
-    printf("step 4  h = %.3f mm, L_w = %.1f mm, m = %.3f; r(L_w) = %.2f mm (= 2 r_sh)\n", 1e3 * h,
-           1e3 * L_w, t.m, 1e3 * wr_transition_eval(&t, L_w));
+    printf("step 4  h = %.3f mm, lambda_sh = %.2f mm, L_w = %.1f mm, m = %.3f; r(L_w) = %.2f mm (= 2 r_sh)\n",
+           1e3 * h, 1e3 * lambda, 1e3 * L_w, t.m, 1e3 * wr_transition_eval(&t, L_w));
 
     /* Step 5 — the sizing map r_v = min(r_f, r_sh + x^m) around a straight shirring line. */
     {

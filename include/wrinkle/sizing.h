@@ -63,10 +63,13 @@
  *
  * ON THE SOURCES (one builder per technique; each refers to a panel by index)
  *   L_w of a source: the technique's explicit transition_length if > 0, else the compression form of
- *   Sec. 4.2.1 with unit prefactor, L_w = r_src^{3/2} (δ / h²)^{1/4}, δ = 1 − ρ (ρ the technique's
+ *   Sec. 4.2.1 with unit prefactor, L_w = λ_src^{3/2} (δ / h²)^{1/4}, δ = 1 − ρ (ρ the technique's
  *   resolution factor, floored at WR_SIZING_MIN_STRAIN), h = (12 (1 − ν²) B/E)^{1/3} the Kirchhoff–Love
- *   thickness of the fabric (ν = 0.3, fine direction), reading λ ≈ r_src (the paper absorbs r/λ into
- *   m). When the paper's m is undefined (r or L_w ≤ 1 mm) transition.h's scale-free fallback is used.
+ *   thickness of the fabric (ν = 0.3, fine direction), and λ_src the source's WAVELENGTH: Sec. 4.1.1's
+ *   r = sqrt(λ²/16 + A²) (Fig. 4) with A = (√2/π) λ √δ (Sec. 3.1) inverted, λ_src = r_src / c(δ),
+ *   c = sqrt(1/16 + 2δ/π²) (λ = 2.47 r_src at δ = 0.5). The paper's m = log r / log L_w then carries
+ *   the r/λ factor ("incorporating the scaling factor between r and λ into m", Sec. 4.2.1).
+ *   When the paper's m is undefined (r or L_w ≤ 1 mm) transition.h's scale-free fallback is used.
  *   shirring  (4.2.2): r_sh = ρ_sh^n r(B/(E+E_sh)) · r_f / r(B/E) (the last factor is 1 unless the
  *             panel overrides r_f); source = the polyline (ends may touch the outer loop).
  *   quilt     (4.2.5): stitch lines as shirring lines (n = 1); pressure p: m' = 2^p m, L_w' = L_w^{2^-p}.
@@ -1001,7 +1004,7 @@ WRDEF wr_status wr_sizing_fabric_resolution(const wr_pattern_fabric *fab, const 
                                      r_weft, diag);
 }
 
-/* Kirchhoff–Love thickness of the panel's fabric for the compression law (see ON THE SIZING MAP).
+/* Kirchhoff–Love thickness of the panel's fabric for the compression law (see ON THE SOURCES).
  * Uses the smallest y = B/E (the fine direction). With a resolution override and no stiffness there
  * is no thickness to compute; h = r0/10 is then used (WR_SIZING_FALLBACK_THICKNESS_RATIO): for the
  * Table 1 fabrics h/r runs from 0.011 (Rose) over 0.04 (Green) to 0.13 (Dark Blue). */
@@ -1030,14 +1033,26 @@ static void wr__sz_fine_pair(const wr_pattern_fabric *f, double *B, double *E) {
     }
 }
 
+/* The source wavelength of a source resolution r under compression δ: Sec. 4.1.1 (Fig. 4) sets
+ * r = sqrt(λ²/16 + A²) with Sec. 3.1's A = (√2/π) λ √δ, so r = c(δ) λ, c = sqrt(1/16 + 2δ/π²)
+ * (0.405 at δ = 0.5: λ = 2.47 r). Sec. 4.2.1's wrinklon size L_w(λ) takes this λ, not r. */
+static wr_status wr__sz_source_wavelength(double r, double delta, double *lambda, wr_diag *diag) {
+    double A1;
+    wr_status st = wr_cm_amplitude(1.0, delta, &A1, diag); /* A per unit wavelength */
+    if (st != WR_OK) return st;
+    *lambda = r / wr_cm_optimal_resolution(1.0, A1);
+    return WR_OK;
+}
+
 /* Transition for a source of resolution r with resolution factor rho (δ = 1 − ρ) or explicit L_w. */
 static wr_status wr__sz_source_transition(double r, double rho, double h, double L_explicit, double pressure,
                                     wr_transition *t, wr_diag *diag) {
-    double L = L_explicit, delta = 1.0 - rho;
+    double L = L_explicit, delta = 1.0 - rho, lambda;
     wr_status st;
     if (!(L > 0.0)) {
         if (delta < WR_SIZING_MIN_STRAIN) delta = WR_SIZING_MIN_STRAIN;
-        st = wr_wrinklon_size_compression(r, delta, h, &L, diag);
+        if ((st = wr__sz_source_wavelength(r, delta, &lambda, diag)) != WR_OK) return st;
+        st = wr_wrinklon_size_compression(lambda, delta, h, &L, diag);
         if (st != WR_OK) return st;
     }
     st = wr_transition_make(r, L, NULL, t, diag);
