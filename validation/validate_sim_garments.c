@@ -116,8 +116,8 @@
 static int g_verbose = 0;
 static double g_weld_tol = 0.0; /* --weld-tol [m]: garment.h's weld tolerance (0: its default) */
 static int g_no_weld = 1;       /* keep the sewing springs for the whole run (--weld: weld, see SIMULATION) */
-static int g_opt_only = 0;
-static double g_dhat = 0.0;     /* --dhat [m]: contact barrier thickness (0: the garment's scale × 1 mm, SIMULATION) */      /* --opt-only: skip the uniform reference (set-up experiments) */
+static int g_opt_only = 0;      /* --opt-only: skip the uniform reference (set-up experiments) */
+static double g_dhat = 0.0;     /* --dhat [m]: contact barrier thickness (0: the garment's scale × 1 mm, SIMULATION) */
 static double g_ref = R_FINE; /* --ref: the uniform reference resolution [m] (cost measurements) */
 static wr_solver_method g_linear = WR_SOLVER_CHOLMOD; /* --pcg: the paper's PCG + block Jacobi (SIMULATION) */
 
@@ -774,180 +774,250 @@ static void free_run(grun *R) {
     R->xu = R->xw = NULL, R->fw = NULL;
 }
 
-int main(int argc, char **argv) {
-    static grun runs[3];
-    static char table[16384];
-    int i, quick = 0, png = 1, floor_run = 1, gi;
-    double seconds = 2.0;
-    char buf[4096], path[4096];
-    const char *case_id = "sim_garments", *only = NULL;
-    static char case_buf[128];
-    static char reflabel[48];
-    wr_vres *v;
+/* The command line (see --help). */
+typedef struct gopts {
+    int quick, png, floor_run;
+    double seconds;
+    const char *only; /* --garment: one garment */
+} gopts;
+
+static void usage(void) {
+    printf("usage: validate_sim_garments [--quick] [--seconds S] [--ref R] [--pcg] [--weld] [--no-floor] [--no-png]\n"
+           "       [--verbose] [--opt-only] [--weld-tol T] [--garment skirt|shirred]\n"
+           "  Style3D Table 1 / Fig. 19 with the dynamic simulator: garments at r_opt and at uniform 2.5 mm;\n"
+           "  writes validation/results/sim_garments.json (--quick: sim_garments_quick.json, smoke only;\n"
+           "  --garment G: sim_garments_G[_dhat][_opt][_weld][_quick].json).\n"
+           "  --weld: weld the seams (else springs all run) and report the weld; --opt-only: the r_opt run alone\n"
+           "  (cheap weld check: --garment skirt --opt-only --no-floor --weld --seconds 1).\n");
+}
+
+/* Options into o and the driver's settings (g_*); -1 to go on, else the exit code. */
+static int parse_args(int argc, char **argv, gopts *o) {
+    int i;
+    memset(o, 0, sizeof *o);
+    o->png = o->floor_run = 1;
+    o->seconds = 2.0;
     for (i = 1; i < argc; ++i) {
-        if (strcmp(argv[i], "--quick") == 0) quick = 1;
-        else if (strcmp(argv[i], "--seconds") == 0 && i + 1 < argc) seconds = atof(argv[++i]);
-        else if (strcmp(argv[i], "--no-png") == 0) png = 0;
+        if (strcmp(argv[i], "--quick") == 0) o->quick = 1;
+        else if (strcmp(argv[i], "--seconds") == 0 && i + 1 < argc) o->seconds = atof(argv[++i]);
+        else if (strcmp(argv[i], "--no-png") == 0) o->png = 0;
         else if (strcmp(argv[i], "--weld-tol") == 0 && i + 1 < argc) g_weld_tol = atof(argv[++i]);
         else if (strcmp(argv[i], "--weld") == 0) g_no_weld = 0;
         else if (strcmp(argv[i], "--dhat") == 0 && i + 1 < argc) g_dhat = atof(argv[++i]);
-        else if (strcmp(argv[i], "--garment") == 0 && i + 1 < argc) only = argv[++i];
+        else if (strcmp(argv[i], "--garment") == 0 && i + 1 < argc) o->only = argv[++i];
         else if (strcmp(argv[i], "--pcg") == 0) g_linear = WR_SOLVER_PCG_BLOCK3;
         else if (strcmp(argv[i], "--opt-only") == 0) g_opt_only = 1;
         else if (strcmp(argv[i], "--ref") == 0 && i + 1 < argc) g_ref = atof(argv[++i]);
-        else if (strcmp(argv[i], "--no-floor") == 0) floor_run = 0;
+        else if (strcmp(argv[i], "--no-floor") == 0) o->floor_run = 0;
         else if (strcmp(argv[i], "--verbose") == 0) g_verbose = 1;
-        else if (strcmp(argv[i], "--help") == 0) {
-            printf("usage: validate_sim_garments [--quick] [--seconds S] [--ref R] [--pcg] [--weld] [--no-floor] [--no-png]\n"
-                   "       [--verbose] [--opt-only] [--weld-tol T] [--garment skirt|shirred]\n"
-                   "  Style3D Table 1 / Fig. 19 with the dynamic simulator: garments at r_opt and at uniform 2.5 mm;\n"
-                   "  writes validation/results/sim_garments.json (--quick: sim_garments_quick.json, smoke only;\n"
-                   "  --garment G: sim_garments_G[_dhat][_opt][_weld][_quick].json).\n"
-                   "  --weld: weld the seams (else springs all run) and report the weld; --opt-only: the r_opt run alone\n"
-                   "  (cheap weld check: --garment skirt --opt-only --no-floor --weld --seconds 1).\n");
+        else if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
+            usage();
             return 0;
         } else {
             fprintf(stderr, "validate_sim_garments: unknown option '%s' (see --help)\n", argv[i]);
             return 2;
         }
     }
-    if (!(seconds > 0.0) || seconds * 30.0 > MAXFRAMES || !(g_ref >= 1e-3)) {
+    if (!(o->seconds > 0.0) || o->seconds * 30.0 > MAXFRAMES || !(g_ref >= 1e-3)) {
         fprintf(stderr, "validate_sim_garments: --seconds must be in (0, %g], --ref >= 1e-3 m\n", MAXFRAMES / 30.0);
         return 2;
     }
-    snprintf(reflabel, sizeof reflabel, "uniform %.1f mm", 1e3 * g_ref);
-    if (only) { /* one garment: its own result file, sim_garments_<name>[_quick].json */
-        for (gi = 0; gi < NGARMENT && strcmp(GARMENTS[gi].name, only) != 0; ++gi) {}
+    if (o->only) {
+        int gi;
+        for (gi = 0; gi < NGARMENT && strcmp(GARMENTS[gi].name, o->only) != 0; ++gi) {}
         if (gi == NGARMENT) {
-            fprintf(stderr, "validate_sim_garments: no garment '%s' (skirt, shirred)\n", only);
+            fprintf(stderr, "validate_sim_garments: no garment '%s' (skirt, shirred)\n", o->only);
             return 2;
         }
-        snprintf(case_buf, sizeof case_buf, "sim_garments_%s%s%s%s%s", only, g_dhat > 0.0 ? "_dhat" : "", g_opt_only ? "_opt" : "",
-                 g_no_weld ? "" : "_weld", quick ? "_quick" : "");
-    } else if (g_opt_only || !g_no_weld) { /* not the Table 1 result file */
-        snprintf(case_buf, sizeof case_buf, "sim_garments%s%s%s", g_opt_only ? "_opt" : "", g_no_weld ? "" : "_weld",
-                 quick ? "_quick" : "");
     }
-    if (quick) case_id = "sim_garments_quick", seconds = QUICK_SECONDS, floor_run = 0;
-    if (case_buf[0]) case_id = case_buf;
-    v = wr_vres_begin(case_id, "Style3D Table 1 / Fig. 19: garments at r_opt vs uniform 2.5 mm, dynamic simulator (cost, drape distance, wrinkle wavelength)");
-    if (!v) return 2;
-    snprintf(table, sizeof table,
-             "| garment | mesh | vertices simulated | vertices once sewn | median sizing [mm] | mean edge [mm] | frames | weld frame | Newton | "
-             "NS CPU mean [ms] | CH CPU mean [ms] | NS wall mean [ms] | CH wall mean [ms] | NS wall median [ms] | CH wall median [ms] | "
-             "CPU [s] | wall [s] | min contact distance incl. seams [mm] | halvings | penetrations |\n"
-             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
-    for (gi = 0; gi < NGARMENT; ++gi) {
-        const gspec *g = &GARMENTS[gi];
-        wr_mesh bm;
-        if (only && strcmp(g->name, only) != 0) continue;
-        wr_body_desc bd;
-        wr_dyn_body body;
-        wr_diag d;
-        int32_t *bf, nbf, nrun = floor_run ? 3 : 2, r;
-        double crop_lo[3], crop_hi[3], *dA = NULL, *dB = NULL, dmax;
-        gdist dAB, dBC;
-        memset(&bd, 0, sizeof bd);
-        bd.height = 1.7 * g->scale;
-        bd.target_faces = 10000;
-        if (wr_body_mannequin(&bm, &bd, &d) != WR_OK) {
-            fprintf(stderr, "validate_sim_garments: mannequin: %s\n", d.message);
-            return 2;
+    if (o->quick) o->seconds = QUICK_SECONDS, o->floor_run = 0;
+    return -1;
+}
+
+/* The result file's case id: sim_garments (Table 1), sim_garments_quick, or a variant's own name
+ * (one garment: sim_garments_<name>[_dhat][_opt][_weld][_quick]; --opt-only or --weld). */
+static const char *case_name(const gopts *o) {
+    static char case_buf[128];
+    if (o->only)
+        snprintf(case_buf, sizeof case_buf, "sim_garments_%s%s%s%s%s", o->only, g_dhat > 0.0 ? "_dhat" : "",
+                 g_opt_only ? "_opt" : "", g_no_weld ? "" : "_weld", o->quick ? "_quick" : "");
+    else if (g_opt_only || !g_no_weld)
+        snprintf(case_buf, sizeof case_buf, "sim_garments%s%s%s", g_opt_only ? "_opt" : "", g_no_weld ? "" : "_weld",
+                 o->quick ? "_quick" : "");
+    else
+        return o->quick ? "sim_garments_quick" : "sim_garments";
+    return case_buf;
+}
+
+/* The mannequin scaled for garment g and the part of it the simulation sees (the crop box). */
+typedef struct gbody {
+    wr_body_desc bd;
+    wr_mesh bm;
+    wr_dyn_body body;
+    int32_t *bf, nbf;
+    double crop_lo[3], crop_hi[3];
+} gbody;
+
+static int body_setup(const gspec *g, gbody *B) {
+    wr_diag d;
+    memset(B, 0, sizeof *B);
+    B->bd.height = 1.7 * g->scale;
+    B->bd.target_faces = 10000;
+    if (wr_body_mannequin(&B->bm, &B->bd, &d) != WR_OK) {
+        fprintf(stderr, "validate_sim_garments: mannequin: %s\n", d.message);
+        return 0;
+    }
+    B->bf = (int32_t *)malloc(sizeof(int32_t) * 3 * (size_t)B->bm.nf);
+    if (!B->bf) return 0;
+    B->nbf = crop_body(&B->bm, g, B->bf);
+    B->crop_lo[0] = -g->scale * g->crop_x, B->crop_hi[0] = g->scale * g->crop_x;
+    B->crop_lo[1] = -HUGE_VAL, B->crop_hi[1] = HUGE_VAL;
+    B->crop_lo[2] = g->scale * g->crop_z[0], B->crop_hi[2] = g->scale * g->crop_z[1];
+    B->body.nv = B->bm.nv, B->body.nf = B->nbf, B->body.faces = B->bf, B->body.pos = B->bm.pos;
+    fprintf(stderr, "== %s: mannequin %.3f m (%d triangles, %d in the crop)\n", g->name, B->bd.height, (int)B->bm.nf,
+            (int)B->nbf);
+    return 1;
+}
+
+static void body_free(gbody *B) {
+    free(B->bf);
+    wr_mesh_free(&B->bm);
+}
+
+/* The runs of one garment: the uniform reference, r_opt and (floor run) r_opt with another mesher
+ * seed; --quick: uniform 16 mm vs 24 mm. Simulated cheap ones first, so a set-up error shows in
+ * seconds, not after the 2.5 mm run; --opt-only skips the reference. 0 on failure. */
+static int runs_simulate(grun *runs, int nrun, const gspec *g, const gopts *o, const char *reflabel, gbody *B) {
+    int r;
+    memset(runs, 0, sizeof(grun) * (size_t)nrun);
+    for (r = 0; r < nrun; ++r) {
+        grun *R = &runs[r];
+        R->g = g, R->seconds = o->seconds;
+        R->label = r == 0 ? reflabel : (r == 1 ? "r_opt" : "r_opt seed 2");
+        R->uniform = r == 0 ? g_ref : 0.0;
+        if (o->quick) R->uniform = r == 0 ? QUICK_REF : QUICK_OPT, R->label = r == 0 ? "uniform 16 mm" : "uniform 24 mm";
+        if (r == 2) R->has_seed = 1, R->seed = FLOOR_SEED;
+    }
+    for (r = nrun - 1; r >= 0; --r) {
+        grun *R = &runs[r];
+        if (g_opt_only && r == 0) break; /* no reference run, no comparison */
+        if (garment_simulate(R, &B->bm, &B->body, B->crop_lo, B->crop_hi) != 0 || garment_probes(R) != 0) return 0;
+        fprintf(stderr, "   %s: %d -> %d vertices, %d frames, weld frame %d, %d Newton, NS %.0f / CH %.0f ms mean, cpu %.0f s\n",
+                R->label, (int)R->nv0, (int)R->nv, (int)R->frames, (int)R->weld_frame, (int)R->newton, 1e3 * R->ns_mean,
+                1e3 * R->ch_mean, R->cpu);
+    }
+    return 1;
+}
+
+/* --opt-only: the r_opt run(s) alone, their rows, and the weld's with --weld. */
+static void report_opt_only(wr_vres *v, const gspec *g, const grun *runs, int nrun, char *table, size_t tn) {
+    char buf[4096];
+    int r;
+    for (r = 1; r < nrun; ++r) {
+        run_row(buf, sizeof buf, &runs[r]), strncat(table, buf, tn - strlen(table) - 1);
+        if (!g_no_weld) report_weld(v, &runs[r]);
+        snprintf(buf, sizeof buf, "%s, %s: D3 cloth-body triangle intersections of the final drape (whole mannequin)", g->name,
+                 runs[r].label);
+        wr_vres_check(v, buf, "", NAN, (double)runs[r].penetrations, "= 0", runs[r].penetrations == 0);
+        if (runs[r].failed) {
+            snprintf(buf, sizeof buf, "%s, %s: the run stopped early: %s", g->name, runs[r].label, runs[r].fail_msg);
+            wr_vres_note(v, buf);
         }
-        bf = (int32_t *)malloc(sizeof(int32_t) * 3 * (size_t)bm.nf);
-        if (!bf) return 2;
-        nbf = crop_body(&bm, g, bf);
-        crop_lo[0] = -g->scale * g->crop_x, crop_hi[0] = g->scale * g->crop_x;
-        crop_lo[1] = -HUGE_VAL, crop_hi[1] = HUGE_VAL;
-        crop_lo[2] = g->scale * g->crop_z[0], crop_hi[2] = g->scale * g->crop_z[1];
-        memset(&body, 0, sizeof body);
-        body.nv = bm.nv, body.nf = nbf, body.faces = bf, body.pos = bm.pos;
-        fprintf(stderr, "== %s: mannequin %.3f m (%d triangles, %d in the crop)\n", g->name, bd.height, (int)bm.nf, (int)nbf);
-        memset(runs, 0, sizeof runs);
-        for (r = 0; r < nrun; ++r) {
-            grun *R = &runs[r];
-            R->g = g, R->seconds = seconds;
-            R->label = r == 0 ? reflabel : (r == 1 ? "r_opt" : "r_opt seed 2");
-            R->uniform = r == 0 ? g_ref : 0.0;
-            if (quick) R->uniform = r == 0 ? QUICK_REF : QUICK_OPT, R->label = r == 0 ? "uniform 16 mm" : "uniform 24 mm";
-            if (r == 2) R->has_seed = 1, R->seed = FLOOR_SEED;
-        }
-        /* the cheap runs first: a set-up error shows in seconds, not after the 2.5 mm run */
-        for (r = nrun - 1; r >= 0; --r) {
-            grun *R = &runs[r];
-            if (g_opt_only && r == 0) break; /* no reference run, no comparison */
-            if (garment_simulate(R, &bm, &body, crop_lo, crop_hi) != 0 || garment_probes(R) != 0) return 2;
-            fprintf(stderr, "   %s: %d -> %d vertices, %d frames, weld frame %d, %d Newton, NS %.0f / CH %.0f ms mean, cpu %.0f s\n",
-                    R->label, (int)R->nv0, (int)R->nv, (int)R->frames, (int)R->weld_frame, (int)R->newton, 1e3 * R->ns_mean,
-                    1e3 * R->ch_mean, R->cpu);
-        }
-        if (g_opt_only) { /* the r_opt run(s) alone: their rows, and the weld's when --weld */
-            for (r = 1; r < nrun; ++r) {
-                run_row(buf, sizeof buf, &runs[r]), strncat(table, buf, sizeof table - strlen(table) - 1);
-                if (!g_no_weld) report_weld(v, &runs[r]);
-                snprintf(buf, sizeof buf, "%s, %s: D3 cloth-body triangle intersections of the final drape (whole mannequin)",
-                         g->name, runs[r].label);
-                wr_vres_check(v, buf, "", NAN, (double)runs[r].penetrations, "= 0", runs[r].penetrations == 0);
-                if (runs[r].failed) {
-                    snprintf(buf, sizeof buf, "%s, %s: the run stopped early: %s", g->name, runs[r].label, runs[r].fail_msg);
-                    wr_vres_note(v, buf);
-                }
-                free_run(&runs[r]);
-            }
-            free(bf);
-            wr_mesh_free(&bm);
-            continue;
-        }
-        dA = (double *)malloc(sizeof(double) * (size_t)runs[0].nv);
-        dB = (double *)malloc(sizeof(double) * (size_t)runs[1].nv);
-        if (!dA || !dB) return 2;
-        surface_distance(runs[0].xw, runs[0].nv, runs[1].xw, runs[1].fw, runs[1].nf, &dAB.ab_mean, &dAB.ab_max, dA);
-        surface_distance(runs[1].xw, runs[1].nv, runs[0].xw, runs[0].fw, runs[0].nf, &dAB.ba_mean, &dAB.ba_max, dB);
-        if (floor_run) {
-            surface_distance(runs[2].xw, runs[2].nv, runs[1].xw, runs[1].fw, runs[1].nf, &dBC.ab_mean, &dBC.ab_max, NULL);
-            surface_distance(runs[1].xw, runs[1].nv, runs[2].xw, runs[2].fw, runs[2].nf, &dBC.ba_mean, &dBC.ba_max, NULL);
-        }
-        fprintf(stderr, "   D1: %s -> %s mean %.2f max %.2f mm; back mean %.2f max %.2f mm\n", runs[0].label, runs[1].label, 1e3 * dAB.ab_mean,
-                1e3 * dAB.ab_max, 1e3 * dAB.ba_mean, 1e3 * dAB.ba_max);
-        for (i = 0; i < g->n_probes; ++i)
-            fprintf(stderr, "   D2 %s: lambda_zc %.1f (%d) / %.1f (%d) mm, FFT %.1f / %.1f mm\n", g->probes[i].name, 1e3 * runs[0].lzc[i],
-                    (int)runs[0].ncross[i], 1e3 * runs[1].lzc[i], (int)runs[1].ncross[i], 1e3 * runs[0].lfft[i], 1e3 * runs[1].lfft[i]);
-        report_garment(v, &runs[0], &runs[1], floor_run ? &runs[2] : NULL, &dAB, floor_run ? &dBC : NULL, quick, table, sizeof table);
-        if (png) {
-            dmax = fmax(fmax(dAB.ab_max, dAB.ba_max), 1e-3);
-            snprintf(path, sizeof path, "%s/../figures/%s_%s.png", wr_vres_dir(), case_id, g->name);
-            if (render_pair(&runs[0], &runs[1], dA, dB, dmax, &bm, bf, nbf, path) == 0) {
-                snprintf(path, sizeof path, "figures/%s_%s.png", case_id, g->name);
-                snprintf(buf, sizeof buf,
-                         "%s: uniform %s (left of each pair) and %s (right) after %.2f s, front and 3/4 views; lower row: each vertex "
-                         "coloured by its distance to the other drape (0 to the larger max)",
-                         g->name, runs[0].label, runs[1].label, seconds);
-                wr_vres_figure(v, path, buf);
-            }
-        }
-        snprintf(buf, sizeof buf,
-                 "%s set-up: %s; pattern %s meshed by the kit's mesher (unsewn, garment.h sews); mannequin (body.h) of height %.3f m "
-                 "(x%.2f), the simulation sees its %d triangles with every corner in z in [%.3f, %.3f] m and |x| <= %.3f m (of %d); "
-                 "each panel on a cylinder of radius %.4f m about the torso axis, its bottom centre at z = %.4f m. Fabric in the "
-                 "simulation: E = %.2g Pa, nu = 0.3, h = %.3f mm, 300 kg/m^3%s; gravity, mass damping 1/s, friction 0.5, self-contact "
-                 "on, d^ = %.3g mm; %s; %.2f s simulated (%d frames of 1/30 s) for every mesh.",
-                 g->name, g->title, g->pattern, bd.height, g->scale, (int)nbf, crop_lo[2], crop_hi[2], crop_hi[0], (int)bm.nf,
-                 g->scale * g->radius, g->scale * g->hem_z, g->young, 1e3 * g->thickness,
-                 strstr(g->pattern, "shirred") ? ", shirring lines gathered by garment.h threads (E_sh, rho of the pattern)" : "",
-                 1e3 * (g_dhat > 0.0 ? g_dhat : g->scale * 1e-3), g_linear == WR_SOLVER_PCG_BLOCK3 ? "PCG + 3x3 block Jacobi to 1e-5 (the paper's linear solver)" : "CHOLMOD", seconds,
-                 (int)floor(seconds * 30.0 + 0.5));
-        wr_vres_note(v, buf);
-        for (r = 0; r < nrun; ++r) {
+    }
+}
+
+/* The reference and the r_opt drape rendered side by side, each vertex coloured by its distance to the other drape. */
+static void drape_figure(wr_vres *v, const gspec *g, const grun *runs, const double *dA, const double *dB, const gdist *dAB,
+                         const gbody *B, const char *case_id, double seconds) {
+    char path[4096], buf[4096];
+    double dmax = fmax(fmax(dAB->ab_max, dAB->ba_max), 1e-3);
+    snprintf(path, sizeof path, "%s/../figures/%s_%s.png", wr_vres_dir(), case_id, g->name);
+    if (render_pair(&runs[0], &runs[1], dA, dB, dmax, &B->bm, B->bf, B->nbf, path) != 0) return;
+    snprintf(path, sizeof path, "figures/%s_%s.png", case_id, g->name);
+    snprintf(buf, sizeof buf,
+             "%s: uniform %s (left of each pair) and %s (right) after %.2f s, front and 3/4 views; lower row: each vertex "
+             "coloured by its distance to the other drape (0 to the larger max)",
+             g->name, runs[0].label, runs[1].label, seconds);
+    wr_vres_figure(v, path, buf);
+}
+
+/* What garment g's runs were: pattern, mannequin and crop, placement, fabric, solver, time. */
+static void setup_note(wr_vres *v, const gspec *g, const gbody *B, double seconds) {
+    char buf[4096];
+    snprintf(buf, sizeof buf,
+             "%s set-up: %s; pattern %s meshed by the kit's mesher (unsewn, garment.h sews); mannequin (body.h) of height %.3f m "
+             "(x%.2f), the simulation sees its %d triangles with every corner in z in [%.3f, %.3f] m and |x| <= %.3f m (of %d); "
+             "each panel on a cylinder of radius %.4f m about the torso axis, its bottom centre at z = %.4f m. Fabric in the "
+             "simulation: E = %.2g Pa, nu = 0.3, h = %.3f mm, 300 kg/m^3%s; gravity, mass damping 1/s, friction 0.5, self-contact "
+             "on, d^ = %.3g mm; %s; %.2f s simulated (%d frames of 1/30 s) for every mesh.",
+             g->name, g->title, g->pattern, B->bd.height, g->scale, (int)B->nbf, B->crop_lo[2], B->crop_hi[2], B->crop_hi[0],
+             (int)B->bm.nf, g->scale * g->radius, g->scale * g->hem_z, g->young, 1e3 * g->thickness,
+             strstr(g->pattern, "shirred") ? ", shirring lines gathered by garment.h threads (E_sh, rho of the pattern)" : "",
+             1e3 * (g_dhat > 0.0 ? g_dhat : g->scale * 1e-3),
+             g_linear == WR_SOLVER_PCG_BLOCK3 ? "PCG + 3x3 block Jacobi to 1e-5 (the paper's linear solver)" : "CHOLMOD",
+             seconds, (int)floor(seconds * 30.0 + 0.5));
+    wr_vres_note(v, buf);
+}
+
+/* Reference vs r_opt: the D1 distances both ways (and the floor's), the D2 probes, the rows, the
+ * figure; 0 when out of memory. */
+static int compare_runs(wr_vres *v, const gspec *g, grun *runs, const gopts *o, const gbody *B, const char *case_id,
+                        char *table, size_t tn) {
+    double *dA = (double *)malloc(sizeof(double) * (size_t)runs[0].nv), *dB = (double *)malloc(sizeof(double) * (size_t)runs[1].nv);
+    gdist dAB, dBC;
+    int i;
+    if (!dA || !dB) {
+        free(dA), free(dB);
+        return 0;
+    }
+    surface_distance(runs[0].xw, runs[0].nv, runs[1].xw, runs[1].fw, runs[1].nf, &dAB.ab_mean, &dAB.ab_max, dA);
+    surface_distance(runs[1].xw, runs[1].nv, runs[0].xw, runs[0].fw, runs[0].nf, &dAB.ba_mean, &dAB.ba_max, dB);
+    if (o->floor_run) {
+        surface_distance(runs[2].xw, runs[2].nv, runs[1].xw, runs[1].fw, runs[1].nf, &dBC.ab_mean, &dBC.ab_max, NULL);
+        surface_distance(runs[1].xw, runs[1].nv, runs[2].xw, runs[2].fw, runs[2].nf, &dBC.ba_mean, &dBC.ba_max, NULL);
+    }
+    fprintf(stderr, "   D1: %s -> %s mean %.2f max %.2f mm; back mean %.2f max %.2f mm\n", runs[0].label, runs[1].label,
+            1e3 * dAB.ab_mean, 1e3 * dAB.ab_max, 1e3 * dAB.ba_mean, 1e3 * dAB.ba_max);
+    for (i = 0; i < g->n_probes; ++i)
+        fprintf(stderr, "   D2 %s: lambda_zc %.1f (%d) / %.1f (%d) mm, FFT %.1f / %.1f mm\n", g->probes[i].name,
+                1e3 * runs[0].lzc[i], (int)runs[0].ncross[i], 1e3 * runs[1].lzc[i], (int)runs[1].ncross[i],
+                1e3 * runs[0].lfft[i], 1e3 * runs[1].lfft[i]);
+    report_garment(v, &runs[0], &runs[1], o->floor_run ? &runs[2] : NULL, &dAB, o->floor_run ? &dBC : NULL, o->quick, table,
+                   tn);
+    if (o->png) drape_figure(v, g, runs, dA, dB, &dAB, B, case_id, o->seconds);
+    free(dA), free(dB);
+    return 1;
+}
+
+/* One garment end to end; 0 on a set-up or run failure (the driver then exits 2). */
+static int garment_case(wr_vres *v, const gspec *g, const gopts *o, const char *case_id, const char *reflabel, char *table,
+                        size_t tn) {
+    static grun runs[3];
+    const int nrun = o->floor_run ? 3 : 2;
+    char buf[4096];
+    gbody B;
+    int r, ok;
+    if (!body_setup(g, &B)) return 0;
+    ok = runs_simulate(runs, nrun, g, o, reflabel, &B);
+    if (ok && g_opt_only) {
+        report_opt_only(v, g, runs, nrun, table, tn);
+    } else if (ok) {
+        ok = compare_runs(v, g, runs, o, &B, case_id, table, tn);
+        if (ok) setup_note(v, g, &B, o->seconds);
+        for (r = 0; ok && r < nrun; ++r)
             if (runs[r].failed) {
                 snprintf(buf, sizeof buf, "%s, %s: the run stopped early: %s", g->name, runs[r].label, runs[r].fail_msg);
                 wr_vres_note(v, buf);
             }
-            free_run(&runs[r]);
-        }
-        free(dA), free(dB), free(bf);
-        wr_mesh_free(&bm);
     }
-    wr_vres_table_md(v, table);
+    for (r = 0; r < nrun; ++r) free_run(&runs[r]);
+    body_free(&B);
+    return ok;
+}
+
+/* How the metrics and times are defined, and what the options changed. */
+static void final_notes(wr_vres *v, const gopts *o) {
+    char buf[4096];
     wr_vres_note(v, "Metrics (fixed in validation/validate_sim_garments.c before the runs): D1 = vertex-to-surface distance between the "
                     "two final welded drapes, both directions, mean (band <= r_opt, the coarse mesh's own target edge length) and max "
                     "(reported); a floor = the r_opt garment meshed with another seed against the r_opt drape (reported), since two "
@@ -965,7 +1035,7 @@ int main(int argc, char **argv) {
         snprintf(buf, sizeof buf, "--dhat: contact barrier thickness %.3g mm for every mesh (dynamics.h default 1 mm)", 1e3 * g_dhat);
         wr_vres_note(v, buf);
     }
-    if (!quick && fabs(g_ref - R_FINE) > 1e-12) {
+    if (!o->quick && fabs(g_ref - R_FINE) > 1e-12) {
         snprintf(buf, sizeof buf,
                  "--ref: the uniform reference is %.1f mm, NOT the paper's 2.5 mm; every band above is relative to this reference "
                  "(a finer-than-r_opt check, not the Table 1 comparison).", 1e3 * g_ref);
@@ -975,7 +1045,32 @@ int main(int argc, char **argv) {
     if (!g_no_weld)
         wr_vres_note(v, "--weld: the seams are welded once every seam pair is closer than garment.h's weld tolerance (ON WELDING: "
                         "the CCD-limited merge; a refused weld is deferred to the next frame), not kept as springs.");
-    if (quick) wr_vres_note(v, "--quick: the skirt at uniform 16 mm vs uniform 24 mm for 0.4 s, no floor run: a smoke run of the pipeline, "
-                               "every accuracy quantity reported without a band.");
+    if (o->quick) wr_vres_note(v, "--quick: the skirt at uniform 16 mm vs uniform 24 mm for 0.4 s, no floor run: a smoke run of the pipeline, "
+                                  "every accuracy quantity reported without a band.");
+}
+
+int main(int argc, char **argv) {
+    static char table[16384];
+    char reflabel[48];
+    const char *case_id;
+    gopts o;
+    wr_vres *v;
+    int gi, e;
+    if ((e = parse_args(argc, argv, &o)) >= 0) return e;
+    snprintf(reflabel, sizeof reflabel, "uniform %.1f mm", 1e3 * g_ref);
+    case_id = case_name(&o);
+    v = wr_vres_begin(case_id, "Style3D Table 1 / Fig. 19: garments at r_opt vs uniform 2.5 mm, dynamic simulator (cost, drape distance, wrinkle wavelength)");
+    if (!v) return 2;
+    snprintf(table, sizeof table,
+             "| garment | mesh | vertices simulated | vertices once sewn | median sizing [mm] | mean edge [mm] | frames | weld frame | Newton | "
+             "NS CPU mean [ms] | CH CPU mean [ms] | NS wall mean [ms] | CH wall mean [ms] | NS wall median [ms] | CH wall median [ms] | "
+             "CPU [s] | wall [s] | min contact distance incl. seams [mm] | halvings | penetrations |\n"
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+    for (gi = 0; gi < NGARMENT; ++gi) {
+        if (o.only && strcmp(GARMENTS[gi].name, o.only) != 0) continue;
+        if (!garment_case(v, &GARMENTS[gi], &o, case_id, reflabel, table, sizeof table)) return 2;
+    }
+    wr_vres_table_md(v, table);
+    final_notes(v, &o);
     return wr_vres_finish(v);
 }
