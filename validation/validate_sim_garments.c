@@ -308,39 +308,30 @@ static int weld_hits(const wr_garment_sim *gs, const wr_mesh *bm, grun *R) {
     return 0;
 }
 
-static int garment_simulate(grun *R, const wr_mesh *bm, const wr_dyn_body *body, const double crop_lo[3],
-                            const double crop_hi[3]) {
+/* Garment R->g meshed (unsewn: garment.h sews) at R->uniform (0: the sizing map), its gathering
+ * lines matched to mesh chains, the mesh statistics, each panel placed; 0 on failure. */
+static int garment_mesh(grun *R, wr_garment_line *lines, int32_t **chains, int32_t *n_lines, wr_garment_placement *pl,
+                        int32_t *np) {
     wr_pattern_file pf;
-    wr_garment_placement pl[MAXPANEL];
-    wr_garment gm;
-    wr_garment_sim gs;
-    wr_shell_desc sd;
-    wr_dyn_desc dd;
-    wr_garment_desc gd;
-    wr_dyn_stats fs;
     wr_diag d;
-    double cpu0 = (double)clock() / CLOCKS_PER_SEC, wall0 = wr_time_seconds(), *el = NULL;
-    wr_garment_line lines[MAXLINES];
-    int32_t *chains[MAXLINES], n_lines = 0;
-    wr_status st;
-    int32_t f, i, n_frames, np;
-    memset(&gs, 0, sizeof gs);
+    double *el;
+    int32_t i;
     if (wr_pattern_load(R->g->pattern, &pf, &d) != WR_OK) {
         fprintf(stderr, "validate_sim_garments: %s: %s\n", R->g->pattern, d.message);
-        return -1;
+        return 0;
     }
     pf.desc.sew = 0;
     pf.desc.uniform_resolution = R->uniform;
     if (R->has_seed) pf.desc.seed = R->seed;
-    np = pf.pattern.n_panels;
-    if (np > MAXPANEL || wr_mesher_run(&pf.pattern, &pf.desc, &R->mr, &d) != WR_OK) {
-        fprintf(stderr, "validate_sim_garments: mesher: %s\n", np > MAXPANEL ? "too many panels" : d.message);
+    *np = pf.pattern.n_panels;
+    if (*np > MAXPANEL || wr_mesher_run(&pf.pattern, &pf.desc, &R->mr, &d) != WR_OK) {
+        fprintf(stderr, "validate_sim_garments: mesher: %s\n", *np > MAXPANEL ? "too many panels" : d.message);
         wr_pattern_file_free(&pf);
-        return -1;
+        return 0;
     }
-    if (gather_lines(&pf.pattern, &R->mr, lines, chains, &n_lines) != 0) {
+    if (gather_lines(&pf.pattern, &R->mr, lines, chains, n_lines) != 0) {
         wr_pattern_file_free(&pf);
-        return -1;
+        return 0;
     }
     wr_pattern_file_free(&pf);
     R->nv0 = R->mr.mesh.nv, R->nf0 = R->mr.mesh.nf;
@@ -353,7 +344,19 @@ static int garment_simulate(grun *R, const wr_mesh *bm, const wr_dyn_body *body,
         R->edge_mean = s / R->mr.mesh.ne;
     }
     free(el);
-    place_panels(R->g, &R->mr.mesh, np, pl);
+    place_panels(R->g, &R->mr.mesh, *np, pl);
+    return 1;
+}
+
+/* The garment simulation (see SIMULATION): the fabric, gravity, mass damping, the body with
+ * friction, the barrier width, the linear solver, the weld settings; 0 on failure. */
+static int garment_sim(grun *R, const wr_dyn_body *body, const wr_garment_line *lines, int32_t n_lines,
+                       const wr_garment_placement *pl, int32_t np, wr_garment_sim *gs) {
+    wr_garment gm;
+    wr_shell_desc sd;
+    wr_dyn_desc dd;
+    wr_garment_desc gd;
+    wr_diag d;
     memset(&gm, 0, sizeof gm);
     gm.pattern = &R->mr.mesh;
     gm.seam_pairs = R->mr.seam_pairs;
@@ -375,29 +378,35 @@ static int garment_simulate(grun *R, const wr_mesh *bm, const wr_dyn_body *body,
     memset(&gd, 0, sizeof gd);
     gd.weld_tol = g_weld_tol;
     gd.no_weld = g_no_weld;
-    st = wr_garment_sim_create(&gs, &gm, &sd, &dd, &gd, &d);
-    for (i = 0; i < n_lines; ++i) wr_free(chains[i]); /* the garment is a view read during create */
-    if (st != WR_OK) {
+    if (wr_garment_sim_create(gs, &gm, &sd, &dd, &gd, &d) != WR_OK) {
         fprintf(stderr, "validate_sim_garments: garment: %s\n", d.message);
-        return -1;
+        return 0;
     }
-    n_frames = (int32_t)floor(R->seconds * 30.0 + 0.5);
-    if (n_frames > MAXFRAMES) n_frames = MAXFRAMES;
+    return 1;
+}
+
+/* The frames: per frame NS and CH (wall, and their CPU-time share), Newton steps, halvings, the
+ * closest contact, and the weld's intersection check once it has welded; 0 on a failure of the
+ * check (a failed step ends the run early and is recorded, not an error). */
+static int garment_frames(grun *R, wr_garment_sim *gs, const wr_mesh *bm, const wr_dyn_body *body, double cpu0) {
+    const int32_t n_frames = (int32_t)fmin(floor(R->seconds * 30.0 + 0.5), MAXFRAMES);
+    wr_dyn_stats fs;
+    wr_diag d;
+    int32_t f;
     R->frames = R->newton = R->halvings = 0;
     R->failed = 0;
     R->weld_body_hits = R->weld_self_hits = -1;
     R->min_dist = HUGE_VAL;
     for (f = 0; f < n_frames; ++f) {
         double c0 = (double)clock() / CLOCKS_PER_SEC, cf;
-        if (wr_garment_sim_step(&gs, &fs, &d) != WR_OK) {
+        if (wr_garment_sim_step(gs, &fs, &d) != WR_OK) {
+            /* diagnosis: does the drape as it stands (unwelded) meet the simulated body already? */
+            int32_t hit = -1;
+            wr_diag d2;
             snprintf(R->fail_msg, sizeof R->fail_msg, "frame %d: %s", (int)(f + 1), d.message);
-            {   /* diagnosis: does the drape as it stands (unwelded) meet the simulated body already? */
-                int32_t hit = -1;
-                wr_diag d2;
-                wr_collision_meshes_intersect(gs.mesh.nv, gs.x, gs.mesh.nf, gs.mesh.faces, body->nv, body->pos, body->nf, body->faces,
-                                              &hit, &d2);
-                fprintf(stderr, "\n   %s (the unwelded drape meets the simulated body in %d triangle pairs)\n", R->fail_msg, (int)hit);
-            }
+            wr_collision_meshes_intersect(gs->mesh.nv, gs->x, gs->mesh.nf, gs->mesh.faces, body->nv, body->pos, body->nf,
+                                          body->faces, &hit, &d2);
+            fprintf(stderr, "\n   %s (the unwelded drape meets the simulated body in %d triangle pairs)\n", R->fail_msg, (int)hit);
             R->failed = 1;
             break;
         }
@@ -408,46 +417,46 @@ static int garment_simulate(grun *R, const wr_mesh *bm, const wr_dyn_body *body,
         R->nsc[R->frames] = fs.t_total > 0.0 ? cf * fs.t_ns / fs.t_total : NAN;
         R->chc[R->frames] = fs.t_total > 0.0 ? cf * fs.t_ch / fs.t_total : NAN;
         R->frames++;
-        if (gs.welded && R->weld_body_hits < 0 && weld_hits(&gs, bm, R) != 0) {
-            wr_garment_sim_free(&gs);
-            return -1;
-        }
+        if (gs->welded && R->weld_body_hits < 0 && weld_hits(gs, bm, R) != 0) return 0;
         R->newton += fs.newton_iterations;
         R->halvings += fs.halvings;
         R->min_dist = fmin(R->min_dist, fs.min_distance);
         if (g_verbose || f % 5 == 0 || f + 1 == n_frames)
             fprintf(stderr, "%s   %s frame %d/%d  NS %.0f ms  CH %.0f ms  Newton %d  contacts %d  %s  cpu %.0f s   ",
                     g_verbose ? "\n" : "\r", R->label, (int)(f + 1), (int)n_frames, 1e3 * fs.t_ns, 1e3 * fs.t_ch,
-                    (int)fs.newton_iterations, (int)fs.n_contacts, gs.welded ? "welded" : "sewing",
+                    (int)fs.newton_iterations, (int)fs.n_contacts, gs->welded ? "welded" : "sewing",
                     (double)clock() / CLOCKS_PER_SEC - cpu0);
     }
     fprintf(stderr, "\n");
-    R->cpu = (double)clock() / CLOCKS_PER_SEC - cpu0;
-    R->wall = wr_time_seconds() - wall0;
-    R->weld_frame = gs.welded ? gs.weld_frame : -1;
-    R->weld_gap = gs.welded ? gs.weld_gap : NAN;
-    R->weld_tol = gs.desc.weld_tol;
-    R->gap_end = wr_garment_sim_seam_gap(&gs, -1);
-    R->weld_deferred = gs.weld_deferred, R->weld_mid_hits = gs.weld_mid_hits, R->weld_moved = gs.weld_moved;
+    return 1;
+}
+
+/* After the run: the weld's record, the per-frame means and medians, the final drape (unsewn and
+ * welded positions, faces), D3 against the whole mannequin and the crop box; 0 when out of memory. */
+static int garment_final(grun *R, const wr_garment_sim *gs, const wr_mesh *bm, const double crop_lo[3],
+                         const double crop_hi[3]) {
+    wr_diag d;
+    int32_t f, i;
+    R->weld_frame = gs->welded ? gs->weld_frame : -1;
+    R->weld_gap = gs->welded ? gs->weld_gap : NAN;
+    R->weld_tol = gs->desc.weld_tol;
+    R->gap_end = wr_garment_sim_seam_gap(gs, -1);
+    R->weld_deferred = gs->weld_deferred, R->weld_mid_hits = gs->weld_mid_hits, R->weld_moved = gs->weld_moved;
     R->ns_med = median(R->ns, R->frames), R->ch_med = median(R->ch, R->frames);
     R->ns_mean = R->ch_mean = R->nsc_mean = R->chc_mean = 0.0;
     for (f = 0; f < R->frames; ++f) {
         R->ns_mean += R->ns[f] / R->frames, R->ch_mean += R->ch[f] / R->frames;
         R->nsc_mean += R->nsc[f] / R->frames, R->chc_mean += R->chc[f] / R->frames;
     }
-    R->nv = gs.mesh.nv, R->nf = gs.mesh.nf;
-    R->nv_sewn = gs.welded ? gs.mesh.nv : gs.nv0 - gs.n_pairs;
+    R->nv = gs->mesh.nv, R->nf = gs->mesh.nf;
+    R->nv_sewn = gs->welded ? gs->mesh.nv : gs->nv0 - gs->n_pairs;
     R->xu = (double *)malloc(sizeof(double) * 3 * (size_t)R->nv0);
     R->xw = (double *)malloc(sizeof(double) * 3 * (size_t)R->nv);
     R->fw = (int32_t *)malloc(sizeof(int32_t) * 3 * (size_t)R->nf);
-    if (!R->xu || !R->xw || !R->fw) {
-        wr_garment_sim_free(&gs);
-        return -1;
-    }
-    wr_garment_sim_unsewn_positions(&gs, R->xu);
-    memcpy(R->xw, gs.x, sizeof(double) * 3 * (size_t)R->nv);
-    memcpy(R->fw, gs.mesh.faces, sizeof(int32_t) * 3 * (size_t)R->nf);
-    /* D3: the final drape against the whole mannequin, and inside the crop box */
+    if (!R->xu || !R->xw || !R->fw) return 0;
+    wr_garment_sim_unsewn_positions(gs, R->xu);
+    memcpy(R->xw, gs->x, sizeof(double) * 3 * (size_t)R->nv);
+    memcpy(R->fw, gs->mesh.faces, sizeof(int32_t) * 3 * (size_t)R->nf);
     if (wr_collision_meshes_intersect(R->nv, R->xw, R->nf, R->fw, bm->nv, bm->pos, bm->nf, bm->faces, &R->penetrations, &d) !=
         WR_OK)
         R->penetrations = -1;
@@ -456,8 +465,29 @@ static int garment_simulate(grun *R, const wr_mesh *bm, const wr_dyn_body *body,
         const double *p = R->xw + 3 * i;
         if (p[0] < crop_lo[0] || p[0] > crop_hi[0] || p[2] < crop_lo[2] || p[2] > crop_hi[2]) R->outside_crop++;
     }
+    return 1;
+}
+
+/* One run: mesh, sew onto the body and simulate R->seconds, then its statistics; -1 on failure. */
+static int garment_simulate(grun *R, const wr_mesh *bm, const wr_dyn_body *body, const double crop_lo[3],
+                            const double crop_hi[3]) {
+    wr_garment_placement pl[MAXPANEL];
+    wr_garment_line lines[MAXLINES];
+    wr_garment_sim gs;
+    double cpu0 = (double)clock() / CLOCKS_PER_SEC, wall0 = wr_time_seconds();
+    int32_t *chains[MAXLINES], n_lines = 0, np, i;
+    int ok;
+    memset(&gs, 0, sizeof gs);
+    if (!garment_mesh(R, lines, chains, &n_lines, pl, &np)) return -1;
+    ok = garment_sim(R, body, lines, n_lines, pl, np, &gs);
+    for (i = 0; i < n_lines; ++i) wr_free(chains[i]); /* the garment is a view read during create */
+    if (!ok) return -1;
+    ok = garment_frames(R, &gs, bm, body, cpu0);
+    R->cpu = (double)clock() / CLOCKS_PER_SEC - cpu0;
+    R->wall = wr_time_seconds() - wall0;
+    if (ok) ok = garment_final(R, &gs, bm, crop_lo, crop_hi);
     wr_garment_sim_free(&gs);
-    return 0;
+    return ok ? 0 : -1;
 }
 
 /* ---- D2: probes --------------------------------------------------------------------------------- */
