@@ -468,9 +468,19 @@ int main(int argc, char **argv) {
     return failed > 125 ? 125 : failed;
 }
 
-static int sheet_report(wr_vres *v, const sheet *S, const srow *rows, int nrow, int quick, int res_mask, int with_statics) {
-    int i, k, s, dy;
-    char buf[4096], table[32768], name[512], lab[128];
+/* The rows of one mesh kind and solver, by resolution (q[res], NULL where the row did not run);
+ * sheet < 0: rows of every sheet. */
+static void rows_of(const srow *rows, int nrow, int sheet, int kind, int dyn, const srow *q[NRES]) {
+    int i;
+    for (i = 0; i < NRES; ++i) q[i] = NULL;
+    for (i = 0; i < nrow; ++i)
+        if ((sheet < 0 || rows[i].sheet == sheet) && rows[i].kind == kind && rows[i].dyn == dyn) q[rows[i].res] = &rows[i];
+}
+
+static void sheet_table(wr_vres *v, const sheet *S, const srow *rows, int nrow) {
+    static char table[32768];
+    char buf[4096];
+    int i;
     snprintf(table, sizeof table,
              "| sheet | mesh | r [mm] | mean edge [mm] | vertices | solver | count (lobes/2) | amplitude-weighted | band [mm] | "
              "band / lambda_FFT | lambda_FFT [mm] | amplitude [mm] | zone L_z [mm] | C-M(L_z) lambda [mm] | band / C-M | Newton | "
@@ -485,54 +495,48 @@ static int sheet_report(wr_vres *v, const sheet *S, const srow *rows, int nrow, 
         strncat(table, buf, sizeof table - strlen(table) - 1);
     }
     wr_vres_table_md(v, table);
-    s = nrow > 0 ? rows[0].sheet : 0;
-    snprintf(name, sizeof name, "%s sheet: r_opt (Style3D Eq. 4, paper calibration)", S[s].name);
-    /* Style3D Fig. 16 prints r_opt = 3.8 mm for this stretch test (the TFW set-up); on the TFW sheet
-     * our Eq. 4 gives 4.17 mm, the "r_opt 3.8" sheet is the one built to invert to it */
-    wr_vres_info(v, name, "mm", PAPER_ROPT, 1e3 * S[s].r_opt);
-    /* the bands of the file comment, per mesh kind and solver, where the rows ran */
-    for (k = 0; k < NKIND; ++k)
-            for (dy = 1; dy >= 0; --dy) {
-                const srow *q[NRES] = {NULL, NULL, NULL};
-                for (i = 0; i < nrow; ++i)
-                    if (rows[i].sheet == s && rows[i].kind == k && rows[i].dyn == dy) q[rows[i].res] = &rows[i];
-                snprintf(lab, sizeof lab, "%s sheet, %s, %s", S[s].name, KIND_NAME[k], dy ? "dynamics" : "statics");
-                /* Bands of the file comment, committed with the driver (f2c4f57) before the first result
-                 * (dfc936c): +-1 of the paper's 7 and 4 is this driver's choice, tighter than issue 5's
-                 * +-2 for the 2.5 mm count; +-1 between r_opt and 2.5 mm and 20 % on the wavelength are
-                 * issue 5's bands. */
-                if (q[0]) {
-                    snprintf(name, sizeof name, "%s: count at 2.5 mm", lab);
-                    wr_vres_check(v, name, "wrinkles", PAPER_25, q[0]->count, "within +-1 of the paper's 7",
-                                  fabs(q[0]->count - PAPER_25) <= 1.0);
-                    snprintf(name, sizeof name, "%s: wavelength at 2.5 mm vs Cerda-Mahadevan with the wrinkled-zone length", lab);
-                    wr_vres_range(v, name, "mm", NAN, 1e3 * q[0]->lambda, 0.8e3 * q[0]->lambda_cm, 1.2e3 * q[0]->lambda_cm);
-                    wr_vres_reference(v, 1e3 * q[0]->lambda_cm, "2 sqrt(pi) (B L_z^2 / (E h gamma))^(1/4), L_z measured on this run; +-20% (issue 5)");
-                }
-                if (q[0] && q[1]) {
-                    snprintf(name, sizeof name, "%s: count at r_opt vs count at 2.5 mm", lab);
-                    wr_vres_check(v, name, "wrinkles", PAPER_OPT, q[1]->count, "within +-1 of the 2.5 mm count (paper: 6 vs 7)",
-                                  fabs(q[1]->count - q[0]->count) <= 1.0 && !q[0]->flat);
-                    /* what the band is built on is this run's own 2.5 mm count, not the paper's 6 */
-                    wr_vres_reference(v, q[0]->count, "this run's count at 2.5 mm (Style3D Fig. 16: r_opt keeps the fine "
-                                                      "mesh's count, 6 vs 7)");
-                } else if (q[1]) {
-                    snprintf(name, sizeof name, "%s: count at r_opt", lab);
-                    wr_vres_info(v, name, "wrinkles", PAPER_OPT, q[1]->count);
-                }
-                for (i = 1; i < NRES; ++i)
-                    if (q[i] && !q[i]->flat) {
-                        snprintf(name, sizeof name, "%s: wavelength at %s (C-M with the wrinkled-zone length as reference)", lab,
-                                 i == 1 ? "r_opt" : "5 mm");
-                        wr_vres_info(v, name, "mm", NAN, 1e3 * q[i]->lambda);
-                        wr_vres_reference(v, 1e3 * q[i]->lambda_cm, "2 sqrt(pi) (B L_z^2 / (E h gamma))^(1/4), L_z measured on this run (no band: coarse level)");
-                    }
-                if (q[2]) {
-                    snprintf(name, sizeof name, "%s: count at 5 mm", lab);
-                    wr_vres_check(v, name, "wrinkles", PAPER_5, q[2]->count, "within +-1 of the paper's 4",
-                                  fabs(q[2]->count - PAPER_5) <= 1.0);
-                }
-            }
+}
+
+/* The bands of the file comment for one mesh kind and solver (label lab), where its rows ran.
+ * Committed with the driver (f2c4f57) before the first result (dfc936c): +-1 of the paper's 7 and 4
+ * is this driver's choice, tighter than issue 5's +-2 for the 2.5 mm count; +-1 between r_opt and
+ * 2.5 mm and 20 % on the wavelength are issue 5's bands. */
+static void sheet_bands(wr_vres *v, const char *lab, const srow *const q[NRES]) {
+    char name[512];
+    int i;
+    if (q[0]) {
+        snprintf(name, sizeof name, "%s: count at 2.5 mm", lab);
+        wr_vres_check(v, name, "wrinkles", PAPER_25, q[0]->count, "within +-1 of the paper's 7", fabs(q[0]->count - PAPER_25) <= 1.0);
+        snprintf(name, sizeof name, "%s: wavelength at 2.5 mm vs Cerda-Mahadevan with the wrinkled-zone length", lab);
+        wr_vres_range(v, name, "mm", NAN, 1e3 * q[0]->lambda, 0.8e3 * q[0]->lambda_cm, 1.2e3 * q[0]->lambda_cm);
+        wr_vres_reference(v, 1e3 * q[0]->lambda_cm, "2 sqrt(pi) (B L_z^2 / (E h gamma))^(1/4), L_z measured on this run; +-20% (issue 5)");
+    }
+    if (q[0] && q[1]) {
+        snprintf(name, sizeof name, "%s: count at r_opt vs count at 2.5 mm", lab);
+        wr_vres_check(v, name, "wrinkles", PAPER_OPT, q[1]->count, "within +-1 of the 2.5 mm count (paper: 6 vs 7)",
+                      fabs(q[1]->count - q[0]->count) <= 1.0 && !q[0]->flat);
+        /* what the band is built on is this run's own 2.5 mm count, not the paper's 6 */
+        wr_vres_reference(v, q[0]->count, "this run's count at 2.5 mm (Style3D Fig. 16: r_opt keeps the fine "
+                                          "mesh's count, 6 vs 7)");
+    } else if (q[1]) {
+        snprintf(name, sizeof name, "%s: count at r_opt", lab);
+        wr_vres_info(v, name, "wrinkles", PAPER_OPT, q[1]->count);
+    }
+    for (i = 1; i < NRES; ++i)
+        if (q[i] && !q[i]->flat) {
+            snprintf(name, sizeof name, "%s: wavelength at %s (C-M with the wrinkled-zone length as reference)", lab,
+                     i == 1 ? "r_opt" : "5 mm");
+            wr_vres_info(v, name, "mm", NAN, 1e3 * q[i]->lambda);
+            wr_vres_reference(v, 1e3 * q[i]->lambda_cm, "2 sqrt(pi) (B L_z^2 / (E h gamma))^(1/4), L_z measured on this run (no band: coarse level)");
+        }
+    if (q[2]) {
+        snprintf(name, sizeof name, "%s: count at 5 mm", lab);
+        wr_vres_check(v, name, "wrinkles", PAPER_5, q[2]->count, "within +-1 of the paper's 4", fabs(q[2]->count - PAPER_5) <= 1.0);
+    }
+}
+
+static void sheet_method_notes(wr_vres *v, const sheet *S, int quick) {
+    char buf[4096];
     snprintf(buf, sizeof buf,
              "Sheets: 0.25 x 0.1 m, E = 1 MPa, nu = 0.5, clamped short edges, +12.78%% along the long edge; TFW h = 0.1 mm "
              "(B = %.3g N m, r_opt %.2f mm); 'r_opt 3.8' h = %.4f mm (B/E = 5.75e-14 m^3, B = %.3g N m, r_opt %.2f mm). StVK + "
@@ -549,69 +553,94 @@ static int sheet_report(wr_vres *v, const sheet *S, const srow *rows, int nrow, 
     if (quick) wr_vres_note(v, "--quick: TFW sheet at 5 mm, dynamics only (smoke); the full matrix is `make validate-long`.");
     wr_vres_note(v, "Machine: 2-core AMD EPYC shared by six engineers (load average ~10 during these runs); CPU seconds per row "
                     "in the table.");
-    {   /* which of the paper's 7 / 6 / 4 this run reproduces, per mesh kind and solver */
-        char part[256];
-        int nflat = 0, nw = 0;
-        snprintf(buf, sizeof buf, "Counts (lobes/2) at 2.5 mm / r_opt / 5 mm, paper 7 / 6 / 4:");
-        for (k = 0; k < NKIND; ++k)
-            for (dy = 1; dy >= 0; --dy) {
-                const srow *q[NRES] = {NULL, NULL, NULL};
-                int rr;
-                for (i = 0; i < nrow; ++i)
-                    if (rows[i].kind == k && rows[i].dyn == dy) q[rows[i].res] = &rows[i];
-                if (!q[0] && !q[1] && !q[2]) continue;
-                snprintf(part, sizeof part, " %s %s", KIND_NAME[k], dy ? "dyn" : "statics");
+}
+
+/* Which of the paper's 7 / 6 / 4 this run reproduces, per mesh kind and solver (every sheet's rows);
+ * returns the numbers of flat and wrinkled rows. */
+static void counts_note(wr_vres *v, const srow *rows, int nrow, int *nflat, int *nw) {
+    char buf[4096], part[256];
+    int k, dy, rr;
+    *nflat = *nw = 0;
+    snprintf(buf, sizeof buf, "Counts (lobes/2) at 2.5 mm / r_opt / 5 mm, paper 7 / 6 / 4:");
+    for (k = 0; k < NKIND; ++k)
+        for (dy = 1; dy >= 0; --dy) {
+            const srow *q[NRES];
+            rows_of(rows, nrow, -1, k, dy, q);
+            if (!q[0] && !q[1] && !q[2]) continue;
+            snprintf(part, sizeof part, " %s %s", KIND_NAME[k], dy ? "dyn" : "statics");
+            strncat(buf, part, sizeof buf - strlen(buf) - 1);
+            for (rr = 0; rr < NRES; ++rr) {
+                if (q[rr]) {
+                    snprintf(part, sizeof part, "%s%s%.1f", rr ? " /" : "", q[rr]->flat ? " flat " : " ", q[rr]->count);
+                    if (q[rr]->flat) ++*nflat;
+                    else ++*nw;
+                } else
+                    snprintf(part, sizeof part, "%s -", rr ? " /" : "");
                 strncat(buf, part, sizeof buf - strlen(buf) - 1);
-                for (rr = 0; rr < NRES; ++rr) {
-                    if (q[rr]) {
-                        snprintf(part, sizeof part, "%s%s%.1f", rr ? " /" : "", q[rr]->flat ? " flat " : " ", q[rr]->count);
-                        if (q[rr]->flat) ++nflat;
-                        else ++nw;
-                    } else
-                        snprintf(part, sizeof part, "%s -", rr ? " /" : "");
-                    strncat(buf, part, sizeof buf - strlen(buf) - 1);
-                }
-                strncat(buf, ";", sizeof buf - strlen(buf) - 1);
             }
-        wr_vres_note(v, buf);
-        {
-            int npair = 0, nagree = 0, nrepro = 0, ndel = 0, nl0 = 0;
-            double rows_per_wave = 0.0, lam_ratio = 0.0;
-            const double paper[NRES] = {PAPER_25, PAPER_OPT, PAPER_5};
-            for (i = 0; i < nrow; ++i) {
-                const srow *R = &rows[i];
-                int j2;
-                if (R->kind == 0) {
-                    ++ndel;
-                    nrepro += !R->flat && fabs(R->count - paper[R->res]) <= 1.0;
-                }
-                if (R->kind == 1 && !R->flat && R->lambda > 0.0)
-                    rows_per_wave += R->lambda / (0.8660254037844386 * R->r), lam_ratio += R->lambda / R->lambda_cm, ++nl0;
-                if (!R->dyn) continue;
-                for (j2 = 0; j2 < nrow; ++j2)
-                    if (!rows[j2].dyn && rows[j2].kind == R->kind && rows[j2].res == R->res) {
-                        ++npair;
-                        nagree += fabs(rows[j2].count - R->count) <= 1.0;
-                    }
-            }
-            snprintf(buf, sizeof buf,
-                     "Diagnosis: %d of %d rows stay flat (peak |z| < h/100). A flat row is the flat equilibrium being a local "
-                     "minimum on that mesh: under the strong pull, linear (constant-strain) triangles whose edges do not run "
-                     "along the crests cannot bend into a wrinkle w(y) without spurious in-plane strain, which the large tension "
-                     "E h gamma makes costly (issue 14: on Delaunay meshes the flat state's out-of-plane Hessian first turns "
-                     "indefinite between 26k and 49k vertices; TFW Fig. 7 sees the same). The 0 deg lattice (edges along the "
-                     "pull) wrinkled in %d rows, at %.1f lattice rows per wave on average, with lambda_FFT / C-M(L_z) = %.2f "
-                     "on average: the aligned lattice carries a wavelength close to Cerda-Mahadevan's with the wrinkled-zone "
-                     "length, but the wrinkles fill only a central band of the width, so the count is about band / lambda, "
-                     "far below the paper's numbers. Dynamics vs statics: the counts agree "
-                     "within 1 in %d of %d pairs (both end at a local minimum of the same energy; inertia with mass damping "
-                     "did not carry the sheet off the flat branch where they agree). Paper's 7 / 6 / 4 reproduced within 1 on "
-                     "the Delaunay (Style3D pipeline) mesh in %d of %d rows.",
-                     nflat, nflat + nw, nl0, nl0 ? rows_per_wave / nl0 : NAN, nl0 ? lam_ratio / nl0 : NAN, nagree, npair, nrepro,
-                     ndel);
+            strncat(buf, ";", sizeof buf - strlen(buf) - 1);
         }
-        if (nflat + nw > 0) wr_vres_note(v, buf);
+    wr_vres_note(v, buf);
+}
+
+/* Why rows stay flat, what the aligned lattice carries, and how dynamics and statics compare. */
+static void diagnosis_note(wr_vres *v, const srow *rows, int nrow, int nflat, int nw) {
+    const double paper[NRES] = {PAPER_25, PAPER_OPT, PAPER_5};
+    int i, j2, npair = 0, nagree = 0, nrepro = 0, ndel = 0, nl0 = 0;
+    double rows_per_wave = 0.0, lam_ratio = 0.0;
+    char buf[4096];
+    if (nflat + nw <= 0) return;
+    for (i = 0; i < nrow; ++i) {
+        const srow *R = &rows[i];
+        if (R->kind == 0) {
+            ++ndel;
+            nrepro += !R->flat && fabs(R->count - paper[R->res]) <= 1.0;
+        }
+        if (R->kind == 1 && !R->flat && R->lambda > 0.0)
+            rows_per_wave += R->lambda / (0.8660254037844386 * R->r), lam_ratio += R->lambda / R->lambda_cm, ++nl0;
+        if (!R->dyn) continue;
+        for (j2 = 0; j2 < nrow; ++j2)
+            if (!rows[j2].dyn && rows[j2].kind == R->kind && rows[j2].res == R->res) {
+                ++npair;
+                nagree += fabs(rows[j2].count - R->count) <= 1.0;
+            }
     }
+    snprintf(buf, sizeof buf,
+             "Diagnosis: %d of %d rows stay flat (peak |z| < h/100). A flat row is the flat equilibrium being a local "
+             "minimum on that mesh: under the strong pull, linear (constant-strain) triangles whose edges do not run "
+             "along the crests cannot bend into a wrinkle w(y) without spurious in-plane strain, which the large tension "
+             "E h gamma makes costly (issue 14: on Delaunay meshes the flat state's out-of-plane Hessian first turns "
+             "indefinite between 26k and 49k vertices; TFW Fig. 7 sees the same). The 0 deg lattice (edges along the "
+             "pull) wrinkled in %d rows, at %.1f lattice rows per wave on average, with lambda_FFT / C-M(L_z) = %.2f "
+             "on average: the aligned lattice carries a wavelength close to Cerda-Mahadevan's with the wrinkled-zone "
+             "length, but the wrinkles fill only a central band of the width, so the count is about band / lambda, "
+             "far below the paper's numbers. Dynamics vs statics: the counts agree "
+             "within 1 in %d of %d pairs (both end at a local minimum of the same energy; inertia with mass damping "
+             "did not carry the sheet off the flat branch where they agree). Paper's 7 / 6 / 4 reproduced within 1 on "
+             "the Delaunay (Style3D pipeline) mesh in %d of %d rows.",
+             nflat, nflat + nw, nl0, nl0 ? rows_per_wave / nl0 : NAN, nl0 ? lam_ratio / nl0 : NAN, nagree, npair, nrepro, ndel);
+    wr_vres_note(v, buf);
+}
+
+static int sheet_report(wr_vres *v, const sheet *S, const srow *rows, int nrow, int quick, int res_mask, int with_statics) {
+    int k, s, dy, nflat, nw;
+    char buf[512], name[512], lab[128];
+    sheet_table(v, S, rows, nrow);
+    s = nrow > 0 ? rows[0].sheet : 0;
+    snprintf(name, sizeof name, "%s sheet: r_opt (Style3D Eq. 4, paper calibration)", S[s].name);
+    /* Style3D Fig. 16 prints r_opt = 3.8 mm for this stretch test (the TFW set-up); on the TFW sheet
+     * our Eq. 4 gives 4.17 mm, the "r_opt 3.8" sheet is the one built to invert to it */
+    wr_vres_info(v, name, "mm", PAPER_ROPT, 1e3 * S[s].r_opt);
+    for (k = 0; k < NKIND; ++k)
+        for (dy = 1; dy >= 0; --dy) {
+            const srow *q[NRES];
+            rows_of(rows, nrow, s, k, dy, q);
+            snprintf(lab, sizeof lab, "%s sheet, %s, %s", S[s].name, KIND_NAME[k], dy ? "dynamics" : "statics");
+            sheet_bands(v, lab, q);
+        }
+    sheet_method_notes(v, S, quick);
+    counts_note(v, rows, nrow, &nflat, &nw);
+    diagnosis_note(v, rows, nrow, nflat, nw);
     if ((res_mask & 7) != 7 || !with_statics) {
         snprintf(buf, sizeof buf, "Rows run: resolutions%s%s%s, %s.", res_mask & 1 ? " 2.5 mm" : "", res_mask & 2 ? " r_opt" : "",
                  res_mask & 4 ? " 5 mm" : "", with_statics ? "dynamics and statics" : "dynamics only");
