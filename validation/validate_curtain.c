@@ -152,14 +152,12 @@ static void progress(void *user, int32_t step, int32_t n, const wr_statics_stats
             st->grad_ref > 0 ? st->grad_norm / st->grad_ref : 0.0, st->t_total);
 }
 
-static int curtain_run(double B, double r, int load_steps, curtain_row *R, const char *datpath) {
+/* The curtain's scene (docs/scene-format.md): a W × height sheet gathered at the top by a clamp
+ * that compresses it by GATHER and imposes the λ0 wave, gravity along -y, optional side clamps. */
+static int curtain_scene(double B, double r, int load_steps, wr_scene *sc) {
     char json[8192], sides[1024] = "";
-    wr_scene sc;
-    wr_scene_run run;
+    const double W = g_nwaves * LAMBDA0, A = LAMBDA0 * sqrt(GATHER) / PI;
     wr_diag d;
-    wr_probe pr;
-    double W = g_nwaves * LAMBDA0, A = LAMBDA0 * sqrt(GATHER) / PI, *u, pts[2 * 1024], vals[1024], ds, a[2], b[2];
-    int32_t ns = 512, i, k;
     if (g_sides)
         snprintf(sides, sizeof sides,
                  ", {\"name\": \"sides\", \"box\": {\"min\": [-1, -1, -1], \"max\": [%.17g, 1, 1]},"
@@ -180,21 +178,141 @@ static int curtain_run(double B, double r, int load_steps, curtain_row *R, const
              "   \"grad_tol\": 1e-8, \"max_iter\": 300}}",
              W, g_height, r, g_young, POISSON, B, g_rho, -GRAV, g_height - 1e-6 * r, 0.5 * W, g_height, 1.0 - GATHER, A, LAMBDA0,
              sides, load_steps);
-    if (wr_scene_parse(&sc, json, strlen(json), NULL, &d) != WR_OK) {
+    if (wr_scene_parse(sc, json, strlen(json), NULL, &d) != WR_OK) {
         fprintf(stderr, "validate_curtain: %s\n", d.message);
-        return -1;
+        return 0;
     }
+    return 1;
+}
+
+/* The wrinklon sizes the formulas predict for this row: the tension form (the hanging weight's
+ * tension T at the top), the compression form with h as the scene derives it (Kirchhoff–Love), and
+ * Vandeparre et al.'s light-curtain law before A ~ λ sqrt(δ) is substituted: L ~ λ (A/h)^{1/2}, with
+ * the gather's exact amplitude A = λ0 sqrt(δ)/π (the compression form is this times sqrt(π)). */
+static int curtain_predictions(double B, curtain_row *R) {
+    const double A = LAMBDA0 * sqrt(GATHER) / PI;
+    wr_diag d;
     R->B = B;
     R->T = g_rho * GRAV * g_height;
-    if (wr_wrinklon_size_tension(LAMBDA0, R->T, B, &R->Lw_pred, &d) != WR_OK) return -1;
-    /* h as the scene derives it (Kirchhoff–Love), for the compression form L_w = λ^{3/2} (δ/h²)^{1/4} */
+    if (wr_wrinklon_size_tension(LAMBDA0, R->T, B, &R->Lw_pred, &d) != WR_OK) return 0;
     R->h = cbrt(12.0 * (1.0 - POISSON * POISSON) * B / g_young);
-    if (wr_wrinklon_size_compression(LAMBDA0, GATHER, R->h, &R->Lw_comp, &d) != WR_OK) return -1;
-    /* Vandeparre et al.'s light-curtain law before A ~ λ sqrt(δ) is substituted: L ~ λ (A/h)^{1/2}, with
-     * the gather's exact amplitude A = λ0 sqrt(δ)/π (the compression form is this times sqrt(π)). */
+    if (wr_wrinklon_size_compression(LAMBDA0, GATHER, R->h, &R->Lw_comp, &d) != WR_OK) return 0;
     R->Lw_amp = LAMBDA0 * sqrt(A / R->h);
+    return 1;
+}
+
+/* Horizontal probes every r/2 down the curtain: the out-of-plane displacement's FFT wavelength and
+ * amplitude, the modal λ0 and 2λ0 amplitudes and the crest-count wavelength of what the cubic leaves;
+ * written to datpath (and every 8th sample to --dump). 0 when the probe cannot be built. */
+static int curtain_probes(const wr_mesh *m, const double *u, double r, curtain_row *R, const char *datpath) {
+    const double W = g_nwaves * LAMBDA0, dd = 0.5 * r, dir[3] = {0.0, 0.0, 1.0};
+    const int32_t ns = 512;
+    double pts[2 * 1024], vals[1024], xs[1024], resid[1024], ds, a[2], b[2];
+    wr_probe pr;
+    wr_afile f;
+    wr_diag d;
+    FILE *dump;
+    int32_t k, j;
+    int have_f;
+    if (wr_probe_create(&pr, m, NULL, &d) != WR_OK) return 0;
+    have_f = wr_afile_open(&f, datpath, &d) == WR_OK;
+    dump = g_dump ? fopen(g_dump, "w") : NULL;
+    if (have_f)
+        fprintf(f.fp, "# depth[mm] lambda_fft[mm] amplitude_p2p[mm] a_lambda0[mm] a_2lambda0[mm] lambda_zc[mm]  (B = %g N m)\n", R->B);
+    for (k = 1; k * dd < g_height - r && R->nd < 512; ++k) {
+        double depth = k * dd, a1 = NAN, a2 = NAN;
+        wr_spectrum_result res;
+        int32_t nout = 0;
+        a[0] = 0.5 * LAMBDA0, a[1] = g_height - depth;
+        b[0] = W - 0.5 * LAMBDA0, b[1] = g_height - depth;
+        if (wr_path_segment(a, b, ns, 0, pts, &ds, &d) != WR_OK) break;
+        if (wr_probe_sample_dir(&pr, u, dir, pts, ns, vals, &nout, &d) != WR_OK || nout) break;
+        if (wr_spectrum_analyze(vals, ns, ds, 0, NULL, &res, NULL, 0, &d) != WR_OK) {
+            res.wavelength = NAN;
+            res.amplitude_p2p = 0.0;
+        }
+        R->depth[R->nd] = depth, R->lambda[R->nd] = res.wavelength, R->amp[R->nd] = res.amplitude_p2p;
+        for (j = 0; j < ns; ++j) xs[j] = pts[2 * j];
+        R->lzc[R->nd] = NAN;
+        if (modal_fit(xs, vals, ns, 2.0 * PI / LAMBDA0, &a1, &a2, resid) == 0)
+            R->lzc[R->nd] = zero_cross_wavelength(resid, ns, xs[ns - 1] - xs[0]);
+        R->a1[R->nd] = a1, R->a2[R->nd] = a2;
+        if (dump) {
+            for (j = 0; j < ns; j += 8) fprintf(dump, "%.4f %.4f %.6f\n", 1e3 * depth, 1e3 * xs[j], 1e3 * vals[j]);
+            fprintf(dump, "\n");
+        }
+        if (have_f)
+            fprintf(f.fp, "%.4f %.4f %.5f %.5f %.5f %.4f\n", 1e3 * depth, 1e3 * res.wavelength, 1e3 * res.amplitude_p2p,
+                    1e3 * R->a1[R->nd], 1e3 * R->a2[R->nd], 1e3 * R->lzc[R->nd]);
+        R->nd++;
+    }
+    if (have_f) wr_afile_commit(&f, &d);
+    if (dump) fclose(dump);
+    wr_probe_free(&pr);
+    return 1;
+}
+
+/* The depth (linear interpolation between probes) where y first rises through c from below, among
+ * the first `upto` probes; NAN when it does not. */
+static double first_rise(const double *depth, const double *y, int32_t upto, double c) {
+    int32_t k;
+    for (k = 1; k < upto; ++k)
+        if (y[k] >= c && y[k - 1] < c) return depth[k - 1] + (c - y[k - 1]) / (y[k] - y[k - 1]) * (depth[k] - depth[k - 1]);
+    return NAN;
+}
+
+/* The depths the row reports, from its probes. */
+static void curtain_depths(curtain_row *R) {
+    const double A = LAMBDA0 * sqrt(GATHER) / PI;
+    int32_t k, km = 0, present = 1;
+    /* FFT peak: first crossing of 2 λ0 while the wrinkles are present */
+    while (present < R->nd && !(R->amp[present] < AMP_FLOOR * A) && R->lambda[present] == R->lambda[present]) ++present;
+    R->L_fft = first_rise(R->depth, R->lambda, present, 2.0 * LAMBDA0);
+    /* Period doubling from the modal amplitudes. Midpoint: first depth where the 2λ0 amplitude a2
+     * overtakes the λ0 amplitude a1. End: the depth where a2 is largest — the 2λ0 wrinkle has finished
+     * forming there (crest pairs merged); deeper it coarsens or fades itself. Parabolic interpolation
+     * through the three probes around the maximum. */
+    for (k = 1; k < R->nd; ++k)
+        if (R->a2[k] >= R->a1[k] && R->a2[k - 1] < R->a1[k - 1]) {
+            double f0 = R->a2[k - 1] - R->a1[k - 1], f1 = R->a2[k] - R->a1[k];
+            R->L_mid = R->depth[k - 1] + f0 / (f0 - f1) * (R->depth[k] - R->depth[k - 1]);
+            break;
+        }
+    for (k = 1; k < R->nd; ++k)
+        if (R->a2[k] > R->a2[km]) km = k;
+    if (km > 0 && km < R->nd - 1 && R->a2[km] > R->a1[km]) {
+        double ym = R->a2[km - 1], y0 = R->a2[km], yp = R->a2[km + 1], den = ym - 2.0 * y0 + yp;
+        double off = den < 0.0 ? 0.5 * (ym - yp) / den : 0.0;
+        R->L_end = R->depth[km] + off * (R->depth[km + 1] - R->depth[km]);
+        R->a2_end = y0, R->a1_end = R->a1[km];
+    }
+    /* Primary: the wavelength one sees — the crest-count wavelength of the detrended probe (sign
+     * changes of z minus its cubic) — first reaches 2λ0. */
+    R->L_zc = first_rise(R->depth, R->lzc, R->nd, 2.0 * LAMBDA0);
+    /* Fading of the imposed pattern: a1 down to half its value on the first probe line. */
+    for (k = 1; k < R->nd; ++k)
+        if (R->a1[k] <= 0.5 * R->a1[0] && R->a1[k - 1] > 0.5 * R->a1[0]) {
+            double t = (R->a1[k - 1] - 0.5 * R->a1[0]) / (R->a1[k - 1] - R->a1[k]);
+            R->L_a1half = R->depth[k - 1] + t * (R->depth[k] - R->depth[k - 1]);
+            break;
+        }
+}
+
+/* One stiffness B at resolution r: solve the hanging curtain, probe it, read off the depths. */
+static int curtain_run(double B, double r, int load_steps, curtain_row *R, const char *datpath) {
+    wr_scene sc;
+    wr_scene_run run;
+    wr_diag d;
+    double *u;
+    int32_t i;
+    if (!curtain_scene(B, r, load_steps, &sc)) return -1;
+    if (!curtain_predictions(B, R)) {
+        wr_scene_free(&sc);
+        return -1;
+    }
     if (wr_scene_run_create(&run, &sc, &d) != WR_OK) {
         fprintf(stderr, "validate_curtain: %s\n", d.message);
+        wr_scene_free(&sc);
         return -1;
     }
     R->nv = run.mesh.nv;
@@ -209,102 +327,17 @@ static int curtain_run(double B, double r, int load_steps, curtain_row *R, const
     R->rho = g_rho;
     R->nd = 0;
     u = (double *)malloc(sizeof(double) * 3 * (size_t)run.mesh.nv);
-    if (!u || wr_probe_create(&pr, &run.mesh, NULL, &d) != WR_OK) {
+    if (u)
+        for (i = 0; i < 3 * run.mesh.nv; ++i) u[i] = run.x[i] - run.mesh.pos[i];
+    if (!u || !curtain_probes(&run.mesh, u, r, R, datpath)) {
         free(u);
         wr_scene_run_free(&run);
         wr_scene_free(&sc);
         return -1;
     }
-    for (i = 0; i < 3 * run.mesh.nv; ++i) u[i] = run.x[i] - run.mesh.pos[i];
-    {
-        wr_afile f;
-        int have_f = wr_afile_open(&f, datpath, &d) == WR_OK;
-        double dir[3] = {0.0, 0.0, 1.0}, dd = 0.5 * r;
-        FILE *dump = g_dump ? fopen(g_dump, "w") : NULL;
-        if (have_f)
-            fprintf(f.fp, "# depth[mm] lambda_fft[mm] amplitude_p2p[mm] a_lambda0[mm] a_2lambda0[mm] lambda_zc[mm]  (B = %g N m)\n", B);
-        for (k = 1; k * dd < g_height - r && R->nd < 512; ++k) {
-            double depth = k * dd;
-            wr_spectrum_result res;
-            int32_t nout = 0;
-            a[0] = 0.5 * LAMBDA0, a[1] = g_height - depth;
-            b[0] = W - 0.5 * LAMBDA0, b[1] = g_height - depth;
-            if (wr_path_segment(a, b, ns, 0, pts, &ds, &d) != WR_OK) break;
-            if (wr_probe_sample_dir(&pr, u, dir, pts, ns, vals, &nout, &d) != WR_OK || nout) break;
-            if (wr_spectrum_analyze(vals, ns, ds, 0, NULL, &res, NULL, 0, &d) != WR_OK) {
-                res.wavelength = NAN;
-                res.amplitude_p2p = 0.0;
-            }
-            R->depth[R->nd] = depth, R->lambda[R->nd] = res.wavelength, R->amp[R->nd] = res.amplitude_p2p;
-            {
-                double xs[1024], resid[1024], a1 = NAN, a2 = NAN;
-                int32_t j;
-                for (j = 0; j < ns; ++j) xs[j] = pts[2 * j];
-                R->lzc[R->nd] = NAN;
-                if (modal_fit(xs, vals, ns, 2.0 * PI / LAMBDA0, &a1, &a2, resid) == 0)
-                    R->lzc[R->nd] = zero_cross_wavelength(resid, ns, xs[ns - 1] - xs[0]);
-                R->a1[R->nd] = a1, R->a2[R->nd] = a2;
-                if (dump)
-                    for (j = 0; j < ns; j += 8)
-                        fprintf(dump, "%.4f %.4f %.6f\n", 1e3 * depth, 1e3 * xs[j], 1e3 * vals[j]);
-                if (dump) fprintf(dump, "\n");
-            }
-            if (have_f)
-                fprintf(f.fp, "%.4f %.4f %.5f %.5f %.5f %.4f\n", 1e3 * depth, 1e3 * res.wavelength, 1e3 * res.amplitude_p2p,
-                        1e3 * R->a1[R->nd], 1e3 * R->a2[R->nd], 1e3 * R->lzc[R->nd]);
-            R->nd++;
-        }
-        if (have_f) wr_afile_commit(&f, &d);
-        if (dump) fclose(dump);
-    }
-    /* first crossing of 2 λ0 while the wrinkles are present */
-    for (k = 1; k < R->nd; ++k) {
-        if (R->amp[k] < AMP_FLOOR * A || !(R->lambda[k] == R->lambda[k])) break;
-        if (R->lambda[k] >= 2.0 * LAMBDA0 && R->lambda[k - 1] < 2.0 * LAMBDA0) {
-            double t = (2.0 * LAMBDA0 - R->lambda[k - 1]) / (R->lambda[k] - R->lambda[k - 1]);
-            R->L_fft = R->depth[k - 1] + t * (R->depth[k] - R->depth[k - 1]);
-            break;
-        }
-    }
-    /* Period doubling from the modal amplitudes. Midpoint: first depth where the 2λ0 amplitude a2
-     * overtakes the λ0 amplitude a1. End: the depth where a2 is largest — the 2λ0 wrinkle has finished
-     * forming there (crest pairs merged); deeper it coarsens or fades itself. Parabolic interpolation
-     * through the three probes around the maximum. */
-    for (k = 1; k < R->nd; ++k)
-        if (R->a2[k] >= R->a1[k] && R->a2[k - 1] < R->a1[k - 1]) {
-            double f0 = R->a2[k - 1] - R->a1[k - 1], f1 = R->a2[k] - R->a1[k];
-            R->L_mid = R->depth[k - 1] + f0 / (f0 - f1) * (R->depth[k] - R->depth[k - 1]);
-            break;
-        }
-    {
-        int32_t km = 0;
-        for (k = 1; k < R->nd; ++k)
-            if (R->a2[k] > R->a2[km]) km = k;
-        if (km > 0 && km < R->nd - 1 && R->a2[km] > R->a1[km]) {
-            double ym = R->a2[km - 1], y0 = R->a2[km], yp = R->a2[km + 1], den = ym - 2.0 * y0 + yp;
-            double off = den < 0.0 ? 0.5 * (ym - yp) / den : 0.0;
-            R->L_end = R->depth[km] + off * (R->depth[km + 1] - R->depth[km]);
-            R->a2_end = y0, R->a1_end = R->a1[km];
-        }
-    }
-    /* Primary: the wavelength one sees — the crest-count wavelength of the detrended probe (sign
-     * changes of z minus its cubic) — first reaches 2λ0 (linear interpolation between probes). */
-    for (k = 1; k < R->nd; ++k)
-        if (R->lzc[k] >= 2.0 * LAMBDA0 && R->lzc[k - 1] < 2.0 * LAMBDA0) {
-            double t = (2.0 * LAMBDA0 - R->lzc[k - 1]) / (R->lzc[k] - R->lzc[k - 1]);
-            R->L_zc = R->depth[k - 1] + t * (R->depth[k] - R->depth[k - 1]);
-            break;
-        }
-    /* Fading of the imposed pattern: a1 down to half its value on the first probe line. */
-    for (k = 1; k < R->nd; ++k)
-        if (R->a1[k] <= 0.5 * R->a1[0] && R->a1[k - 1] > 0.5 * R->a1[0]) {
-            double t = (R->a1[k - 1] - 0.5 * R->a1[0]) / (R->a1[k - 1] - R->a1[k]);
-            R->L_a1half = R->depth[k - 1] + t * (R->depth[k] - R->depth[k - 1]);
-            break;
-        }
+    curtain_depths(R);
     fprintf(stderr, "   crest-count 2 lambda0 at %.1f mm, a1 halved at %.1f mm; FFT-peak 2 lambda0 crossing %.1f mm, a2 = a1 at %.1f mm, a2 max at %.1f mm; predicted %.1f mm; %d Newton, %.1f s\n",
             1e3 * R->L_zc, 1e3 * R->L_a1half, 1e3 * R->L_fft, 1e3 * R->L_mid, 1e3 * R->L_end, 1e3 * R->Lw_pred, (int)R->newton, R->t_solve);
-    wr_probe_free(&pr);
     free(u);
     wr_scene_run_free(&run);
     wr_scene_free(&sc);
