@@ -322,7 +322,8 @@ static int wr__mesh_cmp_i64(const void *x, const void *y) {
 }
 
 /* The n half-edges of one low vertex in (high vertex, half-edge) order: insertion sort (a vertex
- * is the low end of ~3 edges); qsort of packed (high, h) pairs in aux for a large fan. */
+ * is the low end of ~3 edges), stable on the high vertex alone since the bucket was filled in
+ * increasing half-edge order; qsort of packed (high, h) pairs in aux for a large fan. */
 static void wr__mesh_sort_bucket(const wr_mesh *m, int32_t *key, int32_t *ord, int32_t n, int64_t *aux) {
     int32_t i, j;
     if (n > 32) {
@@ -337,7 +338,7 @@ static void wr__mesh_sort_bucket(const wr_mesh *m, int32_t *key, int32_t *ord, i
     }
     for (i = 1; i < n; ++i) {
         int32_t k = key[i], o = ord[i];
-        for (j = i; j > 0 && ((key[j - 1] >> 1) > (k >> 1) || ((key[j - 1] >> 1) == (k >> 1) && ord[j - 1] > o)); --j) {
+        for (j = i; j > 0 && (key[j - 1] >> 1) > (k >> 1); --j) {
             key[j] = key[j - 1];
             ord[j] = ord[j - 1];
         }
@@ -364,12 +365,16 @@ static int wr__mesh_sort_halfedges(const wr_mesh *m, wr__mesh_he *s) {
         s->cnt[v + 1] += s->cnt[v];
     }
     for (f = 0; f < n3; f += 3) {
-        int32_t k;
-        for (k = 0; k < 3; ++k) {
-            int32_t a = F[f + (k + 1) % 3], b = F[f + (k + 2) % 3], i = s->cnt[a < b ? a : b]++;
-            s->ord[i] = f + k;
-            s->key[i] = WR__HE_KEY(a, b);
-        }
+        const int32_t a = F[f], b = F[f + 1], c = F[f + 2];
+        int32_t i = s->cnt[b < c ? b : c]++;
+        s->ord[i] = f;
+        s->key[i] = WR__HE_KEY(b, c);
+        i = s->cnt[c < a ? c : a]++;
+        s->ord[i] = f + 1;
+        s->key[i] = WR__HE_KEY(c, a);
+        i = s->cnt[a < b ? a : b]++;
+        s->ord[i] = f + 2;
+        s->key[i] = WR__HE_KEY(a, b);
     }
     /* cnt[v] is now the end of v's bucket, i.e. the start of v + 1's */
     if (maxb > 32 && !(aux = (int64_t *)wr_alloc_array((size_t)maxb, sizeof(int64_t)))) return 0;
@@ -381,53 +386,49 @@ static int wr__mesh_sort_halfedges(const wr_mesh *m, wr__mesh_he *s) {
     return 1;
 }
 
-/* Runs of equal (low, high) in the sorted half-edges: the edge count, each edge in at most two faces
- * traversing it in opposite directions. Reads only the sorted arrays. */
-static wr_status wr__mesh_count_edges(const wr_mesh *m, const wr__mesh_he *s, size_t *ne_out, wr_diag *diag) {
+/* edges (low, high), face_edges, face_edge_sign, edge_faces and the twins from the sorted half-edges,
+ * in one pass over the runs of equal (low, high): each run is one edge, in at most two faces that
+ * traverse it in opposite directions (else the error names the edge). edges and edge_faces have room
+ * for the upper bound, one edge per half-edge; *ne_out = the edge count. */
+static wr_status wr__mesh_fill_edges(wr_mesh *m, wr__mesh_he *s, size_t *ne_out, wr_diag *diag) {
+    const int32_t *key = s->key, *ord = s->ord;
     size_t i = 0, ne = 0;
     int32_t v;
     for (v = 0; v < m->nv; ++v)
-        for (; i < (size_t)s->cnt[v];) {
-            size_t j = i + 1;
-            int32_t hi = s->key[i] >> 1;
-            while (j < (size_t)s->cnt[v] && (s->key[j] >> 1) == hi) ++j;
-            if (j - i > 2)
-                return wr_fail(diag, WR_ERR_TOPOLOGY, s->ord[i + 2] / 3,
-                               "non-manifold edge (%d,%d): shared by faces %d, %d and %d", v, hi, s->ord[i] / 3,
-                               s->ord[i + 1] / 3, s->ord[i + 2] / 3);
-            if (j - i == 2 && (s->key[i] & 1) == (s->key[i + 1] & 1))
-                return wr_fail(diag, WR_ERR_TOPOLOGY, s->ord[i + 1] / 3,
-                               "inconsistent orientation: faces %d and %d both traverse edge %d->%d", s->ord[i] / 3,
-                               s->ord[i + 1] / 3, (s->key[i] & 1) ? hi : v, (s->key[i] & 1) ? v : hi);
-            ++ne;
-            i = j;
+        for (; i < (size_t)s->cnt[v]; ++ne) {
+            const size_t end = (size_t)s->cnt[v];
+            int32_t hi = key[i] >> 1, h = ord[i], plus = !(key[i] & 1), *ef = m->edge_faces + 2 * ne;
+            int two = i + 1 < end && (key[i + 1] >> 1) == hi;
+            if (two && i + 2 < end && (key[i + 2] >> 1) == hi)
+                return wr_fail(diag, WR_ERR_TOPOLOGY, ord[i + 2] / 3,
+                               "non-manifold edge (%d,%d): shared by faces %d, %d and %d", v, hi, ord[i] / 3,
+                               ord[i + 1] / 3, ord[i + 2] / 3);
+            if (two && (key[i] & 1) == (key[i + 1] & 1))
+                return wr_fail(diag, WR_ERR_TOPOLOGY, ord[i + 1] / 3,
+                               "inconsistent orientation: faces %d and %d both traverse edge %d->%d", ord[i] / 3,
+                               ord[i + 1] / 3, plus ? v : hi, plus ? hi : v);
+            m->edges[2 * ne] = v;
+            m->edges[2 * ne + 1] = hi;
+            m->face_edges[h] = (int32_t)ne;
+            m->face_edge_sign[h] = (int8_t)(plus ? 1 : -1);
+            ef[plus ? 0 : 1] = h / 3;
+            if (two) { /* the second half-edge runs the other way */
+                int32_t t = ord[i + 1];
+                m->face_edges[t] = (int32_t)ne;
+                m->face_edge_sign[t] = (int8_t)-m->face_edge_sign[h];
+                ef[plus ? 1 : 0] = t / 3;
+                s->twin[h] = t;
+                s->twin[t] = h;
+                i += 2;
+            } else {
+                ef[plus ? 1 : 0] = -1;
+                s->twin[h] = -1;
+                i += 1;
+            }
         }
     if (ne > (size_t)INT32_MAX / 2) return wr_fail(diag, WR_ERR_OVERFLOW, -1, "mesh has too many edges (%zu)", ne);
     *ne_out = ne;
     return WR_OK;
-}
-
-/* edges (low, high), face_edges, face_edge_sign, edge_faces and the twins from the sorted half-edges */
-static void wr__mesh_fill_edges(wr_mesh *m, wr__mesh_he *s) {
-    size_t i = 0;
-    int32_t v, ne = 0;
-    for (v = 0; v < m->nv; ++v)
-        for (; i < (size_t)s->cnt[v]; ++ne) {
-            int32_t hi = s->key[i] >> 1, h0 = s->ord[i], two = i + 1 < (size_t)s->cnt[v] && (s->key[i + 1] >> 1) == hi;
-            size_t j, end = i + (two ? 2 : 1);
-            m->edges[2 * ne] = v;
-            m->edges[2 * ne + 1] = hi;
-            m->edge_faces[2 * ne] = m->edge_faces[2 * ne + 1] = -1;
-            for (j = i; j < end; ++j) {
-                int32_t h = s->ord[j], plus = !(s->key[j] & 1);
-                m->face_edges[h] = ne;
-                m->face_edge_sign[h] = (int8_t)(plus ? 1 : -1);
-                m->edge_faces[2 * ne + (plus ? 0 : 1)] = h / 3;
-            }
-            s->twin[h0] = two ? s->ord[i + 1] : -1;
-            if (two) s->twin[s->ord[i + 1]] = h0;
-            i = end;
-        }
 }
 
 /* vertex → faces CSR (faces ascending per vertex); cnt (nv + 1) is scratch */
@@ -439,7 +440,12 @@ static void wr__mesh_vertex_faces(wr_mesh *m, int32_t *cnt) {
     for (i = 0; i < nh; ++i) m->vf_start[m->faces[i] + 1]++;
     for (v = 0; v < m->nv; ++v) m->vf_start[v + 1] += m->vf_start[v];
     memcpy(cnt, m->vf_start, sizeof(int32_t) * ((size_t)m->nv + 1));
-    for (i = 0; i < nh; ++i) m->vf[cnt[m->faces[i]]++] = (int32_t)(i / 3);
+    for (i = 0; i < nh; i += 3) {
+        const int32_t f = (int32_t)(i / 3);
+        m->vf[cnt[m->faces[i]]++] = f;
+        m->vf[cnt[m->faces[i + 1]]++] = f;
+        m->vf[cnt[m->faces[i + 2]]++] = f;
+    }
 }
 
 /* Manifold vertices: the faces around v must form one fan. Crossing the edge (v, next) of each face
@@ -457,18 +463,18 @@ static wr_status wr__mesh_check_fans(const wr_mesh *m, const int32_t *twin, wr_d
         for (h = 3 * f0 + (c + 2) % 3; count <= deg;) { /* across (v, next) */
             int32_t t = twin[h];
             if (t < 0) break;
-            if (t / 3 == f0) {
+            if ((uint32_t)(t - 3 * f0) < 3u) { /* back in f0 */
                 closed = 1;
                 break;
             }
             ++count;
-            h = t - t % 3 + (t % 3 + 1) % 3;
+            h = t % 3 == 2 ? t - 2 : t + 1;
         }
         for (h = 3 * f0 + (c + 1) % 3; !closed && count <= deg;) { /* across (prev, v) */
             int32_t t = twin[h];
-            if (t < 0 || t / 3 == f0) break;
+            if (t < 0 || (uint32_t)(t - 3 * f0) < 3u) break;
             ++count;
-            h = t - t % 3 + (t % 3 + 2) % 3;
+            h = t % 3 == 0 ? t + 2 : t - 1;
         }
         if (count != deg)
             return wr_fail(diag, WR_ERR_TOPOLOGY, v, "non-manifold vertex %d: its %d faces form more than one fan (one fan has %d)",
@@ -532,6 +538,12 @@ done:
     return st;
 }
 
+/* Gives back the unused tail of an int32 array; keeps the larger block if shrinking fails. */
+static void wr__mesh_shrink(int32_t **p, size_t n) {
+    int32_t *q = (int32_t *)wr_realloc_array(*p, n > 0 ? n : 1, sizeof(int32_t));
+    if (q) *p = q;
+}
+
 /* Builds edges, face_edges, face_edge_sign, edge_faces, vf CSR and boundary loops from nv, nf,
  * faces (already range-checked). O(nf + nv): one counting sort of the 3nf half-edges by their low
  * vertex and a small sort per vertex order them by (low vertex, high vertex); equal keys are then
@@ -550,19 +562,20 @@ static wr_status wr__mesh_build_topology(wr_mesh *m, wr_diag *diag) {
         st = wr_fail(diag, WR_ERR_NOMEM, -1, "mesh topology: out of memory (%d faces)", nf);
         goto done;
     }
-    if ((st = wr__mesh_count_edges(m, &s, &ne, diag)) != WR_OK) goto done;
-    m->ne = (int32_t)ne;
-    m->edges = (int32_t *)wr_alloc_array(2 * ne, sizeof(int32_t));
-    m->edge_faces = (int32_t *)wr_alloc_array(2 * ne, sizeof(int32_t));
+    m->edges = (int32_t *)wr_alloc_array(2 * nh, sizeof(int32_t)); /* room for ne <= nh; shrunk below */
+    m->edge_faces = (int32_t *)wr_alloc_array(2 * nh, sizeof(int32_t));
     m->face_edges = (int32_t *)wr_alloc_array(nh, sizeof(int32_t));
     m->face_edge_sign = (int8_t *)wr_alloc_array(nh, sizeof(int8_t));
     m->vf_start = (int32_t *)wr_alloc_array((size_t)nv + 1, sizeof(int32_t));
     m->vf = (int32_t *)wr_alloc_array(nh, sizeof(int32_t));
     if (!m->edges || !m->edge_faces || !m->face_edges || !m->face_edge_sign || !m->vf_start || !m->vf) {
-        st = wr_fail(diag, WR_ERR_NOMEM, -1, "mesh topology: out of memory (%zu edges)", ne);
+        st = wr_fail(diag, WR_ERR_NOMEM, -1, "mesh topology: out of memory (%d faces)", nf);
         goto done;
     }
-    wr__mesh_fill_edges(m, &s);
+    if ((st = wr__mesh_fill_edges(m, &s, &ne, diag)) != WR_OK) goto done;
+    m->ne = (int32_t)ne;
+    wr__mesh_shrink(&m->edges, 2 * ne);
+    wr__mesh_shrink(&m->edge_faces, 2 * ne);
     wr__mesh_vertex_faces(m, s.cnt);
     if ((st = wr__mesh_check_fans(m, s.twin, diag)) != WR_OK) goto done;
     st = wr__mesh_boundary_loops(m, s.twin, diag);
