@@ -1343,7 +1343,8 @@ static wr_status wr__msh_report(wr__msh_ctx *c) {
         qa.sum_min += amin;
         qa.sum_min_metric += amin_m;
         area = 0.5 * ((uv[2] - uv[0]) * (uv[5] - uv[1]) - (uv[3] - uv[1]) * (uv[4] - uv[0]));
-        lmax = fmax(t.L[0], fmax(t.L[1], t.L[2]));
+        lmax = t.L[0] > t.L[1] ? t.L[0] : t.L[1];
+        lmax = t.L[2] > lmax ? t.L[2] : lmax;
         if (fabs(area) <= WR_MESH_ZERO_AREA_REL * lmax)
             ++rp->n_zero_area;
         else if (area < 0.0)
