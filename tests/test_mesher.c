@@ -156,6 +156,27 @@ Test(mesher, constant_sizing_square_edge_length_and_count) {
     wr_mesher_free(&r);
 }
 
+/* The report's angles (atan2 of cross and dot, the smallest by its own series) equal
+ * wr_mesh_quality's (acos of the cosine rule, accurate on these 30-120 deg faces to ~1e-12 deg). */
+Test(mesher, report_angles_equal_mesh_quality) {
+    wr_pattern pat;
+    wr_pattern_panel pn;
+    wr_mesher_result r;
+    wr_mesh_quality_stats q;
+    wr_diag d;
+    one_panel(&pat, &pn, sq250, 4);
+    pn.fabric.resolution = 10e-3;
+    cr_assert_eq(wr_mesher_run(&pat, NULL, &r, &d), WR_OK, "%s", d.message);
+    wr_mesh_quality(&r.mesh, 1, &q);
+    cr_expect(fabs(r.report.min_angle_deg - q.min_angle_deg) < 1e-9, "%.15g vs %.15g", r.report.min_angle_deg,
+              q.min_angle_deg);
+    cr_expect(fabs(r.report.max_angle_deg - q.max_angle_deg) < 1e-9, "%.15g vs %.15g", r.report.max_angle_deg,
+              q.max_angle_deg);
+    cr_expect(fabs(r.report.mean_min_angle_deg - q.mean_min_angle_deg) < 1e-9, "%.15g vs %.15g",
+              r.report.mean_min_angle_deg, q.mean_min_angle_deg);
+    wr_mesher_free(&r);
+}
+
 Test(mesher, base_resolution_from_eq4_and_uniform_mode) {
     wr_pattern pat;
     wr_pattern_panel pn;

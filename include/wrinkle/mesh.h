@@ -307,13 +307,18 @@ WRDEF void wr_mesh_free(wr_mesh *m) {
 /* Half-edge h (corner h % 3 of face h / 3) runs from WR__HE_A to WR__HE_B, the corners after it. */
 #define WR__HE_A(m, h) ((m)->faces[3 * ((h) / 3) + ((h) % 3 + 1) % 3])
 #define WR__HE_B(m, h) ((m)->faces[3 * ((h) / 3) + ((h) % 3 + 2) % 3])
-/* Sort key of a half-edge a → b: 2 × its high vertex, + 1 when it runs high → low. */
-#define WR__HE_KEY(a, b) ((a) < (b) ? 2 * (b) : 2 * (a) + 1)
+/* Sort key of half-edge h running a → b: its high vertex in the upper 32 bits, then h, then 1 when
+ * it runs high → low; ascending keys of one low vertex are ascending (high vertex, half-edge). */
+#define WR__HE_KEY(a, b, h) \
+    ((a) < (b) ? ((int64_t)(b) << 32) | ((int64_t)(h) << 1) : ((int64_t)(a) << 32) | ((int64_t)(h) << 1) | 1)
+#define WR__HE_HI(k) ((int32_t)((k) >> 32))
+#define WR__HE_H(k) ((int32_t)(((k)&0xffffffff) >> 1))
 
-/* Scratch of the topology build. In sorted position i: ord[i] = the half-edge, key[i] = its
- * WR__HE_KEY; twin[h] = the other half-edge of h's edge, -1 on the boundary; cnt = bucket ends. */
+/* Scratch of the topology build. In sorted position i: key[i] = the WR__HE_KEY of a half-edge;
+ * twin[h] = the other half-edge of h's edge, -1 on the boundary; cnt = bucket ends. */
 typedef struct wr__mesh_he {
-    int32_t *cnt, *key, *ord, *twin;
+    int32_t *cnt, *twin;
+    int64_t *key;
 } wr__mesh_he;
 
 static int wr__mesh_cmp_i64(const void *x, const void *y) {
@@ -321,37 +326,26 @@ static int wr__mesh_cmp_i64(const void *x, const void *y) {
     return a < b ? -1 : a > b;
 }
 
-/* The n half-edges of one low vertex in (high vertex, half-edge) order: insertion sort (a vertex
- * is the low end of ~3 edges); qsort of packed (high, h) pairs in aux for a large fan. */
-static void wr__mesh_sort_bucket(const wr_mesh *m, int32_t *key, int32_t *ord, int32_t n, int64_t *aux) {
+/* The n half-edges of one low vertex in (high vertex, half-edge) order, i.e. their keys ascending:
+ * insertion sort (a vertex is the low end of ~3 edges), qsort for a large fan. */
+static void wr__mesh_sort_bucket(int64_t *key, int32_t n) {
     int32_t i, j;
     if (n > 32) {
-        for (i = 0; i < n; ++i) aux[i] = ((int64_t)(key[i] >> 1) << 32) | (int64_t)ord[i]; /* both >= 0 */
-        qsort(aux, (size_t)n, sizeof *aux, wr__mesh_cmp_i64);
-        for (i = 0; i < n; ++i) {
-            int32_t h = (int32_t)(aux[i] & 0x7fffffff), a = WR__HE_A(m, h), b = WR__HE_B(m, h);
-            ord[i] = h;
-            key[i] = WR__HE_KEY(a, b);
-        }
+        qsort(key, (size_t)n, sizeof *key, wr__mesh_cmp_i64);
         return;
     }
     for (i = 1; i < n; ++i) {
-        int32_t k = key[i], o = ord[i];
-        for (j = i; j > 0 && ((key[j - 1] >> 1) > (k >> 1) || ((key[j - 1] >> 1) == (k >> 1) && ord[j - 1] > o)); --j) {
-            key[j] = key[j - 1];
-            ord[j] = ord[j - 1];
-        }
+        int64_t k = key[i];
+        for (j = i; j > 0 && key[j - 1] > k; --j) key[j] = key[j - 1];
         key[j] = k;
-        ord[j] = o;
     }
 }
 
-/* ord/key ← the 3nf half-edges ordered by (low vertex, high vertex, half-edge): one counting sort by
+/* key ← the 3nf half-edges ordered by (low vertex, high vertex, half-edge): one counting sort by
  * the low vertex (the faces read in order, twice), then each low vertex's few half-edges sorted. */
-static int wr__mesh_sort_halfedges(const wr_mesh *m, wr__mesh_he *s) {
+static void wr__mesh_sort_halfedges(const wr_mesh *m, wr__mesh_he *s) {
     const int32_t nv = m->nv, n3 = 3 * m->nf, *F = m->faces;
-    int32_t f, v, maxb = 0;
-    int64_t *aux = NULL;
+    int32_t f, v;
     memset(s->cnt, 0, sizeof(int32_t) * ((size_t)nv + 1));
     for (f = 0; f < n3; f += 3) {
         int32_t a = F[f], b = F[f + 1], c = F[f + 2];
@@ -359,75 +353,63 @@ static int wr__mesh_sort_halfedges(const wr_mesh *m, wr__mesh_he *s) {
         s->cnt[(c < a ? c : a) + 1]++;
         s->cnt[(a < b ? a : b) + 1]++;
     }
-    for (v = 0; v < nv; ++v) {
-        if (s->cnt[v + 1] > maxb) maxb = s->cnt[v + 1];
-        s->cnt[v + 1] += s->cnt[v];
-    }
+    for (v = 0; v < nv; ++v) s->cnt[v + 1] += s->cnt[v];
     for (f = 0; f < n3; f += 3) {
-        int32_t k;
-        for (k = 0; k < 3; ++k) {
-            int32_t a = F[f + (k + 1) % 3], b = F[f + (k + 2) % 3], i = s->cnt[a < b ? a : b]++;
-            s->ord[i] = f + k;
-            s->key[i] = WR__HE_KEY(a, b);
-        }
+        const int32_t a = F[f], b = F[f + 1], c = F[f + 2];
+        s->key[s->cnt[b < c ? b : c]++] = WR__HE_KEY(b, c, f);
+        s->key[s->cnt[c < a ? c : a]++] = WR__HE_KEY(c, a, f + 1);
+        s->key[s->cnt[a < b ? a : b]++] = WR__HE_KEY(a, b, f + 2);
     }
     /* cnt[v] is now the end of v's bucket, i.e. the start of v + 1's */
-    if (maxb > 32 && !(aux = (int64_t *)wr_alloc_array((size_t)maxb, sizeof(int64_t)))) return 0;
     for (v = 0; v < nv; ++v) {
         int32_t b0 = v ? s->cnt[v - 1] : 0;
-        if (s->cnt[v] - b0 > 1) wr__mesh_sort_bucket(m, s->key + b0, s->ord + b0, s->cnt[v] - b0, aux);
+        if (s->cnt[v] - b0 > 1) wr__mesh_sort_bucket(s->key + b0, s->cnt[v] - b0);
     }
-    wr_free(aux);
-    return 1;
 }
 
-/* Runs of equal (low, high) in the sorted half-edges: the edge count, each edge in at most two faces
- * traversing it in opposite directions. Reads only the sorted arrays. */
-static wr_status wr__mesh_count_edges(const wr_mesh *m, const wr__mesh_he *s, size_t *ne_out, wr_diag *diag) {
+/* edges (low, high), face_edges, face_edge_sign, edge_faces and the twins from the sorted half-edges,
+ * in one pass over the runs of equal (low, high): each run is one edge, in at most two faces that
+ * traverse it in opposite directions (else the error names the edge). edges and edge_faces have room
+ * for the upper bound, one edge per half-edge; *ne_out = the edge count. */
+static wr_status wr__mesh_fill_edges(wr_mesh *m, wr__mesh_he *s, size_t *ne_out, wr_diag *diag) {
+    const int64_t *key = s->key;
     size_t i = 0, ne = 0;
     int32_t v;
     for (v = 0; v < m->nv; ++v)
-        for (; i < (size_t)s->cnt[v];) {
-            size_t j = i + 1;
-            int32_t hi = s->key[i] >> 1;
-            while (j < (size_t)s->cnt[v] && (s->key[j] >> 1) == hi) ++j;
-            if (j - i > 2)
-                return wr_fail(diag, WR_ERR_TOPOLOGY, s->ord[i + 2] / 3,
-                               "non-manifold edge (%d,%d): shared by faces %d, %d and %d", v, hi, s->ord[i] / 3,
-                               s->ord[i + 1] / 3, s->ord[i + 2] / 3);
-            if (j - i == 2 && (s->key[i] & 1) == (s->key[i + 1] & 1))
-                return wr_fail(diag, WR_ERR_TOPOLOGY, s->ord[i + 1] / 3,
-                               "inconsistent orientation: faces %d and %d both traverse edge %d->%d", s->ord[i] / 3,
-                               s->ord[i + 1] / 3, (s->key[i] & 1) ? hi : v, (s->key[i] & 1) ? v : hi);
-            ++ne;
-            i = j;
+        for (; i < (size_t)s->cnt[v]; ++ne) {
+            const size_t end = (size_t)s->cnt[v];
+            int32_t hi = WR__HE_HI(key[i]), h = WR__HE_H(key[i]), plus = !(key[i] & 1), *ef = m->edge_faces + 2 * ne;
+            int two = i + 1 < end && WR__HE_HI(key[i + 1]) == hi;
+            if (two && i + 2 < end && WR__HE_HI(key[i + 2]) == hi)
+                return wr_fail(diag, WR_ERR_TOPOLOGY, WR__HE_H(key[i + 2]) / 3,
+                               "non-manifold edge (%d,%d): shared by faces %d, %d and %d", v, hi, h / 3,
+                               WR__HE_H(key[i + 1]) / 3, WR__HE_H(key[i + 2]) / 3);
+            if (two && (key[i] & 1) == (key[i + 1] & 1))
+                return wr_fail(diag, WR_ERR_TOPOLOGY, WR__HE_H(key[i + 1]) / 3,
+                               "inconsistent orientation: faces %d and %d both traverse edge %d->%d", h / 3,
+                               WR__HE_H(key[i + 1]) / 3, plus ? v : hi, plus ? hi : v);
+            m->edges[2 * ne] = v;
+            m->edges[2 * ne + 1] = hi;
+            m->face_edges[h] = (int32_t)ne;
+            m->face_edge_sign[h] = (int8_t)(plus ? 1 : -1);
+            ef[plus ? 0 : 1] = h / 3;
+            if (two) { /* the second half-edge runs the other way */
+                int32_t t = WR__HE_H(key[i + 1]);
+                m->face_edges[t] = (int32_t)ne;
+                m->face_edge_sign[t] = (int8_t)-m->face_edge_sign[h];
+                ef[plus ? 1 : 0] = t / 3;
+                s->twin[h] = t;
+                s->twin[t] = h;
+                i += 2;
+            } else {
+                ef[plus ? 1 : 0] = -1;
+                s->twin[h] = -1;
+                i += 1;
+            }
         }
     if (ne > (size_t)INT32_MAX / 2) return wr_fail(diag, WR_ERR_OVERFLOW, -1, "mesh has too many edges (%zu)", ne);
     *ne_out = ne;
     return WR_OK;
-}
-
-/* edges (low, high), face_edges, face_edge_sign, edge_faces and the twins from the sorted half-edges */
-static void wr__mesh_fill_edges(wr_mesh *m, wr__mesh_he *s) {
-    size_t i = 0;
-    int32_t v, ne = 0;
-    for (v = 0; v < m->nv; ++v)
-        for (; i < (size_t)s->cnt[v]; ++ne) {
-            int32_t hi = s->key[i] >> 1, h0 = s->ord[i], two = i + 1 < (size_t)s->cnt[v] && (s->key[i + 1] >> 1) == hi;
-            size_t j, end = i + (two ? 2 : 1);
-            m->edges[2 * ne] = v;
-            m->edges[2 * ne + 1] = hi;
-            m->edge_faces[2 * ne] = m->edge_faces[2 * ne + 1] = -1;
-            for (j = i; j < end; ++j) {
-                int32_t h = s->ord[j], plus = !(s->key[j] & 1);
-                m->face_edges[h] = ne;
-                m->face_edge_sign[h] = (int8_t)(plus ? 1 : -1);
-                m->edge_faces[2 * ne + (plus ? 0 : 1)] = h / 3;
-            }
-            s->twin[h0] = two ? s->ord[i + 1] : -1;
-            if (two) s->twin[s->ord[i + 1]] = h0;
-            i = end;
-        }
 }
 
 /* vertex → faces CSR (faces ascending per vertex); cnt (nv + 1) is scratch */
@@ -439,7 +421,12 @@ static void wr__mesh_vertex_faces(wr_mesh *m, int32_t *cnt) {
     for (i = 0; i < nh; ++i) m->vf_start[m->faces[i] + 1]++;
     for (v = 0; v < m->nv; ++v) m->vf_start[v + 1] += m->vf_start[v];
     memcpy(cnt, m->vf_start, sizeof(int32_t) * ((size_t)m->nv + 1));
-    for (i = 0; i < nh; ++i) m->vf[cnt[m->faces[i]]++] = (int32_t)(i / 3);
+    for (i = 0; i < nh; i += 3) {
+        const int32_t f = (int32_t)(i / 3);
+        m->vf[cnt[m->faces[i]]++] = f;
+        m->vf[cnt[m->faces[i + 1]]++] = f;
+        m->vf[cnt[m->faces[i + 2]]++] = f;
+    }
 }
 
 /* Manifold vertices: the faces around v must form one fan. Crossing the edge (v, next) of each face
@@ -457,18 +444,18 @@ static wr_status wr__mesh_check_fans(const wr_mesh *m, const int32_t *twin, wr_d
         for (h = 3 * f0 + (c + 2) % 3; count <= deg;) { /* across (v, next) */
             int32_t t = twin[h];
             if (t < 0) break;
-            if (t / 3 == f0) {
+            if ((uint32_t)(t - 3 * f0) < 3u) { /* back in f0 */
                 closed = 1;
                 break;
             }
             ++count;
-            h = t - t % 3 + (t % 3 + 1) % 3;
+            h = t % 3 == 2 ? t - 2 : t + 1;
         }
         for (h = 3 * f0 + (c + 1) % 3; !closed && count <= deg;) { /* across (prev, v) */
             int32_t t = twin[h];
-            if (t < 0 || t / 3 == f0) break;
+            if (t < 0 || (uint32_t)(t - 3 * f0) < 3u) break;
             ++count;
-            h = t - t % 3 + (t % 3 + 2) % 3;
+            h = t % 3 == 0 ? t + 2 : t - 1;
         }
         if (count != deg)
             return wr_fail(diag, WR_ERR_TOPOLOGY, v, "non-manifold vertex %d: its %d faces form more than one fan (one fan has %d)",
@@ -532,6 +519,12 @@ done:
     return st;
 }
 
+/* Gives back the unused tail of an int32 array; keeps the larger block if shrinking fails. */
+static void wr__mesh_shrink(int32_t **p, size_t n) {
+    int32_t *q = (int32_t *)wr_realloc_array(*p, n > 0 ? n : 1, sizeof(int32_t));
+    if (q) *p = q;
+}
+
 /* Builds edges, face_edges, face_edge_sign, edge_faces, vf CSR and boundary loops from nv, nf,
  * faces (already range-checked). O(nf + nv): one counting sort of the 3nf half-edges by their low
  * vertex and a small sort per vertex order them by (low vertex, high vertex); equal keys are then
@@ -543,33 +536,33 @@ static wr_status wr__mesh_build_topology(wr_mesh *m, wr_diag *diag) {
     wr_status st = WR_OK;
     size_t ne = 0;
     s.cnt = (int32_t *)wr_alloc_array((size_t)nv + 1, sizeof(int32_t));
-    s.key = (int32_t *)wr_alloc_array(nh, sizeof(int32_t));
-    s.ord = (int32_t *)wr_alloc_array(nh, sizeof(int32_t));
+    s.key = (int64_t *)wr_alloc_array(nh, sizeof(int64_t));
     s.twin = (int32_t *)wr_alloc_array(nh, sizeof(int32_t));
-    if (!s.cnt || !s.key || !s.ord || !s.twin || !wr__mesh_sort_halfedges(m, &s)) {
+    if (!s.cnt || !s.key || !s.twin) {
         st = wr_fail(diag, WR_ERR_NOMEM, -1, "mesh topology: out of memory (%d faces)", nf);
         goto done;
     }
-    if ((st = wr__mesh_count_edges(m, &s, &ne, diag)) != WR_OK) goto done;
-    m->ne = (int32_t)ne;
-    m->edges = (int32_t *)wr_alloc_array(2 * ne, sizeof(int32_t));
-    m->edge_faces = (int32_t *)wr_alloc_array(2 * ne, sizeof(int32_t));
+    wr__mesh_sort_halfedges(m, &s);
+    m->edges = (int32_t *)wr_alloc_array(2 * nh, sizeof(int32_t)); /* room for ne <= nh; shrunk below */
+    m->edge_faces = (int32_t *)wr_alloc_array(2 * nh, sizeof(int32_t));
     m->face_edges = (int32_t *)wr_alloc_array(nh, sizeof(int32_t));
     m->face_edge_sign = (int8_t *)wr_alloc_array(nh, sizeof(int8_t));
     m->vf_start = (int32_t *)wr_alloc_array((size_t)nv + 1, sizeof(int32_t));
     m->vf = (int32_t *)wr_alloc_array(nh, sizeof(int32_t));
     if (!m->edges || !m->edge_faces || !m->face_edges || !m->face_edge_sign || !m->vf_start || !m->vf) {
-        st = wr_fail(diag, WR_ERR_NOMEM, -1, "mesh topology: out of memory (%zu edges)", ne);
+        st = wr_fail(diag, WR_ERR_NOMEM, -1, "mesh topology: out of memory (%d faces)", nf);
         goto done;
     }
-    wr__mesh_fill_edges(m, &s);
+    if ((st = wr__mesh_fill_edges(m, &s, &ne, diag)) != WR_OK) goto done;
+    m->ne = (int32_t)ne;
+    wr__mesh_shrink(&m->edges, 2 * ne);
+    wr__mesh_shrink(&m->edge_faces, 2 * ne);
     wr__mesh_vertex_faces(m, s.cnt);
     if ((st = wr__mesh_check_fans(m, s.twin, diag)) != WR_OK) goto done;
     st = wr__mesh_boundary_loops(m, s.twin, diag);
 done:
     wr_free(s.cnt);
     wr_free(s.key);
-    wr_free(s.ord);
     wr_free(s.twin);
     if (st != WR_OK) wr__mesh_free_topology(m);
     return st;
@@ -577,6 +570,8 @@ done:
 #undef WR__HE_A
 #undef WR__HE_B
 #undef WR__HE_KEY
+#undef WR__HE_HI
+#undef WR__HE_H
 
 WRDEF wr_status wr_mesh_create(wr_mesh *m, int32_t nv, const double *pos3, const double *rest2, int32_t nf,
                                const int32_t *faces, wr_diag *diag) {

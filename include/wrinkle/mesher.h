@@ -1194,35 +1194,63 @@ static wr_status wr__msh_assemble(wr__msh_ctx *c) {
 }
 
 /* ---- report: quality in pattern and metric space, edge ratios ---------------------------------------- */
-/* Smallest and largest angle [deg] of the triangle w[6]: at the corners opposite its shortest and
- * its longest edge, each one atan2(|u × v|, u · v) (exact at any shape, unlike acos of the cosine
- * rule near 0 and 180 deg). The largest only feeds a running maximum: where its cosine exceeds
- * cos_skip (the running maximum's cosine plus a margin far above rounding) it cannot raise it, and
- * *amax = 0 without the atan2 (half of the report's time was libm's atan2). */
-static void wr__msh_tri_angles(const double *w, double cos_skip, double *amin, double *amax) {
-    double L[3];
-    int k, s = 0, g = 0, pass;
-    for (k = 0; k < 3; ++k) { /* L[k]: squared length of the edge opposite corner k */
-        const double *a = w + 2 * ((k + 1) % 3), *b = w + 2 * ((k + 2) % 3);
-        L[k] = (b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]);
-    }
-    for (k = 1; k < 3; ++k) {
-        if (L[k] < L[s]) s = k;
-        if (L[k] > L[g]) g = k;
-    }
+/* A triangle's edges, computed once for its angles, area test and edge ratios: e[2k..2k+1] = the
+ * edge opposite corner k, from corner (k+1)%3 to corner (k+2)%3 (as wr_mesh's face_edges), L[k] its
+ * squared length. */
+typedef struct wr__msh_tri {
+    double e[6], L[3];
+} wr__msh_tri;
+
+static void wr__msh_tri_edges(const double *w, wr__msh_tri *t) {
+    t->e[0] = w[4] - w[2], t->e[1] = w[5] - w[3]; /* corner 1 → 2 */
+    t->e[2] = w[0] - w[4], t->e[3] = w[1] - w[5]; /* corner 2 → 0 */
+    t->e[4] = w[2] - w[0], t->e[5] = w[3] - w[1]; /* corner 0 → 1 */
+    t->L[0] = t->e[0] * t->e[0] + t->e[1] * t->e[1];
+    t->L[1] = t->e[2] * t->e[2] + t->e[3] * t->e[3];
+    t->L[2] = t->e[4] * t->e[4] + t->e[5] * t->e[5];
+}
+
+/* atan2(y, x) [rad] for y >= 0, to a few ulp: a smallest angle (<= 60 deg) by tan(a - k 15 deg) =
+ * (t - tan k 15)/(1 + t tan k 15), |.| <= tan 7.5 deg, and the arctangent's Taylor series to
+ * degree 19 (the first term left out < 1e-17 relative); libm's atan2 beyond 67.5 deg. The report
+ * takes one smallest angle per face for the mean, and libm's atan2 was a third of its time. */
+static double wr__msh_atan2_small(double y, double x) {
+    static const double tk[5] = {0.0, 0.26794919243112270, 0.57735026918962573, 1.0, 1.7320508075688772};
+    static const double ak[5] = {0.0, 0.26179938779914941, 0.52359877559829887, 0.78539816339744831,
+                                 1.0471975511965976}; /* k pi / 12 */
+    double t = y / x, u, s;
+    int k;
+    if (!(x > 0.0 && t < 2.4142135623730950)) return atan2(y, x); /* also NaN, 0/0 */
+    k = t < 0.13165249758739585 ? 0 : t < 0.41421356237309505 ? 1 : t < 0.76732698797895960 ? 2 : t < 1.3032253728412058 ? 3 : 4;
+    u = k ? (t - tk[k]) / (1.0 + t * tk[k]) : t;
+    s = u * u;
+    return ak[k] + (u + u * s * (-1.0 / 3 + s * (1.0 / 5 + s * (-1.0 / 7 + s * (1.0 / 9 + s * (-1.0 / 11 + s * (1.0 / 13 +
+                    s * (-1.0 / 15 + s * (1.0 / 17 + s * (-1.0 / 19))))))))));
+}
+
+/* Smallest and largest angle [deg] of the triangle t: at the corners opposite its shortest and its
+ * longest edge, each one atan2(|u × v|, u · v) with u, v the edges leaving that corner (exact at
+ * any shape, unlike acos of the cosine rule near 0 and 180 deg). The largest only feeds a running
+ * maximum: where its cosine exceeds cos_skip (the running maximum's cosine plus a margin far above
+ * rounding) it cannot raise it, and *amax = 0 without the atan2. */
+static void wr__msh_tri_angles(const wr__msh_tri *t, double cos_skip, double *amin, double *amax) {
+    const double *L = t->L;
+    int s = L[1] < L[0] ? 1 : 0, g = L[1] > L[0] ? 1 : 0, pass;
+    if (L[2] < L[s]) s = 2;
+    if (L[2] > L[g]) g = 2;
     for (pass = 0; pass < (amax ? 2 : 1); ++pass) { /* amax == NULL: the smallest only */
-        int q = pass ? g : s;
-        const double *o = w + 2 * q, *a = w + 2 * ((q + 1) % 3), *b = w + 2 * ((q + 2) % 3);
-        double ux = a[0] - o[0], uy = a[1] - o[1], vx = b[0] - o[0], vy = b[1] - o[1], ang;
-        if (pass && ux * vx + uy * vy > cos_skip * sqrt((ux * ux + uy * uy) * (vx * vx + vy * vy))) {
+        int q = pass ? g : s, qa = q == 0 ? 2 : q - 1, qb = q == 2 ? 0 : q + 1;
+        /* the edges leaving corner q: u = e[(q+2)%3] (q → q+1), v = −e[(q+1)%3] (q → q+2) */
+        double ux = t->e[2 * qa], uy = t->e[2 * qa + 1], vx = -t->e[2 * qb], vy = -t->e[2 * qb + 1], ang;
+        if (pass && ux * vx + uy * vy > cos_skip * sqrt(L[qa] * L[qb])) {
             *amax = 0.0;
             continue;
         }
-        ang = atan2(fabs(ux * vy - uy * vx), ux * vx + uy * vy) * 57.29577951308232;
+        ang = fabs(ux * vy - uy * vx);
         if (pass)
-            *amax = ang;
+            *amax = atan2(ang, ux * vx + uy * vy) * 57.29577951308232;
         else
-            *amin = ang;
+            *amin = wr__msh_atan2_small(ang, ux * vx + uy * vy) * 57.29577951308232;
     }
 }
 
@@ -1234,17 +1262,19 @@ typedef struct wr__msh_quality {
 
 /* Edge metric length |T e| over the mean of its two end sizings, for the edges face f owns (the face
  * edge_faces lists first): sums, extremes, histogram; interior = no boundary or constraint vertex. */
-static void wr__msh_face_ratios(wr_mesher_result *res, int32_t f, const double *uv, const double *T,
+static void wr__msh_face_ratios(wr_mesher_result *res, int32_t f, const wr__msh_tri *t, const double *T,
                                 const char *bnd, wr__msh_quality *qa) {
     const wr_mesh *M = &res->mesh;
     wr_mesher_report *rp = &res->report;
     int k;
     for (k = 0; k < 3; ++k) {
-        int32_t e = M->face_edges[3 * f + k], a = M->edges[2 * e], b = M->edges[2 * e + 1];
-        const double *p0 = uv + 2 * ((k + 1) % 3), *p1 = uv + 2 * ((k + 2) % 3);
-        double dx = p1[0] - p0[0], dy = p1[1] - p0[1], mx = T[0] * dx + T[1] * dy, my = T[2] * dx + T[3] * dy;
-        double ratio, bin;
+        int32_t e = M->face_edges[3 * f + k], a, b;
+        double dx = t->e[2 * k], dy = t->e[2 * k + 1], mx, my, ratio, bin;
         if ((M->edge_faces[2 * e] >= 0 ? M->edge_faces[2 * e] : M->edge_faces[2 * e + 1]) != f) continue;
+        a = M->edges[2 * e];
+        b = M->edges[2 * e + 1];
+        mx = T[0] * dx + T[1] * dy;
+        my = T[2] * dx + T[3] * dy;
         ratio = sqrt(mx * mx + my * my) / (0.5 * (res->sizing[a] + res->sizing[b]));
         qa->sum_ratio += ratio;
         ++qa->n_ratio;
@@ -1254,11 +1284,27 @@ static void wr__msh_face_ratios(wr_mesher_result *res, int32_t f, const double *
         }
         if (ratio < rp->ratio_min) rp->ratio_min = ratio;
         if (ratio > rp->ratio_max) rp->ratio_max = ratio;
-        bin = floor(ratio / 2.0 * WR_MESHER_HIST_BINS);
+        bin = ratio / 2.0 * WR_MESHER_HIST_BINS; /* clamped first, so the cast is the floor */
         if (!(bin >= 0)) bin = 0;
         if (bin > WR_MESHER_HIST_BINS - 1) bin = WR_MESHER_HIST_BINS - 1;
         rp->ratio_hist[(int)bin]++;
     }
+}
+
+/* The smallest angle [deg] of face f in its panel's metric (stretched) space: amin itself on an
+ * isotropic panel (a similarity keeps angles), else that of the mapped triangle T uv. */
+static double wr__msh_metric_min_angle(const double *T, const double *uv, double amin) {
+    double w[6], am;
+    wr__msh_tri t;
+    int k;
+    if (T[1] == 0.0 && T[2] == 0.0 && T[0] == T[3]) return amin;
+    for (k = 0; k < 3; ++k) {
+        w[2 * k] = T[0] * uv[2 * k] + T[1] * uv[2 * k + 1];
+        w[2 * k + 1] = T[2] * uv[2 * k] + T[3] * uv[2 * k + 1];
+    }
+    wr__msh_tri_edges(w, &t);
+    wr__msh_tri_angles(&t, 2.0, &am, NULL);
+    return am;
 }
 
 /* One pass over the faces: angles in pattern space and in each panel's metric (stretched) space,
@@ -1282,37 +1328,28 @@ static wr_status wr__msh_report(wr__msh_ctx *c) {
     rp->ratio_max = 0.0;
     for (f = 0; f < M->nf; ++f) {
         const double *T = res->panels[M->face_panel[f]].T;
-        double uv[6], w[6], amin, amax, amin_m, area, lmax = 0.0;
+        double uv[6], amin, amax, amin_m, area, lmax;
+        wr__msh_tri t;
         wr_mesh_face_rest(M, f, uv);
-        wr__msh_tri_angles(uv, cos_skip, &amin, &amax);
-        if (T[1] == 0.0 && T[2] == 0.0 && T[0] == T[3]) { /* isotropic panel: a similarity keeps angles */
-            amin_m = amin;
-        } else {
-            for (k = 0; k < 3; ++k) {
-                w[2 * k] = T[0] * uv[2 * k] + T[1] * uv[2 * k + 1];
-                w[2 * k + 1] = T[2] * uv[2 * k] + T[3] * uv[2 * k + 1];
-            }
-            wr__msh_tri_angles(w, 2.0, &amin_m, NULL);
-        }
-        rp->min_angle_deg = fmin(rp->min_angle_deg, amin);
+        wr__msh_tri_edges(uv, &t);
+        wr__msh_tri_angles(&t, cos_skip, &amin, &amax);
+        amin_m = wr__msh_metric_min_angle(T, uv, amin);
+        if (amin < rp->min_angle_deg) rp->min_angle_deg = amin;
         if (amax > rp->max_angle_deg) {
             rp->max_angle_deg = amax;
             cos_skip = cos(amax / 57.29577951308232) + 1e-9;
         }
-        rp->min_angle_metric_deg = fmin(rp->min_angle_metric_deg, amin_m);
+        if (amin_m < rp->min_angle_metric_deg) rp->min_angle_metric_deg = amin_m;
         qa.sum_min += amin;
         qa.sum_min_metric += amin_m;
         area = 0.5 * ((uv[2] - uv[0]) * (uv[5] - uv[1]) - (uv[3] - uv[1]) * (uv[4] - uv[0]));
-        for (k = 0; k < 3; ++k) {
-            const double *a = uv + 2 * k, *b = uv + 2 * ((k + 1) % 3);
-            double l2 = (b[0] - a[0]) * (b[0] - a[0]) + (b[1] - a[1]) * (b[1] - a[1]);
-            lmax = l2 > lmax ? l2 : lmax;
-        }
+        lmax = t.L[0] > t.L[1] ? t.L[0] : t.L[1];
+        lmax = t.L[2] > lmax ? t.L[2] : lmax;
         if (fabs(area) <= WR_MESH_ZERO_AREA_REL * lmax)
             ++rp->n_zero_area;
         else if (area < 0.0)
             ++rp->n_inverted;
-        wr__msh_face_ratios(res, f, uv, T, bnd, &qa);
+        wr__msh_face_ratios(res, f, &t, T, bnd, &qa);
     }
     wr_free(bnd);
     rp->n_vertices = M->nv;
