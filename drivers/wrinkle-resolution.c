@@ -339,6 +339,10 @@ static int run_inverse(const opts *o, const wr_resolution_model *m) {
     double y;
     wr_diag d;
     if (wr_resolution_y(m, 1e-3 * o->inverse_mm, &y, &d) != WR_OK) return fail_status(NULL, &d);
+    if (!isfinite(y)) { /* never "inf" as an answer (nor a JSON null): r is far beyond any cloth */
+        wr_cli_error("--inverse-mm %g: y = c1 r^6 + c2 r^4 overflows a double (r is in millimetres)", o->inverse_mm);
+        return WR_CLI_EXIT_USAGE;
+    }
     if (o->json) {
         cJSON *j = cJSON_CreateObject();
         cJSON_AddNumberToObject(j, "r_mm", o->inverse_mm);
@@ -406,7 +410,7 @@ static int single_bending(const opts *o, double *B) {
         *B = o->B;
         return -1;
     }
-    if (o->h > 0.01) wr_cli_warn("--thickness %g m is over 1 cm: the option is in metres (0.3 mm is 3e-4)", o->h);
+    wr_cli_warn_thickness("--thickness", o->h);
     return wr_kl_bending(o->E, o->h, o->nu, B, &d) == WR_OK ? -1 : fail_status(NULL, &d);
 }
 

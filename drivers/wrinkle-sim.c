@@ -10,11 +10,13 @@
  * DIR/frame_NNNN.png with --png (front and 3/4 views), and DIR/summary.json (per-frame NS and CH
  * milliseconds, Newton and PCG iterations, contacts, minimum distance, seam gap; totals and
  * medians). Every file appears atomically (temporary + rename). Progress on stderr: one updating
- * line on a terminal, a line per tenth of the run otherwise.
+ * line on a terminal, a line per tenth of the run otherwise. Warnings (stderr, the run goes on): a
+ * cloth thickness above 1 cm (millimetres read as metres?), an edge of the last frame strained by
+ * more than 100 %.
  * Exit: 0 done; 1 a step failed (frames before it and the summary are written, the summary says why);
  * 2 bad input (one line naming the JSON path or option); 3 output or setup failure.
  */
-#define _XOPEN_SOURCE 700 /* realpath */
+#define _XOPEN_SOURCE 700
 #include <errno.h>
 #include <limits.h>
 #include <stdio.h>
@@ -24,6 +26,7 @@
 #include <unistd.h>
 
 #include "cli.h"
+#include "meshout.h"
 #include "simscene.h"
 
 static void usage(FILE *f) {
@@ -38,6 +41,8 @@ static void usage(FILE *f) {
             "  --png                also DIR/frame_NNNN.png for every written frame (front and 3/4 views)\n"
             "  --quiet              no progress on stderr\n"
             "  -h, --help           this text\n"
+            "warnings (stderr, the run goes on): a cloth thickness over 1 cm (it is in metres), an edge of\n"
+            "  the last frame strained by more than 100 %%\n"
             "exit status: 0 ok, 1 a step failed (outputs written), 2 bad input, 3 failure\n");
 }
 
@@ -66,16 +71,11 @@ static int on_frame(void *user, const wr_simscene_run *run, int32_t k) {
         if (c->write_status == WR_OK && c->png) c->write_status = wr_simscene_write_png(run, c->dir, k, &c->write_diag);
         if (c->write_status != WR_OK) return 1;
     }
-    if (!c->quiet) {
-        if (c->tty)
-            fprintf(stderr, "\r  frame %d/%d  t %.3f s  NS %.1f ms  CH %.1f ms  Newton %d  PCG %d  contacts %d%s   ", (int)k,
-                    (int)c->total, f->t, 1e3 * f->t_ns, 1e3 * f->t_ch, (int)f->newton, (int)f->pcg, (int)f->contacts,
-                    seam_note(run, f));
-        else if (k == c->total || (c->total >= 10 && k % (c->total / 10) == 0) || c->total < 10)
-            fprintf(stderr, "  frame %d/%d  t %.3f s  NS %.1f ms  CH %.1f ms  Newton %d  PCG %d  contacts %d%s\n", (int)k,
-                    (int)c->total, f->t, 1e3 * f->t_ns, 1e3 * f->t_ch, (int)f->newton, (int)f->pcg, (int)f->contacts,
-                    seam_note(run, f));
-    }
+    /* every frame on a terminal (one line redrawn), a tenth of the run when redirected */
+    if (!c->quiet && (c->tty || k == c->total || c->total < 10 || k % (c->total / 10) == 0))
+        wr_cli_progress("  frame %d/%d  t %.3f s  NS %.1f ms  CH %.1f ms  Newton %d  PCG %d  contacts %d%s", (int)k,
+                        (int)c->total, f->t, 1e3 * f->t_ns, 1e3 * f->t_ch, (int)f->newton, (int)f->pcg, (int)f->contacts,
+                        seam_note(run, f));
     return 0;
 }
 
@@ -98,47 +98,28 @@ static int make_dir(const char *dir) {
     }
 }
 
-/* 1 when DIR/name is the same file as `input` (an output must never overwrite an input). */
-static int same_file(const char *dir_real, const char *name, const char *input) {
-    char in_real[PATH_MAX], out[PATH_MAX + 64];
-    if (!input || !input[0] || !realpath(input, in_real)) return 0;
-    snprintf(out, sizeof out, "%s/%s", dir_real, name);
-    return strcmp(out, in_real) == 0;
-}
-
-/* Refuse when any output path resolves to an input file (the scene, the cloth OBJ, the pattern, body
- * and obstacle OBJs). */
-static int outputs_clash(const wr_simscene *sc, const char *scene_path, const char *dir, int32_t n_frames, int32_t every,
-                         int png) {
-    char dir_real[PATH_MAX], name[32];
+/* cli.h's output checks for every file the run would write (summary, bodies, each written frame and
+ * its picture) against the inputs (the scene, the cloth OBJ, the pattern, body and obstacle OBJs):
+ * DIR must not be an existing file, no output may resolve to an input. 1 when all are fine. */
+static int outputs_ok(const wr_simscene *sc, const char *scene_path, const char *dir, int32_t n_frames, int32_t every,
+                      int png) {
+    static const char *const fixed[] = {"summary.json", "body.obj"};
     const char *inputs[1 + WR_SIMSCENE_MAX_INPUTS + WR_SIMSCENE_MAX_BODY_KEYS];
-    int32_t k, n;
-    int i;
-    if (!realpath(dir, dir_real)) return 0;
+    char name[32], path[WR_PATH_MAX + 32];
+    int32_t k;
+    int n;
     inputs[0] = scene_path;
-    n = 1 + wr_simscene_inputs(sc, inputs + 1, (int32_t)(sizeof inputs / sizeof inputs[0]) - 1);
-    for (i = 0; i < n; ++i) {
-        if (same_file(dir_real, "summary.json", inputs[i]) || same_file(dir_real, "body.obj", inputs[i])) {
-            wr_cli_error("an output in %s would overwrite the input %s", dir, inputs[i]);
-            return 1;
-        }
-        for (k = 0; k <= n_frames; ++k) {
-            if (k % every && k != n_frames) continue;
-            wr_simscene_frame_name(sc, k, name);
-            if (same_file(dir_real, name, inputs[i])) {
-                wr_cli_error("output %s/%s is the input %s", dir, name, inputs[i]);
-                return 1;
-            }
-            if (png) {
-                snprintf(name, sizeof name, "frame_%04d.png", (int)k);
-                if (same_file(dir_real, name, inputs[i])) {
-                    wr_cli_error("output %s/%s is the input %s", dir, name, inputs[i]);
-                    return 1;
-                }
-            }
-        }
+    n = 1 + (int)wr_simscene_inputs(sc, inputs + 1, (int32_t)(sizeof inputs / sizeof inputs[0]) - 1);
+    if (!wr_cli_dir_outputs_ok(dir, fixed, 2, inputs, n)) return 0;
+    for (k = 0; k <= n_frames; ++k) {
+        if (k % every && k != n_frames) continue;
+        wr_simscene_frame_name(sc, k, name);
+        snprintf(path, sizeof path, "%s/%s", dir, name);
+        if (!wr_cli_output_ok(path, inputs, n)) return 0;
+        snprintf(path, sizeof path, "%s/frame_%04d.png", dir, (int)k);
+        if (png && !wr_cli_output_ok(path, inputs, n)) return 0;
     }
-    return 0;
+    return 1;
 }
 
 int main(int argc, char **argv) {
@@ -184,6 +165,11 @@ int main(int argc, char **argv) {
         wr_cli_error("%s: %s", scene_path, d.message);
         return WR_CLI_EXIT_USAGE;
     }
+    if (!sc.is_garment) { /* a garment's fabrics are given by B and E, no thickness */
+        char what[WR_PATH_MAX + 32];
+        snprintf(what, sizeof what, "%s: $.cloth.material.thickness", scene_path);
+        wr_cli_warn_thickness(what, sc.cloth.shell.thickness);
+    }
     if (every > 0.0) sc.output_every = (int32_t)every;
     if (duration >= 0.0) {
         if (duration / sc.dyn.time.dt > WR_SIMSCENE_MAX_FRAMES) {
@@ -199,13 +185,13 @@ int main(int argc, char **argv) {
         wr_simscene_free(&sc);
         return st == WR_ERR_NOMEM ? 3 : WR_CLI_EXIT_USAGE;
     }
+    if (!outputs_ok(&sc, scene_path, out, run.n_frames_max - 1, sc.output_every, png)) {
+        rc = WR_CLI_EXIT_USAGE;
+        goto done;
+    }
     if (make_dir(out) != 0) {
         wr_cli_error("cannot create output directory %s", out);
         rc = 3;
-        goto done;
-    }
-    if (outputs_clash(&sc, scene_path, out, run.n_frames_max - 1, sc.output_every, png)) {
-        rc = WR_CLI_EXIT_USAGE;
         goto done;
     }
     if ((size_t)snprintf(summary, sizeof summary, "%s/summary.json", out) >= sizeof summary) {
@@ -216,7 +202,7 @@ int main(int argc, char **argv) {
     memset(&ctx, 0, sizeof ctx);
     ctx.dir = out;
     ctx.quiet = quiet;
-    ctx.tty = isatty(2);
+    ctx.tty = wr_cli_progress_tty();
     ctx.png = png;
     ctx.every = sc.output_every;
     ctx.total = run.n_frames_max - 1;
@@ -236,7 +222,8 @@ int main(int argc, char **argv) {
         goto done;
     }
     st = wr_simscene_run_frames(&run, on_frame, &ctx, &d);
-    if (!quiet && ctx.tty) fprintf(stderr, "\n");
+    wr_cli_progress_end();
+    wr_cli_warn_strain("the last frame", wr_meshout_max_strain(&run.mesh, run.x));
     if (ctx.write_status != WR_OK) {
         wr_cli_error("writing frames: %s", ctx.write_diag.message);
         rc = 3;
@@ -257,5 +244,5 @@ int main(int argc, char **argv) {
 done:
     wr_simscene_run_free(&run);
     wr_simscene_free(&sc);
-    return rc;
+    return wr_cli_exit(rc);
 }

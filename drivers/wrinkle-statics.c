@@ -80,7 +80,7 @@ static wr_status picture(const wr_scene_run *run, const char *dir, wr_diag *d) {
 int main(int argc, char **argv) {
     const char *scene_path = NULL, *out = NULL, *inputs[2];
     static const char *const outputs[] = {"deformed.obj", "fields.ply", "summary.json", "deformed.png"};
-    double res_override = 0.0, steps_override = 0.0, strain;
+    double res_override = 0.0, steps_override = 0.0;
     int quiet = 0, png = 0, i, n_pos = 0;
     wr_scene sc;
     wr_scene_run run;
@@ -108,9 +108,11 @@ int main(int argc, char **argv) {
     inputs[0] = scene_path;
     inputs[1] = sc.mesh.kind == WR_SCENE_MESH_OBJ ? sc.mesh.path : NULL;
     if (!wr_cli_dir_outputs_ok(out, outputs, 4, inputs, 2)) return wr_cli_exit(WR_CLI_EXIT_USAGE);
-    if (sc.shell.thickness > 0.01)
-        wr_cli_warn("%s: $.material.thickness = %g m (over 1 cm): a value in millimetres read as metres?", scene_path,
-                    sc.shell.thickness);
+    {
+        char what[WR_PATH_MAX + 32];
+        snprintf(what, sizeof what, "%s: $.material.thickness", scene_path);
+        wr_cli_warn_thickness(what, sc.shell.thickness);
+    }
     if (res_override > 0.0) sc.mesh.resolution = res_override, sc.mesh.nx = sc.mesh.ny = 0;
     if (steps_override > 0.0) sc.load_steps = (int32_t)steps_override;
     st = wr_scene_run_create(&run, &sc, &d);
@@ -130,8 +132,7 @@ int main(int argc, char **argv) {
         return wr_cli_exit(WR_CLI_EXIT_FAILURE);
     }
     if (st == WR_ERR_NOT_CONVERGED) wr_cli_warn("%s", d.message);
-    if ((strain = wr_meshout_max_strain(&run.mesh, run.x)) > 1.0)
-        wr_cli_warn("an edge is strained by %.0f %% (over 100 %%): check the scene's units and motions", 100.0 * strain);
+    wr_cli_warn_strain("the result", wr_meshout_max_strain(&run.mesh, run.x));
     if (wr_scene_run_write(&run, out, &d) != WR_OK || (png && picture(&run, out, &d) != WR_OK)) {
         wr_cli_error("writing %s: %s", out, d.message);
         return wr_cli_exit(WR_CLI_EXIT_FAILURE);

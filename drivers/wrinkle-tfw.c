@@ -169,9 +169,11 @@ static int load_scene(tfw_job *j) {
         wr_cli_error("%s: $.material: TFW needs an isotropic material (orthotropic given)", j->scene_path);
         return wr_cli_exit(WR_CLI_EXIT_USAGE);
     }
-    if (j->sc.shell.thickness > 0.01)
-        wr_cli_warn("%s: $.material.thickness = %g m (over 1 cm): a value in millimetres read as metres?", j->scene_path,
-                    j->sc.shell.thickness);
+    {
+        char what[WR_PATH_MAX + 32];
+        snprintf(what, sizeof what, "%s: $.material.thickness", j->scene_path);
+        wr_cli_warn_thickness(what, j->sc.shell.thickness);
+    }
     return -1;
 }
 
@@ -179,7 +181,6 @@ static int load_scene(tfw_job *j) {
  * An unconverged base is said after the TFW step, unless that step refuses the base. */
 static int solve_base(tfw_job *j) {
     wr_diag d;
-    double strain;
     j->sc.shell.membrane = WR_MEMBRANE_TFT;
     j->sc.shell.bending = WR_BENDING_QUADRATIC;
     j->st = wr_scene_run_create(&j->run, &j->sc, &d);
@@ -201,9 +202,7 @@ static int solve_base(tfw_job *j) {
         snprintf(j->base_warning, sizeof j->base_warning, "%s", d.message);
         j->rc = 1;
     }
-    if ((strain = wr_meshout_max_strain(&j->run.mesh, j->run.x)) > 1.0)
-        wr_cli_warn("an edge of the base is strained by %.0f %% (over 100 %%): check the scene's units and motions",
-                    100.0 * strain);
+    wr_cli_warn_strain("the base", wr_meshout_max_strain(&j->run.mesh, j->run.x));
     return -1;
 }
 

@@ -340,5 +340,56 @@ if [ -x "$B/wrinkle-statics" ]; then
     printf '{"mesh": {"type": "obj", "path": "deformed.obj"}, "material": {"young": 1e6, "poisson": 0.3, "thickness": 1e-4}}' > "$tmp/stself/scene.json"
     expect_fail "wrinkle-statics output is the scene's mesh" "$B/wrinkle-statics" "$tmp/stself/scene.json" -o "$tmp/stself"
 fi
+# ---- issue 19 audit: the same behaviour in every driver -------------------------------------------
+# -o DIR naming an existing file (here the scene itself) is bad input, refused before any work
+# (cli.c's wr_cli_dir_outputs_ok), not a write failure (exit 3) after the run
+touch "$tmp/plainfile"
+[ -x "$B/wrinkle-mesh" ] && expect_fail "wrinkle-mesh -o an existing file" "$B/wrinkle-mesh" -o "$tmp/plainfile" --no-png -q
+if [ -x "$B/wrinkle-statics" ]; then
+    expect_fail "wrinkle-statics -o an existing file" "$B/wrinkle-statics" "$root/examples/scenes/cantilever.json" \
+        -o "$tmp/plainfile" --quiet --load-steps 2
+    cp "$root/examples/scenes/cantilever.json" "$tmp/stscene.json"
+    expect_fail "wrinkle-statics -o the scene file" "$B/wrinkle-statics" "$tmp/stscene.json" -o "$tmp/stscene.json" --quiet
+fi
+if [ -x "$B/wrinkle-tfw" ]; then
+    expect_fail "wrinkle-tfw -o an existing file" "$B/wrinkle-tfw" "$tmp/tfw.json" -o "$tmp/plainfile" --quiet --levels 0
+fi
+if [ -x "$B/wrinkle-sim" ]; then
+    expect_fail "wrinkle-sim -o an existing file" "$B/wrinkle-sim" "$tmp/sim.json" -o "$tmp/plainfile" --quiet
+    expect_fail "wrinkle-sim -o the scene file" "$B/wrinkle-sim" "$tmp/sim.json" -o "$tmp/sim.json" --quiet
+    # a written frame that is the input (same inode through another spelling of the directory)
+    mkdir -p "$tmp/simf"; cp "$tmp/sim.json" "$tmp/simf/frame_0000.obj"
+    expect_fail "wrinkle-sim frame over input" "$B/wrinkle-sim" "$tmp/simf/frame_0000.obj" -o "$tmp/simf/./" --quiet
+    # progress redirected: plain lines, no carriage return
+    (cd "$tmp/cwd" && "$B/wrinkle-sim" "$tmp/sim.json" -o "$tmp/simp") >"$tmp/out" 2>"$tmp/err" </dev/null
+    if grep -q "$(printf '\r')" "$tmp/err"; then bad "wrinkle-sim: carriage return in redirected progress"
+    elif [ "$(grep -c 'frame ' "$tmp/err")" -lt 2 ]; then bad "wrinkle-sim: no per-frame progress lines"; head -c 400 "$tmp/err"
+    else ok; fi
+    no_inf "$tmp/err" "$tmp/out"
+    # plausibility warnings shared with wrinkle-statics/-tfw (cli.c): thickness in mm, strain > 100 %
+    sed 's/"thickness": 5e-4/"thickness": 0.5/' "$tmp/sim.json" > "$tmp/sim_thick.json"
+    warns "wrinkle-sim thickness in mm" "metres" "$B/wrinkle-sim" "$tmp/sim_thick.json" -o "$tmp/simt" --quiet --duration 0
+    cat > "$tmp/sim_soft.json" <<'JSON'
+{"name": "sim_soft", "cloth": {"mesh": {"type": "rectangle", "width": 0.2, "height": 0.2, "nx": 4, "ny": 4},
+  "material": {"young": 1, "poisson": 0.3, "thickness": 5e-4, "areal_density": 0.15},
+  "pins": [{"box": {"min": [-1, 0.19, -1], "max": [1, 1, 1]}}]},
+ "gravity": [0, 0, -9.81], "time": {"duration": 0.5}}
+JSON
+    warns "wrinkle-sim strain over 100 %" "100 %" "$B/wrinkle-sim" "$tmp/sim_soft.json" -o "$tmp/sims" --quiet
+fi
+if [ -x "$B/wrinkle-resolution" ]; then
+    # an answer that overflows is refused, never printed as "inf" (text) or null (JSON)
+    expect_fail "wrinkle-resolution --inverse-mm overflow" "$B/wrinkle-resolution" --inverse-mm 1e300
+    expect_fail "wrinkle-resolution --inverse-mm overflow json" "$B/wrinkle-resolution" --inverse-mm 1e60 --json
+fi
+if [ -x "$B/wrinkle-report" ]; then
+    # "done with a caveat" (exit 1: a quantity missed) with a lost stdout is a failure too (exit 3)
+    mkdir -p "$tmp/resmiss"
+    printf '{"case": "zz_miss", "title": "a missed quantity", "generated": "2026-01-01T00:00:00Z", "machine": "m", "failed": 1, "quantities": [{"name": "q", "unit": "mm", "paper": 1.0, "ours": 2.0, "tolerance": "[0.9, 1.1]", "lo": 0.9, "hi": 1.1, "pass": false}]}\n' > "$tmp/resmiss/zz_miss.json"
+    (cd "$tmp/cwd" && "$B/wrinkle-report" "$tmp/resmiss" -o "$tmp/RMISS.md") >/dev/null 2>"$tmp/err" </dev/null
+    rc=$?
+    if [ $rc = 1 ]; then ok; else bad "wrinkle-report with a missed quantity: exit $rc, want 1"; cat "$tmp/err"; fi
+    full_stdout "wrinkle-report a miss, stdout full" "$B/wrinkle-report" "$tmp/resmiss" -o "$tmp/RMISS.md"
+fi
 echo "driver-check: $pass passed, $fail failed, $found drivers${note:+; skipped:$note}"
 [ $fail = 0 ]

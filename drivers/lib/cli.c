@@ -34,6 +34,7 @@ void wr_cli_error(const char *fmt, ...) {
     va_end(ap);
     for (k = 0; msg[k]; ++k)
         if (msg[k] == '\n' || msg[k] == '\r') msg[k] = ' ';
+    wr_cli_progress_end(); /* the reason on its own line, not after an open terminal progress line */
     fprintf(stderr, "%s: %s\n", wr__cli_prog, msg);
 }
 
@@ -230,7 +231,9 @@ int wr_cli_exit(int code) {
         wr__cli_defer[wr__cli_n_defer].fn(wr__cli_defer[wr__cli_n_defer].p);
     }
     wr_cli_progress_end();
-    if (!wr_cli_stdout_ok() && code == 0) code = WR_CLI_EXIT_FAILURE;
+    /* "done" (0) and "done with a caveat" (1) both claim the results were delivered: a lost stdout
+     * makes either a failure; a usage error (2) stays what it is. */
+    if (!wr_cli_stdout_ok() && code < WR_CLI_EXIT_USAGE) code = WR_CLI_EXIT_FAILURE;
     return code;
 }
 
@@ -238,7 +241,7 @@ int wr_cli_exit(int code) {
 
 static int wr__cli_tty = -1, wr__cli_open_line;
 
-static int cli_is_tty(void) {
+int wr_cli_progress_tty(void) {
     if (wr__cli_tty < 0) wr__cli_tty = isatty(fileno(stderr)) ? 1 : 0;
     return wr__cli_tty;
 }
@@ -249,7 +252,7 @@ void wr_cli_progress(const char *fmt, ...) {
     va_start(ap, fmt);
     vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
-    if (cli_is_tty()) {
+    if (wr_cli_progress_tty()) {
         fprintf(stderr, "\r%-100s", msg); /* padded: a shorter line covers the previous one */
         wr__cli_open_line = 1;
     } else {
@@ -274,6 +277,25 @@ void wr_cli_warn(const char *fmt, ...) {
         if (msg[k] == '\n' || msg[k] == '\r') msg[k] = ' ';
     wr_cli_progress_end();
     fprintf(stderr, "%s: warning: %s\n", wr__cli_prog, msg);
+}
+
+/* Plausibility limits shared by every driver (issue 19): cloth is well under 1 cm thick, so a
+ * thickness above it is a millimetre value read as metres; an edge stretched or shrunk by more than
+ * 100 % is a unit slip or a runaway, not cloth. */
+#define WR_CLI_THICKNESS_MAX 0.01
+#define WR_CLI_STRAIN_MAX 1.0
+
+void wr_cli_warn_thickness(const char *what, double h) {
+    if (h > WR_CLI_THICKNESS_MAX)
+        wr_cli_warn("%s = %g m is over 1 cm: thickness is in metres (0.3 mm is 3e-4), a millimetre value read as "
+                    "metres?",
+                    what, h);
+}
+
+void wr_cli_warn_strain(const char *what, double strain) {
+    if (strain > WR_CLI_STRAIN_MAX)
+        wr_cli_warn("an edge of %s is strained by %.0f %% (over 100 %%): check the scene's units and motions", what,
+                    100.0 * strain);
 }
 
 const char *wr_cli_num(char *buf, size_t n, const char *fmt, double x) {
@@ -311,8 +333,15 @@ int wr_cli_output_ok(const char *out, const char *const *inputs, int n_inputs) {
 int wr_cli_dir_outputs_ok(const char *dir, const char *const *names, int n_names, const char *const *inputs,
                           int n_inputs) {
     char p[4096];
+    struct stat sd;
     int k;
-    if (!wr_cli_output_ok(dir, NULL, 0)) return 0;
+    if (!wr_cli_output_ok(dir, inputs, n_inputs)) return 0;
+    /* checked before any work: an existing file given as -o DIR is bad input, not a write failure
+     * found after the run */
+    if (stat(dir, &sd) == 0 && !S_ISDIR(sd.st_mode)) {
+        wr_cli_error("output directory '%s' exists and is not a directory", dir);
+        return 0;
+    }
     for (k = 0; k < n_names; ++k) {
         if (snprintf(p, sizeof p, "%s/%s", dir, names[k]) >= (int)sizeof p) {
             wr_cli_error("output path too long: '%s'", dir);

@@ -41,13 +41,20 @@
  *   wr_cli_defer(fn, p)                     run fn(p) at wr_cli_exit (last registered runs first;
  *                                           up to WR_CLI_MAX_DEFER)
  *   wr_cli_exit(code)                       run the deferred cleanups, flush stdout (a failed flush
- *                                           is reported and turns code 0 into WR_CLI_EXIT_FAILURE);
+ *                                           is reported and turns code 0 or 1 into WR_CLI_EXIT_FAILURE);
  *                                           returns the code for `return wr_cli_exit(rc);`
  * Progress, warnings, results:
  *   wr_cli_progress(fmt, ...)               progress on stderr: on a terminal one line redrawn with
  *                                           '\r'; redirected (a log, a pipe) one plain line each
  *   wr_cli_progress_end()                   ends a terminal progress line ('\n'), no-op otherwise
+ *                                           (wr_cli_error and wr_cli_warn call it first)
+ *   wr_cli_progress_tty()                   1 when progress goes to a terminal (a driver that thins
+ *                                           its redirected progress asks this, not isatty)
  *   wr_cli_warn(fmt, ...)                   "<program>: warning: <message>" (one line, stderr)
+ *   wr_cli_warn_thickness(what, h)          warns when a thickness h [m] is over 1 cm ("what": the
+ *                                           option or JSON path it came from)
+ *   wr_cli_warn_strain(what, strain)        warns when the largest edge strain |l/L - 1| of "what"
+ *                                           (the result, the base) is over 1 (100 %)
  *   wr_cli_num(buf, n, fmt, x)              x printed with fmt, or "n/a" when not finite (no "inf"
  *                                           or "nan" is ever printed as a result)
  *   wr_cli_stdout_ok()                      flush stdout: 1 ok, else 0 with "writing standard output
@@ -58,7 +65,8 @@
  *                                           "./x" included), or exists and is neither a regular file
  *                                           nor a directory (a device such as /dev/full would be
  *                                           replaced by the temp-and-rename writer); else 1
- *   wr_cli_dir_outputs_ok(dir, names, inputs, n)  the same for each DIR/name
+ *   wr_cli_dir_outputs_ok(dir, names, inputs, n)  the same for DIR itself and each DIR/name; 0 (error
+ *                                           printed) also when DIR exists and is not a directory
  *
  * EXIT STATUS (every driver): 0 done; 1 done with a caveat the driver names (not converged, a
  * validation miss, a budget reached); WR_CLI_EXIT_USAGE 2 bad input — the command line or an input
@@ -127,7 +135,10 @@ void wr_cli_defer(void (*fn)(void *), void *p);
 int wr_cli_exit(int code);
 void wr_cli_progress(const char *fmt, ...) WR_CLI_PRINTF(1, 2);
 void wr_cli_progress_end(void);
+int wr_cli_progress_tty(void);
 void wr_cli_warn(const char *fmt, ...) WR_CLI_PRINTF(1, 2);
+void wr_cli_warn_thickness(const char *what, double h);
+void wr_cli_warn_strain(const char *what, double strain);
 const char *wr_cli_num(char *buf, size_t n, const char *fmt, double x);
 int wr_cli_stdout_ok(void);
 int wr_cli_output_ok(const char *out, const char *const *inputs, int n_inputs);
