@@ -264,10 +264,11 @@ static int outputs_ok(const opts *o, const wr_cdt_out_desc *od, const inputs *I,
     on[4] = od->neighbors;
     on[5] = on[6] = od->voronoi;
     on[7] = o->geomview;
+    /* only the files this run reads: with -I a stale name.ele from an earlier run is an output */
     ins[0] = I->src;
-    ins[1] = I->node;
-    ins[2] = I->ele;
-    ins[3] = I->area;
+    ins[1] = I->node_from_file ? I->node : NULL;
+    ins[2] = o->refine ? I->ele : NULL;
+    ins[3] = o->refine && o->var_area ? I->area : NULL;
     for (k = 0; k < 8; ++k) {
         char p[WR_PATH_MAX + 32];
         if (!on[k]) continue;
@@ -461,6 +462,15 @@ int main(int argc, char **argv) {
     if ((st = wr_cdt_out_build(&I.P, &in, o.refine ? &I.prev : NULL, &r, &od, &w, &dg)) != WR_OK) {
         wr_cli_error("%s: %s", I.src, dg.message);
         e = WR_CLI_EXIT_FAILURE;
+        goto out;
+    }
+    /* out_desc leaves name.node alone under -I when it is the input; that is only right when the
+     * mesh has exactly the input's vertices, else name.ele would index vertices no file holds */
+    if (o.no_iter && I.node_from_file && !o.no_node && (r.n_steiner > 0 || w.n_nodes != I.P.n_points)) {
+        wr_cli_error("-I: the mesh has %d vertices, not the %d of the input %s, which it would have to replace "
+                     "(drop -I)",
+                     (int)w.n_nodes, (int)I.P.n_points, I.node);
+        e = WR_CLI_EXIT_USAGE;
         goto out;
     }
     if (o.no_iter)

@@ -382,6 +382,19 @@ if [ -x "$B/wrinkle-resolution" ]; then
     expect_fail "wrinkle-resolution --inverse-mm overflow" "$B/wrinkle-resolution" --inverse-mm 1e300
     expect_fail "wrinkle-resolution --inverse-mm overflow json" "$B/wrinkle-resolution" --inverse-mm 1e60 --json
 fi
+if [ -x "$B/wrinkle-triangulate" ]; then
+    # -I writes name.node/.ele beside name.poly: a rerun must not take the first run's name.ele
+    # (not read without -r) for an input and refuse to replace it
+    cp "$tmp/tri/sq.poly" "$tmp/tri/sqI.poly"
+    for run in 1 2; do
+        if (cd "$tmp/cwd" && "$B/wrinkle-triangulate" -pIQ "$tmp/tri/sqI.poly") >/dev/null 2>"$tmp/err" </dev/null; then ok
+        else bad "wrinkle-triangulate -pI run $run refused"; cat "$tmp/err"; fi
+    done
+    # ... but name.node IS read when the .poly has no vertices of its own: -I would replace it
+    printf '0 2 0 0\n4 0\n1 1 2\n2 2 3\n3 3 4\n4 4 1\n0\n' > "$tmp/tri/sqn.poly"
+    printf '4 2 0 0\n1 0 0\n2 1 0\n3 1 1\n4 0 1\n' > "$tmp/tri/sqn.node"
+    expect_fail "wrinkle-triangulate -I over name.node" "$B/wrinkle-triangulate" -pIq30a0.01Q "$tmp/tri/sqn.poly"
+fi
 if [ -x "$B/wrinkle-report" ]; then
     # "done with a caveat" (exit 1: a quantity missed) with a lost stdout is a failure too (exit 3)
     mkdir -p "$tmp/resmiss"
