@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "plausible.h"
 #include "meshout.h"
 #include "pattern.h"
 #include "wrinkle/mesher.h"
@@ -49,35 +50,6 @@ static void usage(FILE *f) {
             "\n"
             "Exit status: 0 success, 2 bad input (command line, pattern file, or geometry the mesher\n"
             "refuses), 3 the mesh could not be computed (memory) or written.\n");
-}
-
-/* The slips people make, caught before they cost a simulation (Style3D's r comes from Eq. 4 in
- * metres; pattern files are in millimetres). */
-static void plausibility(const wr_pattern_file *pf, const wr_mesher_result *res) {
-    int32_t p, k;
-    for (p = 0; p < res->n_panels && p < pf->pattern.n_panels; ++p) {
-        const wr_pattern_curve *c = &pf->pattern.panels[p].outer;
-        const char *nm = pf->panel_names && pf->panel_names[p][0] ? pf->panel_names[p] : NULL;
-        double lo[2] = {HUGE_VAL, HUGE_VAL}, hi[2] = {-HUGE_VAL, -HUGE_VAL}, r = res->panels[p].r0, ext;
-        for (k = 0; k < c->n; ++k) {
-            lo[0] = fmin(lo[0], c->xy[2 * k]), hi[0] = fmax(hi[0], c->xy[2 * k]);
-            lo[1] = fmin(lo[1], c->xy[2 * k + 1]), hi[1] = fmax(hi[1], c->xy[2 * k + 1]);
-        }
-        ext = fmax(hi[0] - lo[0], hi[1] - lo[1]);
-        if (ext < r)
-            wr_cli_warn("panel %d%s%s%s is %.3g mm across, smaller than one edge (%.3g mm): coordinates in metres in a "
-                        "millimetre file?", (int)p, nm ? " '" : "", nm ? nm : "", nm ? "'" : "", 1e3 * ext, 1e3 * r);
-        for (k = 0; k < 2; ++k) {
-            double rr = k ? res->panels[p].r_weft : res->panels[p].r_warp;
-            if (pf->desc.uniform_resolution > 0.0) break;
-            if (rr < WR_RESOLUTION_PAPER_R_MIN * (1.0 - 1e-9) || rr > WR_RESOLUTION_PAPER_R_MAX * (1.0 + 1e-9)) {
-                wr_cli_warn("panel %d%s%s%s: base resolution %.4g mm is outside the %g-%g mm band Eq. 4 was calibrated "
-                            "on", (int)p, nm ? " '" : "", nm ? nm : "", nm ? "'" : "", 1e3 * rr,
-                            1e3 * WR_RESOLUTION_PAPER_R_MIN, 1e3 * WR_RESOLUTION_PAPER_R_MAX);
-                break;
-            }
-        }
-    }
 }
 
 /* desc.progress: after the sizing map, after each panel, at the end (mesher.h ON PROGRESS). */
@@ -156,7 +128,7 @@ int main(int argc, char **argv) {
         return wr_cli_exit(mesher_exit(st));
     }
     wr_cli_defer(free_result, &res);
-    plausibility(&pf, &res);
+    wr_plausible_pattern(&pf, &res);
     st = wr_meshout_write_dir(&res, &pf, out, !no_png, &png, &d);
     if (st != WR_OK) {
         wr_cli_error("%s", d.message);

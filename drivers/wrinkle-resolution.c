@@ -12,6 +12,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "plausible.h"
 #include "jsonout.h"
 #include "wrinkle/resolution.h"
 
@@ -77,13 +78,6 @@ static int print_json(cJSON *o) {
     cJSON_Delete(o);
     if (st != WR_OK) wr_cli_error("%s", d.message);
     return st == WR_OK ? 0 : WR_CLI_EXIT_FAILURE;
-}
-
-/* Style3D calibrated Eq. 4 on r in [2.5, 50] mm (Sec. 4.1): outside it the law is extrapolated. */
-static void warn_band(const char *what, double r) {
-    if (r < WR_RESOLUTION_PAPER_R_MIN * (1.0 - 1e-9) || r > WR_RESOLUTION_PAPER_R_MAX * (1.0 + 1e-9))
-        wr_cli_warn("%s = %.4g mm is outside the %g-%g mm band Eq. 4 was calibrated on (extrapolated)", what, 1e3 * r,
-                    1e3 * WR_RESOLUTION_PAPER_R_MIN, 1e3 * WR_RESOLUTION_PAPER_R_MAX);
 }
 
 static int fail_status(const char *what, const wr_diag *d) {
@@ -367,8 +361,8 @@ static int run_orthotropic(const opts *o, const wr_resolution_model *m, const wr
     }
     if (wr_resolution_orthotropic(m, o->Bw, o->Ew, o->Bf, o->Ef, desc, &rw, &rf, &d) != WR_OK)
         return fail_status(d.item == 0 ? "warp" : "weft", &d);
-    warn_band("r_warp", rw);
-    warn_band("r_weft", rf);
+    wr_plausible_band("r_warp", rw);
+    wr_plausible_band("r_weft", rf);
     if (o->json) {
         cJSON *j = cJSON_CreateObject();
         cJSON_AddNumberToObject(j, "r_warp_mm", 1e3 * rw);
@@ -410,7 +404,7 @@ static int single_bending(const opts *o, double *B) {
         *B = o->B;
         return -1;
     }
-    wr_cli_warn_thickness("--thickness", o->h);
+    wr_plausible_thickness("--thickness", o->h);
     return wr_kl_bending(o->E, o->h, o->nu, B, &d) == WR_OK ? -1 : fail_status(NULL, &d);
 }
 
@@ -421,7 +415,7 @@ static int run_single(const opts *o, const wr_resolution_model *m, const wr_reso
     int e;
     if ((e = single_bending(o, &B)) >= 0) return e;
     if (wr_resolution_from_BE(m, B, o->E, desc, &r, &d) != WR_OK) return fail_status(NULL, &d);
-    warn_band("r", r);
+    wr_plausible_band("r", r);
     if (o->json) {
         cJSON *j = cJSON_CreateObject();
         wr_resolution_domain_info dom;

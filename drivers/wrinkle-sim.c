@@ -10,9 +10,10 @@
  * DIR/frame_NNNN.png with --png (front and 3/4 views), and DIR/summary.json (per-frame NS and CH
  * milliseconds, Newton and PCG iterations, contacts, minimum distance, seam gap; totals and
  * medians). Every file appears atomically (temporary + rename). Progress on stderr: one updating
- * line on a terminal, a line per tenth of the run otherwise. Warnings (stderr, the run goes on): a
- * cloth thickness above 1 cm (millimetres read as metres?), an edge of the last frame strained by
- * more than 100 %.
+ * line on a terminal, a line per tenth of the run otherwise. Warnings (stderr, the run goes on,
+ * plausible.h): a thickness above 1 cm (millimetres read as metres?), a garment panel smaller than
+ * one edge or its base resolution outside Eq. 4's band, an edge of the last frame strained by more
+ * than 100 %.
  * Exit: 0 done; 1 a step failed (frames before it and the summary are written, the summary says why);
  * 2 bad input (one line naming the JSON path or option); 3 output or setup failure.
  */
@@ -26,7 +27,9 @@
 #include <unistd.h>
 
 #include "cli.h"
+#include "plausible.h"
 #include "meshout.h"
+#include "pattern.h"
 #include "simscene.h"
 
 static void usage(FILE *f) {
@@ -41,8 +44,9 @@ static void usage(FILE *f) {
             "  --png                also DIR/frame_NNNN.png for every written frame (front and 3/4 views)\n"
             "  --quiet              no progress on stderr\n"
             "  -h, --help           this text\n"
-            "warnings (stderr, the run goes on): a cloth thickness over 1 cm (it is in metres), an edge of\n"
-            "  the last frame strained by more than 100 %%\n"
+            "warnings (stderr, the run goes on): a thickness over 1 cm (it is in metres), a garment panel\n"
+            "  smaller than one edge (a pattern in metres?) or its resolution outside the 2.5-50 mm band,\n"
+            "  an edge of the last frame strained by more than 100 %%\n"
             "exit status: 0 ok, 1 a step failed (outputs written), 2 bad input, 3 failure\n");
 }
 
@@ -77,6 +81,17 @@ static int on_frame(void *user, const wr_simscene_run *run, int32_t k) {
                         (int)c->total, f->t, 1e3 * f->t_ns, 1e3 * f->t_ch, (int)f->newton, (int)f->pcg, (int)f->contacts,
                         seam_note(run, f));
     return 0;
+}
+
+/* A garment's pattern, as wrinkle-mesh checks it (plausible.h): read again (run_create does not keep
+ * the file) with the scene's uniform-resolution override, against the mesher's result. */
+static void garment_plausibility(const wr_simscene *sc, const wr_simscene_run *run) {
+    wr_pattern_file pf;
+    wr_diag d;
+    if (!sc->is_garment || wr_pattern_load(sc->garment.pattern, &pf, &d) != WR_OK) return;
+    if (sc->garment.resolution > 0.0) pf.desc.uniform_resolution = sc->garment.resolution;
+    wr_plausible_pattern(&pf, &run->mr);
+    wr_pattern_file_free(&pf);
 }
 
 /* mkdir -p; 0 on success */
@@ -165,10 +180,10 @@ int main(int argc, char **argv) {
         wr_cli_error("%s: %s", scene_path, d.message);
         return WR_CLI_EXIT_USAGE;
     }
-    if (!sc.is_garment) { /* a garment's fabrics are given by B and E, no thickness */
-        char what[WR_PATH_MAX + 32];
-        snprintf(what, sizeof what, "%s: $.cloth.material.thickness", scene_path);
-        wr_cli_warn_thickness(what, sc.cloth.shell.thickness);
+    {
+        char what[WR_PATH_MAX + 48];
+        snprintf(what, sizeof what, "%s: $.%s.material.thickness", scene_path, sc.is_garment ? "garment" : "cloth");
+        wr_plausible_thickness(what, sc.is_garment ? sc.garment.shell.thickness : sc.cloth.shell.thickness);
     }
     if (every > 0.0) sc.output_every = (int32_t)every;
     if (duration >= 0.0) {
@@ -185,6 +200,7 @@ int main(int argc, char **argv) {
         wr_simscene_free(&sc);
         return st == WR_ERR_NOMEM ? 3 : WR_CLI_EXIT_USAGE;
     }
+    garment_plausibility(&sc, &run);
     if (!outputs_ok(&sc, scene_path, out, run.n_frames_max - 1, sc.output_every, png)) {
         rc = WR_CLI_EXIT_USAGE;
         goto done;
@@ -223,7 +239,7 @@ int main(int argc, char **argv) {
     }
     st = wr_simscene_run_frames(&run, on_frame, &ctx, &d);
     wr_cli_progress_end();
-    wr_cli_warn_strain("the last frame", wr_meshout_max_strain(&run.mesh, run.x));
+    wr_plausible_strain("the last frame", wr_meshout_max_strain(&run.mesh, run.x));
     if (ctx.write_status != WR_OK) {
         wr_cli_error("writing frames: %s", ctx.write_diag.message);
         rc = 3;

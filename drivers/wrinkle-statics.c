@@ -18,6 +18,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "plausible.h"
 #include "meshout.h"
 #include "scene.h"
 
@@ -111,7 +112,7 @@ int main(int argc, char **argv) {
     {
         char what[WR_PATH_MAX + 32];
         snprintf(what, sizeof what, "%s: $.material.thickness", scene_path);
-        wr_cli_warn_thickness(what, sc.shell.thickness);
+        wr_plausible_thickness(what, sc.shell.thickness);
     }
     if (res_override > 0.0) sc.mesh.resolution = res_override, sc.mesh.nx = sc.mesh.ny = 0;
     if (steps_override > 0.0) sc.load_steps = (int32_t)steps_override;
@@ -132,7 +133,7 @@ int main(int argc, char **argv) {
         return wr_cli_exit(WR_CLI_EXIT_FAILURE);
     }
     if (st == WR_ERR_NOT_CONVERGED) wr_cli_warn("%s", d.message);
-    wr_cli_warn_strain("the result", wr_meshout_max_strain(&run.mesh, run.x));
+    wr_plausible_strain("the result", wr_meshout_max_strain(&run.mesh, run.x));
     if (wr_scene_run_write(&run, out, &d) != WR_OK || (png && picture(&run, out, &d) != WR_OK)) {
         wr_cli_error("writing %s: %s", out, d.message);
         return wr_cli_exit(WR_CLI_EXIT_FAILURE);

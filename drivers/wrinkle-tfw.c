@@ -25,6 +25,7 @@
 #include <sys/stat.h>
 
 #include "cli.h"
+#include "plausible.h"
 #include "jsonout.h"
 #include "meshout.h"
 #include "scene.h"
@@ -172,7 +173,7 @@ static int load_scene(tfw_job *j) {
     {
         char what[WR_PATH_MAX + 32];
         snprintf(what, sizeof what, "%s: $.material.thickness", j->scene_path);
-        wr_cli_warn_thickness(what, j->sc.shell.thickness);
+        wr_plausible_thickness(what, j->sc.shell.thickness);
     }
     return -1;
 }
@@ -202,7 +203,7 @@ static int solve_base(tfw_job *j) {
         snprintf(j->base_warning, sizeof j->base_warning, "%s", d.message);
         j->rc = 1;
     }
-    wr_cli_warn_strain("the base", wr_meshout_max_strain(&j->run.mesh, j->run.x));
+    wr_plausible_strain("the base", wr_meshout_max_strain(&j->run.mesh, j->run.x));
     return -1;
 }
 

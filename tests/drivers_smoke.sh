@@ -376,6 +376,22 @@ if [ -x "$B/wrinkle-sim" ]; then
  "gravity": [0, 0, -9.81], "time": {"duration": 0.5}}
 JSON
     warns "wrinkle-sim strain over 100 %" "100 %" "$B/wrinkle-sim" "$tmp/sim_soft.json" -o "$tmp/sims" --quiet
+    # a garment whose pattern is in metres in a millimetre file: warned as wrinkle-mesh does
+    python3 - "$root/examples/sim" "$tmp" <<'PY'
+import json, sys
+src, tmp = sys.argv[1], sys.argv[2]
+def metres(o):  # every [x, y] point of the panels divided by 1000
+    if isinstance(o, list):
+        if len(o) == 2 and all(isinstance(v, (int, float)) for v in o): return [v * 1e-3 for v in o]
+        return [metres(v) for v in o]
+    if isinstance(o, dict): return {k: (v if k in ("fabrics", "mesher") else metres(v)) for k, v in o.items()}
+    return o
+json.dump(metres(json.load(open(src + "/skirt_pattern.json"))), open(tmp + "/skirt_m.json", "w"))
+s = json.load(open(src + "/skirt_on_mannequin.json"))
+s["garment"]["pattern"] = "skirt_m.json"; s["time"]["duration"] = 0
+json.dump(s, open(tmp + "/garment_m.json", "w"))
+PY
+    warns "wrinkle-sim garment pattern in metres" "smaller than one edge" "$B/wrinkle-sim" "$tmp/garment_m.json" -o "$tmp/simg" --quiet
 fi
 if [ -x "$B/wrinkle-resolution" ]; then
     # an answer that overflows is refused, never printed as "inf" (text) or null (JSON)

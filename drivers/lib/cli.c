@@ -279,25 +279,6 @@ void wr_cli_warn(const char *fmt, ...) {
     fprintf(stderr, "%s: warning: %s\n", wr__cli_prog, msg);
 }
 
-/* Plausibility limits shared by every driver (issue 19): cloth is well under 1 cm thick, so a
- * thickness above it is a millimetre value read as metres; an edge stretched or shrunk by more than
- * 100 % is a unit slip or a runaway, not cloth. */
-#define WR_CLI_THICKNESS_MAX 0.01
-#define WR_CLI_STRAIN_MAX 1.0
-
-void wr_cli_warn_thickness(const char *what, double h) {
-    if (h > WR_CLI_THICKNESS_MAX)
-        wr_cli_warn("%s = %g m is over 1 cm: thickness is in metres (0.3 mm is 3e-4), a millimetre value read as "
-                    "metres?",
-                    what, h);
-}
-
-void wr_cli_warn_strain(const char *what, double strain) {
-    if (strain > WR_CLI_STRAIN_MAX)
-        wr_cli_warn("an edge of %s is strained by %.0f %% (over 100 %%): check the scene's units and motions", what,
-                    100.0 * strain);
-}
-
 const char *wr_cli_num(char *buf, size_t n, const char *fmt, double x) {
     if (!isfinite(x))
         snprintf(buf, n, "n/a");

@@ -51,10 +51,7 @@
  *   wr_cli_progress_tty()                   1 when progress goes to a terminal (a driver that thins
  *                                           its redirected progress asks this, not isatty)
  *   wr_cli_warn(fmt, ...)                   "<program>: warning: <message>" (one line, stderr)
- *   wr_cli_warn_thickness(what, h)          warns when a thickness h [m] is over 1 cm ("what": the
- *                                           option or JSON path it came from)
- *   wr_cli_warn_strain(what, strain)        warns when the largest edge strain |l/L - 1| of "what"
- *                                           (the result, the base) is over 1 (100 %)
+ *                                           (the plausibility warnings of issue 19 are plausible.h's)
  *   wr_cli_num(buf, n, fmt, x)              x printed with fmt, or "n/a" when not finite (no "inf"
  *                                           or "nan" is ever printed as a result)
  *   wr_cli_stdout_ok()                      flush stdout: 1 ok, else 0 with "writing standard output
@@ -137,8 +134,6 @@ void wr_cli_progress(const char *fmt, ...) WR_CLI_PRINTF(1, 2);
 void wr_cli_progress_end(void);
 int wr_cli_progress_tty(void);
 void wr_cli_warn(const char *fmt, ...) WR_CLI_PRINTF(1, 2);
-void wr_cli_warn_thickness(const char *what, double h);
-void wr_cli_warn_strain(const char *what, double strain);
 const char *wr_cli_num(char *buf, size_t n, const char *fmt, double x);
 int wr_cli_stdout_ok(void);
 int wr_cli_output_ok(const char *out, const char *const *inputs, int n_inputs);
