@@ -5,9 +5,10 @@
 #      driver: cli.h's WR_CLI_EXIT_USAGE) with exactly ONE line on stderr (the reason) and nothing on
 #      stdout. An output path that is an input file, or a FIFO/device, is bad input too.
 #   4. Behaviour shared through drivers/lib/cli.c: a failed write to standard output (/dev/full)
-#      gives a message and exit 3; progress on a redirected stderr is plain lines (no '\r'); no
+#      gives a message and exit 3, and so does a failed file write (ulimit -f); -o DIR naming an
+#      existing file is bad input (exit 2); progress on a redirected stderr is plain lines (no '\r'); no
 #      'inf'/'nan' printed; plausibility warnings for the usual unit slips (metres in a millimetre
-#      pattern, --thickness in mm, a resolution outside 2.5-50 mm, strains over 100 %).
+#      pattern, --thickness in mm, a resolution outside 2.5-50 mm, strains over 100 %; plausible.c).
 #   3. Outputs are atomic: traced with strace, no final output file is ever opened for writing
 #      directly (only temporaries, which are renamed over it); no temporaries are left behind; a
 #      failing run leaves the outputs of an earlier good run byte-identical; a run killed part-way
@@ -420,5 +421,28 @@ if [ -x "$B/wrinkle-report" ]; then
     if [ $rc = 1 ]; then ok; else bad "wrinkle-report with a missed quantity: exit $rc, want 1"; cat "$tmp/err"; fi
     full_stdout "wrinkle-report a miss, stdout full" "$B/wrinkle-report" "$tmp/resmiss" -o "$tmp/RMISS.md"
 fi
+# a failed file write (ulimit -f with SIGXFSZ ignored: write() fails with EFBIG, as on a full disk)
+# -> exit 3 and a message, every driver that writes files
+full_file() {
+    name=$1; shift
+    (cd "$tmp/cwd" && trap '' XFSZ && ulimit -f 8 && exec "$@") >/dev/null 2>"$tmp/err" </dev/null
+    rc=$?
+    if [ $rc != 3 ]; then bad "$name: exit $rc when a file write fails, want 3"; head -n 3 "$tmp/err"
+    elif ! grep -qi "fail" "$tmp/err"; then bad "$name: no message when a file write fails"; cat "$tmp/err"
+    else ok; fi
+}
+if (trap '' XFSZ && ulimit -f 8) 2>/dev/null; then
+    [ -x "$B/wrinkle-mesh" ] && full_file "wrinkle-mesh file write" "$B/wrinkle-mesh" -o "$tmp/ff1" --no-png -q
+    [ -x "$B/wrinkle-statics" ] && full_file "wrinkle-statics file write" "$B/wrinkle-statics" \
+        "$root/examples/scenes/cantilever.json" -o "$tmp/ff2" --quiet --load-steps 2 --resolution 0.002
+    [ -x "$B/wrinkle-tfw" ] && full_file "wrinkle-tfw file write" "$B/wrinkle-tfw" "$tmp/tfw.json" -o "$tmp/ff3" --quiet --levels 2
+    [ -x "$B/wrinkle-sim" ] && full_file "wrinkle-sim file write" "$B/wrinkle-sim" "$root/examples/sim/drape_ball.json" \
+        -o "$tmp/ff4" --quiet --duration 0
+    [ -x "$B/wrinkle-triangulate" ] && full_file "wrinkle-triangulate file write" "$B/wrinkle-triangulate" \
+        -pq30a0.0001Q "$tmp/tri/sq.poly"
+    [ -x "$B/wrinkle-resolution" ] && { for i in $(seq 1 400); do echo "f$i,2e-6,1e6"; done > "$tmp/big.csv"
+        full_file "wrinkle-resolution stdout to a file" sh -c 'exec "$0" --csv "$1" > "$2"' "$B/wrinkle-resolution" \
+            "$tmp/big.csv" "$tmp/big.out"; }
+else note="$note file-write(no ulimit -f)"; fi
 echo "driver-check: $pass passed, $fail failed, $found drivers${note:+; skipped:$note}"
 [ $fail = 0 ]
