@@ -373,7 +373,7 @@ static void report_status_notes(wr_vres *v, const cant_run *R) {
 }
 
 static int validation_main(void) {
-    static cant_run R; /* ~200 kB of reference curves: off the stack */
+    static cant_run R; /* ~130 kB of elastica reference curves: off the stack */
     char dat[4096];
     wr_vres *v;
     int failed;
