@@ -41,6 +41,37 @@ static const char *str_or(const cJSON *o, const char *key, const char *dflt) {
     return cJSON_IsString(s) ? s->valuestring : dflt;
 }
 
+/* Missed quantities, counted from the rows themselves (pass == false): the report does not take a
+ * file's own "failed" total on trust. */
+static int count_missed(const cJSON *c) {
+    const cJSON *it;
+    int n = 0;
+    cJSON_ArrayForEach(it, cJSON_GetObjectItemCaseSensitive(c, "quantities")) {
+        if (cJSON_IsFalse(cJSON_GetObjectItemCaseSensitive(it, "pass"))) ++n;
+    }
+    return n;
+}
+
+/* A result file the report can stand behind: "quantities" is an array, and the file's "failed" (when
+ * present) agrees with the rows. A disagreement means the file was edited by hand or written by a
+ * broken driver, so it is refused (bad input) rather than reported either way. */
+static int case_ok(const cJSON *c, const char *name) {
+    const cJSON *q = cJSON_GetObjectItemCaseSensitive(c, "quantities");
+    const cJSON *fl = cJSON_GetObjectItemCaseSensitive(c, "failed");
+    int nf;
+    if (!cJSON_IsArray(q)) {
+        wr_cli_error("'%s' has no \"quantities\" array", name);
+        return 0;
+    }
+    nf = count_missed(c);
+    if (fl && (!cJSON_IsNumber(fl) || fl->valuedouble != (double)nf)) {
+        wr_cli_error("'%s': \"failed\" is %s but %d of its quantities have \"pass\": false", name,
+                     cJSON_IsNumber(fl) ? "a different count" : "not a number", nf);
+        return 0;
+    }
+    return 1;
+}
+
 int main(int argc, char **argv) {
     const char *dir = "validation/results", *out = "validation/REPORT.md", *bench = "bench/RESULTS.md";
     char **names = NULL;
@@ -97,6 +128,7 @@ int main(int argc, char **argv) {
             wr_cli_error("'%s' is not valid JSON", names[i]);
             return WR_CLI_EXIT_USAGE;
         }
+        if (!case_ok(cases[i], names[i])) return WR_CLI_EXIT_USAGE;
     }
     {
         const char **ins = (const char **)calloc(ncase + 1, sizeof *ins);
@@ -121,8 +153,7 @@ int main(int argc, char **argv) {
             "## Summary\n\n| case | title | quantities | failed | machine |\n|---|---|---|---|---|\n");
     for (i = 0; i < ncase; ++i) {
         const cJSON *q = cJSON_GetObjectItemCaseSensitive(cases[i], "quantities");
-        const cJSON *fl = cJSON_GetObjectItemCaseSensitive(cases[i], "failed");
-        int nf = cJSON_IsNumber(fl) ? fl->valueint : 0;
+        int nf = count_missed(cases[i]);
         if (nf) any_fail = 1;
         fprintf(f.fp, "| [%s](#%s) | %s | %d | %s%d%s | %s |\n", str_or(cases[i], "case", "?"),
                 str_or(cases[i], "case", "?"), str_or(cases[i], "title", ""), cJSON_GetArraySize(q),

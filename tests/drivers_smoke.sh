@@ -377,6 +377,10 @@ if [ -x "$B/wrinkle-sim" ]; then
  "gravity": [0, 0, -9.81], "time": {"duration": 0.5}}
 JSON
     warns "wrinkle-sim strain over 100 %" "100 %" "$B/wrinkle-sim" "$tmp/sim_soft.json" -o "$tmp/sims" --quiet
+    # a transient: E = 150 Pa overshoots to ~150 % strain near frame 10 and swings back to ~87 % by the
+    # last frame (0.6 s, 18 frames; measured per frame from the OBJs): warned, with the worst frame named
+    sed 's/"young": 1,/"young": 150,/; s/"duration": 0.5/"duration": 0.6/' "$tmp/sim_soft.json" > "$tmp/sim_swing.json"
+    warns "wrinkle-sim transient strain over 100 %" "of frame [0-9]* is" "$B/wrinkle-sim" "$tmp/sim_swing.json" -o "$tmp/simw" --quiet
     # a garment whose pattern is in metres in a millimetre file: warned as wrinkle-mesh does
     python3 - "$root/examples/sim" "$tmp" <<'PY'
 import json, sys
@@ -420,6 +424,11 @@ if [ -x "$B/wrinkle-report" ]; then
     rc=$?
     if [ $rc = 1 ]; then ok; else bad "wrinkle-report with a missed quantity: exit $rc, want 1"; cat "$tmp/err"; fi
     full_stdout "wrinkle-report a miss, stdout full" "$B/wrinkle-report" "$tmp/resmiss" -o "$tmp/RMISS.md"
+    # a file whose own "failed" total disagrees with its rows is refused (exit 2), not reported as a pass
+    mkdir -p "$tmp/reslie"
+    sed 's/"failed": 1/"failed": 0/' "$tmp/resmiss/zz_miss.json" > "$tmp/reslie/zz_lie.json"
+    expect_fail "wrinkle-report failed count disagrees with rows" "$B/wrinkle-report" "$tmp/reslie" -o "$tmp/RLIE.md"
+    if [ ! -e "$tmp/RLIE.md" ]; then ok; else bad "wrinkle-report wrote a report from an inconsistent file"; fi
 fi
 # a failed file write (ulimit -f with SIGXFSZ ignored: write() fails with EFBIG, as on a full disk)
 # -> exit 3 and a message, every driver that writes files

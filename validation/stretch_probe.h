@@ -9,13 +9,15 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "cli.h"
 #include "scene.h"
 
 #define SP_NPROBE 5 /* probe lines at x = L/2 + k L/20, k = 0, −1, 1, −2, 2 (probe 0 at L/2) */
 
 static inline void sp_progress(void *user, int32_t step, int32_t n, const wr_statics_stats *st) {
     (void)user;
-    fprintf(stderr, "\r   step %d/%d Newton %3d |g|/ref %.1e %.1f s   ", (int)step, (int)n, (int)st->iterations,
+    /* cli.h: a redrawn line on a terminal, plain lines in a log (issue 19: no '\r' in logs) */
+    wr_cli_progress("   step %d/%d Newton %3d |g|/ref %.1e %.1f s", (int)step, (int)n, (int)st->iterations,
             st->grad_ref > 0 ? st->grad_norm / st->grad_ref : 0.0, st->t_total);
 }
 

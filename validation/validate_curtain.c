@@ -50,6 +50,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cli.h"
 #include "scene.h"
 #include "vresult.h"
 
@@ -148,7 +149,7 @@ static double zero_cross_wavelength(const double *v, int32_t n, double length) {
 
 static void progress(void *user, int32_t step, int32_t n, const wr_statics_stats *st) {
     (void)user;
-    fprintf(stderr, "\r   step %d/%d Newton %3d |g|/ref %.1e %.1f s   ", (int)step, (int)n, (int)st->iterations,
+    wr_cli_progress("   step %d/%d Newton %3d |g|/ref %.1e %.1f s", (int)step, (int)n, (int)st->iterations,
             st->grad_ref > 0 ? st->grad_norm / st->grad_ref : 0.0, st->t_total);
 }
 
@@ -319,7 +320,7 @@ static int curtain_run(double B, double r, int load_steps, curtain_row *R, const
     fprintf(stderr, "== B = %.2e N m: r = %.2f mm, %d vertices, predicted L_w = %.1f mm\n", B, 1e3 * r, (int)R->nv,
             1e3 * R->Lw_pred);
     R->st = wr_scene_run_solve(&run, progress, NULL, &d);
-    fprintf(stderr, "\n");
+    wr_cli_progress_end();
     if (R->st != WR_OK) fprintf(stderr, "   solve: %s\n", d.message);
     R->t_solve = run.t_solve;
     R->newton = run.newton_iterations;

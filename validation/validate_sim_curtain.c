@@ -52,6 +52,7 @@
 #include <time.h>
 
 #include "wrinkle/wrinkle.h"
+#include "cli.h"
 #include "vresult.h"
 #include "zc_probe.h"
 
@@ -209,17 +210,18 @@ static int curtain_simulate(crun *R) {
         R->newton += fs.newton_iterations;
         R->halvings += fs.halvings;
         R->max_speed = max_speed(v, R->nv);
-        if (g_verbose || f % 15 == 0)
-            fprintf(stderr, "%s   frame %d t %.2f s  max speed %.2e m/s  Newton %d PCG %d halvings %d  NS %.2f s  cpu %.0f s   ",
-                    g_verbose ? "\n" : "\r", (int)f, st.t, R->max_speed, (int)fs.newton_iterations, (int)fs.linear_iterations,
-                    (int)fs.halvings, fs.t_ns, (double)clock() / CLOCKS_PER_SEC - cpu0);
+        if (g_verbose || f % 15 == 0) /* cli.h: redrawn on a terminal, a line each in a log */
+            wr_cli_progress("   frame %d t %.2f s  max speed %.2e m/s  Newton %d PCG %d halvings %d  NS %.2f s  cpu %.0f s",
+                            (int)f, st.t, R->max_speed, (int)fs.newton_iterations, (int)fs.linear_iterations,
+                            (int)fs.halvings, fs.t_ns, (double)clock() / CLOCKS_PER_SEC - cpu0);
         if (R->st != WR_OK) {
-            fprintf(stderr, "\n   step: %s\n", d.message);
+            wr_cli_progress_end();
+            fprintf(stderr, "   step: %s\n", d.message);
             break;
         }
         if (st.t > t_end + 0.2 && R->max_speed < REST_SPEED) break;
     }
-    fprintf(stderr, "\n");
+    wr_cli_progress_end();
     R->cpu = (double)clock() / CLOCKS_PER_SEC - cpu0;
     R->wall = wr_time_seconds() - wall0;
     wr_dyn_free(&sim);

@@ -94,6 +94,7 @@
 
 #include "wrinkle/wrinkle.h"
 #include "pattern.h"
+#include "cli.h"
 #include "vresult.h"
 #include "zc_probe.h"
 
@@ -422,12 +423,11 @@ static int garment_frames(grun *R, wr_garment_sim *gs, const wr_mesh *bm, const 
         R->halvings += fs.halvings;
         R->min_dist = fmin(R->min_dist, fs.min_distance);
         if (g_verbose || f % 5 == 0 || f + 1 == n_frames)
-            fprintf(stderr, "%s   %s frame %d/%d  NS %.0f ms  CH %.0f ms  Newton %d  contacts %d  %s  cpu %.0f s   ",
-                    g_verbose ? "\n" : "\r", R->label, (int)(f + 1), (int)n_frames, 1e3 * fs.t_ns, 1e3 * fs.t_ch,
-                    (int)fs.newton_iterations, (int)fs.n_contacts, gs->welded ? "welded" : "sewing",
-                    (double)clock() / CLOCKS_PER_SEC - cpu0);
+            wr_cli_progress("   %s frame %d/%d  NS %.0f ms  CH %.0f ms  Newton %d  contacts %d  %s  cpu %.0f s", R->label,
+                            (int)(f + 1), (int)n_frames, 1e3 * fs.t_ns, 1e3 * fs.t_ch, (int)fs.newton_iterations,
+                            (int)fs.n_contacts, gs->welded ? "welded" : "sewing", (double)clock() / CLOCKS_PER_SEC - cpu0);
     }
-    fprintf(stderr, "\n");
+    wr_cli_progress_end();
     return 1;
 }
 

@@ -76,7 +76,7 @@ static int run_row(const wr_scene *base, lrow *R) {
     fprintf(stderr, "== %s %s, %s element: %d vertices\n", R->delaunay ? "Delaunay" : "lattice", R->label,
             R->loop ? "Loop" : "linear", (int)R->nv);
     R->status = wr_scene_run_solve(&run, sp_progress, NULL, &d);
-    fprintf(stderr, "\n");
+    wr_cli_progress_end();
     if (R->status != WR_OK) fprintf(stderr, "   solve: %s\n", d.message);
     R->t_solve = run.t_solve;
     R->newton = run.newton_iterations;

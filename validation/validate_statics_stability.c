@@ -90,7 +90,7 @@ static int run_row(const wr_scene *base, srow *R) {
     fprintf(stderr, "== %s %s, stability %s: r = %.3f mm, %d vertices\n", R->delaunay ? "delaunay" : "grid", R->label,
             R->check == 1 ? "ON" : "report-only", 1e3 * R->r, (int)R->nv);
     R->status = wr_scene_run_solve(&run, sp_progress, NULL, &d);
-    fprintf(stderr, "\n");
+    wr_cli_progress_end();
     if (R->status != WR_OK) fprintf(stderr, "   solve: %s\n", d.message);
     R->t_solve = run.t_solve;
     R->newton = run.newton_iterations;

@@ -89,7 +89,7 @@ static int run_row(const wr_scene *base, row *R, const char *datpath) {
     fprintf(stderr, "== %s %s: r = %.3f mm, %d vertices, mean edge %.3f mm\n", R->delaunay ? "delaunay" : "grid", R->label,
             1e3 * R->r, (int)R->nv, 1e3 * R->mean_edge);
     R->status = wr_scene_run_solve(&run, sp_progress, NULL, &d);
-    fprintf(stderr, "\n");
+    wr_cli_progress_end();
     R->t_solve = run.t_solve;
     R->newton = run.newton_iterations;
     {

@@ -404,10 +404,17 @@ WRDEF wr_status wr_resolution_y(const wr_resolution_model *m, double r, double *
         return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "resolution y(r): r=%g m must be finite and > 0", r);
     st = wr_resolution_domain(m, &dom, diag);
     if (st != WR_OK) return st;
-    if (!(r > dom.r_lo) || !(r < dom.r_hi))
+    if (!(r > dom.r_lo) || !(r < dom.r_hi)) {
+        /* An unbounded branch (r_hi = +INFINITY) is said in words: the text reaches users through the
+         * drivers, and "inf" in an error reads like a bug. */
+        if (isinf(dom.r_hi))
+            return wr_fail(diag, WR_ERR_DOMAIN, -1,
+                           "resolution y(r): r=%g m is outside the model's increasing positive branch r > %g m", r,
+                           dom.r_lo);
         return wr_fail(diag, WR_ERR_DOMAIN, -1,
                        "resolution y(r): r=%g m is outside the model's increasing positive branch (%g, %g) m", r,
                        dom.r_lo, dom.r_hi);
+    }
     *y = wr__res_f(m->c1, m->c2, r * r);
     return WR_OK;
 }
