@@ -41,10 +41,13 @@ static void usage(FILE *f) {
             "  -o, --output DIR     output directory (created if missing)\n"
             "  --levels N           Loop subdivision levels of the wrinkled mesh (default 2, 0..5)\n"
             "  --png                also DIR/wrinkles.png: the coarse base beside the wrinkled surface\n"
-            "  --clamp-amplitude    a = 0 on the scene's prescribed vertices (the TFW paper's clamp reading;\n"
-            "                       default: a clamp holds the base only, as in the authors' release)\n"
+            "  --clamp-amplitude    a = 0 on the scene's prescribed vertices (the TFW paper's clamp reading, and\n"
+            "                       the release's code; default: a clamp holds the base only, as the release's\n"
+            "                       shipped examples ran: docs/notes-tfw-authors.md)\n"
             "  --kappa K            curvature of Eq. 22: midedge (default) or vertex-fit (quadric fit, as the\n"
             "                       authors' release; wrinkle_field.h ON READINGS OF THE PAPER)\n"
+            "  --wset R             wrinkle-free set W: paper (Sec. 5.1, default) or release (own eigenvalue)\n"
+            "  --start R            App. E.2 start: paper (default) or release (the release's amplitude scale)\n"
             "  --quiet              no progress on stderr\n"
             "  -h, --help           this text\n"
             "exit status: 0 ok, 1 not converged (outputs written), 2 bad input, 3 failure\n");
@@ -114,7 +117,7 @@ static wr_status probe_wrinkled(const wr_scene_probe *pr, const wr_mesh *fine, c
 
 /* One run of the driver: its options, the scene and base solve, the TFW result, and the exit code so far. */
 typedef struct tfw_job {
-    const char *scene_path, *out, *kappa_name;
+    const char *scene_path, *out, *kappa_name, *wset_name, *start_name;
     double levels_d;
     int quiet, png, clamp_amplitude, rc;
     wr_scene sc;
@@ -129,7 +132,7 @@ typedef struct tfw_job {
 
 /* Command line; returns -1 to go on, else the exit code (0 after --help). */
 static int parse_args(tfw_job *j, int argc, char **argv) {
-    wr_cli_opt opts[6];
+    wr_cli_opt opts[8];
     int i, n_pos = 0;
     memset(opts, 0, sizeof opts);
     opts[0].name = "--output", opts[0].alias = "-o", opts[0].kind = WR_CLI_STRING, opts[0].out = (void *)&j->out;
@@ -138,9 +141,19 @@ static int parse_args(tfw_job *j, int argc, char **argv) {
     opts[3].name = "--png", opts[3].kind = WR_CLI_FLAG, opts[3].out = &j->png;
     opts[4].name = "--clamp-amplitude", opts[4].kind = WR_CLI_FLAG, opts[4].out = &j->clamp_amplitude;
     opts[5].name = "--kappa", opts[5].kind = WR_CLI_STRING, opts[5].out = (void *)&j->kappa_name;
-    if ((i = wr_cli_parse(argc, argv, opts, 6, &j->scene_path, 1, &n_pos, usage)) <= 0) return i < 0 ? WR_CLI_EXIT_USAGE : 0;
+    opts[6].name = "--wset", opts[6].kind = WR_CLI_STRING, opts[6].out = (void *)&j->wset_name;
+    opts[7].name = "--start", opts[7].kind = WR_CLI_STRING, opts[7].out = (void *)&j->start_name;
+    if ((i = wr_cli_parse(argc, argv, opts, 8, &j->scene_path, 1, &n_pos, usage)) <= 0) return i < 0 ? WR_CLI_EXIT_USAGE : 0;
     if (j->kappa_name && strcmp(j->kappa_name, "midedge") != 0 && strcmp(j->kappa_name, "vertex-fit") != 0) {
         wr_cli_error("--kappa: '%s' is neither midedge nor vertex-fit", j->kappa_name);
+        return WR_CLI_EXIT_USAGE;
+    }
+    if (j->wset_name && strcmp(j->wset_name, "paper") != 0 && strcmp(j->wset_name, "release") != 0) {
+        wr_cli_error("--wset: '%s' is neither paper nor release", j->wset_name);
+        return WR_CLI_EXIT_USAGE;
+    }
+    if (j->start_name && strcmp(j->start_name, "paper") != 0 && strcmp(j->start_name, "release") != 0) {
+        wr_cli_error("--start: '%s' is neither paper nor release", j->start_name);
         return WR_CLI_EXIT_USAGE;
     }
     if (!wr_cli_scene_args_ok(j->scene_path, j->out)) return WR_CLI_EXIT_USAGE;
@@ -217,6 +230,8 @@ static int run_tfw(tfw_job *j) {
     j->td.upsample.levels = (int32_t)j->levels_d;
     if (j->clamp_amplitude) j->td.a_zero_vertices = j->run.fixed;
     if (j->kappa_name && strcmp(j->kappa_name, "vertex-fit") == 0) j->td.kappa = WR_WF_KAPPA_VERTEX_FIT;
+    if (j->wset_name && strcmp(j->wset_name, "release") == 0) j->td.classify.rule = WR_WF_WSET_RELEASE;
+    if (j->start_name && strcmp(j->start_name, "release") == 0) j->td.init.rule = WR_WF_INIT_RELEASE;
     if (j->td.upsample.levels == 0) j->td.no_upsample = 1;
     if (!j->quiet) j->td.solve.progress = sqp_progress;
     j->t0 = wr_time_seconds();

@@ -215,6 +215,10 @@ if [ -x "$B/wrinkle-tfw" ]; then
         -o "$tmp/t0" --levels 9
     expect_fail "wrinkle-tfw bad --kappa" "$B/wrinkle-tfw" "$root/examples/scenes/tfw_stretched_sheet.json" \
         -o "$tmp/t0" --kappa bogus
+    expect_fail "wrinkle-tfw bad --wset" "$B/wrinkle-tfw" "$root/examples/scenes/tfw_stretched_sheet.json" \
+        -o "$tmp/t0" --wset bogus
+    expect_fail "wrinkle-tfw bad --start" "$B/wrinkle-tfw" "$root/examples/scenes/tfw_stretched_sheet.json" \
+        -o "$tmp/t0" --start bogus
     # a slack base (pushed in from one end, free sides: no tension anywhere) is refused with the reason
     cat > "$tmp/slack.json" <<'JSON'
 {"name": "tfw_slack", "mesh": {"type": "rectangle", "width": 0.25, "height": 0.1, "nx": 10, "ny": 5},

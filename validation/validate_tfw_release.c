@@ -10,8 +10,10 @@
  * Metric, fixed before the runs: waves around the disk = the winding of the phase along the rim
  * (boundary loop), |∮ω| / 2π, the circulation of ω along the rim edges — ours, and theirs from their
  * shipped per-edge ω (their dphi file; their per-vertex φ is aliased there, |ω| ≈ 10 rad per rim
- * edge). Both are integers when the pattern closes. Ours is solved on their base with a = 0 on their clamped vertices (their
- * "clamp": true), once with each reading of κ⊥ in Eq. 22 (wrinkle_field.h wr_wf_kappa).
+ * edge). Both are integers when the pattern closes. Ours is solved on their base without a clamp (their json's
+ * clamp file name does not match the shipped file, so their run had none: docs/notes-tfw-authors.md), once
+ * with each reading of κ⊥ in Eq. 22 (wrinkle_field.h wr_wf_kappa), once with a = 0 on the rim, and once per
+ * combination of the release's other readings (W rule, start, no unfold: k_variants); the dress likewise.
  * Pass rule (set before the run): with the release's reading (vertex quadric-fit κ⊥) our count is
  * within 5 % of theirs — the two codes then evaluate the same energy up to the curvature estimator's
  * neighbourhood and normal, which should not move a 1 %-flat optimum by more. The default reading
@@ -100,24 +102,55 @@ typedef struct run_out {
     wr_status st;
     double waves, amax, seconds;
     double e_ours, e_theirs; /* this reading's E_wf at our fields and at the release's, on our W [J] */
-    int32_t sqp_iters, n_w;
+    int32_t sqp_iters, n_w, unfolded;
 } run_out;
 
-static run_out run_tfw(const wr_mesh *m, const uint8_t *a_zero, wr_wf_kappa kappa, const double *their_a,
-                       const double *their_om) {
+/* One reading of each place where the release differs from the paper's text (docs/notes-tfw-authors.md):
+ * κ⊥ of Eq. 22, the W rule, the E.2 start's scale and smoothing, and the unfold re-solve (ours only). */
+typedef struct variant {
+    const char *name;
+    wr_wf_kappa kappa;
+    wr_wf_wset_rule wset;
+    wr_wf_init_rule init;
+    int no_unfold;
+} variant;
+
+static const variant k_variants[] = {
+    {"vertex-fit kappa + release W rule", WR_WF_KAPPA_VERTEX_FIT, WR_WF_WSET_RELEASE, WR_WF_INIT_PAPER, 0},
+    {"vertex-fit kappa + release start", WR_WF_KAPPA_VERTEX_FIT, WR_WF_WSET_PAPER, WR_WF_INIT_RELEASE, 0},
+    {"vertex-fit kappa + release W rule + release start", WR_WF_KAPPA_VERTEX_FIT, WR_WF_WSET_RELEASE,
+     WR_WF_INIT_RELEASE, 0},
+    {"every release reading (vertex-fit kappa, W rule, start, no unfold)", WR_WF_KAPPA_VERTEX_FIT,
+     WR_WF_WSET_RELEASE, WR_WF_INIT_RELEASE, 1},
+    {"mid-edge kappa + release W rule, start, no unfold", WR_WF_KAPPA_MIDEDGE, WR_WF_WSET_RELEASE,
+     WR_WF_INIT_RELEASE, 1},
+};
+#define N_VARIANTS ((int)(sizeof k_variants / sizeof k_variants[0]))
+
+static void variant_desc(const variant *va, wr_tfw_desc *td) {
+    memset(td, 0, sizeof *td);
+    td->no_upsample = 1;
+    if (!va) return;
+    td->kappa = va->kappa;
+    td->classify.rule = va->wset;
+    td->init.rule = va->init;
+    td->no_unfold = va->no_unfold;
+}
+
+static run_out run_tfw_v(const wr_mesh *m, const uint8_t *a_zero, const variant *va, const double *their_a,
+                         const double *their_om) {
     wr_wf_material mat;
     wr_tfw_desc td;
     wr_tfw_result r;
     wr_diag d;
     run_out o;
+    wr_wf_kappa kappa = va ? va->kappa : WR_WF_KAPPA_MIDEDGE;
     memset(&o, 0, sizeof o);
     mat.young = 1e7;
     mat.poisson = 0.44;
     mat.thickness = 1e-4;
-    memset(&td, 0, sizeof td);
+    variant_desc(va, &td);
     td.a_zero_vertices = a_zero;
-    td.kappa = kappa;
-    td.no_upsample = 1;
     o.st = wr_tfw_fields(m, m->pos, &mat, &td, &r, &d);
     o.waves = NAN;
     if (o.st == WR_OK || o.st == WR_ERR_NOT_CONVERGED) {
@@ -125,6 +158,7 @@ static run_out run_tfw(const wr_mesh *m, const uint8_t *a_zero, wr_wf_kappa kapp
         o.amax = r.max_amplitude;
         o.sqp_iters = r.sqp.iterations;
         o.n_w = r.n_wrinkle_free;
+        o.unfolded = r.unfolded;
         o.seconds = r.seconds_total;
         o.e_ours = o.e_theirs = NAN;
         if (their_a && their_om) { /* both fields in this reading's energy, on our W */
@@ -143,6 +177,14 @@ static run_out run_tfw(const wr_mesh *m, const uint8_t *a_zero, wr_wf_kappa kapp
         fprintf(stderr, "validate_tfw_release: TFW failed: %s\n", d.message);
     }
     return o;
+}
+
+static run_out run_tfw(const wr_mesh *m, const uint8_t *a_zero, wr_wf_kappa kappa, const double *their_a,
+                       const double *their_om) {
+    variant va;
+    memset(&va, 0, sizeof va);
+    va.kappa = kappa;
+    return run_tfw_v(m, a_zero, &va, their_a, their_om);
 }
 
 /* Phase change along face f's edge from corner i to corner j (ω from edges[2e] to edges[2e+1]). */
@@ -201,8 +243,43 @@ typedef struct dress_out {
     int ok;
     int32_t nv, nf, n_theirs, n_ours, sqp_iters;
     double lam_theirs, lam_ours, lam_fit, amax_theirs, amax_ours, corr;
+    double lam_var[N_VARIANTS];
+    double lam_from_theirs, e_ratio_from_theirs; /* every release reading, SQP started from their fields */
     wr_status st;
 } dress_out;
+
+/* Every release reading on the dress, our SQP started from their shipped fields (their dress json starts
+ * their solve from them too): the median wavelength where ours stops and E there / E at their fields. */
+static void dress_from_theirs(const wr_mesh *m, const wr_wf_material *mat, const double *ta, const double *tom,
+                              dress_out *o) {
+    wr_wf wf;
+    wr_wf_classify_desc cd;
+    wr_wf_solve_desc sd;
+    wr_wf_solve_stats ss;
+    wr_diag d;
+    double *a = (double *)malloc(sizeof(double) * (size_t)m->nv), *om = (double *)malloc(sizeof(double) * (size_t)m->ne);
+    double e0 = NAN, e1 = NAN;
+    int32_t nn;
+    o->lam_from_theirs = o->e_ratio_from_theirs = NAN;
+    if (a && om && wr_wf_create(&wf, m, m->pos, mat, &d) == WR_OK) {
+        memset(&cd, 0, sizeof cd);
+        memset(&sd, 0, sizeof sd);
+        cd.rule = WR_WF_WSET_RELEASE;
+        memcpy(a, ta, sizeof(double) * (size_t)m->nv);
+        memcpy(om, tom, sizeof(double) * (size_t)m->ne);
+        if (wr_wf_set_kappa(&wf, WR_WF_KAPPA_VERTEX_FIT, &d) == WR_OK && wr_wf_classify(&wf, &cd) >= 0) {
+            wr_wf_energy(&wf, ta, tom, &e0, NULL, NULL, NULL, &d);
+            if (wr_wf_solve(&wf, &sd, a, om, &ss, &d) <= WR_ERR_NOT_CONVERGED) {
+                wr_wf_energy(&wf, a, om, &e1, NULL, NULL, NULL, &d);
+                o->lam_from_theirs = median_wavelength(m, a, om, &nn);
+                o->e_ratio_from_theirs = e1 / e0;
+            }
+        }
+        wr_wf_free(&wf);
+    }
+    free(a);
+    free(om);
+}
 
 static dress_out run_dress(const char *dir, wr_wf_kappa kappa_alt) {
     char p[4096];
@@ -270,6 +347,16 @@ static dress_out run_dress(const char *dir, wr_wf_kappa kappa_alt) {
                 o.lam_fit = median_wavelength(&m, r.a, r.omega, &nn);
                 wr_tfw_result_free(&r);
             }
+            dress_from_theirs(&m, &mat, ta, tom, &o);
+            for (k = 0; k < N_VARIANTS; ++k) {
+                int32_t nn;
+                o.lam_var[k] = NAN;
+                variant_desc(&k_variants[k], &td);
+                if (wr_tfw_fields(&m, m.pos, &mat, &td, &r, &d) <= WR_ERR_NOT_CONVERGED) {
+                    o.lam_var[k] = median_wavelength(&m, r.a, r.omega, &nn);
+                    wr_tfw_result_free(&r);
+                }
+            }
             o.ok = 1;
         } else {
             fprintf(stderr, "validate_tfw_release: dress TFW failed: %s\n", d.message);
@@ -294,8 +381,9 @@ static int validation_main(void) {
     double *rest2, *their_phi, their_waves;
     uint8_t *clamped;
     int32_t v, n_clamped;
-    run_out mid, fit, midc;
+    run_out mid, fit, midc, var[N_VARIANTS];
     dress_out dr;
+    int k;
     wr_vres *vr;
     if (!dir || !*dir) {
         printf("validate_tfw_release: skipped (set WR_TFW_RELEASE_DATA to a directory with the authors' disk files; "
@@ -337,6 +425,12 @@ static int validation_main(void) {
     mid = run_tfw(&m, NULL, WR_WF_KAPPA_MIDEDGE, their_a, their_om);
     fit = run_tfw(&m, NULL, WR_WF_KAPPA_VERTEX_FIT, their_a, their_om);
     midc = run_tfw(&m, clamped, WR_WF_KAPPA_MIDEDGE, NULL, NULL);
+    for (k = 0; k < N_VARIANTS; ++k) {
+        var[k] = run_tfw_v(&m, NULL, &k_variants[k], their_a, their_om);
+        fprintf(stderr, "disk, %s: %.2f waves (%d SQP it, |W| %d, unfolded %d); E ours %.6g, release fields %.6g\n",
+                k_variants[k].name, var[k].waves, (int)var[k].sqp_iters, (int)var[k].n_w, (int)var[k].unfolded,
+                var[k].e_ours, var[k].e_theirs);
+    }
     free(their_om);
     free(their_a);
     fprintf(stderr, "E default: ours %.6g theirs %.6g; E release reading: ours %.6g theirs %.6g\n", mid.e_ours, mid.e_theirs,
@@ -371,6 +465,12 @@ static int validation_main(void) {
     wr_vres_info(vr, "TFW seconds, default reading", "s", NAN, mid.seconds);
     wr_vres_info(vr, "ours, mid-edge kappa with a = 0 on the clamped rim (our former set-up): waves", "waves", NAN,
                  midc.waves);
+    for (k = 0; k < N_VARIANTS; ++k) {
+        snprintf(buf, sizeof buf, "ours, %s: waves around the rim", k_variants[k].name);
+        wr_vres_info(vr, buf, "waves", NAN, var[k].waves);
+        snprintf(buf, sizeof buf, "E_wf (%s) at our fields / at the release's fields", k_variants[k].name);
+        wr_vres_info(vr, buf, "", NAN, var[k].e_ours / var[k].e_theirs);
+    }
     if (dr.ok) {
         wr_vres_info(vr, "dress: release median wavelength (faces with a >= 0.2 max a)", "mm", NAN, 1e3 * dr.lam_theirs);
         wr_vres_info(vr, "dress: ours, default reading, median wavelength", "mm", NAN, 1e3 * dr.lam_ours);
@@ -379,6 +479,17 @@ static int validation_main(void) {
         wr_vres_info(vr, "dress: ours / release wavelength, release reading", "", NAN, dr.lam_fit / dr.lam_theirs);
         wr_vres_info(vr, "dress: max amplitude release / ours (default)", "mm", 1e3 * dr.amax_theirs, 1e3 * dr.amax_ours);
         wr_vres_info(vr, "dress: amplitude correlation ours (default) vs release", "", NAN, dr.corr);
+        wr_vres_info(vr, "dress: every release reading, SQP from the release's fields: median wavelength", "mm", NAN,
+                     1e3 * dr.lam_from_theirs);
+        wr_vres_info(vr, "dress: every release reading, SQP from the release's fields: E there / E at their fields", "",
+                     NAN, dr.e_ratio_from_theirs);
+        fprintf(stderr, "dress, every release reading, from their fields: %.1f mm, E ratio %.9f\n",
+                1e3 * dr.lam_from_theirs, dr.e_ratio_from_theirs);
+        for (k = 0; k < N_VARIANTS; ++k) {
+            snprintf(buf, sizeof buf, "dress: ours, %s, median wavelength", k_variants[k].name);
+            wr_vres_info(vr, buf, "mm", NAN, 1e3 * dr.lam_var[k]);
+            fprintf(stderr, "dress, %s: median wavelength %.1f mm\n", k_variants[k].name, 1e3 * dr.lam_var[k]);
+        }
     }
     snprintf(buf, sizeof buf,
              "Their disk: %d vertices, %d faces, %d clamped rim vertices; E 1e7 Pa, nu 0.44, h 0.1 mm (their disk_TFW.json). "

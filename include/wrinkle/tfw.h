@@ -241,8 +241,10 @@ WRDEF wr_status wr_tfw_fields(const wr_mesh *m, const double *base_pos, const wr
     }
     if (D.wfree_override)
         wr_wf_set_wrinkle_free(&wf, D.wfree_override);
-    else
-        wr_wf_classify(&wf, &D.classify); /* Sec. 5.1 */
+    else if (wr_wf_classify(&wf, &D.classify) < 0) { /* Sec. 5.1 */
+        st = wr_fail(diag, WR_ERR_INVALID_ARG, (int32_t)D.classify.rule, "tfw: unknown W rule %d", (int)D.classify.rule);
+        goto fail;
+    }
     if (D.a_zero_vertices) wr_wf_set_amplitude_zero(&wf, D.a_zero_vertices);
     for (f = 0; f < m->nf; ++f) {
         res->wfree[f] = wf.wfree[f];

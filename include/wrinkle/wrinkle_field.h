@@ -72,7 +72,9 @@
  *     κ⊥ uses the App. A mid-edge-normal II_b, constant per face, by default; the paper's quadric
  *     fitting (Panozzo et al. 2010), as the authors' release builds it, is wr_wf_set_kappa(wf,
  *     WR_WF_KAPPA_VERTEX_FIT) (docs/notes-tfw-release.md has the comparison); either is fixed during
- *     the solve as in App. E.3.
+ *     the solve as in App. E.3. The other places where the release departs from the printed text
+ *     are options too: its W rule (wr_wf_classify_desc.rule) and its start's scale
+ *     (wr_wf_init_desc.rule); every other term is the release's (docs/notes-tfw-authors.md).
  *   - W_b^1 = ||I_u⁻¹ II_b||²_SV (rest-flat: II_u = 0) is a constant of the base; it is included in
  *     E and in terms[] but has no gradient.
  *   - dφ per face: the face average of the Whitney interpolant of ω, dφ = Σ_ij ω_ij (dλ_j - dλ_i)/3.
@@ -175,16 +177,25 @@ WRDEF void wr_wf_free(wr_wf *wf);
 
 /* The default compress_tol below (tfw.h counts strain states with the same threshold). */
 #define WR_WF_COMPRESS_TOL_DEFAULT 1e-10
-/* Defaults: compress_tol = 1e-10 (strain; a face counts as compressed when its smoothed most
- * negative Eq. 29 eigenvalue is < -compress_tol, so round-off on an unstrained sheet is "tension"). */
+/* How W is chosen (wr_wf_classify).
+ *   WR_WF_WSET_PAPER (default): Sec. 5.1 as printed: each face's most negative Eq. 29 eigenvalue
+ *     averaged with its (up to three) edge neighbours', non-negative average -> W; then one
+ *     simultaneous filter pass: a W face none of whose neighbours is in W leaves W; a non-W face all
+ *     of whose neighbours (at least one) are in W joins W.
+ *   WR_WF_WSET_RELEASE: the authors' release: a face is in W when its own most negative eigenvalue is
+ *     non-negative (no averaging); then one pass in which a face outside W whose three vertices all
+ *     lie on W faces joins W (it fills one-face holes; nothing leaves W). */
+typedef enum wr_wf_wset_rule { WR_WF_WSET_PAPER = 0, WR_WF_WSET_RELEASE = 1 } wr_wf_wset_rule;
+/* Defaults: compress_tol = 1e-10 (strain; a face counts as compressed when its (smoothed) most
+ * negative Eq. 29 eigenvalue is < -compress_tol, so round-off on an unstrained sheet is "tension");
+ * rule = WR_WF_WSET_PAPER. */
 typedef struct wr_wf_classify_desc {
     double compress_tol;
-    int no_outlier_filter; /* nonzero: skip the Sec. 5.1 outlier filter (for tests) */
+    int no_outlier_filter; /* nonzero: skip the Sec. 5.1 outlier filter (for tests; PAPER rule only) */
+    wr_wf_wset_rule rule;
 } wr_wf_classify_desc;
-/* Sec. 5.1: average each face's most negative eigenvalue with its (up to three) edge neighbours;
- * non-negative average -> W. Then one simultaneous filter pass: a W face none of whose neighbours is
- * in W leaves W; a non-W face all of whose neighbours (at least one) are in W joins W.
- * Sets wf->wfree and returns |W|. desc may be NULL. */
+/* Sets wf->wfree by desc->rule (above) and returns |W|, or -1 for an unknown rule (wfree then
+ * untouched). desc may be NULL. */
 WRDEF int32_t wr_wf_classify(wr_wf *wf, const wr_wf_classify_desc *desc);
 WRDEF void wr_wf_set_wrinkle_free(wr_wf *wf, const uint8_t *flags /* nf or NULL */);
 /* Hold a = 0 on the flagged vertices (nv flags, NULL = none) in init, solve and upsampling: the
@@ -223,9 +234,16 @@ WRDEF wr_status wr_wf_project_closed(const wr_wf *wf, double *omega, wr_diag *di
  * a_v = mean over incident faces of k·sqrt(2 ε_w) with ε_w = -lambda[0] (0 where lambda[0] >= 0, and
  * 0 on W vertices); per face outside W with ε_w > 0 the target dφ has direction I_u w and
  * ||dφ||_{I_u⁻¹} = 1/k (Eq. 8 with a = k sqrt(2ε)); the edge target is the mean of its faces' targets
- * (w oriented consistently by a breadth-first sweep over the dual graph), then projected to dω = 0. */
+ * (w oriented consistently by a breadth-first sweep over the dual graph), then projected to dω = 0.
+ * rule = WR_WF_INIT_RELEASE scales as the authors' release does instead (when k is 0): the largest
+ * face amplitude is A0 = min(0.01 · (largest - smallest base coordinate over x, y and z together),
+ * 0.1 · largest bounding-box side), i.e. k = A0 / (max_f sqrt(2 ε_w) + 1e-6), and the vertex
+ * amplitudes are then smoothed twice (every vertex with a > 0 takes the mean of its edge
+ * neighbours' a; vertices at a = 0 stay). */
+typedef enum wr_wf_init_rule { WR_WF_INIT_PAPER = 0, WR_WF_INIT_RELEASE = 1 } wr_wf_init_rule;
 typedef struct wr_wf_init_desc {
     double k; /* [m] */
+    wr_wf_init_rule rule;
 } wr_wf_init_desc;
 WRDEF wr_status wr_wf_init(const wr_wf *wf, const wr_wf_init_desc *desc, double *a, double *omega, wr_diag *diag);
 
@@ -910,12 +928,39 @@ static int32_t wr__wf_face_neighbor(const wr_mesh *m, int32_t f, int k) {
     return m->edge_faces[2 * e] == f ? m->edge_faces[2 * e + 1] : m->edge_faces[2 * e];
 }
 
+/* WR_WF_WSET_RELEASE: own eigenvalue, then the one-pass hole fill through vertices (see the
+ * declaration). The release tests λ0 >= 0 exactly; -tol keeps round-off on an unstrained face from
+ * deciding, as in the paper rule. Out of memory: the unfilled rule. */
+static void wr__wf_classify_release(wr_wf *wf, double tol) {
+    const wr_mesh *m = wf->mesh;
+    uint8_t *vin = (uint8_t *)wr_calloc_array((size_t)wf->nv, sizeof(uint8_t));
+    int32_t f;
+    int c;
+    for (f = 0; f < wf->nf; ++f) wf->wfree[f] = (uint8_t)(wf->lambda[2 * f] >= -tol ? 1 : 0);
+    if (!vin) return;
+    for (f = 0; f < wf->nf; ++f)
+        if (wf->wfree[f])
+            for (c = 0; c < 3; ++c) vin[m->faces[3 * f + c]] = 1;
+    for (f = 0; f < wf->nf; ++f) {
+        const int32_t *fv = m->faces + 3 * f;
+        if (!wf->wfree[f] && vin[fv[0]] && vin[fv[1]] && vin[fv[2]]) wf->wfree[f] = 1;
+    }
+    wr_free(vin);
+}
+
 WRDEF int32_t wr_wf_classify(wr_wf *wf, const wr_wf_classify_desc *desc) {
     const wr_mesh *m = wf->mesh;
     double tol = desc && desc->compress_tol > 0.0 ? desc->compress_tol : WR__WF_COMPRESS_TOL;
     int filter = !(desc && desc->no_outlier_filter);
     int32_t f, count = 0;
-    uint8_t *w0 = (uint8_t *)wr_alloc_array((size_t)wf->nf, sizeof(uint8_t));
+    uint8_t *w0;
+    if (desc && desc->rule != WR_WF_WSET_PAPER) {
+        if (desc->rule != WR_WF_WSET_RELEASE) return -1;
+        wr__wf_classify_release(wf, tol);
+        for (f = 0; f < wf->nf; ++f) count += wf->wfree[f];
+        return count;
+    }
+    w0 = (uint8_t *)wr_alloc_array((size_t)wf->nf, sizeof(uint8_t));
     if (!w0) { /* fall back to the unfiltered rule written straight into wfree */
         filter = 0;
     }
@@ -1636,6 +1681,50 @@ static void wr__wf_zero_vertices(const wr_wf *wf, uint8_t *zero) {
             if (wf->azero[v]) zero[v] = 1;
 }
 
+/* WR_WF_INIT_RELEASE's k (see wr_wf_init_desc): the largest face amplitude k·sqrt(2 ε_w) is A0. */
+static double wr__wf_init_k_release(const wr_wf *wf, const double lo[3], const double hi[3]) {
+    double cmin = fmin(lo[0], fmin(lo[1], lo[2])), cmax = fmax(hi[0], fmax(hi[1], hi[2]));
+    double side = fmax(hi[0] - lo[0], fmax(hi[1] - lo[1], hi[2] - lo[2])), smax = 0.0;
+    int32_t f;
+    for (f = 0; f < wf->nf; ++f)
+        if (!wf->wfree[f] && wf->lambda[2 * f] < 0.0) smax = fmax(smax, sqrt(-2.0 * wf->lambda[2 * f]));
+    return fmin(0.01 * (cmax - cmin), 0.1 * side) / (smax + 1e-6);
+}
+
+/* WR_WF_INIT_RELEASE's two smoothing passes: a vertex with a > 0 before the first pass takes the
+ * mean of its edge neighbours' a (itself excluded), the others keep theirs. */
+static wr_status wr__wf_init_smooth(const wr_wf *wf, double *a, wr_diag *diag) {
+    const wr_mesh *m = wf->mesh;
+    double *sum = (double *)wr_alloc_array((size_t)wf->nv, sizeof(double));
+    double *deg = (double *)wr_calloc_array((size_t)wf->nv, sizeof(double));
+    uint8_t *pos = (uint8_t *)wr_alloc_array((size_t)wf->nv, sizeof(uint8_t));
+    int32_t v, e, pass;
+    if (!sum || !deg || !pos) {
+        wr_free(sum);
+        wr_free(deg);
+        wr_free(pos);
+        return wr_fail(diag, WR_ERR_NOMEM, -1, "wf init: out of memory");
+    }
+    for (v = 0; v < wf->nv; ++v) pos[v] = (uint8_t)(a[v] > 0.0);
+    for (e = 0; e < m->ne; ++e) {
+        deg[m->edges[2 * e]] += 1.0;
+        deg[m->edges[2 * e + 1]] += 1.0;
+    }
+    for (pass = 0; pass < 2; ++pass) {
+        for (v = 0; v < wf->nv; ++v) sum[v] = 0.0;
+        for (e = 0; e < m->ne; ++e) {
+            sum[m->edges[2 * e]] += a[m->edges[2 * e + 1]];
+            sum[m->edges[2 * e + 1]] += a[m->edges[2 * e]];
+        }
+        for (v = 0; v < wf->nv; ++v)
+            if (pos[v] && deg[v] > 0.0) a[v] = sum[v] / deg[v];
+    }
+    wr_free(sum);
+    wr_free(deg);
+    wr_free(pos);
+    return WR_OK;
+}
+
 WRDEF wr_status wr_wf_init(const wr_wf *wf, const wr_wf_init_desc *desc, double *a, double *omega, wr_diag *diag) {
     const wr_mesh *m;
     double k, lo[3], hi[3], diam;
@@ -1653,7 +1742,12 @@ WRDEF wr_status wr_wf_init(const wr_wf *wf, const wr_wf_init_desc *desc, double 
             hi[i] = fmax(hi[i], wf->base[3 * v + i]);
         }
     diam = sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) + (hi[2] - lo[2]) * (hi[2] - lo[2]));
-    k = desc && desc->k > 0.0 ? desc->k : fmin(WR__WF_K_MAX, 0.1 * diam);
+    if (desc && desc->rule != WR_WF_INIT_PAPER && desc->rule != WR_WF_INIT_RELEASE)
+        return wr_fail(diag, WR_ERR_INVALID_ARG, (int32_t)desc->rule, "wf init: unknown rule %d", (int)desc->rule);
+    if (desc && desc->k > 0.0)
+        k = desc->k;
+    else
+        k = desc && desc->rule == WR_WF_INIT_RELEASE ? wr__wf_init_k_release(wf, lo, hi) : fmin(WR__WF_K_MAX, 0.1 * diam);
     if (!(k > 0.0)) return wr_fail(diag, WR_ERR_GEOMETRY, -1, "wf init: base surface has zero extent");
     cnt = (double *)wr_calloc_array((size_t)wf->nv, sizeof(double));
     tsum = (double *)wr_calloc_array((size_t)wf->ne, sizeof(double));
@@ -1728,6 +1822,7 @@ WRDEF wr_status wr_wf_init(const wr_wf *wf, const wr_wf_init_desc *desc, double 
     }
     wr__wf_zero_vertices(wf, zero);
     for (v = 0; v < wf->nv; ++v) a[v] = (cnt[v] > 0.0 && !zero[v]) ? a[v] / cnt[v] : 0.0;
+    if (desc && desc->rule == WR_WF_INIT_RELEASE && (st = wr__wf_init_smooth(wf, a, diag)) != WR_OK) goto done;
     for (e = 0; e < wf->ne; ++e) omega[e] = tcnt[e] > 0.0 ? tsum[e] / tcnt[e] : 0.0;
     st = wr_wf_project_closed(wf, omega, diag); /* App. E.2: least-squares curl-free projection */
 done:
