@@ -64,7 +64,11 @@
  *   subsegments), slivers with all corners on one segment (split points are rounded a few ulps off
  *   the segment's line; the output stays an exact CDT of the vertices produced), and triangles and
  *   subsegments shorter than 2^-36 of their coordinates' magnitude (rounding scale, where a computed
- *   Steiner point is no longer where it should be). A vertex budget stops everything else:
+ *   Steiner point is no longer where it should be). With an angle bound, refinement ends with a
+ *   clean-up: a free Steiner point (not on a segment) is deleted, or two adjacent ones are merged at
+ *   their midpoint, wherever every new triangle still meets the angle and size bounds and the mesh
+ *   stays an exact CDT (see "Steiner-point removal" below; figures in bench/RESULTS.md,
+ *   bench_triangle). A vertex budget stops everything else:
  *   WR_ERR_BUDGET is returned with the valid mesh reached so far in *out.
  *   Coordinates beyond ±WR_CDT_MAX_COORD (1e70) are refused with WR_ERR_GEOMETRY (the predicates
  *   would overflow). Input segments that overlap on one line share their common subsegments, which
@@ -1451,8 +1455,7 @@ static int32_t wr__bad_key(double len2) { /* buckets of a factor sqrt(2) in squa
     double mant = frexp(len2, &ex);
     return 2 * ex + (mant >= 0.70710678118654752);
 }
-static int wr__is_bad(const wr__cdt *S, const wr__ref *R, int32_t t, int32_t *key) {
-    const int32_t *v = S->tv + 3 * t;
+static int wr__is_bad_v(const wr__cdt *S, const wr__ref *R, const int32_t *v, int32_t reg, int32_t *key) {
     const double *p0 = WR__P(S, v[0]), *p1 = WR__P(S, v[1]), *p2 = WR__P(S, v[2]), *P3[3];
     double e[3], a2, l1, l2;
     int k, m = 0;
@@ -1467,9 +1470,7 @@ static int wr__is_bad(const wr__cdt *S, const wr__ref *R, int32_t t, int32_t *ke
     *key = wr__bad_key(e[m]);
     a2 = wr_orient2d_fast(p0, p1, p2); /* twice the area */
     if (R->max_area > 0.0 && 0.5 * a2 > R->max_area) return 1;
-    if (R->region_area && S->treg[t] >= 0 && R->region_area[S->treg[t]] > 0.0 &&
-        0.5 * a2 > R->region_area[S->treg[t]])
-        return 1;
+    if (R->region_area && reg >= 0 && R->region_area[reg] > 0.0 && 0.5 * a2 > R->region_area[reg]) return 1;
     if (R->unsuitable && R->unsuitable(p0, p1, p2, 0.5 * a2, R->user)) return 1;
     if (R->sin2 <= 0.0) return 0;
     l1 = e[wr__n1[m]];
@@ -1485,6 +1486,10 @@ static int wr__is_bad(const wr__cdt *S, const wr__ref *R, int32_t t, int32_t *ke
             return 0;
     }
     return 1;
+}
+
+static int wr__is_bad(const wr__cdt *S, const wr__ref *R, int32_t t, int32_t *key) {
+    return wr__is_bad_v(S, R, S->tv + 3 * t, S->treg ? S->treg[t] : -1, key);
 }
 
 /* The bad-triangle queue is a binary heap on (bucket, arrival): the triangle with the shortest
@@ -1874,6 +1879,384 @@ static int wr__fix_bad(wr__cdt *S, wr__ref *R, const wr__bad *bt) {
     return rc == 0 || wr__bad_push(&R->badq, t, bt->a, bt->b, bt->c, key) ? 1 : -2;
 }
 
+/* ---- Steiner-point removal and edge collapse ----
+ * Delaunay refinement inserts every point for a triangle that was bad when it was queued; points
+ * inserted later nearby often make an earlier one unnecessary. Two local operations on free
+ * Steiner vertices (not on a segment) undo such points:
+ *   removal   the vertex's star is re-triangulated by Delaunay ears (Devillers 1999, "On deletion
+ *             in Delaunay triangulations": an ear whose circumcircle holds no other polygon vertex)
+ *   collapse  two adjacent free vertices are replaced by one at their midpoint: the union of their
+ *             stars is fanned from it and made Delaunay by Lawson flips inside the polygon.
+ * Both build a wr__plan (the region's triangles, its boundary ring, the new triangles), and
+ * wr__plan_valid accepts it only when it tiles the ring (counter-clockwise triangles, every ring
+ * edge used once, every inner edge twice), every unconstrained edge inside and on the ring is
+ * locally Delaunay (so the whole mesh stays a CDT: Delaunay's lemma) and every new triangle meets
+ * the angle and size bounds (wr__tri_ok).
+ * Cost: rings of at most WR__RING_CAP vertices, O(cap^2) work per plan, each free vertex tried once
+ * per pass, at most WR__REMOVE_PASSES passes: linear in the mesh size. Each accepted operation
+ * lowers the vertex count and inserts nothing, so the passes end. */
+#define WR__RING_CAP 24
+#define WR__REMOVE_PASSES 8
+typedef struct wr__plan {
+    int32_t ring[WR__RING_CAP], out[WR__RING_CAP], ocm[WR__RING_CAP]; /* ring CCW; across edge i -> i+1:
+                                                                        * outer half-edge, its mark */
+    int32_t slot[WR__RING_CAP], tri[3 * WR__RING_CAP];                /* region triangles; new ones */
+    int n, ns, nt;
+} wr__plan;
+
+/* Move triangle `from` into slot `to` (overwriting it), relinking its neighbours. */
+static void wr__move_tri(wr__cdt *S, int32_t from, int32_t to) {
+    int k;
+    if (from == to) return;
+    for (k = 0; k < 3; ++k) {
+        S->tv[3 * to + k] = S->tv[3 * from + k];
+        S->cm[3 * to + k] = S->cm[3 * from + k];
+        wr__link(S, 3 * to + k, S->tn[3 * from + k]);
+        if (S->tv[3 * to + k] >= 0) S->vtri[S->tv[3 * to + k]] = to;
+    }
+    S->tf[to] = S->tf[from];
+    if (S->treg) S->treg[to] = S->treg[from];
+}
+
+/* Move vertex `from` (the last one) into slot `to` (a removed vertex), renaming it in its star. */
+static void wr__move_vert(wr__cdt *S, int32_t from, int32_t to) {
+    int32_t t0 = S->vtri[from], t = t0, guard = 0;
+    if (from == to) return;
+    do {
+        int32_t *v = S->tv + 3 * t;
+        int i = v[0] == from ? 0 : v[1] == from ? 1 : 2;
+        v[i] = to;
+        t = S->tn[3 * t + wr__n1[i]] / 3;
+    } while (t != t0 && ++guard < 1 << 20);
+    S->xy[2 * to] = S->xy[2 * from];
+    S->xy[2 * to + 1] = S->xy[2 * from + 1];
+    S->vseg[to] = S->vseg[from];
+    S->vtri[to] = t0;
+    if (S->na > 0) memcpy(S->attr + (size_t)to * S->na, S->attr + (size_t)from * S->na, sizeof(double) * (size_t)S->na);
+}
+
+/* After refinement: fill the slots of removed vertices with the last live ones. */
+static void wr__compact_verts(wr__cdt *S) {
+    int32_t v;
+    for (v = S->nv - 1; v >= S->n_input; --v)
+        if (S->vtri[v] < 0) wr__move_vert(S, --S->nv, v);
+}
+
+/* May triangle (a, b, c) replace part of the mesh: not bad, and at least the angle bound even where
+ * wr__is_bad would excuse it (the clean-up must never lower the minimum angle). */
+static int wr__tri_ok(const wr__cdt *S, const wr__ref *R, const int32_t *v, int32_t reg) {
+    const double *p = WR__P(S, v[0]), *q = WR__P(S, v[1]), *r = WR__P(S, v[2]);
+    double a2, e0, e1, e2, lo;
+    int32_t key;
+    if (wr__is_bad_v(S, R, v, reg, &key)) return 0;
+    a2 = wr_orient2d_fast(p, q, r);
+    e0 = (q[0] - r[0]) * (q[0] - r[0]) + (q[1] - r[1]) * (q[1] - r[1]);
+    e1 = (r[0] - p[0]) * (r[0] - p[0]) + (r[1] - p[1]) * (r[1] - p[1]);
+    e2 = (p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]);
+    lo = fmin(e0, fmin(e1, e2)); /* sin² of the smallest angle = a2² / (product of the two longer edges²) */
+    return a2 * a2 >= R->sin2 * (e0 * e1 * e2 / lo);
+}
+
+/* The new triangle and corner holding the directed edge x -> y, or -1. */
+static int wr__plan_find(const wr__plan *P, int32_t x, int32_t y) {
+    int i, e;
+    for (i = 0; i < P->nt; ++i)
+        for (e = 0; e < 3; ++e)
+            if (P->tri[3 * i + wr__n1[e]] == x && P->tri[3 * i + wr__n2[e]] == y) return 3 * i + e;
+    return -1;
+}
+
+/* See the section comment. */
+static int wr__plan_valid(const wr__cdt *S, const wr__ref *R, const wr__plan *P, int32_t reg) {
+    int i, e, uses = 0;
+    for (i = 0; i < P->nt; ++i) {
+        const int32_t *v = P->tri + 3 * i;
+        if (!(wr_orient2d(WR__P(S, v[0]), WR__P(S, v[1]), WR__P(S, v[2])) > 0.0)) return 0;
+        if (!wr__tri_ok(S, R, v, reg)) return 0;
+    }
+    for (i = 0; i < P->n; ++i) {
+        int32_t x = P->ring[i], y = P->ring[(i + 1) % P->n], d = S->tv[P->out[i]], h = wr__plan_find(P, x, y);
+        const int32_t *v;
+        if (h < 0) return 0;
+        v = P->tri + 3 * (h / 3);
+        if (P->ocm[i] == -1 && d >= 0 && wr_incircle(WR__P(S, v[0]), WR__P(S, v[1]), WR__P(S, v[2]), WR__P(S, d)) > 0.0)
+            return 0;
+    }
+    for (i = 0; i < P->nt; ++i)
+        for (e = 0; e < 3; ++e) {
+            const int32_t *v = P->tri + 3 * i;
+            int32_t x = v[wr__n1[e]], y = v[wr__n2[e]];
+            int h = wr__plan_find(P, y, x);
+            if (h < 0) { /* must be a ring edge */
+                ++uses;
+                continue;
+            }
+            if (h / 3 > i) continue; /* each inner edge once, from its higher triangle */
+            if (wr_incircle(WR__P(S, v[0]), WR__P(S, v[1]), WR__P(S, v[2]), WR__P(S, P->tri[h])) > 0.0) return 0;
+        }
+    return uses == P->n; /* with every ring edge found above: each used once, nothing else open */
+}
+
+/* Write the plan into the mesh: new triangles in slot[0..nt), the other slots dropped. */
+static void wr__plan_apply(wr__cdt *S, wr__plan *P) {
+    int i, e, j;
+    unsigned char tf = S->tf[P->slot[0]];
+    int32_t reg = S->treg ? S->treg[P->slot[0]] : -1;
+    for (i = 0; i < P->nt; ++i) {
+        int32_t t = P->slot[i];
+        wr__setv(S, t, P->tri[3 * i], P->tri[3 * i + 1], P->tri[3 * i + 2]);
+        S->tf[t] = tf;
+        if (S->treg) S->treg[t] = reg;
+        for (e = 0; e < 3; ++e) S->vtri[P->tri[3 * i + e]] = t;
+    }
+    for (i = 0; i < P->nt; ++i)
+        for (e = 0; e < 3; ++e) {
+            int32_t x = P->tri[3 * i + wr__n1[e]], y = P->tri[3 * i + wr__n2[e]];
+            int h = wr__plan_find(P, y, x);
+            if (h >= 0) {
+                S->tn[3 * P->slot[i] + e] = 3 * P->slot[h / 3] + h % 3;
+                S->cm[3 * P->slot[i] + e] = -1;
+                continue;
+            }
+            for (j = 0; j < P->n; ++j)
+                if (P->ring[j] == x && P->ring[(j + 1) % P->n] == y) {
+                    wr__link(S, 3 * P->slot[i] + e, P->out[j]);
+                    S->cm[3 * P->slot[i] + e] = P->ocm[j];
+                }
+        }
+    while (P->ns > P->nt) { /* drop the highest slot first: the moved last triangle is never dropped */
+        int hi = P->nt;
+        int32_t from;
+        for (j = P->nt + 1; j < P->ns; ++j)
+            if (P->slot[j] > P->slot[hi]) hi = j;
+        from = --S->nt;
+        wr__move_tri(S, from, P->slot[hi]);
+        for (j = 0; j < P->nt; ++j)
+            if (P->slot[j] == from) P->slot[j] = P->slot[hi];
+        P->slot[hi] = P->slot[--P->ns];
+    }
+    S->last = P->slot[0];
+}
+
+/* Star of free vertex v into ring/slots (triangle i = (v, ring i, ring i+1)); 0 when too large or not
+ * all live. Also the outer half-edges. */
+static int wr__plan_star(const wr__cdt *S, int32_t v, wr__plan *P, int cap) {
+    int32_t t0 = S->vtri[v], t = t0;
+    P->n = P->ns = P->nt = 0;
+    do {
+        const int32_t *tv = S->tv + 3 * t;
+        int i = tv[0] == v ? 0 : tv[1] == v ? 1 : 2;
+        if (P->n == cap || !wr__is_live(S, t)) return 0;
+        P->slot[P->ns++] = t;
+        P->out[P->n] = S->tn[3 * t + i];
+        P->ocm[P->n] = S->cm[3 * t + i];
+        P->ring[P->n++] = tv[wr__n1[i]];
+        t = S->tn[3 * t + wr__n1[i]] / 3;
+    } while (t != t0);
+    return P->n >= 3;
+}
+
+/* Removal plan: ear clipping of the star ring, Delaunay ears first. */
+static int wr__plan_removal(const wr__cdt *S, int32_t v, wr__plan *P) {
+    int idx[WR__RING_CAP], n, i, j;
+    if (!wr__plan_star(S, v, P, WR__RING_CAP / 2)) return 0;
+    for (i = 0; i < P->n; ++i) idx[i] = P->ring[i];
+    for (n = P->n; n > 3; --n) {
+        int found = -1;
+        for (i = 0; i < n && found < 0; ++i) {
+            int32_t a = idx[(i + n - 1) % n], b = idx[i], c = idx[(i + 1) % n];
+            const double *pa = WR__P(S, a), *pb = WR__P(S, b), *pc = WR__P(S, c);
+            int ok = wr_orient2d(pa, pb, pc) > 0.0;
+            for (j = 0; j < n && ok; ++j)
+                if (idx[j] != a && idx[j] != b && idx[j] != c && wr_incircle(pa, pb, pc, WR__P(S, idx[j])) > 0.0) ok = 0;
+            if (ok) found = i;
+        }
+        if (found < 0) return 0;
+        P->tri[3 * P->nt] = idx[(found + n - 1) % n];
+        P->tri[3 * P->nt + 1] = idx[found];
+        P->tri[3 * P->nt + 2] = idx[(found + 1) % n];
+        ++P->nt;
+        for (j = found; j + 1 < n; ++j) idx[j] = idx[j + 1];
+    }
+    P->tri[3 * P->nt] = idx[0];
+    P->tri[3 * P->nt + 1] = idx[1];
+    P->tri[3 * P->nt + 2] = idx[2];
+    ++P->nt;
+    return 1;
+}
+
+/* Remove free Steiner vertex v when its plan (*P on return) is valid; 1 removed, 0 kept. The slot of
+ * v stays dead (vtri -1) until wr__compact_verts. */
+static int wr__try_remove(wr__cdt *S, wr__ref *R, int32_t v, wr__plan *P) {
+    int32_t reg = S->treg ? S->treg[S->vtri[v]] : -1;
+    if (!wr__plan_removal(S, v, P) || !wr__plan_valid(S, R, P, reg)) return 0;
+    wr__plan_apply(S, P);
+    S->vtri[v] = -1;
+    R->n_steiner--;
+    return 1;
+}
+
+/* Collapse plan for the edge u-w (both free): the union of the two stars, fanned from u moved to
+ * the midpoint (S->xy[u] already holds it), then Lawson flips on the inner edges. */
+static int wr__plan_collapse(const wr__cdt *S, int32_t u, int32_t w, wr__plan *P) {
+    wr__plan Q;
+    int nbr[3 * WR__RING_CAP], iu, iw, i, j, e, flips = 0, again = 1;
+    if (!wr__plan_star(S, u, P, WR__RING_CAP / 2) || !wr__plan_star(S, w, &Q, WR__RING_CAP / 2)) return 0;
+    for (iu = 0; iu < P->n && P->ring[iu] != w; ++iu) {}
+    for (iw = 0; iw < Q.n && Q.ring[iw] != u; ++iw) {}
+    if (iu == P->n || iw == Q.n) return 0;
+    { /* ring: u's ring after w up to before w, then w's ring from after that to before u's next */
+        wr__plan T = *P;
+        int n = 0, ns = 0;
+        for (i = 1; i < T.n; ++i, ++n) {
+            int k = (iu + i) % T.n;
+            P->ring[n] = T.ring[k];
+            P->out[n] = T.out[k];
+            P->ocm[n] = T.ocm[k];
+        }
+        --n; /* the last u-ring vertex begins w's part: its edge is w's */
+        for (i = 1; i + 1 < Q.n; ++i, ++n) {
+            int k = (iw + i) % Q.n;
+            P->ring[n] = Q.ring[k];
+            P->out[n] = Q.out[k];
+            P->ocm[n] = Q.ocm[k];
+        }
+        for (i = 0; i < T.ns; ++i) P->slot[ns++] = T.slot[i];
+        for (i = 0; i < Q.ns; ++i)
+            if (Q.slot[i] != T.slot[iu] && Q.slot[i] != T.slot[(iu + T.n - 1) % T.n]) P->slot[ns++] = Q.slot[i];
+        P->n = n;
+        P->ns = ns;
+    }
+    for (i = 0; i < P->n; ++i)
+        for (j = i + 1; j < P->n; ++j)
+            if (P->ring[i] == P->ring[j]) return 0; /* the union is not a simple polygon */
+    for (P->nt = 0; P->nt < P->n; ++P->nt) {
+        i = P->nt;
+        P->tri[3 * i] = u;
+        P->tri[3 * i + 1] = P->ring[i];
+        P->tri[3 * i + 2] = P->ring[(i + 1) % P->n];
+        if (!(wr_orient2d(WR__P(S, u), WR__P(S, P->ring[i]), WR__P(S, P->ring[(i + 1) % P->n])) > 0.0)) return 0;
+        nbr[3 * i] = -1; /* the ring edge */
+        nbr[3 * i + 1] = 3 * ((i + 1) % P->n) + 2;
+        nbr[3 * ((i + 1) % P->n) + 2] = 3 * i + 1;
+    }
+    while (again && flips < 4 * WR__RING_CAP) { /* Lawson within the polygon (ring edges stay) */
+        again = 0;
+        for (i = 0; i < P->nt; ++i)
+            for (e = 0; e < 3; ++e) {
+                int32_t *v = P->tri + 3 * i, x = v[wr__n1[e]], y = v[wr__n2[e]], a = v[e], d;
+                int h = nbr[3 * i + e], j = h / 3, f = h % 3, Nya, Nax, Nxd, Ndy;
+                if (h < 0 || j < i ||
+                    !(wr_incircle(WR__P(S, v[0]), WR__P(S, v[1]), WR__P(S, v[2]), WR__P(S, P->tri[h])) > 0.0))
+                    continue; /* each inner edge once per sweep, from its lower triangle */
+                /* (a, x, y) + (d, y, x) -> (a, x, d) + (d, y, a), relinking the four outer edges */
+                d = P->tri[h];
+                Nya = nbr[3 * i + wr__n1[e]];
+                Nax = nbr[3 * i + wr__n2[e]];
+                Nxd = nbr[3 * j + wr__n1[f]];
+                Ndy = nbr[3 * j + wr__n2[f]];
+                v[0] = a, v[1] = x, v[2] = d;
+                P->tri[3 * j] = d, P->tri[3 * j + 1] = y, P->tri[3 * j + 2] = a;
+                nbr[3 * i] = Nxd, nbr[3 * i + 1] = 3 * j + 1, nbr[3 * i + 2] = Nax;
+                nbr[3 * j] = Nya, nbr[3 * j + 1] = 3 * i + 1, nbr[3 * j + 2] = Ndy;
+                if (Nxd >= 0) nbr[Nxd] = 3 * i;
+                if (Nax >= 0) nbr[Nax] = 3 * i + 2;
+                if (Nya >= 0) nbr[Nya] = 3 * j;
+                if (Ndy >= 0) nbr[Ndy] = 3 * j + 2;
+                again = 1;
+                ++flips;
+            }
+    }
+    return !again;
+}
+
+/* Does the moved vertex u encroach a subsegment on the ring? Refinement ended with none encroached
+ * (where splitting could help); a collapse must not make one (nor, with conforming, break the
+ * empty diametral circles). Removal cannot: it adds no vertex. */
+static int wr__plan_encroaches(const wr__cdt *S, const wr__ref *R, const wr__plan *P, int32_t u) {
+    int i;
+    for (i = 0; i < P->n; ++i)
+        if (P->ocm[i] != -1 && wr__encroaches(S, R, P->ring[i], P->ring[(i + 1) % P->n], WR__P(S, u))) return 1;
+    return 0;
+}
+
+/* Try collapsing free vertex u with one of its WR__COLLAPSE_TRIES nearest free neighbours (nearest
+ * first: close pairs are the redundant ones; further tries cost more than they find); 1 done (the
+ * plan applied in *PP). */
+#define WR__COLLAPSE_TRIES 2
+static int wr__try_collapse(wr__cdt *S, wr__ref *R, int32_t u, wr__plan *PP) {
+    int32_t nb[WR__RING_CAP], reg = S->treg ? S->treg[S->vtri[u]] : -1;
+    double keep[2], d2[WR__RING_CAP];
+    wr__plan P;
+    int i, j, n = 0;
+    if (!wr__plan_star(S, u, &P, WR__RING_CAP / 2)) return 0;
+    keep[0] = S->xy[2 * u];
+    keep[1] = S->xy[2 * u + 1];
+    for (i = 0; i < P.n; ++i) { /* free neighbours by distance (insertion sort: at most 12) */
+        int32_t w = P.ring[i];
+        double dx = S->xy[2 * w] - keep[0], dy = S->xy[2 * w + 1] - keep[1], dd = dx * dx + dy * dy;
+        if (w < S->n_input || S->vseg[w] != -1) continue;
+        for (j = n++; j > 0 && d2[j - 1] > dd; --j) {
+            nb[j] = nb[j - 1];
+            d2[j] = d2[j - 1];
+        }
+        nb[j] = w;
+        d2[j] = dd;
+    }
+    if (n > WR__COLLAPSE_TRIES) n = WR__COLLAPSE_TRIES;
+    for (i = 0; i < n; ++i) {
+        int32_t w = nb[i];
+        S->xy[2 * u] = 0.5 * (keep[0] + S->xy[2 * w]);
+        S->xy[2 * u + 1] = 0.5 * (keep[1] + S->xy[2 * w + 1]);
+        if (wr__plan_collapse(S, u, w, &P) && !wr__plan_encroaches(S, R, &P, u) && wr__plan_valid(S, R, &P, reg)) {
+            if (S->na > 0) wr__attr_lerp(S, u, u, w, 0.5);
+            wr__plan_apply(S, &P);
+            S->vtri[w] = -1;
+            R->n_steiner--;
+            *PP = P;
+            return 1;
+        }
+    }
+    S->xy[2 * u] = keep[0];
+    S->xy[2 * u + 1] = keep[1];
+    return 0;
+}
+
+/* Up to WR__REMOVE_PASSES passes over the free Steiner vertices, newest first: removal, else
+ * collapse with a free neighbour. After the first pass only vertices next to a change are tried
+ * again (nothing else can have become removable); without memory for those marks, one pass. */
+static void wr__remove_steiner(wr__cdt *S, wr__ref *R) {
+    int pass, any = 1, i;
+    wr__plan P;
+    unsigned char *mark = (unsigned char *)wr_alloc_array((size_t)S->nv, 1);
+    if (mark) memset(mark, 1, (size_t)S->nv);
+    for (pass = 0; pass < WR__REMOVE_PASSES && any && (pass == 0 || mark); ++pass) {
+        int32_t v;
+        any = 0;
+        for (v = S->nv - 1; v >= S->n_input; --v) {
+            if (S->vseg[v] != -1 || S->vtri[v] < 0 || (mark && !(mark[v] & 1))) continue;
+            if (mark) mark[v] = 0;
+            if (!wr__try_remove(S, R, v, &P) && !wr__try_collapse(S, R, v, &P)) continue;
+            any = 1;
+            /* a vertex's plan reads its star and the apexes across it: what may have changed for the
+             * vertices of the changed region's ring and their neighbours */
+            for (i = 0; mark && i < P.n; ++i) {
+                int32_t r = P.ring[i], t0 = S->vtri[r], t = t0;
+                do {
+                    const int32_t *tv = S->tv + 3 * t;
+                    int c = tv[0] == r ? 0 : tv[1] == r ? 1 : 2;
+                    if (tv[wr__n1[c]] >= 0) mark[tv[wr__n1[c]]] |= 3;
+                    t = S->tn[3 * t + wr__n1[c]] / 3;
+                } while (t != t0);
+                mark[r] |= 3;
+            }
+        }
+        if (mark)
+            for (v = 0; v < S->nv; ++v) mark[v] >>= 1; /* marks made in this pass count in the next */
+    }
+    wr_free(mark);
+}
+
 /* Delaunay refinement: encroached subsegments first, then bad triangles by priority (each may
  * encroach subsegments, which are split before the next triangle is looked at). */
 static wr_status wr__refine(wr__cdt *S, wr__ref *R, wr_diag *diag) {
@@ -1895,6 +2278,8 @@ static wr_status wr__refine(wr__cdt *S, wr__ref *R, wr_diag *diag) {
         bt = wr__bad_pop(&R->badq);
         rc = wr__fix_bad(S, R, &bt);
     }
+    if (rc > 0 && R->sin2 > 0.0) wr__remove_steiner(S, R);
+    wr__compact_verts(S);
     if (rc == -2) return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
     if (rc == -1)
         return wr_fail(diag, WR_ERR_BUDGET, -1,
