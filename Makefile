@@ -107,6 +107,12 @@ bin/bench_dynamics: bench/bench_dynamics.c $(HEADERS)
 	@mkdir -p bin
 	$(CC) $(ALL_CFLAGS) -O3 -fopenmp -DWR_BENCH_IMPL $< -o $@ $(LIBS)
 
+# bench_weld is its own implementation unit too (serial), so the same source can be built against
+# another tree's headers (-I) to compare two versions of the weld in one run.
+bin/bench_weld: bench/bench_weld.c $(HEADERS)
+	@mkdir -p bin
+	$(CC) $(ALL_CFLAGS) -O3 -DWR_BENCH_IMPL $< -o $@ $(LIBS)
+
 bin/%: bench/%.cpp $(LIB_OBJ) $(HEADERS) $(EXTRA_HDR)
 	@mkdir -p bin
 	$(CXX) $(ALL_CXXFLAGS) -O3 -frounding-math $< $(LIB_OBJ) -o $@ $(LIBS) -lgmp -lmpfr

@@ -632,6 +632,147 @@ Test(collision, vertex_class_lets_copies_meet) {
     wr_collision_mesh_free(&cm);
 }
 
+/* ON THE BROAD PHASE, the kept obstacle boxes: contacts (padding d̂/2) and CCD (no padding)
+ * alternating on one collision mesh with a still obstacle swap the other padding's boxes back in
+ * instead of refitting; every answer must still be the one of a freshly built mesh: the contact
+ * count and minimum distance, and alpha. The cloth sheet 2.7 mm over the obstacle: d̂ = 3 mm finds
+ * every pair over it only with both paddings 1.5 mm (unpadded or 1 mm obstacle boxes miss them),
+ * d̂ = 2 mm finds none; the obstacle is shifted along x between rounds (the kept boxes must go),
+ * which changes how many cloth vertices are over it. */
+Test(collision, kept_obstacle_boxes_answer_as_a_fresh_mesh) {
+    static const double dh[6] = {3e-3, 0.0, 2e-3, 3e-3, 0.0, 3e-3}; /* 0: a CCD query */
+    double *x, *dx;
+    int32_t *f, nv, nf, n = 8, i, r, q, found = 0;
+    uint8_t *ob;
+    wr_collision_mesh cm, fresh;
+    wr_contact_set a, b;
+    co_two_sheets(n, 2.7e-3, &x, &f, &nv, &nf, &ob);
+    memset(&a, 0, sizeof a);
+    memset(&b, 0, sizeof b);
+    dx = (double *)calloc(3 * (size_t)nv, sizeof(double));
+    for (i = nv / 2; i < nv; ++i) dx[3 * i + 2] = -4e-3, dx[3 * i] = 1e-3 * i / nv; /* through the obstacle */
+    cr_assert_eq(wr_collision_mesh_create(&cm, nv, nf, f, ob, NULL, NULL), WR_OK);
+    for (r = 0; r < 4; ++r) {
+        for (i = 0; i < nv / 2; ++i) x[3 * i] = (double)(i % (n + 1)) / n + 0.2 * r; /* obstacle shifted */
+        for (q = 0; q < 12; ++q) {
+            double d = dh[q % 6];
+            cr_assert_eq(wr_collision_mesh_create(&fresh, nv, nf, f, ob, NULL, NULL), WR_OK);
+            if (d > 0.0) {
+                cr_assert_eq(wr_collision_contacts(&cm, x, d, &a, NULL), WR_OK);
+                cr_assert_eq(wr_collision_contacts(&fresh, x, d, &b, NULL), WR_OK);
+                cr_expect_eq(a.n, b.n, "round %d query %d (d̂ %g): %d contacts, fresh mesh %d", (int)r, (int)q, d, (int)a.n,
+                             (int)b.n);
+                cr_expect_eq(a.min_distance, b.min_distance);
+                if (d == 3e-3) found += b.n > 0;
+                else cr_expect_eq(b.n, 0);
+            } else {
+                double al, bl;
+                cr_assert_eq(wr_collision_max_step(&cm, x, dx, &al, NULL, NULL), WR_OK);
+                cr_assert_eq(wr_collision_max_step(&fresh, x, dx, &bl, NULL, NULL), WR_OK);
+                cr_expect_eq(al, bl, "round %d query %d: alpha %.17g, fresh %.17g", (int)r, (int)q, al, bl);
+                cr_expect_lt(bl, 1.0);
+            }
+            wr_collision_mesh_free(&fresh);
+        }
+    }
+    cr_expect_eq(found, 4 * 6, "every d̂ = 3 mm query finds contacts (%d)", (int)found);
+    wr_contact_set_free(&a);
+    wr_contact_set_free(&b);
+    wr_collision_mesh_free(&cm);
+    free(x);
+    free(dx);
+    free(f);
+    free(ob);
+}
+
+/* ON LOCAL CCD: wr_collision_max_step_local returns wr_collision_max_step's alpha bit for bit, and
+ * the same limiting pair, on 600 random moves of 1-4 neighbouring vertices of a cloth sheet (z
+ * jittered by ±0.3 mm round 1 mm, self-contact on) over an obstacle sheet, one move in eight of
+ * obstacle vertices. Targets are uniform in each vertex's start position ± R (R = half a cell: the
+ * moving faces sweep over their neighbours and through the obstacle), the boxes the local trees are
+ * bound to; each move is applied at its alpha, so later trials start from changed states. (Two
+ * pairs can tie, e.g. a vertex passing a face's edge: PT and EE then give one time, and either may
+ * be reported: the local one's own ACCD time must then be alpha.) Both
+ * pair kinds limit some trials and some trials run free (else the case tests little). Then the
+ * refusals: not bound, a vertex listed twice, a target outside its box, an unlisted vertex moving. */
+Test(collision, max_step_local_equals_full) {
+    const int32_t n = 12, off[4] = {0, 1, 13, 14}; /* a vertex, its +x, +y, +xy neighbours (n + 1 = 13) */
+    const double R = 0.5 / 12;
+    int32_t nv, nf, *f, trial, hits = 0, clear = 0, same = 0, kinds[2] = {0, 0}, i, k, mv[4];
+    double *x, *dx, *vb, aloc, afull;
+    uint8_t *ob;
+    wr_collision_mesh cm;
+    wr_collision_ccd_stats sf, sl;
+    wr_diag dg;
+    wr_rng rng;
+    co_two_sheets(n, 1e-3, &x, &f, &nv, &nf, &ob);
+    wr_rng_seed(&rng, 31);
+    for (i = nv / 2; i < nv; ++i) x[3 * i + 2] += 3e-4 * (2.0 * wr_rng_uniform(&rng) - 1.0);
+    dx = (double *)calloc(3 * (size_t)nv, sizeof(double));
+    vb = (double *)malloc(sizeof(double) * 6 * (size_t)nv);
+    for (i = 0; i < nv; ++i)
+        for (k = 0; k < 3; ++k) { /* ± 1e-9 m: x + alpha dx may round past a target on the box face */
+            vb[6 * i + k] = x[3 * i + k] - R - 1e-9;
+            vb[6 * i + 3 + k] = x[3 * i + k] + R + 1e-9;
+        }
+    cr_assert_eq(wr_collision_mesh_create(&cm, nv, nf, f, ob, NULL, NULL), WR_OK);
+    cr_expect_eq(wr_collision_max_step_local(&cm, x, dx, 0, mv, &aloc, NULL, &dg), WR_ERR_INVALID_ARG, "not bound yet");
+    cr_assert_eq(wr_collision_mesh_bound(&cm, x, vb, &dg), WR_OK, "%s", dg.message);
+    for (trial = 0; trial < 600; ++trial) {
+        int32_t nm = 1 + trial % 4, sheet = trial % 8 == 7 ? 0 : 1, base = (n + 1) * (n + 1);
+        int32_t i0 = (int32_t)wr_rng_below(&rng, (uint32_t)n), j0 = (int32_t)wr_rng_below(&rng, (uint32_t)n);
+        for (k = 0; k < nm; ++k) {
+            int32_t v = sheet * base + j0 * (n + 1) + i0 + off[k];
+            mv[k] = v;
+            for (i = 0; i < 3; ++i) {
+                double c = 0.5 * (vb[6 * v + i] + vb[6 * v + 3 + i]);
+                dx[3 * v + i] = c + R * (2.0 * wr_rng_uniform(&rng) - 1.0) - x[3 * v + i];
+            }
+        }
+        cr_assert_eq(wr_collision_max_step(&cm, x, dx, &afull, &sf, &dg), WR_OK, "%s", dg.message);
+        cr_assert_eq(wr_collision_max_step_local(&cm, x, dx, nm, mv, &aloc, &sl, &dg), WR_OK, "trial %d: %s", (int)trial,
+                     dg.message);
+        cr_expect_eq(aloc, afull, "trial %d: local alpha %.17g, full %.17g", (int)trial, aloc, afull);
+        if (afull < 1.0) { /* the same limiting pair, or (a tie) one whose own time of impact is alpha */
+            double x12[12], d12[12], toi = 2.0;
+            same += sl.worst_kind == sf.worst_kind && !memcmp(sl.worst_v, sf.worst_v, sizeof sl.worst_v);
+            cr_assert(sl.worst_kind >= 0, "trial %d: no limiting pair", (int)trial);
+            for (k = 0; k < 4; ++k)
+                for (i = 0; i < 3; ++i) x12[3 * k + i] = x[3 * sl.worst_v[k] + i], d12[3 * k + i] = dx[3 * sl.worst_v[k] + i];
+            cr_expect(wr_collision_accd((wr_contact_kind)sl.worst_kind, x12, d12, WR_COLLISION_CCD_KEEP, 1.0, 0, &toi));
+            cr_expect_eq(toi, afull, "trial %d: the local limiting pair's own time %.17g", (int)trial, toi);
+        }
+        cr_expect_leq(sl.candidates, sf.candidates);
+        if (afull < 1.0) hits++, kinds[sf.worst_kind]++;
+        else clear++;
+        for (k = 0; k < nm; ++k)
+            for (i = 0; i < 3; ++i) {
+                x[3 * mv[k] + i] += afull * dx[3 * mv[k] + i];
+                dx[3 * mv[k] + i] = 0.0;
+            }
+    }
+    cr_log_info("local CCD: %d of 600 moves limited (%d PT, %d EE; the same limiting pair in %d), %d free", (int)hits,
+                (int)kinds[0], (int)kinds[1], (int)same, (int)clear);
+    cr_expect(kinds[0] > 20 && kinds[1] > 20 && clear > 20, "PT %d, EE %d, free %d", (int)kinds[0], (int)kinds[1],
+              (int)clear);
+    mv[0] = mv[1] = nv / 2 + 20;
+    cr_expect_eq(wr_collision_max_step_local(&cm, x, dx, 2, mv, &aloc, NULL, &dg), WR_ERR_INVALID_ARG, "listed twice");
+    dx[3 * mv[0]] = 2.0 * R;
+    cr_expect_eq(wr_collision_max_step_local(&cm, x, dx, 1, mv, &aloc, NULL, &dg), WR_ERR_DOMAIN, "out of its box");
+    cr_expect_eq(dg.item, mv[0]);
+    dx[3 * mv[0]] = 0.0;
+    dx[3 * (mv[0] + 1) + 2] = -1e-3; /* a neighbour moves unlisted: its own faces meet it */
+    cr_expect_eq(wr_collision_max_step_local(&cm, x, dx, 1, mv, &aloc, NULL, &dg), WR_ERR_INVALID_ARG, "unlisted");
+    cr_expect_eq(dg.item, mv[0] + 1);
+    cr_expect_eq(wr_collision_max_step_local(&cm, x, dx, 1, mv, &aloc, NULL, &dg), WR_ERR_INVALID_ARG, "marks cleared");
+    wr_collision_mesh_free(&cm);
+    free(x);
+    free(dx);
+    free(vb);
+    free(f);
+    free(ob);
+}
+
 Test(collision, mesh_self_intersection_exact) {
     /* a strip of two triangles folded about their shared edge: fine at any angle but 0 (flat onto
      * each other, exact) and a far triangle pierced by the strip */

@@ -32,6 +32,8 @@
  *   wr_collision_contacts(cm, x, dhat, set, diag)              every PT/EE pair with d < d̂
  *   wr_collision_contact_energy(set, x, dhat, kappa, project, E, grad, sink, diag)  barrier sum
  *   wr_collision_max_step(cm, x, dx, alpha, stats, diag)       CCD: largest safe α <= 1
+ *   wr_collision_mesh_bound(cm, x, vbox, diag)                 fit the local trees to vertex boxes
+ *   wr_collision_max_step_local(cm, x, dx, nm, moving, alpha, stats, diag)  the same α, few moving
  *   wr_collision_mesh_self_intersects(cm, x, count, first, diag)  exact whole-mesh check
  *   wr_collision_meshes_intersect(nva, xa, nfa, fa, nvb, xb, nfb, fb, count, diag)
  *   wr_contact_set_free(set)
@@ -58,6 +60,9 @@
  *   hash needs one cell size; a BVH adapts), swept boxes of fast vertices stay one box, and there is
  *   no table size to tune. The build is O(n log n) (quickselect per level), a refit O(n), a self
  *   query O(n + pairs) on cloth-like input. Measured in bench/bench_collision.c (bench/RESULTS.md).
+ *   Obstacle trees are refitted only when an obstacle moves or the padding changes (contacts pad
+ *   by d̂/2, CCD by 0); the previous padding's boxes are kept, so queries alternating the two on a
+ *   still body swap boxes instead of refitting (the same boxes, the same rebuild schedule).
  *   Traversal is iterative (a growable stack of node pairs), deterministic, single-threaded.
  *   A single-box query (wr_bvh_box_query: what a caller needs for "which triangles near this one")
  *   walks the tree depth first with a fixed stack on the C stack, so it allocates nothing and can
@@ -101,6 +106,23 @@
  *   whose swept boxes overlap is tested; one whose swept boxes do not overlap cannot meet. After
  *   max_iter steps (a pair sliding tangentially at a tiny gap) the current t is returned, still safe
  *   but pessimistic; the mesh-level stats count such pairs.
+ *
+ * ON LOCAL CCD (a step that moves few vertices)
+ *   wr_collision_max_step refits every tree and traverses every pair: O(n) per call however few
+ *   vertices move. A caller that certifies many small motions of a few vertices each (garment.h's
+ *   seam weld: one call per merged vertex) first fits a second set of trees once
+ *   (wr_collision_mesh_bound) to per-vertex boxes that hold every position each vertex will take in
+ *   those calls; wr_collision_max_step_local then visits only the primitives incident to the moving
+ *   vertices, asks the bound trees for the primitives whose boxes meet each one's swept box, and
+ *   applies to those exactly the filters and the ACCD of wr_collision_max_step (the same swept boxes
+ *   with no padding, the same pair rules, the same vertex order within a pair). Every pair that
+ *   contains a moving vertex is then tested once, and a pair without one has no relative motion
+ *   (ACCD returns no impact for it unless it already touches), so alpha is the same number as
+ *   wr_collision_max_step's: the minimum of the same per-pair times of impact (ACCD's time does not
+ *   depend on its t_max while below it, so the visiting order does not matter). The one difference:
+ *   a pair of two still primitives that already touch (distance 0, an intersection that the step
+ *   did not make) gives alpha = 0 there and is not looked at here; stats count only pairs with a
+ *   moving vertex. Cost: O(k log n + candidates) for k moving vertices.
  *
  * ON EXACT INTERSECTION TESTS
  *   Built on predicates.h's wr_orient3d and wr_orient2d (exact signs for coordinates within
@@ -242,7 +264,18 @@ typedef struct wr_collision_mesh {
     double *ox;       /* nv*3: positions the obstacle trees were fitted at (obstacle rows) */
     double opad;      /* box padding of the obstacle trees [m] */
     int32_t ofit, orefits; /* obstacle trees fitted (0/1), refits since their last build */
+    /* the obstacle trees' node and primitive boxes at the other padding of the same fit (ON THE
+     * BROAD PHASE: contacts and CCD alternate paddings), valid when oalt = 1 */
+    double *oalt_box[3], *oalt_pbox[3], oalt_pad;
+    int32_t oalt;
     double *boxes;    /* scratch: max(nv, ne, nf)*6 */
+    /* ON LOCAL CCD (empty until wr_collision_mesh_bound): trees over the primitives of ids[] fitted
+     * to the vertex boxes lbox, incidence inc[inc_start[v] .. inc_start[v + 1]) (an edge e as e, a
+     * face f as ne + f), a per-vertex mark (0 between calls) */
+    wr_bvh ltree[6];
+    double *lbox;     /* nv*6 */
+    int32_t *inc_start, *inc;
+    uint8_t *lmark;
 } wr_collision_mesh;
 
 typedef struct wr_contact {
@@ -286,6 +319,20 @@ WRDEF wr_status wr_collision_contact_energy(const wr_contact_set *set, const dou
  * every pair (ACCD with keep = WR_COLLISION_CCD_KEEP). stats may be NULL. */
 WRDEF wr_status wr_collision_max_step(wr_collision_mesh *cm, const double *x, const double *dx, double *alpha,
                                       wr_collision_ccd_stats *stats, wr_diag *diag);
+/* ON LOCAL CCD: fits the local trees to vbox (nv*6: min xyz, max xyz per vertex), which must hold
+ * every position each vertex takes (x, x + dx) in the wr_collision_max_step_local calls until the
+ * next bound; x (nv*3) is checked to lie in them. WR_ERR_DOMAIN (item = vertex) for a non-finite
+ * or inverted box or a vertex outside its box. */
+WRDEF wr_status wr_collision_mesh_bound(wr_collision_mesh *cm, const double *x, const double *vbox, wr_diag *diag);
+/* wr_collision_max_step's alpha (ON LOCAL CCD) for a dx that is 0 except at the nm distinct
+ * vertices moving[]; positions outside moving[] must not change between calls. Needs
+ * wr_collision_mesh_bound first (WR_ERR_INVALID_ARG without). WR_ERR_DOMAIN (item = vertex) for a
+ * moving vertex with a non-finite x or dx or outside its box at x or x + dx; WR_ERR_INVALID_ARG
+ * for a vertex listed twice or out of range, or (item = vertex) a nonzero dx off the list met on
+ * the way. stats (may be NULL) count pairs with a moving vertex only. */
+WRDEF wr_status wr_collision_max_step_local(wr_collision_mesh *cm, const double *x, const double *dx, int32_t nm,
+                                            const int32_t *moving, double *alpha, wr_collision_ccd_stats *stats,
+                                            wr_diag *diag);
 /* Exact: number of intersecting non-adjacent triangle pairs at x (ON EXACT INTERSECTION TESTS);
  * first (2, may be NULL) gets the first pair found (or -1, -1). */
 WRDEF wr_status wr_collision_mesh_self_intersects(wr_collision_mesh *cm, const double *x, int32_t *count,
@@ -1029,9 +1076,18 @@ WRDEF void wr_collision_mesh_free(wr_collision_mesh *cm) {
     wr_free(cm->vclass);
     wr_free(cm->boxes);
     wr_free(cm->ox);
+    wr_free(cm->lbox);
+    {
+        int t;
+        for (t = 0; t < 3; ++t) wr_free(cm->oalt_box[t]), wr_free(cm->oalt_pbox[t]);
+    }
+    wr_free(cm->inc_start);
+    wr_free(cm->inc);
+    wr_free(cm->lmark);
     {
         int t;
         for (t = 0; t < 6; ++t) {
+            wr_bvh_free(&cm->ltree[t]);
             wr_bvh_free(&cm->tree[t]);
             wr_free(cm->ids[t]);
         }
@@ -1158,29 +1214,68 @@ static wr_status wr__coll_tree(wr_collision_mesh *cm, int t, const double *x, co
     return WR_OK;
 }
 
+/* Swap the obstacle trees' box arrays with the kept ones of the other padding. */
+static void wr__coll_swap_alt(wr_collision_mesh *cm) {
+    int t;
+    for (t = 0; t < 3; ++t) {
+        double *b = cm->tree[3 + t].box, *p = cm->tree[3 + t].pbox;
+        cm->tree[3 + t].box = cm->oalt_box[t], cm->tree[3 + t].pbox = cm->oalt_pbox[t];
+        cm->oalt_box[t] = b, cm->oalt_pbox[t] = p;
+    }
+}
+
+/* Room for the kept boxes (the sizes wr_bvh_build allocates); 0 when out of memory (then nothing is
+ * kept: a cache, not needed for correctness). */
+static int wr__coll_alt_alloc(wr_collision_mesh *cm) {
+    int t;
+    for (t = 0; t < 3; ++t) {
+        size_t n = (size_t)(cm->tree[3 + t].n > 0 ? cm->tree[3 + t].n : 1), m = cm->tree[3 + t].n > 0 ? 2 * n - 1 : 1;
+        if (!cm->oalt_box[t]) cm->oalt_box[t] = (double *)wr_alloc_array(6 * m, sizeof(double));
+        if (!cm->oalt_pbox[t]) cm->oalt_pbox[t] = (double *)wr_alloc_array(6 * n, sizeof(double));
+        if (!cm->oalt_box[t] || !cm->oalt_pbox[t]) return 0;
+    }
+    return 1;
+}
+
 /* The obstacle trees are fitted again only when an obstacle vertex moved (or moves along dx) or the
  * padding changed (contacts pad by d̂/2, CCD by 0: a padded tree would hand CCD extra candidates,
  * whose additive CCD is conservative for tangential motion): a body held still costs its box
- * refit per query at most, and never the traversal of its own pairs. */
+ * refit per query at most, and never the traversal of its own pairs. A refit that only changes
+ * the padding keeps the previous padding's boxes, and the next query at that padding swaps them
+ * back in: the same boxes a refit would compute, bit for bit, on the same tree (the swap counts as
+ * a refit for the rebuild schedule), so contacts and CCD alternating on a still body refit it at
+ * most once per WR__COLL_REBUILD queries instead of every query. */
 static wr_status wr__coll_obstacle_trees(wr_collision_mesh *cm, const double *x, const double *dx, double pad,
                                          wr_diag *diag) {
-    int32_t k, i, moving = 0, same = cm->ofit && pad == cm->opad;
+    int32_t k, i, moving = 0, still = cm->ofit; /* still: fitted at these positions */
     wr_status st;
-    int t, rebuild;
+    int t, rebuild, keep;
     for (k = 0; k < cm->nids[3]; ++k) {
         int32_t v = cm->ids[3][k];
         for (i = 0; i < 3; ++i) {
             if (dx && dx[3 * v + i] != 0.0) moving = 1;
-            if (x[3 * v + i] != cm->ox[3 * v + i]) same = 0;
+            if (x[3 * v + i] != cm->ox[3 * v + i]) still = 0;
         }
     }
-    if (same && !moving) return WR_OK;
+    if (still && !moving && pad == cm->opad) return WR_OK;
     rebuild = !cm->ofit || cm->orefits >= WR__COLL_REBUILD;
+    keep = still && !moving && !rebuild;
+    if (keep && cm->oalt && pad == cm->oalt_pad) {
+        wr__coll_swap_alt(cm);
+        cm->oalt_pad = cm->opad;
+        cm->opad = pad;
+        cm->orefits++;
+        return WR_OK;
+    }
+    cm->oalt = 0;
+    keep = keep && wr__coll_alt_alloc(cm);
+    if (keep) wr__coll_swap_alt(cm); /* the fitted boxes kept; the refit below overwrites every entry of the others */
     for (t = 3; t < 6; ++t)
         if ((st = wr__coll_tree(cm, t, x, dx, pad, rebuild, diag)) != WR_OK) {
             cm->ofit = 0;
             return st;
         }
+    if (keep) cm->oalt = 1, cm->oalt_pad = cm->opad;
     cm->orefits = rebuild ? 0 : cm->orefits + 1;
     /* boxes swept along a moving obstacle's dx are not reused */
     cm->ofit = !moving;
@@ -1378,10 +1473,11 @@ WRDEF wr_status wr_collision_contact_energy(const wr_contact_set *set, const dou
     return WR_OK;
 }
 
-static wr_status wr__coll_ccd(wr__coll_ctx *c, int kind, int32_t i, int32_t j) {
+/* ACCD of the pair (PT: vertex i, face j; EE: edge i, edge j; mesh-wide ids) if ON PAIRS keeps it */
+static wr_status wr__coll_ccd_ids(wr__coll_ctx *c, int kind, int32_t i, int32_t j) {
     int32_t v[4];
     double x12[12], d12[12], toi;
-    if (!wr__coll_pair(c->cm, kind, c->ma[i], c->mb[j], v)) return WR_OK;
+    if (!wr__coll_pair(c->cm, kind, i, j, v)) return WR_OK;
     wr__coll_gather(c->x, v, x12);
     wr__coll_gather(c->dx, v, d12);
     if (c->stats) c->stats->candidates++;
@@ -1397,8 +1493,19 @@ static wr_status wr__coll_ccd(wr__coll_ctx *c, int kind, int32_t i, int32_t j) {
     return WR_OK;
 }
 
+static wr_status wr__coll_ccd(wr__coll_ctx *c, int kind, int32_t i, int32_t j) {
+    return wr__coll_ccd_ids(c, kind, c->ma[i], c->mb[j]);
+}
+
 static wr_status wr__coll_pt_ccd(void *u, int32_t i, int32_t j) { return wr__coll_ccd((wr__coll_ctx *)u, 0, i, j); }
 static wr_status wr__coll_ee_ccd(void *u, int32_t i, int32_t j) { return wr__coll_ccd((wr__coll_ctx *)u, 1, i, j); }
+
+static void wr__coll_stats_init(wr_collision_ccd_stats *stats) {
+    if (!stats) return;
+    memset(stats, 0, sizeof *stats);
+    stats->worst_kind = -1;
+    stats->worst_v[0] = stats->worst_v[1] = stats->worst_v[2] = stats->worst_v[3] = -1;
+}
 
 WRDEF wr_status wr_collision_max_step(wr_collision_mesh *cm, const double *x, const double *dx, double *alpha,
                                       wr_collision_ccd_stats *stats, wr_diag *diag) {
@@ -1407,11 +1514,7 @@ WRDEF wr_status wr_collision_max_step(wr_collision_mesh *cm, const double *x, co
     if (!cm || !x || !dx || !alpha || !cm->obst_v)
         return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "collision step: NULL argument");
     *alpha = 1.0;
-    if (stats) {
-        memset(stats, 0, sizeof *stats);
-        stats->worst_kind = -1;
-        stats->worst_v[0] = stats->worst_v[1] = stats->worst_v[2] = stats->worst_v[3] = -1;
-    }
+    wr__coll_stats_init(stats);
     if ((st = wr__coll_trees(cm, x, dx, 0.0, diag)) != WR_OK) return st;
     memset(&c, 0, sizeof c);
     c.cm = cm;
@@ -1423,6 +1526,185 @@ WRDEF wr_status wr_collision_max_step(wr_collision_mesh *cm, const double *x, co
     if ((st = wr__coll_query(cm, &c, wr__coll_pt_ccd, wr__coll_ee_ccd, diag)) != WR_OK) return st;
     *alpha = c.alpha;
     return WR_OK;
+}
+
+/* ---- local CCD (ON LOCAL CCD) ---- */
+
+/* Vertex → incident edges and faces (CSR; edge e as e, face f as ne + f), built once per mesh. */
+static wr_status wr__coll_incidence(wr_collision_mesh *cm, wr_diag *diag) {
+    int32_t v, i, k, n = 2 * cm->ne + 3 * cm->nf;
+    if (cm->inc_start) return WR_OK;
+    cm->inc_start = (int32_t *)wr_calloc_array((size_t)cm->nv + 1, sizeof(int32_t));
+    cm->inc = (int32_t *)wr_alloc_array((size_t)(n > 0 ? n : 1), sizeof(int32_t));
+    if (!cm->inc_start || !cm->inc) {
+        wr_free(cm->inc_start), wr_free(cm->inc);
+        cm->inc_start = cm->inc = NULL;
+        return wr_fail(diag, WR_ERR_NOMEM, -1, "collision: out of memory (incidence of %d vertices)", (int)cm->nv);
+    }
+    for (i = 0; i < 2 * cm->ne; ++i) cm->inc_start[cm->edges[i] + 1]++;
+    for (i = 0; i < 3 * cm->nf; ++i) cm->inc_start[cm->faces[i] + 1]++;
+    for (v = 0; v < cm->nv; ++v) cm->inc_start[v + 1] += cm->inc_start[v];
+    for (i = 0; i < cm->ne; ++i)
+        for (k = 0; k < 2; ++k) cm->inc[cm->inc_start[cm->edges[2 * i + k]]++] = i;
+    for (i = 0; i < cm->nf; ++i)
+        for (k = 0; k < 3; ++k) cm->inc[cm->inc_start[cm->faces[3 * i + k]]++] = cm->ne + i;
+    for (v = cm->nv; v > 0; --v) cm->inc_start[v] = cm->inc_start[v - 1]; /* the fill moved each start to its end */
+    cm->inc_start[0] = 0;
+    return WR_OK;
+}
+
+WRDEF wr_status wr_collision_mesh_bound(wr_collision_mesh *cm, const double *x, const double *vbox, wr_diag *diag) {
+    int32_t v, i, k;
+    int t;
+    wr_status st;
+    if (!cm || !x || !vbox || !cm->obst_v) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "collision bound: NULL argument");
+    for (v = 0; v < cm->nv; ++v)
+        for (i = 0; i < 3; ++i) {
+            double lo = vbox[6 * v + i], hi = vbox[6 * v + 3 + i], p = x[3 * v + i];
+            if (!wr__coll_finite(lo) || !wr__coll_finite(hi) || !(lo <= p && p <= hi))
+                return wr_fail(diag, WR_ERR_DOMAIN, v, "collision bound: vertex %d: %g outside its box [%g, %g] (axis %d)",
+                               (int)v, p, lo, hi, (int)i);
+        }
+    if ((st = wr__coll_incidence(cm, diag)) != WR_OK) return st;
+    wr_free(cm->lbox); /* unbound until every tree is built */
+    cm->lbox = NULL;
+    if (!cm->lmark) cm->lmark = (uint8_t *)wr_calloc_array((size_t)cm->nv, 1);
+    if (!cm->lmark) return wr_fail(diag, WR_ERR_NOMEM, -1, "collision bound: out of memory");
+    for (t = 0; t < 6; ++t) {
+        int32_t n = cm->nids[t], which = t % 3;
+        for (i = 0; i < n; ++i) { /* a primitive's box: the union of its vertices' boxes */
+            int32_t g = cm->ids[t][i], a;
+            const int32_t *vs = which == 0 ? &cm->ids[t][i] : (which == 1 ? cm->edges + 2 * g : cm->faces + 3 * g);
+            double *bx = cm->boxes + 6 * i;
+            memcpy(bx, vbox + 6 * vs[0], 6 * sizeof(double));
+            for (k = 1; k <= which; ++k)
+                for (a = 0; a < 3; ++a) {
+                    bx[a] = fmin(bx[a], vbox[6 * vs[k] + a]);
+                    bx[3 + a] = fmax(bx[3 + a], vbox[6 * vs[k] + 3 + a]);
+                }
+        }
+        wr_bvh_free(&cm->ltree[t]);
+        if ((st = wr_bvh_build(&cm->ltree[t], n, cm->boxes, diag)) != WR_OK) return st;
+    }
+    if (!(cm->lbox = (double *)wr_alloc_array(6 * (size_t)cm->nv, sizeof(double))))
+        return wr_fail(diag, WR_ERR_NOMEM, -1, "collision bound: out of memory");
+    memcpy(cm->lbox, vbox, 6 * sizeof(double) * (size_t)cm->nv);
+    return WR_OK;
+}
+
+/* One moving primitive a (kind 0 vertex, 1 edge, 2 face) and its swept box, against tree t. */
+typedef struct wr__coll_local {
+    wr__coll_ctx c;
+    int32_t a;
+    int kind, t;
+    double abox[6];
+} wr__coll_local;
+
+/* A bound-tree candidate b of the moving primitive: skipped when another visit owns the pair (a
+ * moving vertex's own visit owns its PT pairs, the smaller id a pair of moving edges), else
+ * wr_collision_max_step's own test: swept boxes without padding, then the pair's ACCD. */
+static wr_status wr__coll_local_fn(void *u, int32_t i) {
+    wr__coll_local *L = (wr__coll_local *)u;
+    wr_collision_mesh *cm = L->c.cm;
+    int which = L->t % 3, k, moving = 0;
+    int32_t b = cm->ids[L->t][i];
+    const int32_t *vs = which == 0 ? &cm->ids[L->t][i] : (which == 1 ? cm->edges + 2 * b : cm->faces + 3 * b);
+    double bb[6];
+    for (k = 0; k <= which; ++k) {
+        if (cm->lmark[vs[k]]) moving = 1;
+        else if (L->c.dx[3 * vs[k]] != 0.0 || L->c.dx[3 * vs[k] + 1] != 0.0 || L->c.dx[3 * vs[k] + 2] != 0.0)
+            return wr_fail(L->c.diag, WR_ERR_INVALID_ARG, vs[k], "collision step: vertex %d moves but is not listed",
+                           (int)vs[k]);
+    }
+    if ((L->kind == 2 && moving) || (L->kind == 1 && (b == L->a || (moving && b < L->a)))) return WR_OK;
+    wr__coll_box(L->c.x, L->c.dx, vs, which + 1, 0.0, bb);
+    if (!wr__bvh_overlap(L->abox, bb)) return WR_OK;
+    if (L->kind == 0) return wr__coll_ccd_ids(&L->c, WR_CONTACT_PT, L->a, b);
+    if (L->kind == 2) return wr__coll_ccd_ids(&L->c, WR_CONTACT_PT, b, L->a);
+    /* the order of wr__coll_query: the cloth edge first, two cloth edges by id */
+    if (cm->obst_e[L->a] == cm->obst_e[b])
+        return wr__coll_ccd_ids(&L->c, WR_CONTACT_EE, L->a < b ? L->a : b, L->a < b ? b : L->a);
+    return cm->obst_e[L->a] ? wr__coll_ccd_ids(&L->c, WR_CONTACT_EE, b, L->a)
+                            : wr__coll_ccd_ids(&L->c, WR_CONTACT_EE, L->a, b);
+}
+
+/* The moving primitive (kind, id a, vertices vs[0..n)) against the trees of its partners: vertices
+ * against faces, edges against edges, faces against vertices (cloth and obstacle trees, as ON PAIRS
+ * allows). */
+static wr_status wr__coll_local_query(wr__coll_local *L, int kind, int32_t a, const int32_t *vs, int n, wr_diag *diag) {
+    static const int partner[3][2] = {{2, 5}, {1, 4}, {0, 3}};
+    wr_collision_mesh *cm = L->c.cm;
+    int oa = kind == 0 ? cm->obst_v[a] : (kind == 1 ? cm->obst_e[a] : cm->obst_f[a]), s;
+    wr_status st;
+    wr__coll_box(L->c.x, L->c.dx, vs, n, 0.0, L->abox);
+    L->a = a;
+    L->kind = kind;
+    for (s = 0; s < 2; ++s) {
+        L->t = partner[kind][s];
+        if (!wr__coll_keep(cm, oa, L->t >= 3)) continue;
+        if ((st = wr_bvh_box_query(&cm->ltree[L->t], L->abox, wr__coll_local_fn, L, diag)) != WR_OK) return st;
+    }
+    return WR_OK;
+}
+
+/* Moving vertex u and the incident edges and faces whose first moving corner it is. */
+static wr_status wr__coll_local_vertex(wr__coll_local *L, int32_t u, wr_diag *diag) {
+    wr_collision_mesh *cm = L->c.cm;
+    int32_t c, k;
+    wr_status st = wr__coll_local_query(L, 0, u, &u, 1, diag);
+    for (c = cm->inc_start[u]; c < cm->inc_start[u + 1] && st == WR_OK; ++c) {
+        int32_t id = cm->inc[c], edge = id < cm->ne, a = edge ? id : id - cm->ne, n = edge ? 2 : 3;
+        const int32_t *vs = edge ? cm->edges + 2 * a : cm->faces + 3 * a;
+        for (k = 0; !cm->lmark[vs[k]]; ++k) continue; /* u itself is marked: the loop ends */
+        if (vs[k] == u) st = wr__coll_local_query(L, edge ? 1 : 2, a, vs, n, diag);
+    }
+    return st;
+}
+
+/* Marks moving[0..nm) in cm->lmark, checking each (ON LOCAL CCD); *nmarked gets how many were marked. */
+static wr_status wr__coll_local_mark(wr_collision_mesh *cm, const double *x, const double *dx, int32_t nm,
+                                     const int32_t *moving, int32_t *nmarked, wr_diag *diag) {
+    int32_t k, i;
+    for (*nmarked = 0, k = 0; k < nm; ++k) {
+        int32_t v = moving[k];
+        if (v < 0 || v >= cm->nv || cm->lmark[v])
+            return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "collision step: moving[%d] = %d %s", (int)k, (int)v,
+                           v < 0 || v >= cm->nv ? "out of range" : "listed twice");
+        for (i = 0; i < 3; ++i) {
+            double p = x[3 * v + i], q = p + dx[3 * v + i], lo = cm->lbox[6 * v + i], hi = cm->lbox[6 * v + 3 + i];
+            if (!wr__coll_finite(p) || !wr__coll_finite(q) || !(lo <= p && p <= hi && lo <= q && q <= hi))
+                return wr_fail(diag, WR_ERR_DOMAIN, v, "collision step: vertex %d leaves its bound box (axis %d)", (int)v,
+                               (int)i);
+        }
+        cm->lmark[v] = 1;
+        (*nmarked)++;
+    }
+    return WR_OK;
+}
+
+WRDEF wr_status wr_collision_max_step_local(wr_collision_mesh *cm, const double *x, const double *dx, int32_t nm,
+                                            const int32_t *moving, double *alpha, wr_collision_ccd_stats *stats,
+                                            wr_diag *diag) {
+    wr__coll_local L;
+    int32_t k, marked;
+    wr_status st;
+    if (!cm || !x || !dx || !alpha || !cm->obst_v || nm < 0 || (nm > 0 && !moving))
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "collision step: NULL or negative argument");
+    if (!cm->lbox) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "collision step: local trees not bound (wr_collision_mesh_bound)");
+    *alpha = 1.0;
+    wr__coll_stats_init(stats);
+    memset(&L, 0, sizeof L);
+    L.c.cm = cm;
+    L.c.x = x;
+    L.c.dx = dx;
+    L.c.diag = diag;
+    L.c.alpha = 1.0;
+    L.c.stats = stats;
+    st = wr__coll_local_mark(cm, x, dx, nm, moving, &marked, diag);
+    for (k = 0; k < nm && st == WR_OK; ++k) st = wr__coll_local_vertex(&L, moving[k], diag);
+    for (k = 0; k < marked; ++k) cm->lmark[moving[k]] = 0;
+    if (st == WR_OK) *alpha = L.c.alpha;
+    return st;
 }
 
 /* ---- exact whole-mesh checks ---- */

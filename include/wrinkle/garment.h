@@ -123,7 +123,11 @@
  *   the mass mean there). CCD checks every vertex–triangle and edge–edge pair, cloth against body
  *   and, when the welded sim has self-contact, cloth against cloth, so no merge move sweeps a face
  *   through the body or the garment: a triangle pair can only start to intersect through such a
- *   contact. What CCD cannot see is a pair that shares a merged vertex (two faces folding over
+ *   contact. Each move is certified locally (collision.h ON LOCAL CCD: every position a copy can
+ *   take lies in the box of its class's start positions and m, so the collision mesh is bound to
+ *   those boxes once and a move costs the CCD of the primitives round its copies: the same alpha
+ *   as a whole-mesh wr_collision_max_step, at a cost that does not grow with the garment).
+ *   What CCD cannot see is a pair that shares a merged vertex (two faces folding over
  *   each other at the seam), so the welded mesh is then checked exactly against every body and,
  *   with self-contact, against itself. A class no move can merge (weld_blocked) or an
  *   intersection found (weld_left, triangle pairs) is WR_ERR_GEOMETRY from wr_garment_sim_weld (the
@@ -972,19 +976,56 @@ static wr_status wr__gar_mid_hits(const wr_dyn *sim, const wr_mesh *wm, const in
 
 /* ON WELDING, the merge as a motion: the unwelded cloth and the bodies in one collision mesh whose
  * vertex classes are the welded vertices (collision.h ON PAIRS: the copies of a seam vertex are
- * meant to meet), so CCD (wr_collision_max_step) certifies each move of a class's members. */
+ * meant to meet), so CCD certifies each move of a class's members. Every position a member takes
+ * (m, m + t (x_u − m)) lies in the box of its class's start positions and m, so the mesh is bound
+ * to those boxes once (collision.h ON LOCAL CCD) and each move costs the CCD of the primitives
+ * round the moving copies, not of the whole cloth and body (wr_collision_max_step_local: the same
+ * alpha as wr_collision_max_step). */
 typedef struct wr__gar_merge {
     wr_collision_mesh cm;
     double *X, *dX;       /* (nv0 + nb)*3: the members as they move, a trial motion (0 elsewhere) */
     int32_t *start, *mem; /* members of welded vertex j: mem[start[j] .. start[j + 1]) */
+    int32_t *mv;          /* nv0: the moving members of one move */
 } wr__gar_merge;
 
 static void wr__gar_merge_free(wr__gar_merge *M) {
     wr_collision_mesh_free(&M->cm);
-    wr_free(M->X), wr_free(M->dX), wr_free(M->start), wr_free(M->mem);
+    wr_free(M->X), wr_free(M->dX), wr_free(M->start), wr_free(M->mem), wr_free(M->mv);
 }
 
-static wr_status wr__gar_merge_init(wr__gar_merge *M, const wr_garment_sim *gs, const int32_t *vmap, int32_t nn, wr_diag *diag) {
+/* The bound boxes of ON WELDING's merge (n = nv0 + nb vertices): a class's members get the box of
+ * their start positions and its mean m (x), grown by 1e-9 (1 + max |coordinate|) m, far above the
+ * rounding of m + t (x_u − m) and of X + (p − X), far below any cloth length; the rest are points. */
+static wr_status wr__gar_merge_bound(wr__gar_merge *M, int32_t n, int32_t nn, const double *x, wr_diag *diag) {
+    double *vb = (double *)wr_alloc_array(6 * (size_t)n, sizeof(double));
+    int32_t u, j, c, i;
+    wr_status st;
+    if (!vb) return wr_fail(diag, WR_ERR_NOMEM, -1, "garment: out of memory");
+    for (u = 0; u < n; ++u)
+        for (i = 0; i < 3; ++i) vb[6 * u + i] = vb[6 * u + 3 + i] = M->X[3 * u + i];
+    for (j = 0; j < nn; ++j) {
+        double lo[3], hi[3], big = 0.0;
+        if (M->start[j + 1] - M->start[j] < 2) continue;
+        for (i = 0; i < 3; ++i) lo[i] = hi[i] = x[3 * j + i];
+        for (c = M->start[j]; c < M->start[j + 1]; ++c)
+            for (i = 0; i < 3; ++i) {
+                lo[i] = fmin(lo[i], M->X[3 * M->mem[c] + i]);
+                hi[i] = fmax(hi[i], M->X[3 * M->mem[c] + i]);
+            }
+        for (i = 0; i < 3; ++i) big = fmax(big, fmax(fabs(lo[i]), fabs(hi[i])));
+        for (c = M->start[j]; c < M->start[j + 1]; ++c)
+            for (i = 0; i < 3; ++i) {
+                vb[6 * M->mem[c] + i] = lo[i] - 1e-9 * (1.0 + big);
+                vb[6 * M->mem[c] + 3 + i] = hi[i] + 1e-9 * (1.0 + big);
+            }
+    }
+    st = wr_collision_mesh_bound(&M->cm, M->X, vb, diag);
+    wr_free(vb);
+    return st;
+}
+
+static wr_status wr__gar_merge_init(wr__gar_merge *M, const wr_garment_sim *gs, const int32_t *vmap, int32_t nn,
+                                    const double *x, wr_diag *diag) {
     const wr_dyn *sim = &gs->dyn;
     int32_t n = gs->nv0 + sim->nb, nf = gs->mesh.nf + sim->nbf, *F, *cls, u, j, i;
     uint8_t *ob;
@@ -998,7 +1039,8 @@ static wr_status wr__gar_merge_init(wr__gar_merge *M, const wr_garment_sim *gs, 
     M->dX = (double *)wr_calloc_array(3 * (size_t)n, sizeof(double));
     M->start = (int32_t *)wr_calloc_array((size_t)nn + 1, sizeof(int32_t));
     M->mem = (int32_t *)wr_alloc_array((size_t)gs->nv0, sizeof(int32_t));
-    if (!F || !cls || !ob || !M->X || !M->dX || !M->start || !M->mem) {
+    M->mv = (int32_t *)wr_alloc_array((size_t)gs->nv0, sizeof(int32_t));
+    if (!F || !cls || !ob || !M->X || !M->dX || !M->start || !M->mem || !M->mv) {
         st = wr_fail(diag, WR_ERR_NOMEM, -1, "garment: out of memory");
         goto done;
     }
@@ -1016,6 +1058,7 @@ static wr_status wr__gar_merge_init(wr__gar_merge *M, const wr_garment_sim *gs, 
     cd.no_self = gs->dyn_desc.contact.no_self; /* the welded sim's self-contact */
     cd.vertex_class = cls;
     st = wr_collision_mesh_create(&M->cm, n, nf, F, ob, &cd, diag);
+    if (st == WR_OK) st = wr__gar_merge_bound(M, n, nn, x, diag);
 done:
     wr_free(F), wr_free(cls), wr_free(ob);
     if (st != WR_OK) wr__gar_merge_free(M);
@@ -1025,13 +1068,15 @@ done:
 /* Move the members of welded vertex j (all of them when j < 0) to p (p + 3k for vertex k when
  * j < 0) if CCD lets the straight motion complete (*ok = 1); else leave them (*ok = 0). */
 static wr_status wr__gar_merge_move(wr__gar_merge *M, int32_t nn, int32_t j, const double *p, int32_t *ok, wr_diag *diag) {
-    int32_t k0 = j < 0 ? 0 : j, k1 = j < 0 ? nn : j + 1, k, c, i;
+    int32_t k0 = j < 0 ? 0 : j, k1 = j < 0 ? nn : j + 1, k, c, i, nm = 0;
     double alpha;
     wr_status st;
     for (k = k0; k < k1; ++k)
-        for (c = M->start[k]; c < M->start[k + 1] && M->start[k + 1] - M->start[k] > 1; ++c)
+        for (c = M->start[k]; c < M->start[k + 1] && M->start[k + 1] - M->start[k] > 1; ++c) {
             for (i = 0; i < 3; ++i) M->dX[3 * M->mem[c] + i] = p[3 * (j < 0 ? k : 0) + i] - M->X[3 * M->mem[c] + i];
-    st = wr_collision_max_step(&M->cm, M->X, M->dX, &alpha, NULL, diag);
+            M->mv[nm++] = M->mem[c];
+        }
+    st = wr_collision_max_step_local(&M->cm, M->X, M->dX, nm, M->mv, &alpha, NULL, diag);
     *ok = st == WR_OK && alpha >= 1.0;
     for (k = k0; k < k1; ++k)
         for (c = M->start[k]; c < M->start[k + 1]; ++c)
@@ -1057,7 +1102,7 @@ static wr_status wr__gar_weld_feasible(const wr_garment_sim *gs, const wr_mesh *
     uint8_t *done;
     wr_status st;
     *mid_hits = *moved = *blocked = 0;
-    if ((st = wr__gar_merge_init(&M, gs, vmap, nn, diag)) != WR_OK) return st;
+    if ((st = wr__gar_merge_init(&M, gs, vmap, nn, x, diag)) != WR_OK) return st;
     if (!(done = (uint8_t *)wr_calloc_array((size_t)nn, 1))) {
         wr__gar_merge_free(&M);
         return wr_fail(diag, WR_ERR_NOMEM, -1, "garment: out of memory");
