@@ -100,9 +100,9 @@
  *
  * ON THE ACCELERATION GRID (why it stays O(n) when the radius varies 20×)
  *   Radii are bucketed into octave levels: level l holds samples with r in [s·2^l, s·2^(l+1)),
- *   s = bbox size / 2^28. Each level is a hashed grid (open addressing, key = level + 4×4 tile of
- *   cells) with cell size 2·s·2^l >= every radius of that level, so a same-level query touches few
- *   cells. A dense "presence" grid with cells of ≈ 2·r_max keeps, per cell, a 64-bit mask of the
+ *   s = bbox size / 2^28. Each level is a hashed grid (open addressing, key = level + 8×8 tile of
+ *   cells, with a 64-bit mask of the tile's occupied cells) with cell size 2·s·2^l >= every radius
+ *   of that level, so a same-level query touches few cells and skips the empty ones. A dense "presence" grid with cells of ≈ 2·r_max keeps, per cell, a 64-bit mask of the
  *   levels present in it; a query probes only the levels present around the point. For a sizing
  *   that is smooth on the scale of r_max, only 1–2 levels are present around a point, so the work
  *   per sample is bounded independently of n and of r_max/r_min; memory is O(n). The segments sit in
@@ -297,6 +297,16 @@ extern "C" {
 #define WR__PZ_FAIL_ARC 0.06544984694978735
 /* Arc cut around a direction already settled [rad] (guards rounding at arc ends). */
 #define WR__PZ_TINY_ARC 1e-9
+/* The skipped neighbour test of a front step (wr__pz_activate): a drawn direction at least
+ * WR__PZ_INNER [rad] inside its free arc is that far outside every neighbour's lens up to the
+ * lens ends' error (~1e-7 rad: the polynomial atan2/acos), so its distance to the neighbour
+ * exceeds the mean-rule distance by >= ~ρ d·WR__PZ_INNER²/2 ≈ 5e-9 r² even for a lens that just
+ * touches the circle; a neighbour whose lens test is within a relative WR__PZ_TANGENT of touching
+ * (cut or not) sends the step back to the full test. WR__PZ_SCALE: coordinates at most this many
+ * radii from the origin round at <= 2.2e-11 r, far below those margins. */
+#define WR__PZ_INNER 1e-4
+#define WR__PZ_TANGENT 1e-9
+#define WR__PZ_SCALE 1e5
 
 /* ---------------------------------------------------------------------------------------------- */
 /* curve set: all curves' points in one array; curve c = points [off[c], off[c]+cnt[c]) */
@@ -511,6 +521,7 @@ typedef struct wr__pz_segs {
     int32_t nx, ny;
     int32_t *cstart, *clist;
     unsigned char *status;
+    unsigned char *dist; /* chessboard distance [cells] to the nearest cell holding a segment, <= 255 */
     double *seg;         /* ne×4: x1 y1 x2 y2 */
     unsigned char *loop; /* ne: 1 = loop edge (counts for the inside parity), 0 = constraint line */
     int32_t ne;
@@ -520,6 +531,7 @@ static void wr__pz_segs_free(wr__pz_segs *t) {
     wr_free(t->cstart);
     wr_free(t->clist);
     wr_free(t->status);
+    wr_free(t->dist);
     wr_free(t->seg);
     wr_free(t->loop);
     memset(t, 0, sizeof *t);
@@ -619,6 +631,38 @@ static wr_status wr__pz_segs_register(wr__pz_segs *t, int32_t e, int pass, int32
     return WR_OK;
 }
 
+/* t->dist: the chessboard distance of every cell to the nearest cell holding a segment (two
+ * raster passes over the 8-neighbourhood, exact for this metric), so a front step far from every
+ * curve skips its scan of the segment cells (wr__pz_arcs_cut_curves) after one lookup. */
+static void wr__pz_segs_dist(wr__pz_segs *t) {
+    int32_t nx = t->nx, ny = t->ny, ix, iy;
+    unsigned char *d = t->dist;
+    for (iy = 0; iy < ny; ++iy)
+        for (ix = 0; ix < nx; ++ix) {
+            int32_t c = iy * nx + ix, v = t->cstart[c] < t->cstart[c + 1] ? 0 : 255;
+            if (v && ix > 0 && d[c - 1] + 1 < v) v = d[c - 1] + 1;
+            if (v && iy > 0) {
+                const unsigned char *u = d + c - nx;
+                if (u[0] + 1 < v) v = u[0] + 1;
+                if (ix > 0 && u[-1] + 1 < v) v = u[-1] + 1;
+                if (ix + 1 < nx && u[1] + 1 < v) v = u[1] + 1;
+            }
+            d[c] = (unsigned char)v;
+        }
+    for (iy = ny - 1; iy >= 0; --iy)
+        for (ix = nx - 1; ix >= 0; --ix) {
+            int32_t c = iy * nx + ix, v = d[c];
+            if (v && ix + 1 < nx && d[c + 1] + 1 < v) v = d[c + 1] + 1;
+            if (v && iy + 1 < ny) {
+                const unsigned char *u = d + c + nx;
+                if (u[0] + 1 < v) v = u[0] + 1;
+                if (ix > 0 && u[-1] + 1 < v) v = u[-1] + 1;
+                if (ix + 1 < nx && u[1] + 1 < v) v = u[1] + 1;
+            }
+            d[c] = (unsigned char)v;
+        }
+}
+
 /* Build from every curve of a curve set (loops: curves 0..n_holes). */
 static wr_status wr__pz_segs_build(wr__pz_segs *t, const wr__pz_curves *cv, double x0, double y0, double W,
                                    double H, double tol, double n_est, wr_diag *diag) {
@@ -693,6 +737,8 @@ static wr_status wr__pz_segs_build(wr__pz_segs *t, const wr__pz_curves *cv, doub
             }
         }
     }
+    if ((t->dist = (unsigned char *)wr_alloc_array((size_t)ncell, 1)) == NULL) goto nomem;
+    wr__pz_segs_dist(t);
     return WR_OK;
 nomem:
     st = wr_fail(diag, WR_ERR_NOMEM, -1, "segment grid: out of memory");
@@ -706,11 +752,13 @@ typedef struct wr__pz_s {
     int32_t lvl;
 } wr__pz_s;
 
-/* Hash slot: a 4×4 tile of cells of one level (spatially adjacent cells share a slot, so a 3×3 cell
- * query touches 1–4 slots instead of 9 random ones). */
-#define WR__PZ_TILE 4
+/* Hash slot: an 8×8 tile of cells of one level (spatially adjacent cells share a slot, so a front
+ * step's query of ~4×4 cells touches 1–4 slots, ~1.9 on average, instead of 16 random ones; 4×4
+ * tiles needed ~3.2 lookups per query). */
+#define WR__PZ_TILE 8
 typedef struct wr__pz_tile {
     uint64_t key;
+    uint64_t occ; /* bit iy·8 + ix: cell (ix, iy) holds a sample (a query visits only those) */
     int32_t head[WR__PZ_TILE * WR__PZ_TILE];
 } wr__pz_tile;
 
@@ -735,7 +783,7 @@ typedef struct wr__pz {
     wr__pz_tile *tiles;
     size_t hcap, hcount;
     int hbits;
-    double x0, y0, W, H, s_base;
+    double x0, y0, W, H, s_base, xmag; /* xmag: the largest |coordinate| of the box */
     double cs[64], inv_cs[64], rmax[64], rmax_all;
     uint64_t tw[64], th[64]; /* tiles per row and rows at each level (home slot of a tile) */
     /* presence grid */
@@ -954,12 +1002,16 @@ static uint64_t wr__pz_key(int l, int64_t tx, int64_t ty) {
  * table (the fine levels of a graded sizing, which fill only a band of the box) would wrap its rows
  * onto each other and into long probe runs: its rows start at hashed slots instead (20×-graded
  * square: 65 → 43 instructions per lookup). */
-static size_t wr__pz_slot(const wr__pz *z, uint64_t key) {
-    uint64_t k = key - 1u, l = k >> 58, tx = (k >> 29) & (uint64_t)0x1FFFFFFF, ty = k & (uint64_t)0x1FFFFFFF;
+static inline size_t wr__pz_slot_of(const wr__pz *z, uint64_t l, uint64_t tx, uint64_t ty, uint64_t key) {
     uint64_t row = z->tw[l] * z->th[l] <= z->hcap ? ty * z->tw[l] : (ty + 1u) * 0x9E3779B97F4A7C15u >> 20;
     size_t m = z->hcap - 1, s = (size_t)(tx + row + l * 0x9E3779B1u) & m;
     while (z->tiles[s].key != 0 && z->tiles[s].key != key) s = (s + 1) & m;
     return s;
+}
+
+static size_t wr__pz_slot(const wr__pz *z, uint64_t key) {
+    uint64_t k = key - 1u;
+    return wr__pz_slot_of(z, k >> 58, (k >> 29) & (uint64_t)0x1FFFFFFF, k & (uint64_t)0x1FFFFFFF, key);
 }
 
 static wr_status wr__pz_hash_alloc(wr__pz *z) {
@@ -994,9 +1046,12 @@ static wr_status wr__pz_hash_grow(wr__pz *z) {
 }
 
 static int wr__pz_level(const wr__pz *z, double r) {
-    int e;
-    (void)frexp(r / z->s_base, &e);
-    return e - 1; /* r/s in [2^(e-1), 2^e) */
+    /* the binary exponent of r/s (r/s in [2^e, 2^(e+1))) from its bits: frexp's, without the call
+     * (zero, subnormal, infinite and NaN ratios give e < 0 or e > 62, refused by the caller) */
+    double v = r / z->s_base;
+    uint64_t bits;
+    memcpy(&bits, &v, sizeof bits);
+    return (int)((bits >> 52) & 0x7FFu) - 1023;
 }
 
 /* Mean rule: does (qx,qy) with radius rq conflict with any stored sample? */
@@ -1021,73 +1076,6 @@ static inline wr_status wr__pz_nb_push(wr__pz *z, int32_t i) {
     e->r = z->sm[i].r;
     e->id = i;
     return WR_OK;
-}
-
-/* Visit the stored samples S that lie within R0 + (rq + r_S)/2 of q (level by level, only the
- * levels present around q). mode 0: append them to z->nb; mode 1: return 1 at the first one found
- * (the mean-rule conflict test is R0 = 0). Returns -1 when out of memory (diag filled). */
-static int wr__pz_near(wr__pz *z, double qx, double qy, double R0, double rq, int mode) {
-    double R = R0 + 0.5 * (rq + z->rmax_all);
-    int64_t ax0 = wr__pz_ifloor((qx - R - z->x0) * z->inv_mg), ax1 = wr__pz_ifloor((qx + R - z->x0) * z->inv_mg);
-    int64_t ay0 = wr__pz_ifloor((qy - R - z->y0) * z->inv_mg), ay1 = wr__pz_ifloor((qy + R - z->y0) * z->inv_mg);
-    int64_t ix, iy, tx, ty;
-    uint64_t mask = 0;
-    ax0 = ax0 < 0 ? 0 : ax0;
-    ay0 = ay0 < 0 ? 0 : ay0;
-    ax1 = ax1 >= z->mx ? z->mx - 1 : ax1;
-    ay1 = ay1 >= z->my ? z->my - 1 : ay1;
-    if ((z->levels & (z->levels - 1u)) == 0u) /* one level in use (constant sizing): no need to look */
-        mask = z->levels;
-    else
-        for (iy = ay0; iy <= ay1; ++iy)
-            for (ix = ax0; ix <= ax1; ++ix) mask |= z->mask[iy * z->mx + ix];
-    while (mask) {
-        int l = 0;
-        uint64_t low = mask & (~mask + 1u);
-        double Rl, ic;
-        int64_t cx0, cx1, cy0, cy1, lim_x, lim_y;
-#if defined(__GNUC__) || defined(__clang__)
-        l = __builtin_ctzll(low);
-#else
-        while (((uint64_t)1 << l) != low) ++l;
-#endif
-        mask ^= low;
-        Rl = R0 + 0.5 * (rq + z->rmax[l]);
-        ic = z->inv_cs[l];
-        cx0 = wr__pz_ifloor((qx - Rl - z->x0) * ic);
-        cx1 = wr__pz_ifloor((qx + Rl - z->x0) * ic);
-        cy0 = wr__pz_ifloor((qy - Rl - z->y0) * ic);
-        cy1 = wr__pz_ifloor((qy + Rl - z->y0) * ic);
-        lim_x = (int64_t)(z->W * ic) + 1;
-        lim_y = (int64_t)(z->H * ic) + 1;
-        cx0 = cx0 < 0 ? 0 : cx0;
-        cy0 = cy0 < 0 ? 0 : cy0;
-        cx1 = cx1 > lim_x ? lim_x : cx1;
-        cy1 = cy1 > lim_y ? lim_y : cy1;
-        /* the tiles covering the cell box, then the cells of each tile inside the box */
-        for (ty = cy0 / WR__PZ_TILE; ty <= cy1 / WR__PZ_TILE; ++ty)
-            for (tx = cx0 / WR__PZ_TILE; tx <= cx1 / WR__PZ_TILE; ++tx) {
-                const wr__pz_tile *T = &z->tiles[wr__pz_slot(z, wr__pz_key(l, tx, ty))];
-                int64_t jx0, jx1, jy0, jy1;
-                if (T->key == 0) continue;
-                jx0 = cx0 > tx * WR__PZ_TILE ? cx0 - tx * WR__PZ_TILE : 0;
-                jy0 = cy0 > ty * WR__PZ_TILE ? cy0 - ty * WR__PZ_TILE : 0;
-                jx1 = cx1 < tx * WR__PZ_TILE + WR__PZ_TILE - 1 ? cx1 - tx * WR__PZ_TILE : WR__PZ_TILE - 1;
-                jy1 = cy1 < ty * WR__PZ_TILE + WR__PZ_TILE - 1 ? cy1 - ty * WR__PZ_TILE : WR__PZ_TILE - 1;
-                for (iy = jy0; iy <= jy1; ++iy)
-                    for (ix = jx0; ix <= jx1; ++ix) {
-                        int32_t p;
-                        for (p = T->head[iy * WR__PZ_TILE + ix]; p >= 0; p = z->sm[p].next) {
-                            const wr__pz_s *S = &z->sm[p];
-                            double dx = S->x - qx, dy = S->y - qy, md = R0 + 0.5 * (rq + S->r);
-                            if (dx * dx + dy * dy >= md * md) continue;
-                            if (mode) return 1;
-                            if (wr__pz_nb_push(z, p) != WR_OK) return -1;
-                        }
-                    }
-            }
-    }
-    return 0;
 }
 
 /* Angles for the free-arc bookkeeping by polynomial: Abramowitz & Stegun 4.4.49 (arctan on [0, 1],
@@ -1219,22 +1207,29 @@ static void wr__pz_arcs_cut_tiny(wr__pz_arcs *A, double th) {
     }
 }
 
-/* A direction uniform over the free arcs (u uniform in [0, 1)). */
-static double wr__pz_arcs_pick(const wr__pz_arcs *A, double u) {
+/* A direction uniform over the free arcs (u uniform in [0, 1)); *inner = it lies at least
+ * WR__PZ_INNER from both ends of its arc. */
+static double wr__pz_arcs_pick(const wr__pz_arcs *A, double u, int *inner) {
     double total = 0.0, t;
     int32_t i;
     for (i = 0; i < A->n; ++i) total += A->hi[i] - A->lo[i];
     t = u * total;
     for (i = 0; i + 1 < A->n && t >= A->hi[i] - A->lo[i]; ++i) t -= A->hi[i] - A->lo[i];
     t += A->lo[i];
-    return t < A->hi[i] ? t : A->lo[i];
+    t = t < A->hi[i] ? t : A->lo[i];
+    *inner = t - A->lo[i] >= WR__PZ_INNER && A->hi[i] - t >= WR__PZ_INNER;
+    return t;
 }
 
 /* Cut the directions θ for which p + ρ(cos θ, sin θ) lies closer than D to q (the lens of two
- * circles: law of cosines). */
-static void wr__pz_arcs_cut_disk(wr__pz_arcs *A, double px, double py, double rho, double qx, double qy, double D) {
+ * circles: law of cosines); *tiny |= q within rounding of touching the circle (WR__PZ_TANGENT). */
+static void wr__pz_arcs_cut_disk(wr__pz_arcs *A, double px, double py, double rho, double qx, double qy, double D,
+                                 int *tiny) {
     double dx = qx - px, dy = qy - py, d = sqrt(dx * dx + dy * dy), cs;
-    if (d >= rho + D) return;
+    if (d >= rho + D) {
+        *tiny |= d < (rho + D) * (1.0 + WR__PZ_TANGENT);
+        return;
+    }
     if (d <= D - rho || d == 0.0) {
         A->n = 0;
         return;
@@ -1244,6 +1239,7 @@ static void wr__pz_arcs_cut_disk(wr__pz_arcs *A, double px, double py, double rh
         A->n = 0;
         return;
     }
+    *tiny |= cs >= 1.0 - WR__PZ_TANGENT;
     if (cs < 1.0) wr__pz_arcs_cut(A, wr__pz_atan2(dy, dx), wr__pz_acos(cs));
 }
 
@@ -1255,9 +1251,18 @@ static int wr__pz_arcs_cut_curves(const wr__pz *z, wr__pz_arcs *A, double px, do
                                   double reach) {
     const wr__pz_segs *t = z->segs;
     double cross[2 * WR__PZ_ARCS];
-    int32_t ix0 = wr__pz_cell(t, 0, px - reach), ix1 = wr__pz_cell(t, 0, px + reach), ix, iy, p, nc = 0, i, j;
-    int32_t iy0 = wr__pz_cell(t, 1, py - reach), iy1 = wr__pz_cell(t, 1, py + reach);
+    int32_t ix0, ix1, iy0, iy1, ix, iy, p, nc = 0, i, j;
+    int32_t cx = wr__pz_cell(t, 0, px), cy = wr__pz_cell(t, 1, py);
     int any = 0;
+    /* the box of cells within reach is within k = floor(reach / g) + 1 cells (chessboard) of p's
+     * cell: when p's cell is farther than that from every segment cell, nothing to scan */
+    if (cx >= 0 && cx < t->nx && cy >= 0 && cy < t->ny && reach * t->inv_g < 254.0 &&
+        t->dist[cy * t->nx + cx] > (int32_t)(reach * t->inv_g) + 1)
+        return 0;
+    ix0 = wr__pz_cell(t, 0, px - reach);
+    ix1 = wr__pz_cell(t, 0, px + reach);
+    iy0 = wr__pz_cell(t, 1, py - reach);
+    iy1 = wr__pz_cell(t, 1, py + reach);
     ix0 = ix0 < 0 ? 0 : ix0;
     iy0 = iy0 < 0 ? 0 : iy0;
     ix1 = ix1 >= t->nx ? t->nx - 1 : ix1;
@@ -1350,54 +1355,115 @@ static inline double wr__pz_pseudo_angle(double t) {
     return th < 0.0 ? th + WR__PZ_TWO_PI : th;
 }
 
-/* Cut, all at once, the directions θ in which p + ρ(cos θ, sin θ) would conflict with a neighbour
- * of the step (radius rc assumed for the new sample: the lens of wr__pz_arcs_cut_disk), p itself
- * (index ip) excluded. The lens ends are rotations of the direction to the neighbour by ±acos(cs),
- * so with cos and sin of the half-width from the law of cosines no trigonometric call is needed per
- * neighbour; the lenses are cut from a copy of the free arcs kept in pseudo-angle (wr__pz_pseudo,
- * monotone in the angle), which stops early once nothing is left, and only the ends of what is
- * left are converted to angles. Uniform draws over the result have the law of drawing over all
- * free directions and redrawing on a conflict (ON THE ALGORITHM). */
-static void wr__pz_arcs_cut_neighbours(const wr__pz *z, wr__pz_arcs *A, double px, double py, double rho, double rc,
-                                       int32_t ip) {
-    wr__pz_arcs F; /* the directions free of every neighbour, in pseudo-angle [0, 4] */
-    int32_t i;
-    F.n = 1;
-    F.lo[0] = 0.0;
-    F.hi[0] = 4.0;
-    for (i = 0; i < z->nb_n && F.n > 0; ++i) {
-        const wr__pz_nbr *S = &z->nb[i];
-        double dx = S->x - px, dy = S->y - py, D = 0.5 * (rc + S->r), d2 = dx * dx + dy * dy, d, cs, sn, a, b;
-        if (S->id == ip || d2 >= (rho + D) * (rho + D)) continue;
-        d = sqrt(d2);
-        if (d <= D - rho || d == 0.0) {
-            F.n = 0;
-            break;
-        }
-        cs = (rho * rho + d2 - D * D) / (2.0 * rho * d);
-        if (cs <= -1.0) {
-            F.n = 0;
-            break;
-        }
-        if (cs >= 1.0) continue;
-        sn = sqrt(1.0 - cs * cs);
-        a = wr__pz_pseudo(dx * cs + dy * sn, dy * cs - dx * sn); /* direction rotated by −acos(cs) */
-        b = wr__pz_pseudo(dx * cs - dy * sn, dy * cs + dx * sn); /* and by +acos(cs) */
-        if (a < b) {
-            wr__pz_arcs_cut1(&F, a, b);
-        } else if (a > b) { /* through direction 0 */
-            wr__pz_arcs_cut1(&F, a, 4.0);
-            wr__pz_arcs_cut1(&F, 0.0, b);
+/* The lens cutting of a front step (wr__pz_neighbours): the directions θ in which
+ * p + ρ(cos θ, sin θ) would conflict with a neighbour (radius rc assumed for the new sample: the
+ * lens of wr__pz_arcs_cut_disk) are cut, all at once and before the first draw, from F, the free
+ * directions in pseudo-angle (wr__pz_pseudo, monotone in the angle). The lens ends are rotations
+ * of the direction to the neighbour by ±acos(cs), so with cos and sin of the half-width from the
+ * law of cosines no trigonometric call is needed per neighbour; the gathering stops once F is
+ * empty, and only the ends of what is left are converted to angles (wr__pz_arcs_take_free).
+ * Uniform draws over the result have the law of drawing over all free directions and redrawing on
+ * a conflict (ON THE ALGORITHM). */
+typedef struct wr__pz_cut {
+    wr__pz_arcs F;  /* the directions free of every neighbour so far, pseudo-angle in [0, 4] */
+    double rho, rc; /* the circle's radius, the new sample's assumed radius */
+    int32_t ip;     /* p itself: no lens */
+    int tiny;       /* a neighbour is within rounding of touching the circle (WR__PZ_TANGENT) */
+} wr__pz_cut;
+
+/* Remove [a, b] (a < b) from arcs kept in no particular order (C->F while the lenses are cut: no
+ * shifting on a split, the new piece goes to the end; wr__pz_arcs_sort before use). A split beyond
+ * the capacity keeps the longer side, as wr__pz_arcs_cut1 does. */
+static inline void wr__pz_arcs_cut_any(wr__pz_arcs *A, double a, double b) {
+    int32_t i = 0;
+    while (i < A->n) {
+        double l = A->lo[i], h = A->hi[i];
+        if (b <= l || a >= h) {
+            ++i;
+        } else if (a > l) {
+            if (b < h) { /* strictly inside one arc: no other arc meets [a, b] */
+                if (A->n < WR__PZ_ARCS) {
+                    A->hi[i] = a;
+                    A->lo[A->n] = b;
+                    A->hi[A->n++] = h;
+                } else if (a - l >= h - b) {
+                    A->hi[i] = a;
+                } else {
+                    A->lo[i] = b;
+                }
+                return;
+            }
+            A->hi[i++] = a; /* the top goes */
+        } else if (b < h) {
+            A->lo[i++] = b; /* the bottom goes */
+        } else { /* covered: the last arc takes its place */
+            --A->n;
+            A->lo[i] = A->lo[A->n];
+            A->hi[i] = A->hi[A->n];
         }
     }
-    if (F.n == 0) {
+}
+
+/* Sort disjoint arcs into ascending order (insertion sort: a few arcs). */
+static void wr__pz_arcs_sort(wr__pz_arcs *A) {
+    int32_t i, j;
+    for (i = 1; i < A->n; ++i) {
+        double l = A->lo[i], h = A->hi[i];
+        for (j = i; j > 0 && A->lo[j - 1] > l; --j) {
+            A->lo[j] = A->lo[j - 1];
+            A->hi[j] = A->hi[j - 1];
+        }
+        A->lo[j] = l;
+        A->hi[j] = h;
+    }
+}
+
+/* Cut the lens of neighbour S at offset (dx, dy) from p (d2 = dx² + dy²), radius rs; 1 when
+ * nothing is left. */
+static inline int wr__pz_lens(wr__pz_cut *C, double dx, double dy, double d2, double rs) {
+    double rho = C->rho, D = 0.5 * (C->rc + rs), d, cs, sn, a, b;
+    if (d2 >= (rho + D) * (rho + D)) {
+        if (d2 < (rho + D) * (rho + D) * (1.0 + WR__PZ_TANGENT)) C->tiny = 1;
+        return 0;
+    }
+    d = sqrt(d2);
+    if (d <= D - rho || d == 0.0) {
+        C->F.n = 0;
+        return 1;
+    }
+    cs = (rho * rho + d2 - D * D) / (2.0 * rho * d);
+    if (cs <= -1.0) {
+        C->F.n = 0;
+        return 1;
+    }
+    if (cs >= 1.0 - WR__PZ_TANGENT) {
+        C->tiny = 1;
+        if (cs >= 1.0) return 0;
+    }
+    sn = sqrt(1.0 - cs * cs);
+    a = wr__pz_pseudo(dx * cs + dy * sn, dy * cs - dx * sn); /* direction rotated by −acos(cs) */
+    b = wr__pz_pseudo(dx * cs - dy * sn, dy * cs + dx * sn); /* and by +acos(cs) */
+    if (a < b) {
+        wr__pz_arcs_cut_any(&C->F, a, b);
+    } else if (a > b) { /* through direction 0 */
+        wr__pz_arcs_cut_any(&C->F, a, 4.0);
+        wr__pz_arcs_cut_any(&C->F, 0.0, b);
+    }
+    return C->F.n == 0;
+}
+
+/* A ∩= F (F in pseudo-angle, converted at its ends only; F is sorted here). */
+static void wr__pz_arcs_take_free(wr__pz_arcs *A, wr__pz_arcs *F) {
+    int32_t i;
+    if (F->n == 0) {
         A->n = 0;
         return;
     }
+    wr__pz_arcs_sort(F);
     if (A->n == 1 && A->lo[0] == 0.0 && A->hi[0] == WR__PZ_TWO_PI) { /* no curve near: A = F */
         int32_t k = 0;
-        for (i = 0; i < F.n; ++i) {
-            double ta = wr__pz_pseudo_angle(F.lo[i]), tb = wr__pz_pseudo_angle(F.hi[i]);
+        for (i = 0; i < F->n; ++i) {
+            double ta = wr__pz_pseudo_angle(F->lo[i]), tb = wr__pz_pseudo_angle(F->hi[i]);
             if (tb > ta) {
                 A->lo[k] = ta;
                 A->hi[k++] = tb;
@@ -1406,13 +1472,152 @@ static void wr__pz_arcs_cut_neighbours(const wr__pz *z, wr__pz_arcs *A, double p
         A->n = k;
         return;
     }
-    for (i = 0; i <= F.n && A->n > 0; ++i) { /* otherwise cut the gaps of F from A */
-        double ga = i == 0 ? 0.0 : F.hi[i - 1], gb = i == F.n ? 4.0 : F.lo[i], ta, tb;
+    for (i = 0; i <= F->n && A->n > 0; ++i) { /* otherwise cut the gaps of F from A */
+        double ga = i == 0 ? 0.0 : F->hi[i - 1], gb = i == F->n ? 4.0 : F->lo[i], ta, tb;
         if (!(gb > ga)) continue;
         ta = wr__pz_pseudo_angle(ga);
         tb = wr__pz_pseudo_angle(gb);
         if (tb > ta) wr__pz_arcs_cut1(A, ta, tb);
     }
+}
+
+/* The levels present in the presence-grid cells within R of q. */
+static uint64_t wr__pz_levels_near(const wr__pz *z, double qx, double qy, double R) {
+    int64_t ax0, ax1, ay0, ay1, ix, iy;
+    uint64_t mask = 0;
+    if ((z->levels & (z->levels - 1u)) == 0u) return z->levels; /* one level in use (constant sizing) */
+    ax0 = wr__pz_ifloor((qx - R - z->x0) * z->inv_mg);
+    ax1 = wr__pz_ifloor((qx + R - z->x0) * z->inv_mg);
+    ay0 = wr__pz_ifloor((qy - R - z->y0) * z->inv_mg);
+    ay1 = wr__pz_ifloor((qy + R - z->y0) * z->inv_mg);
+    ax0 = ax0 < 0 ? 0 : ax0;
+    ay0 = ay0 < 0 ? 0 : ay0;
+    ax1 = ax1 >= z->mx ? z->mx - 1 : ax1;
+    ay1 = ay1 >= z->my ? z->my - 1 : ay1;
+    for (iy = ay0; iy <= ay1; ++iy)
+        for (ix = ax0; ix <= ax1; ++ix) mask |= z->mask[iy * z->mx + ix];
+    return mask;
+}
+
+/* Lowest level in mask (mask != 0). */
+static inline int wr__pz_ctz(uint64_t mask) {
+#if defined(__GNUC__) || defined(__clang__)
+    return __builtin_ctzll(mask);
+#else
+    int l = 0;
+    while (!((mask >> l) & 1u)) ++l;
+    return l;
+#endif
+}
+
+/* Level l's cells within Rl of q: b = {cx0, cx1, cy0, cy1}, clamped to the level's grid. */
+static void wr__pz_cell_box(const wr__pz *z, int l, double qx, double qy, double Rl, int64_t b[4]) {
+    double ic = z->inv_cs[l];
+    int64_t lim_x = (int64_t)(z->W * ic) + 1, lim_y = (int64_t)(z->H * ic) + 1;
+    b[0] = wr__pz_ifloor((qx - Rl - z->x0) * ic);
+    b[1] = wr__pz_ifloor((qx + Rl - z->x0) * ic);
+    b[2] = wr__pz_ifloor((qy - Rl - z->y0) * ic);
+    b[3] = wr__pz_ifloor((qy + Rl - z->y0) * ic);
+    b[0] = b[0] < 0 ? 0 : b[0];
+    b[2] = b[2] < 0 ? 0 : b[2];
+    b[1] = b[1] > lim_x ? lim_x : b[1];
+    b[3] = b[3] > lim_y ? lim_y : b[3];
+}
+
+/* Tile (tx, ty) of level l's cell box b: the occupied cells of the tile inside b, as a mask of
+ * bits iy·8 + ix (ascending bits = row by row), and the tile in *T. */
+#if WR__PZ_TILE != 8
+#error "wr__pz_box_tile's cell masks assume 8x8 tiles"
+#endif
+static inline uint64_t wr__pz_box_tile(const wr__pz *z, int l, int64_t tx, int64_t ty, const int64_t b[4],
+                                       const wr__pz_tile **T) {
+    const wr__pz_tile *t = &z->tiles[wr__pz_slot_of(z, (uint64_t)l, (uint64_t)tx, (uint64_t)ty, wr__pz_key(l, tx, ty))];
+    int64_t ox = tx * WR__PZ_TILE, oy = ty * WR__PZ_TILE;
+    uint32_t jx0, jx1, jy0, jy1;
+    uint64_t cols, rows;
+    *T = t;
+    if (t->key == 0) return 0;
+    jx0 = (uint32_t)(b[0] > ox ? b[0] - ox : 0);
+    jx1 = (uint32_t)(b[1] < ox + WR__PZ_TILE - 1 ? b[1] - ox : WR__PZ_TILE - 1);
+    jy0 = (uint32_t)(b[2] > oy ? b[2] - oy : 0);
+    jy1 = (uint32_t)(b[3] < oy + WR__PZ_TILE - 1 ? b[3] - oy : WR__PZ_TILE - 1);
+    cols = (uint64_t)((2u << jx1) - (1u << jx0)) * 0x0101010101010101u; /* columns jx0..jx1, every row */
+    rows = (~(uint64_t)0 >> (56u - 8u * jy1)) & (~(uint64_t)0 << (8u * jy0)); /* rows jy0..jy1 */
+    return t->occ & cols & rows;
+}
+
+/* Does a stored sample S lie within R0 + (rq + r_S)/2 of q (level by level, only the levels
+ * present around q)? With R0 = 0 this is the mean-rule conflict test. */
+static int wr__pz_near(const wr__pz *z, double qx, double qy, double R0, double rq) {
+    uint64_t mask = wr__pz_levels_near(z, qx, qy, R0 + 0.5 * (rq + z->rmax_all));
+    const wr__pz_s *sm = z->sm;
+    while (mask) {
+        int l = wr__pz_ctz(mask);
+        int64_t b[4], tx, ty;
+        mask &= mask - 1u;
+        wr__pz_cell_box(z, l, qx, qy, R0 + 0.5 * (rq + z->rmax[l]), b);
+        for (ty = b[2] / WR__PZ_TILE; ty <= b[3] / WR__PZ_TILE; ++ty)
+            for (tx = b[0] / WR__PZ_TILE; tx <= b[1] / WR__PZ_TILE; ++tx) {
+                const wr__pz_tile *T;
+                uint64_t cells = wr__pz_box_tile(z, l, tx, ty, b, &T);
+                int32_t p;
+                for (; cells; cells &= cells - 1u)
+                        for (p = T->head[wr__pz_ctz(cells)]; p >= 0; p = sm[p].next) {
+                            double dx = sm[p].x - qx, dy = sm[p].y - qy, md = R0 + 0.5 * (rq + sm[p].r);
+                            if (dx * dx + dy * dy < md * md) return 1;
+                        }
+            }
+    }
+    return 0;
+}
+
+/* The front step's neighbours: the stored samples S within R0 + (rq + r_S)/2 of p = (px, py) go to
+ * z->nb, and each one's lens (but p's own, index C->ip) is cut from C->F, in one pass over the
+ * grid (level by level, only the levels present around p). Stops as soon as nothing is left of
+ * C->F (z->nb is then incomplete: no candidate will be drawn). The hot loop keeps the arrays in
+ * locals: stores to the neighbour list would otherwise reload them (they may alias). Returns -1
+ * when out of memory (diag filled). */
+static int wr__pz_neighbours(wr__pz *z, double px, double py, double R0, double rq, wr__pz_cut *C) {
+    uint64_t mask = wr__pz_levels_near(z, px, py, R0 + 0.5 * (rq + z->rmax_all));
+    const wr__pz_s *sm = z->sm;
+    const double base = R0 + 0.5 * rq;
+    const int32_t ip = C->ip;
+    wr__pz_nbr *nb = z->nb;
+    int32_t nn = 0, cap = z->nb_cap;
+    while (mask) {
+        int l = wr__pz_ctz(mask);
+        int64_t b[4], tx, ty;
+        mask &= mask - 1u;
+        wr__pz_cell_box(z, l, px, py, base + 0.5 * z->rmax[l], b);
+        for (ty = b[2] / WR__PZ_TILE; ty <= b[3] / WR__PZ_TILE; ++ty)
+            for (tx = b[0] / WR__PZ_TILE; tx <= b[1] / WR__PZ_TILE; ++tx) {
+                const wr__pz_tile *T;
+                uint64_t cells = wr__pz_box_tile(z, l, tx, ty, b, &T);
+                int32_t p;
+                for (; cells; cells &= cells - 1u)
+                        for (p = T->head[wr__pz_ctz(cells)]; p >= 0; p = sm[p].next) {
+                            const double sx = sm[p].x, sy = sm[p].y, sr = sm[p].r;
+                            double dx = sx - px, dy = sy - py, md = base + 0.5 * sr, d2 = dx * dx + dy * dy;
+                            if (d2 >= md * md) continue;
+                            if (nn == cap) {
+                                z->nb_n = nn;
+                                if (wr__pz_nb_grow(z) != WR_OK) return -1;
+                                nb = z->nb;
+                                cap = z->nb_cap;
+                            }
+                            nb[nn].x = sx;
+                            nb[nn].y = sy;
+                            nb[nn].r = sr;
+                            nb[nn++].id = p;
+                            if (p != ip && wr__pz_lens(C, dx, dy, d2, sr)) {
+                                z->nb_n = nn;
+                                return 0;
+                            }
+                        }
+            }
+    }
+    z->nb_n = nn;
+    return 0;
 }
 
 /* Store a point of sizing h with conflict radius r (samples: r = c h; fixed points: see
@@ -1428,8 +1633,8 @@ static wr_status wr__pz_insert(wr__pz *z, double x, double y, double h, double r
         return wr_fail(z->diag, WR_ERR_DOMAIN, -1,
                        "sizing %g at (%.9g, %.9g) is outside the representable range relative to the domain size", h,
                        x, y);
-    cx = (int64_t)floor((x - z->x0) * z->inv_cs[l]);
-    cy = (int64_t)floor((y - z->y0) * z->inv_cs[l]);
+    cx = wr__pz_ifloor((x - z->x0) * z->inv_cs[l]);
+    cy = wr__pz_ifloor((y - z->y0) * z->inv_cs[l]);
     if (cx < 0 || cy < 0 || cx > WR__PZ_CMAX || cy > WR__PZ_CMAX)
         return wr_fail(z->diag, WR_ERR_DOMAIN, -1, "point (%.9g, %.9g) outside the sampling grid", x, y);
     if (z->n == z->cap) {
@@ -1459,10 +1664,12 @@ static wr_status wr__pz_insert(wr__pz *z, double x, double y, double h, double r
     s = wr__pz_slot(z, key);
     if (z->tiles[s].key != key) {
         z->tiles[s].key = key;
+        z->tiles[s].occ = 0;
         for (j = 0; j < WR__PZ_TILE * WR__PZ_TILE; ++j) z->tiles[s].head[j] = -1;
         ++z->hcount;
     }
     j = (int32_t)((cy % WR__PZ_TILE) * WR__PZ_TILE + cx % WR__PZ_TILE);
+    z->tiles[s].occ |= (uint64_t)1 << j;
     z->sm[i].next = z->tiles[s].head[j];
     z->tiles[s].head[j] = i;
     if (r > z->rmax[l]) z->rmax[l] = r;
@@ -1501,18 +1708,32 @@ static wr_status wr__pz_activate(wr__pz *z, int32_t ip) {
     const double rho0 = 0.5 * (rp + rc) * (1.0 + WR__PZ_GAP), rb = WR__PZ_RBOUND * rc, rho_max = 0.5 * (rp + rb);
     wr__pz_arcs A;
     int32_t fails = 0, moves;
-    int curves, far;
+    int curves, far, inner, tiny = 1;
     wr_status st;
-    z->nb_n = 0;
-    if (wr__pz_near(z, px, py, rho_max, rb, 0) < 0) return wr_fail(z->diag, WR_ERR_NOMEM, -1, "neighbours: out of memory");
     A.n = 1;
     A.lo[0] = 0.0;
     A.hi[0] = WR__PZ_TWO_PI;
     curves = wr__pz_arcs_cut_curves(z, &A, px, py, rho0, z->clearance * z->h[ip],
                                     rho_max + z->clearance * rb / z->c);
-    if (A.n > 0) wr__pz_arcs_cut_neighbours(z, &A, px, py, rho0, rc, ip);
+    z->nb_n = 0;
+    if (A.n > 0) {
+        wr__pz_cut C;
+        C.F.n = 1;
+        C.F.lo[0] = 0.0;
+        C.F.hi[0] = 4.0;
+        C.rho = rho0;
+        C.rc = rc;
+        C.ip = ip;
+        C.tiny = 0;
+        if (wr__pz_neighbours(z, px, py, rho_max, rb, &C) < 0)
+            return wr_fail(z->diag, WR_ERR_NOMEM, -1, "neighbours: out of memory");
+        wr__pz_arcs_take_free(&A, &C.F);
+        /* coordinates up to WR__PZ_SCALE radii: their rounding is far below the margins that
+         * make the neighbour test conclusive (below) */
+        tiny = C.tiny || !(rc * WR__PZ_SCALE >= z->xmag);
+    }
     while (A.n > 0 && fails < z->k) {
-        double th = wr__pz_arcs_pick(&A, wr_rng_uniform(&z->rng)), ux, uy, rho = rho0, x, y, hx, rx;
+        double th = wr__pz_arcs_pick(&A, wr_rng_uniform(&z->rng), &inner), ux, uy, rho = rho0, x, y, hx, rx;
         wr__pz_sincos(th, &uy, &ux);
         x = px + rho * ux;
         y = py + rho * uy;
@@ -1540,16 +1761,18 @@ static wr_status wr__pz_activate(wr__pz *z, int32_t ip) {
         if ((curves || far) && !wr__pz_clear_of_segments(z->segs, x, y, z->clearance * hx)) goto failed;
         if (!far) {
             /* the arcs assumed radius rc; the candidate's own rx decides (a neighbour's arc is
-             * already cut, so a conflict here is a failed direction) */
-            if (wr__pz_nb_conflict(z, x, y, rx)) goto failed;
+             * already cut, so a conflict here is a failed direction). Not needed when the
+             * candidate is on the circle the lenses were cut for, no larger than rc, and
+             * WR__PZ_INNER inside its free arc: every neighbour is then farther than its mean-rule
+             * distance by a margin far above the rounding of the lens ends and of the coordinates
+             * (no neighbour touching the circle within rounding: `tiny`) */
+            if ((moves || rx > rc || !inner || tiny) && wr__pz_nb_conflict(z, x, y, rx)) goto failed;
         } else {
-            int hit = wr__pz_near(z, x, y, 0.0, rx, 1);
-            if (hit < 0) return wr_fail(z->diag, WR_ERR_NOMEM, -1, "neighbours: out of memory");
-            if (hit) goto failed; /* the grid decides */
+            if (wr__pz_near(z, x, y, 0.0, rx)) goto failed; /* the grid decides */
         }
         if ((st = wr__pz_insert(z, x, y, hx, rx)) != WR_OK) return st;
         if ((st = wr__pz_nb_push(z, z->n - 1)) != WR_OK) return st;
-        wr__pz_arcs_cut_disk(&A, px, py, rho0, x, y, 0.5 * (rc + rx));
+        wr__pz_arcs_cut_disk(&A, px, py, rho0, x, y, 0.5 * (rc + rx), &tiny);
         wr__pz_arcs_cut_tiny(&A, th);
         continue;
     failed:
@@ -1567,6 +1790,7 @@ static wr_status wr__pz_grids_init(wr__pz *z, double x0, double y0, double W, do
     z->y0 = y0;
     z->W = W;
     z->H = H;
+    z->xmag = fmax(fmax(fabs(x0), fabs(x0 + W)), fmax(fabs(y0), fabs(y0 + H)));
     z->s_base = ldexp(fmax(fmax(W, H), 1e-300), -28);
     for (i = 0; i < 64; ++i) {
         z->cs[i] = ldexp(z->s_base, i + 1);
@@ -1582,8 +1806,8 @@ static wr_status wr__pz_grids_init(wr__pz *z, double x0, double y0, double W, do
     z->my = (int32_t)(H * z->inv_mg) + 1;
     z->mask = (uint64_t *)wr_calloc_array((size_t)z->mx * (size_t)z->my, sizeof(uint64_t));
     if (!z->mask) return wr_fail(z->diag, WR_ERR_NOMEM, -1, "presence grid: out of memory");
-    /* tiles hold 16 cells of >= 2 r: ~ one tile per 16·(2r)²·κ/r² ≈ 40 samples; be generous */
-    if (wr__pz_hash_init(z, (size_t)(est / 16.0) + 16) != WR_OK) return WR_ERR_NOMEM;
+    /* tiles hold 64 cells of side r..2r: ~ one tile per 64·r²·κ/r² ≈ 57 samples or more */
+    if (wr__pz_hash_init(z, (size_t)(est / 56.0) + 16) != WR_OK) return WR_ERR_NOMEM;
     nc = want < 16.0 ? 16 : (int32_t)want;
     z->sm = (wr__pz_s *)wr_alloc_array((size_t)nc, sizeof(wr__pz_s));
     z->h = (double *)wr_alloc_array((size_t)nc, sizeof(double));
