@@ -320,6 +320,14 @@ WR_PY_EXPORT void wr_py_tfw_get(const void *hv, double *a, double *omega, double
     }
 }
 
+/* The wrinkled surface's per-vertex phase [rad, (-π, π]] and wrinkle-free flag (tfw.h). */
+WR_PY_EXPORT void wr_py_tfw_fine(const void *hv, double *phase, uint8_t *wfree) {
+    const wr_py_tfw_h *h = (const wr_py_tfw_h *)hv;
+    if (h->r.wrinkled.nv <= 0 || !h->r.wrinkled_phase || !h->r.wrinkled_wfree) return;
+    memcpy(phase, h->r.wrinkled_phase, sizeof(double) * (size_t)h->r.wrinkled.nv);
+    memcpy(wfree, h->r.wrinkled_wfree, (size_t)h->r.wrinkled.nv);
+}
+
 WR_PY_EXPORT void wr_py_tfw_free(void *hv) {
     wr_py_tfw_h *h = (wr_py_tfw_h *)hv;
     if (!h) return;

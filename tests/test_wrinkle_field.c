@@ -539,6 +539,80 @@ Test(wrinkle_field, flat_sheet_eq19_displacement) {
     wr_mesh_free(&m);
 }
 
+/* wr_wf_upsample_fields on the flat sheet with a band of faces in W: per fine vertex the phase is
+ * φ = k x + c0 wrapped to (-π, π] (compared through cos and sin, and the range) away from W, the
+ * height over the flat base is a cos(phase) exactly everywhere, and the wrinkle-free flag is 1 exactly on the vertices whose fine
+ * faces all descend from W faces (fine face j of level L is a child of coarse face j >> 2L). */
+Test(wrinkle_field, upsample_fields_phase_amplitude_and_w_flags) {
+    wr_mesh m, fine;
+    wr_wf wf;
+    wr_wf_material mat = material();
+    wr_wf_upsample_desc ud;
+    wr_wf_fine_fields F;
+    double L = 0.25, A = 4e-4, k = 2 * PI * 5 / L, *a, *om, *phi, c0;
+    uint8_t *wflag;
+    int32_t v, f, t, n_free = 0, n_wr = 0, n_far = 0;
+    cr_assert_eq(wr_mesh_rectangle(&m, L, 0.1, 12, 5, NULL), WR_OK);
+    cr_assert_eq(wr_wf_create(&wf, &m, NULL, &mat, NULL), WR_OK);
+    wflag = (uint8_t *)calloc((size_t)m.nf, 1);
+    for (f = 0; f < m.nf; ++f) { /* W: the faces whose centroid is in the left fifth */
+        const int32_t *fv = m.faces + 3 * f;
+        double cx = (m.pos[3 * fv[0]] + m.pos[3 * fv[1]] + m.pos[3 * fv[2]]) / 3.0;
+        wflag[f] = cx < 0.2 * L;
+    }
+    wr_wf_set_wrinkle_free(&wf, wflag);
+    a = (double *)malloc(sizeof(double) * m.nv);
+    om = (double *)malloc(sizeof(double) * m.ne);
+    phi = (double *)malloc(sizeof(double) * 3 * m.nf);
+    for (v = 0; v < m.nv; ++v) a[v] = A;
+    omega_linear(&m, k, om);
+    cr_assert_eq(wr_wf_phase(&wf, om, phi, NULL, NULL), WR_OK);
+    for (f = 0; f < m.nf && wflag[f]; ++f) {}
+    c0 = phi[3 * f] - k * m.pos[3 * m.faces[3 * f]];
+    memset(&ud, 0, sizeof ud);
+    ud.levels = 2;
+    ud.no_inplane = 1;
+    cr_assert_eq(wr_wf_upsample_fields(&wf, a, phi, &ud, &fine, &F, NULL), WR_OK);
+    cr_assert_eq(F.nv, fine.nv);
+    for (v = 0; v < fine.nv; ++v) {
+        double x = fine.rest[2 * v], ph = k * x + c0, z = fine.pos[3 * v + 2];
+        int all_w = 1;
+        for (t = fine.vf_start[v]; t < fine.vf_start[v + 1]; ++t) all_w &= wflag[fine.vf[t] >> 4];
+        cr_assert_eq(F.wfree[v], all_w, "vertex %d: wfree %d, faces all in W %d", (int)v, F.wfree[v], all_w);
+        if (all_w) {
+            cr_assert_eq(F.a[v], 0.0);
+            cr_assert_eq(F.phase[v], 0.0);
+            cr_assert(fabs(z) < 1e-15);
+            ++n_free;
+            continue;
+        }
+        ++n_wr;
+        cr_assert(F.phase[v] > -PI && F.phase[v] <= PI, "phase %g outside (-pi, pi]", F.phase[v]);
+        /* linear φ is reproduced exactly where the Loop stencils see no W face (W corners carry φ = 0):
+         * two levels reach at most two coarse cells (L/12 each) beyond a vertex */
+        if (x > 0.2 * L + 2.5 * L / 12.0) {
+            cr_assert(fabs(cos(F.phase[v]) - cos(ph)) < 1e-12 && fabs(sin(F.phase[v]) - sin(ph)) < 1e-12,
+                      "vertex %d: phase %g vs k x + c0 = %g (mod 2 pi)", (int)v, F.phase[v], ph);
+            cr_assert(fabs(F.a[v] - A) < 1e-15);
+            ++n_far;
+        }
+        cr_assert(F.a[v] >= 0.0 && F.a[v] <= A * (1.0 + 1e-15)); /* near W, a tapers through the zeros there */
+        cr_assert(fabs(z - F.a[v] * cos(F.phase[v])) < 1e-12, "height %g vs a cos(phase) %g", z,
+                  F.a[v] * cos(F.phase[v]));
+    }
+    cr_assert(n_free > 0 && n_wr > n_free && n_far > n_wr / 2);
+    wr_mesh_free(&fine);
+    wr_wf_fine_fields_free(&F);
+    wr_wf_fine_fields_free(&F); /* zeroed: a second free is harmless */
+    cr_assert_eq(wr_wf_upsample_fields(&wf, a, phi, &ud, &fine, NULL, NULL), WR_ERR_INVALID_ARG);
+    free(a);
+    free(om);
+    free(phi);
+    free(wflag);
+    wr_wf_free(&wf);
+    wr_mesh_free(&m);
+}
+
 static int g_progress_calls;
 static void count_progress(const wr_wf_iter_info *info, void *user) {
     (void)user;

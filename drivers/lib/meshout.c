@@ -715,9 +715,9 @@ wr_status wr_meshout_tfw_png(const char *path, const wr_mesh *base, const double
 wr_status wr_meshout_tfw(const char *dir, const wr_mesh *base, const double *base_pos, const wr_wf_material *mat,
                          const wr_tfw_desc *td, const wr_tfw_result *r, int png, wr_diag *diag) {
     char stem[WR_PATH_MAX];
-    double *amp = NULL, *phase = NULL, *wmag = NULL, *wcnt = NULL, *wfl = NULL, *height = NULL;
+    double *amp = NULL, *phase = NULL, *wmag = NULL, *wcnt = NULL, *wfl = NULL, *height = NULL, *wfine = NULL;
     wr_mesh bm = *base; /* shallow view with pos = the base surface */
-    wr_meshout_field fl[4];
+    wr_meshout_field fl[5];
     wr_status st = WR_OK;
     int32_t v, e, f, nv = base->nv;
     int k;
@@ -762,13 +762,24 @@ wr_status wr_meshout_tfw(const char *dir, const wr_mesh *base, const double *bas
         st = wr_meshout_write_viewer(&bm, NULL, fl, 4, NULL, 0, stem, WR_MESHOUT_VTK, diag);
     }
     if (st == WR_OK && r->wrinkled.nv > 0) {
+        int32_t n = 0;
         height = (double *)malloc(sizeof(double) * (size_t)r->wrinkled.nv);
         st = height ? tfw_height(base, base_pos, mat, td, r, height, diag)
                     : wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
         if (st == WR_OK) {
-            int32_t n = 0;
             if (r->wrinkled_a) fl[n].name = "a", fl[n++].values = r->wrinkled_a;
             fl[n].name = "height", fl[n++].values = height;
+            /* the fine phase and wrinkle-free flag (tfw.h, wr_wf_fine_fields): a viewer can draw the
+             * wave crests (phase) and the W region on the wrinkled surface itself */
+            if (r->wrinkled_phase) fl[n].name = "phase", fl[n++].values = r->wrinkled_phase;
+            if (r->wrinkled_wfree) {
+                wfine = (double *)malloc(sizeof(double) * (size_t)r->wrinkled.nv);
+                if (!wfine) st = wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
+                for (v = 0; wfine && v < r->wrinkled.nv; ++v) wfine[v] = r->wrinkled_wfree[v] ? 1.0 : 0.0;
+                fl[n].name = "W", fl[n++].values = wfine;
+            }
+        }
+        if (st == WR_OK) {
             snprintf(stem, sizeof stem, "%s/wrinkled", dir);
             st = wr_meshout_write_viewer(&r->wrinkled, NULL, fl, n, NULL, 0, stem,
                                          WR_MESHOUT_OBJ | WR_MESHOUT_PLY | WR_MESHOUT_VTK, diag);
@@ -784,6 +795,7 @@ wr_status wr_meshout_tfw(const char *dir, const wr_mesh *base, const double *bas
     free(wcnt);
     free(wfl);
     free(height);
+    free(wfine);
     return st;
 }
 

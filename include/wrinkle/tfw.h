@@ -32,7 +32,9 @@
  *
  * ON RESULTS
  *   a (nv) [m], omega (ne) [rad per edge], phi (3 nf) per-corner phase [rad], wfree (nf), the wrinkled
- *   mesh (Loop level `upsample.levels`, default 2) and its amplitudes. An SQP that stops without
+ *   mesh (Loop level `upsample.levels`, default 2) with, per fine vertex, the amplitude wrinkled_a [m],
+ *   the phase wrinkled_phase [rad, wrapped to (-π, π]] and the wrinkle-free flag wrinkled_wfree
+ *   (wr_wf_fine_fields: height over the base = a cos φ, what a viewer colours by). An SQP that stops without
  *   converging (WR_ERR_NOT_CONVERGED) still yields fields, phase and the wrinkled mesh; the status is
  *   returned after everything is filled, and result->sqp tells why.
  *
@@ -108,7 +110,8 @@ typedef struct wr_tfw_result {
     uint8_t *wfree;
     int32_t n_wrinkle_free;
     wr_mesh wrinkled;
-    double *wrinkled_a;
+    double *wrinkled_a, *wrinkled_phase; /* per wrinkled vertex: a [m], φ wrapped to (-π, π] [rad] */
+    uint8_t *wrinkled_wfree;             /* per wrinkled vertex: 1 when it touches only W faces */
     wr_wf_solve_stats sqp;          /* the returned solve (energy, KKT, stop); work counts (iterations, rejected
                                      * steps, factorisations, escapes, seconds) summed over both solves */
     wr_wf_solve_stats sqp_first;    /* the first SQP from the App. E.2 start */
@@ -204,6 +207,8 @@ WRDEF void wr_tfw_result_free(wr_tfw_result *res) {
     wr_free(res->phi);
     wr_free(res->wfree);
     wr_free(res->wrinkled_a);
+    wr_free(res->wrinkled_phase);
+    wr_free(res->wrinkled_wfree);
     wr_mesh_free(&res->wrinkled);
     memset(res, 0, sizeof *res);
 }
@@ -321,10 +326,14 @@ WRDEF wr_status wr_tfw_fields(const wr_mesh *m, const double *base_pos, const wr
     res->seconds_phase = wr_time_seconds() - t1;
     if (st) goto fail;
     if (!D.no_upsample) {
+        wr_wf_fine_fields F;
         t1 = wr_time_seconds();
-        st = wr_wf_upsample(&wf, res->a, res->phi, &D.upsample, &res->wrinkled, &res->wrinkled_a, diag); /* E.5 */
+        st = wr_wf_upsample_fields(&wf, res->a, res->phi, &D.upsample, &res->wrinkled, &F, diag); /* E.5 */
         res->seconds_upsample = wr_time_seconds() - t1;
         if (st) goto fail;
+        res->wrinkled_a = F.a;
+        res->wrinkled_phase = F.phase;
+        res->wrinkled_wfree = F.wfree;
     }
     wr_wf_free(&wf);
     res->seconds_total = wr_time_seconds() - t0;

@@ -11,7 +11,8 @@
  * HOW TO USE
  *   #define WRINKLE_IMPLEMENTATION in exactly one .c/.cpp file before including this header.
  *
- * API (create/free pairs: wr_wf_create → wr_wf_free; wr_wf_upsample → wr_mesh_free + wr_free)
+ * API (create/free pairs: wr_wf_create → wr_wf_free; wr_wf_upsample → wr_mesh_free + wr_free;
+ *      wr_wf_upsample_fields → wr_mesh_free + wr_wf_fine_fields_free)
  *   wr_wf_create(wf, mesh, base_pos, material, diag)   per-face I_u, I_b, II_b, Eq. 29 eigen-data
  *   wr_wf_free(wf)
  *   wr_wf_classify(wf, desc)                          W by the rule of Sec. 5.1; returns |W|
@@ -28,6 +29,9 @@
  *   wr_wf_phase(wf, omega, phi, stats, diag)          App. E.4: per-corner φ, 2π-integer jumps
  *   wr_wf_loop_step(m, ncomp, vals, desc, fine_faces, fine_vals, diag)  one Loop step, any fields
  *   wr_wf_upsample(wf, a, phi, desc, out, out_a, diag)  App. E.5: Loop n levels + Eq. 19 (v2 term)
+ *   wr_wf_upsample_fields(wf, a, phi, desc, out, fields, diag)  the same, with the fine level's a,
+ *                                                     phase and wrinkle-free flag per vertex (viewers)
+ *   wr_wf_fine_fields_free(fields)
  *
  * EXAMPLE
  *     wr_mesh m, fine;  wr_wf wf;  wr_wf_material mat;  wr_wf_solve_stats ss;  wr_wf_upsample_desc ud;  wr_diag d;
@@ -374,6 +378,23 @@ typedef struct wr_wf_upsample_desc {
  * subdivided). out_a (or NULL): *out_a = fine amplitudes (out->nv), free with wr_free. */
 WRDEF wr_status wr_wf_upsample(const wr_wf *wf, const double *a, const double *phi, const wr_wf_upsample_desc *desc,
                                wr_mesh *out, double **out_a, wr_diag *diag);
+
+/* The fine level's fields, one value per vertex of the wrinkled mesh (out->nv), for viewers and
+ * probes: a [m] the amplitude used in Eq. 19, phase [rad] the φ used there wrapped to (-π, π] (on the
+ * fine mesh φ is per face corner and multivalued by 2π; the displacement needs only cos φ and sin 2φ,
+ * so one wrapped value per vertex is exact for it), wfree 1 on vertices touching only faces of W
+ * (there a = 0 and phase = 0). So r = r_b + a cos(phase) n̂_b (+ the in-plane term) vertex by vertex. */
+typedef struct wr_wf_fine_fields {
+    int32_t nv;
+    double *a, *phase;
+    uint8_t *wfree;
+} wr_wf_fine_fields;
+/* wr_wf_upsample, with the fine fields in *fields (allocated here; free with wr_wf_fine_fields_free,
+ * which also accepts a zeroed struct). On failure *fields is zeroed. */
+WRDEF wr_status wr_wf_upsample_fields(const wr_wf *wf, const double *a, const double *phi,
+                                      const wr_wf_upsample_desc *desc, wr_mesh *out, wr_wf_fine_fields *fields,
+                                      wr_diag *diag);
+WRDEF void wr_wf_fine_fields_free(wr_wf_fine_fields *fields);
 
 #ifdef __cplusplus
 }
@@ -2560,17 +2581,19 @@ static wr_status wr__wf_up_level(wr__wf_up *U, wr_diag *diag) {
 
 /* Eq. 19 without v1 (App. E.5): r = r_b + a cos φ n̂_b + (a²/8) sin 2φ ∇_b φ on the finest level,
  * n̂_b the area-weighted vertex normal, ∇_b φ the area-weighted average of the faces' gradients. */
-static wr_status wr__wf_up_displace(const wr__wf_up *U, int inplane, double *disp, wr_diag *diag) {
+/* vphi, vwr (nv each, zeroed by the caller): out, per vertex the φ of one incident wrinkled face's
+ * corner (any sheet will do: only cos φ and sin 2φ enter) and 1 when the vertex touches a face not
+ * in W. */
+static wr_status wr__wf_up_displace(const wr__wf_up *U, int inplane, double *disp, double *vphi, uint8_t *vwr,
+                                    wr_diag *diag) {
     const wr_mesh *cur = &U->cur;
     const double *cphi = U->cphi;
     int32_t f, v, c;
     double *grad = (double *)wr_calloc_array((size_t)cur->nv * 3, sizeof(double));
     double *wsum = (double *)wr_calloc_array((size_t)cur->nv, sizeof(double));
     double *nrm = (double *)wr_calloc_array((size_t)cur->nv * 3, sizeof(double));
-    double *vphi = (double *)wr_calloc_array((size_t)cur->nv, sizeof(double));
-    uint8_t *vwr = (uint8_t *)wr_calloc_array((size_t)cur->nv, sizeof(uint8_t));
     wr_status st = WR_OK;
-    if (!grad || !wsum || !nrm || !vphi || !vwr) {
+    if (!grad || !wsum || !nrm) {
         st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf upsample: out of memory");
         goto done;
     }
@@ -2617,22 +2640,48 @@ done:
     wr_free(grad);
     wr_free(wsum);
     wr_free(nrm);
-    wr_free(vphi);
-    wr_free(vwr);
     return st;
 }
 
-WRDEF wr_status wr_wf_upsample(const wr_wf *wf, const double *a, const double *phi, const wr_wf_upsample_desc *desc,
-                               wr_mesh *out, double **out_a, wr_diag *diag) {
+/* The fine fields from the finest level: a (zero where no wrinkled face touches), the phase
+ * wrapped to (-π, π] (0 off the wrinkled faces), the wrinkle-free flag. Takes vphi and vwr. */
+static void wr__wf_up_fields(wr__wf_up *U, double *vphi, uint8_t *vwr, wr_wf_fine_fields *F) {
+    int32_t v;
+    for (v = 0; v < U->cur.nv; ++v) {
+        double p = vwr[v] ? vphi[v] - 2.0 * WR__WF_PI * floor(vphi[v] / (2.0 * WR__WF_PI)) : 0.0; /* [0, 2π) */
+        if (p > WR__WF_PI) p -= 2.0 * WR__WF_PI;
+        vphi[v] = p;
+        if (!vwr[v]) U->ca[v] = 0.0;
+    }
+    F->nv = U->cur.nv;
+    F->a = U->ca;
+    U->ca = NULL;
+    F->phase = vphi;
+    for (v = 0; v < U->cur.nv; ++v) vwr[v] = !vwr[v]; /* touches a wrinkled face -> wrinkle-free flag */
+    F->wfree = vwr;
+}
+
+WRDEF void wr_wf_fine_fields_free(wr_wf_fine_fields *fields) {
+    if (!fields) return;
+    wr_free(fields->a);
+    wr_free(fields->phase);
+    wr_free(fields->wfree);
+    memset(fields, 0, sizeof *fields);
+}
+
+WRDEF wr_status wr_wf_upsample_fields(const wr_wf *wf, const double *a, const double *phi,
+                                      const wr_wf_upsample_desc *desc, wr_mesh *out, wr_wf_fine_fields *fields,
+                                      wr_diag *diag) {
     int32_t levels = desc && desc->levels > 0 ? desc->levels : 2, lvl;
     int inplane = !(desc && desc->no_inplane);
     const wr_mesh *src;
-    double *disp = NULL;
+    double *disp = NULL, *vphi = NULL;
+    uint8_t *vwr = NULL;
     wr__wf_up U;
     wr_status st;
     if (out) memset(out, 0, sizeof *out);
-    if (out_a) *out_a = NULL;
-    if (!wf || !a || !phi || !out) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "wf upsample: NULL argument");
+    if (fields) memset(fields, 0, sizeof *fields);
+    if (!wf || !a || !phi || !out || !fields) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "wf upsample: NULL argument");
     memset(&U, 0, sizeof U);
     U.mode = desc ? desc->boundary : WR_WF_LOOP_BOUNDARY_FIXED;
     if (levels > 8)
@@ -2659,20 +2708,42 @@ WRDEF wr_status wr_wf_upsample(const wr_wf *wf, const double *a, const double *p
     for (lvl = 0; lvl < levels && !st; ++lvl) st = wr__wf_up_level(&U, diag);
     if (!st) {
         disp = (double *)wr_alloc_array((size_t)U.cur.nv * 3, sizeof(double));
-        if (!disp) st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf upsample: out of memory");
+        vphi = (double *)wr_calloc_array((size_t)U.cur.nv, sizeof(double));
+        vwr = (uint8_t *)wr_calloc_array((size_t)U.cur.nv, sizeof(uint8_t));
+        if (!disp || !vphi || !vwr) st = wr_fail(diag, WR_ERR_NOMEM, -1, "wf upsample: out of memory");
     }
-    if (!st) st = wr__wf_up_displace(&U, inplane, disp, diag);
+    if (!st) st = wr__wf_up_displace(&U, inplane, disp, vphi, vwr, diag);
     if (!st) st = wr_mesh_create(out, U.cur.nv, disp, U.cur.rest, U.cur.nf, U.cur.faces, diag);
-    if (!st && out_a) {
-        *out_a = U.ca;
-        U.ca = NULL;
+    if (!st) {
+        wr__wf_up_fields(&U, vphi, vwr, fields);
+        vphi = NULL;
+        vwr = NULL;
     }
     wr_free(disp);
+    wr_free(vphi);
+    wr_free(vwr);
     wr_mesh_free(&U.cur);
     wr_free(U.ca);
     wr_free(U.cphi);
     wr_free(U.cw);
     return st;
+}
+
+/* The amplitude alone: the fine fields' a, the rest freed. The fine amplitude is zero on vertices
+ * that touch only W faces either way (wr__wf_up_fine_mesh zeroes them on every level). */
+WRDEF wr_status wr_wf_upsample(const wr_wf *wf, const double *a, const double *phi, const wr_wf_upsample_desc *desc,
+                               wr_mesh *out, double **out_a, wr_diag *diag) {
+    wr_wf_fine_fields F;
+    wr_status st;
+    if (out_a) *out_a = NULL;
+    st = wr_wf_upsample_fields(wf, a, phi, desc, out, &F, diag);
+    if (st) return st;
+    if (out_a) {
+        *out_a = F.a;
+        F.a = NULL;
+    }
+    wr_wf_fine_fields_free(&F);
+    return WR_OK;
 }
 
 /* ---- SQP (App. E.3) ---- */

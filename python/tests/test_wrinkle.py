@@ -146,6 +146,14 @@ class StaticsAndTFW(unittest.TestCase):
         self.assertEqual(len(t.wrinkled_pos), len(s.pos) + len(t.edges))
         # wrinkles are out of plane, about the amplitude
         self.assertGreater(np.abs(t.wrinkled_pos[:, 2]).max(), 0.5 * t.a.max())
+        # the fine fields: the base is flat (z = 0) and Loop keeps it flat, so the height over it is the
+        # z coordinate, Eq. 19's a cos(phi) with the normal +z, vertex by vertex
+        self.assertLess(np.abs(s.pos[:, 2]).max(), 1e-12)
+        self.assertEqual(t.wrinkled_phase.shape, (len(t.wrinkled_pos),))
+        self.assertTrue(np.all((t.wrinkled_phase > -np.pi) & (t.wrinkled_phase <= np.pi)))
+        np.testing.assert_allclose(t.wrinkled_pos[:, 2], t.wrinkled_a * np.cos(t.wrinkled_phase), rtol=0, atol=1e-15)
+        w = t.wrinkled_wrinkle_free
+        self.assertTrue(np.all(t.wrinkled_a[w] == 0) and np.all(t.wrinkled_phase[w] == 0))
 
     def test_tfw_rejects_mismatch(self):
         with self.assertRaises(wrinkle.Error):

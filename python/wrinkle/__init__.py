@@ -86,6 +86,7 @@ _tfw = _sig("wr_py_tfw", _VP, _i32, _D, _D, _i32, _I, _D, _C.c_double, _C.c_doub
 _tfw_sizes = _sig("wr_py_tfw_sizes", None, _VP, _I, _I, _I, _I, _I)
 _tfw_edges = _sig("wr_py_tfw_edges", None, _VP, _I)
 _tfw_get = _sig("wr_py_tfw_get", None, _VP, _D, _D, _D, _U8, _D, _I, _D)
+_tfw_fine = _sig("wr_py_tfw_fine", None, _VP, _D, _U8)
 _tfw_free = _sig("wr_py_tfw_free", None, _VP)
 _render = _sig("wr_py_render_png", _C.c_int, _C.c_char_p, _i32, _C.POINTER(_D), _I, _C.POINTER(_I), _I,
                _C.POINTER(_D), _C.POINTER(_C.c_char_p), _i32, _i32, _i32, _C.c_double, _C.c_double,
@@ -234,8 +235,11 @@ def statics(scene, base_dir="."):
 class TFW:
     """TFW wrinkle fields on a base surface. a (nv,) amplitude [m]; edges (ne, 2) and omega (ne,)
     the frequency one-form [rad, phase change from edges[:, 0] to edges[:, 1]]; phi (nf, 3) per-corner
-    phase [rad]; wrinkle_free (nf,) bool; wrinkled_pos (n, 3), wrinkled_faces (m, 3), wrinkled_a (n,)
-    the Loop-upsampled wrinkled surface (Eq. 19); sqp_iterations; converged."""
+    phase [rad]; wrinkle_free (nf,) bool; wrinkled_pos (n, 3), wrinkled_faces (m, 3) the Loop-upsampled
+    wrinkled surface (Eq. 19) with, per vertex, wrinkled_a (n,) the amplitude [m], wrinkled_phase (n,)
+    the phase [rad, wrapped to (-pi, pi]] and wrinkled_wrinkle_free (n,) bool (vertex touches only
+    wrinkle-free faces): its height over the base is wrinkled_a * cos(wrinkled_phase); sqp_iterations;
+    converged."""
 
 
 def tfw(rest_pos, faces, base_pos, young, poisson, thickness, levels=2, rest=None):
@@ -266,9 +270,13 @@ def tfw(rest_pos, faces, base_pos, young, poisson, thickness, levels=2, rest=Non
         out.wrinkled_pos = _np.zeros((fnv.value, 3))
         out.wrinkled_faces = _np.zeros((fnf.value, 3), dtype=_np.int32)
         out.wrinkled_a = _np.zeros(fnv.value)
+        out.wrinkled_phase = _np.zeros(fnv.value)
+        fw = _np.zeros(fnv.value, dtype=_np.uint8)
         _tfw_edges(h, _iptr(out.edges))
         _tfw_get(h, _dptr(out.a), _dptr(out.omega), _dptr(out.phi), wf.ctypes.data_as(_U8),
                  _dptr(out.wrinkled_pos), _iptr(out.wrinkled_faces), _dptr(out.wrinkled_a))
+        _tfw_fine(h, _dptr(out.wrinkled_phase), fw.ctypes.data_as(_U8))
+        out.wrinkled_wrinkle_free = fw.astype(bool)
         out.wrinkle_free = wf.astype(bool)
         out.sqp_iterations = it.value
         out.converged = st.value == _OK
