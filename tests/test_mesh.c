@@ -737,6 +737,85 @@ Test(mesh_io, obj_round_trip_rest_and_groups) {
     remove_tmpdir();
 }
 
+/* OBJ with normals and named groups (wr_obj_desc.normals, group_names): every vn line is the
+ * area-weighted vertex normal (compared with wr_mesh_vertex_normals), every face corner names its
+ * own vertex's vn, the groups carry the caller's names (space -> '_', an empty name -> panel<id>),
+ * and the file still reads back to the same mesh and panels. */
+Test(mesh_io, obj_normals_and_group_names) {
+    wr_mesh a, b;
+    wr_diag d;
+    wr_obj_desc od;
+    char path[400], *txt, *line, *save = NULL;
+    const char *names[3] = {"front bodice", "", "skirt"};
+    int32_t *panel, f, v, n_vn = 0, n_f = 0, n_g = 0;
+    double *nrm;
+    make_tmpdir();
+    snprintf(path, sizeof path, "%s/named.obj", tmpdir);
+    cr_assert_eq(wr_mesh_rectangle(&a, 0.3, 0.2, 4, 3, &d), WR_OK);
+    for (v = 0; v < a.nv; ++v) a.pos[3 * v + 2] = 0.05 * a.pos[3 * v] * a.pos[3 * v]; /* curved: normals tilt */
+    panel = (int32_t *)malloc(sizeof(int32_t) * (size_t)a.nf);
+    for (f = 0; f < a.nf; ++f) panel[f] = f < 8 ? 0 : (f < 16 ? 1 : 2);
+    cr_assert_eq(wr_mesh_set_face_panel(&a, panel, &d), WR_OK);
+    nrm = (double *)malloc(sizeof(double) * 3 * (size_t)a.nv);
+    wr_mesh_vertex_normals(&a, nrm);
+    memset(&od, 0, sizeof od);
+    od.normals = 1;
+    od.group_names = names;
+    od.n_group_names = 3;
+    cr_assert_eq(wr_mesh_write_obj(&a, path, &od, &d), WR_OK, "%s", d.message);
+    txt = slurp(path, NULL);
+    for (line = strtok_r(txt, "\n", &save); line; line = strtok_r(NULL, "\n", &save)) {
+        if (!strncmp(line, "vn ", 3)) {
+            double x, y, z;
+            cr_assert_eq(sscanf(line + 3, "%lf %lf %lf", &x, &y, &z), 3);
+            cr_assert(n_vn < a.nv);
+            cr_assert(fabs(x - nrm[3 * n_vn]) < 1e-8 && fabs(y - nrm[3 * n_vn + 1]) < 1e-8 &&
+                          fabs(z - nrm[3 * n_vn + 2]) < 1e-8,
+                      "vn %d: (%g %g %g) vs (%g %g %g)", (int)n_vn, x, y, z, nrm[3 * n_vn], nrm[3 * n_vn + 1],
+                      nrm[3 * n_vn + 2]);
+            ++n_vn;
+        } else if (!strncmp(line, "f ", 2)) {
+            int c[3][3], k;
+            cr_assert_eq(sscanf(line + 2, "%d/%d/%d %d/%d/%d %d/%d/%d", &c[0][0], &c[0][1], &c[0][2], &c[1][0], &c[1][1],
+                                &c[1][2], &c[2][0], &c[2][1], &c[2][2]),
+                         9, "face line '%s'", line);
+            for (k = 0; k < 3; ++k) {
+                cr_assert_eq(c[k][0], a.faces[3 * n_f + k] + 1);
+                cr_assert_eq(c[k][2], c[k][0], "a corner's vn is its own vertex's normal");
+            }
+            ++n_f;
+        } else if (!strncmp(line, "g ", 2)) {
+            static const char *want[3] = {"front_bodice", "panel1", "skirt"};
+            cr_assert(n_g < 3);
+            cr_assert_str_eq(line + 2, want[n_g]);
+            ++n_g;
+        }
+    }
+    cr_assert_eq(n_vn, a.nv);
+    cr_assert_eq(n_f, a.nf);
+    cr_assert_eq(n_g, 3);
+    free(txt);
+    cr_assert_eq(wr_mesh_read_obj(&b, path, &d), WR_OK, "%s", d.message);
+    cr_assert_arr_eq(b.pos, a.pos, sizeof(double) * 3 * (size_t)a.nv);
+    cr_assert_arr_eq(b.rest, a.rest, sizeof(double) * 2 * (size_t)a.nv);
+    cr_assert_arr_eq(b.face_panel, panel, sizeof(int32_t) * (size_t)a.nf);
+    wr_mesh_free(&b);
+    /* without vt: v//vn corners, still read back */
+    od.no_rest = 1;
+    cr_assert_eq(wr_mesh_write_obj(&a, path, &od, &d), WR_OK, "%s", d.message);
+    txt = slurp(path, NULL);
+    cr_assert_not_null(strstr(txt, "\nf 1//1 "), "v//vn corners without vt");
+    free(txt);
+    cr_assert_eq(wr_mesh_read_obj(&b, path, &d), WR_OK, "%s", d.message);
+    cr_assert_null(b.rest);
+    cr_assert_arr_eq(b.pos, a.pos, sizeof(double) * 3 * (size_t)a.nv);
+    wr_mesh_free(&b);
+    free(nrm);
+    free(panel);
+    wr_mesh_free(&a);
+    remove_tmpdir();
+}
+
 Test(mesh_io, obj_round_trip_corner_rest) {
     wr_mesh a, b;
     wr_diag d;

@@ -1011,6 +1011,7 @@ wr_status wr_scene_run_write(const wr_scene_run *run, const char *dir, wr_diag *
     m.pos = run->x;
     memset(&od, 0, sizeof od);
     od.comment = run->sc->name;
+    od.normals = 1; /* vt (rest) and vn on the deformed surface, for viewers */
     snprintf(path, sizeof path, "%s/deformed.obj", dir);
     if ((st = wr_mesh_write_obj(&m, path, &od, diag)) != WR_OK) return st;
     acc = (double *)calloc((size_t)nv * 9, sizeof(double));

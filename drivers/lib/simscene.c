@@ -1045,12 +1045,17 @@ void wr_simscene_frame_name(const wr_simscene *sc, int32_t k, char *out) {
 wr_status wr_simscene_write_frame(const wr_simscene_run *run, const char *dir, int32_t k, wr_diag *diag) {
     char name[32], path[WR_PATH_MAX];
     wr_mesh m = run->mesh;
+    wr_obj_desc od;
     wr_simscene_frame_name(run->sc, k, name);
     if ((size_t)snprintf(path, sizeof path, "%s/%s", dir, name) >= sizeof path)
         return wr_fail(diag, WR_ERR_IO, -1, "output path too long: %s/%s", dir, name);
     m.pos = run->x; /* a shallow view: the mesh's topology with the current positions */
     if (run->sc->output_ply) return wr_mesh_write_ply(&m, path, 0, NULL, NULL, diag);
-    return wr_mesh_write_obj(&m, path, NULL, diag);
+    memset(&od, 0, sizeof od);
+    od.normals = 1; /* viewers shade the frame smoothly; groups named after the pattern's panels */
+    od.group_names = (const char *const *)run->panel_names;
+    od.n_group_names = run->panel_names ? run->n_panels : 0;
+    return wr_mesh_write_obj(&m, path, &od, diag);
 }
 
 /* Body positions now: the sim's copy (moving bodies move), as one array per body. */
@@ -1088,7 +1093,12 @@ wr_status wr_simscene_write_bodies(const wr_simscene_run *run, const char *dir, 
         of += db->nf;
     }
     st = wr_mesh_create(&m, nv, X, NULL, nf, F, diag);
-    if (st == WR_OK) st = wr_mesh_write_obj(&m, path, NULL, diag);
+    if (st == WR_OK) {
+        wr_obj_desc od;
+        memset(&od, 0, sizeof od);
+        od.normals = 1;
+        st = wr_mesh_write_obj(&m, path, &od, diag);
+    }
     wr_mesh_free(&m);
     wr_free(F);
     wr_free(X);

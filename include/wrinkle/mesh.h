@@ -226,11 +226,18 @@ WRDEF wr_status wr_mesh_read_obj(wr_mesh *m, const char *path, wr_diag *diag); /
 /* Options of wr_mesh_write_obj; zero means default:
  *   no_rest = 0    write vt (rest per vertex, or corner_rest per corner) when available
  *   no_groups = 0  write "g panel<id>" whenever face_panel changes between consecutive faces
- *   comment = NULL no extra comment line (else one "# <comment>" line; newlines become spaces) */
+ *   comment = NULL no extra comment line (else one "# <comment>" line; newlines become spaces)
+ *   normals = 0    nonzero: one vn per vertex (wr_mesh_vertex_normals of pos, area-weighted), faces
+ *                  written v/vt/vn (or v//vn without vt): viewers shade smoothly without recomputing
+ *   group_names    NULL: groups are "panel<id>"; else group_names[id] for ids < n_group_names (a
+ *                  garment's panel names; spaces and empty names as "panel<id>") */
 typedef struct wr_obj_desc {
     int no_rest;
     int no_groups;
     const char *comment;
+    int normals;
+    const char *const *group_names;
+    int32_t n_group_names;
 } wr_obj_desc;
 /* Coordinates printed with 17 significant digits, so a write→read round trip is exact. */
 WRDEF wr_status wr_mesh_write_obj(const wr_mesh *m, const char *path, const wr_obj_desc *desc, wr_diag *diag);
@@ -1699,6 +1706,33 @@ static wr_status wr__mesh_write_begin(const wr_mesh *m, const char *path, wr_afi
     return wr_afile_open(f, path, diag);
 }
 
+/* vn lines: the area-weighted unit vertex normals of m->pos (a zero vector stays zero). */
+static wr_status wr__mesh_write_vn(const wr_mesh *m, FILE *fp, wr_diag *diag) {
+    double *n = (double *)wr_alloc_array(3 * (size_t)m->nv, sizeof(double));
+    int32_t v;
+    if (!n) return wr_fail(diag, WR_ERR_NOMEM, -1, "OBJ normals: out of memory");
+    wr_mesh_vertex_normals(m, n);
+    for (v = 0; v < m->nv; ++v) fprintf(fp, "vn %.9g %.9g %.9g\n", n[3 * v], n[3 * v + 1], n[3 * v + 2]);
+    wr_free(n);
+    return WR_OK;
+}
+
+/* "g <name>" for panel id: the caller's name (spaces -> '_'; an empty or missing one, or one with
+ * a character OBJ readers split on, -> "panel<id>"). */
+static void wr__mesh_write_group(FILE *fp, const wr_obj_desc *d, int32_t id) {
+    const char *name = d->group_names && id >= 0 && id < d->n_group_names ? d->group_names[id] : NULL;
+    const char *c;
+    int ok = name && *name;
+    for (c = name; ok && *c; ++c) ok = (unsigned char)*c >= 0x20 && *c != '#';
+    if (!ok) {
+        fprintf(fp, "g panel%d\n", (int)id);
+        return;
+    }
+    fputs("g ", fp);
+    for (c = name; *c; ++c) fputc(*c == ' ' || *c == '\t' ? '_' : *c, fp);
+    fputc('\n', fp);
+}
+
 WRDEF wr_status wr_mesh_write_obj(const wr_mesh *m, const char *path, const wr_obj_desc *desc, wr_diag *diag) {
     wr_obj_desc d;
     wr_afile f;
@@ -1724,16 +1758,28 @@ WRDEF wr_status wr_mesh_write_obj(const wr_mesh *m, const char *path, const wr_o
         for (v = 0; v < m->nv; ++v) fprintf(f.fp, "vt %.17g %.17g\n", m->rest[2 * v], m->rest[2 * v + 1]);
     if (vt == 2)
         for (k = 0; k < 3 * m->nf; ++k) fprintf(f.fp, "vt %.17g %.17g\n", m->corner_rest[2 * k], m->corner_rest[2 * k + 1]);
+    if (d.normals) {
+        st = wr__mesh_write_vn(m, f.fp, diag);
+        if (st != WR_OK) {
+            wr_afile_abort(&f);
+            return st;
+        }
+    }
     for (t = 0; t < m->nf; ++t) {
         const int32_t *c = m->faces + 3 * t;
         if (m->face_panel && !d.no_groups && (t == 0 || m->face_panel[t] != cur)) {
             cur = m->face_panel[t];
-            fprintf(f.fp, "g panel%d\n", cur);
+            wr__mesh_write_group(f.fp, &d, cur);
         }
-        if (vt == 1) fprintf(f.fp, "f %d/%d %d/%d %d/%d\n", c[0] + 1, c[0] + 1, c[1] + 1, c[1] + 1, c[2] + 1, c[2] + 1);
-        else if (vt == 2)
-            fprintf(f.fp, "f %d/%d %d/%d %d/%d\n", c[0] + 1, 3 * t + 1, c[1] + 1, 3 * t + 2, c[2] + 1, 3 * t + 3);
-        else fprintf(f.fp, "f %d %d %d\n", c[0] + 1, c[1] + 1, c[2] + 1);
+        fputc('f', f.fp);
+        for (k = 0; k < 3; ++k) {
+            int32_t tv = vt == 1 ? c[k] + 1 : 3 * t + k + 1; /* the corner's vt index when vt == 2 */
+            if (vt && d.normals) fprintf(f.fp, " %d/%d/%d", c[k] + 1, tv, c[k] + 1);
+            else if (vt) fprintf(f.fp, " %d/%d", c[k] + 1, tv);
+            else if (d.normals) fprintf(f.fp, " %d//%d", c[k] + 1, c[k] + 1);
+            else fprintf(f.fp, " %d", c[k] + 1);
+        }
+        fputc('\n', f.fp);
     }
     return wr_afile_commit(&f, diag);
 }
