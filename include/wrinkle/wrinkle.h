@@ -21,6 +21,11 @@
  *   is added by the Makefile where eigen.h's solvers are wanted).
  *   spectrum.h may always be included directly; the macro only decides what this umbrella pulls in.
  *
+ * EXAMPLES
+ *   examples/minimal_c/main.c (the one C translation unit defining WRINKLE_IMPLEMENTATION) and
+ *   examples/minimal_cpp (the same from C++, the implementation in its own impl.cpp). Every module's
+ *   top block has its own EXAMPLE and says its units and who owns what.
+ *
  * This file deliberately has no include guard: every module guards its declarations and, separately,
  * its implementation, so including this file again after defining WRINKLE_IMPLEMENTATION works.
  */
