@@ -104,8 +104,8 @@
  *   gap, d̂/4, a small part of the barrier's margin to a body, while a tighter default would sit
  *   below what the Newton stop resolves — a step is accepted once no vertex moves more than
  *   h · velocity_tol (0.33 mm at the defaults), so gaps much below that stall (docs/garments.md,
- *   "What was tried"). A merged vertex gets the mass-weighted mean position and velocity of its class (mass
- *   and momentum are kept), pins are OR-ed, the shell and the simulator are rebuilt on the welded
+ *   "What was tried"). A merged vertex gets the mass-weighted mean position and velocity of its
+ *   class (mass and momentum are kept), pins are OR-ed, the shell and the simulator are rebuilt on the welded
  *   mesh (same materials and contact settings, no sewing springs), bodies keep their current
  *   positions, and time goes on. The midpoint is not always feasible: sewing springs at full
  *   stiffness press a seam line onto the body far inside d̂, and on a small faceted body (the 0.25

@@ -87,7 +87,8 @@
  *   target: the mean Delaunay edge from loop points to samples = h (D = 0.93: mean ring height
  *   0.85 h). Points of constraint lines keep the interior rule (r_f = c h): around shirring lines
  *   the sizing grows steeply and their edges to the samples are already at h, and a fold's three
- *   lines 0.5 mm apart would add up their exclusions (measurements: docs/notes-mesher.md). Fixed points are still not tested against each other.
+ *   lines 0.5 mm apart would add up their exclusions (measurements: docs/notes-mesher.md). Fixed
+ *   points are still not tested against each other.
  *
  * ON COVERAGE (what is, and is not, guaranteed)
  *   The front stops at a point when no free direction is left, so gaps are closed up to the

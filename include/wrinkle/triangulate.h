@@ -1775,9 +1775,9 @@ static int wr__cavity_encroached(wr__cdt *S, wr__ref *R, int32_t tt, int loc, in
         /* A candidate's cavity is a handful of triangles in a graded mesh. Hundreds mean huge,
          * skinny circumcircles (fuzzer finding cdt_wedge_cavity_quadratic: a 1e-3-wide wedge
          * 1e26 long, where the cavity grew as n/6 and each rejected candidate cost that many
-         * exact in-circle tests, ~n^2 overall: 10 s at 2000 vertices). The encroachment check
-         * over the cavity is a heuristic past that size anyway, so the search stops at 256:
-         * that input now finishes in 0.5 s; no input of the fuzz corpus changes its result. */
+         * exact in-circle tests, ~n^2 overall). The encroachment check over the cavity is a
+         * heuristic past that size anyway, so the search stops at 256; no input of the fuzz corpus
+         * changes its result (timings before and after: commit b84b16d). */
         if (R->cav.n > 256) break;
     }
     return 1;
