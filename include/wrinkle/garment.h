@@ -102,22 +102,22 @@
  *   (mesh.h wr_mesh_weld: each face keeps its own pattern corners, so every panel keeps its flat
  *   rest shape). Why that tolerance: merging a pair moves each of its vertices by at most half the
  *   gap, d̂/4, a small part of the barrier's margin to a body, while a tighter default would sit
- *   below what the Newton stop resolves — a step is accepted once no vertex moves more than
- *   h · velocity_tol (0.33 mm at the defaults), so gaps much below that stall (docs/garments.md,
- *   "What was tried"). A merged vertex gets the mass-weighted mean position and velocity of its
- *   class (mass and momentum are kept), pins are OR-ed, the shell and the simulator are rebuilt on the welded
- *   mesh (same materials and contact settings, no sewing springs), bodies keep their current
+ *   below what the Newton stop resolves — a step is accepted once no vertex moves more than h ·
+ *   velocity_tol (0.33 mm at the defaults), so gaps much below that stall (docs/garments.md, "What
+ *   was tried"). A merged vertex gets the mass-weighted mean position and velocity of its class
+ *   (mass and momentum are kept), pins are OR-ed, the shell and the simulator are rebuilt on the
+ *   welded mesh (same materials and contact settings, no sewing springs), bodies keep their current
  *   positions, and time goes on. The midpoint is not always feasible: sewing springs at full
  *   stiffness press a seam line onto the body far inside d̂, and on a small faceted body (the 0.25
  *   mannequin of validate_sim_garments, d̂ = 0.25 mm) a body ridge within half the gap of the seam
- *   line put midpoint-welded faces through it (weld_mid_hits reports how many body triangle pairs
- *   a plain midpoint merge would meet). So the merge is done as a motion and certified the way a
+ *   line put midpoint-welded faces through it (weld_mid_hits reports how many body triangle pairs a
+ *   plain midpoint merge would meet). So the merge is done as a motion and certified the way a
  *   Newton step is (collision.h ON CCD): the copies of each seam vertex move along straight lines
- *   from their own positions, which the simulator keeps intersection-free, to one common point,
- *   in one collision mesh of the unwelded cloth and the bodies whose vertex classes are the welded
- *   vertices (collision.h ON PAIRS: the copies are meant to meet, so the pairs that become
- *   adjacent are not contacts). A move that CCD cuts short is not made. First every class moves to
- *   its midpoint m at once; when CCD stops that, class by class, in up to WR_GARMENT_WELD_SWEEPS
+ *   from their own positions, which the simulator keeps intersection-free, to one common point, in
+ *   one collision mesh of the unwelded cloth and the bodies whose vertex classes are the welded
+ *   vertices (collision.h ON PAIRS: the copies are meant to meet, so the pairs that become adjacent
+ *   are not contacts). A move that CCD cuts short is not made. First every class moves to its
+ *   midpoint m at once; when CCD stops that, class by class, in up to WR_GARMENT_WELD_SWEEPS
  *   sweeps, to the first of m, m + t (x_u − m) (x_u a copy's own position, t = 1/2, then 1) whose
  *   move completes (weld_moved counts those left off m; momentum is kept, the position is no longer
  *   the mass mean there). CCD checks every vertex–triangle and edge–edge pair, cloth against body
@@ -125,19 +125,19 @@
  *   through the body or the garment: a triangle pair can only start to intersect through such a
  *   contact. Each move is certified locally (collision.h ON LOCAL CCD: every position a copy can
  *   take lies in the box of its class's start positions and m, so the collision mesh is bound to
- *   those boxes once and a move costs the CCD of the primitives round its copies: the same alpha
- *   as a whole-mesh wr_collision_max_step, at a cost that does not grow with the garment).
- *   What CCD cannot see is a pair that shares a merged vertex (two faces folding over
- *   each other at the seam), so the welded mesh is then checked exactly against every body and,
- *   with self-contact, against itself. A class no move can merge (weld_blocked) or an
- *   intersection found (weld_left, triangle pairs) is WR_ERR_GEOMETRY from wr_garment_sim_weld (the
- *   barriers would lock it in) and the sim is left unwelded; wr_garment_sim_step then defers the
- *   weld (weld_deferred counts it, sewing goes on, the gap keeps closing) and retries next frame,
- *   so a weld never introduces an intersection. After desc.max_time (default
- *   WR_GARMENT_MAX_SEW_TIME) the step is WR_ERR_NOT_CONVERGED: naming the widest seam and its gap
- *   (item = seam) when a seam is still open, or (item = -1) saying that every seam is closed to
- *   the tolerance but the weld is still refused, with the last refusal's weld_blocked and
- *   weld_left. desc.no_weld = 1 keeps the springs for the whole run instead.
+ *   those boxes once and a move costs the CCD of the primitives round its copies: the same alpha as
+ *   a whole-mesh wr_collision_max_step, at a cost that does not grow with the garment). What CCD
+ *   cannot see is a pair that shares a merged vertex (two faces folding over each other at the
+ *   seam), so the welded mesh is then checked exactly against every body and, with self-contact,
+ *   against itself. A class no move can merge (weld_blocked) or an intersection found (weld_left,
+ *   triangle pairs) is WR_ERR_GEOMETRY from wr_garment_sim_weld (the barriers would lock it in) and
+ *   the sim is left unwelded; wr_garment_sim_step then defers the weld (weld_deferred counts it,
+ *   sewing goes on, the gap keeps closing) and retries next frame, so a weld never introduces an
+ *   intersection. After desc.max_time (default WR_GARMENT_MAX_SEW_TIME) the step is
+ *   WR_ERR_NOT_CONVERGED: naming the widest seam and its gap (item = seam) when a seam is still
+ *   open, or (item = -1) saying that every seam is closed to the tolerance but the weld is still
+ *   refused, with the last refusal's weld_blocked and weld_left. desc.no_weld = 1 keeps the springs
+ *   for the whole run instead.
  *
  * ON GATHERING (shirring Style3D Sec. 4.2.2, quilt stitches Sec. 4.2.5; the paper only meshes them)
  *   A gathered line (wr_garment_line: the pattern-mesh vertices along it, wr_garment_line_chain)

@@ -36,22 +36,24 @@
  *     wr_poisson_free(&res);
  *
  * ON THE ALGORITHM
- *   Every point, fixed points first and then the samples in order of creation (first in, first out),
- *   takes one front step (Dunbar & Humphreys 2006, "A spatial data structure for fast Poisson-disk
- *   sample generation": boundary sampling, here with a radius that varies in space): new samples are
- *   placed on the circle of radius r(p) around p, in directions drawn uniformly from the arcs still
- *   free, until no direction is left. The neighbours' blocked arcs are cut all at once before the
- *   first draw (lens ends by rotation, no trigonometric call per neighbour; merged in a pseudo-angle
- *   and only the merged ends converted), so a draw is never wasted on a neighbour and the sizing is
- *   evaluated once per accepted sample at constant sizing (the law of the draws is that of drawing
- *   over the whole circle and redrawing on a conflict: uniform over the free directions). Where
- *   the sizing differs from r(p) the candidate moves along its direction to the mean-rule distance
- *   ρ = (r(p) + r(ρ))/2 (a fixed-point iteration, up to 3 moves, each one more evaluation; counts per
- *   sample: docs/notes-mesher.md), so the front also crosses steep transitions in either direction. The domain's segments near p cut the arcs outside the domain and within the
- *   clearance of a segment before any candidate is drawn. Work per sample is bounded (one
- *   neighbour query, a few arc cuts), so the fill is O(n) and the sizing is evaluated a bounded
- *   number of times per sample (no dart throwing with a failure count). The result is maximal up to
- *   the failed-candidate arcs: every point of the domain is within about r of a sample.
+ *   Every point, fixed points first and then the samples in order of creation (first in, first
+ *   out), takes one front step (Dunbar & Humphreys 2006, "A spatial data structure for fast
+ *   Poisson-disk sample generation": boundary sampling, here with a radius that varies in space):
+ *   new samples are placed on the circle of radius r(p) around p, in directions drawn uniformly
+ *   from the arcs still free, until no direction is left. The neighbours' blocked arcs are cut all
+ *   at once before the first draw (lens ends by rotation, no trigonometric call per neighbour;
+ *   merged in a pseudo-angle and only the merged ends converted), so a draw is never wasted on a
+ *   neighbour and the sizing is evaluated once per accepted sample at constant sizing (the law of
+ *   the draws is that of drawing over the whole circle and redrawing on a conflict: uniform over
+ *   the free directions). Where the sizing differs from r(p) the candidate moves along its
+ *   direction to the mean-rule distance ρ = (r(p) + r(ρ))/2 (a fixed-point iteration, up to 3
+ *   moves, each one more evaluation; counts per sample: docs/notes-mesher.md), so the front also
+ *   crosses steep transitions in either direction. The domain's segments near p cut the arcs
+ *   outside the domain and within the clearance of a segment before any candidate is drawn. Work
+ *   per sample is bounded (one neighbour query, a few arc cuts), so the fill is O(n) and the sizing
+ *   is evaluated a bounded number of times per sample (no dart throwing with a failure count). The
+ *   result is maximal up to the failed-candidate arcs: every point of the domain is within about r
+ *   of a sample.
  *
  * ON THE SIZING → RADIUS RELATION
  *   The sizing h(x) is the target mesh edge length. Each sample p carries the disk radius

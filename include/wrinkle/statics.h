@@ -132,20 +132,22 @@
  * ON MOTIONS AND INCREMENTS
  *   A wr_motion moves a vertex set rigidly or by a simple deformation of its reference positions
  *   (the x given to the incremental solve): translate, stretch (uniaxial, or isotropic scale when
- *   axis = 0), simple shear, or twist (rotation about an axis line by an angle, so heights along the
- *   axis are kept). wr_statics_solve_incremental applies fraction t = k/n_inc of every motion for
- *   k = 1..n_inc and solves each increment to tolerance, warm-started from the previous equilibrium
- *   (free vertices start where the last increment left them, prescribed ones at their new targets).
- *   increments.predictor = 1 uses a secant predictor instead: from the second increment on, free
- *   vertices start at 2·x_{k−1} − x_{k−2} (x_0 = the reference), restarting from x_{k−1} when that
- *   prediction is infeasible (degenerate face, vertex in an obstacle); off by default (on a buckling
- *   path it cost more Newton steps than it saved: docs/notes-statics.md, "Increments"). Intermediate increments use increments.grad_tol (default
- *   stop.grad_tol); an intermediate WR_ERR_NOT_CONVERGED is tolerated (its best iterate warm-starts
- *   the next increment, counted in stats.increments_failed); the status of the last increment is
- *   returned. The perturbation is applied in the first increment only. increments.hybrid_switch =
- *   s > 0 solves each increment with the given projection to s/grad_tol times the tolerance, then with
- *   the exact Hessian to the tolerance; both phases stop relative to the projected phase's reference
- *   (ON STOPPING, at the increment's start), so the exact phase ends where a plain solve would.
+ *   axis = 0), simple shear, or twist (rotation about an axis line by an angle, so heights along
+ *   the axis are kept). wr_statics_solve_incremental applies fraction t = k/n_inc of every motion
+ *   for k = 1..n_inc and solves each increment to tolerance, warm-started from the previous
+ *   equilibrium (free vertices start where the last increment left them, prescribed ones at their
+ *   new targets). increments.predictor = 1 uses a secant predictor instead: from the second
+ *   increment on, free vertices start at 2·x_{k−1} − x_{k−2} (x_0 = the reference), restarting from
+ *   x_{k−1} when that prediction is infeasible (degenerate face, vertex in an obstacle); off by
+ *   default (on a buckling path it cost more Newton steps than it saved: docs/notes-statics.md,
+ *   "Increments"). Intermediate increments use increments.grad_tol (default stop.grad_tol); an
+ *   intermediate WR_ERR_NOT_CONVERGED is tolerated (its best iterate warm-starts the next
+ *   increment, counted in stats.increments_failed); the status of the last increment is returned.
+ *   The perturbation is applied in the first increment only. increments.hybrid_switch = s > 0
+ *   solves each increment with the given projection to s/grad_tol times the tolerance, then with
+ *   the exact Hessian to the tolerance; both phases stop relative to the projected phase's
+ *   reference (ON STOPPING, at the increment's start), so the exact phase ends where a plain solve
+ *   would.
  *
  * ON STABILITY (stability.check = 1; needs eigen.h's ARPACK + CHOLMOD)
  *   Newton stops at any stationary point, and a flat start under compression is one: every
