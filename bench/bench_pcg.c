@@ -17,7 +17,7 @@
 /* The implementation comes from drivers/lib/impl.c (linked into every bench by the Makefile). */
 #include "wrinkle/core.h"
 #include "wrinkle/sparse.h"
-#include "wrinkle/pcg.h"
+#include "wrinkle/spd.h"
 #include "../tests/membrane_fixture.h"
 
 #include <math.h>

@@ -37,6 +37,9 @@
  *
  * ON UNITS
  *   Metres. desc.height scales the whole figure (the primitives are laid out for 1.7 m).
+ *
+ * ON THREADS
+ *   No global mutable state (the primitive tables are const); distinct calls may run concurrently.
  */
 #ifndef WRINKLE_BODY_H
 #define WRINKLE_BODY_H

@@ -2,7 +2,7 @@
  * shared Newton (newton.h), with gravity, Rayleigh damping, sewing springs, IPC-style contact
  * barriers against analytic obstacles, triangle-mesh bodies (static or moving) and the cloth
  * itself, lagged Coulomb friction, and continuous collision detection as Newton's max-step hook.
- * wrinkle v0.1.0 — MIT licence (see LICENSE). Needs core.h, sparse.h, pcg.h, mesh.h, shell.h,
+ * wrinkle v0.1.0 — MIT licence (see LICENSE). Needs core.h, sparse.h, spd.h, mesh.h, shell.h,
  * statics.h (analytic obstacles, barrier), newton.h and collision.h; otherwise libc and libm.
  *
  * The Style3D paper's simulator (Sec. 5): "Newton's method with a 1/30 s time step for implicit
@@ -114,13 +114,11 @@
  *   paper's 3×3 block-Jacobi PCG, and rel_tol zero means its 1e-5, so the paper's setup is the
  *   default. WR_SOLVER_PCG_IC0 (incomplete Cholesky on the 3×3-block pattern, spd.h ON BLOCKED
  *   KERNELS) and WR_SOLVER_CHOLMOD (a fresh factorisation per Newton step) are the alternatives,
- *   also as "linear" in the scene's solver object. Measured (bench/RESULTS.md, "Preconditioner"):
- *   IC(0) cuts PCG iterations per Newton step 5–8× on the contact frames (5k vertices: 448 → 74
- *   sphere, 418 → 59 mannequin) and the solve time 20–35 %, but the solves are only ~25–30 % of NS
- *   (assembly and projection dominate), its factorisation loses on easy steps, and per-frame cost
- *   follows the Newton count the trajectory sets; no clear per-frame win up to 5k vertices. At 20k
- *   (solves 55 % of NS) IC(0) gave −27 % solve time and −8 % CPU per frame over 3 contact frames,
- *   so block-Jacobi stays the default and IC(0) is the option for ≥ 2e4 vertices.
+ *   also as "linear" in the scene's solver object. Why block-Jacobi stays the default: IC(0) needs
+ *   far fewer PCG iterations, but the linear solves are a minor part of NS on small meshes
+ *   (assembly and projection dominate) and its factorisation loses on easy steps, so it pays only
+ *   where the solves dominate, from about 2e4 vertices; the option for those meshes. Figures:
+ *   bench/RESULTS.md, "Preconditioner".
  *   wr_dyn_stats.t_linear reports the solves' share of t_ns.
  *
  * ON UNITS
@@ -139,7 +137,7 @@
 
 #include "core.h"
 #include "sparse.h"
-#include "pcg.h"
+#include "spd.h"
 #include "mesh.h"
 #include "shell.h"
 #include "statics.h"
@@ -226,7 +224,7 @@ typedef struct wr_dyn_newton_desc {
 } wr_dyn_newton_desc;
 
 /* Zero means default everywhere (see each group). gravity [m/s²] default 0; fixed NULL = none, else
- * nv flags (nonzero: the vertex keeps its position; its velocity is set to 0); linear: pcg.h options
+ * nv flags (nonzero: the vertex keeps its position; its velocity is set to 0); linear: spd.h options
  * with method default WR_SOLVER_PCG_BLOCK3 and rel_tol default 1e-5 (the paper's setting); its
  * `fixed` is set by the simulator. */
 typedef struct wr_dyn_desc {

@@ -5,8 +5,8 @@
  * wrinkle v0.1.0 — MIT licence (see LICENSE). Needs core.h, mesh.h, shell.h, dynamics.h and
  * collision.h; otherwise libc and libm.
  *
- * Issue 13, "Garments on a body": Style3D's figures (Sec. 5, Figs. 15 and 19) are garments worn by
- * a body; a garment is sewn the way pattern-based simulators do it — flat panels placed around the
+ * Style3D's figures (Sec. 5, Figs. 15 and 19) are garments worn by a body; a garment is sewn the
+ * way pattern-based simulators do it — flat panels placed around the
  * body, seams drawn together by springs, the sewn seams then treated as ordinary cloth.
  *
  * API (create/free pair: wr_garment_sim_create → wr_garment_sim_free)
@@ -78,11 +78,11 @@
  *   the mesher's seam pairs. The stiffness doubles every frame, from k_0 = WR_DYN_SEW_FACTOR m̄/dt²
  *   (dynamics.h's default: against inertia alone an isolated pair closes within a frame) up to
  *   k_full = WR_GARMENT_SEW_MEMBRANE_FACTOR · E h/(1 − ν²) (the shell's membrane stiffness [N/m]):
- *     - starting at k_full snaps the seam shut in one frame and the panel recoils: measured on
- *       the A-line skirt at 4 cm (docs/garments.md), the frame after the snap took 107 Newton
- *       iterations and a step halving, max edge strain 2.2 %; doubling from k_0 closes the 0.2 m
- *       gaps over 7–12 frames without a halving (max strain 1.4 %). The doubling is the default
- *       because it is the robust one; start_stiffness = stiffness is the fast one;
+ *     - starting at k_full snaps the seam shut in one frame and the panel recoils (the frame
+ *       after the snap needs many Newton iterations and can halve its step); doubling from k_0
+ *       closes the gaps over several frames without a halving and with less edge strain. The
+ *       doubling is the default because it is the robust one; start_stiffness = stiffness is the
+ *       fast one (both measured on the A-line skirt: docs/garments.md, "What was tried");
  *     - k_full in units of the membrane's own stiffness makes the residual gap of a seam under a
  *       membrane tension T = ε E h (spread over pair spacing s) T s/k = ε s/100: below 0.01 mm for
  *       10 % strain at 1 cm spacing, far below the weld tolerance, whatever the mesh resolution.
@@ -90,34 +90,34 @@
  *   Cloth self-contact stays ON while the seams are open (as the dynamics desc asks). A seam
  *   pair's two vertices are distinct primitives, so the IPC barrier between them and the triangles
  *   next to them resists the last millimetre (d < d̂), but the barrier's force κ d̂²/d (small d)
- *   balances the spring's k d only at d ≈ d̂ √(κ/k), microns once k has grown to k_full ≫ κ; the
- *   measured gap goes from 1 mm to below d̂/2 within a few frames of growth (docs/garments.md).
+ *   balances the spring's k d only at d ≈ d̂ √(κ/k), microns once k has grown to k_full ≫ κ, so
+ *   the gap closes below d̂/2 within a few frames of growth (docs/garments.md, seam gap per frame).
  *   Switching self-contact off until the weld (desc.no_self_while_sewing = 1) closes the gap
- *   faster but lets the panels pass through each other where they meet: measured on the skirt, 13
- *   triangle pairs of the two panels crossed near the hem, and the sewn skirt was refused.
-
+ *   faster but lets the panels pass through each other where they meet edge on, and the weld then
+ *   refuses the crossed mesh (docs/garments.md, "What was tried").
+ *
  * ON WELDING (when, and what is carried over)
  *   At the end of the first frame whose largest seam gap is below desc.weld_tol (default
  *   WR_GARMENT_WELD_FRACTION · d̂ = 0.5 mm at the default d̂ = 1 mm) the pattern mesh is welded
  *   (mesh.h wr_mesh_weld: each face keeps its own pattern corners, so every panel keeps its flat
  *   rest shape). Why that tolerance: merging a pair moves each of its vertices by at most half the
  *   gap, d̂/4, a small part of the barrier's margin to a body, while a tighter default would sit
- *   below what the Newton stop resolves — a step is accepted once no vertex moves more than
- *   h · velocity_tol (0.33 mm at the defaults), and the measured gap of the 8 cm skirt stalls at
- *   0.16 mm. A merged vertex gets the mass-weighted mean position and velocity of its class (mass
- *   and momentum are kept), pins are OR-ed, the shell and the simulator are rebuilt on the welded
- *   mesh (same materials and contact settings, no sewing springs), bodies keep their current
+ *   below what the Newton stop resolves — a step is accepted once no vertex moves more than h ·
+ *   velocity_tol (0.33 mm at the defaults), so gaps much below that stall (docs/garments.md, "What
+ *   was tried"). A merged vertex gets the mass-weighted mean position and velocity of its class
+ *   (mass and momentum are kept), pins are OR-ed, the shell and the simulator are rebuilt on the
+ *   welded mesh (same materials and contact settings, no sewing springs), bodies keep their current
  *   positions, and time goes on. The midpoint is not always feasible: sewing springs at full
  *   stiffness press a seam line onto the body far inside d̂, and on a small faceted body (the 0.25
  *   mannequin of validate_sim_garments, d̂ = 0.25 mm) a body ridge within half the gap of the seam
- *   line put midpoint-welded faces through it (weld_mid_hits reports how many body triangle pairs
- *   a plain midpoint merge would meet). So the merge is done as a motion and certified the way a
+ *   line put midpoint-welded faces through it (weld_mid_hits reports how many body triangle pairs a
+ *   plain midpoint merge would meet). So the merge is done as a motion and certified the way a
  *   Newton step is (collision.h ON CCD): the copies of each seam vertex move along straight lines
- *   from their own positions, which the simulator keeps intersection-free, to one common point,
- *   in one collision mesh of the unwelded cloth and the bodies whose vertex classes are the welded
- *   vertices (collision.h ON PAIRS: the copies are meant to meet, so the pairs that become
- *   adjacent are not contacts). A move that CCD cuts short is not made. First every class moves to
- *   its midpoint m at once; when CCD stops that, class by class, in up to WR_GARMENT_WELD_SWEEPS
+ *   from their own positions, which the simulator keeps intersection-free, to one common point, in
+ *   one collision mesh of the unwelded cloth and the bodies whose vertex classes are the welded
+ *   vertices (collision.h ON PAIRS: the copies are meant to meet, so the pairs that become adjacent
+ *   are not contacts). A move that CCD cuts short is not made. First every class moves to its
+ *   midpoint m at once; when CCD stops that, class by class, in up to WR_GARMENT_WELD_SWEEPS
  *   sweeps, to the first of m, m + t (x_u − m) (x_u a copy's own position, t = 1/2, then 1) whose
  *   move completes (weld_moved counts those left off m; momentum is kept, the position is no longer
  *   the mass mean there). CCD checks every vertex–triangle and edge–edge pair, cloth against body
@@ -125,20 +125,20 @@
  *   through the body or the garment: a triangle pair can only start to intersect through such a
  *   contact. Each move is certified locally (collision.h ON LOCAL CCD: every position a copy can
  *   take lies in the box of its class's start positions and m, so the collision mesh is bound to
- *   those boxes once and a move costs the CCD of the primitives round its copies: the same alpha
- *   as a whole-mesh wr_collision_max_step, at a cost that does not grow with the garment).
- *   What CCD cannot see is a pair that shares a merged vertex (two faces folding over
- *   each other at the seam), so the welded mesh is then checked exactly against every body and,
- *   with self-contact, against itself. A class no move can merge (weld_blocked) or an
- *   intersection found (weld_left, triangle pairs) is WR_ERR_GEOMETRY from wr_garment_sim_weld (the
- *   barriers would lock it in) and the sim is left unwelded; wr_garment_sim_step then defers the
- *   weld (weld_deferred counts it, sewing goes on, the gap keeps closing) and retries next frame,
- *   so a weld never introduces an intersection. After desc.max_time (default
- *   WR_GARMENT_MAX_SEW_TIME) the step is WR_ERR_NOT_CONVERGED: naming the widest seam and its gap
- *   (item = seam) when a seam is still open, or (item = -1) saying that every seam is closed to
- *   the tolerance but the weld is still refused, with the last refusal's weld_blocked and
- *   weld_left. desc.no_weld = 1 keeps the springs for the whole run instead.
-
+ *   those boxes once and a move costs the CCD of the primitives round its copies: the same alpha as
+ *   a whole-mesh wr_collision_max_step, at a cost that does not grow with the garment). What CCD
+ *   cannot see is a pair that shares a merged vertex (two faces folding over each other at the
+ *   seam), so the welded mesh is then checked exactly against every body and, with self-contact,
+ *   against itself. A class no move can merge (weld_blocked) or an intersection found (weld_left,
+ *   triangle pairs) is WR_ERR_GEOMETRY from wr_garment_sim_weld (the barriers would lock it in) and
+ *   the sim is left unwelded; wr_garment_sim_step then defers the weld (weld_deferred counts it,
+ *   sewing goes on, the gap keeps closing) and retries next frame, so a weld never introduces an
+ *   intersection. After desc.max_time (default WR_GARMENT_MAX_SEW_TIME) the step is
+ *   WR_ERR_NOT_CONVERGED: naming the widest seam and its gap (item = seam) when a seam is still
+ *   open, or (item = -1) saying that every seam is closed to the tolerance but the weld is still
+ *   refused, with the last refusal's weld_blocked and weld_left. desc.no_weld = 1 keeps the springs
+ *   for the whole run instead.
+ *
  * ON GATHERING (shirring Style3D Sec. 4.2.2, quilt stitches Sec. 4.2.5; the paper only meshes them)
  *   A gathered line (wr_garment_line: the pattern-mesh vertices along it, wr_garment_line_chain)
  *   is an elastic thread stitched to every desc.stitch_edges-th vertex of the chain (default

@@ -36,23 +36,24 @@
  *     wr_poisson_free(&res);
  *
  * ON THE ALGORITHM
- *   Every point, fixed points first and then the samples in order of creation (first in, first out),
- *   takes one front step (Dunbar & Humphreys 2006, "A spatial data structure for fast Poisson-disk
- *   sample generation": boundary sampling, here with a radius that varies in space): new samples are
- *   placed on the circle of radius r(p) around p, in directions drawn uniformly from the arcs still
- *   free, until no direction is left. The neighbours' blocked arcs are cut all at once before the
- *   first draw (lens ends by rotation, no trigonometric call per neighbour; merged in a pseudo-angle
- *   and only the merged ends converted), so a draw is never wasted on a neighbour and the sizing is
- *   evaluated once per accepted sample at constant sizing (the law of the draws is that of drawing
- *   over the whole circle and redrawing on a conflict: uniform over the free directions). Where
- *   the sizing differs from r(p) the candidate moves along its direction to the mean-rule distance
- *   ρ = (r(p) + r(ρ))/2 (a fixed-point iteration, up to 3 moves, each one more evaluation: ~1.7
- *   evaluations per sample on a 20×-graded ramp), so the front also crosses steep transitions in
- *   either direction. The domain's segments near p cut the arcs outside the domain and within the
- *   clearance of a segment before any candidate is drawn. Work per sample is bounded (one
- *   neighbour query, a few arc cuts), so the fill is O(n); Bridson's annulus darts (k = 30 failures
- *   per retired sample) evaluated the sizing ~37 times per sample. The result is maximal up to the
- *   failed-candidate arcs: every point of the domain is within about r of a sample.
+ *   Every point, fixed points first and then the samples in order of creation (first in, first
+ *   out), takes one front step (Dunbar & Humphreys 2006, "A spatial data structure for fast
+ *   Poisson-disk sample generation": boundary sampling, here with a radius that varies in space):
+ *   new samples are placed on the circle of radius r(p) around p, in directions drawn uniformly
+ *   from the arcs still free, until no direction is left. The neighbours' blocked arcs are cut all
+ *   at once before the first draw (lens ends by rotation, no trigonometric call per neighbour;
+ *   merged in a pseudo-angle and only the merged ends converted), so a draw is never wasted on a
+ *   neighbour and the sizing is evaluated once per accepted sample at constant sizing (the law of
+ *   the draws is that of drawing over the whole circle and redrawing on a conflict: uniform over
+ *   the free directions). Where the sizing differs from r(p) the candidate moves along its
+ *   direction to the mean-rule distance ρ = (r(p) + r(ρ))/2 (a fixed-point iteration, up to 3
+ *   moves, each one more evaluation; counts per sample: docs/notes-mesher.md), so the front also
+ *   crosses steep transitions in either direction. The domain's segments near p cut the arcs
+ *   outside the domain and within the clearance of a segment before any candidate is drawn. Work
+ *   per sample is bounded (one neighbour query, a few arc cuts), so the fill is O(n) and the sizing
+ *   is evaluated a bounded number of times per sample (no dart throwing with a failure count). The
+ *   result is maximal up to the failed-candidate arcs: every point of the domain is within about r
+ *   of a sample.
  *
  * ON THE SIZING → RADIUS RELATION
  *   The sizing h(x) is the target mesh edge length. Each sample p carries the disk radius
@@ -62,8 +63,8 @@
  *   β = sqrt(2/√3) = 1.0746 (edge a, density 2/(√3 a²)), for a Poisson process β = 32/(9π) =
  *   1.1318. This sampler: κ = 0.885 (WR_POISSON_DENSITY) and β = 1.100, measured on the unit square
  *   (tests/test_poisson.c "density" and "calibration"), so radius_factor = sqrt(0.885)/1.100 = 0.855.
- *   The mean-rule packing sits nearer the lattice than Bridson's annulus darts (κ = 0.61, whose
- *   0.705 this replaces), which is why more of the radius is needed for the same edge length.
+ *   The front's mean-rule packing sits nearer the lattice than random dart throwing (higher κ), which
+ *   is why more of the radius is needed for the same edge length (figures: docs/notes-mesher.md).
  *
  * ON THE CONFLICT RULE (varying radius) AND THE CLEARANCE
  *   Two points p, q conflict when |p − q| < (r(p) + r(q)) / 2 (the symmetric "mean" rule; it is
@@ -78,8 +79,8 @@
  *
  * ON THE FIRST RING (samples next to the outer loop and the holes)
  *   Style3D Sec. 4.3 asks that "the average vertex spacing locally aligns with the sizing values";
- *   the radius factor does that for the interior, where Bridson's disks of radius r = 0.855 h pack
- *   at random and their mean Delaunay edge is h. Next to a loop the curve points are a regular row
+ *   the radius factor does that for the interior, where the disks of radius r = 0.855 h pack
+ *   irregularly and their mean Delaunay edge is h. Next to a loop the curve points are a regular row
  *   h apart, and the front places samples on the circle of the mean-rule distance around them: at
  *   0.855 h from two points h apart a sample sits 0.69 h above the curve (mean ring height 0.77 h,
  *   the equilateral apex is at 0.866 h) and its edges to the curve average 0.93 h. So a sample and
@@ -87,9 +88,9 @@
  *   equal sizing, and D (desc.fixed_distance) is calibrated like the radius factor, to the same
  *   target: the mean Delaunay edge from loop points to samples = h (D = 0.93: mean ring height
  *   0.85 h). Points of constraint lines keep the interior rule (r_f = c h): around shirring lines
- *   the sizing grows steeply and their edges to the samples are already at h (1.01 on the
- *   examples), and a fold's three lines 0.5 mm apart would add up their exclusions (measurements:
- *   docs/notes-mesher.md). Fixed points are still not tested against each other.
+ *   the sizing grows steeply and their edges to the samples are already at h, and a fold's three
+ *   lines 0.5 mm apart would add up their exclusions (measurements: docs/notes-mesher.md). Fixed
+ *   points are still not tested against each other.
  *
  * ON COVERAGE (what is, and is not, guaranteed)
  *   The front stops at a point when no free direction is left, so gaps are closed up to the

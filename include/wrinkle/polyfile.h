@@ -44,6 +44,13 @@
  *     if (wr_cdt_poly_parse(poly, NULL, "square.poly", &P, &dg) != WR_OK) { puts(dg.message); return 1; }
  *     printf("%d vertices, %d segments\n", P.n_points, P.n_segments);   // 4, 4 (0-based in P)
  *     wr_cdt_poly_free(&P);
+ *
+ * ON UNITS, OWNERSHIP AND THREADS
+ *   Coordinates, attributes and areas are read and written as the files hold them (no unit is
+ *   assumed; the triangulator's tolerances are in the same unit). Every parse/read/build fills a
+ *   caller-owned struct that the matching _free releases (a failed call leaves it zeroed, so _free
+ *   is safe either way). Text I/O assumes the "C" numeric locale (strtod / printf formats). No
+ *   global state.
  */
 #ifndef WRINKLE_POLYFILE_H
 #define WRINKLE_POLYFILE_H

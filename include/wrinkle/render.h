@@ -13,7 +13,7 @@
  *   software OpenGL (llvmpipe, threads, a driver stack) for the same picture. libpng is the
  *   reference PNG codec (Debian libpng-dev, zlib licence): the encoder (deflate, CRCs) is the part
  *   worth not writing by hand, so only the writer depends on it, behind WR_USE_LIBPNG — the
- *   rasteriser compiles without it, as pcg.h compiles without CHOLMOD. Without libpng,
+ *   rasteriser compiles without it, as spd.h compiles without CHOLMOD. Without libpng,
  *   wr_image_write_ppm writes a binary PPM (any viewer or `pnmtopng` converts it).
  *
  * API (create/free pairs: wr_image_create → wr_image_free; wr_render_panels → wr_image_free)

@@ -60,7 +60,8 @@
  *   soft direction, giving "fine weft, coarse warp". wr_resolution_metric turns the pair into the 2×2
  *   sizing metric (unit metric length ⇔ target edge length in every direction).
  *
- * ON THREADS: no global state; everything is a pure function of its arguments.
+ * MEMORY: nothing is allocated. THREADS: no global state; everything is a pure function of its
+ * arguments.
  */
 #ifndef WRINKLE_RESOLUTION_H
 #define WRINKLE_RESOLUTION_H

@@ -122,8 +122,8 @@
  *   curvature θ/h. Why rest altitudes: the Hessian then needs only ∇θ and ∇²θ of each hinge; the
  *   difference to deformed altitudes is O(strain × curvature), small for cloth. On a cylinder meshed
  *   with edges along the generators the face curvature is exactly 1/R; on an equilateral mesh the
- *   energy converges as O((a/R)²) (a the edge length; 7.6e-4, 1.9e-4, 4.8e-5 relative at a/R = 0.2,
- *   0.1, 0.05, axis along the rows; exact across them), about 5x closer than mid-edge (tests).
+ *   energy converges as O((a/R)²) (a the edge length), closer than mid-edge at the same mesh
+ *   (figures and the check: tests/test_shell.c, cylinder_dihedral_equilateral_mesh).
  *   Stateless: δθ = θ − θ̄ is wrapped into
  *   (−π, π], so the one non-smooth configuration is the fold exactly opposite the rest angle (two
  *   faces lying flat on each other for a flat rest): E is continuous there but its slope changes
@@ -169,14 +169,13 @@
  *   faces). Hessian blocks span the face's stencil (12 vertices on a regular patch, up to
  *   WR_SUBDIV_MAX_STENCIL), larger than newton.h can project: with project_spd != 0 (1, or
  *   WR_SHELL_PROJECT_LARGE as statics.h passes when its Newton step projects) they are projected PSD
- *   in the 15-D point space (x_v, x_w, x_vv, x_vw, x_ww), with 0 they are exact. Measured accuracy
- *   (tests/test_subdiv.c): on a valence-6 lattice bent to a cylinder the bending energy converges at
- *   O(h²), the membrane's at O(h⁴); where every face touches valence-4/8 vertices (union-jack grid) a
- *   +6.8 % bending bias stays under refinement — Loop surfaces do not reproduce quadratics near
- *   extraordinary vertices, a known limitation. The whole lattice sheet bent to the cylinder, boundary
- *   faces included, misses the closed form by a one-row boundary layer, O(h): with ghosts −6.7, −3.2,
- *   −1.5 % at 10, 20, 40 rows, with the linear boundary row −4.0, −1.9, −0.9 % (the ghosts' free-edge
- *   completion relaxes the imposed curvature at the edge); uniform strain is exact with both.
+ *   in the 15-D point space (x_v, x_w, x_vv, x_vw, x_ww), with 0 they are exact. Accuracy
+ *   (tests/test_subdiv.c; figures in docs/design-higher-order-shell.md, "Measured"): on a valence-6
+ *   lattice bent to a cylinder the bending energy converges at O(h²), the membrane's at O(h⁴); near
+ *   extraordinary vertices (valence 4/8) a bending bias stays under refinement — Loop surfaces do
+ *   not reproduce quadratics there, a known limitation. Boundary faces (ghosts or the linear row)
+ *   leave a one-row boundary layer, O(h) (the ghosts' free-edge completion relaxes an imposed
+ *   curvature at the edge); uniform strain is exact with both.
  * ON UNITS
  *   Y, E1, E2, G12 [Pa], h [m], B, B1, B2 [N·m], k_u, k_v, k_s [N/m], ρ [kg/m³], positions [m],
  *   energies [J], angles [rad].

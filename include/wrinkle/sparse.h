@@ -57,8 +57,8 @@
  *   the element matrix (an eliminated DOF), anything >= n is WR_ERR_INVALID_ARG.
  *
  * ON CACHED ASSEMBLY (Newton loops whose pattern does not change)
- *   wr_csr_add_element finds every entry by binary search: (3k)² searches per element, which was
- *   20–29 % of a whole TFT base solve (perf, statics.h on the TFW bench cases). For 3-DOF problems
+ *   wr_csr_add_element finds every entry by binary search: (3k)² searches per element, a large
+ *   share of a Newton solve's time (docs/notes-statics.md, "Assembly cache"). For 3-DOF problems
  *   whose pattern is made of full 3×3 vertex blocks (every shell / membrane Hessian here), the three
  *   scalar rows of a vertex have the same columns, so one offset per vertex pair locates a block in
  *   all three rows: entry (3a+i, 3b+j) of the element sits at rowptr[3·verts[a]+i] + off[a·k+b] + j.

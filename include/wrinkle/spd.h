@@ -3,6 +3,7 @@
  * smoothed-aggregation algebraic multigrid) or CHOLMOD's supernodal Cholesky, with Dirichlet
  * (fixed) DOFs, for the shell statics Newton solver and the TFW SQP (TFW Sec. 5) and the Style3D
  * Sec. 5 "PCG with 3×3 block diagonal preconditioning".
+ * wrinkle v0.1.0 — MIT licence (see LICENSE).
  *
  * (Formerly pcg.h, after its first backend; pcg.h remains as a compatibility include.)
  *
@@ -12,7 +13,6 @@
  *   independent of n), IC(0) with the blocked kernels for the buckling shell Hessians (where AMG's
  *   coarse spaces miss the non-smooth modes), 3×3 block-Jacobi as the Style3D paper's setting.
  *   Measured figures and their machine: docs/notes-statics.md (linear solvers) and bench/RESULTS.md.
- * wrinkle v0.1.0 — MIT licence (see LICENSE).
  *
  * DEPENDENCIES
  *   sparse.h, core.h (libc/libm). The CHOLMOD backend is compiled only when WR_USE_CHOLMOD is

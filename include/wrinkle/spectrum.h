@@ -85,10 +85,11 @@
  *   buffers with fftw_malloc (SIMD alignment); those do NOT go through WR_MALLOC/WR_FREE. Everything
  *   it allocates is freed before it returns.
  *
- * ON COST (measured, -O2, this project's 2-core box)
- *   wr_spectrum_analyze: 0.8 ms at N = 512, 15 ms at N = 4096, 0.3 s at N = 65536 — dominated by the
- *   ~62 least-squares fits of the wavelength_ls search (O(N) trig each), not by the FFT.
- *   wr_probe_create: 0.1 s for 180 000 faces; wr_probe_sample: ~0.1 µs per point.
+ * ON COST
+ *   wr_spectrum_analyze: one O(N log N) FFT plus ~62 least-squares fits of the wavelength_ls search
+ *   (O(N) trig each), which dominate. wr_probe_create: O(faces) (a uniform grid of
+ *   desc.cells_per_face cells per face over the rest domain); wr_probe_sample: O(1) per point for
+ *   evenly sized faces. Timings: docs/spectrum.md, "Measured accuracy".
  *
  * ON THREADS
  *   FFTW's planner (fftw_plan_*, fftw_destroy_plan) is NOT thread-safe, and wr_spectrum_analyze /

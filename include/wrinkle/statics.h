@@ -63,8 +63,9 @@
  *   newton.h's (ON SHIFT, ON PROJECTION AND THE EXACT PHASE): μ = shift.rel · mean diagonal,
  *   raised ×100 while the solve reports a non-SPD matrix, ×0.1 after full steps; per-element PSD
  *   projection (hessian.projection), the exact Hessian near the minimum, hessian.exact_retry.
- *   shift.raise (> 1) multiplies μ after backtracked steps: on the TFW sheared rectangle base it
- *   cut Newton steps 313 → 126 (R = 100) but stops elsewhere in a flat valley, so it is opt-in.
+ *   shift.raise (> 1) multiplies μ after backtracked steps: it changes the path, not the minimiser,
+ *   and can save many steps where full steps keep being cut, but where Π is flat the solve then
+ *   stops elsewhere in the valley, so it is opt-in (docs/notes-statics.md, "Shift").
  *
  * ON MEMBRANE CONTINUATION (continuation.membrane_ramp)
  *   A displacement-based thin shell under large rotation converges slowly with Newton: a step that
@@ -75,9 +76,10 @@
  *   continuation.factor, default 1e3), each stage warm-started from the last and solved to the
  *   relative tolerance WR_STATICS_RAMP_TOL (1e-6), and finally solves the real shell to grad_tol.
  *   The soft stages take full steps s0^{-1/3} times longer and the soft equilibrium is already
- *   nearly inextensible, so the last stage starts close to the solution (the L = 100 mm fabric
- *   cantilever: 28 Newton steps against 110). Bending is not scaled (it drives the shape). Off by
- *   default: for a buckling problem a softer membrane changes the wrinkle pattern the path selects.
+ *   nearly inextensible, so the last stage starts close to the solution (several times fewer Newton
+ *   steps on a fabric cantilever: docs/notes-statics.md). Bending is not scaled (it drives the
+ *   shape). Off by default: for a buckling problem a softer membrane changes the wrinkle pattern the
+ *   path selects.
  *   Choose s0 so that the soft stage's membrane strain stays small (s0 ≳ 100 × load per width /
  *   (Eh), strain ≲ 1 %). When the last stage ends WR_ERR_NOT_CONVERGED the solve restarts from the
  *   initial x without continuation (stats.ramp_fallback = 1, the discarded steps counted in
@@ -130,20 +132,22 @@
  * ON MOTIONS AND INCREMENTS
  *   A wr_motion moves a vertex set rigidly or by a simple deformation of its reference positions
  *   (the x given to the incremental solve): translate, stretch (uniaxial, or isotropic scale when
- *   axis = 0), simple shear, or twist (rotation about an axis line by an angle, so heights along the
- *   axis are kept). wr_statics_solve_incremental applies fraction t = k/n_inc of every motion for
- *   k = 1..n_inc and solves each increment to tolerance, warm-started from the previous equilibrium
- *   (free vertices start where the last increment left them, prescribed ones at their new targets).
- *   increments.predictor = 1 uses a secant predictor instead: from the second increment on, free
- *   vertices start at 2·x_{k−1} − x_{k−2} (x_0 = the reference), restarting from x_{k−1} when that
- *   prediction is infeasible (degenerate face, vertex in an obstacle); it did not pay on a buckling
- *   path, so it is not the default. Intermediate increments use increments.grad_tol (default
- *   stop.grad_tol); an intermediate WR_ERR_NOT_CONVERGED is tolerated (its best iterate warm-starts
- *   the next increment, counted in stats.increments_failed); the status of the last increment is
- *   returned. The perturbation is applied in the first increment only. increments.hybrid_switch =
- *   s > 0 solves each increment with the given projection to s/grad_tol times the tolerance, then with
- *   the exact Hessian to the tolerance; both phases stop relative to the projected phase's reference
- *   (ON STOPPING, at the increment's start), so the exact phase ends where a plain solve would.
+ *   axis = 0), simple shear, or twist (rotation about an axis line by an angle, so heights along
+ *   the axis are kept). wr_statics_solve_incremental applies fraction t = k/n_inc of every motion
+ *   for k = 1..n_inc and solves each increment to tolerance, warm-started from the previous
+ *   equilibrium (free vertices start where the last increment left them, prescribed ones at their
+ *   new targets). increments.predictor = 1 uses a secant predictor instead: from the second
+ *   increment on, free vertices start at 2·x_{k−1} − x_{k−2} (x_0 = the reference), restarting from
+ *   x_{k−1} when that prediction is infeasible (degenerate face, vertex in an obstacle); off by
+ *   default (on a buckling path it cost more Newton steps than it saved: docs/notes-statics.md,
+ *   "Increments"). Intermediate increments use increments.grad_tol (default stop.grad_tol); an
+ *   intermediate WR_ERR_NOT_CONVERGED is tolerated (its best iterate warm-starts the next
+ *   increment, counted in stats.increments_failed); the status of the last increment is returned.
+ *   The perturbation is applied in the first increment only. increments.hybrid_switch = s > 0
+ *   solves each increment with the given projection to s/grad_tol times the tolerance, then with
+ *   the exact Hessian to the tolerance; both phases stop relative to the projected phase's
+ *   reference (ON STOPPING, at the increment's start), so the exact phase ends where a plain solve
+ *   would.
  *
  * ON STABILITY (stability.check = 1; needs eigen.h's ARPACK + CHOLMOD)
  *   Newton stops at any stationary point, and a flat start under compression is one: every

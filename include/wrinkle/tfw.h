@@ -1,7 +1,7 @@
 /* wrinkle/tfw.h — the TFW pipeline on a given base surface: wrinkle-free set, initial guess, SQP for
  * amplitude and frequency, phase, Loop upsampling to the wrinkled surface — one call, with timings.
- * wrinkle v0.1.0 — MIT licence (see LICENSE). Needs core.h, mesh.h, sparse.h, pcg.h,
- * wrinkle_field.h (CHOLMOD through pcg.h when built with -DWR_USE_CHOLMOD=1); otherwise libc/libm.
+ * wrinkle v0.1.0 — MIT licence (see LICENSE). Needs core.h, mesh.h, shell.h, wrinkle_field.h (and
+ * its sparse.h, spd.h; CHOLMOD through spd.h when built with -DWR_USE_CHOLMOD=1); otherwise libc/libm.
  *
  * Paper: Chen et al., "Fine Wrinkling on Coarsely Meshed Thin Shells" (TFW, TOG 2021), Sec. 5 and
  * App. E.2–E.5. The base surface (Sec. 4.1: TFT membrane + quadratic bending) is computed by the

@@ -35,8 +35,10 @@
  *   filter, expansion arithmetic when it cannot decide). Hence the build needs what predicates.h
  *   needs: no -ffast-math / -Ofast, -ffp-contract=off, SSE2 arithmetic on 32-bit x86; the sign of
  *   every test is exact for coordinates within [1e-50, 1e50] (WR_CDT_MAX_COORD below refuses more).
- *   Degenerate input costs little: a 1000×1000 grid (every in-circle test of it cocircular, so
- *   every one goes to the exact stage) triangulates in 0.9 s CPU.
+ *   Degenerate input stays cheap: on grid-like input the exact stage keeps each coordinate
+ *   difference as one component (predicates.h), so a lattice whose every in-circle test is
+ *   cocircular costs a small constant factor over random points (figure: bench/RESULTS.md,
+ *   "bench_cdt").
  *
  * ON THE TRIANGULATION
  *   Input: points (n×2), segments (m×2 point indices, 0-based), hole seeds (h×2). Exact duplicate
@@ -74,10 +76,9 @@
  *   would overflow). Input segments that overlap on one line share their common subsegments, which
  *   carry the lowest of their ids (segment_id); wr_cdt_check accepts such pieces in each chain.
  *   Always call wr_cdt_free on the result, also after an error.
- *   Cost: O(n log n) expected for the Delaunay part (BRIO order, walks of O(1) expected length);
- *   1e6 uniform points: about 0.55 s of CPU on the 2-core reference box, 1.55x faster than CGAL 5.5
- *   Constrained_Delaunay_triangulation_2 (EPICK) in CPU time there; 1e5 points 1.82x, a 1000-gon with
- *   1e5 inner points 1.73x (bench/bench_cdt; figures in its header).
+ *   Cost: O(n log n) expected for the Delaunay part (BRIO order, walks of O(1) expected length),
+ *   linear for the clean-up. Timings against CGAL's and Triangle's triangulators: bench/RESULTS.md
+ *   ("bench_cdt", "bench_triangle") and bench/bench_cdt.cpp's header.
  *
  * ON THREADS
  *   No global state; distinct calls may run concurrently.
@@ -1774,9 +1775,9 @@ static int wr__cavity_encroached(wr__cdt *S, wr__ref *R, int32_t tt, int loc, in
         /* A candidate's cavity is a handful of triangles in a graded mesh. Hundreds mean huge,
          * skinny circumcircles (fuzzer finding cdt_wedge_cavity_quadratic: a 1e-3-wide wedge
          * 1e26 long, where the cavity grew as n/6 and each rejected candidate cost that many
-         * exact in-circle tests, ~n^2 overall: 10 s at 2000 vertices). The encroachment check
-         * over the cavity is a heuristic past that size anyway, so the search stops at 256:
-         * that input now finishes in 0.5 s; no input of the fuzz corpus changes its result. */
+         * exact in-circle tests, ~n^2 overall). The encroachment check over the cavity is a
+         * heuristic past that size anyway, so the search stops at 256; no input of the fuzz corpus
+         * changes its result (timings before and after: commit b84b16d). */
         if (R->cav.n > 256) break;
     }
     return 1;

@@ -1,8 +1,9 @@
 /* wrinkle/wrinkle_field.h — TFW wrinkle fields on a coarse base surface: the wrinkle-field energy,
  * the wrinkle-free face set, initialisation, an SQP solver for amplitude and frequency, phase
  * extraction and Loop upsampling to a wrinkled surface.
- * wrinkle v0.1.0 — MIT licence (see LICENSE). Needs libc and libm; linear solves go through
- * pcg.h (CHOLMOD when built with -DWR_USE_CHOLMOD=1, else PCG with IC(0)).
+ * wrinkle v0.1.0 — MIT licence (see LICENSE). Needs core.h, mesh.h, sparse.h, spd.h; otherwise
+ * libc and libm. Linear solves go through spd.h (CHOLMOD when built with -DWR_USE_CHOLMOD=1, else
+ * PCG with IC(0)).
  *
  * Paper: Chen, Chen, Kaufman, Skouras, Vouga, "Fine Wrinkling on Coarsely Meshed Thin Shells"
  * (TFW, TOG 2021): Sec. 3 (Eq. 19–27), Sec. 4.2 (Eq. 29, 30), Sec. 5 (W set, Sec. 5.1),
@@ -121,13 +122,13 @@
  *   wr_wf_set_amplitude_zero holds a = 0 on given vertices: a clamp keeps the sheet in the base
  *   surface, so Eq. 19's a cos φ n̂ must vanish there. The paper states no such condition; without it
  *   a clamped edge under TFT compression keeps a finite amplitude along the whole wrinkle, nothing
- *   opposes W_b^2 but W_s^3/W_s^4, and the wavelength grows (sheared rectangle: 10 instead of 25
- *   wrinkles). With it, the crest-tension part of W_s^1 (½ daᵀda along the tension) against W_b^2
- *   reproduces Cerda & Mahadevan's k⁴ = T∫a'²/(D∫a²) to 0.2 % (tests).
+ *   opposes W_b^2 but W_s^3/W_s^4, and the wavelength grows (figures: docs/notes-tfw-solver.md,
+ *   "Clamps and phase folds"). With it, the crest-tension part of W_s^1 (½ daᵀda along the
+ *   tension) against W_b^2 reproduces Cerda & Mahadevan's k⁴ = T∫a'²/(D∫a²) to 0.2 % (tests).
  *   E_wf is even in dφ face by face, so a curl-free ω may zig-zag (dφ reversing between neighbouring
- *   faces) at no cost; near 2 edges per wavelength the SQP does end in such states (stretched sheet:
- *   20–114 fold edges). wr_wf_count_folds finds them, wr_wf_unfold re-orients dφ (breadth-first from
- *   the largest amplitude) and projects to dω = 0; tfw.h then solves again from there.
+ *   faces) at no cost; near 2 edges per wavelength the SQP does end in such states (same notes).
+ *   wr_wf_count_folds finds them, wr_wf_unfold re-orients dφ (breadth-first from the largest
+ *   amplitude) and projects to dω = 0; tfw.h then solves again from there.
  *
  * ON THREADS
  *   No global state; a wr_wf is read-only after classify/set, so concurrent energy calls are fine.
@@ -138,7 +139,7 @@
 #include "core.h"
 #include "mesh.h"
 #include "sparse.h"
-#include "pcg.h"
+#include "spd.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -284,7 +285,7 @@ typedef struct wr_wf_iter_info {
 
 /* Defaults (App. E.3, applied relative where the paper's absolute numbers have no units):
  *   max_iter 1000, tol_energy 1e-10, tol_kkt 1e-8, tol_step 1e-10, hessian AUTO with
- *   hessian_switch 1e-2, solver: WR_SOLVER_AUTO (pcg.h), progress: none. */
+ *   hessian_switch 1e-2, solver: WR_SOLVER_AUTO (spd.h), progress: none. */
 typedef struct wr_wf_solve_desc {
     int32_t max_iter;
     double tol_energy, tol_kkt, tol_step;
