@@ -141,49 +141,35 @@ static int outputs_ok(const wr_simscene *sc, const char *scene_path, const char 
     return 1;
 }
 
+static void free_scene(void *p) { wr_simscene_free((wr_simscene *)p); }
+static void free_run(void *p) { wr_simscene_run_free((wr_simscene_run *)p); }
+
 int main(int argc, char **argv) {
     const char *scene_path = NULL, *out = NULL;
     double every = 0.0, duration = -1.0;
-    int quiet = 0, png = 0, i, k, rc;
+    int quiet = 0, png = 0, n_pos = 0, k;
     wr_simscene sc;
     wr_simscene_run run;
     sim_ctx ctx;
     wr_diag d;
     wr_status st;
     char summary[WR_PATH_MAX];
+    wr_cli_opt opts[5];
+    memset(opts, 0, sizeof opts);
+    opts[0].name = "--output", opts[0].alias = "-o", opts[0].kind = WR_CLI_STRING, opts[0].out = (void *)&out;
+    opts[1].name = "--every", opts[1].kind = WR_CLI_INTEGER, opts[1].out = &every, opts[1].lo = 1.0, opts[1].hi = 1e6;
+    opts[2].name = "--duration", opts[2].kind = WR_CLI_NUMBER, opts[2].out = &duration, opts[2].lo = 0.0,
+    opts[2].hi = 1e9; /* the frame count is checked against the scene's dt below */
+    opts[3].name = "--quiet", opts[3].kind = WR_CLI_FLAG, opts[3].out = &quiet;
+    opts[4].name = "--png", opts[4].kind = WR_CLI_FLAG, opts[4].out = &png;
     wr_cli_set_program(argv[0]);
-    for (i = 1; i < argc; ++i) {
-        if (wr_cli_is_flag(argv[i], "--help") || wr_cli_is_flag(argv[i], "-h")) {
-            usage(stdout);
-            return 0;
-        }
-        if (wr_cli_is_flag(argv[i], "--quiet")) {
-            quiet = 1;
-            continue;
-        }
-        if (wr_cli_is_flag(argv[i], "--png")) {
-            png = 1;
-            continue;
-        }
-        if ((k = wr_cli_integer(argc, argv, &i, "--every", 1.0, 1e6, &every)) != 0) {
-            if (k < 0) return WR_CLI_EXIT_USAGE;
-            continue;
-        }
-        if ((k = wr_cli_double(argc, argv, &i, "--duration", &duration)) != 0) {
-            if (k < 0) return WR_CLI_EXIT_USAGE;
-            if (!(duration >= 0.0)) {
-                wr_cli_error("--duration must be >= 0");
-                return WR_CLI_EXIT_USAGE;
-            }
-            continue;
-        }
-        if (wr_cli_scene_arg(argc, argv, &i, &scene_path, &out) < 0) return WR_CLI_EXIT_USAGE;
-    }
+    if ((k = wr_cli_parse(argc, argv, opts, 5, &scene_path, 1, &n_pos, usage)) <= 0) return k < 0 ? WR_CLI_EXIT_USAGE : 0;
     if (!wr_cli_scene_args_ok(scene_path, out)) return WR_CLI_EXIT_USAGE;
     if (wr_simscene_load(&sc, scene_path, &d) != WR_OK) {
         wr_cli_error("%s: %s", scene_path, d.message);
         return WR_CLI_EXIT_USAGE;
     }
+    wr_cli_defer(free_scene, &sc);
     {
         char what[WR_PATH_MAX + 48];
         snprintf(what, sizeof what, "%s: $.%s.material.thickness", scene_path, sc.is_garment ? "garment" : "cloth");
@@ -193,31 +179,25 @@ int main(int argc, char **argv) {
     if (duration >= 0.0) {
         if (duration / sc.dyn.time.dt > WR_SIMSCENE_MAX_FRAMES) {
             wr_cli_error("--duration %g s at dt %g s is more than %d frames", duration, sc.dyn.time.dt, WR_SIMSCENE_MAX_FRAMES);
-            wr_simscene_free(&sc);
-            return WR_CLI_EXIT_USAGE;
+            return wr_cli_exit(WR_CLI_EXIT_USAGE);
         }
         sc.duration = duration;
     }
     st = wr_simscene_run_create(&run, &sc, &d);
     if (st != WR_OK) {
         wr_cli_error("%s: %s", scene_path, d.message);
-        wr_simscene_free(&sc);
-        return st == WR_ERR_NOMEM ? 3 : WR_CLI_EXIT_USAGE;
+        return wr_cli_exit(st == WR_ERR_NOMEM ? WR_CLI_EXIT_FAILURE : WR_CLI_EXIT_USAGE);
     }
+    wr_cli_defer(free_run, &run);
     garment_plausibility(&sc, &run);
-    if (!outputs_ok(&sc, scene_path, out, run.n_frames_max - 1, sc.output_every, png)) {
-        rc = WR_CLI_EXIT_USAGE;
-        goto done;
-    }
+    if (!outputs_ok(&sc, scene_path, out, run.n_frames_max - 1, sc.output_every, png)) return wr_cli_exit(WR_CLI_EXIT_USAGE);
     if (make_dir(out) != 0) {
         wr_cli_error("cannot create output directory %s", out);
-        rc = 3;
-        goto done;
+        return wr_cli_exit(WR_CLI_EXIT_FAILURE);
     }
     if ((size_t)snprintf(summary, sizeof summary, "%s/summary.json", out) >= sizeof summary) {
         wr_cli_error("output path too long: %s", out);
-        rc = WR_CLI_EXIT_USAGE;
-        goto done;
+        return wr_cli_exit(WR_CLI_EXIT_USAGE);
     }
     memset(&ctx, 0, sizeof ctx);
     ctx.dir = out;
@@ -238,8 +218,7 @@ int main(int argc, char **argv) {
     if ((st = wr_simscene_write_frame(&run, out, 0, &d)) != WR_OK ||
         (png && (st = wr_simscene_write_png(&run, out, 0, &d)) != WR_OK) || (st = wr_simscene_write_bodies(&run, out, &d)) != WR_OK) {
         wr_cli_error("writing frame 0: %s", d.message);
-        rc = 3;
-        goto done;
+        return wr_cli_exit(WR_CLI_EXIT_FAILURE);
     }
     st = wr_simscene_run_frames(&run, on_frame, &ctx, &d);
     wr_cli_progress_end();
@@ -250,23 +229,16 @@ int main(int argc, char **argv) {
     }
     if (ctx.write_status != WR_OK) {
         wr_cli_error("writing frames: %s", ctx.write_diag.message);
-        rc = 3;
-        goto done;
+        return wr_cli_exit(WR_CLI_EXIT_FAILURE);
     }
     if (wr_simscene_write_summary(&run, summary, &d) != WR_OK) {
         wr_cli_error("writing %s: %s", summary, d.message);
-        rc = 3;
-        goto done;
+        return wr_cli_exit(WR_CLI_EXIT_FAILURE);
     }
     if (st != WR_OK) {
         fprintf(stderr, "%s: %s (frames before it and the summary are written)\n", wr_cli_program(), run.status_message);
-        rc = 1;
-        goto done;
+        return wr_cli_exit(1);
     }
     if (!quiet) fprintf(stderr, "  %d frames in %.2f s (setup %.2f s)\n", (int)run.n_frames, run.t_run, run.t_setup);
-    rc = 0;
-done:
-    wr_simscene_run_free(&run);
-    wr_simscene_free(&sc);
-    return wr_cli_exit(rc);
+    return wr_cli_exit(0);
 }

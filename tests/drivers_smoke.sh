@@ -126,6 +126,32 @@ for d in "$root"/bin/validate_*; do
     expect_fail "$n unknown option" env WRINKLE_RESULTS_DIR="$tmp/vres" "$d" --definitely-not-an-option
     [ -z "$(ls -A "$tmp/vres")" ] && ok || { bad "$n unknown option: a result written"; rm -rf "$tmp/vres"/*; }
 done
+# ... and a malformed or out-of-range value is refused the same way, never read as 0 into a run
+# (issue 18: atoi/atof made "--seeds x" a run that rewrote the result file). --quick first, and a
+# timeout, so that a value wrongly accepted costs a smoke run, not a full validation.
+# val_bad VALIDATOR OPTION VALUE : exit 2, one line that names the option (a run that fails for
+# another reason, e.g. its inputs are not found from the scratch directory, is no pass), nothing on
+# stdout, no result file
+val_bad() {
+    vd=$root/bin/$1; vn="$*"; shift
+    [ -x "$vd" ] || return 0
+    expect_fail "$vn" timeout 60 env WRINKLE_RESULTS_DIR="$tmp/vres" "$vd" --quick "$@"
+    grep -q -e "$1" "$tmp/err" && ok || { bad "$vn: the error does not name $1"; head -n 2 "$tmp/err"; }
+    [ -z "$(ls -A "$tmp/vres")" ] && ok || { bad "$vn: a result written"; rm -rf "$tmp/vres"/*; }
+}
+val_bad validate_curtain --res x
+val_bad validate_curtain --waves 1.5
+val_bad validate_sim_curtain --seconds -1
+val_bad validate_sim_curtain --case x
+val_bad validate_sim_garments --seconds 0
+val_bad validate_sim_garments --ref x
+val_bad validate_sim_shirring --seeds x
+val_bad validate_sim_shirring --seeds 0
+val_bad validate_sim_shirring --seed 1.5
+val_bad validate_sim_stretch --res-mask 8
+val_bad validate_sim_stretch --sheet x
+val_bad validate_statics_stability --grid 0.5
+val_bad validate_statics_stability --grid x
 
 B=$root/bin
 if [ -x "$B/wrinkle-resolution" ]; then

@@ -1,6 +1,7 @@
 /* Tests for the driver-side CLI helpers drivers/lib/cli.{h,c}. */
 #include <criterion/criterion.h>
 #include <math.h>
+#include <string.h>
 
 #include "cli.h"
 
@@ -113,4 +114,51 @@ Test(cli, integer_option) {
     cr_expect_eq(x, 10.0, "failures leave the output alone");
     i = 1; /* another option */
     cr_expect_eq(wr_cli_integer(argc, argv, &i, "--steps", 0.0, 5.0, &x), 0);
+}
+
+/* The shared argument loop the drivers and the validators use (issue 18: validators read options with
+ * atoi/atof, so "--seeds x" became 0 and a run rewrote its result file). A validator-like table:
+ * every bad value is refused (-1, the caller exits WR_CLI_EXIT_USAGE) and leaves the outputs alone;
+ * --help anywhere returns 0 before anything is parsed. */
+static int parse_usage_calls;
+static void parse_usage(FILE *f) {
+    (void)f;
+    ++parse_usage_calls;
+}
+
+static int parse_run(int argc, char **argv, double *seeds, double *seconds, int *quick, const char **only) {
+    const wr_cli_opt opts[] = {
+        {"--quick", NULL, WR_CLI_FLAG, quick, 0.0, 0.0, NULL},
+        {"--seeds", NULL, WR_CLI_INTEGER, seeds, 1.0, 8.0, NULL},
+        {"--seconds", NULL, WR_CLI_NUMBER, seconds, 1e-9, 1e4, NULL},
+        {"--garment", NULL, WR_CLI_STRING, (void *)only, 0.0, 0.0, NULL},
+    };
+    return wr_cli_parse(argc, argv, opts, 4, NULL, 0, NULL, parse_usage); /* errors: one line on stderr */
+}
+
+Test(cli, parse_table) {
+    char *good[] = {"prog", "--seeds", "5", "--seconds=0.4", "--quick", "--garment", "skirt"};
+    char *bad[][3] = {{"prog", "--seeds", "x"},       {"prog", "--seeds", "0"},     {"prog", "--seeds", "2.5"},
+                      {"prog", "--seeds", "9"},       {"prog", "--seconds", "-1"},  {"prog", "--seconds", "1e-6x"},
+                      {"prog", "--seconds", "nan"},   {"prog", "--garment", ""},    {"prog", "--bogus", "1"},
+                      {"prog", "stray", "--quick"}};
+    char *help[] = {"prog", "--seeds", "x", "--help"};
+    char *missing[] = {"prog", "--seeds"};
+    double seeds = 3.0, seconds = 2.0;
+    int quick = 0, k;
+    const char *only = NULL;
+    wr_cli_set_program("prog");
+    cr_expect_eq(parse_run(7, good, &seeds, &seconds, &quick, &only), 1);
+    cr_expect(seeds == 5.0 && seconds == 0.4 && quick == 1 && only && strcmp(only, "skirt") == 0);
+    for (k = 0; k < (int)(sizeof bad / sizeof bad[0]); ++k) {
+        seeds = 3.0, seconds = 2.0;
+        cr_expect_eq(parse_run(3, bad[k], &seeds, &seconds, &quick, &only), -1, "'%s %s' must be refused", bad[k][1],
+                     bad[k][2]);
+        cr_expect(seeds == 3.0 && seconds == 2.0, "'%s %s': a refused value leaves the output alone", bad[k][1], bad[k][2]);
+    }
+    cr_expect_eq(parse_run(2, missing, &seeds, &seconds, &quick, &only), -1, "an option without its value");
+    parse_usage_calls = 0;
+    cr_expect_eq(parse_run(4, help, &seeds, &seconds, &quick, &only), 0, "--help wins over a bad value before it");
+    cr_expect_eq(parse_usage_calls, 1);
+    cr_expect_eq(seeds, 3.0, "--help parses nothing");
 }

@@ -18,7 +18,9 @@ objects and the validators' objects. For module M (header include/wrinkle/M.h), 
 every implementation except M's (built once per M, cached by the headers' content) and the mutant
 rebuilds only M's implementation unit (M plus core.h, linked with --allow-multiple-definition so the
 core copies, identical, do not clash). A mutant in a header's declaration part (a macro, an inline)
-can reach other units, so it rebuilds everything. Each step has a timeout (3x the pristine run + 30 s
+can reach other units, so it rebuilds everything, and so does a mutant in a driver-side helper
+(drivers/lib/*.c, e.g. the CLI parsing every driver and validator shares: tests/test_cli.c kills
+it). Each step has a timeout (3x the pristine run + 30 s
 for tests).
 
 Mutant list format (one block per mutant; '#' starts a comment line):
@@ -183,10 +185,14 @@ class Tree:
             shutil.copy2(os.path.join(self.src, f), d)
         os.makedirs(self.obj, exist_ok=True)
         os.makedirs(os.path.join(scratch_build := os.path.join(self.dir, "build"), "test"), exist_ok=True)
-        for h in os.listdir(os.path.join(self.dir, "include", "wrinkle")):
-            p = os.path.join("include", "wrinkle", h)
-            with open(os.path.join(self.dir, p), encoding="utf-8") as f:
-                self.pristine[p] = f.read()
+        # the headers, and the driver-side helpers (drivers/lib/*.c: a mutant there rebuilds everything)
+        for d, ext in ((os.path.join("include", "wrinkle"), ".h"), (os.path.join("drivers", "lib"), ".c")):
+            for h in os.listdir(os.path.join(self.dir, d)):
+                p = os.path.join(d, h)
+                if not h.endswith(ext) or h == "impl.c":
+                    continue
+                with open(os.path.join(self.dir, p), encoding="utf-8") as f:
+                    self.pristine[p] = f.read()
 
     def restore(self, header):
         with open(os.path.join(self.dir, header), "w", encoding="utf-8") as f:

@@ -170,23 +170,34 @@ static inline int tp_cmp_cut(const void *a, const void *b) {
 
 /* Cut the surface `pos` (nv*3, e.g. the smooth Loop surface) by the plane z = z0; keep cut points
  * whose distance from the z axis through (cx, cy) is >= rho_min (separates the torus' outer
- * equator from its inner one); interpolate the per-vertex field along the cut edges; resample the
- * cut at n equal angles about that axis (linear, periodic). *n_pts = cut points used. */
-static inline wr_status tp_ring(const wr_mesh *m, const double *pos, const double *field, double z0, double cx, double cy,
-                         double rho_min, int32_t n, double *out, int32_t *n_pts, wr_diag *d) {
+ * equator from its inner one); the value at a cut point is the per-vertex `field` interpolated
+ * along the cut edge, or (field NULL) the radial component about the axis of disp − pos, both
+ * surfaces interpolated at the cut (disp: the wrinkled surface, same topology: the twisted tube's
+ * radial wrinkle displacement); resample the cut at n equal angles about that axis (linear,
+ * periodic). *n_pts = cut points used. Use tp_ring or tp_ring_radial. */
+static inline wr_status tp__ring(const wr_mesh *m, const double *pos, const double *field, const double *disp, double z0,
+                                 double cx, double cy, double rho_min, int32_t n, double *out, int32_t *n_pts, wr_diag *d) {
     tp_cut *pts = (tp_cut *)malloc(sizeof(tp_cut) * (size_t)m->ne + 16);
     int32_t e, np = 0, i, j;
     if (!pts) return wr_fail(d, WR_ERR_NOMEM, -1, "ring: out of memory");
     for (e = 0; e < m->ne; ++e) {
         int32_t a = m->edges[2 * e], b = m->edges[2 * e + 1];
-        double za = pos[3 * a + 2] - z0, zb = pos[3 * b + 2] - z0, t, px, py;
+        double za = pos[3 * a + 2] - z0, zb = pos[3 * b + 2] - z0, t, qx, qy, px, py, rho;
         if ((za < 0.0) == (zb < 0.0)) continue;
         t = za / (za - zb);
-        px = pos[3 * a] + t * (pos[3 * b] - pos[3 * a]) - cx;
-        py = pos[3 * a + 1] + t * (pos[3 * b + 1] - pos[3 * a + 1]) - cy;
-        if (!(hypot(px, py) >= rho_min) || !(hypot(px, py) > 0.0)) continue;
+        qx = pos[3 * a] + t * (pos[3 * b] - pos[3 * a]);
+        qy = pos[3 * a + 1] + t * (pos[3 * b + 1] - pos[3 * a + 1]);
+        px = qx - cx, py = qy - cy;
+        rho = hypot(px, py);
+        if (!(rho >= rho_min) || !(rho > 0.0)) continue;
         pts[np].th = atan2(py, px);
-        pts[np].val = field[a] + t * (field[b] - field[a]);
+        if (field) {
+            pts[np].val = field[a] + t * (field[b] - field[a]);
+        } else {
+            double wx = disp[3 * a] + t * (disp[3 * b] - disp[3 * a]);
+            double wy = disp[3 * a + 1] + t * (disp[3 * b + 1] - disp[3 * a + 1]);
+            pts[np].val = ((wx - qx) * px + (wy - qy) * py) / rho;
+        }
         ++np;
     }
     if (n_pts) *n_pts = np;
@@ -217,6 +228,19 @@ static inline wr_status tp_ring(const wr_mesh *m, const double *pos, const doubl
     }
     free(pts);
     return WR_OK;
+}
+
+/* the plane cut of `pos` at z = z0 with the per-vertex field interpolated (tp__ring) */
+static inline wr_status tp_ring(const wr_mesh *m, const double *pos, const double *field, double z0, double cx, double cy,
+                                double rho_min, int32_t n, double *out, int32_t *n_pts, wr_diag *d) {
+    return tp__ring(m, pos, field, NULL, z0, cx, cy, rho_min, n, out, n_pts, d);
+}
+
+/* the plane cut of `pos` at z = z0 with the radial component of disp − pos about the axis through
+ * (cx, cy) (tp__ring) */
+static inline wr_status tp_ring_radial(const wr_mesh *m, const double *pos, const double *disp, double z0, double cx,
+                                       double cy, double rho_min, int32_t n, double *out, int32_t *n_pts, wr_diag *d) {
+    return tp__ring(m, pos, NULL, disp, z0, cx, cy, rho_min, n, out, n_pts, d);
 }
 
 /* Periodic analysis of a closed signal of length `perimeter`; harmonics below kmin are excluded

@@ -378,41 +378,38 @@ typedef struct {
     char dat[NB + 2][4096], field[4096];
 } curtain_ctx;
 
-#define CURTAIN_USAGE "[--quick] [--res METRES] [--B NM] [--waves N] [--sides] [--young PA] [--rho KG_M2] [--height M] [--dump FILE]"
+static void curtain_usage(FILE *f) {
+    fprintf(f,
+            "usage: validate_curtain [--quick] [--res METRES] [--B NM] [--waves N] [--sides] [--young PA] [--rho KG_M2]\n"
+            "       [--height M] [--dump FILE]\n"
+            "  Style3D Fig. 17/18d hanging curtain (StVK statics): the lambda -> 2 lambda transition distance\n"
+            "  against the wrinklon length. Writes validation/results/curtain.json (or under\n"
+            "  $WRINKLE_RESULTS_DIR) and its figures; `make validate` runs it.\n");
+}
 
-/* Stage 1: options (and the globals they set); 0, 1 after --help (usage on stdout), or 2 with the
- * error on stderr. */
+/* Stage 1: options (and the globals they set), cli.h's strict parsing: 0, 1 after --help (usage on
+ * stdout), or 2 with the one-line error on stderr (a bad value must never become a run that
+ * rewrites the result file). */
 static int curtain_args(curtain_ctx *c, int argc, char **argv) {
-    double r = LAMBDA0 / 8.0, Bone = 0.0;
-    int i, nb = NB, quick = 0, heavy_check = 1;
+    double r = LAMBDA0 / 8.0, Bone = 0.0, waves = NWAVES;
+    int k, nb = NB, quick = 0, heavy_check = 1;
     double *Bs = c->Bs;
+    const wr_cli_opt opts[] = {
+        {"--quick", NULL, WR_CLI_FLAG, &quick, 0.0, 0.0, NULL},
+        {"--res", NULL, WR_CLI_NUMBER, &r, 1e-5, 1.0, NULL},
+        {"--B", NULL, WR_CLI_NUMBER, &Bone, 1e-15, 1.0, NULL},
+        {"--waves", NULL, WR_CLI_INTEGER, &waves, 2.0, 1000.0, NULL},
+        {"--sides", NULL, WR_CLI_FLAG, &g_sides, 0.0, 0.0, NULL},
+        {"--height", NULL, WR_CLI_NUMBER, &g_height, 1e-4, 100.0, NULL},
+        {"--young", NULL, WR_CLI_NUMBER, &g_young, 1.0, 1e13, NULL},
+        {"--rho", NULL, WR_CLI_NUMBER, &g_rho, 1e-6, 1e4, NULL},
+        {"--dump", NULL, WR_CLI_STRING, (void *)&g_dump, 0.0, 0.0, NULL},
+    };
     Bs[0] = 1.0e-6, Bs[1] = 2.0e-6, Bs[2] = 4.0e-6;
-    for (i = 1; i < argc; ++i) {
-        if (strcmp(argv[i], "--quick") == 0) quick = 1;
-        else if (strcmp(argv[i], "--res") == 0 && i + 1 < argc) r = atof(argv[++i]);
-        else if (strcmp(argv[i], "--B") == 0 && i + 1 < argc) Bone = atof(argv[++i]);
-        else if (strcmp(argv[i], "--waves") == 0 && i + 1 < argc) g_nwaves = atoi(argv[++i]);
-        else if (strcmp(argv[i], "--sides") == 0) g_sides = 1;
-        else if (strcmp(argv[i], "--height") == 0 && i + 1 < argc) g_height = atof(argv[++i]);
-        else if (strcmp(argv[i], "--young") == 0 && i + 1 < argc) g_young = atof(argv[++i]);
-        else if (strcmp(argv[i], "--rho") == 0 && i + 1 < argc) g_rho = atof(argv[++i]);
-        else if (strcmp(argv[i], "--dump") == 0 && i + 1 < argc) g_dump = argv[++i];
-        else if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
-            printf("usage: validate_curtain %s\n"
-                   "  Style3D Fig. 17/18d hanging curtain (StVK statics): the lambda -> 2 lambda transition distance\n"
-                   "  against the wrinklon length. Writes validation/results/curtain.json (or under\n"
-                   "  $WRINKLE_RESULTS_DIR) and its figures; `make validate` runs it.\n", CURTAIN_USAGE);
-            return 1;
-        } else {
-            fprintf(stderr, "validate_curtain: unknown or incomplete argument '%s'; usage: validate_curtain %s\n", argv[i],
-                    CURTAIN_USAGE);
-            return 2;
-        }
-    }
-    if (!(r > 0.0) || g_nwaves < 2 || !(g_young > 0.0) || !(g_rho > 0.0) || !(g_height > 0.0)) {
-        fprintf(stderr, "validate_curtain: invalid option value\n");
-        return 2;
-    }
+    wr_cli_set_program(argv[0]);
+    k = wr_cli_parse(argc, argv, opts, (int)(sizeof opts / sizeof opts[0]), NULL, 0, NULL, curtain_usage);
+    if (k <= 0) return k < 0 ? 2 : 1;
+    g_nwaves = (int)waves;
     if (quick) {
         r = LAMBDA0 / 5.0;
         nb = 1;

@@ -495,38 +495,49 @@ static void report(wr_vres *v, crun *runs, const int *idx, int n, const char *ca
     }
 }
 
+static void usage(FILE *f) {
+    fprintf(f, "usage: validate_sim_curtain [--quick] [--case N] [--cells N] [--seconds S] [--height-waves N] [--no-png]\n"
+               "       [--verbose] [--vtol V] [--pcg]\n"
+               "  Style3D Fig. 17/18d with the dynamic simulator; writes validation/results/sim_curtain.json\n"
+               "  (--quick: sim_curtain_quick.json, one coarse case, smoke only). --case N (0-%d): one case;\n"
+               "  --cells N (>= 3, default 4); --seconds S (> %g, default 6); --height-waves N (> 2, default 10);\n"
+               "  --vtol V: Newton velocity tolerance [m/s] (default 1e-2); --pcg: PCG block-Jacobi.\n",
+            NCASE - 1, RAMP_S);
+}
+
 int main(int argc, char **argv) {
     static crun runs[NCASE];
-    int i, quick = 0, only = -1, cells = 4, png = 1, n = 0, idx[NCASE];
-    double seconds = 6.0, hwaves = 10.0;
+    int i, quick = 0, only = -1, cells = 4, png = 1, n = 0, idx[NCASE], no_png = 0, pcg = 0;
+    double seconds = 6.0, hwaves = 10.0, case_arg = -1.0, cells_arg = 4.0;
     char buf[4096], path[4096];
     const char *case_id = "sim_curtain";
     wr_vres *v;
-    for (i = 1; i < argc; ++i) {
-        if (strcmp(argv[i], "--quick") == 0) quick = 1;
-        else if (strcmp(argv[i], "--case") == 0 && i + 1 < argc) only = atoi(argv[++i]);
-        else if (strcmp(argv[i], "--cells") == 0 && i + 1 < argc) cells = atoi(argv[++i]);
-        else if (strcmp(argv[i], "--seconds") == 0 && i + 1 < argc) seconds = atof(argv[++i]);
-        else if (strcmp(argv[i], "--height-waves") == 0 && i + 1 < argc) hwaves = atof(argv[++i]);
-        else if (strcmp(argv[i], "--no-png") == 0) png = 0;
-        else if (strcmp(argv[i], "--verbose") == 0) g_verbose = 1;
-        else if (strcmp(argv[i], "--vtol") == 0 && i + 1 < argc) g_vtol = atof(argv[++i]);
-        else if (strcmp(argv[i], "--pcg") == 0) g_linear = WR_SOLVER_PCG_BLOCK3;
-        else if (strcmp(argv[i], "--help") == 0) {
-            printf("usage: validate_sim_curtain [--quick] [--case N] [--cells N] [--seconds S] [--height-waves N] [--no-png]\n"
-                   "  Style3D Fig. 17/18d with the dynamic simulator; writes validation/results/sim_curtain.json\n"
-                   "  (--quick: sim_curtain_quick.json, one coarse case, smoke only).\n");
-            return 0;
-        } else {
-            fprintf(stderr, "validate_sim_curtain: unknown option '%s' (see --help)\n", argv[i]);
-            return 2;
-        }
+    /* cli.h's strict parsing: a malformed or out-of-range value is an error (exit 2), never a 0 that
+     * runs and rewrites the result file */
+    const wr_cli_opt opts[] = {
+        {"--quick", NULL, WR_CLI_FLAG, &quick, 0.0, 0.0, NULL},
+        {"--case", NULL, WR_CLI_INTEGER, &case_arg, 0.0, NCASE - 1, NULL},
+        {"--cells", NULL, WR_CLI_INTEGER, &cells_arg, 3.0, 1000.0, NULL},
+        {"--seconds", NULL, WR_CLI_NUMBER, &seconds, 1.0, 0.0, NULL},      /* lo > hi: checked below */
+        {"--height-waves", NULL, WR_CLI_NUMBER, &hwaves, 1.0, 0.0, NULL}, /* (open bounds) */
+        {"--no-png", NULL, WR_CLI_FLAG, &no_png, 0.0, 0.0, NULL},
+        {"--verbose", NULL, WR_CLI_FLAG, &g_verbose, 0.0, 0.0, NULL},
+        {"--vtol", NULL, WR_CLI_NUMBER, &g_vtol, 1e-12, 1e3, NULL},
+        {"--pcg", NULL, WR_CLI_FLAG, &pcg, 0.0, 0.0, NULL},
+    };
+    wr_cli_set_program(argv[0]);
+    if ((i = wr_cli_parse(argc, argv, opts, (int)(sizeof opts / sizeof opts[0]), NULL, 0, NULL, usage)) <= 0)
+        return i < 0 ? WR_CLI_EXIT_USAGE : 0;
+    if (!(seconds > RAMP_S && seconds <= 1e4)) {
+        wr_cli_error("--seconds must be in (%g, 10000] (past the gather ramp), got %g", RAMP_S, seconds);
+        return WR_CLI_EXIT_USAGE;
     }
-    if (cells < 3 || !(seconds > RAMP_S) || !(hwaves > 2.0) || only >= NCASE) {
-        fprintf(stderr, "validate_sim_curtain: invalid option value (--cells >= 3, --seconds > %g, --height-waves > 2, --case < %d)\n",
-                RAMP_S, NCASE);
-        return 2;
+    if (!(hwaves > 2.0 && hwaves <= 1e4)) {
+        wr_cli_error("--height-waves must be in (2, 10000], got %g", hwaves);
+        return WR_CLI_EXIT_USAGE;
     }
+    only = (int)case_arg, cells = (int)cells_arg, png = !no_png;
+    if (pcg) g_linear = WR_SOLVER_PCG_BLOCK3;
     if (quick) {
         case_id = "sim_curtain_quick";
         cells = 3, seconds = 3.0, only = 0, hwaves = 6.0;

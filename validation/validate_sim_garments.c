@@ -811,53 +811,51 @@ typedef struct gopts {
     const char *only; /* --garment: one garment */
 } gopts;
 
-static void usage(void) {
-    printf("usage: validate_sim_garments [--quick] [--seconds S] [--ref R] [--pcg] [--weld] [--no-floor] [--no-png]\n"
-           "       [--verbose] [--opt-only] [--weld-tol T] [--garment skirt|shirred]\n"
-           "  Style3D Table 1 / Fig. 19 with the dynamic simulator: garments at r_opt and at uniform 2.5 mm;\n"
-           "  writes validation/results/sim_garments.json (--quick: sim_garments_quick.json, smoke only;\n"
-           "  --garment G: sim_garments_G[_dhat][_opt][_weld][_quick].json).\n"
-           "  --weld: weld the seams (else springs all run) and report the weld; --opt-only: the r_opt run alone\n"
-           "  (cheap weld check: --garment skirt --opt-only --no-floor --weld --seconds 1).\n");
+static void usage(FILE *f) {
+    fprintf(f, "usage: validate_sim_garments [--quick] [--seconds S] [--ref R] [--pcg] [--weld] [--no-floor] [--no-png]\n"
+               "       [--verbose] [--opt-only] [--weld-tol T] [--dhat D] [--garment skirt|shirred]\n"
+               "  Style3D Table 1 / Fig. 19 with the dynamic simulator: garments at r_opt and at uniform 2.5 mm;\n"
+               "  writes validation/results/sim_garments.json (--quick: sim_garments_quick.json, smoke only;\n"
+               "  --garment G: sim_garments_G[_dhat][_opt][_weld][_quick].json).\n"
+               "  --seconds S in (0, %g] (default 2); --ref R >= 1e-3 m; --weld-tol T, --dhat D [m] (0: default).\n"
+               "  --weld: weld the seams (else springs all run) and report the weld; --opt-only: the r_opt run alone\n"
+               "  (cheap weld check: --garment skirt --opt-only --no-floor --weld --seconds 1).\n",
+            MAXFRAMES / 30.0);
 }
 
-/* Options into o and the driver's settings (g_*); -1 to go on, else the exit code. */
+/* Options into o and the driver's settings (g_*), parsed strictly by cli.h (a malformed or
+ * out-of-range value is an error, never a 0 that runs and rewrites the result file); -1 to go on,
+ * else the exit code. */
 static int parse_args(int argc, char **argv, gopts *o) {
-    int i;
+    int k, no_png = 0, no_floor = 0, weld = 0, pcg = 0;
+    const wr_cli_opt opts[] = {
+        {"--quick", NULL, WR_CLI_FLAG, &o->quick, 0.0, 0.0, NULL},
+        {"--seconds", NULL, WR_CLI_NUMBER, &o->seconds, 1e-9, MAXFRAMES / 30.0, NULL},
+        {"--no-png", NULL, WR_CLI_FLAG, &no_png, 0.0, 0.0, NULL},
+        {"--weld-tol", NULL, WR_CLI_NUMBER, &g_weld_tol, 0.0, 1.0, NULL},
+        {"--weld", NULL, WR_CLI_FLAG, &weld, 0.0, 0.0, NULL},
+        {"--dhat", NULL, WR_CLI_NUMBER, &g_dhat, 0.0, 1.0, NULL},
+        {"--garment", NULL, WR_CLI_STRING, (void *)&o->only, 0.0, 0.0, NULL},
+        {"--pcg", NULL, WR_CLI_FLAG, &pcg, 0.0, 0.0, NULL},
+        {"--opt-only", NULL, WR_CLI_FLAG, &g_opt_only, 0.0, 0.0, NULL},
+        {"--ref", NULL, WR_CLI_NUMBER, &g_ref, 1e-3, 1.0, NULL},
+        {"--no-floor", NULL, WR_CLI_FLAG, &no_floor, 0.0, 0.0, NULL},
+        {"--verbose", NULL, WR_CLI_FLAG, &g_verbose, 0.0, 0.0, NULL},
+    };
     memset(o, 0, sizeof *o);
-    o->png = o->floor_run = 1;
     o->seconds = 2.0;
-    for (i = 1; i < argc; ++i) {
-        if (strcmp(argv[i], "--quick") == 0) o->quick = 1;
-        else if (strcmp(argv[i], "--seconds") == 0 && i + 1 < argc) o->seconds = atof(argv[++i]);
-        else if (strcmp(argv[i], "--no-png") == 0) o->png = 0;
-        else if (strcmp(argv[i], "--weld-tol") == 0 && i + 1 < argc) g_weld_tol = atof(argv[++i]);
-        else if (strcmp(argv[i], "--weld") == 0) g_no_weld = 0;
-        else if (strcmp(argv[i], "--dhat") == 0 && i + 1 < argc) g_dhat = atof(argv[++i]);
-        else if (strcmp(argv[i], "--garment") == 0 && i + 1 < argc) o->only = argv[++i];
-        else if (strcmp(argv[i], "--pcg") == 0) g_linear = WR_SOLVER_PCG_BLOCK3;
-        else if (strcmp(argv[i], "--opt-only") == 0) g_opt_only = 1;
-        else if (strcmp(argv[i], "--ref") == 0 && i + 1 < argc) g_ref = atof(argv[++i]);
-        else if (strcmp(argv[i], "--no-floor") == 0) o->floor_run = 0;
-        else if (strcmp(argv[i], "--verbose") == 0) g_verbose = 1;
-        else if (strcmp(argv[i], "--help") == 0 || strcmp(argv[i], "-h") == 0) {
-            usage();
-            return 0;
-        } else {
-            fprintf(stderr, "validate_sim_garments: unknown option '%s' (see --help)\n", argv[i]);
-            return 2;
-        }
-    }
-    if (!(o->seconds > 0.0) || o->seconds * 30.0 > MAXFRAMES || !(g_ref >= 1e-3)) {
-        fprintf(stderr, "validate_sim_garments: --seconds must be in (0, %g], --ref >= 1e-3 m\n", MAXFRAMES / 30.0);
-        return 2;
-    }
+    wr_cli_set_program(argv[0]);
+    if ((k = wr_cli_parse(argc, argv, opts, (int)(sizeof opts / sizeof opts[0]), NULL, 0, NULL, usage)) <= 0)
+        return k < 0 ? WR_CLI_EXIT_USAGE : 0;
+    o->png = !no_png, o->floor_run = !no_floor;
+    if (weld) g_no_weld = 0;
+    if (pcg) g_linear = WR_SOLVER_PCG_BLOCK3;
     if (o->only) {
         int gi;
         for (gi = 0; gi < NGARMENT && strcmp(GARMENTS[gi].name, o->only) != 0; ++gi) {}
         if (gi == NGARMENT) {
-            fprintf(stderr, "validate_sim_garments: no garment '%s' (skirt, shirred)\n", o->only);
-            return 2;
+            wr_cli_error("no garment '%s' (skirt, shirred)", o->only);
+            return WR_CLI_EXIT_USAGE;
         }
     }
     if (o->quick) o->seconds = QUICK_SECONDS, o->floor_run = 0;

@@ -42,6 +42,7 @@
 #include <time.h>
 
 #include "wrinkle/wrinkle.h"
+#include "cli.h"
 #include "scene.h"
 #include "vresult.h"
 
@@ -395,36 +396,38 @@ static int run_row(const sheet *S, srow *R) {
 
 static int sheet_report(wr_vres *v, const sheet *S, const srow *rows, int nrow, int quick, int res_mask, int with_statics);
 
+static void usage(FILE *f) {
+    fprintf(f, "usage: validate_sim_stretch [--quick] [--sheet 0|1] [--res-mask M] [--no-statics] [--no-png]\n"
+               "  Style3D Fig. 16 with dynamics and statics on Delaunay and lattice meshes (0/15/30 deg);\n"
+               "  res-mask bits (1-7, default 7): 1 = 2.5 mm, 2 = r_opt, 4 = 5 mm. Writes\n"
+               "  validation/results/sim_stretch_tfw.json and sim_stretch_ropt38.json\n"
+               "  (--quick: sim_stretch_quick.json: TFW sheet, 5 mm, dynamics, every mesh kind).\n");
+}
+
 int main(int argc, char **argv) {
     static srow rows[2 * NKIND * NRES * 2];
     sheet S[2];
     wr_resolution_model mdl = wr_resolution_model_paper();
     wr_diag d;
     int i, r, k, s, dy, quick = 0, nrow = 0, only_sheet = -1, png = 1, with_statics = 1, res_mask = 7, failed = 0;
+    int no_statics = 0, no_png = 0;
+    double sheet_arg = -1.0, mask_arg = 7.0;
     char buf[512];
     const char *case_id;
     wr_vres *v;
-    for (i = 1; i < argc; ++i) {
-        if (strcmp(argv[i], "--quick") == 0) quick = 1;
-        else if (strcmp(argv[i], "--sheet") == 0 && i + 1 < argc) only_sheet = atoi(argv[++i]);
-        else if (strcmp(argv[i], "--res-mask") == 0 && i + 1 < argc) res_mask = atoi(argv[++i]);
-        else if (strcmp(argv[i], "--no-statics") == 0) with_statics = 0;
-        else if (strcmp(argv[i], "--no-png") == 0) png = 0;
-        else if (strcmp(argv[i], "--help") == 0) {
-            printf("usage: validate_sim_stretch [--quick] [--sheet 0|1] [--res-mask M] [--no-statics] [--no-png]\n"
-                   "  Style3D Fig. 16 with dynamics and statics on Delaunay and lattice meshes (0/15/30 deg);\n"
-                   "  res-mask bits: 1 = 2.5 mm, 2 = r_opt, 4 = 5 mm. Writes validation/results/sim_stretch_tfw.json and\n  sim_stretch_ropt38.json\n"
-                   "  (--quick: sim_stretch_quick.json: TFW sheet, 5 mm, dynamics, every mesh kind).\n");
-            return 0;
-        } else {
-            fprintf(stderr, "validate_sim_stretch: unknown option '%s' (see --help)\n", argv[i]);
-            return 2;
-        }
-    }
-    if (only_sheet > 1 || res_mask < 1 || res_mask > 7) {
-        fprintf(stderr, "validate_sim_stretch: invalid option value (--sheet 0|1, --res-mask 1..7)\n");
-        return 2;
-    }
+    /* cli.h's strict parsing: a malformed or out-of-range value is an error (exit 2), never a 0 that
+     * runs and rewrites the result file */
+    const wr_cli_opt opts[] = {
+        {"--quick", NULL, WR_CLI_FLAG, &quick, 0.0, 0.0, NULL},
+        {"--sheet", NULL, WR_CLI_INTEGER, &sheet_arg, 0.0, 1.0, NULL},
+        {"--res-mask", NULL, WR_CLI_INTEGER, &mask_arg, 1.0, 7.0, NULL},
+        {"--no-statics", NULL, WR_CLI_FLAG, &no_statics, 0.0, 0.0, NULL},
+        {"--no-png", NULL, WR_CLI_FLAG, &no_png, 0.0, 0.0, NULL},
+    };
+    wr_cli_set_program(argv[0]);
+    if ((i = wr_cli_parse(argc, argv, opts, (int)(sizeof opts / sizeof opts[0]), NULL, 0, NULL, usage)) <= 0)
+        return i < 0 ? WR_CLI_EXIT_USAGE : 0;
+    only_sheet = (int)sheet_arg, res_mask = (int)mask_arg, with_statics = !no_statics, png = !no_png;
     S[0].name = "TFW", S[0].h = 1.0e-4;
     S[1].name = "r_opt 3.8", S[1].h = cbrt(12.0 * (1.0 - POISSON * POISSON) * 5.75e-14);
     for (s = 0; s < 2; ++s)

@@ -32,6 +32,7 @@
 #include "scene.h"
 #include "stretch_probe.h"
 #include "vresult.h"
+#include "vargs.h"
 
 #define SCENE_PATH "examples/scenes/stretch.json"
 #define FLAT_AMPLITUDE 1.0e-6 /* m, h/100 (validate_stretch) */
@@ -142,17 +143,12 @@ int main(int argc, char **argv) {
     lrow rows[8];
     int quick = 0, i, n = 0, failed;
     wr_vres *v;
-    for (i = 1; i < argc; ++i) {
-        if (!strcmp(argv[i], "--quick")) quick = 1;
-        else if (!strcmp(argv[i], "--help")) {
-            printf("usage: validate_statics_loop [--quick]\n"
-                   "  the stretch test with the Loop-subdivision element (issue 15); writes\n"
-                   "  validation/results/statics_loop.json. --quick: the 2.5 mm Delaunay pair only.\n");
-            return 0;
-        } else {
-            fprintf(stderr, "validate_statics_loop: unknown option %s (try --help)\n", argv[i]);
-            return 2;
-        }
+    {
+        static const char *const flags[] = {"--quick", NULL};
+        int rc = wr_vargs(argc, argv, "validate_statics_loop",
+                          "The stretch test with the Loop-subdivision element (issue 15).", "statics_loop", flags,
+                          "  --quick: the 2.5 mm Delaunay pair only.\n", &quick);
+        if (rc >= 0) return rc;
     }
     if (wr_scene_load(&base, SCENE_PATH, &d) != WR_OK) {
         fprintf(stderr, "validate_statics_loop: %s\n", d.message);

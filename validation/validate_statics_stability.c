@@ -36,6 +36,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "cli.h"
 #include "scene.h"
 #include "stretch_probe.h"
 #include "vresult.h"
@@ -195,6 +196,14 @@ static void metrics_pair(wr_vres *v, const srow *off, const srow *on, const char
                   on->ok && off->ok && on->energy <= off->energy + ENERGY_SLACK * fabs(off->energy));
 }
 
+static void usage(FILE *f) {
+    fprintf(f, "usage: validate_statics_stability [--quick] [--big] [--grid MM] [--only-grid]\n"
+               "  the stretch test with and without statics.h's stability test (issue 15);\n"
+               "  writes validation/results/statics_stability.json. --quick: Delaunay 2.5 mm only;\n"
+               "  --big: adds the 0.8 mm (~49k vertex) Delaunay mesh; --grid MM: the grid case's resolution\n"
+               "  in (0.5, 50) (default 5 mm); --only-grid: run the grid rows only (no result file).\n");
+}
+
 int main(int argc, char **argv) {
     wr_scene base;
     wr_diag d;
@@ -205,27 +214,23 @@ int main(int argc, char **argv) {
     static const char *const dlab[] = {"2.5 mm", "1.8 mm", "1.3 mm", "1.0 mm", "0.8 mm"};
     int quick = 0, big = 0, only_grid = 0, i, n = 0, nd, failed;
     double grid_mm = 0.0;
+    int grid_given = 0;
     wr_vres *v;
-    for (i = 1; i < argc; ++i) {
-        if (!strcmp(argv[i], "--quick")) quick = 1;
-        else if (!strcmp(argv[i], "--big")) big = 1;
-        else if (!strcmp(argv[i], "--grid") && i + 1 < argc) {
-            grid_mm = atof(argv[++i]);
-            if (!(grid_mm > 0.5 && grid_mm < 50.0)) {
-                fprintf(stderr, "validate_statics_stability: --grid %s: a grid resolution in mm in (0.5, 50)\n", argv[i]);
-                return 2;
-            }
-        } else if (!strcmp(argv[i], "--only-grid")) only_grid = 1;
-        else if (!strcmp(argv[i], "--help")) {
-            printf("usage: validate_statics_stability [--quick] [--big] [--grid MM] [--only-grid]\n"
-                   "  the stretch test with and without statics.h's stability test (issue 15);\n"
-                   "  writes validation/results/statics_stability.json. --quick: Delaunay 2.5 mm only;\n"
-                   "  --big: adds the 0.8 mm (~49k vertex) Delaunay mesh; --grid MM: the grid case's resolution\n"
-                   "  (default 5 mm); --only-grid: run the grid rows only (no result file).\n");
-            return 0;
-        } else {
-            fprintf(stderr, "validate_statics_stability: unknown option %s (try --help)\n", argv[i]);
-            return 2;
+    {
+        /* cli.h's strict parsing: a malformed or out-of-range value is an error (exit 2), never a 0
+         * that runs and rewrites the result file */
+        const wr_cli_opt opts[] = {
+            {"--quick", NULL, WR_CLI_FLAG, &quick, 0.0, 0.0, NULL},
+            {"--big", NULL, WR_CLI_FLAG, &big, 0.0, 0.0, NULL},
+            {"--grid", NULL, WR_CLI_NUMBER, &grid_mm, 1.0, 0.0, &grid_given}, /* lo > hi: the open range below */
+            {"--only-grid", NULL, WR_CLI_FLAG, &only_grid, 0.0, 0.0, NULL},
+        };
+        wr_cli_set_program(argv[0]);
+        if ((i = wr_cli_parse(argc, argv, opts, (int)(sizeof opts / sizeof opts[0]), NULL, 0, NULL, usage)) <= 0)
+            return i < 0 ? WR_CLI_EXIT_USAGE : 0;
+        if (grid_given && !(grid_mm > 0.5 && grid_mm < 50.0)) {
+            wr_cli_error("--grid must be in (0.5, 50) mm, got '%g'", grid_mm);
+            return WR_CLI_EXIT_USAGE;
         }
     }
     if (wr_scene_load(&base, SCENE_PATH, &d) != WR_OK) {

@@ -51,66 +51,6 @@ typedef struct row {
     wr_status s_base, s_tfw, s_probe;
 } row;
 
-typedef struct cutpt {
-    double th, val;
-} cutpt;
-
-static int cmp_cut(const void *a, const void *b) {
-    double x = ((const cutpt *)a)->th, y = ((const cutpt *)b)->th;
-    return x < y ? -1 : x > y;
-}
-
-/* radial displacement around the plane z = z0, resampled at n equal angles */
-static wr_status ring_signal(const wr_mesh *fine, const double *smooth, double z0, int32_t n, double *out, wr_diag *d) {
-    cutpt *pts = (cutpt *)malloc(sizeof(cutpt) * (size_t)fine->ne * 1 + 16);
-    int32_t e, np = 0, i, j;
-    if (!pts) return wr_fail(d, WR_ERR_NOMEM, -1, "ring: out of memory");
-    for (e = 0; e < fine->ne; ++e) {
-        int32_t a = fine->edges[2 * e], b = fine->edges[2 * e + 1];
-        double za = smooth[3 * a + 2] - z0, zb = smooth[3 * b + 2] - z0, t, p[3], w[3], rr;
-        int c;
-        if ((za < 0.0) == (zb < 0.0)) continue;
-        t = za / (za - zb);
-        for (c = 0; c < 3; ++c) {
-            p[c] = smooth[3 * a + c] + t * (smooth[3 * b + c] - smooth[3 * a + c]);
-            w[c] = fine->pos[3 * a + c] + t * (fine->pos[3 * b + c] - fine->pos[3 * a + c]);
-        }
-        rr = hypot(p[0], p[1]);
-        if (!(rr > 0.0)) continue;
-        pts[np].th = atan2(p[1], p[0]);
-        pts[np].val = ((w[0] - p[0]) * p[0] + (w[1] - p[1]) * p[1]) / rr;
-        ++np;
-    }
-    if (np < 8) {
-        free(pts);
-        return wr_fail(d, WR_ERR_GEOMETRY, -1, "ring: only %d cut points", (int)np);
-    }
-    qsort(pts, (size_t)np, sizeof(cutpt), cmp_cut);
-    for (i = 0, j = 0; i < n; ++i) {
-        double th = -PI_ + 2.0 * PI_ * i / n, t0, t1, v0, v1;
-        while (j < np && pts[j].th < th) ++j;
-        /* neighbours j-1 and j (periodic) */
-        if (j == 0 || j == np) {
-            t0 = pts[np - 1].th - 2.0 * PI_;
-            v0 = pts[np - 1].val;
-            t1 = pts[0].th;
-            v1 = pts[0].val;
-            if (j == np) {
-                t0 = pts[np - 1].th;
-                t1 = pts[0].th + 2.0 * PI_;
-            }
-        } else {
-            t0 = pts[j - 1].th;
-            v0 = pts[j - 1].val;
-            t1 = pts[j].th;
-            v1 = pts[j].val;
-        }
-        out[i] = t1 > t0 ? v0 + (v1 - v0) * (th - t0) / (t1 - t0) : v0;
-    }
-    free(pts);
-    return WR_OK;
-}
-
 /* The kit's Delaunay tube: mesher.h on the unrolled panel [0, 2πR] × [0, H] at a uniform resolution,
  * left and right sides sewn (desc.sew: one vertex per seam pair, corner_rest = the unrolled pattern),
  * then rolled up: (u, v) → (R cos(u/R), R sin(u/R), v). nu_eq: circumferential edges ≈ 2πR / r. */
@@ -291,7 +231,8 @@ static void run_case(row *rw, int keep_profile, double *profile) {
         if (zero && sig && wr_wf_create(&wf, &m, x, &mat, &d) == WR_OK) {
             wr_wf_set_wrinkle_free(&wf, r.wfree);
             if (wr_wf_upsample(&wf, zero, r.phi, &td.upsample, &sm, NULL, &d) == WR_OK) {
-                rw->s_probe = ring_signal(&r.wrinkled, sm.pos, 0.5 * H_CYL, NSAMP, sig, &d);
+                /* the radial displacement (wrinkled − smooth)·r̂ around the plane z = H/2 */
+                rw->s_probe = tp_ring_radial(&r.wrinkled, sm.pos, r.wrinkled.pos, 0.5 * H_CYL, 0.0, 0.0, 0.0, NSAMP, sig, NULL, &d);
                 if (!rw->s_probe) {
                     wr_spectrum_result sr;
                     rw->s_probe = wr_spectrum_analyze(sig, NSAMP, 2.0 * PI_ * R_CYL / NSAMP, 1, NULL, &sr, NULL, 0, &d);
