@@ -1889,8 +1889,8 @@ static int wr__fix_bad(wr__cdt *S, wr__ref *R, const wr__bad *bt) {
  *             stars is fanned from it and made Delaunay by Lawson flips inside the polygon.
  * Both build a wr__plan (the region's triangles, its boundary ring, the new triangles), and
  * wr__plan_valid accepts it only when it tiles the ring (counter-clockwise triangles, every ring
- * edge used once, every inner edge twice), every unconstrained edge inside and on the ring is
- * locally Delaunay (so the whole mesh stays a CDT: Delaunay's lemma) and every new triangle meets
+ * edge used once, every inner edge twice), every unconstrained edge inside (by construction) and on
+ * the ring is locally Delaunay (so the whole mesh stays a CDT: Delaunay's lemma) and every new triangle meets
  * the angle and size bounds (wr__tri_ok).
  * Cost: rings of at most WR__RING_CAP vertices, O(cap^2) work per plan, each free vertex tried once
  * per pass, at most WR__REMOVE_PASSES passes: linear in the mesh size. Each accepted operation
@@ -1904,7 +1904,6 @@ typedef struct wr__plan {
     int32_t nbr[3 * WR__RING_CAP]; /* across new corner 3i+e: the new corner 3j+f facing the same edge,
                                     * or -1 - k for ring edge k (kept as the plan is built) */
     int n, ns, nt;
-    int lawson; /* inner edges locally Delaunay by construction (Lawson's flips ended) */
 } wr__plan;
 
 /* Move triangle `from` into slot `to` (overwriting it), relinking its neighbours. */
@@ -1972,14 +1971,29 @@ static int wr__tri_ok(const wr__cdt *S, const wr__ref *R, const int32_t *v, int3
     return !wr__is_bad_v(S, R, v, reg, NULL);
 }
 
+/* Can triangle (a, b, c) pass wr__tri_ok's angle test, in any vertex order? The same test with the
+ * bound lowered by 1e-12 (the rounding of sin² near the bound is ~1e-14 whatever the order). */
+static int wr__angle_may_pass(const wr__cdt *S, const wr__ref *R, int32_t a, int32_t b, int32_t c) {
+    const double *p = WR__P(S, a), *q = WR__P(S, b), *r = WR__P(S, c);
+    double a2 = wr_orient2d_fast(p, q, r), e0, e1, e2, lo;
+    e0 = (q[0] - r[0]) * (q[0] - r[0]) + (q[1] - r[1]) * (q[1] - r[1]);
+    e1 = (r[0] - p[0]) * (r[0] - p[0]) + (r[1] - p[1]) * (r[1] - p[1]);
+    e2 = (p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]);
+    lo = e1 < e2 ? e1 : e2;
+    lo = e0 < lo ? e0 : lo;
+    return !(a2 * a2 < (R->sin2 - 1e-12) * (e0 * e1 * e2 / lo));
+}
+
 /* Corner c of a new triangle faces h (a new corner, or -1 - k for ring edge k); both sides. */
 static void wr__plan_nbr(wr__plan *P, int32_t c, int32_t h) {
     P->nbr[c] = h;
     if (h >= 0) P->nbr[h] = c;
 }
 
-/* See the section comment. The tiling is read from nbr (symmetric, each ring edge used once); the
- * inner edges of a Lawson plan were tested when its flips ended. */
+/* See the section comment. The tiling is read from nbr (symmetric, each ring edge used once). The
+ * inner edges are locally Delaunay by construction: a collapse's when its flips end; a removal's
+ * because each ear's circumcircle held none of the vertices left when it was cut, so the apex across
+ * its cut edge (cut later) is outside it (the exact incircle sign is the same seen from either side). */
 static int wr__plan_valid(const wr__cdt *S, const wr__ref *R, const wr__plan *P, int32_t reg) {
     int i, e, open = 0;
     uint32_t used = 0;
@@ -1994,8 +2008,6 @@ static int wr__plan_valid(const wr__cdt *S, const wr__ref *R, const wr__plan *P,
             if (h >= 0) { /* inner edge x -> y: the other triangle holds y -> x */
                 const int32_t *o = P->tri + 3 * (h / 3);
                 if (P->nbr[h] != 3 * i + e || o[wr__n1[h % 3]] != y || o[wr__n2[h % 3]] != x) return 0;
-                if (P->lawson || h / 3 > i) continue; /* each inner edge once, from its higher triangle */
-                if (wr_incircle(a, b, c, WR__P(S, o[h % 3])) > 0.0) return 0;
                 continue;
             }
             h = -1 - h; /* ring edge h, to be used once */
@@ -2069,13 +2081,17 @@ static int wr__plan_star(const wr__cdt *S, int32_t v, wr__plan *P, int cap) {
  * lab[i] names what lies across the polygon edge idx[i] -> idx[i+1] (a ring edge or a cut ear). */
 static int wr__plan_removal(const wr__cdt *S, const wr__ref *R, wr__plan *P, int32_t reg) {
     int32_t idx[WR__RING_CAP], lab[WR__RING_CAP], *t;
-    int n, i, j;
+    int n, i, j, ears = 0;
+    /* every triangulation of a polygon of four or more vertices has two ears (r_i-1, r_i, r_i+1):
+     * fewer than two corners whose ear meets the angle bound, and the plan fails */
+    for (i = 0; i < P->n && ears < 2 && P->n > 3; ++i)
+        ears += wr__angle_may_pass(S, R, P->ring[(i + P->n - 1) % P->n], P->ring[i], P->ring[(i + 1) % P->n]);
+    if (P->n > 3 && ears < 2) return 0;
     for (i = 0; i < P->n; ++i) {
         idx[i] = P->ring[i];
         lab[i] = -1 - i;
     }
     P->nt = 0;
-    P->lawson = 0;
     for (n = P->n; n > 3; --n) {
         int found = -1, prev;
         int32_t c = 3 * P->nt;
@@ -2161,13 +2177,11 @@ static int wr__plan_collapse(const wr__cdt *S, const wr__ref *R, int32_t u, int3
     for (i = 0; i < U->n - 2; ++i)
         for (j = U->n - 2; j < n; ++j)
             if (P->ring[i] == P->ring[j]) return 0;
-    P->lawson = 1;
     for (P->nt = 0; P->nt < P->n; ++P->nt) {
         i = P->nt;
         P->tri[3 * i] = u;
         P->tri[3 * i + 1] = P->ring[i];
         P->tri[3 * i + 2] = P->ring[(i + 1) % P->n];
-        if (!(wr_orient2d(WR__P(S, u), WR__P(S, P->ring[i]), WR__P(S, P->ring[(i + 1) % P->n])) > 0.0)) return 0;
         nbr[3 * i] = -1 - i; /* ring edge i */
         nbr[3 * i + 1] = 3 * ((i + 1) % P->n) + 2;
         nbr[3 * ((i + 1) % P->n) + 2] = 3 * i + 1;
@@ -2175,7 +2189,8 @@ static int wr__plan_collapse(const wr__cdt *S, const wr__ref *R, int32_t u, int3
     /* A fan triangle whose circumcircle holds no other vertex of the polygon (strictly: incircle < 0)
      * has three strongly Delaunay edges: it is in every CDT of the polygon and u, so it is never
      * flipped and ends in the plan as it is. One such that fails the bounds fails the plan, found
-     * here without the flips (9 in 10 failing plans in the bench inputs). */
+     * here without the flips (9 in 10 failing plans in the bench inputs) — and before the fan's
+     * orientation tests: a plan that fails either way fails. */
     for (i = 0; i < P->nt; ++i) {
         const int32_t *t = P->tri + 3 * i;
         const double *pa = WR__P(S, t[0]), *pb = WR__P(S, t[1]), *pc = WR__P(S, t[2]);
@@ -2185,6 +2200,8 @@ static int wr__plan_collapse(const wr__cdt *S, const wr__ref *R, int32_t u, int3
             if (j != i && j != (i + 1) % P->n && !(wr_incircle(pa, pb, pc, WR__P(S, P->ring[j])) < 0.0)) empty = 0;
         if (empty) return 0;
     }
+    for (i = 0; i < P->nt; ++i) /* u in the kernel of the polygon: the fan is a triangulation */
+        if (!(wr_orient2d(WR__P(S, u), WR__P(S, P->ring[i]), WR__P(S, P->ring[(i + 1) % P->n])) > 0.0)) return 0;
     while (again && flips < 4 * WR__RING_CAP) { /* Lawson within the polygon (ring edges stay) */
         again = 0;
         for (i = 0; i < P->nt; ++i)
