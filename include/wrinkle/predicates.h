@@ -251,6 +251,61 @@ static double wr__incircle_exact(const double *a, const double *b, const double 
     return tot[ntot - 1];
 }
 
+/* Double-double arithmetic (a value hi + lo, |lo| <= ulp(hi)/2): products split exactly by
+ * two_prod, sums by two_sum, only the low-order cross terms rounded. */
+static inline void wr__dd_add(double ah, double al, double bh, double bl, double *h, double *l) {
+    double s, e;
+    wr__two_sum(ah, bh, &s, &e);
+    wr__two_sum(s, e + (al + bl), h, l);
+}
+static inline void wr__dd_mul(double ah, double al, double bh, double bl, double *h, double *l) {
+    double p, e;
+    wr__two_prod(ah, bh, &p, &e);
+    wr__two_sum(p, e + (ah * bl + al * bh), h, l);
+}
+
+/* The incircle determinant in double-double: the differences exact (two_diff), every product and sum
+ * of the cofactor expansion within a few eps^2 of the magnitudes it combines, so the result is within
+ * ~33 eps^2 * perm of the determinant (perm: the filter's permanent). Decided when beyond 1024 eps^2
+ * * perm (near-cocircular points that the filter leaves, at a fifth of the cost of the expansions);
+ * otherwise, and outside 1e-250 < perm < 1e250 (no underflow of the products' error terms, no
+ * overflow), the exact expansion. */
+#if defined(__GNUC__)
+#define WR__COLD __attribute__((noinline)) /* keeps the filter's fast path small (it is inlined) */
+#else
+#define WR__COLD
+#endif
+static WR__COLD double wr__incircle_slow(const double *a, const double *b, const double *c, const double *d,
+                                         double perm) {
+    const double *p[3];
+    double xh[3], xl[3], yh[3], yl[3], th[3], tl[3], h, l, h2, l2, bound;
+    int i;
+    if (!(perm > 1e-250 && perm < 1e250)) return wr__incircle_exact(a, b, c, d);
+    p[0] = a;
+    p[1] = b;
+    p[2] = c;
+    for (i = 0; i < 3; ++i) {
+        wr__two_diff(p[i][0], d[0], &xh[i], &xl[i]);
+        wr__two_diff(p[i][1], d[1], &yh[i], &yl[i]);
+    }
+    for (i = 0; i < 3; ++i) {
+        int j = (i + 1) % 3, k = (i + 2) % 3;
+        double lh, ll, ch, cl;
+        wr__dd_mul(xh[i], xl[i], xh[i], xl[i], &h, &l); /* lift: x^2 + y^2 */
+        wr__dd_mul(yh[i], yl[i], yh[i], yl[i], &h2, &l2);
+        wr__dd_add(h, l, h2, l2, &lh, &ll);
+        wr__dd_mul(xh[j], xl[j], yh[k], yl[k], &h, &l); /* cross: x_j y_k - y_j x_k */
+        wr__dd_mul(yh[j], yl[j], xh[k], xl[k], &h2, &l2);
+        wr__dd_add(h, l, -h2, -l2, &ch, &cl);
+        wr__dd_mul(lh, ll, ch, cl, &th[i], &tl[i]);
+    }
+    wr__dd_add(th[0], tl[0], th[1], tl[1], &h, &l);
+    wr__dd_add(h, l, th[2], tl[2], &h2, &l2);
+    bound = 1024.0 * WR_PRED_EPS * WR_PRED_EPS * perm;
+    if (h2 > bound || -h2 > bound) return h2;
+    return wr__incircle_exact(a, b, c, d);
+}
+
 WRDEF double wr_orient2d_value(const double *a, const double *b, const double *c) {
     double s[16], v = 0.0;
     int ns = wr__orient_expansion(a, b, c, s), i;
@@ -283,7 +338,7 @@ WRDEF double wr_incircle(const double *a, const double *b, const double *c, cons
     double perm = (fabs(bc1) + fabs(bc2)) * al + (fabs(ca1) + fabs(ca2)) * bl + (fabs(ab1) + fabs(ab2)) * cl;
     double eb = WR__ICC_BOUND * perm;
     if (det > eb || -det > eb) return det;
-    return wr__incircle_exact(a, b, c, d);
+    return wr__incircle_slow(a, b, c, d, perm);
 }
 
 /* det[b−a, c−a, d−a] exactly, cofactor expansion along the first row (expansions by magnitude). */
