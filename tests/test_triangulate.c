@@ -937,32 +937,39 @@ static void holes_input(double *p, int32_t *seg, double *holes, int32_t *n) {
     *n = m;
 }
 
-Test(triangulate, refinement_size_vs_triangle) {
+/* Quality refinement at min angle `deg` of input 0 (the bodice outline, 80 vertices) or 1 (the
+ * square with five holes, 184 vertices) into *r; every output checked by wr_cdt_check. */
+static void refine_input(int input, double deg, wr_cdt_result *r) {
     static double p[2 * 256], holes[10];
     static int32_t seg[2 * 256];
+    wr_cdt_desc d;
+    wr_diag dg;
+    int32_t n;
+    memset(&d, 0, sizeof d);
+    d.quality = 1;
+    d.min_angle_deg = deg;
+    if (input == 0) {
+        bodice_outline(p, seg, &n);
+        cr_assert_eq(n, 80);
+        cr_assert_eq(tri(p, n, seg, n, NULL, 0, &d, r, &dg), WR_OK, "%s", dg.message);
+        check_ok(r, 0, NULL);
+    } else {
+        holes_input(p, seg, holes, &n);
+        cr_assert_eq(n, 184);
+        cr_assert_eq(tri(p, n, seg, n, holes, 5, &d, r, &dg), WR_OK, "%s", dg.message);
+        check_ok(r, 5, NULL);
+    }
+}
+
+Test(triangulate, refinement_size_vs_triangle) {
     const double angle[2] = {30.0, 33.0};
     const int32_t tri_bodice[2] = {181, 218}, tri_holes[2] = {427, 493};
-    int32_t n, a, input;
+    int32_t a, input;
     for (input = 0; input < 2; ++input)
         for (a = 0; a < 2; ++a) {
-            wr_cdt_desc d;
             wr_cdt_result r;
-            wr_diag dg;
             int32_t ref = input ? tri_holes[a] : tri_bodice[a];
-            memset(&d, 0, sizeof d);
-            d.quality = 1;
-            d.min_angle_deg = angle[a];
-            if (input == 0) {
-                bodice_outline(p, seg, &n);
-                cr_assert_eq(n, 80);
-                cr_assert_eq(tri(p, n, seg, n, NULL, 0, &d, &r, &dg), WR_OK, "%s", dg.message);
-                check_ok(&r, 0, NULL);
-            } else {
-                holes_input(p, seg, holes, &n);
-                cr_assert_eq(n, 184);
-                cr_assert_eq(tri(p, n, seg, n, holes, 5, &d, &r, &dg), WR_OK, "%s", dg.message);
-                check_ok(&r, 5, NULL);
-            }
+            refine_input(input, angle[a], &r);
             cr_assert_geq(r.min_angle_deg, angle[a], "%s q%g: min angle %g", input ? "holes" : "bodice", angle[a],
                           r.min_angle_deg);
             cr_assert_leq(r.n_points, (int32_t)(1.05 * ref), "%s q%g: %d vertices, Triangle %d", input ? "holes" : "bodice",
@@ -1064,27 +1071,14 @@ Test(triangulate, refinement_steiner_count_at_most_triangle) {
  * (bodice / holes; 5 % slack for later changes of the refinement). Rejecting every fan with a
  * failing triangle, empty circle or not, gives 142 / 174 and 314 / 409. */
 Test(triangulate, cleanup_shortcuts_keep_the_counts) {
-    static double p[2 * 256], holes[10];
-    static int32_t seg[2 * 256];
     const double angle[2] = {30.0, 33.0};
     const int32_t full_bodice[2] = {139, 162}, full_holes[2] = {314, 367};
-    int32_t n, a, input;
+    int32_t a, input;
     for (input = 0; input < 2; ++input)
         for (a = 0; a < 2; ++a) {
-            wr_cdt_desc d;
             wr_cdt_result r;
-            wr_diag dg;
             int32_t full = input ? full_holes[a] : full_bodice[a];
-            memset(&d, 0, sizeof d);
-            d.quality = 1;
-            d.min_angle_deg = angle[a];
-            if (input == 0) {
-                bodice_outline(p, seg, &n);
-                cr_assert_eq(tri(p, n, seg, n, NULL, 0, &d, &r, &dg), WR_OK, "%s", dg.message);
-            } else {
-                holes_input(p, seg, holes, &n);
-                cr_assert_eq(tri(p, n, seg, n, holes, 5, &d, &r, &dg), WR_OK, "%s", dg.message);
-            }
+            refine_input(input, angle[a], &r);
             cr_assert_leq(r.n_points, (int32_t)(1.05 * full), "%s q%g: %d vertices, full search %d",
                           input ? "holes" : "bodice", angle[a], r.n_points, full);
             wr_cdt_free(&r);
