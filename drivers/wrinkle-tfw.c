@@ -359,7 +359,7 @@ static int write_outputs(tfw_job *j) {
     cJSON *root, *probes;
     wr_diag d;
     mkdir(j->out, 0777); /* may exist; real failures show up when the files are opened */
-    if (wr_meshout_tfw(j->out, &j->run.mesh, j->run.x, &j->mat, &j->td, &j->r, j->png, &d) != WR_OK) {
+    if (wr_meshout_tfw(j->out, &j->run.mesh, j->run.x, &j->mat, &j->td, &j->r, &j->run.groups, j->png, &d) != WR_OK) {
         wr_cli_error("writing %s: %s", j->out, d.message);
         return wr_cli_exit(WR_CLI_EXIT_FAILURE);
     }

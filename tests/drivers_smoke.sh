@@ -359,6 +359,13 @@ if [ -x "$B/wrinkle-tfw" ]; then
     done
     grep -q '^vn ' "$tmp/tfwpng/wrinkled.obj" && grep -q '^vt ' "$tmp/tfwpng/wrinkled.obj" && ok ||
         bad "wrinkle-tfw: wrinkled.obj without vt/vn"
+    # an OBJ base keeps its panel names (g lines) on base.obj and on the wrinkled surface
+    mkdir -p "$tmp/tfwg"
+    sed 's/^g .*/g front panel/' "$tmp/tfw/base.obj" > "$tmp/tfwg/named.obj"
+    sed 's|"mesh": {[^}]*}|"mesh": {"type": "obj", "path": "named.obj"}|' "$tmp/tfw.json" > "$tmp/tfwg/scene.json"
+    "$B/wrinkle-tfw" "$tmp/tfwg/scene.json" -o "$tmp/tfwg/out" --levels 1 --quiet >/dev/null 2>&1 </dev/null
+    if grep -q '^g front_panel$' "$tmp/tfwg/out/wrinkled.obj" 2>/dev/null && grep -q '^g front_panel$' "$tmp/tfwg/out/base.obj" &&
+        ! grep -q '^g panel' "$tmp/tfwg/out/wrinkled.obj"; then ok; else bad "wrinkle-tfw: the input OBJ's panel name is not on base.obj / wrinkled.obj"; fi
 fi
 if [ -x "$B/wrinkle-statics" ]; then
     (cd "$tmp/cwd" && "$B/wrinkle-statics" "$root/examples/scenes/cantilever.json" -o "$tmp/stp" --load-steps 2) \
@@ -370,6 +377,10 @@ if [ -x "$B/wrinkle-statics" ]; then
     cp "$tmp/stmesh/mesh.obj" "$tmp/stself/deformed.obj"
     printf '{"mesh": {"type": "obj", "path": "deformed.obj"}, "material": {"young": 1e6, "poisson": 0.3, "thickness": 1e-4}}' > "$tmp/stself/scene.json"
     expect_fail "wrinkle-statics output is the scene's mesh" "$B/wrinkle-statics" "$tmp/stself/scene.json" -o "$tmp/stself"
+    # the mesher's panel name (the built-in square's "square") carried through to deformed.obj
+    "$B/wrinkle-statics" "$tmp/stself/scene.json" -o "$tmp/stself/out" --load-steps 1 --quiet >/dev/null 2>&1 </dev/null
+    grep -q '^g square$' "$tmp/stself/out/deformed.obj" 2>/dev/null && ok ||
+        bad "wrinkle-statics: the input OBJ's panel name is not on deformed.obj"
 fi
 # ---- issue 19 audit: the same behaviour in every driver -------------------------------------------
 # -o DIR naming an existing file (here the scene itself) is bad input, refused before any work

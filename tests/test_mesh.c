@@ -816,6 +816,54 @@ Test(mesh_io, obj_normals_and_group_names) {
     remove_tmpdir();
 }
 
+/* The reader hands back the g/o names by panel id, so a program that writes the mesh again keeps
+ * the names it was given (wrinkle-statics / wrinkle-tfw on a wrinkle-mesh OBJ). Faces before the first
+ * g form the unnamed panel 0 (names[0] NULL); a name seen again reuses its id. */
+Test(mesh_io, obj_group_names_read_back) {
+    static const char txt[] = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\nv 2 1 0\n"
+                              "f 1 2 3\ng sleeve\nf 1 3 4\ng collar band\nf 2 5 6\ng sleeve\nf 2 6 3\n";
+    static const int32_t want_panel[4] = {0, 1, 2, 1};
+    wr_mesh m, b;
+    wr_obj_groups g, g2;
+    wr_obj_desc od;
+    wr_diag d;
+    char path[400];
+    cr_assert_eq(wr_mesh_parse_obj_groups(&m, txt, sizeof txt - 1, &g, &d), WR_OK, "%s", d.message);
+    cr_assert_arr_eq(m.face_panel, want_panel, sizeof want_panel);
+    cr_assert_eq(g.n, 3);
+    cr_assert_null(g.names[0], "faces before the first g: unnamed panel 0");
+    cr_assert_str_eq(g.names[1], "sleeve");
+    cr_assert_str_eq(g.names[2], "collar band");
+    /* written back with those names and read again: same panels, same names (space as '_') */
+    make_tmpdir();
+    snprintf(path, sizeof path, "%s/groups.obj", tmpdir);
+    memset(&od, 0, sizeof od);
+    od.group_names = (const char *const *)g.names;
+    od.n_group_names = g.n;
+    cr_assert_eq(wr_mesh_write_obj(&m, path, &od, &d), WR_OK, "%s", d.message);
+    cr_assert_eq(wr_mesh_read_obj_groups(&b, path, &g2, &d), WR_OK, "%s", d.message);
+    cr_assert_eq(g2.n, 3, "panel0 (the unnamed one), sleeve, collar_band");
+    cr_assert_str_eq(g2.names[0], "panel0");
+    cr_assert_str_eq(g2.names[1], "sleeve");
+    cr_assert_str_eq(g2.names[2], "collar_band");
+    cr_assert_arr_eq(b.face_panel, want_panel, sizeof want_panel);
+    wr_obj_groups_free(&g2);
+    wr_mesh_free(&b);
+    /* no g/o lines: no names; a parse error leaves the names zeroed */
+    cr_assert_eq(wr_mesh_parse_obj_groups(&b, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n", 32, &g2, &d), WR_OK, "%s", d.message);
+    cr_assert_eq(g2.n, 0);
+    cr_assert_null(g2.names);
+    wr_mesh_free(&b);
+    g2.n = 7;
+    cr_assert_eq(wr_mesh_parse_obj_groups(&b, "g a\nv 0 0\n", 10, &g2, &d), WR_ERR_PARSE);
+    cr_assert_eq(g2.n, 0);
+    cr_assert_null(g2.names);
+    wr_obj_groups_free(&g2); /* zeroed: fine */
+    wr_obj_groups_free(&g);
+    wr_mesh_free(&m);
+    remove_tmpdir();
+}
+
 Test(mesh_io, obj_round_trip_corner_rest) {
     wr_mesh a, b;
     wr_diag d;

@@ -613,6 +613,58 @@ Test(wrinkle_field, upsample_fields_phase_amplitude_and_w_flags) {
     wr_mesh_free(&m);
 }
 
+/* The wrinkled mesh keeps the base's panels (so its OBJ carries the panel names): with every coarse
+ * face its own panel id, each fine face's panel must be the coarse face that contains it in the rest
+ * domain (checked by barycentric coordinates of the fine face's rest centroid, independent of the
+ * child numbering), at 1 and 3 levels; a base without panels gives a fine mesh without. */
+Test(wrinkle_field, upsample_keeps_the_base_panels) {
+    wr_mesh m, fine;
+    wr_wf wf;
+    wr_wf_material mat = material();
+    wr_wf_upsample_desc ud;
+    double *a, *phi;
+    int32_t *panel, f, F, lv, v;
+    cr_assert_eq(wr_mesh_rectangle(&m, 0.2, 0.1, 6, 3, NULL), WR_OK);
+    panel = (int32_t *)malloc(sizeof(int32_t) * (size_t)m.nf);
+    for (f = 0; f < m.nf; ++f) panel[f] = f;
+    a = (double *)calloc((size_t)m.nv, sizeof(double));
+    phi = (double *)calloc((size_t)(3 * m.nf), sizeof(double));
+    for (v = 0; v < m.nv; ++v) a[v] = 1e-4;
+    for (lv = 1; lv <= 3; lv += 2) {
+        cr_assert_eq(wr_mesh_set_face_panel(&m, panel, NULL), WR_OK);
+        cr_assert_eq(wr_wf_create(&wf, &m, NULL, &mat, NULL), WR_OK);
+        memset(&ud, 0, sizeof ud);
+        ud.levels = lv;
+        cr_assert_eq(wr_wf_upsample(&wf, a, phi, &ud, &fine, NULL, NULL), WR_OK);
+        cr_assert_not_null(fine.face_panel);
+        for (F = 0; F < fine.nf; ++F) {
+            const int32_t *c = m.faces + 3 * fine.face_panel[F], *g = fine.faces + 3 * F;
+            double px = 0, py = 0, x0 = m.rest[2 * c[0]], y0 = m.rest[2 * c[0] + 1];
+            double e1x = m.rest[2 * c[1]] - x0, e1y = m.rest[2 * c[1] + 1] - y0;
+            double e2x = m.rest[2 * c[2]] - x0, e2y = m.rest[2 * c[2] + 1] - y0, det, b1, b2;
+            int k;
+            for (k = 0; k < 3; ++k) px += fine.rest[2 * g[k]] / 3, py += fine.rest[2 * g[k] + 1] / 3;
+            det = e1x * e2y - e1y * e2x;
+            b1 = ((px - x0) * e2y - (py - y0) * e2x) / det;
+            b2 = (e1x * (py - y0) - e1y * (px - x0)) / det;
+            cr_assert(b1 > 0 && b2 > 0 && b1 + b2 < 1, "level %d fine face %d: centroid not inside its panel's face %d",
+                      (int)lv, (int)F, (int)fine.face_panel[F]);
+        }
+        wr_mesh_free(&fine);
+        wr_wf_free(&wf);
+    }
+    cr_assert_eq(wr_mesh_set_face_panel(&m, NULL, NULL), WR_OK);
+    cr_assert_eq(wr_wf_create(&wf, &m, NULL, &mat, NULL), WR_OK);
+    cr_assert_eq(wr_wf_upsample(&wf, a, phi, NULL, &fine, NULL, NULL), WR_OK);
+    cr_assert_null(fine.face_panel);
+    wr_mesh_free(&fine);
+    wr_wf_free(&wf);
+    free(a);
+    free(phi);
+    free(panel);
+    wr_mesh_free(&m);
+}
+
 static int g_progress_calls;
 static void count_progress(const wr_wf_iter_info *info, void *user) {
     (void)user;

@@ -713,7 +713,10 @@ wr_status wr_meshout_tfw_png(const char *path, const wr_mesh *base, const double
 }
 
 wr_status wr_meshout_tfw(const char *dir, const wr_mesh *base, const double *base_pos, const wr_wf_material *mat,
-                         const wr_tfw_desc *td, const wr_tfw_result *r, int png, wr_diag *diag) {
+                         const wr_tfw_desc *td, const wr_tfw_result *r, const wr_obj_groups *groups, int png,
+                         wr_diag *diag) {
+    const char *const *gn = groups ? (const char *const *)groups->names : NULL;
+    int32_t ng = groups ? groups->n : 0;
     char stem[WR_PATH_MAX];
     double *amp = NULL, *phase = NULL, *wmag = NULL, *wcnt = NULL, *wfl = NULL, *height = NULL, *wfine = NULL;
     wr_mesh bm = *base; /* shallow view with pos = the base surface */
@@ -750,7 +753,7 @@ wr_status wr_meshout_tfw(const char *dir, const wr_mesh *base, const double *bas
         for (v = 0; v < nv; ++v) wmag[v] = wcnt[v] > 0 ? wmag[v] / wcnt[v] : 0.0;
         vals[0] = amp, vals[1] = wmag, vals[2] = wfl, vals[3] = phase;
         snprintf(stem, sizeof stem, "%s/base", dir);
-        st = wr_meshout_write_viewer(&bm, NULL, NULL, 0, NULL, 0, stem, WR_MESHOUT_OBJ, diag);
+        st = wr_meshout_write_viewer(&bm, NULL, NULL, 0, gn, ng, stem, WR_MESHOUT_OBJ, diag);
     }
     if (st == WR_OK) {
         snprintf(stem, sizeof stem, "%s/fields.ply", dir);
@@ -781,7 +784,7 @@ wr_status wr_meshout_tfw(const char *dir, const wr_mesh *base, const double *bas
         }
         if (st == WR_OK) {
             snprintf(stem, sizeof stem, "%s/wrinkled", dir);
-            st = wr_meshout_write_viewer(&r->wrinkled, NULL, fl, n, NULL, 0, stem,
+            st = wr_meshout_write_viewer(&r->wrinkled, NULL, fl, n, gn, ng, stem,
                                          WR_MESHOUT_OBJ | WR_MESHOUT_PLY | WR_MESHOUT_VTK, diag);
         }
         if (st == WR_OK && png) {

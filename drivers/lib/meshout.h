@@ -32,8 +32,9 @@
  *       of the drivers (a result above 1, i.e. 100 %, is almost always a unit slip or a runaway).
  *   wr_meshout_png(path, panels, n, columns, panel_w, panel_h, view, diag)
  *       wr_render_panels + wr_image_write_png (render.h): the pictures of --png.
- *   wr_meshout_tfw(dir, base_mesh, base_pos, material, tfw_desc, tfw_result, png, diag)
- *       the TFW outputs of bin/wrinkle-tfw (and the demo): DIR/base.obj (vt, vn, groups),
+ *   wr_meshout_tfw(dir, base_mesh, base_pos, material, tfw_desc, tfw_result, groups, png, diag)
+ *       the TFW outputs of bin/wrinkle-tfw (and the demo): DIR/base.obj (vt, vn, groups: the
+ *       input OBJ's g names when groups is non-NULL, else panel<id>; wrinkled.obj the same),
  *       DIR/fields.ply + fields.vtk (per base vertex: a [m], phase [rad, one corner's value wrapped
  *       to (-π, π]], omega_abs [rad, mean |ω| of the incident edges], W = 1 where every incident
  *       face is wrinkle-free), DIR/wrinkled.obj/.ply/.vtk (per fine vertex: a [m] and height [m] =
@@ -69,7 +70,8 @@ wr_status wr_meshout_write_viewer(const wr_mesh *m, const double *pos, const wr_
                                   const char *const *group_names, int32_t n_groups, const char *stem, unsigned formats,
                                   wr_diag *diag);
 wr_status wr_meshout_tfw(const char *dir, const wr_mesh *base, const double *base_pos, const wr_wf_material *mat,
-                         const wr_tfw_desc *td, const wr_tfw_result *r, int png, wr_diag *diag);
+                         const wr_tfw_desc *td, const wr_tfw_result *r, const wr_obj_groups *groups, int png,
+                         wr_diag *diag);
 wr_status wr_meshout_tfw_png(const char *path, const wr_mesh *base, const double *base_pos, const wr_wf_material *mat,
                              const wr_tfw_desc *td, const wr_tfw_result *r, wr_diag *diag);
 double wr_meshout_max_strain(const wr_mesh *m, const double *pos);

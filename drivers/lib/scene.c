@@ -624,26 +624,28 @@ wr_status wr_scene_mesh_lattice(wr_mesh *m, double w, double h, double r, double
     return st;
 }
 
-static wr_status sc_build_panel(const wr_scene_mesh *g, wr_mesh *m, wr_diag *diag);
+static wr_status sc_build_panel(const wr_scene_mesh *g, wr_mesh *m, wr_obj_groups *groups, wr_diag *diag);
 
 /* The scene's mesh: the generated or read one, doubled into a pillow when asked. */
-static wr_status sc_build_mesh(const wr_scene_mesh *g, wr_mesh *m, wr_diag *diag) {
+/* The scene's rest mesh; an OBJ's group names go to *groups (a pillow's two sides are panels 0 and 1
+ * of wr_mesh_pillow, not the file's, so it keeps none). */
+static wr_status sc_build_mesh(const wr_scene_mesh *g, wr_mesh *m, wr_obj_groups *groups, wr_diag *diag) {
     wr_mesh panel;
     wr_status st;
-    if (!(g->pillow_lift > 0.0)) return sc_build_panel(g, m, diag);
+    if (!(g->pillow_lift > 0.0)) return sc_build_panel(g, m, groups, diag);
     memset(&panel, 0, sizeof panel);
-    if ((st = sc_build_panel(g, &panel, diag)) != WR_OK) return st;
+    if ((st = sc_build_panel(g, &panel, NULL, diag)) != WR_OK) return st;
     st = wr_mesh_pillow(m, &panel, g->pillow_lift, diag);
     wr_mesh_free(&panel);
     return st;
 }
 
-static wr_status sc_build_panel(const wr_scene_mesh *g, wr_mesh *m, wr_diag *diag) {
+static wr_status sc_build_panel(const wr_scene_mesh *g, wr_mesh *m, wr_obj_groups *groups, wr_diag *diag) {
     double r = g->resolution;
     double est = 0.0;
     switch (g->kind) {
     case WR_SCENE_MESH_OBJ:
-        return wr_mesh_read_obj(m, g->path, diag);
+        return wr_mesh_read_obj_groups(m, g->path, groups, diag);
     case WR_SCENE_MESH_RECTANGLE: {
         int32_t nx = g->nx, ny = g->ny;
         if (nx <= 0) {
@@ -682,6 +684,7 @@ void wr_scene_run_free(wr_scene_run *run) {
     if (!run) return;
     wr_shell_free(&run->shell);
     wr_mesh_free(&run->mesh);
+    wr_obj_groups_free(&run->groups);
     free(run->fixed);
     free(run->bc_of);
     free(run->x);
@@ -695,7 +698,7 @@ wr_status wr_scene_run_create(wr_scene_run *run, const wr_scene *sc, wr_diag *di
     double t0 = wr_time_seconds();
     memset(run, 0, sizeof *run);
     run->sc = sc;
-    if ((st = sc_build_mesh(&sc->mesh, &run->mesh, diag)) != WR_OK) return st;
+    if ((st = sc_build_mesh(&sc->mesh, &run->mesh, &run->groups, diag)) != WR_OK) return st;
     run->t_mesh = wr_time_seconds() - t0;
     t0 = wr_time_seconds();
     if ((st = wr_shell_create(&run->shell, &run->mesh, &sc->shell, diag)) != WR_OK) goto fail;
@@ -1012,6 +1015,8 @@ wr_status wr_scene_run_write(const wr_scene_run *run, const char *dir, wr_diag *
     memset(&od, 0, sizeof od);
     od.comment = run->sc->name;
     od.normals = 1; /* vt (rest) and vn on the deformed surface, for viewers */
+    od.group_names = (const char *const *)run->groups.names; /* the input OBJ's panel names */
+    od.n_group_names = run->groups.n;
     snprintf(path, sizeof path, "%s/deformed.obj", dir);
     if ((st = wr_mesh_write_obj(&m, path, &od, diag)) != WR_OK) return st;
     acc = (double *)calloc((size_t)nv * 9, sizeof(double));

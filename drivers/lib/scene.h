@@ -133,6 +133,7 @@ typedef struct wr_scene_step_stats {
 typedef struct wr_scene_run {
     const wr_scene *sc;   /* borrowed */
     wr_mesh mesh;         /* rest mesh; pos = initial (rest) 3D positions */
+    wr_obj_groups groups; /* an OBJ mesh's g/o names (panel id -> name) for the written OBJs; else empty */
     wr_shell shell;
     uint8_t *fixed;       /* nv */
     int32_t *bc_of;       /* nv: prescribed set of each vertex, -1 = free */

@@ -222,6 +222,20 @@ WRDEF wr_status wr_mesh_ratio_histogram(const double *ratio, int32_t n, int32_t 
  * of that face). On failure *m is left zeroed. */
 WRDEF wr_status wr_mesh_parse_obj(wr_mesh *m, const char *text, size_t len, wr_diag *diag);
 WRDEF wr_status wr_mesh_read_obj(wr_mesh *m, const char *path, wr_diag *diag); /* WR_ERR_IO if unreadable */
+/* The g / o names of an OBJ read, so that a program writing the mesh back (wr_obj_desc.group_names)
+ * keeps the panel names it was given: names[id] is the name of panel id (face_panel) for id < n;
+ * names[0] is NULL when faces precede the first g/o (that unnamed panel 0). n = 0, names = NULL when
+ * the file has no g/o lines. Owned by the struct: free with wr_obj_groups_free (a zeroed struct is
+ * fine). */
+typedef struct wr_obj_groups {
+    char **names;
+    int32_t n;
+} wr_obj_groups;
+/* wr_mesh_parse_obj / wr_mesh_read_obj, with the group names in *groups (zeroed on failure). */
+WRDEF wr_status wr_mesh_parse_obj_groups(wr_mesh *m, const char *text, size_t len, wr_obj_groups *groups,
+                                         wr_diag *diag);
+WRDEF wr_status wr_mesh_read_obj_groups(wr_mesh *m, const char *path, wr_obj_groups *groups, wr_diag *diag);
+WRDEF void wr_obj_groups_free(wr_obj_groups *groups);
 
 /* Options of wr_mesh_write_obj; zero means default:
  *   no_rest = 0    write vt (rest per vertex, or corner_rest per corner) when available
@@ -1598,13 +1612,42 @@ static void wr__obj_parse_free(wr__obj_parse *P) {
     wr__obj_groups_free(&P->groups);
 }
 
+/* Hand the parser's group names to *groups (its names array becomes the caller's; one more leading
+ * NULL slot when faces came before the first g/o, matching the face_panel shift). */
+static wr_status wr__obj_take_groups(wr__obj_parse *P, int shifted, wr_obj_groups *groups) {
+    int32_t n = P->groups.n + (shifted ? 1 : 0), k;
+    char **names = (char **)wr_alloc_array((size_t)(n > 0 ? n : 1), sizeof(char *));
+    if (!names) return wr_fail(P->diag, WR_ERR_NOMEM, -1, "OBJ: out of memory for %d group names", (int)n);
+    if (shifted) names[0] = NULL;
+    for (k = 0; k < P->groups.n; ++k) names[k + (shifted ? 1 : 0)] = P->groups.names[k];
+    P->groups.n = 0; /* the strings now belong to *groups */
+    groups->names = names;
+    groups->n = n;
+    return WR_OK;
+}
+
+WRDEF void wr_obj_groups_free(wr_obj_groups *groups) {
+    int32_t k;
+    if (!groups) return;
+    for (k = 0; k < groups->n; ++k) wr_free(groups->names[k]);
+    wr_free(groups->names);
+    groups->names = NULL;
+    groups->n = 0;
+}
+
 WRDEF wr_status wr_mesh_parse_obj(wr_mesh *m, const char *text, size_t len, wr_diag *diag) {
+    return wr_mesh_parse_obj_groups(m, text, len, NULL, diag);
+}
+
+WRDEF wr_status wr_mesh_parse_obj_groups(wr_mesh *m, const char *text, size_t len, wr_obj_groups *groups,
+                                         wr_diag *diag) {
     wr__obj_parse P;
     char *buf = NULL;
     wr_status st = WR_OK;
     double *rest = NULL, *cr = NULL;
     int32_t nv, nf, i;
 
+    if (groups) memset(groups, 0, sizeof *groups);
     if (!m) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "wr_mesh_parse_obj: NULL mesh");
     memset(m, 0, sizeof *m);
     if (!text && len) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "wr_mesh_parse_obj: NULL text");
@@ -1655,6 +1698,7 @@ WRDEF wr_status wr_mesh_parse_obj(wr_mesh *m, const char *text, size_t len, wr_d
             for (i = 0; i < nf; ++i) fp[i] += 1;
         m->face_panel = fp;
         P.FP.p = NULL;
+        if (groups) st = wr__obj_take_groups(&P, any_none, groups);
     }
 done:
     wr_free(buf);
@@ -1668,14 +1712,19 @@ done:
 #undef WR__OBJ_NOMEM
 
 WRDEF wr_status wr_mesh_read_obj(wr_mesh *m, const char *path, wr_diag *diag) {
+    return wr_mesh_read_obj_groups(m, path, NULL, diag);
+}
+
+WRDEF wr_status wr_mesh_read_obj_groups(wr_mesh *m, const char *path, wr_obj_groups *groups, wr_diag *diag) {
     char *data = NULL;
     size_t n = 0;
     wr_status st;
+    if (groups) memset(groups, 0, sizeof *groups);
     if (!m) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "wr_mesh_read_obj: NULL mesh");
     memset(m, 0, sizeof *m);
     if (!path) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "wr_mesh_read_obj: NULL path");
     if ((st = wr_file_read(path, &data, &n, diag)) != WR_OK) return st;
-    st = wr_mesh_parse_obj(m, data, n, diag);
+    st = wr_mesh_parse_obj_groups(m, data, n, groups, diag);
     wr_free(data);
     return st;
 }

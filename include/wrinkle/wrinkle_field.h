@@ -376,7 +376,7 @@ typedef struct wr_wf_upsample_desc {
  * sheet, so 2π jumps never enter a stencil; faces in W keep a = 0 at vertices touching only W), then
  * displace by Eq. 19 without the v1 term: r = r_b + a cos φ n̂_b + (a²/8) sin 2φ ∇_b φ. out: the
  * wrinkled mesh (rest = subdivided rest when the input has rest coordinates; corner_rest is not
- * subdivided). out_a (or NULL): *out_a = fine amplitudes (out->nv), free with wr_free. */
+ * subdivided; face_panel = the coarse face's panel when the input has one). out_a (or NULL): *out_a = fine amplitudes (out->nv), free with wr_free. */
 WRDEF wr_status wr_wf_upsample(const wr_wf *wf, const double *a, const double *phi, const wr_wf_upsample_desc *desc,
                                wr_mesh *out, double **out_a, wr_diag *diag);
 
@@ -2670,6 +2670,19 @@ WRDEF void wr_wf_fine_fields_free(wr_wf_fine_fields *fields) {
     memset(fields, 0, sizeof *fields);
 }
 
+/* The coarse faces' panels on the fine mesh: every Loop step puts the children of face f at 4f..4f+3
+ * (wr_wf_loop_step), so after L steps fine face F descends from coarse face F >> 2L. A viewer then
+ * shows the wrinkled surface grouped by the base's panels (OBJ g names, mesh.h wr_obj_desc). */
+static wr_status wr__wf_up_panels(const wr_mesh *src, int32_t levels, wr_mesh *out, wr_diag *diag) {
+    int32_t *fp = (int32_t *)wr_alloc_array((size_t)out->nf, sizeof(int32_t)), F;
+    wr_status st;
+    if (!fp) return wr_fail(diag, WR_ERR_NOMEM, -1, "wf upsample: out of memory");
+    for (F = 0; F < out->nf; ++F) fp[F] = src->face_panel[F >> (2 * levels)];
+    st = wr_mesh_set_face_panel(out, fp, diag);
+    wr_free(fp);
+    return st;
+}
+
 WRDEF wr_status wr_wf_upsample_fields(const wr_wf *wf, const double *a, const double *phi,
                                       const wr_wf_upsample_desc *desc, wr_mesh *out, wr_wf_fine_fields *fields,
                                       wr_diag *diag) {
@@ -2715,6 +2728,7 @@ WRDEF wr_status wr_wf_upsample_fields(const wr_wf *wf, const double *a, const do
     }
     if (!st) st = wr__wf_up_displace(&U, inplane, disp, vphi, vwr, diag);
     if (!st) st = wr_mesh_create(out, U.cur.nv, disp, U.cur.rest, U.cur.nf, U.cur.faces, diag);
+    if (!st && src->face_panel) st = wr__wf_up_panels(src, levels, out, diag);
     if (!st) {
         wr__wf_up_fields(&U, vphi, vwr, fields);
         vphi = NULL;

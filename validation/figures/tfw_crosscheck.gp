@@ -12,5 +12,5 @@ plot 'validation/results/tfw_crosscheck.dat' index 0 u 1:2 w lp pt 7 t 'StVK', 7
 set title 'twisted cylinder'
 set ylabel 'waves at mid-height'
 set yrange [0:60]
-plot 'validation/results/tfw_crosscheck.dat' index 1 u 1:2 w lp pt 7 t 'StVK', 0 w l t 'TFW, 1320-vertex base', 46 w l dt 2 t 'paper 46'
+plot 'validation/results/tfw_crosscheck.dat' index 1 u 1:2 w lp pt 7 t 'StVK', 49 w l t 'TFW, 1320-vertex base', 46 w l dt 2 t 'paper 46'
 unset multiplot
