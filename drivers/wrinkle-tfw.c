@@ -8,7 +8,8 @@
  * initial guess, App. E.3 SQP, App. E.4 phase, App. E.5 Loop upsampling (N levels, default 2).
  * Writes DIR/base.obj, DIR/wrinkled.obj (vt, vn), DIR/fields.ply + fields.vtk (per base vertex: a
  * [m], |ω| mean over incident edges [rad], W = 1 when every incident face is wrinkle-free, phase
- * [rad]), DIR/wrinkled.ply + wrinkled.vtk (per fine vertex: a, height [m], phase [rad], W), with --png
+ * [rad], sizing [m]), DIR/wrinkled.ply + wrinkled.vtk (per fine vertex: a, height [m], phase [rad], W,
+ * sizing [m]; drivers/lib/meshout.h says what each is), with --png
  * DIR/wrinkles.png (render.h: the coarse base beside the wrinkled surface) and DIR/summary.json
  * (TFT and SQP iterations, residuals, timings, wrinkle counts per scene probe measured on the
  * wrinkled surface). Every file is written to a temporary name and renamed. Progress on stderr.
@@ -35,8 +36,9 @@ static void usage(FILE *f) {
     fprintf(f,
             "usage: wrinkle-tfw SCENE.json -o DIR [options]\n"
             "  TFW wrinkles (Chen et al. 2021) on the scene's TFT base surface (format: docs/scene-format.md).\n"
-            "  Writes DIR/base.obj, DIR/wrinkled.obj (vt, vn), DIR/fields.ply + .vtk (a, |omega|, W, phase\n"
-            "  per base vertex), DIR/wrinkled.ply + .vtk (a, height, phase, W per fine vertex), DIR/summary.json.\n"
+            "  Writes DIR/base.obj, DIR/wrinkled.obj (vt, vn, the input OBJ's panel names), DIR/fields.ply + .vtk\n"
+            "  (a, |omega|, W, phase, sizing per base vertex), DIR/wrinkled.ply + .vtk (a, height, phase, W, sizing\n"
+            "  per fine vertex), DIR/summary.json.\n"
             "options:\n"
             "  -o, --output DIR     output directory (created if missing)\n"
             "  --levels N           Loop subdivision levels of the wrinkled mesh (default 2, 0..5)\n"

@@ -366,6 +366,16 @@ if [ -x "$B/wrinkle-tfw" ]; then
     "$B/wrinkle-tfw" "$tmp/tfwg/scene.json" -o "$tmp/tfwg/out" --levels 1 --quiet >/dev/null 2>&1 </dev/null
     if grep -q '^g front_panel$' "$tmp/tfwg/out/wrinkled.obj" 2>/dev/null && grep -q '^g front_panel$' "$tmp/tfwg/out/base.obj" &&
         ! grep -q '^g panel' "$tmp/tfwg/out/wrinkled.obj"; then ok; else bad "wrinkle-tfw: the input OBJ's panel name is not on base.obj / wrinkled.obj"; fi
+    # per-vertex sizing on both PLYs: the 10 x 5 rectangle's edges are 25 mm, 20 mm and 32 mm diagonals,
+    # so every vertex's mean edge (and its Loop average on the fine mesh) lies in [20, 32] mm
+    for f in fields.ply wrinkled.ply; do
+        awk '/^element vertex/ { nv = $3; next }
+             /^property/ { if ($NF == "sizing") col = ++np; else if ($2 != "list") ++np; next }
+             /^end_header/ { body = 1; next }
+             body && n < nv && col { n++; if (!($col >= 0.0199 && $col <= 0.0321)) badv++ }
+             END { exit !(col && n > 0 && n == nv && badv == 0) }' "$tmp/tfwg/out/$f" && ok ||
+            bad "wrinkle-tfw: $f has no per-vertex sizing in [20, 32] mm"
+    done
 fi
 if [ -x "$B/wrinkle-statics" ]; then
     (cd "$tmp/cwd" && "$B/wrinkle-statics" "$root/examples/scenes/cantilever.json" -o "$tmp/stp" --load-steps 2) \

@@ -62,4 +62,4 @@ echo "== done in $(awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.1f", b - a }') s
 echo "   $out/tfw/wrinkles.png      the coarse base (with its edges) beside the wrinkled surface"
 echo "   $out/mesh/sizing.png       sizing map and mesh of the sheet"
 echo "   $out/fig14/sizing.png      technique-aware sizing map (shirring lines)"
-echo "   3D files for ParaView / MeshLab / Blender: $out/tfw/wrinkled.{obj,ply,vtk} (a, height, phase, W), $out/tfw/fields.{ply,vtk} (a, phase, |omega|, W)"
+echo "   3D files for ParaView / MeshLab / Blender: $out/tfw/wrinkled.{obj,ply,vtk} (a, height, phase, W, sizing), $out/tfw/fields.{ply,vtk} (a, phase, |omega|, W, sizing)"

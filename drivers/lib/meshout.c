@@ -712,93 +712,152 @@ wr_status wr_meshout_tfw_png(const char *path, const wr_mesh *base, const double
     return st;
 }
 
+/* The base's local resolution per vertex: the mean rest length of its edges [m] (rest = the pattern
+ * coordinates when the mesh has them, else its rest 3D positions). On a wrinkle-mesh output this is
+ * the sizing map as realised (mean edge / sizing ~ 1, validation/validate_meshing.c). */
+static void tfw_base_sizing(const wr_mesh *m, double *sz, double *cnt) {
+    int32_t e, v;
+    int k;
+    for (v = 0; v < m->nv; ++v) sz[v] = cnt[v] = 0.0;
+    for (e = 0; e < m->ne; ++e) {
+        int32_t a = m->edges[2 * e], b = m->edges[2 * e + 1];
+        double l2 = 0.0;
+        if (m->rest)
+            for (k = 0; k < 2; ++k) l2 += (m->rest[2 * a + k] - m->rest[2 * b + k]) * (m->rest[2 * a + k] - m->rest[2 * b + k]);
+        else
+            for (k = 0; k < 3; ++k) l2 += (m->pos[3 * a + k] - m->pos[3 * b + k]) * (m->pos[3 * a + k] - m->pos[3 * b + k]);
+        for (k = 0; k < 2; ++k) sz[m->edges[2 * e + k]] += sqrt(l2), cnt[m->edges[2 * e + k]] += 1.0;
+    }
+    for (v = 0; v < m->nv; ++v) sz[v] = cnt[v] > 0.0 ? sz[v] / cnt[v] : 0.0;
+}
+
+/* The base sizing on the wrinkled mesh: Loop-subdivided exactly as the amplitude is (wr_wf_upsample
+ * with a = sizing and no wrinkle-free faces, so nothing is zeroed), a smooth positive field. */
+static wr_status tfw_fine_sizing(const wr_mesh *base, const double *base_pos, const wr_wf_material *mat,
+                                 const wr_tfw_desc *td, const wr_tfw_result *r, const double *bsz, double **fsz,
+                                 wr_diag *diag) {
+    wr_wf wf;
+    wr_mesh sm;
+    wr_status st;
+    double *fa = NULL;
+    *fsz = NULL;
+    memset(&sm, 0, sizeof sm);
+    if ((st = wr_wf_create(&wf, base, base_pos, mat, diag)) != WR_OK) return st;
+    st = wr_wf_upsample(&wf, bsz, r->phi, &td->upsample, &sm, &fa, diag);
+    wr_wf_free(&wf);
+    if (st == WR_OK && sm.nv != r->wrinkled.nv)
+        st = wr_fail(diag, WR_ERR_TOPOLOGY, -1, "sizing and wrinkled meshes differ (%d vs %d vertices)", (int)sm.nv,
+                     (int)r->wrinkled.nv);
+    wr_mesh_free(&sm);
+    if (st == WR_OK) {
+        *fsz = (double *)malloc(sizeof(double) * (size_t)r->wrinkled.nv);
+        if (*fsz)
+            memcpy(*fsz, fa, sizeof(double) * (size_t)r->wrinkled.nv);
+        else
+            st = wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
+    }
+    wr_free(fa);
+    return st;
+}
+
+/* Per base vertex (one block of 5 nv): a [m], omega_abs [rad] = mean |ω| of the incident edges,
+ * W = 1 when every incident face is wrinkle-free, phase = the first incident face's corner value
+ * wrapped to (-π, π], sizing [m] (tfw_base_sizing); vals[k] point into the block. */
+static double *tfw_base_fields(const wr_mesh *base, const wr_tfw_result *r, const double *vals[5]) {
+    int32_t nv = base->nv, v, e, f;
+    int k;
+    double *blk = (double *)calloc((size_t)nv * 6, sizeof(double)), *amp, *wmag, *wfl, *phase, *sz, *cnt;
+    if (!blk) return NULL;
+    amp = blk, wmag = blk + nv, wfl = blk + 2 * (size_t)nv, phase = blk + 3 * (size_t)nv, sz = blk + 4 * (size_t)nv;
+    cnt = blk + 5 * (size_t)nv; /* scratch: -1 until a vertex's phase is set, then its edge count */
+    for (v = 0; v < nv; ++v) amp[v] = r->a[v], wfl[v] = 1.0, cnt[v] = -1.0;
+    for (f = 0; f < base->nf; ++f)
+        for (k = 0; k < 3; ++k) {
+            int32_t w = base->faces[3 * f + k];
+            if (!r->wfree[f]) wfl[w] = 0.0;
+            if (cnt[w] < 0.0) {
+                phase[w] = atan2(sin(r->phi[3 * f + k]), cos(r->phi[3 * f + k]));
+                cnt[w] = 0.0;
+            }
+        }
+    tfw_base_sizing(base, sz, cnt); /* also leaves cnt = edges per vertex */
+    for (e = 0; e < base->ne; ++e)
+        for (k = 0; k < 2; ++k) wmag[base->edges[2 * e + k]] += fabs(r->omega[e]);
+    for (v = 0; v < nv; ++v) wmag[v] = cnt[v] > 0 ? wmag[v] / cnt[v] : 0.0;
+    vals[0] = amp, vals[1] = wmag, vals[2] = wfl, vals[3] = phase, vals[4] = sz;
+    return blk;
+}
+
+/* DIR/wrinkled.obj/.ply/.vtk (a, height, phase, W, sizing per fine vertex) and DIR/wrinkles.png. */
+static wr_status tfw_write_wrinkled(const char *dir, const wr_mesh *base, const double *base_pos,
+                                    const wr_wf_material *mat, const wr_tfw_desc *td, const wr_tfw_result *r,
+                                    const double *bsz, const char *const *gn, int32_t ng, int png, wr_diag *diag) {
+    char stem[WR_PATH_MAX];
+    wr_meshout_field fl[5];
+    double *height = (double *)malloc(sizeof(double) * (size_t)r->wrinkled.nv), *wfine = NULL, *fsz = NULL;
+    int32_t n = 0, v;
+    wr_status st = height ? tfw_height(base, base_pos, mat, td, r, height, diag)
+                          : wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
+    if (st == WR_OK) st = tfw_fine_sizing(base, base_pos, mat, td, r, bsz, &fsz, diag);
+    if (st == WR_OK) {
+        if (r->wrinkled_a) fl[n].name = "a", fl[n++].values = r->wrinkled_a;
+        fl[n].name = "height", fl[n++].values = height;
+        /* the fine phase and wrinkle-free flag (tfw.h, wr_wf_fine_fields): a viewer can draw the
+         * wave crests (phase) and the W region on the wrinkled surface itself */
+        if (r->wrinkled_phase) fl[n].name = "phase", fl[n++].values = r->wrinkled_phase;
+        if (r->wrinkled_wfree) {
+            wfine = (double *)malloc(sizeof(double) * (size_t)r->wrinkled.nv);
+            if (!wfine) st = wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
+            for (v = 0; wfine && v < r->wrinkled.nv; ++v) wfine[v] = r->wrinkled_wfree[v] ? 1.0 : 0.0;
+            fl[n].name = "W", fl[n++].values = wfine;
+        }
+        fl[n].name = "sizing", fl[n++].values = fsz;
+    }
+    if (st == WR_OK) {
+        snprintf(stem, sizeof stem, "%s/wrinkled", dir);
+        st = wr_meshout_write_viewer(&r->wrinkled, NULL, fl, n, gn, ng, stem,
+                                     WR_MESHOUT_OBJ | WR_MESHOUT_PLY | WR_MESHOUT_VTK, diag);
+    }
+    if (st == WR_OK && png) {
+        snprintf(stem, sizeof stem, "%s/wrinkles.png", dir);
+        st = tfw_picture(stem, base, base_pos, r, height, diag);
+    }
+    free(height);
+    free(wfine);
+    free(fsz);
+    return st;
+}
+
 wr_status wr_meshout_tfw(const char *dir, const wr_mesh *base, const double *base_pos, const wr_wf_material *mat,
                          const wr_tfw_desc *td, const wr_tfw_result *r, const wr_obj_groups *groups, int png,
                          wr_diag *diag) {
     const char *const *gn = groups ? (const char *const *)groups->names : NULL;
     int32_t ng = groups ? groups->n : 0;
     char stem[WR_PATH_MAX];
-    double *amp = NULL, *phase = NULL, *wmag = NULL, *wcnt = NULL, *wfl = NULL, *height = NULL, *wfine = NULL;
+    const char *names[5] = {"a", "omega_abs", "W", "phase", "sizing"};
+    const double *vals[5];
     wr_mesh bm = *base; /* shallow view with pos = the base surface */
     wr_meshout_field fl[5];
-    wr_status st = WR_OK;
-    int32_t v, e, f, nv = base->nv;
+    wr_status st;
+    double *blk;
     int k;
-    const char *names[4] = {"a", "omega_abs", "W", "phase"};
-    const double *vals[4];
     if (strlen(dir) > WR_PATH_MAX - 32) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "output path too long");
     bm.pos = (double *)base_pos;
-    amp = (double *)malloc(sizeof(double) * (size_t)nv);
-    phase = (double *)calloc((size_t)nv, sizeof(double));
-    wmag = (double *)calloc((size_t)nv, sizeof(double));
-    wcnt = (double *)calloc((size_t)nv, sizeof(double));
-    wfl = (double *)malloc(sizeof(double) * (size_t)nv);
-    if (!amp || !phase || !wmag || !wcnt || !wfl) st = wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
-    if (st == WR_OK) {
-        for (v = 0; v < nv; ++v) amp[v] = r->a[v], wfl[v] = 1.0, wcnt[v] = -1.0;
-        for (e = 0; e < base->ne; ++e)
-            for (k = 0; k < 2; ++k) wmag[base->edges[2 * e + k]] += fabs(r->omega[e]);
-        for (f = 0; f < base->nf; ++f)
-            for (k = 0; k < 3; ++k) {
-                int32_t w = base->faces[3 * f + k];
-                if (!r->wfree[f]) wfl[w] = 0.0;
-                if (wcnt[w] < 0.0) { /* phase: the first incident face's corner value, wrapped */
-                    phase[w] = atan2(sin(r->phi[3 * f + k]), cos(r->phi[3 * f + k]));
-                    wcnt[w] = 0.0;
-                }
-            }
-        for (v = 0; v < nv; ++v) wcnt[v] = 0.0;
-        for (e = 0; e < base->ne; ++e)
-            for (k = 0; k < 2; ++k) wcnt[base->edges[2 * e + k]] += 1.0;
-        for (v = 0; v < nv; ++v) wmag[v] = wcnt[v] > 0 ? wmag[v] / wcnt[v] : 0.0;
-        vals[0] = amp, vals[1] = wmag, vals[2] = wfl, vals[3] = phase;
-        snprintf(stem, sizeof stem, "%s/base", dir);
-        st = wr_meshout_write_viewer(&bm, NULL, NULL, 0, gn, ng, stem, WR_MESHOUT_OBJ, diag);
-    }
+    if (!(blk = tfw_base_fields(base, r, vals))) return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
+    snprintf(stem, sizeof stem, "%s/base", dir);
+    st = wr_meshout_write_viewer(&bm, NULL, NULL, 0, gn, ng, stem, WR_MESHOUT_OBJ, diag);
     if (st == WR_OK) {
         snprintf(stem, sizeof stem, "%s/fields.ply", dir);
-        st = wr_mesh_write_ply(&bm, stem, 4, names, vals, diag);
+        st = wr_mesh_write_ply(&bm, stem, 5, names, vals, diag);
     }
     if (st == WR_OK) {
-        for (k = 0; k < 4; ++k) fl[k].name = names[k], fl[k].values = vals[k];
+        for (k = 0; k < 5; ++k) fl[k].name = names[k], fl[k].values = vals[k];
         snprintf(stem, sizeof stem, "%s/fields", dir);
-        st = wr_meshout_write_viewer(&bm, NULL, fl, 4, NULL, 0, stem, WR_MESHOUT_VTK, diag);
+        st = wr_meshout_write_viewer(&bm, NULL, fl, 5, NULL, 0, stem, WR_MESHOUT_VTK, diag);
     }
-    if (st == WR_OK && r->wrinkled.nv > 0) {
-        int32_t n = 0;
-        height = (double *)malloc(sizeof(double) * (size_t)r->wrinkled.nv);
-        st = height ? tfw_height(base, base_pos, mat, td, r, height, diag)
-                    : wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
-        if (st == WR_OK) {
-            if (r->wrinkled_a) fl[n].name = "a", fl[n++].values = r->wrinkled_a;
-            fl[n].name = "height", fl[n++].values = height;
-            /* the fine phase and wrinkle-free flag (tfw.h, wr_wf_fine_fields): a viewer can draw the
-             * wave crests (phase) and the W region on the wrinkled surface itself */
-            if (r->wrinkled_phase) fl[n].name = "phase", fl[n++].values = r->wrinkled_phase;
-            if (r->wrinkled_wfree) {
-                wfine = (double *)malloc(sizeof(double) * (size_t)r->wrinkled.nv);
-                if (!wfine) st = wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
-                for (v = 0; wfine && v < r->wrinkled.nv; ++v) wfine[v] = r->wrinkled_wfree[v] ? 1.0 : 0.0;
-                fl[n].name = "W", fl[n++].values = wfine;
-            }
-        }
-        if (st == WR_OK) {
-            snprintf(stem, sizeof stem, "%s/wrinkled", dir);
-            st = wr_meshout_write_viewer(&r->wrinkled, NULL, fl, n, gn, ng, stem,
-                                         WR_MESHOUT_OBJ | WR_MESHOUT_PLY | WR_MESHOUT_VTK, diag);
-        }
-        if (st == WR_OK && png) {
-            snprintf(stem, sizeof stem, "%s/wrinkles.png", dir);
-            st = tfw_picture(stem, base, base_pos, r, height, diag);
-        }
-    }
-    free(amp);
-    free(phase);
-    free(wmag);
-    free(wcnt);
-    free(wfl);
-    free(height);
-    free(wfine);
+    if (st == WR_OK && r->wrinkled.nv > 0)
+        st = tfw_write_wrinkled(dir, base, base_pos, mat, td, r, vals[4], gn, ng, png, diag);
+    free(blk);
     return st;
 }
 

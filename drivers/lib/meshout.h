@@ -37,8 +37,10 @@
  *       input OBJ's g names when groups is non-NULL, else panel<id>; wrinkled.obj the same),
  *       DIR/fields.ply + fields.vtk (per base vertex: a [m], phase [rad, one corner's value wrapped
  *       to (-π, π]], omega_abs [rad, mean |ω| of the incident edges], W = 1 where every incident
- *       face is wrinkle-free), DIR/wrinkled.obj/.ply/.vtk (per fine vertex: a [m] and height [m] =
- *       the wrinkled surface's offset from the smooth (a = 0) subdivided base along its normal) and,
+ *       face is wrinkle-free, sizing [m] = the base's local resolution, the mean rest length of the
+ *       vertex's edges: on a wrinkle-mesh output, the sizing map as realised), DIR/wrinkled.obj/.ply/
+ *       .vtk (per fine vertex: a [m], height [m] = the wrinkled surface's offset from the smooth
+ *       (a = 0) subdivided base along its normal, phase, W, and sizing Loop-subdivided) and,
  *       when png is nonzero, DIR/wrinkles.png: the coarse base with its edges beside the wrinkled
  *       surface coloured by height. Nothing is written when result->wrinkled is empty except the
  *       base files. Each file atomic.
