@@ -1623,6 +1623,24 @@ static int wr__pz_near(const wr__pz *z, double qx, double qy, double R0, double 
     return 0;
 }
 
+/* The second pass of wr__pz_neighbours: each neighbour's lens but p's own (index ip) cut from C->F,
+ * stopping once nothing is left. Kept out of line (GCC and Clang): inlined into the fill, GCC
+ * judged the lens's square root cold and called libm's sqrt for it (its errno path) instead of
+ * using the instruction. */
+#if defined(__GNUC__)
+#define WR__PZ_NOINLINE __attribute__((noinline))
+#else
+#define WR__PZ_NOINLINE
+#endif
+static WR__PZ_NOINLINE void wr__pz_cut_lenses(const wr__pz_nbr *nb, int32_t nn, double px, double py, int32_t ip,
+                                              wr__pz_cut *C) {
+    int32_t i;
+    for (i = 0; i < nn; ++i) {
+        double dx = nb[i].x - px, dy = nb[i].y - py;
+        if (nb[i].id != ip && wr__pz_lens(C, dx, dy, dx * dx + dy * dy, nb[i].r)) return;
+    }
+}
+
 /* The front step's neighbours: the stored samples S within R0 + (rq + r_S)/2 of p = (px, py) go to
  * z->nb (level by level, only the levels present around p), then each one's lens (but p's own,
  * index C->ip) is cut from C->F, stopping as soon as nothing is left of C->F. Two passes, not one:
@@ -1638,7 +1656,7 @@ static int wr__pz_neighbours(wr__pz *z, double px, double py, double R0, double 
     const double base = R0 + 0.5 * rq;
     const int32_t ip = C->ip;
     wr__pz_nbr *nb = z->nb;
-    int32_t nn = 0, cap = z->nb_cap, i;
+    int32_t nn = 0, cap = z->nb_cap;
     while (mask) {
         int l = wr__pz_ctz(mask);
         int64_t b[4], tx, ty;
@@ -1668,10 +1686,7 @@ static int wr__pz_neighbours(wr__pz *z, double px, double py, double R0, double 
             }
     }
     z->nb_n = nn;
-    for (i = 0; i < nn; ++i) {
-        double dx = nb[i].x - px, dy = nb[i].y - py;
-        if (nb[i].id != ip && wr__pz_lens(C, dx, dy, dx * dx + dy * dy, nb[i].r)) break;
-    }
+    wr__pz_cut_lenses(nb, nn, px, py, ip, C);
     return 0;
 }
 
