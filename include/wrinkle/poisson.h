@@ -296,6 +296,10 @@ extern "C" {
 /* A candidate whose mean-rule distance to p differs from ρ by more than this fraction moves there
  * and is evaluated again (2 %: well below the calibration band, rarely triggered by smooth maps). */
 #define WR__PZ_REPLACE 0.02
+/* The predicted placement (wr__pz_activate) only where it moves the candidate by less than this
+ * relative share of its radius, |c ∇h·u| / 2 < 0.25 (a 20× ramp: 0.3–4 % per step); a steeper
+ * estimate — a jump of the sizing seen from one side — is left to the moves, as without one. */
+#define WR__PZ_PREDICT_MAX 0.25
 /* Arc cut around a failed candidate [rad]: bounds the candidates per step (π/48 ≈ 3.75°). */
 #define WR__PZ_FAIL_ARC 0.06544984694978735
 /* Arc cut around a direction already settled [rad] (guards rounding at arc ends). */
@@ -1827,7 +1831,7 @@ static wr_status wr__pz_activate(wr__pz *z, int32_t ip) {
         gu = gx * ux + gy * uy;
         m0 = 0.5 * (rp + rc + z->c * rho0 * gu);
         placed = 0;
-        if ((m0 > rho0 || rho0 - m0 > WR__PZ_REPLACE * rho0) && 1.0 - 0.5 * z->c * gu > 0.5) {
+        if ((m0 > rho0 || rho0 - m0 > WR__PZ_REPLACE * rho0) && fabs(0.5 * z->c * gu) < WR__PZ_PREDICT_MAX) {
             rho = 0.5 * (rp + rc) / (1.0 - 0.5 * z->c * gu) * (1.0 + WR__PZ_MOVE_GAP);
             placed = 1;
         }
