@@ -206,3 +206,24 @@ Test(eigen, error_paths) {
     wr_eigen_result_free(&er);
     wr_csr_free(&K);
 }
+
+/* A shift exactly on an eigenvalue: the 1D Laplacian of n = 3 has λ = 2 − √2, 2, 2 + √2, and
+ * L − 2I (every diagonal entry exactly 0) is singular in exact arithmetic, whatever the ordering:
+ * the first pivot is 0, so the inertia must report a zero pivot (it is what the search tests to
+ * move σ off an eigenvalue). Off the eigenvalue (σ = 2 ± 1e-3) no zero pivot, and the counts of
+ * the closed form. */
+Test(eigen, inertia_reports_a_zero_pivot_on_an_eigenvalue) {
+    wr_csr K;
+    wr_diag d;
+    int32_t nb = -1, nz = -1;
+    eg_laplace1d(&K, 3, 0.0, NULL);
+    cr_assert_eq(wr_eigen_inertia(&K, NULL, NULL, 2.0, &nb, &nz, &d), WR_OK, "%s", d.message);
+    cr_assert_geq(nz, 1, "σ = 2 = λ_2: %d zero pivots", (int)nz);
+    cr_assert_eq(wr_eigen_inertia(&K, NULL, NULL, 2.0 - 1e-3, &nb, &nz, &d), WR_OK, "%s", d.message);
+    cr_assert_eq(nz, 0);
+    cr_assert_eq(nb, 1);
+    cr_assert_eq(wr_eigen_inertia(&K, NULL, NULL, 2.0 + 1e-3, &nb, &nz, &d), WR_OK, "%s", d.message);
+    cr_assert_eq(nz, 0);
+    cr_assert_eq(nb, 2);
+    wr_csr_free(&K);
+}
