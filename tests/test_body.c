@@ -1,5 +1,6 @@
 /* tests/test_body.c — body.h: the procedural mannequin is one closed, outward-oriented genus-0
- * surface of the requested size and height, at the triangle counts the simulator uses. */
+ * surface of the requested size and height, at the triangle counts the simulator uses; F is the
+ * exact distance to a limb away from the blends. */
 #include <criterion/criterion.h>
 #include <math.h>
 #include <stdlib.h>

@@ -1,8 +1,9 @@
 /* tests/test_dynamics.c — dynamics.h against closed forms of backward Euler (free fall, a linear
- * oscillator with and without Rayleigh damping), the statics equilibrium (hanging sheet), contact
- * without penetration (sheet on an analytic ball, on a triangulated ball and on the mannequin,
- * checked every frame with collision.h's exact triangle–triangle tests), a folded sheet that never
- * self-intersects, and bad input. */
+ * oscillator with and without Rayleigh damping, stiffness damping on one mode, the energies
+ * wr_dyn_energy reports), Newton's step count on a quadratic step, the adaptive step halving, the
+ * statics equilibrium (hanging sheet), contact without penetration (sheet on an analytic ball, on
+ * a triangulated ball and on the mannequin, checked every frame with collision.h's exact
+ * triangle–triangle tests), a folded sheet that never self-intersects, and bad input. */
 #include <criterion/criterion.h>
 #include <math.h>
 #include <stdlib.h>
@@ -565,9 +566,10 @@ Test(dynamics, stiffness_damping_on_one_mode_is_mass_damping) {
 }
 
 /* Adaptive stepping (ON TIME STEPPING): with newton.max_iter 1 no step of a hanging sheet can pass
- * the velocity test (the first Newton step is never below h·1e-9 m/s), so the frame fails after
- * exactly max_halvings reductions, h_min = dt/2^max_halvings (exact in binary), no step taken, the
- * state as it was, and WR_ERR_NOT_CONVERGED. max_halvings 0 (has_max_halvings) means no reduction. */
+ * the velocity test (its one Newton step is far longer than h · velocity_tol = h · 1e-9 m/s), so
+ * the frame fails after exactly max_halvings reductions, h_min = dt/2^max_halvings (exact in
+ * binary), no step taken, the state as it was, and WR_ERR_NOT_CONVERGED. max_halvings 0
+ * (has_max_halvings) means no reduction. */
 Test(dynamics, failed_steps_halve_exactly_max_halvings_times) {
     wr_mesh m;
     wr_shell s;

@@ -1,7 +1,7 @@
 /* tests/test_eigen.c — eigen.h: the lowest eigenpairs of sparse symmetric pencils against closed
  * forms (1D and 2D Dirichlet Laplacians, shifted ones with known negative eigenvalues, a diagonal
- * metric, fixed DOFs), the LDLᵀ inertia, and the error paths. Built with WR_USE_ARPACK and
- * WR_USE_CHOLMOD (the Makefile's test binary).
+ * metric, fixed DOFs), the LDLᵀ inertia (and its zero pivot on an eigenvalue), and the error
+ * paths. Built with WR_USE_ARPACK and WR_USE_CHOLMOD (the Makefile's test binary).
  * Tolerances: ARPACK's tol is 1e-10 relative on the Ritz values of (K − σM)⁻¹; the eigenvalues
  * here are O(1e-3–1), so 1e-9 absolute leaves an order of margin over what it guarantees. */
 #include <criterion/criterion.h>
