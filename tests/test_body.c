@@ -1,5 +1,6 @@
 /* tests/test_body.c — body.h: the procedural mannequin is one closed, outward-oriented genus-0
- * surface of the requested size and height, at the triangle counts the simulator uses. */
+ * surface of the requested size and height, at the triangle counts the simulator uses; F is the
+ * exact distance to a limb away from the blends. */
 #include <criterion/criterion.h>
 #include <math.h>
 #include <stdlib.h>
@@ -118,4 +119,51 @@ Test(body, parts_and_bad_input) {
     bd.height = 0.0;
     bd.cell = 1e-4; /* (1.3/1e-4)·(0.4/1e-4)·(1.8/1e-4) cubes */
     cr_assert_eq(wr_body_mannequin(&m, &bd, &d), WR_ERR_BUDGET);
+}
+
+/* Away from every blend, F is the exact distance to one primitive. A point 6 cm in front of the
+ * left forearm's midpoint (−y, perpendicular to the arm, which lies in the x–z plane) is ~2.8 cm
+ * from the forearm and > 9 cm from every other primitive (the upper arm's end at the elbow, the
+ * hand, the chest), more than the 2.5 cm limb blend apart, so the smooth minimum is the plain
+ * minimum there and F must equal the distance to the forearm's round cone. That cone is the
+ * convex hull of its two end spheres, i.e. the union of the spheres with linearly interpolated
+ * centre and radius, so its distance is min over t in [0, 1] of |p − c(t)| − r(t) (a convex
+ * function of t): found here by golden-section search to 1e-15 in t, independent of body.h's
+ * tangent-cone formula. Tolerance 1e-12 m (the search's and the formula's round-off). */
+Test(body, sdf_is_the_round_cone_distance_on_a_limb) {
+    wr_body_part parts[WR_BODY_N_PARTS];
+    const wr_body_part *fa = NULL;
+    double p[3], lo = 0.0, hi = 1.0, gr = 0.5 * (sqrt(5.0) - 1.0), best, t;
+    int32_t i, it;
+    wr_body_parts(NULL, parts, WR_BODY_N_PARTS);
+    for (i = 0; i < WR_BODY_N_PARTS; ++i)
+        if (strcmp(parts[i].name, "left_forearm") == 0) fa = parts + i;
+    cr_assert_not_null(fa);
+    for (i = 0; i < 3; ++i) p[i] = 0.5 * (fa->p[i] + fa->q[i]);
+    cr_assert_float_eq(fa->p[1], 0.0, 0.0, "the forearm lies in the x-z plane");
+    cr_assert_float_eq(fa->q[1], 0.0, 0.0);
+    p[1] -= 0.06;
+    for (it = 0; it < 200 && hi - lo > 1e-15; ++it) {
+        double a = hi - gr * (hi - lo), b = lo + gr * (hi - lo), fa_ = 0.0, fb = 0.0, ca, cb;
+        for (i = 0; i < 3; ++i) {
+            ca = p[i] - (fa->p[i] + a * (fa->q[i] - fa->p[i]));
+            cb = p[i] - (fa->p[i] + b * (fa->q[i] - fa->p[i]));
+            fa_ += ca * ca;
+            fb += cb * cb;
+        }
+        fa_ = sqrt(fa_) - (fa->rp + a * (fa->rq - fa->rp));
+        fb = sqrt(fb) - (fa->rp + b * (fa->rq - fa->rp));
+        if (fa_ < fb) hi = b;
+        else lo = a;
+    }
+    t = 0.5 * (lo + hi);
+    cr_assert(t > 0.0 && t < 1.0, "the nearest point is on the cone's side (t %.6f)", t);
+    best = 0.0;
+    for (i = 0; i < 3; ++i) {
+        double c = p[i] - (fa->p[i] + t * (fa->q[i] - fa->p[i]));
+        best += c * c;
+    }
+    best = sqrt(best) - (fa->rp + t * (fa->rq - fa->rp));
+    cr_assert(best > 0.02 && best < 0.04, "distance %.4f m to the forearm", best);
+    cr_assert_float_eq(wr_body_sdf(NULL, p), best, 1e-12, "F %.15g vs the cone distance %.15g", wr_body_sdf(NULL, p), best);
 }

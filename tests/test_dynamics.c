@@ -1,8 +1,9 @@
 /* tests/test_dynamics.c — dynamics.h against closed forms of backward Euler (free fall, a linear
- * oscillator with and without Rayleigh damping), the statics equilibrium (hanging sheet), contact
- * without penetration (sheet on an analytic ball, on a triangulated ball and on the mannequin,
- * checked every frame with collision.h's exact triangle–triangle tests), a folded sheet that never
- * self-intersects, and bad input. */
+ * oscillator with and without Rayleigh damping, stiffness damping on one mode, the energies
+ * wr_dyn_energy reports), Newton's step count on a quadratic step, the adaptive step halving, the
+ * statics equilibrium (hanging sheet), contact without penetration (sheet on an analytic ball, on
+ * a triangulated ball and on the mannequin, checked every frame with collision.h's exact
+ * triangle–triangle tests), a folded sheet that never self-intersects, and bad input. */
 #include <criterion/criterion.h>
 #include <math.h>
 #include <stdlib.h>
@@ -443,6 +444,169 @@ Test(dynamics, bad_input_is_refused) {
     wr_dyn_free(&sim); /* safe twice */
     free(x);
     free(vel);
+    wr_shell_free(&s);
+    wr_mesh_free(&m);
+}
+
+/* Mass-damped free fall, checked on what free_fall_matches_backward_euler does not read: wr_dyn_energy
+ * and Newton's iteration count. The sheet translates rigidly, so E_el = 0 (round-off) and the
+ * frame's state has K = ½ M v_z², P = −g M z with (v_z, z) the damped BE recursion
+ * v' = (v + h g)/(1 + hα), z' = z + h v'. Tolerances: positions and h·velocities are within 1e-8 m
+ * of the recursion (that test's bound), so |ΔP| <= |g| M 1e-8 and |ΔK| <= M |v_z| 1e-8/h (+ its
+ * square); both taken ×2. Newton: Φ is quadratic along a translation and (K_el + (1/h² + α/h)M)
+ * maps a uniform translation t to (1/h² + α/h) M t (K_el annihilates it), so the first Newton step
+ * lands on the minimiser up to PCG's 1e-5 residual, the second removes that, and the third is the
+ * velocity test on a round-off step: <= 3 (measured 2 2 3 3 3 3 3 3 3 3 over the 10 frames; the
+ * undamped masses test above has the same bound). A Hessian missing α/h M overshoots by (1 + hα)
+ * and contracts by hα/(1 + hα) = 1/16 per step: ~8 steps to 1e-9 m/s. */
+Test(dynamics, damped_free_fall_energy_and_newton_steps) {
+    wr_mesh m;
+    wr_shell s;
+    wr_dyn_desc dd;
+    wr_dyn sim;
+    wr_dyn_state st;
+    wr_dyn_stats fs;
+    wr_diag dg;
+    double *x, *v, h = 1.0 / 30.0, g = -9.81, alpha = 2.0, vz = 0.0, z = 0.0, M = 0.0;
+    int32_t n, i;
+    dyn_sheet(&m, &s, 0.2, 4, WR_MEMBRANE_STVK, WR_BENDING_MIDEDGE);
+    x = dyn_copy(m.pos, 3 * m.nv);
+    v = (double *)calloc(3 * (size_t)m.nv, sizeof(double));
+    memset(&dd, 0, sizeof dd);
+    dd.gravity[2] = g;
+    dd.damping.mass = alpha;
+    dd.newton.velocity_tol = 1e-9;
+    cr_assert_eq(wr_dyn_create(&sim, &s, &dd, &dg), WR_OK, "%s", dg.message);
+    for (i = 0; i < m.nv; ++i) M += sim.mass[i];
+    wr_dyn_state_init(&sim, &st, x, v);
+    for (n = 1; n <= 10; ++n) {
+        double K, P;
+        cr_assert_eq(wr_dyn_step(&sim, &st, &fs, &dg), WR_OK, "%s", dg.message);
+        cr_assert_leq(fs.newton_iterations, 3, "frame %d: %d Newton steps", (int)n, (int)fs.newton_iterations);
+        vz = (vz + h * g) / (1.0 + h * alpha);
+        z += h * vz;
+        cr_assert_eq(wr_dyn_energy(&sim, &st, &K, &P, &dg), WR_OK, "%s", dg.message);
+        cr_assert_float_eq(P, -g * M * z, 2.0 * fabs(g) * M * 1e-8, "frame %d: P %.12g vs -g M z %.12g", (int)n, P, -g * M * z);
+        cr_assert_float_eq(K, 0.5 * M * vz * vz, 2.0 * M * (fabs(vz) * 1e-8 / h + 1e-16 / (h * h)),
+                           "frame %d: K %.12g vs M v^2/2 %.12g", (int)n, K, 0.5 * M * vz * vz);
+    }
+    wr_dyn_free(&sim);
+    free(x);
+    free(v);
+    wr_shell_free(&s);
+    wr_mesh_free(&m);
+}
+
+/* Stiffness-proportional damping on one mode is mass damping α = βω² (Rayleigh: C = βK, and K v =
+ * ω² M v). One free vertex (the centre of a 2 × 2 sheet, every other vertex fixed) under quadratic
+ * bending alone: the shell's energy is ½ Σ c (Σ w_a x_a)² per coordinate (Q ⊗ I₃, constant in x),
+ * so the free vertex sees K_ff = k I₃ with k = 2 E(δ)/δ² read from wr_shell_energy, and its
+ * out-of-plane motion is the 1-DOF oscillator of oscillator_energy_decays_as_backward_euler with
+ * α = βk/m: BE gives
+ * x' = (x(1 + hα) + h v)/(1 + hα + ω²h²), v' = (x' − x)/h. β is set so that βω² = 3/s.
+ * Tolerance 1e-9 relative, as in that test (velocity_tol 1e-12 m/s; the 3×3 block-Jacobi PCG is
+ * exact on one vertex). */
+Test(dynamics, stiffness_damping_on_one_mode_is_mass_damping) {
+    wr_mesh m;
+    wr_shell s;
+    wr_shell_desc d;
+    wr_dyn_desc dd;
+    wr_dyn sim;
+    wr_dyn_state st;
+    wr_dyn_stats fs;
+    wr_diag dg;
+    uint8_t fixed[9];
+    double x[27], v[27] = {0}, h = 1.0 / 30.0, E = 0.0, delta = 1e-3, kk, m1, w2, beta, alpha, xr, vr = 0.0, best = HUGE_VAL;
+    int32_t c = -1, i, k;
+    cr_assert_eq(wr_mesh_rectangle(&m, 0.2, 0.2, 2, 2, NULL), WR_OK);
+    cr_assert_eq(m.nv, 9);
+    memset(&d, 0, sizeof d);
+    d.young = 1e5;
+    d.poisson = 0.3;
+    d.thickness = 5e-4;
+    d.density = 300.0;
+    d.membrane = WR_MEMBRANE_NONE;
+    d.bending = WR_BENDING_QUADRATIC;
+    cr_assert_eq(wr_shell_create(&s, &m, &d, NULL), WR_OK);
+    for (i = 0; i < 9; ++i) { /* the vertex nearest the sheet's centre */
+        double cx = m.pos[3 * i] - 0.1, cy = m.pos[3 * i + 1] - 0.1;
+        if (cx * cx + cy * cy < best) best = cx * cx + cy * cy, c = i;
+    }
+    memcpy(x, m.pos, sizeof x);
+    x[3 * c + 2] = delta;
+    cr_assert_eq(wr_shell_energy(&s, x, &E, NULL, &dg), WR_OK, "%s", dg.message);
+    kk = 2.0 * E / (delta * delta);
+    cr_assert_gt(kk, 0.0, "the centre carries a bending stencil");
+    memset(fixed, 1, sizeof fixed);
+    fixed[c] = 0;
+    memset(&dd, 0, sizeof dd);
+    dd.fixed = fixed;
+    dd.newton.velocity_tol = 1e-12;
+    cr_assert_eq(wr_dyn_create(&sim, &s, &dd, &dg), WR_OK, "%s", dg.message);
+    m1 = sim.mass[c];
+    wr_dyn_free(&sim);
+    w2 = kk / m1;
+    beta = 3.0 / w2;
+    alpha = beta * w2;
+    dd.damping.stiffness = beta;
+    cr_assert_eq(wr_dyn_create(&sim, &s, &dd, &dg), WR_OK, "%s", dg.message);
+    wr_dyn_state_init(&sim, &st, x, v);
+    xr = delta;
+    for (k = 1; k <= 6; ++k) {
+        double xn = xr;
+        cr_assert_eq(wr_dyn_step(&sim, &st, &fs, &dg), WR_OK, "%s", dg.message);
+        xr = (xr * (1.0 + h * alpha) + h * vr) / (1.0 + h * alpha + w2 * h * h);
+        vr = (xr - xn) / h;
+        cr_assert_float_eq(x[3 * c + 2], xr, 1e-9 * delta, "step %d: z %.12g vs %.12g", (int)k, x[3 * c + 2], xr);
+        cr_assert_float_eq(v[3 * c + 2], vr, 1e-9 * delta / h, "step %d: v %.12g vs %.12g", (int)k, v[3 * c + 2], vr);
+        cr_assert_float_eq(x[3 * c], m.pos[3 * c], 1e-12);
+    }
+    wr_dyn_free(&sim);
+    wr_shell_free(&s);
+    wr_mesh_free(&m);
+}
+
+/* Adaptive stepping (ON TIME STEPPING): with newton.max_iter 1 no step of a hanging sheet can pass
+ * the velocity test (its one Newton step is far longer than h · velocity_tol = h · 1e-9 m/s), so
+ * the frame fails after exactly max_halvings reductions, h_min = dt/2^max_halvings (exact in
+ * binary), no step taken, the state as it was, and WR_ERR_NOT_CONVERGED. max_halvings 0
+ * (has_max_halvings) means no reduction. */
+Test(dynamics, failed_steps_halve_exactly_max_halvings_times) {
+    wr_mesh m;
+    wr_shell s;
+    int32_t n = 4, mh;
+    uint8_t *fixed;
+    dyn_sheet(&m, &s, 0.2, n, WR_MEMBRANE_STVK, WR_BENDING_MIDEDGE);
+    fixed = dyn_top_row(&m, n);
+    for (mh = 0; mh <= 3; mh += 3) {
+        wr_dyn_desc dd;
+        wr_dyn sim;
+        wr_dyn_state st;
+        wr_dyn_stats fs;
+        wr_diag dg;
+        double *x = dyn_copy(m.pos, 3 * m.nv), *v = (double *)calloc(3 * (size_t)m.nv, sizeof(double));
+        int32_t i;
+        memset(&dd, 0, sizeof dd);
+        dd.gravity[1] = -9.81;
+        dd.fixed = fixed;
+        dd.newton.max_iter = 1;
+        dd.newton.velocity_tol = 1e-9;
+        dd.time.max_halvings = mh;
+        dd.time.has_max_halvings = 1;
+        cr_assert_eq(wr_dyn_create(&sim, &s, &dd, &dg), WR_OK, "%s", dg.message);
+        wr_dyn_state_init(&sim, &st, x, v);
+        cr_assert_eq(wr_dyn_step(&sim, &st, &fs, &dg), WR_ERR_NOT_CONVERGED, "max_halvings %d", (int)mh);
+        cr_assert_eq(fs.halvings, mh, "max_halvings %d: %d reductions", (int)mh, (int)fs.halvings);
+        cr_assert_eq(fs.h_min, (1.0 / 30.0) / (double)(1 << mh), "max_halvings %d: h_min %.17g", (int)mh, fs.h_min);
+        cr_assert_eq(fs.steps, 0);
+        cr_assert_eq(fs.frames, 0);
+        cr_assert_eq(st.t, 0.0);
+        for (i = 0; i < 3 * m.nv; ++i) cr_assert_eq(x[i], m.pos[i], "DOF %d moved", (int)i);
+        wr_dyn_free(&sim);
+        free(x);
+        free(v);
+    }
+    free(fixed);
     wr_shell_free(&s);
     wr_mesh_free(&m);
 }

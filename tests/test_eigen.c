@@ -1,7 +1,7 @@
 /* tests/test_eigen.c — eigen.h: the lowest eigenpairs of sparse symmetric pencils against closed
  * forms (1D and 2D Dirichlet Laplacians, shifted ones with known negative eigenvalues, a diagonal
- * metric, fixed DOFs), the LDLᵀ inertia, and the error paths. Built with WR_USE_ARPACK and
- * WR_USE_CHOLMOD (the Makefile's test binary).
+ * metric, fixed DOFs), the LDLᵀ inertia (and its zero pivot on an eigenvalue), and the error
+ * paths. Built with WR_USE_ARPACK and WR_USE_CHOLMOD (the Makefile's test binary).
  * Tolerances: ARPACK's tol is 1e-10 relative on the Ritz values of (K − σM)⁻¹; the eigenvalues
  * here are O(1e-3–1), so 1e-9 absolute leaves an order of margin over what it guarantees. */
 #include <criterion/criterion.h>
@@ -204,5 +204,26 @@ Test(eigen, error_paths) {
     ed.tol = -1.0;
     cr_assert_eq(wr_eigen_lowest(&K, &ed, &er, &d), WR_ERR_INVALID_ARG);
     wr_eigen_result_free(&er);
+    wr_csr_free(&K);
+}
+
+/* A shift exactly on an eigenvalue: the 1D Laplacian of n = 3 has λ = 2 − √2, 2, 2 + √2, and
+ * L − 2I (every diagonal entry exactly 0) is singular in exact arithmetic, whatever the ordering:
+ * the first pivot is 0, so the inertia must report a zero pivot (it is what the search tests to
+ * move σ off an eigenvalue). Off the eigenvalue (σ = 2 ± 1e-3) no zero pivot, and the counts of
+ * the closed form. */
+Test(eigen, inertia_reports_a_zero_pivot_on_an_eigenvalue) {
+    wr_csr K;
+    wr_diag d;
+    int32_t nb = -1, nz = -1;
+    eg_laplace1d(&K, 3, 0.0, NULL);
+    cr_assert_eq(wr_eigen_inertia(&K, NULL, NULL, 2.0, &nb, &nz, &d), WR_OK, "%s", d.message);
+    cr_assert_geq(nz, 1, "σ = 2 = λ_2: %d zero pivots", (int)nz);
+    cr_assert_eq(wr_eigen_inertia(&K, NULL, NULL, 2.0 - 1e-3, &nb, &nz, &d), WR_OK, "%s", d.message);
+    cr_assert_eq(nz, 0);
+    cr_assert_eq(nb, 1);
+    cr_assert_eq(wr_eigen_inertia(&K, NULL, NULL, 2.0 + 1e-3, &nb, &nz, &d), WR_OK, "%s", d.message);
+    cr_assert_eq(nz, 0);
+    cr_assert_eq(nb, 2);
     wr_csr_free(&K);
 }
