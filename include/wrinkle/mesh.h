@@ -24,6 +24,8 @@
  *   wr_mesh_quality(m, use_rest, &stats)                  angles, edge lengths, inverted/zero-area faces, χ
  *   wr_mesh_ratio_histogram(ratio, n, nbins, lo, hi, counts)   e.g. edge length / target length
  *   wr_mesh_parse_obj(m, text, len, diag) / wr_mesh_read_obj(m, path, diag)   Wavefront OBJ in
+ *   wr_mesh_read_obj_groups(m, path, &groups, diag)       the same, with the g/o names by panel id
+ *                                                         (wr_obj_groups_free; _parse_obj_groups for text)
  *   wr_mesh_write_obj(m, path, desc, diag)                OBJ out (vt = rest, g = panels), atomic
  *   wr_mesh_write_ply(m, path, nprops, names, values, diag)   ASCII PLY with per-vertex doubles, atomic
  *   wr_mesh_write_vtk(m, path, np, pnames, pvals, nc, cnames, cvals, diag)   legacy VTK POLYDATA, atomic
