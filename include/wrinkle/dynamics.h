@@ -81,9 +81,12 @@
  *   their edges) are contact pairs. With no_self those pairs are kept alone: for each interior
  *   edge (a, b) between faces (c, a, b) and (q, b, a), the point–triangle pairs (c; a, b, q),
  *   (q; b, a, c) and the edge–edge pairs (a, c | b, q), (b, c | a, q), with the same barrier and
- *   CCD as any contact pair (no friction). Two coplanar faces on one side of their shared edge
- *   overlap, so one of these distances is 0 at the fold: the barrier and CCD keep every hinge short
- *   of it, as self-contact does. Without them Newton walked the drape_ball scene without
+ *   CCD as any contact pair (no friction) but their own thickness d̂_h = min(d̂, ¼ of the mesh's
+ *   smallest rest altitude): a flat hinge's pairs are about an altitude apart, so on a fine mesh
+ *   (altitudes near d̂) a flat or gently bent sheet never feels them; they act only on a hinge
+ *   folded to within ~15° of lying flat on itself. Two coplanar faces on one side of their shared
+ *   edge overlap, so one of these distances is 0 at the fold: the barrier and CCD keep every hinge
+ *   short of it, as self-contact does. Without them Newton walked the drape_ball scene without
  *   self-contact onto a fold (frame 11 of 30: ‖∇Φ‖ 5.4e4 × its start, accepted by the step test;
  *   Φ jumped by 1.1e-6 J for a move of 1e-13 m, so every later line search failed). Other pairs of
  *   the cloth still pass through each other.
@@ -409,6 +412,7 @@ typedef struct wr__dyn_work {
     int32_t *kvert;            /* per block: k, then k vertices (7 ints) */
     int8_t *kstat, *kproj;     /* per block: failed, changed by the projection */
     int32_t n_hinge, *hinge;   /* ON FOLDS: n_hinge pairs of 5 ints (kind, 4 cloth vertices) */
+    double dhat_h;             /* their barrier thickness: min(d̂, ¼ of the smallest rest altitude) */
     wr_contact_set hs;         /* the hinge pairs within d̂ at the last evaluated point (cap n_hinge) */
 } wr__dyn_work;
 
@@ -595,7 +599,7 @@ static wr_status wr__dyn_hinge_contacts(wr_dyn *sim, const double *z, wr_diag *d
                            (int)hp[1], (int)hp[2], (int)hp[3], (int)hp[4]);
         d = sqrt(s2);
         if (d < w->hs.min_distance) w->hs.min_distance = d;
-        if (d >= sim->dhat) continue;
+        if (d >= w->dhat_h) continue;
         {
             wr_contact *ct = w->hs.c + w->hs.n++;
             memset(ct, 0, sizeof *ct);
@@ -642,7 +646,7 @@ static wr_status wr__dyn_contact_terms(wr_dyn *sim, const double *z, double *E, 
     if (w->n_hinge) {
         double Eh = 0.0;
         if ((st = wr__dyn_hinge_contacts(sim, z, diag)) != WR_OK) return st;
-        if ((st = wr_collision_contact_energy(&w->hs, z, sim->dhat, sim->kappa, 0, &Eh, g, NULL, diag)) != WR_OK) return st;
+        if ((st = wr_collision_contact_energy(&w->hs, z, w->dhat_h, sim->kappa, 0, &Eh, g, NULL, diag)) != WR_OK) return st;
         e += Eh;
         na += w->hs.n;
         if (w->hs.min_distance < dm) dm = w->hs.min_distance;
@@ -787,7 +791,7 @@ static wr_status wr__dyn_contact_hessian(wr_dyn *sim, const double *zn, wr_newto
         hh.user = &cs;
         hh.add = wr__dyn_csink_add;
         if ((st = wr__dyn_hinge_contacts(sim, z, diag)) != WR_OK) return st;
-        if ((st = wr_collision_contact_energy(&w->hs, z, sim->dhat, sim->kappa, 0, &Eh, NULL, &hh, diag)) != WR_OK) return st;
+        if ((st = wr_collision_contact_energy(&w->hs, z, w->dhat_h, sim->kappa, 0, &Eh, NULL, &hh, diag)) != WR_OK) return st;
     }
     for (k = 0; k < w->n_fr && mu > 0.0; ++k)
         if ((st = wr__dyn_fric_hessian(w->fr + k, z, w->xn, mu, eps, &fs)) != WR_OK) return st;
@@ -1341,11 +1345,18 @@ static wr_status wr__dyn_hinge_setup(wr_dyn *sim, wr_diag *diag) {
     wr__dyn_work *w = sim->w;
     const wr_shell *s = sim->shell;
     int32_t f, k, vs[6], *h, n = 0;
+    double amin = HUGE_VAL;
     w->hinge = (int32_t *)wr_alloc_array(5 * 9 * (size_t)s->nf + 1, sizeof(int32_t));
     w->hs.c = (wr_contact *)wr_alloc_array(9 * (size_t)s->nf + 1, sizeof(wr_contact));
     if (!w->hinge || !w->hs.c) return wr_fail(diag, WR_ERR_NOMEM, -1, "dynamics: out of memory (%d hinges)", (int)(3 * s->nf));
     w->hs.cap = 9 * s->nf + 1;
     for (f = 0; f < s->nf; ++f) {
+        /* rest edges: the columns of dinv's inverse; the smallest altitude is 2A / the longest edge */
+        const double *D = s->dinv + 4 * f;
+        double det = D[0] * D[3] - D[1] * D[2], e1[2], e2[2], lmax;
+        e1[0] = D[3] / det, e1[1] = -D[2] / det, e2[0] = -D[1] / det, e2[1] = D[0] / det;
+        lmax = fmax(fmax(hypot(e1[0], e1[1]), hypot(e2[0], e2[1])), hypot(e2[0] - e1[0], e2[1] - e1[1]));
+        if (lmax > 0.0) amin = fmin(amin, 2.0 * s->area[f] / lmax);
         wr_shell_face_stencil(s, f, vs);
         for (k = 0; k < 3; ++k) {
             int32_t c = vs[k], a = vs[(k + 1) % 3], b = vs[(k + 2) % 3], q = vs[3 + k];
@@ -1360,6 +1371,7 @@ static wr_status wr__dyn_hinge_setup(wr_dyn *sim, wr_diag *diag) {
         }
     }
     w->n_hinge = n;
+    w->dhat_h = fmin(sim->dhat, 0.25 * amin);
     return WR_OK;
 }
 
