@@ -73,6 +73,24 @@
  *   D = Σ_k μ λ_k f0(‖T_kᵀ Σ_i w_i (x_i − x_n,i)‖) with IPC's smoothed f0 (ε = ε_v h, ε_v =
  *   friction_eps_v): Coulomb's law μλ above the sliding speed ε_v, a stiff viscous stick below.
  *
+ * ON FOLDS (cloth self-contact off)
+ *   The shell's mid-edge bending (shell.h) is undefined where two neighbouring faces lie folded flat
+ *   onto each other (hinge angle π: the average of their normals vanishes) and jumps there (the
+ *   normalised average flips, so a hinge passing the fold changes b discontinuously). Self-contact
+ *   keeps every hinge off that fold, since the vertex across a hinge and the neighbouring face (or
+ *   their edges) are contact pairs. With no_self those pairs are kept alone: for each interior
+ *   edge (a, b) between faces (c, a, b) and (q, b, a), the point–triangle pairs (c; a, b, q),
+ *   (q; b, a, c) and the edge–edge pairs (a, c | b, q), (b, c | a, q), with the same barrier and
+ *   CCD as any contact pair (no friction) but their own thickness d̂_h = min(d̂, ¼ of the mesh's
+ *   smallest rest altitude): a flat hinge's pairs are about an altitude apart, so on a fine mesh
+ *   (altitudes near d̂) a flat or gently bent sheet never feels them; they act only on a hinge
+ *   folded to within ~15° of lying flat on itself. Two coplanar faces on one side of their shared
+ *   edge overlap, so one of these distances is 0 at the fold: the barrier and CCD keep every hinge
+ *   short of it, as self-contact does. Without them Newton walked the drape_ball scene without
+ *   self-contact onto a fold (frame 11 of 30: ‖∇Φ‖ 5.4e4 × its start, accepted by the step test;
+ *   Φ jumped by 1.1e-6 J for a move of 1e-13 m, so every later line search failed). Other pairs of
+ *   the cloth still pass through each other.
+ *
  * ON PROJECTION
  *   Newton (newton.h) makes each element block PSD. The shell's face blocks (membrane + bending over
  *   the face and the vertices across its edges) carry their share of the inertia when projected:
@@ -176,7 +194,8 @@ typedef struct wr_dyn_body {
 
 /* Defaults: dhat 1e-3 m; stiffness 0 → ON CONTACT; friction μ 0; friction_eps_v 1e-3 m/s;
  * analytic NULL / 0 obstacles (statics.h wr_obstacle, copied); bodies NULL / 0 (copied);
- * no_self 0 = cloth self-contact on (1: off); kinematic_stiffness 0 → ON MOVING BODIES. */
+ * no_self 0 = cloth self-contact on (1: off, but hinges still kept off their fold: ON FOLDS);
+ * kinematic_stiffness 0 → ON MOVING BODIES. */
 typedef struct wr_dyn_contact_desc {
     double dhat;      /* barrier thickness d̂ [m] */
     double stiffness; /* κ [N/m] */
@@ -392,6 +411,9 @@ typedef struct wr__dyn_work {
     double *kbuf;              /* WR__DYN_CHUNK face blocks (18×18 each) of one chunk */
     int32_t *kvert;            /* per block: k, then k vertices (7 ints) */
     int8_t *kstat, *kproj;     /* per block: failed, changed by the projection */
+    int32_t n_hinge, *hinge;   /* ON FOLDS: n_hinge pairs of 5 ints (kind, 4 cloth vertices) */
+    double dhat_h;             /* their barrier thickness: min(d̂, ¼ of the smallest rest altitude) */
+    wr_contact_set hs;         /* the hinge pairs within d̂ at the last evaluated point (cap n_hinge) */
 } wr__dyn_work;
 
 static double wr__dyn_now(void) { return wr_time_seconds(); }
@@ -559,6 +581,36 @@ static double wr__dyn_fric_eval(const wr__dyn_fric *f, const double *z, const do
     return mu * f->lam * wr__dyn_f0(*y, eps);
 }
 
+/* The hinge pairs (ON FOLDS) within d̂ at z into w->hs; WR_ERR_GEOMETRY when one touches (a fold). */
+static wr_status wr__dyn_hinge_contacts(wr_dyn *sim, const double *z, wr_diag *diag) {
+    wr__dyn_work *w = sim->w;
+    int32_t p, a, i;
+    w->hs.n = 0;
+    w->hs.min_distance = HUGE_VAL;
+    for (p = 0; p < w->n_hinge; ++p) {
+        const int32_t *hp = w->hinge + 5 * p;
+        double x12[12], s2, d;
+        for (a = 0; a < 4; ++a)
+            for (i = 0; i < 3; ++i) x12[3 * a + i] = z[3 * hp[1 + a] + i];
+        s2 = hp[0] == WR_CONTACT_PT ? wr_collision_point_triangle_dist2(x12, x12 + 3, x12 + 6, x12 + 9, NULL, NULL, NULL, NULL)
+                                    : wr_collision_edge_edge_dist2(x12, x12 + 3, x12 + 6, x12 + 9, NULL, NULL, NULL, NULL);
+        if (!(s2 > 0.0))
+            return wr_fail(diag, WR_ERR_GEOMETRY, hp[1], "dynamics: the faces at the hinge of vertices %d %d %d %d are folded flat",
+                           (int)hp[1], (int)hp[2], (int)hp[3], (int)hp[4]);
+        d = sqrt(s2);
+        if (d < w->hs.min_distance) w->hs.min_distance = d;
+        if (d >= w->dhat_h) continue;
+        {
+            wr_contact *ct = w->hs.c + w->hs.n++;
+            memset(ct, 0, sizeof *ct);
+            ct->kind = hp[0];
+            for (a = 0; a < 4; ++a) ct->v[a] = hp[1 + a];
+            ct->d = d;
+        }
+    }
+    return WR_OK;
+}
+
 /* Barriers (analytic obstacles; body and self pairs through collision.h) and lagged friction
  * (ON CONTACT): value added to *E, gradient to g; the mesh contact set at z is left in w->cs.
  * WR_ERR_GEOMETRY when a vertex is on or inside an obstacle, or a pair touches (Φ = +∞ there). */
@@ -590,6 +642,14 @@ static wr_status wr__dyn_contact_terms(wr_dyn *sim, const double *z, double *E, 
         e += Ec;
         na += w->cs.n;
         if (w->cs.min_distance < dm) dm = w->cs.min_distance;
+    }
+    if (w->n_hinge) {
+        double Eh = 0.0;
+        if ((st = wr__dyn_hinge_contacts(sim, z, diag)) != WR_OK) return st;
+        if ((st = wr_collision_contact_energy(&w->hs, z, w->dhat_h, sim->kappa, 0, &Eh, g, NULL, diag)) != WR_OK) return st;
+        e += Eh;
+        na += w->hs.n;
+        if (w->hs.min_distance < dm) dm = w->hs.min_distance;
     }
     for (k = 0; k < w->n_fr && mu > 0.0; ++k) e += wr__dyn_fric_eval(w->fr + k, z, w->xn, mu, eps, g, u, &y);
     *E += e;
@@ -724,6 +784,14 @@ static wr_status wr__dyn_contact_hessian(wr_dyn *sim, const double *zn, wr_newto
         if ((st = wr_collision_contacts(&w->cm, z, sim->dhat, &w->cs, diag)) != WR_OK) return st;
         if ((st = wr_collision_contact_energy(&w->cs, z, sim->dhat, sim->kappa, 0, &Ec, NULL, &hs, diag)) != WR_OK)
             return st;
+    }
+    if (w->n_hinge) { /* ON FOLDS: projected or exact by Newton's phase, as the mesh pairs */
+        wr_hess_sink hh;
+        double Eh = 0.0;
+        hh.user = &cs;
+        hh.add = wr__dyn_csink_add;
+        if ((st = wr__dyn_hinge_contacts(sim, z, diag)) != WR_OK) return st;
+        if ((st = wr_collision_contact_energy(&w->hs, z, w->dhat_h, sim->kappa, 0, &Eh, NULL, &hh, diag)) != WR_OK) return st;
     }
     for (k = 0; k < w->n_fr && mu > 0.0; ++k)
         if ((st = wr__dyn_fric_hessian(w->fr + k, z, w->xn, mu, eps, &fs)) != WR_OK) return st;
@@ -911,6 +979,19 @@ static double wr__dyn_max_step_cb(void *user, const double *zn, const double *dz
         /* a failure here (out of memory) can only be reported as "no safe step" */
         if (wr_collision_max_step(&sim->w->cm, z, dz, &a, NULL, NULL) != WR_OK) a = 0.0;
         if (a < alpha) alpha = a;
+    }
+    for (o = 0; o < sim->w->n_hinge; ++o) { /* ON FOLDS: the hinge pairs' additive CCD */
+        const int32_t *hp = sim->w->hinge + 5 * o;
+        double x12[12], d12[12], toi, moved = 0.0;
+        for (v = 0; v < 4; ++v)
+            for (i = 0; i < 3; ++i) {
+                x12[3 * v + i] = z[3 * hp[1 + v] + i];
+                d12[3 * v + i] = dz[3 * hp[1 + v] + i];
+                moved += fabs(d12[3 * v + i]);
+            }
+        if (moved > 0.0 && wr_collision_accd((wr_contact_kind)hp[0], x12, d12, WR_COLLISION_CCD_KEEP, alpha, 0, &toi) &&
+            toi < alpha)
+            alpha = toi;
     }
     sim->w->t_ch += wr__dyn_now() - t0;
     return alpha;
@@ -1170,6 +1251,8 @@ WRDEF void wr_dyn_free(wr_dyn *sim) {
         wr_free(w->kstat);
         wr_free(w->kproj);
         wr_free(w->fr);
+        wr_free(w->hinge);
+        wr_contact_set_free(&w->hs);
         wr_free(w);
     }
     wr_free(sim->mass);
@@ -1254,6 +1337,42 @@ static wr_status wr__dyn_collision_setup(wr_dyn *sim, wr_diag *diag) {
     wr_free(obst);
     if (st == WR_OK) w->have_cm = 1;
     return st;
+}
+
+/* The hinge pairs of ON FOLDS: per face f and edge k with a face across (vertex q), the vertex c of
+ * f opposite the edge (a, b) against the face across, and once per edge (c < q) the two edge pairs. */
+static wr_status wr__dyn_hinge_setup(wr_dyn *sim, wr_diag *diag) {
+    wr__dyn_work *w = sim->w;
+    const wr_shell *s = sim->shell;
+    int32_t f, k, vs[6], *h, n = 0;
+    double amin = HUGE_VAL;
+    w->hinge = (int32_t *)wr_alloc_array(5 * 9 * (size_t)s->nf + 1, sizeof(int32_t));
+    w->hs.c = (wr_contact *)wr_alloc_array(9 * (size_t)s->nf + 1, sizeof(wr_contact));
+    if (!w->hinge || !w->hs.c) return wr_fail(diag, WR_ERR_NOMEM, -1, "dynamics: out of memory (%d hinges)", (int)(3 * s->nf));
+    w->hs.cap = 9 * s->nf + 1;
+    for (f = 0; f < s->nf; ++f) {
+        /* rest edges: the columns of dinv's inverse; the smallest altitude is 2A / the longest edge */
+        const double *D = s->dinv + 4 * f;
+        double det = D[0] * D[3] - D[1] * D[2], e1[2], e2[2], lmax;
+        e1[0] = D[3] / det, e1[1] = -D[2] / det, e2[0] = -D[1] / det, e2[1] = D[0] / det;
+        lmax = fmax(fmax(hypot(e1[0], e1[1]), hypot(e2[0], e2[1])), hypot(e2[0] - e1[0], e2[1] - e1[1]));
+        if (lmax > 0.0) amin = fmin(amin, 2.0 * s->area[f] / lmax);
+        wr_shell_face_stencil(s, f, vs);
+        for (k = 0; k < 3; ++k) {
+            int32_t c = vs[k], a = vs[(k + 1) % 3], b = vs[(k + 2) % 3], q = vs[3 + k];
+            if (q < 0) continue;
+            h = w->hinge + 5 * n++;
+            h[0] = WR_CONTACT_PT, h[1] = c, h[2] = a, h[3] = b, h[4] = q;
+            if (c > q) continue;
+            h = w->hinge + 5 * n++;
+            h[0] = WR_CONTACT_EE, h[1] = a, h[2] = c, h[3] = b, h[4] = q;
+            h = w->hinge + 5 * n++;
+            h[0] = WR_CONTACT_EE, h[1] = b, h[2] = c, h[3] = a, h[4] = q;
+        }
+    }
+    w->n_hinge = n;
+    w->dhat_h = fmin(sim->dhat, 0.25 * amin);
+    return WR_OK;
 }
 
 WRDEF wr_status wr_dyn_create(wr_dyn *sim, const wr_shell *shell, const wr_dyn_desc *desc, wr_diag *diag) {
@@ -1351,6 +1470,7 @@ WRDEF wr_status wr_dyn_create(wr_dyn *sim, const wr_shell *shell, const wr_dyn_d
     w->damp_stiff = d.damping.stiffness > 0.0;
     if (w->damp_stiff && (st = wr_assembly_init(&w->Kd, shell->nv, 3, diag)) != WR_OK) goto fail;
     if ((d.contact.n_bodies > 0 || !d.contact.no_self) && (st = wr__dyn_collision_setup(sim, diag)) != WR_OK) goto fail;
+    if (d.contact.no_self && (st = wr__dyn_hinge_setup(sim, diag)) != WR_OK) goto fail;
     return WR_OK;
 nomem:
     st = wr_fail(diag, WR_ERR_NOMEM, -1, "dynamics: out of memory (%d vertices)", (int)shell->nv);
