@@ -595,6 +595,30 @@ Test(regressions, cdt_wedge_cavity_quadratic) {
     }
 }
 
+/* fuzz_cdt (CI fuzz smoke, 52 s for one input under ASan; pre-existing): points (0,2) (0.00098,0)
+ * (1,-1.17e26) (-2.5e24,-1.35e28) (0,0.94), segments 0-3 1-2 2-4 4-0, 30° with off-centers. A fan of
+ * ~860 slivers around one vertex that refinement cannot fix (Steiner point not finite, or beyond a
+ * subsegment whose split would fold a sliver): every insertion beside the fan queued all of them
+ * again and walked to each Steiner point again — 388k queue entries, 34M exact walk steps for 1,750
+ * vertices. Now a triangle is queued once and a give-up is recorded until the triangle (or the
+ * blocking subsegment's neighbourhood) changes. Guarded by the work count, not by time: at most 4
+ * queue entries examined per output vertex (2.7 measured; 10 without the give-up record, 222
+ * without the one-entry rule), at both budgets, with a valid mesh and the give-ups reported. */
+Test(regressions, cdt_fan_giveup) {
+    int32_t budgets[2] = {2000, 0}, k;
+    for (k = 0; k < 2; ++k) {
+        wr_cdt_result r;
+        wr_diag dc;
+        wr_status s = replay_cdt("cdt_fan_giveup.fuzz_cdt", budgets[k], &r);
+        cr_assert_eq(s, WR_OK, "budget %d: %s", (int)budgets[k], wr_status_string(s));
+        cr_assert_eq(wr_cdt_check(&r, -1, NULL, &dc), WR_OK, "budget %d: %s", (int)budgets[k], dc.message);
+        cr_assert_gt(r.n_left_alone, 0, "the input must exercise the give-up record");
+        cr_assert_leq(r.n_refine_tries, (int64_t)4 * r.n_points, "budget %d: %lld queue entries for %d vertices",
+                      (int)budgets[k], (long long)r.n_refine_tries, (int)r.n_points);
+        wr_cdt_free(&r);
+    }
+}
+
 /* fuzz_poly: a .poly with coordinates up to 1e118: the in-circle determinant overflowed, flips went
  * wrong, and the segment-recovery walk reached the vertex at infinity and read coordinates at index
  * -1 (UBSan: unsigned offset overflow). Policy: |coordinates| beyond WR_CDT_MAX_COORD (1e70) are

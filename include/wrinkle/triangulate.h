@@ -189,6 +189,10 @@ typedef struct wr_cdt_result {
     int exterior_carved;     /* 1 when triangles outside the segments were removed */
     int holes_carved;        /* 1 when hole seeds removed triangles */
     int32_t n_steiner;       /* Steiner points inserted (intersections + refinement) */
+    int64_t n_refine_tries;  /* bad-triangle queue entries refinement examined: its cost, a small
+                              * multiple of the points inserted on any input */
+    int32_t n_left_alone;    /* bad triangles refinement left alone because their Steiner point is
+                              * not finite (area rounding to zero); they stay bad */
     int32_t n_duplicates;    /* input points merged into an earlier one */
     double *attributes;      /* n_points × n_attributes (NULL without input attributes) */
     int32_t n_attributes;
@@ -1389,7 +1393,9 @@ typedef struct wr__ref {
     wr__ivec segq;      /* vertex pairs of possibly encroached subsegments */
     wr__badheap badq;   /* possibly bad triangles, smallest shortest edge first */
     wr__ivec cav;       /* cavity scratch */
-    int32_t n_steiner;
+    wr__ivec slot;      /* per triangle slot: queue and give-up records (see wr__slot) */
+    int32_t n_steiner, n_left;
+    int64_t n_tries;
 } wr__ref;
 
 static inline int wr__is_live(const wr__cdt *S, int32_t t) { return !WR__GHOSTLY(S, t) && !(S->tf[t] & WR__F_OUT); }
@@ -1534,11 +1540,82 @@ static wr__bad wr__bad_pop(wr__badheap *H) {
     if (H->n > 0) H->h[i] = x;
     return top;
 }
+/* Per triangle slot, two records, each keyed by the slot's vertex triple (a slot reused by another
+ * triangle matches neither):
+ *   [0..2] the triangle waiting in the queue: a triangle is queued once, not once per insertion
+ *          near it (scan_star visits a fan vertex's whole star at every insertion beside it);
+ *   [3..5] a bad triangle whose Steiner point is not finite (a sliver whose area rounds to zero):
+ *          a property of the triangle alone, so it is left alone while it exists, like the input's
+ *          small angles.
+ * Without them every insertion beside a fan of n unfixable slivers queued all of them again and
+ * walked to their Steiner points again: O(n^2) walks and queue entries (fuzzer finding
+ * cdt_fan_giveup: 5 points spanning 1e-3 to 1e28, 388k queue entries and 34M exact walk steps for
+ * 1,750 vertices, 9 s). Returns the record, or NULL past 2^27 triangles (not recorded: the
+ * behaviour without records) or when out of memory (*oom = 1). */
+#define WR__SLOT_W 6
+static int32_t *wr__slot(wr__ref *R, int32_t t, int *oom) {
+    if ((int64_t)WR__SLOT_W * (t + 1) > INT32_MAX / 2) return NULL;
+    while (R->slot.n < WR__SLOT_W * (t + 1))
+        if (!wr__ivec_push(&R->slot, -1)) {
+            *oom = 1;
+            return NULL;
+        }
+    return R->slot.a + WR__SLOT_W * t;
+}
+static const int32_t *wr__slot_if(const wr__ref *R, int32_t t) {
+    return (int64_t)WR__SLOT_W * (t + 1) > R->slot.n ? NULL : R->slot.a + WR__SLOT_W * t;
+}
+static int wr__triple_is(const int32_t *l, const int32_t *v) { return l[0] == v[0] && l[1] == v[1] && l[2] == v[2]; }
+
+static int wr__leave(const wr__cdt *S, wr__ref *R, int32_t t) {
+    int oom = 0;
+    int32_t *l = wr__slot(R, t, &oom);
+    if (!l) return !oom;
+    R->n_left++;
+    memcpy(l + 3, S->tv + 3 * t, 3 * sizeof(int32_t));
+    return 1;
+}
+static int wr__left_alone(const wr__cdt *S, const wr__ref *R, int32_t t) {
+    const int32_t *l = wr__slot_if(R, t);
+    return l && wr__triple_is(l + 3, S->tv + 3 * t);
+}
+
+/* Queue bad triangle t (key: wr__is_bad's) unless it is queued already. 0 out of memory. */
+static int wr__queue_tri(const wr__cdt *S, wr__ref *R, int32_t t, int32_t key) {
+    const int32_t *v = S->tv + 3 * t;
+    int oom = 0;
+    int32_t *l = wr__slot(R, t, &oom);
+    if (oom) return 0;
+    if (l) {
+        if (wr__triple_is(l, v)) return 1;
+        memcpy(l, v, 3 * sizeof(int32_t));
+    }
+    return wr__bad_push(&R->badq, t, v[0], v[1], v[2], key);
+}
+/* Queue entry bt's triangle again after a subsegment split for it, if it still exists (else the
+ * entry would be stale: nothing to do). 0 out of memory. */
+static int wr__requeue(const wr__cdt *S, wr__ref *R, const wr__bad *bt, int32_t key) {
+    int32_t v[3];
+    v[0] = bt->a;
+    v[1] = bt->b;
+    v[2] = bt->c;
+    return !wr__triple_is(S->tv + 3 * bt->t, v) || wr__queue_tri(S, R, bt->t, key);
+}
+/* Entry bt left the queue: its slot may be queued again. */
+static void wr__unqueue(wr__ref *R, const wr__bad *bt) {
+    int32_t *l, v[3];
+    if (!wr__slot_if(R, bt->t)) return;
+    l = R->slot.a + WR__SLOT_W * bt->t;
+    v[0] = bt->a;
+    v[1] = bt->b;
+    v[2] = bt->c;
+    if (wr__triple_is(l, v)) l[0] = l[1] = l[2] = -1;
+}
+
 static int wr__queue_if_bad(const wr__cdt *S, wr__ref *R, int32_t t) {
     int32_t key;
-    const int32_t *v = S->tv + 3 * t;
-    if (!wr__is_bad(S, R, t, &key)) return 1;
-    return wr__bad_push(&R->badq, t, v[0], v[1], v[2], key);
+    if (wr__left_alone(S, R, t) || !wr__is_bad(S, R, t, &key)) return 1;
+    return wr__queue_tri(S, R, t, key);
 }
 
 /* Does vertex w encroach subsegment x-y? Ruppert: w inside its diametral circle (angle x-w-y above
@@ -1838,13 +1915,15 @@ static int wr__fix_bad(wr__cdt *S, wr__ref *R, const wr__bad *bt) {
     int32_t t = bt->t, r, tt, key, np, *pairs;
     int loc, rc;
     double cp[2];
+    R->n_tries++;
+    wr__unqueue(R, bt);
     if (t >= S->nt || S->tv[3 * t] != bt->a || S->tv[3 * t + 1] != bt->b || S->tv[3 * t + 2] != bt->c) return 1;
-    if (!wr__is_live(S, t) || !wr__is_bad(S, R, t, &key)) return 1;
+    if (!wr__is_live(S, t) || wr__left_alone(S, R, t) || !wr__is_bad(S, R, t, &key)) return 1;
     wr__steiner_point(S, R, t, 1, cp);
     /* an off-center below the coordinate floor (wr__coord_ok: between a tiny feature and the
      * boundary) falls back to the circumcenter, which lies beyond it or splits the subsegment */
     if (!wr__coord_ok(R, cp)) wr__steiner_point(S, R, t, 0, cp);
-    if (!isfinite(cp[0]) || !isfinite(cp[1])) return 1;
+    if (!isfinite(cp[0]) || !isfinite(cp[1])) return wr__leave(S, R, t) ? 1 : -2;
     if (!wr__coord_ok(R, cp)) { /* still below the floor: split a subsegment of t whose diametral
                                  * circle holds cp (its split point lies on the segment's line) */
         int k;
@@ -1855,7 +1934,7 @@ static int wr__fix_bad(wr__cdt *S, wr__ref *R, const wr__bad *bt) {
                 continue;
             rc = wr__split_segment(S, R, he);
             if (rc < 0) return rc;
-            return rc == 0 || wr__bad_push(&R->badq, t, bt->a, bt->b, bt->c, key) ? 1 : -2;
+            return rc == 0 || wr__requeue(S, R, bt, key) ? 1 : -2;
         }
         return 1;
     }
@@ -1864,7 +1943,7 @@ static int wr__fix_bad(wr__cdt *S, wr__ref *R, const wr__bad *bt) {
     if (loc == WR__LOC_BLOCKED) { /* the point lies beyond a segment: split that segment instead */
         rc = wr__split_segment(S, R, r);
         if (rc < 0) return rc;
-        return rc == 0 || wr__bad_push(&R->badq, t, bt->a, bt->b, bt->c, key) ? 1 : -2;
+        return rc == 0 || wr__requeue(S, R, bt, key) ? 1 : -2;
     }
     tt = loc == WR__LOC_EDGE ? r / 3 : r;
     if (!wr__is_live(S, tt)) return 1;
@@ -1877,7 +1956,7 @@ static int wr__fix_bad(wr__cdt *S, wr__ref *R, const wr__bad *bt) {
     rc = wr__split_listed(S, R, pairs, np);
     wr_free(pairs);
     if (rc < 0) return rc;
-    return rc == 0 || wr__bad_push(&R->badq, t, bt->a, bt->b, bt->c, key) ? 1 : -2;
+    return rc == 0 || wr__requeue(S, R, bt, key) ? 1 : -2;
 }
 
 /* ---- Steiner-point removal and edge collapse ----
@@ -3037,6 +3116,8 @@ WRDEF wr_status wr_cdt_triangulate(const wr_cdt_input *in, const wr_cdt_desc *de
     out->exterior_carved = X.carved;
     out->holes_carved = X.holes_carved;
     out->n_steiner = X.C.n_steiner + X.R.n_steiner;
+    out->n_refine_tries = X.R.n_tries;
+    out->n_left_alone = X.R.n_left;
     st = st_late;
 done:
     if (st != WR_OK && st != WR_ERR_BUDGET) wr_cdt_free(out);
@@ -3048,6 +3129,7 @@ done:
     wr_free(X.R.segq.a);
     wr_free(X.R.badq.h);
     wr_free(X.R.cav.a);
+    wr_free(X.R.slot.a);
     wr_free(X.rep);
     wr_free(X.ids);
     wr_free(X.order);
