@@ -374,23 +374,27 @@ static void example_figure(wr_vres *v, const char *stem, const example_run *e, i
 
 /* The diagnosis beside a pass row that excluded fold-strip edges: the all-edge mean and both classes. */
 static void example_strip_rows(wr_vres *v, const char *pname, const edge_classes *ec) {
+    /* (row name after "<panel>: ", unit, value, 1 when the row's reference is the calibration target) */
+    const struct {
+        const char *what, *unit;
+        double value;
+        int calibrated;
+    } rows[] = {
+        {"mean edge length / sizing, all edges (fold-strip edges included)", "1", ec->mean_all, 1},
+        {"fold-strip edges", "edges", (double)ec->n_strip, 0},
+        {"fold-strip edges: mean edge length / sizing", "1", ec->mean_strip, 0},
+        {"other edges (the pass row's)", "edges", (double)ec->n_kept, 0},
+        {"fold-strip rungs (shorter than 2 x offset)", "edges", (double)ec->n_rung, 0},
+        {"fold-strip rungs: mean edge length / sizing", "1", ec->mean_rung, 0},
+        {"mean edge length / sizing, only the rungs excluded", "1", ec->mean_no_rungs, 1},
+    };
     char name[256], line[1400];
-    snprintf(name, sizeof name, "%s: mean edge length / sizing, all edges (fold-strip edges included)", pname);
-    wr_vres_info(v, name, "1", NAN, ec->mean_all);
-    wr_vres_reference(v, 1.0, "poisson.h calibration target");
-    snprintf(name, sizeof name, "%s: fold-strip edges", pname);
-    wr_vres_info(v, name, "edges", NAN, ec->n_strip);
-    snprintf(name, sizeof name, "%s: fold-strip edges: mean edge length / sizing", pname);
-    wr_vres_info(v, name, "1", NAN, ec->mean_strip);
-    snprintf(name, sizeof name, "%s: other edges (the pass row's)", pname);
-    wr_vres_info(v, name, "edges", NAN, ec->n_kept);
-    snprintf(name, sizeof name, "%s: fold-strip rungs (shorter than 2 x offset)", pname);
-    wr_vres_info(v, name, "edges", NAN, ec->n_rung);
-    snprintf(name, sizeof name, "%s: fold-strip rungs: mean edge length / sizing", pname);
-    wr_vres_info(v, name, "1", NAN, ec->mean_rung);
-    snprintf(name, sizeof name, "%s: mean edge length / sizing, only the rungs excluded", pname);
-    wr_vres_info(v, name, "1", NAN, ec->mean_no_rungs);
-    wr_vres_reference(v, 1.0, "poisson.h calibration target");
+    size_t i;
+    for (i = 0; i < sizeof rows / sizeof rows[0]; ++i) {
+        snprintf(name, sizeof name, "%s: %s", pname, rows[i].what);
+        wr_vres_info(v, name, rows[i].unit, NAN, rows[i].value);
+        if (rows[i].calibrated) wr_vres_reference(v, 1.0, "poisson.h calibration target");
+    }
     snprintf(line, sizeof line,
              "%s: of %d edges, %d are fold-strip edges (both ends on the fold's three lines, on different ones), "
              "mean edge/sizing %.3f; the other %d edges average %.4f (the pass row), all %d together %.4f. The strip "
