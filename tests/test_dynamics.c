@@ -53,6 +53,36 @@ static double *dyn_copy(const double *a, int32_t n) {
     return b;
 }
 
+/* A free 0.2 m sheet (4 × 4 cells, StVK + mid-edge) falling under g = (0, 0, g) from rest with mass
+ * damping alpha, Newton's velocity stop at 1e-9 m/s; the state points at f->x, f->v. */
+typedef struct {
+    wr_mesh m;
+    wr_shell s;
+    wr_dyn sim;
+    wr_dyn_state st;
+    double *x, *v;
+} dyn_fall;
+static void dyn_fall_begin(dyn_fall *f, double g, double alpha) {
+    wr_dyn_desc dd;
+    wr_diag dg;
+    dyn_sheet(&f->m, &f->s, 0.2, 4, WR_MEMBRANE_STVK, WR_BENDING_MIDEDGE);
+    f->x = dyn_copy(f->m.pos, 3 * f->m.nv);
+    f->v = (double *)calloc(3 * (size_t)f->m.nv, sizeof(double));
+    memset(&dd, 0, sizeof dd);
+    dd.gravity[2] = g;
+    dd.damping.mass = alpha;
+    dd.newton.velocity_tol = 1e-9;
+    cr_assert_eq(wr_dyn_create(&f->sim, &f->s, &dd, &dg), WR_OK, "%s", dg.message);
+    wr_dyn_state_init(&f->sim, &f->st, f->x, f->v);
+}
+static void dyn_fall_end(dyn_fall *f) {
+    wr_dyn_free(&f->sim);
+    free(f->x);
+    free(f->v);
+    wr_shell_free(&f->s);
+    wr_mesh_free(&f->m);
+}
+
 /* Free fall: backward Euler on ẍ = g from rest gives v_n = n h g and x_n = x_0 + g h² n(n+1)/2
  * (not g t²/2: BE's O(h) lag, x_n − g t_n²/2 = g h t_n/2). An unconstrained sheet falls rigidly
  * (elastic forces vanish for a translation), so every vertex must follow it. With stiffness-
@@ -117,36 +147,21 @@ Test(dynamics, free_fall_matches_backward_euler) {
  * still built from the creation-time masses overshoots by up to 3x (found by the curtain validation:
  * 354 Newton steps and 6 halvings in 4 frames instead of 34 in 18). */
 Test(dynamics, masses_changed_after_create_stay_consistent) {
-    wr_mesh m;
-    wr_shell s;
-    wr_dyn_desc dd;
-    wr_dyn sim;
-    wr_dyn_state st;
+    dyn_fall f;
     wr_dyn_stats fs;
     wr_diag dg;
-    double *x, *v, h = 1.0 / 30.0, g = -9.81, err = 0.0;
+    double h = 1.0 / 30.0, g = -9.81, err = 0.0;
     int32_t n, i;
-    dyn_sheet(&m, &s, 0.2, 4, WR_MEMBRANE_STVK, WR_BENDING_MIDEDGE);
-    x = dyn_copy(m.pos, 3 * m.nv);
-    v = (double *)calloc(3 * (size_t)m.nv, sizeof(double));
-    memset(&dd, 0, sizeof dd);
-    dd.gravity[2] = g;
-    dd.newton.velocity_tol = 1e-9;
-    cr_assert_eq(wr_dyn_create(&sim, &s, &dd, &dg), WR_OK, "%s", dg.message);
-    for (i = 0; i < m.nv; i += 2) sim.mass[i] *= 3.0;
-    wr_dyn_state_init(&sim, &st, x, v);
+    dyn_fall_begin(&f, g, 0.0);
+    for (i = 0; i < f.m.nv; i += 2) f.sim.mass[i] *= 3.0;
     for (n = 1; n <= 5; ++n) {
-        cr_assert_eq(wr_dyn_step(&sim, &st, &fs, &dg), WR_OK, "%s", dg.message);
+        cr_assert_eq(wr_dyn_step(&f.sim, &f.st, &fs, &dg), WR_OK, "%s", dg.message);
         cr_assert_leq(fs.newton_iterations, 3, "frame %d: %d Newton steps", (int)n, (int)fs.newton_iterations);
         cr_assert_eq(fs.halvings, 0);
-        for (i = 0; i < m.nv; ++i) err = fmax(err, fabs(x[3 * i + 2] - g * h * h * n * (n + 1) / 2.0));
+        for (i = 0; i < f.m.nv; ++i) err = fmax(err, fabs(f.x[3 * i + 2] - g * h * h * n * (n + 1) / 2.0));
     }
     cr_assert_lt(err, 1e-8, "max deviation from the BE closed form %.3e m", err);
-    wr_dyn_free(&sim);
-    free(x);
-    free(v);
-    wr_shell_free(&s);
-    wr_mesh_free(&m);
+    dyn_fall_end(&f);
 }
 
 Test(dynamics, oscillator_energy_decays_as_backward_euler) {
@@ -461,41 +476,25 @@ Test(dynamics, bad_input_is_refused) {
  * undamped masses test above has the same bound). A Hessian missing α/h M overshoots by (1 + hα)
  * and contracts by hα/(1 + hα) = 1/16 per step: ~8 steps to 1e-9 m/s. */
 Test(dynamics, damped_free_fall_energy_and_newton_steps) {
-    wr_mesh m;
-    wr_shell s;
-    wr_dyn_desc dd;
-    wr_dyn sim;
-    wr_dyn_state st;
+    dyn_fall f;
     wr_dyn_stats fs;
     wr_diag dg;
-    double *x, *v, h = 1.0 / 30.0, g = -9.81, alpha = 2.0, vz = 0.0, z = 0.0, M = 0.0;
+    double h = 1.0 / 30.0, g = -9.81, alpha = 2.0, vz = 0.0, z = 0.0, M = 0.0;
     int32_t n, i;
-    dyn_sheet(&m, &s, 0.2, 4, WR_MEMBRANE_STVK, WR_BENDING_MIDEDGE);
-    x = dyn_copy(m.pos, 3 * m.nv);
-    v = (double *)calloc(3 * (size_t)m.nv, sizeof(double));
-    memset(&dd, 0, sizeof dd);
-    dd.gravity[2] = g;
-    dd.damping.mass = alpha;
-    dd.newton.velocity_tol = 1e-9;
-    cr_assert_eq(wr_dyn_create(&sim, &s, &dd, &dg), WR_OK, "%s", dg.message);
-    for (i = 0; i < m.nv; ++i) M += sim.mass[i];
-    wr_dyn_state_init(&sim, &st, x, v);
+    dyn_fall_begin(&f, g, alpha);
+    for (i = 0; i < f.m.nv; ++i) M += f.sim.mass[i];
     for (n = 1; n <= 10; ++n) {
         double K, P;
-        cr_assert_eq(wr_dyn_step(&sim, &st, &fs, &dg), WR_OK, "%s", dg.message);
+        cr_assert_eq(wr_dyn_step(&f.sim, &f.st, &fs, &dg), WR_OK, "%s", dg.message);
         cr_assert_leq(fs.newton_iterations, 3, "frame %d: %d Newton steps", (int)n, (int)fs.newton_iterations);
         vz = (vz + h * g) / (1.0 + h * alpha);
         z += h * vz;
-        cr_assert_eq(wr_dyn_energy(&sim, &st, &K, &P, &dg), WR_OK, "%s", dg.message);
+        cr_assert_eq(wr_dyn_energy(&f.sim, &f.st, &K, &P, &dg), WR_OK, "%s", dg.message);
         cr_assert_float_eq(P, -g * M * z, 2.0 * fabs(g) * M * 1e-8, "frame %d: P %.12g vs -g M z %.12g", (int)n, P, -g * M * z);
         cr_assert_float_eq(K, 0.5 * M * vz * vz, 2.0 * M * (fabs(vz) * 1e-8 / h + 1e-16 / (h * h)),
                            "frame %d: K %.12g vs M v^2/2 %.12g", (int)n, K, 0.5 * M * vz * vz);
     }
-    wr_dyn_free(&sim);
-    free(x);
-    free(v);
-    wr_shell_free(&s);
-    wr_mesh_free(&m);
+    dyn_fall_end(&f);
 }
 
 /* Stiffness-proportional damping on one mode is mass damping α = βω² (Rayleigh: C = βK, and K v =
