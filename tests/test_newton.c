@@ -513,3 +513,64 @@ Test(newton, armijo_rejects_a_step_without_decrease) {
     cr_expect(st.iterations <= 3, "%d iterations (one halved step reaches x = 0 exactly)", (int)st.iterations);
     cr_expect(st.line_search_evals >= 2, "the full step must have been tried and cut");
 }
+
+/* ---- STEP at a jump (issue 13, docs/issue13-folds.md): a tiny full step onto a discontinuity ------
+ * E(x) = ½K(x − a)² on x <= 0 and ½K(x − a)² + G x − J on x > 0 (J > 0: E jumps down across 0, and
+ * the right branch's gradient is G more than the left's). From x0 = −1e-9 the Newton step of the
+ * left branch lands at a = 1e-15, just across the jump: a full step of 1e-9 m that lowers E, after
+ * which ‖∇E‖ = G. The dynamics' frame 11 of docs/issue13-folds.md was such a stop (a 2.8e-10 m full
+ * step at 5.4e4 × the start gradient, on the mid-edge bending's jump at a 180° fold). */
+typedef struct jump_problem {
+    double K, a, G, J;
+} jump_problem;
+static wr_status jp_energy(void *user, const double *x, double *E, double *g, double *scale, wr_diag *d) {
+    const jump_problem *q = (const jump_problem *)user;
+    double t = x[0] - q->a, right = x[0] > 0.0;
+    (void)d;
+    *E = 0.5 * q->K * t * t + (right ? q->G * x[0] - q->J : 0.0);
+    if (g) g[0] = q->K * t + (right ? q->G : 0.0);
+    if (scale) *scale = 0.5 * q->K * t * t + (right ? fabs(q->G * x[0]) + q->J : 0.0);
+    return WR_OK;
+}
+static wr_status jp_hessian(void *user, const double *x, wr_newton_hessian *H, wr_diag *d) {
+    const jump_problem *q = (const jump_problem *)user;
+    (void)x;
+    (void)d;
+    return wr_newton_add_diagonal(H, 0, &q->K);
+}
+static wr_status jp_solve(jump_problem *q, double G, wr_newton_stats *st) {
+    wr_newton_problem p;
+    wr_newton_desc nd;
+    double x[1] = {-1e-9};
+    q->K = 1e12;
+    q->a = 1e-15;
+    q->G = G;
+    q->J = 1e-3;
+    memset(&p, 0, sizeof p);
+    p.n_blocks = 1;
+    p.block = 1;
+    p.user = q;
+    p.energy = jp_energy;
+    p.hessian = jp_hessian;
+    memset(&nd, 0, sizeof nd);
+    nd.stop.step_tol = 1e-6;
+    nd.max_iter = 20;
+    return wr_newton_solve(&p, x, &nd, st, NULL);
+}
+
+Test(newton, step_stop_refuses_a_tiny_step_onto_a_jump) {
+    jump_problem q;
+    wr_newton_stats st;
+    wr_status s;
+    /* ‖∇E‖ after the step 1e7 N, 1e4 × the start's 1e3 N: not a minimum, whatever the step length */
+    s = jp_solve(&q, 1e7, &st);
+    cr_expect_neq(st.stop, WR_NEWTON_STOP_STEP, "stop %s at |grad| %.3e (start %.3e)", wr_newton_stop_name(st.stop),
+                  st.grad_norm, st.grad_norm0);
+    cr_expect_eq(s, WR_ERR_NOT_CONVERGED, "status %s", wr_status_string(s));
+    /* a gradient 4 × the start's after a tiny full step is still a stop (a rest state's gradient is
+     * round-off, and one step can raise it a few times: the flap at rest, residual_rel up to 4.6) */
+    s = jp_solve(&q, 4e3, &st);
+    cr_expect_eq(s, WR_OK, "status %s", wr_status_string(s));
+    cr_expect_eq(st.stop, WR_NEWTON_STOP_STEP, "stop %s", wr_newton_stop_name(st.stop));
+    cr_expect_eq(st.iterations, 1);
+}

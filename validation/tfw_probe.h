@@ -329,11 +329,13 @@ static inline void tp_render_figure(wr_vres *v, const char *stem, const wr_mesh 
 /* The solver rows every TFW Sec. 6 driver reports, in one place: the base's Newton steps and time
  * (paper values paper_newton, paper_base_s, NAN where the paper prints none), the SQP's iterations
  * (paper_sqp), residuals, folds, rejections and escapes, the TFW time (paper_tfw_s), and the notes on
- * the SQP stop rule and on phase folds. base_newton / t_base: the caller's TFT base solve. */
+ * the SQP stop rule and on phase folds. base_newton / t_base / load_steps: the caller's TFT base solve. */
 static inline void tp_solver_rows(wr_vres *v, const wr_tfw_result *r, wr_status s_tfw, int32_t base_newton, double t_base,
-                                  double paper_base_s, double paper_newton, double paper_sqp, double paper_tfw_s) {
+                                  int32_t load_steps, double paper_base_s, double paper_newton, double paper_sqp,
+                                  double paper_tfw_s) {
     char buf[300];
-    wr_vres_info(v, "TFT base time (4 load steps)", "s", paper_base_s, t_base);
+    snprintf(buf, sizeof buf, "TFT base time (%d load step%s)", (int)load_steps, load_steps == 1 ? "" : "s");
+    wr_vres_info(v, buf, "s", paper_base_s, t_base);
     wr_vres_info(v, "TFT base Newton steps (all load steps)", "", paper_newton, base_newton);
     wr_vres_info(v, "SQP iterations (accepted steps, both solves if unfolded)", "", paper_sqp, r->sqp.iterations);
     wr_vres_info(v, "SQP iterations of the first solve", "", paper_sqp, r->sqp_first.iterations);

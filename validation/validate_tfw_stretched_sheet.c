@@ -319,7 +319,7 @@ static int validation_main(void) {
     report_delaunay(v, &c);
     wr_vres_info(v, "base vertices", "", 522, c.m.nv);
     wr_vres_info(v, "wrinkle-free faces |W| (Sec. 5.1)", "", NAN, c.r.n_wrinkle_free);
-    tp_solver_rows(v, &c.r, c.s_tfw, c.ss.total_iterations, c.t_base, 0.45, 10, 23, 3.93);
+    tp_solver_rows(v, &c.r, c.s_tfw, c.ss.total_iterations, c.t_base, 4, 0.45, 10, 23, 3.93);
     report_notes(v, &c);
     tp_render_figure(v, "tfw_stretched_sheet_render", &c.m, c.x, &c.mat, &c.td, &c.r, "rendered: the 522-vertex TFT base beside the TFW wrinkled surface (Loop level 3, a = 0 on the clamps), coloured by wrinkle height");
     if (!c.s_sp)

@@ -57,7 +57,11 @@
  * ON STOPPING
  *   GRADIENT: ‖∇E_free‖ <= grad_tol · reference, reference = stop.grad_ref when > 0, else
  *   max(‖∇E_free(x0)‖, stop.grad_ref_min). STEP: a full step (α = 1, neither backtracked nor cut by
- *   max_step) with max|Δx| <= stop.step_tol (absolute, in x's units; 0 = off). DECREMENT (opt-in,
+ *   max_step) with max|Δx| <= stop.step_tol (absolute, in x's units; 0 = off) after which ‖∇E_free‖ <=
+ *   WR_NEWTON_STEP_GRAD_MAX (1e3) · reference: a tiny full step that leaves the gradient orders of
+ *   magnitude above the start's landed on a jump of E (a mid-edge hinge folded flat), not on a
+ *   minimum, and the solve goes on (to MAX_ITER or LINE_SEARCH if nothing better is found); a state
+ *   at rest, whose start gradient is round-off, may still end with a few times that. DECREMENT (opt-in,
  *   stop.decrement_tol > 0): the Newton decrement λ² = −∇E·Δx of the step just solved satisfies
  *   λ²/2 <= decrement_tol · scale; for a convex E with the exact Hessian λ²/2 estimates E(x) − E*
  *   (Boyd & Vandenberghe 2004, Sec. 9.5), so this stops on the energy error instead of the gradient,
@@ -239,6 +243,9 @@ WRDEF const char *wr_newton_stop_name(wr_newton_stop stop);
 /* E is a sum of O(n) terms; a change below this fraction of Σ|terms| is not resolvable in double
  * precision (√n·ε for n up to 1e6 is ~2e-13) */
 #define WR_NEWTON_ENERGY_NOISE 1e-12
+/* STEP needs ‖∇E‖ <= this × the reference (ON STOPPING): a full tiny step after which the gradient is
+ * that far above the start's was not taken at a minimum of a smooth E (a jump: docs/issue13-folds.md) */
+#define WR_NEWTON_STEP_GRAD_MAX 1e3
 #define WR_NEWTON_ROUNDOFF_HITS 3 /* consecutive round-off-level decrements that end the solve */
 /* relative gradient below which a projected solve tries the exact Hessian after a full step; the
  * scene driver's hybrid Newton measured 1e-3 as past the saddle-escape phase */
@@ -872,7 +879,8 @@ static wr_status wr__newton_step(wr__newton *c, double *x, double t_start, wr_di
     if (c->st.grad_norm <= gtol)
         c->st.stop = WR_NEWTON_STOP_GRADIENT;
     /* only a full step is small because the minimum is near; a cut one may just be stalled */
-    else if (c->d.stop.step_tol > 0.0 && c->st.last_step <= c->d.stop.step_tol && alpha == 1.0)
+    else if (c->d.stop.step_tol > 0.0 && c->st.last_step <= c->d.stop.step_tol && alpha == 1.0 &&
+             c->st.grad_norm <= WR_NEWTON_STEP_GRAD_MAX * c->gref)
         c->st.stop = WR_NEWTON_STOP_STEP;
     else if (c->roundoff_hits >= WR_NEWTON_ROUNDOFF_HITS)
         c->st.stop = WR_NEWTON_STOP_ROUNDOFF;

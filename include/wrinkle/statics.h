@@ -53,7 +53,7 @@
  *   Converged when ‖∇Π_free‖ <= stop.grad_tol · max(‖∇Π_free(x0)‖, ‖f_ext,free‖) (stop GRADIENT),
  *   or when a full (α = 1, not backtracked, not cut by CCD) step has max|Δx| <= stop.step_tol ·
  *   (bounding-box diagonal of x0) (stop STEP; a backtracked tiny step means a stall, not
- *   convergence), or on Π's round-off (ROUNDOFF) or the opt-in Newton decrement (DECREMENT), both as
+ *   convergence, and so does one that leaves ‖∇Π‖ above 1e3 × the reference: newton.h), or on Π's round-off (ROUNDOFF) or the opt-in Newton decrement (DECREMENT), both as
  *   newton.h ON STOPPING says. stop.max_iter reached, or a line search that cannot decrease Π,
  *   returns WR_ERR_NOT_CONVERGED with the best (lowest-Π) iterate in x. ∇Π includes pressure and
  *   contact forces, so a converged state is an equilibrium of all of them. The perturbation
