@@ -32,8 +32,17 @@
  *          L_w' = L_w^(2^-p): "increasing pressure is equivalent to increasing the fabric's
  *          thickness"), a dimensionless exponent, not a load in Pa, and the pattern has one layer.
  *          So the STITCHED-QUILTING-LINES reading is implemented: each stitch line is gathered to
- *          rho of its length by garment.h's threads (ON GATHERING; E_sh = 0: a plain thread of the
- *          fabric's E), and p acts only through the sizing map of the r_opt mesh (sizing.h). No
+ *          rho of its length by garment.h's threads (ON GATHERING), and p acts only through the
+ *          sizing map of the r_opt mesh (sizing.h). THE STITCH THREAD: E_sh = 0 in the pattern (no
+ *          elastic: a plain quilting thread). garment.h then gives the thread the FABRIC's E on
+ *          h² (EA = 0.07 N here), and measured (2 s, both meshes, docs/notes-sim-garments.md) such
+ *          a thread cannot buckle the fabric beside it: at 2.5 mm the lines ended at 1.15-1.17 ×
+ *          rho l (1/rho = 1.176: hardly gathered), at r_opt at 1.09-1.15 (D4 missed in both; the
+ *          force to buckle the strip at the stitch spacing ~ B (2 pi / lambda)² per width grows as
+ *          the mesh refines). A quilting stitch is a sewing thread, so the coat's stitches get
+ *          QUILT_THREAD_E = 3 GPa (polyester, order of magnitude) on the same h² (EA = 270 N;
+ *          --quilt-E overrides): nearly inextensible, "a compressive ratio ... to keep the packs
+ *          tight" (Sec. 4.2.5). No
  *          pressure / inflation between two layers is simulated (the kit's coat has no second layer
  *          and dynamics.h no enclosed-volume term); the packs puff only because the fabric between
  *          two gathered lines is longer than the lines. PLACEMENT: the coat pattern has no shoulder
@@ -150,6 +159,7 @@ static double g_weld_tol = 0.0; /* --weld-tol [m]: garment.h's weld tolerance (0
 static int g_no_weld = 1;       /* keep the sewing springs for the whole run (--weld: weld, see SIMULATION) */
 static int g_opt_only = 0;      /* --opt-only: skip the uniform reference (set-up experiments) */
 static double g_dhat = 0.0;     /* --dhat [m]: contact barrier thickness (0: the garment's scale × 1 mm, SIMULATION) */
+static double g_quilt_E = 0.0; /* --quilt-E [Pa]: overrides gspec quilt_E (set-up experiments) */
 static double g_ref = R_FINE; /* --ref: the uniform reference resolution [m] (cost measurements) */
 static wr_solver_method g_linear = WR_SOLVER_CHOLMOD; /* --pcg: the paper's PCG + block Jacobi (SIMULATION) */
 
@@ -170,23 +180,25 @@ typedef struct gspec {
     int32_t n_probes;
     gprobe probes[MAXPROBE];
     int pin_top; /* 1: the vertices on each panel's top edge held (the coat, see GARMENTS) */
+    double quilt_E; /* > 0: the modulus of a quilt stitch thread whose E_sh is 0 [Pa] (the coat, see GARMENTS) */
 } gspec;
 
 /* The skirt: docs/garments.md's A-line skirt scaled by SKIRT_SCALE (its pattern file carries the
  * scaled lengths; the placement and crop numbers here are the full-size ones, scaled at run time). */
 #define SKIRT_SCALE 0.25
+#define QUILT_THREAD_E 3e9 /* a polyester sewing thread's Young's modulus [Pa] (the coat's stitches, GARMENTS) */
 static const gspec GARMENTS[] = {
     {"skirt", "examples/sim/skirt_table1_pattern.json", "A-line skirt (2 panels, side seams), scaled", 1e6, 5e-4,
      SKIRT_SCALE, 0.201, 0.55, {-PI / 2, PI / 2, 0, 0}, {0.35, 1.25}, 0.30, 4,
      {{"front_hem", 0, 0.10, 0}, {"back_hem", 1, 0.10, 0}, {"front_mid", 0, 0.50, 0}, {"back_mid", 1, 0.50, 0}},
-     0},
+     0, 0.0},
     /* the shirred dress reduced to its shirred skirt: the same skirt in the dress's Wine Style fabric
      * (B = 2e-6 N m, E = 3e5 Pa: h = 0.418 mm) with three shirring lines per panel below the waist,
      * gathered by garment.h's threads (ON GATHERING); probes under the lines and at the hem */
     {"shirred", "examples/sim/skirt_shirred_table1_pattern.json", "shirred skirt (the dress's skirt panels and shirring, scaled)",
      3e5, 4.18e-4, SKIRT_SCALE, 0.201, 0.55, {-PI / 2, PI / 2, 0, 0}, {0.35, 1.25}, 0.30, 4,
      {{"front_hem", 0, 0.10, 0}, {"back_hem", 1, 0.10, 0}, {"front_below_shirring", 0, 0.80, 0}, {"back_below_shirring", 1, 0.80, 0}},
-     0},
+     0, 0.0},
     /* the down coat (COAT in the top comment): examples/garment_down_coat.json scaled by 0.25, Pinkish Puff
      * (B = 2e-6 N m, E = 8e5 Pa: h = 0.301 mm); panels front_left 0, back 1, front_right 2 round a cylinder of
      * radius 0.2 m (full scale) with 10 mm seam gaps, the back centred at the back (+y), the fronts leaving
@@ -196,7 +208,7 @@ static const gspec GARMENTS[] = {
      8e5, 3.01e-4, SKIRT_SCALE, 0.2, 0.66, {PI / 2 + 2.3, PI / 2, PI / 2 - 2.3, 0}, {0.50, 1.60}, 0.26, 5,
      {{"front_left_pack2", 0, 250.0 / 700.0, 0}, {"back_pack2", 1, 250.0 / 700.0, 0}, {"back_pack4", 1, 450.0 / 700.0, 0},
       {"front_right_pack2", 2, 250.0 / 700.0, 0}, {"back_centre_vertical", 1, 0.5, 1}},
-     1},
+     1, QUILT_THREAD_E},
 };
 #define NGARMENT ((int)(sizeof GARMENTS / sizeof GARMENTS[0]))
 
@@ -307,8 +319,8 @@ static void fabric(const gspec *g, wr_shell_desc *sd) {
 
 /* The pattern's shirring lines and quilt stitch lines as gathered lines (garment.h ON GATHERING):
  * each polyline's vertex chain among the mesher's constraint segments. */
-static int gather_lines(const wr_pattern *pat, const wr_mesher_result *mr, wr_garment_line *lines, int32_t **chains,
-                        int32_t *n_lines) {
+static int gather_lines(const wr_pattern *pat, const wr_mesher_result *mr, double quilt_E, wr_garment_line *lines,
+                        int32_t **chains, int32_t *n_lines) {
     int32_t i, u, nv;
     wr_diag d;
     *n_lines = 0;
@@ -330,6 +342,7 @@ static int gather_lines(const wr_pattern *pat, const wr_mesher_result *mr, wr_ga
             lines[*n_lines].n_vertices = nv;
             lines[*n_lines].rho = quilt ? pat->quilts[q].rho : pat->shirrings[i].rho;
             lines[*n_lines].modulus = quilt ? pat->quilts[q].E_sh : pat->shirrings[i].E_sh;
+            if (quilt && lines[*n_lines].modulus == 0.0 && quilt_E > 0.0) lines[*n_lines].modulus = quilt_E; /* gspec */
             (*n_lines)++;
         }
     }
@@ -378,7 +391,7 @@ static int garment_mesh(grun *R, wr_garment_line *lines, int32_t **chains, int32
         wr_pattern_file_free(&pf);
         return 0;
     }
-    if (gather_lines(&pf.pattern, &R->mr, lines, chains, n_lines) != 0) {
+    if (gather_lines(&pf.pattern, &R->mr, g_quilt_E > 0.0 ? g_quilt_E : R->g->quilt_E, lines, chains, n_lines) != 0) {
         wr_pattern_file_free(&pf);
         return 0;
     }
@@ -953,6 +966,7 @@ static int parse_args(int argc, char **argv, gopts *o) {
         {"--pcg", NULL, WR_CLI_FLAG, &pcg, 0.0, 0.0, NULL},
         {"--opt-only", NULL, WR_CLI_FLAG, &g_opt_only, 0.0, 0.0, NULL},
         {"--ref", NULL, WR_CLI_NUMBER, &g_ref, 1e-3, 1.0, NULL},
+        {"--quilt-E", NULL, WR_CLI_NUMBER, &g_quilt_E, 0.0, 1e12, NULL},
         {"--no-floor", NULL, WR_CLI_FLAG, &no_floor, 0.0, 0.0, NULL},
         {"--verbose", NULL, WR_CLI_FLAG, &g_verbose, 0.0, 0.0, NULL},
     };
