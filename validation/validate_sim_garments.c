@@ -117,9 +117,10 @@
  *      over the lines <= 1 + TOL_GATHER (5 %: the line shortened by at least ~70 % of 1 − rho = 0.15
  *      for the coat) — both meshes must gather their lines, or the packs they form differ.
  *
- * Options: --quick (smoke, sim_garments_quick.json: the skirt at uniform QUICK_REF and QUICK_OPT
+ * Options: --quick (smoke, sim_garments_quick.json: each garment at uniform QUICK_REF and QUICK_OPT
  * for QUICK_SECONDS, no floor run, every quantity reported without a band), --seconds S (default
- * 2), --ref R (the uniform reference resolution, default 2.5 mm: for cost measurements), --no-floor,
+ * 2), --ref R (the uniform reference resolution, default 2.5 mm: for cost measurements), --quilt-E E
+ * (the coat's stitch thread modulus [Pa], default QUILT_THREAD_E; experiments), --no-floor,
  * --no-png, --verbose, --opt-only (the r_opt run alone, no reference and no comparison: its row, D3
  * and, with --weld, the weld rows; result file "_opt"; `--garment skirt --opt-only --no-floor
  * --weld --seconds 1` is the cheap weld check at r_opt). Exit = failed quantities, 2 on errors.
@@ -943,8 +944,9 @@ static void usage(FILE *f) {
                "       [--verbose] [--opt-only] [--weld-tol T] [--dhat D] [--garment skirt|shirred|coat]\n"
                "  Style3D Table 1 / Fig. 19 with the dynamic simulator: garments at r_opt and at uniform 2.5 mm;\n"
                "  writes validation/results/sim_garments.json (--quick: sim_garments_quick.json, smoke only;\n"
-               "  --garment G: sim_garments_G[_dhat][_opt][_weld][_quick].json).\n"
-               "  --seconds S in (0, %g] (default 2); --ref R >= 1e-3 m; --weld-tol T, --dhat D [m] (0: default).\n"
+               "  --garment G: sim_garments_G[_dhat][_quiltE][_opt][_weld][_quick].json).\n"
+               "  --seconds S in (0, %g] (default 2); --ref R >= 1e-3 m; --weld-tol T, --dhat D [m] (0: default);\n"
+               "  --quilt-E E [Pa]: the coat's quilt stitch thread modulus (0: the driver's 3 GPa).\n"
                "  --weld: weld the seams (else springs all run) and report the weld; --opt-only: the r_opt run alone\n"
                "  (cheap weld check: --garment skirt --opt-only --no-floor --weld --seconds 1).\n",
             MAXFRAMES / 30.0);
@@ -995,11 +997,11 @@ static int parse_args(int argc, char **argv, gopts *o) {
 static const char *case_name(const gopts *o) {
     static char case_buf[128];
     if (o->only)
-        snprintf(case_buf, sizeof case_buf, "sim_garments_%s%s%s%s%s", o->only, g_dhat > 0.0 ? "_dhat" : "",
-                 g_opt_only ? "_opt" : "", g_no_weld ? "" : "_weld", o->quick ? "_quick" : "");
-    else if (g_opt_only || !g_no_weld)
-        snprintf(case_buf, sizeof case_buf, "sim_garments%s%s%s", g_opt_only ? "_opt" : "", g_no_weld ? "" : "_weld",
-                 o->quick ? "_quick" : "");
+        snprintf(case_buf, sizeof case_buf, "sim_garments_%s%s%s%s%s%s", o->only, g_dhat > 0.0 ? "_dhat" : "",
+                 g_quilt_E > 0.0 ? "_quiltE" : "", g_opt_only ? "_opt" : "", g_no_weld ? "" : "_weld", o->quick ? "_quick" : "");
+    else if (g_opt_only || !g_no_weld || g_quilt_E > 0.0)
+        snprintf(case_buf, sizeof case_buf, "sim_garments%s%s%s%s", g_quilt_E > 0.0 ? "_quiltE" : "", g_opt_only ? "_opt" : "",
+                 g_no_weld ? "" : "_weld", o->quick ? "_quick" : "");
     else
         return o->quick ? "sim_garments_quick" : "sim_garments";
     return case_buf;
