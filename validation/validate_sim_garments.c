@@ -200,11 +200,12 @@ static const gspec GARMENTS[] = {
      3e5, 4.18e-4, SKIRT_SCALE, 0.201, 0.55, {-PI / 2, PI / 2, 0, 0}, {0.35, 1.25}, 0.30, 4,
      {{"front_hem", 0, 0.10, 0}, {"back_hem", 1, 0.10, 0}, {"front_below_shirring", 0, 0.80, 0}, {"back_below_shirring", 1, 0.80, 0}},
      0, 0.0},
-    /* the down coat (COAT in the top comment): examples/garment_down_coat.json scaled by 0.25, Pinkish Puff
+    /* the down coat (GARMENTS / coat in the top comment): examples/garment_down_coat.json scaled by 0.25, Pinkish Puff
      * (B = 2e-6 N m, E = 8e5 Pa: h = 0.301 mm); panels front_left 0, back 1, front_right 2 round a cylinder of
      * radius 0.2 m (full scale) with 10 mm seam gaps, the back centred at the back (+y), the fronts leaving
-     * a 37 mm opening at the centre front; hem at z = 0.72 m, top edge (held) at 1.42 m; probes across the
-     * packs half way between two stitch lines, and one vertical line down the back's middle */
+     * a 37 mm opening at the centre front; hem at z = 0.66 m (at 0.72 m the placement met the upper arm),
+     * top edge (held) at 1.36 m; probes across the packs half way between two stitch lines, and one
+     * vertical line down the back's middle */
     {"coat", "examples/sim/coat_table1_pattern.json", "down coat (3 panels, 5 quilt stitch lines each, side seams), scaled",
      8e5, 3.01e-4, SKIRT_SCALE, 0.2, 0.66, {PI / 2 + 2.3, PI / 2, PI / 2 - 2.3, 0}, {0.50, 1.60}, 0.26, 5,
      {{"front_left_pack2", 0, 250.0 / 700.0, 0}, {"back_pack2", 1, 250.0 / 700.0, 0}, {"back_pack4", 1, 450.0 / 700.0, 0},
