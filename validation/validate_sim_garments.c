@@ -919,6 +919,10 @@ static void report_garment(wr_vres *v, const grun *A, const grun *B, const grun 
         wr_vres_info(v, name, "mm", NAN, 1e3 * B->lfft[k]);
         snprintf(name, sizeof name, "%s: D2 probe %s: FFT peak wavelength, %s", g->name, pn, A->label);
         wr_vres_info(v, name, "mm", NAN, 1e3 * A->lfft[k]);
+        snprintf(name, sizeof name, "%s: D2 probe %s: amplitude max |rho - cubic|, %s", g->name, pn, A->label);
+        wr_vres_info(v, name, "mm", NAN, 1e3 * A->amp[k]);
+        snprintf(name, sizeof name, "%s: D2 probe %s: amplitude max |rho - cubic|, r_opt", g->name, pn);
+        wr_vres_info(v, name, "mm", NAN, 1e3 * B->amp[k]);
         if (C) {
             snprintf(name, sizeof name, "%s: D2 floor: probe %s: lambda_zc, r_opt seed 2 (%d sign changes)", g->name, pn, (int)C->ncross[k]);
             wr_vres_info(v, name, "mm", NAN, 1e3 * C->lzc[k]);
@@ -1094,7 +1098,7 @@ static void drape_figure(wr_vres *v, const gspec *g, const grun *runs, const dou
     if (render_pair(&runs[0], &runs[1], dA, dB, dmax, &B->bm, B->bf, B->nbf, path) != 0) return;
     snprintf(path, sizeof path, "figures/%s_%s.png", case_id, g->name);
     snprintf(buf, sizeof buf,
-             "%s: uniform %s (left of each pair) and %s (right) after %.2f s, front and 3/4 views; lower row: each vertex "
+             "%s: %s (left of each pair) and %s (right) after %.2f s, front and 3/4 views; lower row: each vertex "
              "coloured by its distance to the other drape (0 to the larger max)",
              g->name, runs[0].label, runs[1].label, seconds);
     wr_vres_figure(v, path, buf);
