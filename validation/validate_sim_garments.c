@@ -921,7 +921,7 @@ static void report_garment(wr_vres *v, const grun *A, const grun *B, const grun 
         wr_vres_info(v, name, "mm", NAN, 1e3 * A->lfft[k]);
         snprintf(name, sizeof name, "%s: D2 probe %s: amplitude max |rho - cubic|, %s", g->name, pn, A->label);
         wr_vres_info(v, name, "mm", NAN, 1e3 * A->amp[k]);
-        snprintf(name, sizeof name, "%s: D2 probe %s: amplitude max |rho - cubic|, r_opt", g->name, pn);
+        snprintf(name, sizeof name, "%s: D2 probe %s: amplitude max |rho - cubic|, %s", g->name, pn, B->label);
         wr_vres_info(v, name, "mm", NAN, 1e3 * B->amp[k]);
         if (C) {
             snprintf(name, sizeof name, "%s: D2 floor: probe %s: lambda_zc, r_opt seed 2 (%d sign changes)", g->name, pn, (int)C->ncross[k]);
