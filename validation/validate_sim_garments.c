@@ -21,8 +21,39 @@
  *          the contact cost grows with the body's triangle count; the final drape is checked
  *          exactly against the WHOLE mannequin (no cloth-body triangle intersection) and its
  *          bounding box against the crop box.
- *   (shirred dress, down coat: need the gathering / quilting energies of the dynamic simulator,
- *   see docs/notes-sim-garments.md.)
+ *   shirred  the shirred dress reduced to its shirred skirt (the table below; garment.h threads).
+ *   coat   examples/sim/coat_table1_pattern.json: the down coat of examples/garment_down_coat.json
+ *          (left front, back, right front; five horizontal quilt stitch lines per panel, rho = 0.85,
+ *          E_sh = 0, p = 1; side seams) scaled by SKIRT_SCALE like the skirt, Pinkish Puff fabric
+ *          (B = 2e-6 N m, E = 8e5 Pa, Table 1: r_opt 6.69 mm). THE DOWN FILLING, which reading:
+ *          Style3D Sec. 4.2.5 says "multiple stitched packs are filled with down. Along the stitching
+ *          lines, a compressive ratio is applied to keep the packs tight" and treats the stitch lines
+ *          as shirring lines; the pressure p enters only its transition rule (m' = 2^p m,
+ *          L_w' = L_w^(2^-p): "increasing pressure is equivalent to increasing the fabric's
+ *          thickness"), a dimensionless exponent, not a load in Pa, and the pattern has one layer.
+ *          So the STITCHED-QUILTING-LINES reading is implemented: each stitch line is gathered to
+ *          rho of its length by garment.h's threads (ON GATHERING), and p acts only through the
+ *          sizing map of the r_opt mesh (sizing.h). THE STITCH THREAD: E_sh = 0 in the pattern (no
+ *          elastic: a plain quilting thread). garment.h then gives the thread the FABRIC's E on
+ *          h² (EA = 0.07 N here), and measured (2 s, both meshes, docs/notes-sim-garments.md) such
+ *          a thread cannot buckle the fabric beside it: at 2.5 mm the lines ended at 1.15-1.17 ×
+ *          rho l (1/rho = 1.176: hardly gathered), at r_opt at 1.09-1.15 (D4 missed in both; the
+ *          force to buckle the strip at the stitch spacing ~ B (2 pi / lambda)² per width grows as
+ *          the mesh refines). A quilting stitch is a sewing thread, so the coat's stitches get
+ *          QUILT_THREAD_E = 3 GPa (polyester, order of magnitude) on the same h² (EA = 270 N;
+ *          --quilt-E overrides): nearly inextensible, "a compressive ratio ... to keep the packs
+ *          tight" (Sec. 4.2.5). No
+ *          pressure / inflation between two layers is simulated (the kit's coat has no second layer
+ *          and dynamics.h no enclosed-volume term); the packs puff only because the fabric between
+ *          two gathered lines is longer than the lines. PLACEMENT: the coat pattern has no shoulder
+ *          seams and no sleeves, so nothing on the mannequin would carry it (a 1.2 m tube round a
+ *          0.88 m hip slides off): every vertex of each panel's top edge (the shoulder and neck line,
+ *          v = 700 mm) is held where it is placed (dynamics pins), the rest hangs, is sewn at the
+ *          side seams and gathered at the stitch lines, and meets the body where the gathered lines
+ *          pull it in. The fronts are left open (a 37 mm gap at the centre front, full scale). The
+ *          crop keeps |x| <= 0.26 m (full scale): the forearms and hands are off, the A-pose upper
+ *          arms' inner ends stay in; a sleeveless tube of radius 0.2 m clears the arms below the
+ *          armholes (the placement check of garment.h refuses a panel that meets the body).
  *
  * SIMULATION (both meshes alike). garment.h sewing (stiffness doubling from its default start to
  * 100 E h/(1 − ν²)), the seams kept as springs for the whole run (garment.h desc.no_weld): the
@@ -71,16 +102,25 @@
  *      rest length (material arc length), a sign change counted once the signal leaves a
  *      +-ZC_BAND band of its peak (the estimator of validate_sim_curtain). spectrum.h's FFT peak
  *      wavelength of the same signal is reported as a cross-check (no band).
+ *      The coat's probes run across its packs half way between two stitch lines (horizontal), and
+ *      one vertical line down the middle of the back crosses the stitch lines, its signal the same
+ *      rho (the packs' puffing: one crest per pack, ~25 mm at this scale, expected in both).
  *      Band: |lambda_zc(r_opt) - lambda_zc(2.5 mm)| <= TOL_LAMBDA lambda_zc(2.5 mm), per probe.
  *      TOL_LAMBDA = 25 %: issue 5's band for the curtain wavelengths, kept; it is also one crest
  *      in four: on a probe with N sign changes lambda_zc moves by ~1/N when one fold is gained or
  *      lost (with N < 4 the estimator's own quantisation exceeds the band — the table gives N).
  *   D3 No penetration: exact cloth-body triangle intersections of the final drape against the
  *      whole mannequin = 0 (both runs), and the drape's bounding box inside the crop box.
+ *   D4 Gathered lines (shirring, quilt stitches; garments that have them): each line's thread length
+ *      at the end over its final rest length rho l (wr_garment_sim_thread_length: 1 = the line
+ *      shortened to rho of its pattern length, 1/rho = not gathered at all). Band, per run: the max
+ *      over the lines <= 1 + TOL_GATHER (5 %: the line shortened by at least ~70 % of 1 − rho = 0.15
+ *      for the coat) — both meshes must gather their lines, or the packs they form differ.
  *
- * Options: --quick (smoke, sim_garments_quick.json: the skirt at uniform QUICK_REF and QUICK_OPT
+ * Options: --quick (smoke, sim_garments_quick.json: each garment at uniform QUICK_REF and QUICK_OPT
  * for QUICK_SECONDS, no floor run, every quantity reported without a band), --seconds S (default
- * 2), --ref R (the uniform reference resolution, default 2.5 mm: for cost measurements), --no-floor,
+ * 2), --ref R (the uniform reference resolution, default 2.5 mm: for cost measurements), --quilt-E E
+ * (the coat's stitch thread modulus [Pa], default QUILT_THREAD_E; experiments), --no-floor,
  * --no-png, --verbose, --opt-only (the r_opt run alone, no reference and no comparison: its row, D3
  * and, with --weld, the weld rows; result file "_opt"; `--garment skirt --opt-only --no-floor
  * --weld --seconds 1` is the cheap weld check at r_opt). Exit = failed quantities, 2 on errors.
@@ -106,6 +146,7 @@
 #define PROBE_INSET 0.03  /* probe ends inset by this fraction of the panel width */
 #define ZC_BAND 0.05      /* crest-count hysteresis, fraction of the peak (validate_sim_curtain) */
 #define TOL_LAMBDA 0.25   /* D2 band (issue 5's curtain band) */
+#define TOL_GATHER 0.05   /* D4 band: a gathered line's thread within 5 % of rho l at the end */
 #define QUICK_REF 0.016   /* --quick: uniform resolutions [m] and simulated time [s] */
 #define QUICK_OPT 0.024
 #define QUICK_SECONDS 0.4
@@ -119,13 +160,15 @@ static double g_weld_tol = 0.0; /* --weld-tol [m]: garment.h's weld tolerance (0
 static int g_no_weld = 1;       /* keep the sewing springs for the whole run (--weld: weld, see SIMULATION) */
 static int g_opt_only = 0;      /* --opt-only: skip the uniform reference (set-up experiments) */
 static double g_dhat = 0.0;     /* --dhat [m]: contact barrier thickness (0: the garment's scale × 1 mm, SIMULATION) */
+static double g_quilt_E = 0.0; /* --quilt-E [Pa]: overrides gspec quilt_E (set-up experiments) */
 static double g_ref = R_FINE; /* --ref: the uniform reference resolution [m] (cost measurements) */
 static wr_solver_method g_linear = WR_SOLVER_CHOLMOD; /* --pcg: the paper's PCG + block Jacobi (SIMULATION) */
 
 typedef struct gprobe {
     const char *name;
     int32_t panel;
-    double vfrac; /* height above the panel's hem, fraction of the panel height */
+    double vfrac; /* height above the panel's hem, fraction of the panel height (vertical: across, of its width) */
+    int vertical; /* 1: a vertical pattern line (the coat's packs: across the stitch lines), else horizontal */
 } gprobe;
 
 typedef struct gspec {
@@ -137,21 +180,37 @@ typedef struct gspec {
     double crop_z[2], crop_x; /* body crop at full scale [m] (all corners inside) */
     int32_t n_probes;
     gprobe probes[MAXPROBE];
+    int pin_top; /* 1: the vertices on each panel's top edge held (the coat, see GARMENTS) */
+    double quilt_E; /* > 0: the modulus of a quilt stitch thread whose E_sh is 0 [Pa] (the coat, see GARMENTS) */
 } gspec;
 
 /* The skirt: docs/garments.md's A-line skirt scaled by SKIRT_SCALE (its pattern file carries the
  * scaled lengths; the placement and crop numbers here are the full-size ones, scaled at run time). */
 #define SKIRT_SCALE 0.25
+#define QUILT_THREAD_E 3e9 /* a polyester sewing thread's Young's modulus [Pa] (the coat's stitches, GARMENTS) */
 static const gspec GARMENTS[] = {
     {"skirt", "examples/sim/skirt_table1_pattern.json", "A-line skirt (2 panels, side seams), scaled", 1e6, 5e-4,
      SKIRT_SCALE, 0.201, 0.55, {-PI / 2, PI / 2, 0, 0}, {0.35, 1.25}, 0.30, 4,
-     {{"front_hem", 0, 0.10}, {"back_hem", 1, 0.10}, {"front_mid", 0, 0.50}, {"back_mid", 1, 0.50}}},
+     {{"front_hem", 0, 0.10, 0}, {"back_hem", 1, 0.10, 0}, {"front_mid", 0, 0.50, 0}, {"back_mid", 1, 0.50, 0}},
+     0, 0.0},
     /* the shirred dress reduced to its shirred skirt: the same skirt in the dress's Wine Style fabric
      * (B = 2e-6 N m, E = 3e5 Pa: h = 0.418 mm) with three shirring lines per panel below the waist,
      * gathered by garment.h's threads (ON GATHERING); probes under the lines and at the hem */
     {"shirred", "examples/sim/skirt_shirred_table1_pattern.json", "shirred skirt (the dress's skirt panels and shirring, scaled)",
      3e5, 4.18e-4, SKIRT_SCALE, 0.201, 0.55, {-PI / 2, PI / 2, 0, 0}, {0.35, 1.25}, 0.30, 4,
-     {{"front_hem", 0, 0.10}, {"back_hem", 1, 0.10}, {"front_below_shirring", 0, 0.80}, {"back_below_shirring", 1, 0.80}}},
+     {{"front_hem", 0, 0.10, 0}, {"back_hem", 1, 0.10, 0}, {"front_below_shirring", 0, 0.80, 0}, {"back_below_shirring", 1, 0.80, 0}},
+     0, 0.0},
+    /* the down coat (GARMENTS / coat in the top comment): examples/garment_down_coat.json scaled by 0.25, Pinkish Puff
+     * (B = 2e-6 N m, E = 8e5 Pa: h = 0.301 mm); panels front_left 0, back 1, front_right 2 round a cylinder of
+     * radius 0.2 m (full scale) with 10 mm seam gaps, the back centred at the back (+y), the fronts leaving
+     * a 37 mm opening at the centre front; hem at z = 0.66 m (at 0.72 m the placement met the upper arm),
+     * top edge (held) at 1.36 m; probes across the packs half way between two stitch lines, and one
+     * vertical line down the back's middle */
+    {"coat", "examples/sim/coat_table1_pattern.json", "down coat (3 panels, 5 quilt stitch lines each, side seams), scaled",
+     8e5, 3.01e-4, SKIRT_SCALE, 0.2, 0.66, {PI / 2 + 2.3, PI / 2, PI / 2 - 2.3, 0}, {0.50, 1.60}, 0.26, 5,
+     {{"front_left_pack2", 0, 250.0 / 700.0, 0}, {"back_pack2", 1, 250.0 / 700.0, 0}, {"back_pack4", 1, 450.0 / 700.0, 0},
+      {"front_right_pack2", 2, 250.0 / 700.0, 0}, {"back_centre_vertical", 1, 0.5, 1}},
+     1, QUILT_THREAD_E},
 };
 #define NGARMENT ((int)(sizeof GARMENTS / sizeof GARMENTS[0]))
 
@@ -164,6 +223,7 @@ typedef struct grun {
     double seconds;
     /* mesh */
     int32_t nv0, nf0, nv, nf, nv_sewn; /* nv_sewn: distinct vertices once the seam pairs are one */
+    int32_t n_pins, n_lines;           /* held vertices (the coat's top edge), gathered lines */
     double sizing_median, edge_mean;
     /* run */
     int32_t frames, newton, halvings, weld_frame, failed;
@@ -182,6 +242,8 @@ typedef struct grun {
     double *xw;  /* nv*3 welded positions */
     int32_t *fw; /* nf*3 welded faces */
     wr_mesher_result mr;
+    /* gathered lines at the end: thread length / pattern length, mean, min, max (target rho) */
+    double gath_mean, gath_min, gath_max;
     /* probes */
     double lzc[MAXPROBE], lfft[MAXPROBE], plen[MAXPROBE], amp[MAXPROBE];
     int32_t ncross[MAXPROBE];
@@ -259,8 +321,8 @@ static void fabric(const gspec *g, wr_shell_desc *sd) {
 
 /* The pattern's shirring lines and quilt stitch lines as gathered lines (garment.h ON GATHERING):
  * each polyline's vertex chain among the mesher's constraint segments. */
-static int gather_lines(const wr_pattern *pat, const wr_mesher_result *mr, wr_garment_line *lines, int32_t **chains,
-                        int32_t *n_lines) {
+static int gather_lines(const wr_pattern *pat, const wr_mesher_result *mr, double quilt_E, wr_garment_line *lines,
+                        int32_t **chains, int32_t *n_lines) {
     int32_t i, u, nv;
     wr_diag d;
     *n_lines = 0;
@@ -282,6 +344,7 @@ static int gather_lines(const wr_pattern *pat, const wr_mesher_result *mr, wr_ga
             lines[*n_lines].n_vertices = nv;
             lines[*n_lines].rho = quilt ? pat->quilts[q].rho : pat->shirrings[i].rho;
             lines[*n_lines].modulus = quilt ? pat->quilts[q].E_sh : pat->shirrings[i].E_sh;
+            if (quilt && lines[*n_lines].modulus == 0.0 && quilt_E > 0.0) lines[*n_lines].modulus = quilt_E; /* gspec */
             (*n_lines)++;
         }
     }
@@ -330,7 +393,7 @@ static int garment_mesh(grun *R, wr_garment_line *lines, int32_t **chains, int32
         wr_pattern_file_free(&pf);
         return 0;
     }
-    if (gather_lines(&pf.pattern, &R->mr, lines, chains, n_lines) != 0) {
+    if (gather_lines(&pf.pattern, &R->mr, g_quilt_E > 0.0 ? g_quilt_E : R->g->quilt_E, lines, chains, n_lines) != 0) {
         wr_pattern_file_free(&pf);
         return 0;
     }
@@ -349,6 +412,27 @@ static int garment_mesh(grun *R, wr_garment_line *lines, int32_t **chains, int32
     return 1;
 }
 
+/* The coat's held vertices: those on each panel's top edge (rest v within 1e-6 m of the panel's
+ * highest rest v); pins (nv) set to 1 there; returns how many. */
+static int32_t top_pins(const wr_mesh *m, uint8_t *pins) {
+    double vtop[MAXPANEL];
+    int32_t f, k, p, n = 0;
+    for (p = 0; p < MAXPANEL; ++p) vtop[p] = -HUGE_VAL;
+    memset(pins, 0, (size_t)m->nv);
+    for (f = 0; f < m->nf; ++f) {
+        p = m->face_panel ? m->face_panel[f] : 0;
+        for (k = 0; k < 3; ++k) vtop[p] = fmax(vtop[p], m->rest[2 * m->faces[3 * f + k] + 1]);
+    }
+    for (f = 0; f < m->nf; ++f) {
+        p = m->face_panel ? m->face_panel[f] : 0;
+        for (k = 0; k < 3; ++k) {
+            int32_t i = m->faces[3 * f + k];
+            if (!pins[i] && m->rest[2 * i + 1] >= vtop[p] - 1e-6) pins[i] = 1, n++;
+        }
+    }
+    return n;
+}
+
 /* The garment simulation (see SIMULATION): the fabric, gravity, mass damping, the body with
  * friction, the barrier width, the linear solver, the weld settings; 0 on failure. */
 static int garment_sim(grun *R, const wr_dyn_body *body, const wr_garment_line *lines, int32_t n_lines,
@@ -358,6 +442,8 @@ static int garment_sim(grun *R, const wr_dyn_body *body, const wr_garment_line *
     wr_dyn_desc dd;
     wr_garment_desc gd;
     wr_diag d;
+    uint8_t *pins = NULL;
+    wr_status st;
     memset(&gm, 0, sizeof gm);
     gm.pattern = &R->mr.mesh;
     gm.seam_pairs = R->mr.seam_pairs;
@@ -376,10 +462,17 @@ static int garment_sim(grun *R, const wr_dyn_body *body, const wr_garment_line *
     dd.contact.friction = 0.5;
     dd.contact.dhat = g_dhat > 0.0 ? g_dhat : R->g->scale * 1e-3;
     dd.linear.method = g_linear;
+    if (R->g->pin_top) { /* garment.h copies the pins (ON OWNERSHIP) */
+        if (!(pins = (uint8_t *)malloc((size_t)R->mr.mesh.nv))) return 0;
+        R->n_pins = top_pins(&R->mr.mesh, pins);
+        dd.fixed = pins;
+    }
     memset(&gd, 0, sizeof gd);
     gd.weld_tol = g_weld_tol;
     gd.no_weld = g_no_weld;
-    if (wr_garment_sim_create(gs, &gm, &sd, &dd, &gd, &d) != WR_OK) {
+    st = wr_garment_sim_create(gs, &gm, &sd, &dd, &gd, &d);
+    free(pins);
+    if (st != WR_OK) {
         fprintf(stderr, "validate_sim_garments: garment: %s\n", d.message);
         return 0;
     }
@@ -442,6 +535,14 @@ static int garment_final(grun *R, const wr_garment_sim *gs, const wr_mesh *bm, c
     R->weld_tol = gs->desc.weld_tol;
     R->gap_end = wr_garment_sim_seam_gap(gs, -1);
     R->weld_deferred = gs->weld_deferred, R->weld_mid_hits = gs->weld_mid_hits, R->weld_moved = gs->weld_moved;
+    R->n_lines = gs->n_lines;
+    R->gath_mean = 0.0, R->gath_min = HUGE_VAL, R->gath_max = -HUGE_VAL;
+    for (i = 0; i < gs->n_lines; ++i) { /* each line's thread: current length / final rest rho l */
+        double now, rest;
+        wr_garment_sim_thread_length(gs, i, &now, &rest);
+        R->gath_mean += now / rest / gs->n_lines;
+        R->gath_min = fmin(R->gath_min, now / rest), R->gath_max = fmax(R->gath_max, now / rest);
+    }
     R->ns_med = median(R->ns, R->frames), R->ch_med = median(R->ch, R->frames);
     R->ns_mean = R->ch_mean = R->nsc_mean = R->chc_mean = 0.0;
     for (f = 0; f < R->frames; ++f) {
@@ -504,29 +605,31 @@ static int garment_probes(grun *R) {
     }
     for (k = 0; k < R->g->n_probes; ++k) {
         const gprobe *q = &R->g->probes[k];
+        /* fixed coordinate cf (v for a horizontal probe, u for a vertical one) and running one cr */
+        const int cf = q->vertical ? 0 : 1, cr = 1 - cf;
         double a[2], b[2], ds, vlo = HUGE_VAL, vhi = -HUGE_VAL, v, ulo = HUGE_VAL, uhi = -HUGE_VAL, w;
         wr_spectrum_result res;
-        /* the panel's rest extent in v, then its width at the probe's height (boundary crossings) */
+        /* the panel's rest extent in cf, then its extent in cr along the line cf = v (boundary crossings) */
         for (f = 0; f < m->nf; ++f)
             if (!m->face_panel || m->face_panel[f] == q->panel)
                 for (c = 0; c < 3; ++c) {
                     const double *r = m->rest + 2 * m->faces[3 * f + c];
-                    vlo = fmin(vlo, r[1]), vhi = fmax(vhi, r[1]);
+                    vlo = fmin(vlo, r[cf]), vhi = fmax(vhi, r[cf]);
                 }
         v = vlo + q->vfrac * (vhi - vlo);
         for (f = 0; f < m->nf; ++f) {
             if (m->face_panel && m->face_panel[f] != q->panel) continue;
-            for (c = 0; c < 3; ++c) { /* edges of the face crossing the line y = v */
+            for (c = 0; c < 3; ++c) { /* edges of the face crossing the line cf = v */
                 const double *r0 = m->rest + 2 * m->faces[3 * f + c], *r1 = m->rest + 2 * m->faces[3 * f + (c + 1) % 3];
-                if ((r0[1] - v) * (r1[1] - v) <= 0.0 && r0[1] != r1[1]) {
-                    double t = (v - r0[1]) / (r1[1] - r0[1]), u = r0[0] + t * (r1[0] - r0[0]);
+                if ((r0[cf] - v) * (r1[cf] - v) <= 0.0 && r0[cf] != r1[cf]) {
+                    double t = (v - r0[cf]) / (r1[cf] - r0[cf]), u = r0[cr] + t * (r1[cr] - r0[cr]);
                     ulo = fmin(ulo, u), uhi = fmax(uhi, u);
                 }
             }
         }
         w = uhi - ulo;
-        a[0] = ulo + PROBE_INSET * w, b[0] = uhi - PROBE_INSET * w, a[1] = b[1] = v;
-        R->plen[k] = b[0] - a[0];
+        a[cr] = ulo + PROBE_INSET * w, b[cr] = uhi - PROBE_INSET * w, a[cf] = b[cf] = v;
+        R->plen[k] = b[cr] - a[cr];
         if (!(w > 0.0) || wr_path_segment(a, b, NPROBE, 0, pts, &ds, &d) != WR_OK) goto fail;
         for (c = 0; c < 3; ++c) {
             for (i = 0; i < m->nv; ++i) comp[i] = R->xu[3 * i + c];
@@ -710,6 +813,27 @@ static void report_weld(wr_vres *v, const grun *R) {
     wr_vres_info(v, name, "", NAN, (double)R->weld_moved);
 }
 
+/* D4 (the gathered lines: quilt stitches, shirring): each line's thread length over its final rest
+ * length rho l at the end, mean and max per run; band max <= 1 + TOL_GATHER (quick: reported). */
+static void report_gather(wr_vres *v, const gspec *g, const grun *A, const grun *B, int quick) {
+    char name[512];
+    const grun *R[2];
+    int r;
+    R[0] = A, R[1] = B;
+    for (r = 0; r < 2; ++r) {
+        snprintf(name, sizeof name, "%s: D4 gathered lines, %s: mean thread length / rho l at the end (%d lines)", g->name,
+                 R[r]->label, (int)R[r]->n_lines);
+        wr_vres_info(v, name, "", NAN, R[r]->gath_mean);
+        snprintf(name, sizeof name, "%s: D4 gathered lines, %s: max thread length / rho l at the end (min %.4f)", g->name,
+                 R[r]->label, R[r]->gath_min);
+        if (quick) wr_vres_info(v, name, "", NAN, R[r]->gath_max);
+        else {
+            wr_vres_range(v, name, "", NAN, R[r]->gath_max, 0.0, 1.0 + TOL_GATHER);
+            wr_vres_reference(v, 1.0, "1 = every line shortened to rho of its pattern length; band <= 1 + 5 % (METRICS D4)");
+        }
+    }
+}
+
 static void report_garment(wr_vres *v, const grun *A, const grun *B, const grun *C, const gdist *dAB, const gdist *dBC,
                            int quick, char *table, size_t tn) {
     char name[512], buf[2048];
@@ -745,6 +869,11 @@ static void report_garment(wr_vres *v, const grun *A, const grun *B, const grun 
     INFO("NS ratio reference / r_opt (wall medians)", "", A->ns_med / B->ns_med);
     INFO("CH ratio reference / r_opt (wall medians)", "", A->ch_med / B->ch_med);
     INFO("CPU ratio reference / r_opt (whole runs)", "", A->cpu / B->cpu);
+    if (g->pin_top) {
+        INFO("vertices held (top edge), uniform reference", "", (double)A->n_pins);
+        INFO("vertices held (top edge), r_opt", "", (double)B->n_pins);
+    }
+    if (A->n_lines > 0) report_gather(v, g, A, B, quick);
     snprintf(name, sizeof name, "%s: D3 cloth-body triangle intersections, both final drapes (whole mannequin)", g->name);
     wr_vres_check(v, name, "", NAN, (double)(A->penetrations + B->penetrations), "= 0", A->penetrations == 0 && B->penetrations == 0);
     snprintf(name, sizeof name, "%s: D3 final vertices outside the body crop box, both drapes", g->name);
@@ -790,6 +919,10 @@ static void report_garment(wr_vres *v, const grun *A, const grun *B, const grun 
         wr_vres_info(v, name, "mm", NAN, 1e3 * B->lfft[k]);
         snprintf(name, sizeof name, "%s: D2 probe %s: FFT peak wavelength, %s", g->name, pn, A->label);
         wr_vres_info(v, name, "mm", NAN, 1e3 * A->lfft[k]);
+        snprintf(name, sizeof name, "%s: D2 probe %s: amplitude max |rho - cubic|, %s", g->name, pn, A->label);
+        wr_vres_info(v, name, "mm", NAN, 1e3 * A->amp[k]);
+        snprintf(name, sizeof name, "%s: D2 probe %s: amplitude max |rho - cubic|, %s", g->name, pn, B->label);
+        wr_vres_info(v, name, "mm", NAN, 1e3 * B->amp[k]);
         if (C) {
             snprintf(name, sizeof name, "%s: D2 floor: probe %s: lambda_zc, r_opt seed 2 (%d sign changes)", g->name, pn, (int)C->ncross[k]);
             wr_vres_info(v, name, "mm", NAN, 1e3 * C->lzc[k]);
@@ -813,11 +946,12 @@ typedef struct gopts {
 
 static void usage(FILE *f) {
     fprintf(f, "usage: validate_sim_garments [--quick] [--seconds S] [--ref R] [--pcg] [--weld] [--no-floor] [--no-png]\n"
-               "       [--verbose] [--opt-only] [--weld-tol T] [--dhat D] [--garment skirt|shirred]\n"
+               "       [--verbose] [--opt-only] [--weld-tol T] [--dhat D] [--garment skirt|shirred|coat]\n"
                "  Style3D Table 1 / Fig. 19 with the dynamic simulator: garments at r_opt and at uniform 2.5 mm;\n"
                "  writes validation/results/sim_garments.json (--quick: sim_garments_quick.json, smoke only;\n"
-               "  --garment G: sim_garments_G[_dhat][_opt][_weld][_quick].json).\n"
-               "  --seconds S in (0, %g] (default 2); --ref R >= 1e-3 m; --weld-tol T, --dhat D [m] (0: default).\n"
+               "  --garment G: sim_garments_G[_dhat][_quiltE][_opt][_weld][_quick].json).\n"
+               "  --seconds S in (0, %g] (default 2); --ref R >= 1e-3 m; --weld-tol T, --dhat D [m] (0: default);\n"
+               "  --quilt-E E [Pa]: the coat's quilt stitch thread modulus (0: the driver's 3 GPa).\n"
                "  --weld: weld the seams (else springs all run) and report the weld; --opt-only: the r_opt run alone\n"
                "  (cheap weld check: --garment skirt --opt-only --no-floor --weld --seconds 1).\n",
             MAXFRAMES / 30.0);
@@ -839,6 +973,7 @@ static int parse_args(int argc, char **argv, gopts *o) {
         {"--pcg", NULL, WR_CLI_FLAG, &pcg, 0.0, 0.0, NULL},
         {"--opt-only", NULL, WR_CLI_FLAG, &g_opt_only, 0.0, 0.0, NULL},
         {"--ref", NULL, WR_CLI_NUMBER, &g_ref, 1e-3, 1.0, NULL},
+        {"--quilt-E", NULL, WR_CLI_NUMBER, &g_quilt_E, 0.0, 1e12, NULL},
         {"--no-floor", NULL, WR_CLI_FLAG, &no_floor, 0.0, 0.0, NULL},
         {"--verbose", NULL, WR_CLI_FLAG, &g_verbose, 0.0, 0.0, NULL},
     };
@@ -854,7 +989,7 @@ static int parse_args(int argc, char **argv, gopts *o) {
         int gi;
         for (gi = 0; gi < NGARMENT && strcmp(GARMENTS[gi].name, o->only) != 0; ++gi) {}
         if (gi == NGARMENT) {
-            wr_cli_error("no garment '%s' (skirt, shirred)", o->only);
+            wr_cli_error("no garment '%s' (skirt, shirred, coat)", o->only);
             return WR_CLI_EXIT_USAGE;
         }
     }
@@ -867,11 +1002,11 @@ static int parse_args(int argc, char **argv, gopts *o) {
 static const char *case_name(const gopts *o) {
     static char case_buf[128];
     if (o->only)
-        snprintf(case_buf, sizeof case_buf, "sim_garments_%s%s%s%s%s", o->only, g_dhat > 0.0 ? "_dhat" : "",
-                 g_opt_only ? "_opt" : "", g_no_weld ? "" : "_weld", o->quick ? "_quick" : "");
-    else if (g_opt_only || !g_no_weld)
-        snprintf(case_buf, sizeof case_buf, "sim_garments%s%s%s", g_opt_only ? "_opt" : "", g_no_weld ? "" : "_weld",
-                 o->quick ? "_quick" : "");
+        snprintf(case_buf, sizeof case_buf, "sim_garments_%s%s%s%s%s%s", o->only, g_dhat > 0.0 ? "_dhat" : "",
+                 g_quilt_E > 0.0 ? "_quiltE" : "", g_opt_only ? "_opt" : "", g_no_weld ? "" : "_weld", o->quick ? "_quick" : "");
+    else if (g_opt_only || !g_no_weld || g_quilt_E > 0.0)
+        snprintf(case_buf, sizeof case_buf, "sim_garments%s%s%s%s", g_quilt_E > 0.0 ? "_quiltE" : "", g_opt_only ? "_opt" : "",
+                 g_no_weld ? "" : "_weld", o->quick ? "_quick" : "");
     else
         return o->quick ? "sim_garments_quick" : "sim_garments";
     return case_buf;
@@ -963,7 +1098,7 @@ static void drape_figure(wr_vres *v, const gspec *g, const grun *runs, const dou
     if (render_pair(&runs[0], &runs[1], dA, dB, dmax, &B->bm, B->bf, B->nbf, path) != 0) return;
     snprintf(path, sizeof path, "figures/%s_%s.png", case_id, g->name);
     snprintf(buf, sizeof buf,
-             "%s: uniform %s (left of each pair) and %s (right) after %.2f s, front and 3/4 views; lower row: each vertex "
+             "%s: %s (left of each pair) and %s (right) after %.2f s, front and 3/4 views; lower row: each vertex "
              "coloured by its distance to the other drape (0 to the larger max)",
              g->name, runs[0].label, runs[1].label, seconds);
     wr_vres_figure(v, path, buf);
@@ -980,7 +1115,9 @@ static void setup_note(wr_vres *v, const gspec *g, const gbody *B, double second
              "on, d^ = %.3g mm; %s; %.2f s simulated (%d frames of 1/30 s) for every mesh.",
              g->name, g->title, g->pattern, B->bd.height, g->scale, (int)B->nbf, B->crop_lo[2], B->crop_hi[2], B->crop_hi[0],
              (int)B->bm.nf, g->scale * g->radius, g->scale * g->hem_z, g->young, 1e3 * g->thickness,
-             strstr(g->pattern, "shirred") ? ", shirring lines gathered by garment.h threads (E_sh, rho of the pattern)" : "",
+             strstr(g->pattern, "shirred") ? ", shirring lines gathered by garment.h threads (E_sh, rho of the pattern)"
+             : (g->pin_top ? ", quilt stitch lines gathered by garment.h threads (rho 0.85, E_sh 0: the fabric's E), no down "
+                             "pressure load, every vertex of each panel's top edge held at its placed position" : ""),
              1e3 * (g_dhat > 0.0 ? g_dhat : g->scale * 1e-3),
              g_linear == WR_SOLVER_PCG_BLOCK3 ? "PCG + 3x3 block Jacobi to 1e-5 (the paper's linear solver)" : "CHOLMOD",
              seconds, (int)floor(seconds * 30.0 + 0.5));
@@ -1050,10 +1187,11 @@ static void final_notes(wr_vres *v, const gopts *o) {
                     "two final welded drapes, both directions, mean (band <= r_opt, the coarse mesh's own target edge length) and max "
                     "(reported); a floor = the r_opt garment meshed with another seed against the r_opt drape (reported), since two "
                     "dynamic drapes need not fold in the same place. D2 = on named pattern lines (per panel, at 10 % and 50 % of the "
-                    "panel height above the hem, 3 % inset), the horizontal distance from the torso axis minus its cubic trend; "
+                    "panel height above the hem (the coat: across its packs half way between stitch lines, and one vertical line down the back's middle), 3 % inset), the horizontal distance from the torso axis minus its cubic trend; "
                     "crest-count wavelength 2 L / sign changes (+-5 % hysteresis) in material length, band +-25 % of the 2.5 mm "
                     "value (issue 5's curtain band; one crest in four); the FFT peak is a reported cross-check. D3 = no cloth-body "
-                    "triangle intersection against the whole mannequin, the drape inside the body crop.");
+                    "triangle intersection against the whole mannequin, the drape inside the body crop. D4 (garments with "
+                    "gathered lines) = each line's thread length over rho l at the end, max <= 1.05.");
     wr_vres_note(v, "Times: dynamics.h's NS (assembly, projection, linear solves) and CH (detection, CCD, contact terms) per frame, "
                     "wall-clock sums of a single-threaded run (OMP_THREAD_LIMIT=1 OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1) on a shared "
                     "2-core AMD EPYC; mean over every frame (the paper's 'average ... per frame'), sewing frames included, and the "
@@ -1073,7 +1211,7 @@ static void final_notes(wr_vres *v, const gopts *o) {
     if (!g_no_weld)
         wr_vres_note(v, "--weld: the seams are welded once every seam pair is closer than garment.h's weld tolerance (ON WELDING: "
                         "the CCD-limited merge; a refused weld is deferred to the next frame), not kept as springs.");
-    if (o->quick) wr_vres_note(v, "--quick: the skirt at uniform 16 mm vs uniform 24 mm for 0.4 s, no floor run: a smoke run of the pipeline, "
+    if (o->quick) wr_vres_note(v, "--quick: each garment at uniform 16 mm vs uniform 24 mm for 0.4 s, no floor run: a smoke run of the pipeline, "
                                   "every accuracy quantity reported without a band.");
 }
 
