@@ -1261,18 +1261,23 @@ typedef struct wr__msh_quality {
 } wr__msh_quality;
 
 /* Edge metric length |T e| over the mean of its two end sizings, for the edges face f owns (the face
- * edge_faces lists first): sums, extremes, histogram; interior = no boundary or constraint vertex. */
+ * edge_faces lists first): sums, extremes, histogram; interior = no boundary or constraint vertex.
+ * Face f owns its edge k when it traverses it with sign +1 (edge_faces[2e] = f), or with sign -1 on
+ * a boundary edge (edge_faces[2e] = -1); only an edge with both ends in bnd can be one, so the
+ * per-edge arrays (edge order: a cache miss per edge) are read for those few alone, and the ends
+ * (edges[2e] < edges[2e+1]) come from the face's own corners. */
 static void wr__msh_face_ratios(wr_mesher_result *res, int32_t f, const wr__msh_tri *t, const double *T,
                                 const char *bnd, wr__msh_quality *qa) {
     const wr_mesh *M = &res->mesh;
+    const int32_t *F = M->faces + 3 * f;
     wr_mesher_report *rp = &res->report;
     int k;
     for (k = 0; k < 3; ++k) {
-        int32_t e = M->face_edges[3 * f + k], a, b;
+        int32_t p = F[k == 2 ? 0 : k + 1], q = F[k == 0 ? 2 : k - 1]; /* corners (k+1)%3, (k+2)%3 */
+        int32_t a = p < q ? p : q, b = p < q ? q : p;
         double dx = t->e[2 * k], dy = t->e[2 * k + 1], mx, my, ratio, bin;
-        if ((M->edge_faces[2 * e] >= 0 ? M->edge_faces[2 * e] : M->edge_faces[2 * e + 1]) != f) continue;
-        a = M->edges[2 * e];
-        b = M->edges[2 * e + 1];
+        if (M->face_edge_sign[3 * f + k] < 0 && !(bnd[a] && bnd[b] && M->edge_faces[2 * M->face_edges[3 * f + k]] < 0))
+            continue;
         mx = T[0] * dx + T[1] * dy;
         my = T[2] * dx + T[3] * dy;
         ratio = sqrt(mx * mx + my * my) / (0.5 * (res->sizing[a] + res->sizing[b]));
