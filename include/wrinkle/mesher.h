@@ -1160,23 +1160,18 @@ done:
 /* The wr_mesh (sewn or not) and the per-vertex arrays, handed to the result. */
 static wr_status wr__msh_assemble(wr__msh_ctx *c) {
     wr_mesher_result *res = c->res;
-    int32_t nv = c->rest.n / 2, nf = c->faces.n / 3, j;
+    int32_t nv = c->rest.n / 2, nf = c->faces.n / 3;
     double *pos3;
     wr_status st;
     if (nf < 1) return wr_fail(c->diag, WR_ERR_GEOMETRY, -1, "pattern produced no triangles");
-    pos3 = (double *)wr_alloc_array((size_t)(3 * (nv > 0 ? nv : 1)), sizeof(double));
-    if (!pos3) return wr__msh_nomem(c, -1);
-    if (!c->desc.sew) {
-        for (j = 0; j < nv; ++j) {
-            pos3[3 * j] = c->rest.v[2 * j];
-            pos3[3 * j + 1] = c->rest.v[2 * j + 1];
-            pos3[3 * j + 2] = 0.0;
-        }
-        st = wr_mesh_create(&res->mesh, nv, pos3, c->rest.v, nf, c->faces.v, c->diag);
+    if (!c->desc.sew) { /* pos = (rest, 0), made by wr_mesh_create itself (no copy of our own) */
+        st = wr_mesh_create(&res->mesh, nv, NULL, c->rest.v, nf, c->faces.v, c->diag);
     } else {
+        pos3 = (double *)wr_alloc_array((size_t)(3 * (nv > 0 ? nv : 1)), sizeof(double));
+        if (!pos3) return wr__msh_nomem(c, -1);
         st = wr__msh_sew(c, pos3);
+        wr_free(pos3);
     }
-    wr_free(pos3);
     if (st == WR_OK) st = wr_mesh_set_face_panel(&res->mesh, c->face_panel.v, c->diag);
     if (st != WR_OK) return st;
     res->sizing = c->sizing.v;
