@@ -9,12 +9,26 @@ CXX     ?= c++
 # No -ffast-math anywhere: the exact geometric predicates in predicates.h need strict IEEE
 # double arithmetic, and -ffp-contract=off keeps FMA contraction from changing their results.
 OPT     ?= -O2
-CFLAGS_COMMON = -g $(OPT) -Wall -Wextra -pedantic -ffp-contract=off -Iinclude -Idrivers/lib \
+# -fno-math-errno: libm calls need not set errno (nothing in the kit reads it after one), so GCC
+# inlines sqrt as sqrtsd without its errno branch and libm call; results are bit-identical (issue 17:
+# -1.1 % instructions of wr_mesher_run, -2 % of its Poisson fill). A speed flag only: programs that
+# include the headers with their own flags get the same results without it.
+# -ffunction-sections -fdata-sections (with -Wl,--gc-sections at link time, GC_LDFLAGS): a program
+# keeps only the code it reaches, so it links only the libraries that code calls (PROG_LIBS below).
+CFLAGS_COMMON = -g $(OPT) -Wall -Wextra -pedantic -ffp-contract=off -fno-math-errno -ffunction-sections \
+                -fdata-sections -Iinclude -Idrivers/lib \
                 -I/usr/include/suitesparse -DWR_USE_CHOLMOD=1 -DWR_USE_FFTW=1 -DWR_USE_LIBPNG=1
 CFLAGS  ?=
 ALL_CFLAGS   = -std=c11 $(CFLAGS_COMMON) $(CFLAGS)
 ALL_CXXFLAGS = -std=c++17 $(CFLAGS_COMMON) $(CFLAGS)
 LIBS    = -lcjson -lcholmod -lfftw3 -lpng -lgsl -lgslcblas -lm
+# Each program links only the libraries its reachable code calls (issue 17: loading CHOLMOD with its
+# BLAS, GSL and FFTW cost every process ~4 ms before main): the sections it never reaches are
+# dropped (--gc-sections) and with them their references; LIBS_<program> (below, near the drivers)
+# lists what is left, LIBS when a program has no list. A list missing a library fails the link with
+# the undefined symbols, so it cannot go stale silently; --as-needed drops a listed one unused.
+GC_LDFLAGS = -Wl,--gc-sections -Wl,--as-needed
+PROG_LIBS  = $(GC_LDFLAGS) $(if $(LIBS_$(notdir $@)),$(LIBS_$(notdir $@)),$(LIBS))
 
 # Debian packages the kit builds against. libopenblas0 gives CHOLMOD an optimized BLAS
 # (through the libblas.so.3 alternative) instead of the reference one.
@@ -66,9 +80,32 @@ build/obj/%.o: drivers/lib/%.c $(HEADERS) $(EXTRA_HDR)
 	@mkdir -p $(dir $@)
 	$(CC) $(ALL_CFLAGS) -c $< -o $@
 
+# What each program's reachable code calls (PROG_LIBS; found by linking without libraries: the
+# undefined references left after --gc-sections). -lm throughout; cJSON for the pattern/scene/result
+# files, CHOLMOD for spd.h's direct solver, FFTW for the wrinkle field's spectra, libpng for PNGs.
+LIBS_wrinkle-mesh = -lcjson -lm
+LIBS_wrinkle-report = -lcjson -lm
+LIBS_wrinkle-resolution = -lcjson -lm
+LIBS_wrinkle-sim = -lcjson -lcholmod -lpng -lm
+LIBS_wrinkle-statics = -lcjson -lcholmod -lfftw3 -lpng -lm
+LIBS_wrinkle-tfw = -lcjson -lcholmod -lfftw3 -lpng -lm
+LIBS_validate_cantilever = -lcjson -lcholmod -lgsl -lgslcblas -lm
+LIBS_validate_fig5 = -lcjson -lm
+LIBS_validate_meshing = -lcjson -lm
+LIBS_validate_table1 = -lcjson -lm
+LIBS_validate_tfw_release = -lcjson -lcholmod -lm
+$(foreach p,curtain optimal_vs_uniform stretch tfw_crosscheck tfw_sphere_drape tfw_twisted_cylinder statics_stability,\
+  $(eval LIBS_validate_$(p) = -lcjson -lcholmod -lfftw3 -lm))
+$(foreach p,sim_curtain sim_garments sim_shirring sim_stretch statics_loop tfw_inflatables tfw_sheared_rectangle \
+  tfw_stretched_sheet,$(eval LIBS_validate_$(p) = -lcjson -lcholmod -lfftw3 -lpng -lm))
+$(foreach p,collision mesher poisson triangle,$(eval LIBS_bench_$(p) = -lm))
+$(foreach p,pcg projection tfw dynamics weld,$(eval LIBS_bench_$(p) = -lcholmod -lm))
+LIBS_bench_statics = -lcjson -lcholmod -lm
+LIBS_probe_mesher_edges = -lcjson -lm
+
 bin/%: drivers/%.c $(LIB_OBJ) $(HEADERS) $(EXTRA_HDR)
 	@mkdir -p bin
-	$(CC) $(ALL_CFLAGS) $< $(LIB_OBJ) -o $@ $(LIBS)
+	$(CC) $(ALL_CFLAGS) $< $(LIB_OBJ) -o $@ $(PROG_LIBS)
 
 # Drivers that need only the dependency-free core link only what they use (process start: 1 ms
 # instead of 5 ms with CHOLMOD, GSL, FFTW and cJSON loaded): their own implementation unit of the
@@ -87,15 +124,15 @@ build/obj/impl_arpack.o: drivers/lib/impl.c $(HEADERS) $(EXTRA_HDR)
 
 bin/validate_statics_stability: validation/validate_statics_stability.c build/obj/impl_arpack.o $(filter-out build/obj/impl.o,$(LIB_OBJ)) $(HEADERS) $(EXTRA_HDR)
 	@mkdir -p bin
-	$(CC) $(ALL_CFLAGS) $(ARPACK_FLAGS) $< build/obj/impl_arpack.o $(filter-out build/obj/impl.o,$(LIB_OBJ)) -o $@ $(LIBS) $(ARPACK_LIBS)
+	$(CC) $(ALL_CFLAGS) $(ARPACK_FLAGS) $< build/obj/impl_arpack.o $(filter-out build/obj/impl.o,$(LIB_OBJ)) -o $@ $(PROG_LIBS) $(ARPACK_LIBS)
 
 bin/%: validation/%.c $(LIB_OBJ) $(HEADERS) $(EXTRA_HDR)
 	@mkdir -p bin
-	$(CC) $(ALL_CFLAGS) $< $(LIB_OBJ) -o $@ $(LIBS)
+	$(CC) $(ALL_CFLAGS) $< $(LIB_OBJ) -o $@ $(PROG_LIBS)
 
 bin/%: bench/%.c $(LIB_OBJ) $(HEADERS) $(EXTRA_HDR)
 	@mkdir -p bin
-	$(CC) $(ALL_CFLAGS) -O3 $< $(LIB_OBJ) -o $@ $(LIBS)
+	$(CC) $(ALL_CFLAGS) -O3 $< $(LIB_OBJ) -o $@ $(PROG_LIBS)
 
 # bench_triangle times bin/wrinkle-triangulate as a process (against Triangle when WR_TRIANGLE names
 # a Triangle binary built outside the tree; without it the Triangle columns are skipped).
@@ -105,13 +142,13 @@ bin/bench_triangle: bin/wrinkle-triangulate
 # dynamics.h's face blocks in one run (the library objects stay serial; results are bit-identical).
 bin/bench_dynamics: bench/bench_dynamics.c $(HEADERS)
 	@mkdir -p bin
-	$(CC) $(ALL_CFLAGS) -O3 -fopenmp -DWR_BENCH_IMPL $< -o $@ $(LIBS)
+	$(CC) $(ALL_CFLAGS) -O3 -fopenmp -DWR_BENCH_IMPL $< -o $@ $(PROG_LIBS)
 
 # bench_weld is its own implementation unit too (serial), so the same source can be built against
 # another tree's headers (-I) to compare two versions of the weld in one run.
 bin/bench_weld: bench/bench_weld.c $(HEADERS)
 	@mkdir -p bin
-	$(CC) $(ALL_CFLAGS) -O3 -DWR_BENCH_IMPL $< -o $@ $(LIBS)
+	$(CC) $(ALL_CFLAGS) -O3 -DWR_BENCH_IMPL $< -o $@ $(PROG_LIBS)
 
 bin/%: bench/%.cpp $(LIB_OBJ) $(HEADERS) $(EXTRA_HDR)
 	@mkdir -p bin

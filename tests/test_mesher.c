@@ -4,6 +4,7 @@
 #include <criterion/criterion.h>
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "pattern.h"
@@ -391,6 +392,71 @@ Test(mesher, sew_merges_pairs_with_corner_rest) {
     wr_mesher_free(&s);
     cr_expect_eq(wr_mesher_run(&t.pat, &desc, &s, &d), WR_ERR_TOPOLOGY);
     cr_expect(strstr(d.message, "sewing") != NULL, "%s", d.message);
+    wr_mesher_free(&r);
+}
+
+/* The report's edge ratios, recomputed edge by edge: every edge counted once (the histogram holds
+ * ne entries), the same mean / interior mean / extremes. Each edge's vector is taken in its first
+ * face (edge_faces) from that face's rest corners (corner_rest when sewn). */
+static void expect_ratios_per_edge(const wr_mesher_result *r) {
+    const wr_mesh *M = &r->mesh;
+    double sum = 0.0, sum_int = 0.0, lo = HUGE_VAL, hi = 0.0;
+    int32_t e, n_int = 0, n_hist = 0, k;
+    char *bnd = (char *)calloc((size_t)M->nv, 1);
+    cr_assert_not_null(bnd);
+    for (e = 0; e < M->n_loops; ++e)
+        for (k = M->loop_start[e]; k < M->loop_start[e + 1]; ++k) bnd[M->loop_verts[k]] = 1;
+    for (e = 0; e < 2 * r->n_constraint_segments; ++e) bnd[r->constraint_segments[e]] = 1;
+    for (e = 0; e < M->ne; ++e) {
+        int32_t a = M->edges[2 * e], b = M->edges[2 * e + 1], f = M->edge_faces[2 * e] >= 0 ? M->edge_faces[2 * e] : M->edge_faces[2 * e + 1];
+        int32_t ca = 0, cb = 0;
+        const double *T = r->panels[M->face_panel[f]].T;
+        double uv[6], dx, dy, mx, my, ratio;
+        wr_mesh_face_rest(M, f, uv);
+        for (k = 0; k < 3; ++k) {
+            if (M->faces[3 * f + k] == a) ca = k;
+            if (M->faces[3 * f + k] == b) cb = k;
+        }
+        dx = uv[2 * cb] - uv[2 * ca];
+        dy = uv[2 * cb + 1] - uv[2 * ca + 1];
+        mx = T[0] * dx + T[1] * dy;
+        my = T[2] * dx + T[3] * dy;
+        ratio = sqrt(mx * mx + my * my) / (0.5 * (r->sizing[a] + r->sizing[b]));
+        sum += ratio;
+        if (!bnd[a] && !bnd[b]) sum_int += ratio, ++n_int;
+        if (ratio < lo) lo = ratio;
+        if (ratio > hi) hi = ratio;
+    }
+    for (k = 0; k < WR_MESHER_HIST_BINS; ++k) n_hist += r->report.ratio_hist[k];
+    cr_expect_eq(n_hist, M->ne, "histogram holds %d edges, the mesh has %d", n_hist, M->ne);
+    cr_expect(fabs(r->report.ratio_mean - sum / M->ne) < 1e-12, "mean %.17g vs %.17g", r->report.ratio_mean, sum / M->ne);
+    cr_expect(fabs(r->report.ratio_interior_mean - sum_int / n_int) < 1e-12, "interior mean %.17g vs %.17g",
+              r->report.ratio_interior_mean, sum_int / n_int);
+    cr_expect(r->report.ratio_min == lo && r->report.ratio_max == hi, "min %.17g vs %.17g, max %.17g vs %.17g",
+              r->report.ratio_min, lo, r->report.ratio_max, hi);
+    free(bnd);
+}
+
+Test(mesher, report_counts_every_edge_once) {
+    two_panels t;
+    wr_pattern pat;
+    wr_pattern_panel pn;
+    wr_mesher_result r;
+    wr_mesher_desc desc;
+    wr_diag d;
+    one_panel(&pat, &pn, sq250, 4);
+    pn.fabric.resolution = 10e-3;
+    cr_assert_eq(wr_mesher_run(&pat, NULL, &r, &d), WR_OK, "%s", d.message);
+    expect_ratios_per_edge(&r);
+    wr_mesher_free(&r);
+    make_two(&t); /* two panels with a seam, unsewn and sewn (corner_rest) */
+    memset(&desc, 0, sizeof desc);
+    cr_assert_eq(wr_mesher_run(&t.pat, &desc, &r, &d), WR_OK, "%s", d.message);
+    expect_ratios_per_edge(&r);
+    wr_mesher_free(&r);
+    desc.sew = 1;
+    cr_assert_eq(wr_mesher_run(&t.pat, &desc, &r, &d), WR_OK, "%s", d.message);
+    expect_ratios_per_edge(&r);
     wr_mesher_free(&r);
 }
 
