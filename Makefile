@@ -126,6 +126,11 @@ bin/validate_statics_stability: validation/validate_statics_stability.c build/ob
 	@mkdir -p bin
 	$(CC) $(ALL_CFLAGS) $(ARPACK_FLAGS) $< build/obj/impl_arpack.o $(filter-out build/obj/impl.o,$(LIB_OBJ)) -o $@ $(PROG_LIBS) $(ARPACK_LIBS)
 
+# validate_statics_fig7 (make validate-long only) runs statics.h's stability test too.
+bin/validate_statics_fig7: validation/validate_statics_fig7.c build/obj/impl_arpack.o $(filter-out build/obj/impl.o,$(LIB_OBJ)) $(HEADERS) $(EXTRA_HDR)
+	@mkdir -p bin
+	$(CC) $(ALL_CFLAGS) $(ARPACK_FLAGS) $< build/obj/impl_arpack.o $(filter-out build/obj/impl.o,$(LIB_OBJ)) -o $@ $(LIBS) $(ARPACK_LIBS)
+
 bin/%: validation/%.c $(LIB_OBJ) $(HEADERS) $(EXTRA_HDR)
 	@mkdir -p bin
 	$(CC) $(ALL_CFLAGS) $< $(LIB_OBJ) -o $@ $(PROG_LIBS)
@@ -133,6 +138,11 @@ bin/%: validation/%.c $(LIB_OBJ) $(HEADERS) $(EXTRA_HDR)
 bin/%: bench/%.c $(LIB_OBJ) $(HEADERS) $(EXTRA_HDR)
 	@mkdir -p bin
 	$(CC) $(ALL_CFLAGS) -O3 $< $(LIB_OBJ) -o $@ $(PROG_LIBS)
+
+# bench_loop_linear runs statics.h's stability test (ARPACK), as validate_statics_stability.
+bin/bench_loop_linear: bench/bench_loop_linear.c validation/stretch_probe.h build/obj/impl_arpack.o $(filter-out build/obj/impl.o,$(LIB_OBJ)) $(HEADERS) $(EXTRA_HDR)
+	@mkdir -p bin
+	$(CC) $(ALL_CFLAGS) $(ARPACK_FLAGS) -O3 $< build/obj/impl_arpack.o $(filter-out build/obj/impl.o,$(LIB_OBJ)) -o $@ $(LIBS) $(ARPACK_LIBS)
 
 # bench_triangle times bin/wrinkle-triangulate as a process (against Triangle when WR_TRIANGLE names
 # a Triangle binary built outside the tree; without it the Triangle columns are skipped).
@@ -202,6 +212,7 @@ validate: deps
 
 # The dynamic-simulator validations (validation/validate_sim_*.c) in full: tens of CPU minutes each
 # on this 2-core box; `make validate` runs their --quick versions.
+# Also validate_statics_fig7 (TFW Fig. 7, linear StVK at 16k-130k vertices, about 1 CPU hour), only here.
 validate-long: deps
 	@$(MAKE) --no-print-directory all
 	@sh validation/run_all.sh --long

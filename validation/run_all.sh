@@ -21,7 +21,8 @@ fi
 status=0
 # The dynamic-simulator cases (validate_sim_*) run --quick here (a smoke version, its own result
 # file <case>_quick.json); `sh validation/run_all.sh --long` (make validate-long) runs only them,
-# in full, then rewrites the report. Their full runs take tens of CPU minutes.
+# in full, then rewrites the report. Their full runs take tens of CPU minutes. validate_statics_fig7
+# (TFW Fig. 7, 16k-130k vertices) runs only there.
 long=0
 [ "$1" = "--long" ] && long=1
 # Cross-check drivers read other cases' result files, so they run last.
@@ -31,6 +32,7 @@ for src in $(ls validation/validate_*.c | grep -v crosscheck) $(ls validation/va
     args=
     case "$name" in
         validate_sim_*) [ $long = 1 ] || args=--quick ;;
+        validate_statics_fig7) [ $long = 1 ] || continue ;; # long only: 16k-130k-vertex solves, CPU hours
         *) [ $long = 1 ] && continue ;;
     esac
     echo "== $name $args"

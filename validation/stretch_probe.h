@@ -70,4 +70,42 @@ static inline void sp_measure(const wr_scene_run *run, double *count, double *wa
     if (np_out) *np_out = np;
 }
 
+/* Wave periods the way a picture is counted (validate_sim_stretch's METRIC, for comparing with
+ * counts printed in papers, e.g. TFW Fig. 7's "3 waves"): on each of the SP_NPROBE probes, the
+ * out-of-plane displacement minus its least-squares line; lobes = maximal runs of one sign whose peak
+ * is >= SP_LOBE_BAND of the probe's peak; periods = lobes / 2. Median over the probes (NAN when none
+ * could be sampled). */
+#define SP_LOBE_BAND 0.1
+static inline double sp_wave_periods(const wr_scene_run *run) {
+    double c[SP_NPROBE];
+    int k, np = 0;
+    for (k = 0; k < SP_NPROBE && k < run->sc->n_probes; ++k) {
+        int32_t n = run->sc->probe[k].samples, i, lobes = 0, sgn = 0;
+        double *pts = (double *)malloc(sizeof(double) * 2 * (size_t)n), *z = (double *)malloc(sizeof(double) * (size_t)n);
+        double ds, pk = 0.0, lobe_pk = 0.0, sx = 0, sy = 0, sxx = 0, sxy = 0;
+        wr_diag d;
+        if (!pts || !z || wr_scene_run_probe_samples(run, k, pts, z, &ds, &d) != WR_OK) {
+            free(pts), free(z);
+            continue;
+        }
+        for (i = 0; i < n; ++i) sx += i, sy += z[i], sxx += (double)i * i, sxy += i * z[i];
+        {
+            double slope = (n * sxy - sx * sy) / (n * sxx - sx * sx), icpt = (sy - slope * sx) / n;
+            for (i = 0; i < n; ++i) z[i] -= icpt + slope * i;
+        }
+        for (i = 0; i < n; ++i) pk = fmax(pk, fabs(z[i]));
+        for (i = 0; pk > 0.0 && i <= n; ++i) { /* i == n closes the last run */
+            int32_t s = i < n ? (z[i] > 0.0) - (z[i] < 0.0) : 0;
+            if (s != sgn || i == n) {
+                if (sgn && lobe_pk >= SP_LOBE_BAND * pk) ++lobes;
+                sgn = s, lobe_pk = 0.0;
+            }
+            if (i < n) lobe_pk = fmax(lobe_pk, fabs(z[i]));
+        }
+        c[np++] = 0.5 * lobes;
+        free(pts), free(z);
+    }
+    return np ? sp_median(c, np) : NAN;
+}
+
 #endif /* WRINKLE_VALIDATION_STRETCH_PROBE_H */
