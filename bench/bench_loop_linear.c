@@ -35,6 +35,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "cli.h"
 #include "scene.h"
 #include "../validation/stretch_probe.h"
 
@@ -51,22 +52,6 @@ typedef struct brow {
     int32_t nv;
     double count, wavelength, waves, zmax, t_wall, t_cpu, t_stab, load;
 } brow;
-
-static double cpu_seconds(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-static double load1(void) {
-    double l = NAN;
-    FILE *f = fopen("/proc/loadavg", "r");
-    if (f) {
-        if (fscanf(f, "%lf", &l) != 1) l = NAN;
-        fclose(f);
-    }
-    return l;
-}
 
 static int run_row(const wr_scene *base, brow *R) {
     wr_scene sc = *base;
@@ -87,10 +72,10 @@ static int run_row(const wr_scene *base, brow *R) {
         return -1;
     }
     R->nv = run.mesh.nv;
-    R->load = load1();
-    c0 = cpu_seconds();
+    R->load = wr_cli_load1();
+    c0 = wr_cli_cpu_seconds();
     st = wr_scene_run_solve(&run, NULL, NULL, &d);
-    R->t_cpu = cpu_seconds() - c0;
+    R->t_cpu = wr_cli_cpu_seconds() - c0;
     if (st != WR_OK) fprintf(stderr, "bench_loop_linear: %s: %s\n", R->label, d.message);
     R->ran = 1, R->ok = st == WR_OK;
     R->t_wall = run.t_solve;

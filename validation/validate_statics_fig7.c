@@ -40,6 +40,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "cli.h"
 #include "scene.h"
 #include "stretch_probe.h"
 #include "vresult.h"
@@ -68,22 +69,6 @@ typedef struct frow {
     double waves, count, wavelength, amp_mid, zmax, lam_final, t_wall, t_cpu, t_stab;
 } frow;
 
-static double cpu_seconds(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
-static double end_load(void) {
-    double l = NAN;
-    FILE *f = fopen("/proc/loadavg", "r");
-    if (f) {
-        if (fscanf(f, "%lf", &l) != 1) l = NAN;
-        fclose(f);
-    }
-    return l;
-}
-
 static int run_row(const wr_scene *base, frow *R, const char *label) {
     wr_scene sc = *base;
     wr_scene_run run;
@@ -105,9 +90,9 @@ static int run_row(const wr_scene *base, frow *R, const char *label) {
     R->nv = run.mesh.nv;
     fprintf(stderr, "== %s: Delaunay r = %.3f mm, %d vertices, linear element, stability ON\n", label, 1e3 * R->r,
             (int)R->nv);
-    c0 = cpu_seconds();
+    c0 = wr_cli_cpu_seconds();
     st = wr_scene_run_solve(&run, sp_progress, NULL, &d);
-    R->t_cpu = cpu_seconds() - c0;
+    R->t_cpu = wr_cli_cpu_seconds() - c0;
     wr_cli_progress_end();
     if (st != WR_OK) fprintf(stderr, "   solve: %s\n", d.message);
     R->ran = 1;
@@ -236,7 +221,7 @@ int main(int argc, char **argv) {
     snprintf(note, sizeof note,
              "Machine: the shared 2-core box (see machine), single thread (OMP/OpenBLAS 1), other jobs running (1-min "
              "load %.1f at the end); times are one run each, wall time inflated by the load, CPU time the steadier.",
-             end_load());
+             wr_cli_load1());
     wr_vres_note(v, note);
     failed = wr_vres_finish(v);
     wr_scene_free(&base);

@@ -28,6 +28,10 @@
  *                                           unknown option (error), else the one positional
  *                                           SCENE.json (a second one is an error). 1: taken; -1: bad
  *                                           input (error printed)
+ *   wr_cli_cpu_seconds()                    this process's CPU time [s] (timings of long validation
+ *                                           and bench runs on a shared machine, where wall time is not
+ *                                           the work)
+ *   wr_cli_load1()                          the 1-minute load average (/proc/loadavg), NAN where absent
  *   wr_cli_scene_args_ok(scene, out)        after the loop: 1 when both were given, else 0 with
  *                                           "need SCENE.json and -o DIR (see --help)" printed
  *
@@ -126,6 +130,8 @@ int wr_cli_double(int argc, char **argv, int *i, const char *name, double *out);
 int wr_cli_integer(int argc, char **argv, int *i, const char *name, double lo, double hi, double *out);
 int wr_cli_scene_arg(int argc, char **argv, int *i, const char **scene_path, const char **out);
 int wr_cli_scene_args_ok(const char *scene_path, const char *out);
+double wr_cli_cpu_seconds(void);
+double wr_cli_load1(void);
 int wr_cli_parse(int argc, char **argv, const wr_cli_opt *opts, int n_opts, const char **pos, int max_pos, int *n_pos,
                  void (*usage)(FILE *));
 void wr_cli_defer(void (*fn)(void *), void *p);
