@@ -54,19 +54,13 @@ typedef struct brow {
 } brow;
 
 static int run_row(const wr_scene *base, brow *R) {
-    wr_scene sc = *base;
+    wr_scene sc;
     wr_scene_run run;
     wr_diag d;
     wr_status st;
     double p2p, c0;
     int32_t k;
-    sc.mesh.resolution = R->r;
-    sc.mesh.nx = sc.mesh.ny = 0;
-    sc.mesh.kind = WR_SCENE_MESH_DELAUNAY_RECTANGLE, sc.mesh.seed = 1;
-    sc.shell.loop_element = R->loop;
-    sp_place_probes(&sc, base);
-    memset(&sc.stability, 0, sizeof sc.stability);
-    sc.stability.check = 1, sc.stability.perturb_each = 1;
+    sp_delaunay_stability_scene(&sc, base, R->r, R->loop);
     if (wr_scene_run_create(&run, &sc, &d) != WR_OK) {
         fprintf(stderr, "bench_loop_linear: %s\n", d.message);
         return -1;

@@ -8,6 +8,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "cli.h"
 #include "scene.h"
@@ -46,6 +47,21 @@ static inline void sp_place_probes(wr_scene *sc, const wr_scene *base) {
         sc->probe[k] = base->probe[0];
         sc->probe[k].from[0] = sc->probe[k].to[0] = 0.125 + off[k] * 0.0125;
     }
+}
+
+/* The stretch scene `base` on a Delaunay rectangle of resolution r [m] (mesher seed 1), the Loop
+ * element when loop is 1, probes placed as sp_place_probes, and statics' stability test after every
+ * load step with a perturbation at each (issue 15: the converged-reference set-up of
+ * validate_statics_fig7 and bench_loop_linear). */
+static inline void sp_delaunay_stability_scene(wr_scene *sc, const wr_scene *base, double r, int loop) {
+    *sc = *base;
+    sc->mesh.resolution = r;
+    sc->mesh.nx = sc->mesh.ny = 0;
+    sc->mesh.kind = WR_SCENE_MESH_DELAUNAY_RECTANGLE, sc->mesh.seed = 1;
+    sc->shell.loop_element = loop;
+    sp_place_probes(sc, base);
+    memset(&sc->stability, 0, sizeof sc->stability);
+    sc->stability.check = 1, sc->stability.perturb_each = 1;
 }
 
 /* median count and wavelength over the probes that could be analysed (*np of them; NAN when none),

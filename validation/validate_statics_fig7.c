@@ -70,19 +70,13 @@ typedef struct frow {
 } frow;
 
 static int run_row(const wr_scene *base, frow *R, const char *label) {
-    wr_scene sc = *base;
+    wr_scene sc;
     wr_scene_run run;
     wr_diag d;
     wr_status st;
     double p2p, c0;
     int32_t k, ns;
-    sc.mesh.resolution = R->r;
-    sc.mesh.nx = sc.mesh.ny = 0;
-    sc.mesh.kind = WR_SCENE_MESH_DELAUNAY_RECTANGLE, sc.mesh.seed = 1;
-    sc.shell.loop_element = 0;
-    sp_place_probes(&sc, base);
-    memset(&sc.stability, 0, sizeof sc.stability);
-    sc.stability.check = 1, sc.stability.perturb_each = 1;
+    sp_delaunay_stability_scene(&sc, base, R->r, 0);
     if (wr_scene_run_create(&run, &sc, &d) != WR_OK) {
         fprintf(stderr, "validate_statics_fig7: %s\n", d.message);
         return -1;
