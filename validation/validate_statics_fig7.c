@@ -149,24 +149,27 @@ static void report_row(wr_vres *v, int i, const frow *R, const frow *last) {
         snprintf(q, sizeof q, "%s: peak |w|", LABEL[i]);
         wr_vres_info(v, q, "mm", NAN, 1e3 * R->zmax);
     }
-    snprintf(q, sizeof q, "%s: crest count W / FFT wavelength (median of 5 probes)", LABEL[i]);
-    wr_vres_info(v, q, "wrinkles", NAN, R->count);
-    snprintf(q, sizeof q, "%s: FFT wavelength (median of 5 probes)", LABEL[i]);
-    wr_vres_info(v, q, "mm", NAN, 1e3 * R->wavelength);
-    snprintf(q, sizeof q, "%s: amplitude at L/2 (peak-to-peak / 2)", LABEL[i]);
-    wr_vres_info(v, q, "mm", NAN, 1e3 * R->amp_mid);
-    snprintf(q, sizeof q, "%s: lowest eigenvalue at full load", LABEL[i]);
-    wr_vres_info(v, q, "Pa/m", NAN, R->lam_final);
-    snprintf(q, sizeof q, "%s: escapes along negative modes (all load steps)", LABEL[i]);
-    wr_vres_info(v, q, "", NAN, R->escapes);
-    snprintf(q, sizeof q, "%s: Newton steps (incl. stability re-solves)", LABEL[i]);
-    wr_vres_info(v, q, "", NAN, R->newton);
-    snprintf(q, sizeof q, "%s: solve wall time (of which stability)", LABEL[i]);
-    wr_vres_info(v, q, "s", NAN, R->t_wall);
-    snprintf(q, sizeof q, "%s: stability wall time", LABEL[i]);
-    wr_vres_info(v, q, "s", NAN, R->t_stab);
-    snprintf(q, sizeof q, "%s: solve CPU time", LABEL[i]);
-    wr_vres_info(v, q, "s", NAN, R->t_cpu);
+    {
+        const struct {
+            const char *what, *unit;
+            double value;
+        } rows[] = {
+            {"crest count W / FFT wavelength (median of 5 probes)", "wrinkles", R->count},
+            {"FFT wavelength (median of 5 probes)", "mm", 1e3 * R->wavelength},
+            {"amplitude at L/2 (peak-to-peak / 2)", "mm", 1e3 * R->amp_mid},
+            {"lowest eigenvalue at full load", "Pa/m", R->lam_final},
+            {"escapes along negative modes (all load steps)", "", (double)R->escapes},
+            {"Newton steps (incl. stability re-solves)", "", (double)R->newton},
+            {"solve wall time (of which stability)", "s", R->t_wall},
+            {"stability wall time", "s", R->t_stab},
+            {"solve CPU time", "s", R->t_cpu},
+        };
+        size_t k;
+        for (k = 0; k < sizeof rows / sizeof rows[0]; ++k) {
+            snprintf(q, sizeof q, "%s: %s", LABEL[i], rows[k].what);
+            wr_vres_info(v, q, rows[k].unit, NAN, rows[k].value);
+        }
+    }
 }
 
 int main(int argc, char **argv) {
