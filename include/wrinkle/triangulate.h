@@ -2064,6 +2064,13 @@ static int wr__angle_may_pass(const wr__cdt *S, const wr__ref *R, int32_t a, int
     return !(a2 * a2 < (R->sin2 - 1e-12) * (e0 * e1 * e2 / lo));
 }
 
+/* Ring position j (from 0) outward from both ends of a run of excluded positions of a ring of n:
+ * fwd, back, fwd+1, back-1, ... (fwd: the first after the run, back: the last before it). An
+ * incircle test of a triangle on the run meets the nearest vertices first. */
+static inline int wr__ring_out(int fwd, int back, int j, int n) {
+    return (j & 1) ? (back + n - j / 2) % n : (fwd + j / 2) % n;
+}
+
 /* Corner c of a new triangle faces h (a new corner, or -1 - k for ring edge k); both sides. */
 static void wr__plan_nbr(wr__plan *P, int32_t c, int32_t h) {
     P->nbr[c] = h;
@@ -2179,8 +2186,8 @@ static int wr__plan_removal(const wr__cdt *S, const wr__ref *R, wr__plan *P, int
             int32_t a = idx[(i + n - 1) % n], b = idx[i], cc = idx[(i + 1) % n];
             const double *pa = WR__P(S, a), *pb = WR__P(S, b), *pc = WR__P(S, cc);
             int ok = wr_orient2d(pa, pb, pc) > 0.0;
-            for (j = 0; j < n && ok; ++j)
-                if (idx[j] != a && idx[j] != b && idx[j] != cc && wr_incircle(pa, pb, pc, WR__P(S, idx[j])) > 0.0) ok = 0;
+            for (j = 0; j < n - 3 && ok; ++j) /* the ear's edge a -> c is ring edge i-1 -> i+1 of n-1 */
+                if (wr_incircle(pa, pb, pc, WR__P(S, idx[wr__ring_out((i + 2) % n, (i + n - 2) % n, j, n)])) > 0.0) ok = 0;
             if (ok) found = i;
         }
         if (found < 0) return 0;
@@ -2276,8 +2283,8 @@ static int wr__plan_collapse(const wr__cdt *S, const wr__ref *R, int32_t u, int3
         const double *pa = WR__P(S, t[0]), *pb = WR__P(S, t[1]), *pc = WR__P(S, t[2]);
         int empty = 1;
         if (wr__tri_ok(S, R, t, reg)) continue;
-        for (j = 0; j < P->n && empty; ++j)
-            if (j != i && j != (i + 1) % P->n && !(wr_incircle(pa, pb, pc, WR__P(S, P->ring[j])) < 0.0)) empty = 0;
+        for (j = 0; j < P->n - 2 && empty; ++j) /* nearest ring vertices first: i+2, i-1, i+3, i-2, ... */
+            if (!(wr_incircle(pa, pb, pc, WR__P(S, P->ring[wr__ring_out((i + 2) % P->n, (i + P->n - 1) % P->n, j, P->n)])) < 0.0)) empty = 0;
         if (empty) return 0;
     }
     for (i = 0; i < P->nt; ++i) /* u in the kernel of the polygon: the fan is a triangulation */
