@@ -1459,7 +1459,12 @@ static int wr__segs_meet_sharply(const wr__cdt *S, const wr__ref *R, int32_t s1,
  * rounding-scale triangles. *key: priority bucket of the shortest edge (see wr__bad_key). */
 static int32_t wr__bad_key(double len2) { /* buckets of a factor sqrt(2) in squared length */
     int ex;
-    double mant = frexp(len2, &ex);
+    double mant;
+    uint64_t bits;
+    memcpy(&bits, &len2, sizeof bits);
+    if (len2 > 0.0 && (bits >> 52) - 1u < 0x7feu) /* normal: frexp's exponent and mantissa from the bits */
+        return 2 * ((int)(bits >> 52) - 1022) + ((bits & 0xfffffffffffffull) >= 0x6a09e667f3bcdull);
+    mant = frexp(len2, &ex);
     return 2 * ex + (mant >= 0.70710678118654752);
 }
 static int wr__is_bad_v(const wr__cdt *S, const wr__ref *R, const int32_t *v, int32_t reg, int32_t *key) {
@@ -1474,11 +1479,10 @@ static int wr__is_bad_v(const wr__cdt *S, const wr__ref *R, const int32_t *v, in
     e[2] = (p0[0] - p1[0]) * (p0[0] - p1[0]) + (p0[1] - p1[1]) * (p0[1] - p1[1]);
     for (k = 1; k < 3; ++k)
         if (e[k] < e[m]) m = k;
-    if (key) *key = wr__bad_key(e[m]); /* NULL: not wanted (the clean-up's tests) */
     a2 = wr_orient2d_fast(p0, p1, p2); /* twice the area */
-    if (R->max_area > 0.0 && 0.5 * a2 > R->max_area) return 1;
-    if (R->region_area && reg >= 0 && R->region_area[reg] > 0.0 && 0.5 * a2 > R->region_area[reg]) return 1;
-    if (R->unsuitable && R->unsuitable(p0, p1, p2, 0.5 * a2, R->user)) return 1;
+    if (R->max_area > 0.0 && 0.5 * a2 > R->max_area) goto bad;
+    if (R->region_area && reg >= 0 && R->region_area[reg] > 0.0 && 0.5 * a2 > R->region_area[reg]) goto bad;
+    if (R->unsuitable && R->unsuitable(p0, p1, p2, 0.5 * a2, R->user)) goto bad;
     if (R->sin2 <= 0.0) return 0;
     l1 = e[wr__n1[m]];
     l2 = e[wr__n2[m]];
@@ -1492,6 +1496,8 @@ static int wr__is_bad_v(const wr__cdt *S, const wr__ref *R, const int32_t *v, in
         if (su >= 0 && wr__on_seg(S, R, v[0], su) && wr__on_seg(S, R, v[1], su) && wr__on_seg(S, R, v[2], su))
             return 0;
     }
+bad: /* the key only for a bad triangle (key NULL: not wanted, the clean-up's tests) */
+    if (key) *key = wr__bad_key(e[m]);
     return 1;
 }
 
