@@ -194,9 +194,6 @@ extern "C" {
  * digits rounded to nearest-even from the exact binary value, trailing zeros dropped), from the
  * exact product m * 2^e * 10^s in 128 bits when it fits, else through snprintf. Both need a 128-bit
  * integer type (GCC, Clang) and fall back to strtod / snprintf without one. */
-#if defined(__SIZEOF_INT128__)
-#define WR__HAS_U128 1
-__extension__ typedef unsigned __int128 wr__u128;
 static const uint64_t wr__p10u[20] = {1ull,
                                       10ull,
                                       100ull,
@@ -219,6 +216,18 @@ static const uint64_t wr__p10u[20] = {1ull,
                                       10000000000000000000ull};
 static const double wr__p10d[23] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8,  1e9,  1e10, 1e11,
                                     1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+static const char wr__dig2[201] = "00010203040506070809101112131415161718192021222324"
+                                  "25262728293031323334353637383940414243444546474849"
+                                  "50515253545556575859606162636465666768697071727374"
+                                  "75767778798081828384858687888990919293949596979899";
+/* v as exactly nd decimal digits (leading zeros) at b, two at a time */
+static void wr__put_digits(char *b, uint32_t v, int nd) {
+    for (; nd >= 2; nd -= 2, v /= 100u) memcpy(b + nd - 2, wr__dig2 + 2 * (v % 100u), 2);
+    if (nd) b[0] = (char)('0' + (int)v);
+}
+#if defined(__SIZEOF_INT128__)
+#define WR__HAS_U128 1
+__extension__ typedef unsigned __int128 wr__u128;
 static int wr__u128_bits(wr__u128 v) {
     uint64_t hi = (uint64_t)(v >> 64), lo = (uint64_t)v;
     int n = 0;
@@ -345,18 +354,26 @@ static int wr__fmt_g17(char *b, double x) {
         ++d; /* |x| >= 10^(d+1), or rounding carried to 10^17 */
     }
     if (q >= wr__p10u[17]) q /= 10u; /* the carry: 10^17 -> 10^16 */
-    for (i = 16; i >= 0; --i, q /= 10u) dg[i] = (char)('0' + (int)(q % 10u));
+    wr__put_digits(dg, (uint32_t)(q / 100000000u), 9);
+    wr__put_digits(dg + 9, (uint32_t)(q % 100000000u), 8);
     while (nd > 1 && dg[nd - 1] == '0') --nd;
     if (bits >> 63) b[len++] = '-';
     if (d >= -4 && d < 17) {
-        if (d < 0) {
+        if (d < 0) { /* 0.000ddd */
             b[len++] = '0';
             b[len++] = '.';
             for (i = -1; i > d; --i) b[len++] = '0';
-        }
-        for (i = 0; i < nd || i <= d; ++i) {
-            if (i == d + 1 && d >= 0) b[len++] = '.';
-            b[len++] = i < nd ? dg[i] : '0';
+            memcpy(b + len, dg, (size_t)nd);
+            len += nd;
+        } else if (nd <= d + 1) { /* an integer: ddd000 */
+            memcpy(b + len, dg, (size_t)nd);
+            memset(b + len + nd, '0', (size_t)(d + 1 - nd));
+            len += d + 1;
+        } else { /* ddd.ddd */
+            memcpy(b + len, dg, (size_t)(d + 1));
+            b[len + d + 1] = '.';
+            memcpy(b + len + d + 2, dg + d + 1, (size_t)(nd - d - 1));
+            len += nd + 1;
         }
     } else {
         b[len++] = dg[0];
@@ -1153,16 +1170,13 @@ static void wr__ln_room(wr__line *L) {
     if (L->col++ > 0) L->b[L->n++] = ' ';
 }
 static void wr__ln_i(wr__line *L, int32_t v) {
-    char t[12];
-    int k = 0;
+    int nd = 1;
     uint32_t u = v < 0 ? 0u - (uint32_t)v : (uint32_t)v;
     wr__ln_room(L);
     if (v < 0) L->b[L->n++] = '-';
-    do {
-        t[k++] = (char)('0' + (int)(u % 10u));
-        u /= 10u;
-    } while (u);
-    while (k) L->b[L->n++] = t[--k];
+    while (nd < 10 && u >= wr__p10u[nd]) ++nd;
+    wr__put_digits(L->b + L->n, u, nd);
+    L->n += nd;
 }
 static void wr__ln_r(wr__line *L, double x) {
     wr__ln_room(L);
