@@ -2236,7 +2236,8 @@ static int wr__try_remove(wr__cdt *S, wr__ref *R, int32_t v, wr__plan *P) {
 
 /* Collapse plan for the edge u-w (both free; U: u's star) into *P: the union of the two stars,
  * fanned from u moved to the midpoint (S->xy[u] already holds it), then Lawson flips on the inner
- * edges. */
+ * edges. 1: a plan; 0: none; -1: none, decided from the merged ring and the midpoint alone (the
+ * same for the edge w-u while neither star changes: see wr__cmemo). */
 static int wr__plan_collapse(const wr__cdt *S, const wr__ref *R, int32_t u, int32_t w, const wr__plan *U, wr__plan *P,
                              int32_t reg) {
     wr__plan Q;
@@ -2268,13 +2269,13 @@ static int wr__plan_collapse(const wr__cdt *S, const wr__ref *R, int32_t u, int3
         for (j = 0; j < n - 2 && empty; ++j) /* nearest ring vertices first: i+2, i-1, i+3, i-2, ... */
             if (!(wr_incircle(pa, pb, pc, WR__P(S, P->ring[wr__ring_out((i + 2) % n, (i + n - 1) % n, j, n)])) < 0.0))
                 empty = 0;
-        if (empty) return 0;
+        if (empty) return -1;
     }
     /* each part is a piece of one vertex's link (no repeats): the union is a simple polygon unless
      * the parts share a vertex */
     for (i = 0; i < U->n - 2; ++i)
         for (j = U->n - 2; j < n; ++j)
-            if (P->ring[i] == P->ring[j]) return 0;
+            if (P->ring[i] == P->ring[j]) return -1;
     for (i = 1, n = 0; i + 1 < U->n; ++i, ++n) {
         P->out[n] = U->out[(iu + i) % U->n];
         P->ocm[n] = U->ocm[(iu + i) % U->n];
@@ -2297,7 +2298,7 @@ static int wr__plan_collapse(const wr__cdt *S, const wr__ref *R, int32_t u, int3
         nbr[3 * ((i + 1) % P->n) + 2] = 3 * i + 1;
     }
     for (i = 0; i < P->nt; ++i) /* u in the kernel of the polygon: the fan is a triangulation */
-        if (!(wr_orient2d(WR__P(S, u), WR__P(S, P->ring[i]), WR__P(S, P->ring[(i + 1) % P->n])) > 0.0)) return 0;
+        if (!(wr_orient2d(WR__P(S, u), WR__P(S, P->ring[i]), WR__P(S, P->ring[(i + 1) % P->n])) > 0.0)) return -1;
     while (again && flips < 4 * WR__RING_CAP) { /* Lawson within the polygon (ring edges stay) */
         again = 0;
         for (i = 0; i < P->nt; ++i)
@@ -2343,7 +2344,27 @@ static int wr__plan_encroaches(const wr__cdt *S, const wr__ref *R, const wr__pla
  * neighbours (nearest first: close pairs are the redundant ones; further tries cost more than they
  * find); 1 done (the plan applied in *P). */
 #define WR__COLLAPSE_TRIES 2
-static int wr__try_collapse(wr__cdt *S, wr__ref *R, int32_t u, const wr__plan *U, wr__plan *P) {
+/* Failed collapses remembered, so that a pair is not planned again while the answer cannot have
+ * changed: a plan of u-w that failed from the merged ring and the midpoint alone fails for w-u too
+ * (the same polygon, the same midpoint bits, the same fan triangles) and for u-w again, until an
+ * applied plan changes the star of u or w (then u or w is on its ring). now counts the applied
+ * plans; stamp[v]: the count when v's star last changed; fw/ft[2v + k]: v's k-th failed partner
+ * and the count then (-1: none). */
+typedef struct wr__cmemo {
+    int32_t now, *stamp, *fw, *ft;
+} wr__cmemo;
+static int wr__cmemo_fails(const wr__cmemo *M, int32_t u, int32_t w) {
+    int k, s;
+    for (s = 0; M && s < 2; ++s) {
+        int32_t a = s ? w : u, b = s ? u : w;
+        for (k = 0; k < WR__COLLAPSE_TRIES; ++k)
+            if (M->fw[WR__COLLAPSE_TRIES * a + k] == b && M->ft[WR__COLLAPSE_TRIES * a + k] >= M->stamp[u] &&
+                M->ft[WR__COLLAPSE_TRIES * a + k] >= M->stamp[w])
+                return 1;
+    }
+    return 0;
+}
+static int wr__try_collapse(wr__cdt *S, wr__ref *R, int32_t u, const wr__plan *U, wr__plan *P, wr__cmemo *M) {
     int32_t nb[WR__RING_CAP], reg = S->treg ? S->treg[S->vtri[u]] : -1;
     double keep[2], d2[WR__RING_CAP];
     int i, j, n = 0;
@@ -2363,10 +2384,17 @@ static int wr__try_collapse(wr__cdt *S, wr__ref *R, int32_t u, const wr__plan *U
     if (n > WR__COLLAPSE_TRIES) n = WR__COLLAPSE_TRIES;
     for (i = 0; i < n; ++i) {
         int32_t w = nb[i];
+        int pc;
+        if (M) M->fw[WR__COLLAPSE_TRIES * u + i] = -1;
+        if (wr__cmemo_fails(M, u, w)) continue;
         S->xy[2 * u] = 0.5 * (keep[0] + S->xy[2 * w]);
         S->xy[2 * u + 1] = 0.5 * (keep[1] + S->xy[2 * w + 1]);
-        if (wr__plan_collapse(S, R, u, w, U, P, reg) && !wr__plan_encroaches(S, R, P, u) &&
-            wr__plan_valid(S, R, P, reg)) {
+        pc = wr__plan_collapse(S, R, u, w, U, P, reg);
+        if (pc < 0 && M) {
+            M->fw[WR__COLLAPSE_TRIES * u + i] = w;
+            M->ft[WR__COLLAPSE_TRIES * u + i] = M->now;
+        }
+        if (pc > 0 && !wr__plan_encroaches(S, R, P, u) && wr__plan_valid(S, R, P, reg)) {
             if (S->na > 0) wr__attr_lerp(S, u, u, w, 0.5);
             wr__plan_apply(S, P);
             S->vtri[w] = -1;
@@ -2386,8 +2414,19 @@ static int wr__try_collapse(wr__cdt *S, wr__ref *R, int32_t u, const wr__plan *U
 static void wr__remove_steiner(wr__cdt *S, wr__ref *R) {
     int pass, any = 1, i;
     wr__plan U, P;
+    wr__cmemo memo, *M = &memo;
     unsigned char *mark = (unsigned char *)wr_alloc_array((size_t)S->nv, 1);
     if (mark) memset(mark, 1, (size_t)S->nv);
+    memo.now = 0;
+    memo.stamp = (int32_t *)wr_alloc_array((size_t)S->nv, sizeof(int32_t));
+    memo.fw = (int32_t *)wr_alloc_array((size_t)S->nv * WR__COLLAPSE_TRIES, sizeof(int32_t));
+    memo.ft = (int32_t *)wr_alloc_array((size_t)S->nv * WR__COLLAPSE_TRIES, sizeof(int32_t));
+    if (memo.stamp && memo.fw && memo.ft) {
+        memset(memo.stamp, 0, sizeof(int32_t) * (size_t)S->nv);
+        for (i = 0; i < S->nv * WR__COLLAPSE_TRIES; ++i) memo.fw[i] = -1;
+    } else {
+        M = NULL; /* without memory: every plan computed */
+    }
     for (pass = 0; pass < WR__REMOVE_PASSES && any && (pass == 0 || mark); ++pass) {
         int32_t v;
         any = 0;
@@ -2398,11 +2437,15 @@ static void wr__remove_steiner(wr__cdt *S, wr__ref *R) {
             if (!wr__plan_star(S, v, &U, WR__RING_CAP / 2)) continue;
             if (wr__try_remove(S, R, v, &U))
                 ch = &U;
-            else if (wr__try_collapse(S, R, v, &U, &P))
+            else if (wr__try_collapse(S, R, v, &U, &P, M))
                 ch = &P;
             else
                 continue;
             any = 1;
+            if (M) { /* the stars changed: the ring's and the survivor's */
+                M->stamp[v] = ++M->now;
+                for (i = 0; i < ch->n; ++i) M->stamp[ch->ring[i]] = M->now;
+            }
             /* a vertex's plan reads its star and the apexes across it: what may have changed for the
              * vertices of the changed region's ring and their neighbours */
             for (i = 0; mark && i < ch->n; ++i) {
@@ -2420,6 +2463,9 @@ static void wr__remove_steiner(wr__cdt *S, wr__ref *R) {
             for (v = 0; v < S->nv; ++v) mark[v] >>= 1; /* marks made in this pass count in the next */
     }
     wr_free(mark);
+    wr_free(memo.stamp);
+    wr_free(memo.fw);
+    wr_free(memo.ft);
 }
 
 /* Delaunay refinement: encroached subsegments first, then bad triangles by priority (each may
