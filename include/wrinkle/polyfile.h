@@ -230,16 +230,7 @@ static void wr__put_digits(char *b, uint32_t v, int nd) {
 __extension__ typedef unsigned __int128 wr__u128;
 static int wr__u128_bits(wr__u128 v) {
     uint64_t hi = (uint64_t)(v >> 64), lo = (uint64_t)v;
-    int n = 0;
-    if (hi) {
-        n = 64;
-        lo = hi;
-    }
-    while (lo) {
-        ++n;
-        lo >>= 1;
-    }
-    return n;
+    return hi ? 128 - __builtin_clzll(hi) : lo ? 64 - __builtin_clzll(lo) : 0;
 }
 /* v * 2^sh rounded to a double, v's bits below the 53 kept rounded to nearest-even; sticky: a
  * nonzero part below v's last bit was dropped. */
@@ -250,7 +241,12 @@ static double wr__u128_round(wr__u128 v, int sh, int sticky) {
         wr__u128 low = v & ((((wr__u128)1) << cut) - 1), half = ((wr__u128)1) << (cut - 1);
         if (low > half || (low == half && (sticky || (m & 1u)))) ++m;
     }
-    return ldexp((double)m, cut + sh);
+    { /* m * 2^(cut + sh): m < 2^54 exact, 2^(cut + sh) a normal double, the product normal here */
+        uint64_t pb = (uint64_t)(cut + sh + 1023) << 52;
+        double p2;
+        memcpy(&p2, &pb, sizeof p2);
+        return (double)m * p2;
+    }
 }
 #endif
 
