@@ -49,8 +49,9 @@
  *   Coordinates, attributes and areas are read and written as the files hold them (no unit is
  *   assumed; the triangulator's tolerances are in the same unit). Every parse/read/build fills a
  *   caller-owned struct that the matching _free releases (a failed call leaves it zeroed, so _free
- *   is safe either way). Text I/O assumes the "C" numeric locale (strtod / printf formats). No
- *   global state.
+ *   is safe either way). Text I/O assumes the "C" numeric locale: numbers are read to the double
+ *   strtod gives and reals written as printf's "%.17g" writes them (exact integer arithmetic of its
+ *   own, libc where that does not reach). No global state.
  */
 #ifndef WRINKLE_POLYFILE_H
 #define WRINKLE_POLYFILE_H
