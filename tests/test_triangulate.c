@@ -1673,3 +1673,150 @@ Test(triangulate, out_write_files_match_triangle) {
     wr_cdt_free(&r);
     wr_cdt_poly_free(&P);
 }
+
+/* ---- polyfile.h's own decimal reader and "%.17g" writer against libc's strtod / snprintf ---- */
+static uint64_t pf_rng(uint64_t *s) { /* xorshift64*, seeded */
+    *s ^= *s >> 12;
+    *s ^= *s << 25;
+    *s ^= *s >> 27;
+    return *s * 2685821657736338717ull;
+}
+/* a finite double from random bits (every binade, subnormals and zeros included) */
+static double pf_bits(uint64_t *s) {
+    double x;
+    uint64_t b;
+    do {
+        b = pf_rng(s);
+        memcpy(&x, &b, sizeof x);
+    } while (!isfinite(x));
+    return x;
+}
+/* a random decimal token: 1-22 significant digits, a point anywhere, an exponent or none */
+static void pf_token(uint64_t *s, char *t) {
+    int nd = 1 + (int)(pf_rng(s) % 22), pt = (int)(pf_rng(s) % (uint64_t)(nd + 2)), k = 0, i;
+    uint64_t form = pf_rng(s) % 4;
+    if (pf_rng(s) & 1) t[k++] = '-';
+    if (form == 0) t[k++] = '0'; /* leading zeros */
+    for (i = 0; i < nd; ++i) {
+        if (i == pt) t[k++] = '.';
+        t[k++] = (char)('0' + (int)(pf_rng(s) % 10));
+    }
+    if (form >= 2) {
+        int ex = (int)(pf_rng(s) % (form == 2 ? 50 : 640)) - (form == 2 ? 25 : 330);
+        k += snprintf(t + k, 16, (pf_rng(s) & 1) ? "e%d" : "E%+d", ex);
+    }
+    t[k] = 0;
+}
+static const char *const pf_edges[] = {
+    "0", "-0", "0.0", "-0.0e5", "+0", ".5", "5.", "-.25e-3", "1e308", "1.7976931348623157e308",
+    "-1.7976931348623157E+308", "2.2250738585072014e-308", "2.2250738585072011e-308", "4.9406564584124654e-324",
+    "5e-324", "2.4703282292062328e-324", "1e-320", "9007199254740992", "9007199254740993", "9007199254740995",
+    "18014398509481986", "1000000000000000.25", "0.1", "0.30000000000000004", "123456789012345678",
+    "1234567890123456789", "12345678901234567890", "0.000000000000000000001", "1e22", "1e23", "8.5e-19",
+    "9.999999999999999e22", "3.0000000000000000000001", "0x1p3", "0X1.8p1", "1e-19", "9999999999999999999e-19",
+    "99999999999999999e19", "7.2057594037927933e16", "5.5511151231257827e-17",
+    /* just above a midpoint between two doubles, closer than the 128-bit quotient resolves: only the
+     * division's remainder (the sticky bit) rounds them up */
+    "0.8197631747112424372", "0.9276529658431121317", "0.4477719607422984971", "0.2706547483920102859",
+    "0.8326585632702899198", "0.9313657011371203054"};
+static void pf_read_check(char (*tok)[40], int n) { /* every token through wr_cdt_poly_parse vs strtod */
+    size_t cap = (size_t)n * 96 + 64, len = 0;
+    char *txt = (char *)malloc(cap);
+    wr_cdt_poly P;
+    wr_diag dg;
+    int i;
+    len += (size_t)snprintf(txt, cap, "%d 2 0 0\n", (n + 1) / 2);
+    for (i = 0; i < n; i += 2) len += (size_t)snprintf(txt + len, cap - len, "%d %s %s\n", i / 2 + 1, tok[i], tok[i + 1 < n ? i + 1 : i]);
+    cr_assert_eq(wr_cdt_poly_parse(NULL, txt, "t.node", &P, &dg), WR_OK, "%s", dg.message);
+    for (i = 0; i < n; ++i) {
+        double ref = strtod(tok[i], NULL), got = P.points[i];
+        cr_assert(memcmp(&ref, &got, sizeof ref) == 0, "'%s': read %.17g, strtod %.17g", tok[i], got, ref);
+    }
+    wr_cdt_poly_free(&P);
+    free(txt);
+}
+
+Test(polyfile, decimal_reader_bit_identical_to_strtod) {
+    static char tok[60000][40];
+    uint64_t s = 0x9e3779b97f4a7c15ull;
+    int n = 0, i, r;
+    const char *fmts[5] = {"%.17g", "%.15g", "%.16g", "%.19g", "%.12e"};
+    for (i = 0; i < (int)(sizeof pf_edges / sizeof *pf_edges); ++i) snprintf(tok[n++], 40, "%s", pf_edges[i]);
+    while (n < 60000) {
+        if ((r = (int)(pf_rng(&s) % 3)) == 0) {
+            snprintf(tok[n], 40, fmts[pf_rng(&s) % 5], pf_bits(&s));
+        } else if (r == 1) { /* the bench files' scale: mm and unit-square coordinates */
+            snprintf(tok[n], 40, fmts[pf_rng(&s) % 5], (double)(pf_rng(&s) >> 11) * 0x1p-53 * 420.0);
+        } else {
+            pf_token(&s, tok[n]);
+        }
+        if (isfinite(strtod(tok[n], NULL))) ++n;
+    }
+    pf_read_check(tok, n);
+}
+
+Test(polyfile, decimal_reader_refuses_as_strtod_does) {
+    const char *bad[] = {"inf", "nan", "1e", "1e+", "-", ".", "1.2.3", "1e400", "--1", "1x"};
+    int i;
+    for (i = 0; i < (int)(sizeof bad / sizeof *bad); ++i) {
+        char txt[64];
+        wr_cdt_poly P;
+        wr_diag dg;
+        snprintf(txt, sizeof txt, "1 2 0 0\n1 %s 0\n", bad[i]);
+        cr_expect_neq(wr_cdt_poly_parse(NULL, txt, "t.node", &P, &dg), WR_OK, "'%s' accepted", bad[i]);
+        wr_cdt_poly_free(&P);
+    }
+}
+
+/* the .node writer's reals: the same bytes as snprintf "%.17g", and they read back to the same bits */
+Test(polyfile, g17_writer_matches_printf_and_round_trips) {
+    enum { N = 40000 };
+    static double v[2 * N];
+    static int32_t mk[N];
+    static char tok[2 * N][40];
+    const char *base = "/tmp/wr_test_g17.1";
+    uint64_t s = 12345;
+    wr_cdt_out o;
+    wr_cdt_out_desc d;
+    wr_cdt_poly P;
+    wr_diag dg;
+    FILE *f;
+    char line[256], path[64];
+    int i, r;
+    for (i = 0; i < 2 * N; ++i) {
+        r = (int)(pf_rng(&s) % 4);
+        if (r == 0) v[i] = pf_bits(&s);
+        else if (r == 1) v[i] = (double)(pf_rng(&s) >> 11) * 0x1p-53 * 420.0;
+        else if (r == 2) v[i] = ldexp((double)(pf_rng(&s) >> (11 + pf_rng(&s) % 50)), (int)(pf_rng(&s) % 140) - 70);
+        else v[i] = (pf_rng(&s) & 1 ? -1 : 1) * pow(10.0, (double)((int)(pf_rng(&s) % 80) - 40)) * (1.0 + (double)(pf_rng(&s) % 3) * 0x1p-52);
+    }
+    /* ties at the 17th digit, carries to the next power of ten, zeros, the ends of the range */
+    v[0] = 1000000000000000.25, v[1] = -1000000000000000.75, v[2] = 0.0, v[3] = -0.0, v[4] = 9.9999999999999999e22;
+    v[5] = 0x1.fffffffffffffp1023, v[6] = 0x1p-1074, v[7] = 0x1p-1022, v[8] = 1e17, v[9] = 99999999999999999.0;
+    v[10] = 1e-5, v[11] = 1.0000000000000001e-4, v[12] = 123456789012345678.0, v[13] = 0x1p70, v[14] = 0x1p75;
+    memset(&o, 0, sizeof o);
+    memset(&d, 0, sizeof d);
+    o.n_nodes = N;
+    o.nodes = v;
+    o.node_markers = mk;
+    d.no_ele = 1;
+    cr_assert_eq(wr_cdt_out_write(&o, NULL, base, &d, &dg), WR_OK, "%s", dg.message);
+    snprintf(path, sizeof path, "%s.node", base);
+    f = fopen(path, "r");
+    cr_assert(f != NULL);
+    cr_assert(fgets(line, sizeof line, f) != NULL);
+    for (i = 0; i < N; ++i) {
+        char want[128];
+        cr_assert(fgets(line, sizeof line, f) != NULL);
+        snprintf(want, sizeof want, "%d %.17g %.17g 0\n", i, v[2 * i], v[2 * i + 1]);
+        cr_assert_str_eq(line, want);
+        snprintf(tok[2 * i], 40, "%.17g", v[2 * i]);
+        snprintf(tok[2 * i + 1], 40, "%.17g", v[2 * i + 1]);
+    }
+    fclose(f);
+    cr_assert_eq(wr_cdt_poly_read(path, &P, &dg), WR_OK, "%s", dg.message);
+    for (i = 0; i < 2 * N; ++i) cr_assert(memcmp(&P.points[i], &v[i], sizeof v[i]) == 0, "%.17g read back as %.17g", v[i], P.points[i]);
+    wr_cdt_poly_free(&P);
+    remove(path);
+    pf_read_check(tok, 2 * N);
+}

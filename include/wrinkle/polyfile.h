@@ -49,8 +49,9 @@
  *   Coordinates, attributes and areas are read and written as the files hold them (no unit is
  *   assumed; the triangulator's tolerances are in the same unit). Every parse/read/build fills a
  *   caller-owned struct that the matching _free releases (a failed call leaves it zeroed, so _free
- *   is safe either way). Text I/O assumes the "C" numeric locale (strtod / printf formats). No
- *   global state.
+ *   is safe either way). Text I/O assumes the "C" numeric locale: numbers are read to the double
+ *   strtod gives and reals written as printf's "%.17g" writes them (exact integer arithmetic of its
+ *   own, libc where that does not reach). No global state.
  */
 #ifndef WRINKLE_POLYFILE_H
 #define WRINKLE_POLYFILE_H
@@ -176,6 +177,7 @@ WRDEF void wr_cdt_out_free(wr_cdt_out *o);
 #ifndef WRINKLE_POLYFILE_IMPLEMENTATION_DONE
 #define WRINKLE_POLYFILE_IMPLEMENTATION_DONE
 
+#include <float.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -183,6 +185,210 @@ WRDEF void wr_cdt_out_free(wr_cdt_out *o);
 #ifdef __cplusplus
 extern "C" {
 #endif
+
+/* ---- decimal numbers in and out ----
+ * wr__dec_read: a token [+-]digits[.digits][e[+-]digits] (or .digits) to the double strtod gives, for
+ * 19 significant digits or fewer and a decimal exponent within +-19 of them (Clinger's exact
+ * double-precision path for w <= 2^53 and |q| <= 22, else w * 10^q in 128-bit integers, rounded to
+ * nearest-even with a sticky bit). 0 for any other token (hex, inf, nan, more digits, a wider
+ * exponent): the caller uses strtod. wr__fmt_g17: the text printf's "%.17g" gives (17 significant
+ * digits rounded to nearest-even from the exact binary value, trailing zeros dropped), from the
+ * exact product m * 2^e * 10^s in 128 bits when it fits, else through snprintf. Both need a 128-bit
+ * integer type (GCC, Clang) and fall back to strtod / snprintf without one. */
+static const uint64_t wr__p10u[20] = {1ull,
+                                      10ull,
+                                      100ull,
+                                      1000ull,
+                                      10000ull,
+                                      100000ull,
+                                      1000000ull,
+                                      10000000ull,
+                                      100000000ull,
+                                      1000000000ull,
+                                      10000000000ull,
+                                      100000000000ull,
+                                      1000000000000ull,
+                                      10000000000000ull,
+                                      100000000000000ull,
+                                      1000000000000000ull,
+                                      10000000000000000ull,
+                                      100000000000000000ull,
+                                      1000000000000000000ull,
+                                      10000000000000000000ull};
+static const double wr__p10d[23] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8,  1e9,  1e10, 1e11,
+                                    1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+static const char wr__dig2[201] = "00010203040506070809101112131415161718192021222324"
+                                  "25262728293031323334353637383940414243444546474849"
+                                  "50515253545556575859606162636465666768697071727374"
+                                  "75767778798081828384858687888990919293949596979899";
+/* v as exactly nd decimal digits (leading zeros) at b, two at a time */
+static void wr__put_digits(char *b, uint32_t v, int nd) {
+    for (; nd >= 2; nd -= 2, v /= 100u) memcpy(b + nd - 2, wr__dig2 + 2 * (v % 100u), 2);
+    if (nd) b[0] = (char)('0' + (int)v);
+}
+#if defined(__SIZEOF_INT128__)
+#define WR__HAS_U128 1
+__extension__ typedef unsigned __int128 wr__u128;
+static int wr__u128_bits(wr__u128 v) {
+    uint64_t hi = (uint64_t)(v >> 64), lo = (uint64_t)v;
+    return hi ? 128 - __builtin_clzll(hi) : lo ? 64 - __builtin_clzll(lo) : 0;
+}
+/* v * 2^sh rounded to a double, v's bits below the 53 kept rounded to nearest-even; sticky: a
+ * nonzero part below v's last bit was dropped. */
+static double wr__u128_round(wr__u128 v, int sh, int sticky) {
+    int nb = wr__u128_bits(v), cut = nb > 53 ? nb - 53 : 0;
+    uint64_t m = (uint64_t)(v >> cut);
+    if (cut > 0) {
+        wr__u128 low = v & ((((wr__u128)1) << cut) - 1), half = ((wr__u128)1) << (cut - 1);
+        if (low > half || (low == half && (sticky || (m & 1u)))) ++m;
+    }
+    { /* m * 2^(cut + sh): m < 2^54 exact, 2^(cut + sh) a normal double, the product normal here */
+        uint64_t pb = (uint64_t)(cut + sh + 1023) << 52;
+        double p2;
+        memcpy(&p2, &pb, sizeof p2);
+        return (double)m * p2;
+    }
+}
+#endif
+
+static int wr__dec_read(const char *s, int n, double *x) {
+#ifdef WR__HAS_U128
+    const char *e = s + n;
+    uint64_t w = 0;
+    int neg = 0, nd = 0, q = 0, seen = 0, ex = 0, eneg = 0;
+    if (s < e && (*s == '+' || *s == '-')) neg = *s++ == '-';
+    for (; s < e && *s >= '0' && *s <= '9'; ++s, seen = 1)
+        if (w || *s != '0') {
+            if (++nd > 19) return 0;
+            w = 10u * w + (uint64_t)(*s - '0');
+        }
+    if (s < e && *s == '.')
+        for (++s; s < e && *s >= '0' && *s <= '9'; ++s, seen = 1) {
+            --q;
+            if (w || *s != '0') {
+                if (++nd > 19) return 0;
+                w = 10u * w + (uint64_t)(*s - '0');
+            }
+        }
+    if (!seen) return 0;
+    if (s < e && (*s == 'e' || *s == 'E')) {
+        if (++s < e && (*s == '+' || *s == '-')) eneg = *s++ == '-';
+        if (s == e) return 0;
+        for (; s < e && *s >= '0' && *s <= '9'; ++s)
+            if ((ex = 10 * ex + (*s - '0')) > 9999) return 0;
+        q += eneg ? -ex : ex;
+    }
+    if (s != e) return 0;
+    if (w == 0) {
+        *x = neg ? -0.0 : 0.0;
+        return 1;
+    }
+#if defined(FLT_EVAL_METHOD) && FLT_EVAL_METHOD == 0
+    if (w <= (1ull << 53) && q >= -22 && q <= 22) { /* both operands exact: one rounding */
+        *x = q < 0 ? (double)w / wr__p10d[-q] : (double)w * wr__p10d[q];
+        if (neg) *x = -*x;
+        return 1;
+    }
+#endif
+    if (q >= 0 && q <= 19) {
+        *x = wr__u128_round((wr__u128)w * wr__p10u[q], 0, 0);
+    } else if (q < 0 && q >= -19) {
+        int k = 128 - wr__u128_bits(w);
+        wr__u128 num = ((wr__u128)w) << k, p = wr__p10u[-q];
+        *x = wr__u128_round(num / p, -k, num % p != 0);
+    } else {
+        return 0;
+    }
+    if (neg) *x = -*x;
+    return 1;
+#else
+    (void)s, (void)n, (void)x;
+    return 0;
+#endif
+}
+
+/* "%.17g" of x into b (room for 32 characters); returns the length. */
+static int wr__fmt_g17(char *b, double x) {
+#ifdef WR__HAS_U128
+    uint64_t bits, m, q = 0;
+    int be, e, d, s, len = 0, nd = 17, i, pass;
+    char dg[20];
+    memcpy(&bits, &x, sizeof bits);
+    be = (int)((bits >> 52) & 0x7ffu);
+    m = (bits & ((1ull << 52) - 1u)) | (1ull << 52);
+    e = be - 1075; /* |x| = m * 2^e */
+    if (be == 0 && (bits << 1) == 0) { /* +-0 */
+        if (bits >> 63) b[len++] = '-';
+        b[len++] = '0';
+        b[len] = 0;
+        return len;
+    }
+    if (be == 0 || be == 0x7ff || e > 70) return snprintf(b, 32, "%.17g", x);
+    d = (int)floor((e + 52) * 0.30102999566398120); /* floor(log10 |x|) or one less */
+    for (pass = 0; pass < 2; ++pass) {
+        wr__u128 v;
+        s = 16 - d; /* q = round(|x| * 10^s) has 17 digits */
+        if (s > 22 || s < -22) return snprintf(b, 32, "%.17g", x);
+        if (s >= 0) {
+            v = (wr__u128)m * wr__p10u[s > 19 ? 19 : s];
+            if (s > 19) v *= wr__p10u[s - 19];
+            if (e >= 0) {
+                q = (uint64_t)(v << e);
+            } else {
+                wr__u128 low = v & ((((wr__u128)1) << -e) - 1), half = ((wr__u128)1) << (-e - 1);
+                q = (uint64_t)(v >> -e);
+                if (low > half || (low == half && (q & 1u))) ++q;
+            }
+        } else {
+            wr__u128 p = (wr__u128)wr__p10u[-s > 19 ? 19 : -s], r;
+            if (-s > 19) p *= wr__p10u[-s - 19];
+            v = ((wr__u128)m) << e;
+            q = (uint64_t)(v / p);
+            r = v % p;
+            if (2 * r > p || (2 * r == p && (q & 1u))) ++q;
+        }
+        if (q < wr__p10u[17]) break;
+        ++d; /* |x| >= 10^(d+1), or rounding carried to 10^17 */
+    }
+    if (q >= wr__p10u[17]) q /= 10u; /* the carry: 10^17 -> 10^16 */
+    wr__put_digits(dg, (uint32_t)(q / 100000000u), 9);
+    wr__put_digits(dg + 9, (uint32_t)(q % 100000000u), 8);
+    while (nd > 1 && dg[nd - 1] == '0') --nd;
+    if (bits >> 63) b[len++] = '-';
+    if (d >= -4 && d < 17) {
+        if (d < 0) { /* 0.000ddd */
+            b[len++] = '0';
+            b[len++] = '.';
+            for (i = -1; i > d; --i) b[len++] = '0';
+            memcpy(b + len, dg, (size_t)nd);
+            len += nd;
+        } else if (nd <= d + 1) { /* an integer: ddd000 */
+            memcpy(b + len, dg, (size_t)nd);
+            memset(b + len + nd, '0', (size_t)(d + 1 - nd));
+            len += d + 1;
+        } else { /* ddd.ddd */
+            memcpy(b + len, dg, (size_t)(d + 1));
+            b[len + d + 1] = '.';
+            memcpy(b + len + d + 2, dg + d + 1, (size_t)(nd - d - 1));
+            len += nd + 1;
+        }
+    } else {
+        b[len++] = dg[0];
+        if (nd > 1) b[len++] = '.';
+        for (i = 1; i < nd; ++i) b[len++] = dg[i];
+        b[len++] = 'e';
+        b[len++] = d < 0 ? '-' : '+';
+        if (d < 0) d = -d;
+        if (d >= 100) b[len++] = (char)('0' + d / 100);
+        b[len++] = (char)('0' + d / 10 % 10);
+        b[len++] = (char)('0' + d % 10);
+    }
+    b[len] = 0;
+    return len;
+#else
+    return snprintf(b, 32, "%.17g", x);
+#endif
+}
 
 /* ---- Triangle .node / .poly reader ---- */
 #define WR__PL_MAXTOK 64 /* tokens looked at per line: index, x, y, up to 60 attributes, marker */
@@ -227,6 +433,7 @@ static int wr__pl_next(wr__pl *L) {
 static int wr__pl_num(const wr__pl *L, int i, double *x) {
     char buf[128], *end;
     if (i >= L->ntok || i >= WR__PL_MAXTOK || L->tlen[i] >= (int)sizeof buf) return 0;
+    if (wr__dec_read(L->tok[i], L->tlen[i], x)) return 1;
     memcpy(buf, L->tok[i], (size_t)L->tlen[i]);
     buf[L->tlen[i]] = 0;
     *x = strtod(buf, &end);
@@ -941,41 +1148,36 @@ static wr_status wr__ow_open(wr__ow *w, const char *base, const char *ext, wr_di
         return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "output path too long: '%s.%s'", base, ext);
     return wr_afile_open(&w->f, w->path, diag);
 }
-static wr_status wr__ow_close(wr__ow *w, wr_diag *diag) {
-    if (w->command) fprintf(w->f.fp, "# Generated by %s\n", w->command);
-    return wr_afile_commit(&w->f, diag);
-}
-/* An output line is built in a buffer and written with one fwrite: integers converted by hand (most
- * of Triangle's files), reals with "%.17g" (they read back to the same double). A line longer than
- * the buffer (many attributes) is written in pieces. */
-#define WR__LN_CAP 2048
+/* Output lines are built in a buffer written with one fwrite when nearly full (and before a file is
+ * closed): integers converted by hand (most of Triangle's files), reals as "%.17g" writes them
+ * (wr__fmt_g17; they read back to the same double). */
+#define WR__LN_CAP 8192
 typedef struct wr__line {
     FILE *fp;
-    int n;
+    int n;   /* bytes in b */
+    int col; /* numbers on the current line */
     char b[WR__LN_CAP];
 } wr__line;
+static void wr__ln_flush(wr__line *L) {
+    if (L->n > 0) fwrite(L->b, 1, (size_t)L->n, L->fp);
+    L->n = 0;
+}
 static void wr__ln_room(wr__line *L) {
-    if (L->n > WR__LN_CAP - 40) {
-        fwrite(L->b, 1, (size_t)L->n, L->fp);
-        L->n = 0;
-    }
+    if (L->n > WR__LN_CAP - 40) wr__ln_flush(L);
+    if (L->col++ > 0) L->b[L->n++] = ' ';
 }
 static void wr__ln_i(wr__line *L, int32_t v) {
-    char t[12];
-    int k = 0;
+    int nd = 1;
     uint32_t u = v < 0 ? 0u - (uint32_t)v : (uint32_t)v;
     wr__ln_room(L);
-    if (L->n > 0) L->b[L->n++] = ' ';
     if (v < 0) L->b[L->n++] = '-';
-    do {
-        t[k++] = (char)('0' + (int)(u % 10u));
-        u /= 10u;
-    } while (u);
-    while (k) L->b[L->n++] = t[--k];
+    while (nd < 10 && u >= wr__p10u[nd]) ++nd;
+    wr__put_digits(L->b + L->n, u, nd);
+    L->n += nd;
 }
 static void wr__ln_r(wr__line *L, double x) {
     wr__ln_room(L);
-    L->n += snprintf(L->b + L->n, (size_t)(WR__LN_CAP - L->n), L->n > 0 ? " %.17g" : "%.17g", x);
+    L->n += wr__fmt_g17(L->b + L->n, x);
 }
 static void wr__ln_rs(wr__line *L, const double *x, int32_t n) {
     int32_t k;
@@ -983,8 +1185,19 @@ static void wr__ln_rs(wr__line *L, const double *x, int32_t n) {
 }
 static void wr__ln_end(wr__line *L) {
     L->b[L->n++] = '\n';
-    fwrite(L->b, 1, (size_t)L->n, L->fp);
-    L->n = 0;
+    L->col = 0;
+}
+/* a header line of n integers */
+static void wr__ln_head(wr__line *L, int n, int32_t a, int32_t b, int32_t c, int32_t d) {
+    const int32_t v[4] = {a, b, c, d};
+    int k;
+    for (k = 0; k < n; ++k) wr__ln_i(L, v[k]);
+    wr__ln_end(L);
+}
+static wr_status wr__ow_close(wr__ow *w, wr__line *L, wr_diag *diag) {
+    wr__ln_flush(L);
+    if (w->command) fprintf(w->f.fp, "# Generated by %s\n", w->command);
+    return wr_afile_commit(&w->f, diag);
 }
 
 WRDEF wr_status wr_cdt_out_write(const wr_cdt_out *o, const wr_cdt_poly *poly, const char *base,
@@ -1001,7 +1214,7 @@ WRDEF wr_status wr_cdt_out_write(const wr_cdt_out *o, const wr_cdt_poly *poly, c
     }
     L = (wr__line *)wr_alloc_array(1, sizeof(wr__line));
     if (!L) return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
-    L->n = 0;
+    L->n = L->col = 0;
     f = desc->has_first_number ? desc->first_number : poly ? poly->first_index : 0;
     mk = !desc->no_markers;
     na = o->n_node_attributes;
@@ -1010,7 +1223,7 @@ WRDEF wr_status wr_cdt_out_write(const wr_cdt_out *o, const wr_cdt_poly *poly, c
     if (!desc->no_node) {
         if ((st = wr__ow_open(&w, base, "node", diag)) != WR_OK) goto fail;
         L->fp = w.f.fp;
-        fprintf(w.f.fp, "%d 2 %d %d\n", o->n_nodes, na, mk);
+        wr__ln_head(L, 4, o->n_nodes, 2, na, mk);
         for (i = 0; i < o->n_nodes; ++i) {
             wr__ln_i(L, i + f);
             wr__ln_rs(L, o->nodes + 2 * i, 2);
@@ -1018,24 +1231,25 @@ WRDEF wr_status wr_cdt_out_write(const wr_cdt_out *o, const wr_cdt_poly *poly, c
             if (mk) wr__ln_i(L, o->node_markers[i]);
             wr__ln_end(L);
         }
-        if ((st = wr__ow_close(&w, diag)) != WR_OK) goto fail;
+        if ((st = wr__ow_close(&w, L, diag)) != WR_OK) goto fail;
     }
     if (!desc->no_ele) {
         if ((st = wr__ow_open(&w, base, "ele", diag)) != WR_OK) goto fail;
         L->fp = w.f.fp;
-        fprintf(w.f.fp, "%d %d %d\n", o->n_elements, o->n_corners, o->n_element_attributes);
+        wr__ln_head(L, 3, o->n_elements, o->n_corners, o->n_element_attributes, 0);
         for (i = 0; i < o->n_elements; ++i) {
             wr__ln_i(L, i + f);
             for (k = 0; k < o->n_corners; ++k) wr__ln_i(L, o->elements[(size_t)i * o->n_corners + k] + f);
             wr__ln_rs(L, o->element_attributes + (size_t)i * o->n_element_attributes, o->n_element_attributes);
             wr__ln_end(L);
         }
-        if ((st = wr__ow_close(&w, diag)) != WR_OK) goto fail;
+        if ((st = wr__ow_close(&w, L, diag)) != WR_OK) goto fail;
     }
     if (desc->poly) {
         if ((st = wr__ow_open(&w, base, "poly", diag)) != WR_OK) goto fail;
         L->fp = w.f.fp;
-        fprintf(w.f.fp, "0 2 %d %d\n%d %d\n", na, mk, o->n_segments, mk);
+        wr__ln_head(L, 4, 0, 2, na, mk);
+        wr__ln_head(L, 2, o->n_segments, mk, 0, 0);
         for (i = 0; i < o->n_segments; ++i) {
             wr__ln_i(L, i + f);
             wr__ln_i(L, o->segments[2 * i] + f);
@@ -1043,26 +1257,26 @@ WRDEF wr_status wr_cdt_out_write(const wr_cdt_out *o, const wr_cdt_poly *poly, c
             if (mk) wr__ln_i(L, o->segment_markers[i]);
             wr__ln_end(L);
         }
-        fprintf(w.f.fp, "%d\n", poly ? poly->n_holes : 0);
+        wr__ln_head(L, 1, poly ? poly->n_holes : 0, 0, 0, 0);
         for (i = 0; poly && i < poly->n_holes; ++i) {
             wr__ln_i(L, i + f);
             wr__ln_rs(L, poly->holes + 2 * i, 2);
             wr__ln_end(L);
         }
         if (o->n_regions > 0) {
-            fprintf(w.f.fp, "%d\n", o->n_regions);
+            wr__ln_head(L, 1, o->n_regions, 0, 0, 0);
             for (i = 0; i < o->n_regions; ++i) {
                 wr__ln_i(L, i + f);
                 wr__ln_rs(L, o->regions + 4 * i, 4);
                 wr__ln_end(L);
             }
         }
-        if ((st = wr__ow_close(&w, diag)) != WR_OK) goto fail;
+        if ((st = wr__ow_close(&w, L, diag)) != WR_OK) goto fail;
     }
     if (desc->edges) {
         if ((st = wr__ow_open(&w, base, "edge", diag)) != WR_OK) goto fail;
         L->fp = w.f.fp;
-        fprintf(w.f.fp, "%d %d\n", o->n_edges, mk);
+        wr__ln_head(L, 2, o->n_edges, mk, 0, 0);
         for (i = 0; i < o->n_edges; ++i) {
             wr__ln_i(L, i + f);
             wr__ln_i(L, o->edges[2 * i] + f);
@@ -1070,33 +1284,33 @@ WRDEF wr_status wr_cdt_out_write(const wr_cdt_out *o, const wr_cdt_poly *poly, c
             if (mk) wr__ln_i(L, o->edge_markers[i]);
             wr__ln_end(L);
         }
-        if ((st = wr__ow_close(&w, diag)) != WR_OK) goto fail;
+        if ((st = wr__ow_close(&w, L, diag)) != WR_OK) goto fail;
     }
     if (desc->neighbors) {
         if ((st = wr__ow_open(&w, base, "neigh", diag)) != WR_OK) goto fail;
         L->fp = w.f.fp;
-        fprintf(w.f.fp, "%d 3\n", o->n_elements);
+        wr__ln_head(L, 2, o->n_elements, 3, 0, 0);
         for (i = 0; i < o->n_elements; ++i) {
             wr__ln_i(L, i + f);
             for (k = 0; k < 3; ++k) wr__ln_i(L, o->neighbors[3 * i + k] < 0 ? -1 : o->neighbors[3 * i + k] + f);
             wr__ln_end(L);
         }
-        if ((st = wr__ow_close(&w, diag)) != WR_OK) goto fail;
+        if ((st = wr__ow_close(&w, L, diag)) != WR_OK) goto fail;
     }
     if (desc->voronoi && o->voronoi_nodes) {
         if ((st = wr__ow_open(&w, base, "v.node", diag)) != WR_OK) goto fail;
         L->fp = w.f.fp;
-        fprintf(w.f.fp, "%d 2 %d 0\n", o->n_elements, na);
+        wr__ln_head(L, 4, o->n_elements, 2, na, 0);
         for (i = 0; i < o->n_elements; ++i) {
             wr__ln_i(L, i + f);
             wr__ln_rs(L, o->voronoi_nodes + 2 * i, 2);
             wr__ln_rs(L, o->voronoi_attributes + (size_t)i * na, na);
             wr__ln_end(L);
         }
-        if ((st = wr__ow_close(&w, diag)) != WR_OK) goto fail;
+        if ((st = wr__ow_close(&w, L, diag)) != WR_OK) goto fail;
         if ((st = wr__ow_open(&w, base, "v.edge", diag)) != WR_OK) goto fail;
         L->fp = w.f.fp;
-        fprintf(w.f.fp, "%d 0\n", o->n_edges);
+        wr__ln_head(L, 2, o->n_edges, 0, 0, 0);
         for (i = 0; i < o->n_edges; ++i) {
             wr__ln_i(L, i + f);
             wr__ln_i(L, o->voronoi_edges[2 * i] + f);
@@ -1108,7 +1322,7 @@ WRDEF wr_status wr_cdt_out_write(const wr_cdt_out *o, const wr_cdt_poly *poly, c
             }
             wr__ln_end(L);
         }
-        if ((st = wr__ow_close(&w, diag)) != WR_OK) goto fail;
+        if ((st = wr__ow_close(&w, L, diag)) != WR_OK) goto fail;
     }
     wr_free(L);
     return WR_OK;

@@ -1459,7 +1459,12 @@ static int wr__segs_meet_sharply(const wr__cdt *S, const wr__ref *R, int32_t s1,
  * rounding-scale triangles. *key: priority bucket of the shortest edge (see wr__bad_key). */
 static int32_t wr__bad_key(double len2) { /* buckets of a factor sqrt(2) in squared length */
     int ex;
-    double mant = frexp(len2, &ex);
+    double mant;
+    uint64_t bits;
+    memcpy(&bits, &len2, sizeof bits);
+    if (len2 > 0.0 && (bits >> 52) - 1u < 0x7feu) /* normal: frexp's exponent and mantissa from the bits */
+        return 2 * ((int)(bits >> 52) - 1022) + ((bits & 0xfffffffffffffull) >= 0x6a09e667f3bcdull);
+    mant = frexp(len2, &ex);
     return 2 * ex + (mant >= 0.70710678118654752);
 }
 static int wr__is_bad_v(const wr__cdt *S, const wr__ref *R, const int32_t *v, int32_t reg, int32_t *key) {
@@ -1474,11 +1479,10 @@ static int wr__is_bad_v(const wr__cdt *S, const wr__ref *R, const int32_t *v, in
     e[2] = (p0[0] - p1[0]) * (p0[0] - p1[0]) + (p0[1] - p1[1]) * (p0[1] - p1[1]);
     for (k = 1; k < 3; ++k)
         if (e[k] < e[m]) m = k;
-    if (key) *key = wr__bad_key(e[m]); /* NULL: not wanted (the clean-up's tests) */
     a2 = wr_orient2d_fast(p0, p1, p2); /* twice the area */
-    if (R->max_area > 0.0 && 0.5 * a2 > R->max_area) return 1;
-    if (R->region_area && reg >= 0 && R->region_area[reg] > 0.0 && 0.5 * a2 > R->region_area[reg]) return 1;
-    if (R->unsuitable && R->unsuitable(p0, p1, p2, 0.5 * a2, R->user)) return 1;
+    if (R->max_area > 0.0 && 0.5 * a2 > R->max_area) goto bad;
+    if (R->region_area && reg >= 0 && R->region_area[reg] > 0.0 && 0.5 * a2 > R->region_area[reg]) goto bad;
+    if (R->unsuitable && R->unsuitable(p0, p1, p2, 0.5 * a2, R->user)) goto bad;
     if (R->sin2 <= 0.0) return 0;
     l1 = e[wr__n1[m]];
     l2 = e[wr__n2[m]];
@@ -1492,6 +1496,8 @@ static int wr__is_bad_v(const wr__cdt *S, const wr__ref *R, const int32_t *v, in
         if (su >= 0 && wr__on_seg(S, R, v[0], su) && wr__on_seg(S, R, v[1], su) && wr__on_seg(S, R, v[2], su))
             return 0;
     }
+bad: /* the key only for a bad triangle (key NULL: not wanted, the clean-up's tests) */
+    if (key) *key = wr__bad_key(e[m]);
     return 1;
 }
 
@@ -2064,6 +2070,13 @@ static int wr__angle_may_pass(const wr__cdt *S, const wr__ref *R, int32_t a, int
     return !(a2 * a2 < (R->sin2 - 1e-12) * (e0 * e1 * e2 / lo));
 }
 
+/* Ring position j (from 0) outward from both ends of a run of excluded positions of a ring of n:
+ * fwd, back, fwd+1, back-1, ... (fwd: the first after the run, back: the last before it). An
+ * incircle test of a triangle on the run meets the nearest vertices first. */
+static inline int wr__ring_out(int fwd, int back, int j, int n) {
+    return (j & 1) ? (back + n - j / 2) % n : (fwd + j / 2) % n;
+}
+
 /* Corner c of a new triangle faces h (a new corner, or -1 - k for ring edge k); both sides. */
 static void wr__plan_nbr(wr__plan *P, int32_t c, int32_t h) {
     P->nbr[c] = h;
@@ -2179,8 +2192,8 @@ static int wr__plan_removal(const wr__cdt *S, const wr__ref *R, wr__plan *P, int
             int32_t a = idx[(i + n - 1) % n], b = idx[i], cc = idx[(i + 1) % n];
             const double *pa = WR__P(S, a), *pb = WR__P(S, b), *pc = WR__P(S, cc);
             int ok = wr_orient2d(pa, pb, pc) > 0.0;
-            for (j = 0; j < n && ok; ++j)
-                if (idx[j] != a && idx[j] != b && idx[j] != cc && wr_incircle(pa, pb, pc, WR__P(S, idx[j])) > 0.0) ok = 0;
+            for (j = 0; j < n - 3 && ok; ++j) /* the ear's edge a -> c is ring edge i-1 -> i+1 of n-1 */
+                if (wr_incircle(pa, pb, pc, WR__P(S, idx[wr__ring_out((i + 2) % n, (i + n - 2) % n, j, n)])) > 0.0) ok = 0;
             if (ok) found = i;
         }
         if (found < 0) return 0;
@@ -2223,7 +2236,8 @@ static int wr__try_remove(wr__cdt *S, wr__ref *R, int32_t v, wr__plan *P) {
 
 /* Collapse plan for the edge u-w (both free; U: u's star) into *P: the union of the two stars,
  * fanned from u moved to the midpoint (S->xy[u] already holds it), then Lawson flips on the inner
- * edges. */
+ * edges. 1: a plan; 0: none; -1: none, decided from the merged ring and the midpoint alone (the
+ * same for the edge w-u while neither star changes: see wr__cmemo). */
 static int wr__plan_collapse(const wr__cdt *S, const wr__ref *R, int32_t u, int32_t w, const wr__plan *U, wr__plan *P,
                              int32_t reg) {
     wr__plan Q;
@@ -2235,28 +2249,45 @@ static int wr__plan_collapse(const wr__cdt *S, const wr__ref *R, int32_t u, int3
     if (iu == U->n || iw == Q.n) return 0;
     /* ring: u's ring after w up to two before w, then w's ring from after u up to before u's next
      * (the vertex before w in u's ring is the one after u in w's) */
-    for (i = 1; i + 1 < U->n; ++i, ++n) {
-        int k = (iu + i) % U->n;
-        P->ring[n] = U->ring[k];
-        P->out[n] = U->out[k];
-        P->ocm[n] = U->ocm[k];
-    }
-    for (i = 1; i + 1 < Q.n; ++i, ++n) {
-        int k = (iw + i) % Q.n;
-        P->ring[n] = Q.ring[k];
-        P->out[n] = Q.out[k];
-        P->ocm[n] = Q.ocm[k];
-    }
+    for (i = 1; i + 1 < U->n; ++i) P->ring[n++] = U->ring[(iu + i) % U->n];
+    for (i = 1; i + 1 < Q.n; ++i) P->ring[n++] = Q.ring[(iw + i) % Q.n];
     P->n = n;
-    P->ns = 0;
-    for (i = 0; i < U->ns; ++i) P->slot[P->ns++] = U->slot[i];
-    for (i = 0; i < Q.ns; ++i)
-        if (Q.slot[i] != U->slot[iu] && Q.slot[i] != U->slot[(iu + U->n - 1) % U->n]) P->slot[P->ns++] = Q.slot[i];
+    /* The cheap rejection first, from the ring alone: a fan triangle (u, ring i, ring i+1) whose
+     * circumcircle holds no other vertex of the polygon (strictly: incircle < 0) has three strongly
+     * Delaunay edges: it is in every CDT of the polygon and u, so it is never flipped and ends in the
+     * plan as it is. One such that fails the bounds fails the plan, found here without building the
+     * fan or flipping (9 in 10 failing plans in the bench inputs). Every test of a plan only rejects,
+     * so their order does not change which plans pass. */
+    for (i = 0; i < n; ++i) {
+        int32_t f[3];
+        const double *pa = WR__P(S, u), *pb = WR__P(S, P->ring[i]), *pc = WR__P(S, P->ring[(i + 1) % n]);
+        int empty = 1;
+        f[0] = u;
+        f[1] = P->ring[i];
+        f[2] = P->ring[(i + 1) % n];
+        if (wr__tri_ok(S, R, f, reg)) continue;
+        for (j = 0; j < n - 2 && empty; ++j) /* nearest ring vertices first: i+2, i-1, i+3, i-2, ... */
+            if (!(wr_incircle(pa, pb, pc, WR__P(S, P->ring[wr__ring_out((i + 2) % n, (i + n - 1) % n, j, n)])) < 0.0))
+                empty = 0;
+        if (empty) return -1;
+    }
     /* each part is a piece of one vertex's link (no repeats): the union is a simple polygon unless
      * the parts share a vertex */
     for (i = 0; i < U->n - 2; ++i)
         for (j = U->n - 2; j < n; ++j)
-            if (P->ring[i] == P->ring[j]) return 0;
+            if (P->ring[i] == P->ring[j]) return -1;
+    for (i = 1, n = 0; i + 1 < U->n; ++i, ++n) {
+        P->out[n] = U->out[(iu + i) % U->n];
+        P->ocm[n] = U->ocm[(iu + i) % U->n];
+    }
+    for (i = 1; i + 1 < Q.n; ++i, ++n) {
+        P->out[n] = Q.out[(iw + i) % Q.n];
+        P->ocm[n] = Q.ocm[(iw + i) % Q.n];
+    }
+    P->ns = 0;
+    for (i = 0; i < U->ns; ++i) P->slot[P->ns++] = U->slot[i];
+    for (i = 0; i < Q.ns; ++i)
+        if (Q.slot[i] != U->slot[iu] && Q.slot[i] != U->slot[(iu + U->n - 1) % U->n]) P->slot[P->ns++] = Q.slot[i];
     for (P->nt = 0; P->nt < P->n; ++P->nt) {
         i = P->nt;
         P->tri[3 * i] = u;
@@ -2266,22 +2297,8 @@ static int wr__plan_collapse(const wr__cdt *S, const wr__ref *R, int32_t u, int3
         nbr[3 * i + 1] = 3 * ((i + 1) % P->n) + 2;
         nbr[3 * ((i + 1) % P->n) + 2] = 3 * i + 1;
     }
-    /* A fan triangle whose circumcircle holds no other vertex of the polygon (strictly: incircle < 0)
-     * has three strongly Delaunay edges: it is in every CDT of the polygon and u, so it is never
-     * flipped and ends in the plan as it is. One such that fails the bounds fails the plan, found
-     * here without the flips (9 in 10 failing plans in the bench inputs) — and before the fan's
-     * orientation tests: a plan that fails either way fails. */
-    for (i = 0; i < P->nt; ++i) {
-        const int32_t *t = P->tri + 3 * i;
-        const double *pa = WR__P(S, t[0]), *pb = WR__P(S, t[1]), *pc = WR__P(S, t[2]);
-        int empty = 1;
-        if (wr__tri_ok(S, R, t, reg)) continue;
-        for (j = 0; j < P->n && empty; ++j)
-            if (j != i && j != (i + 1) % P->n && !(wr_incircle(pa, pb, pc, WR__P(S, P->ring[j])) < 0.0)) empty = 0;
-        if (empty) return 0;
-    }
     for (i = 0; i < P->nt; ++i) /* u in the kernel of the polygon: the fan is a triangulation */
-        if (!(wr_orient2d(WR__P(S, u), WR__P(S, P->ring[i]), WR__P(S, P->ring[(i + 1) % P->n])) > 0.0)) return 0;
+        if (!(wr_orient2d(WR__P(S, u), WR__P(S, P->ring[i]), WR__P(S, P->ring[(i + 1) % P->n])) > 0.0)) return -1;
     while (again && flips < 4 * WR__RING_CAP) { /* Lawson within the polygon (ring edges stay) */
         again = 0;
         for (i = 0; i < P->nt; ++i)
@@ -2327,7 +2344,27 @@ static int wr__plan_encroaches(const wr__cdt *S, const wr__ref *R, const wr__pla
  * neighbours (nearest first: close pairs are the redundant ones; further tries cost more than they
  * find); 1 done (the plan applied in *P). */
 #define WR__COLLAPSE_TRIES 2
-static int wr__try_collapse(wr__cdt *S, wr__ref *R, int32_t u, const wr__plan *U, wr__plan *P) {
+/* Failed collapses remembered, so that a pair is not planned again while the answer cannot have
+ * changed: a plan of u-w that failed from the merged ring and the midpoint alone fails for w-u too
+ * (the same polygon, the same midpoint bits, the same fan triangles) and for u-w again, until an
+ * applied plan changes the star of u or w (then u or w is on its ring). now counts the applied
+ * plans; stamp[v]: the count when v's star last changed; fw/ft[2v + k]: v's k-th failed partner
+ * and the count then (-1: none). */
+typedef struct wr__cmemo {
+    int32_t now, *stamp, *fw, *ft;
+} wr__cmemo;
+static int wr__cmemo_fails(const wr__cmemo *M, int32_t u, int32_t w) {
+    int k, s;
+    for (s = 0; M && s < 2; ++s) {
+        int32_t a = s ? w : u, b = s ? u : w;
+        for (k = 0; k < WR__COLLAPSE_TRIES; ++k)
+            if (M->fw[WR__COLLAPSE_TRIES * a + k] == b && M->ft[WR__COLLAPSE_TRIES * a + k] >= M->stamp[u] &&
+                M->ft[WR__COLLAPSE_TRIES * a + k] >= M->stamp[w])
+                return 1;
+    }
+    return 0;
+}
+static int wr__try_collapse(wr__cdt *S, wr__ref *R, int32_t u, const wr__plan *U, wr__plan *P, wr__cmemo *M) {
     int32_t nb[WR__RING_CAP], reg = S->treg ? S->treg[S->vtri[u]] : -1;
     double keep[2], d2[WR__RING_CAP];
     int i, j, n = 0;
@@ -2347,10 +2384,17 @@ static int wr__try_collapse(wr__cdt *S, wr__ref *R, int32_t u, const wr__plan *U
     if (n > WR__COLLAPSE_TRIES) n = WR__COLLAPSE_TRIES;
     for (i = 0; i < n; ++i) {
         int32_t w = nb[i];
+        int pc;
+        if (M) M->fw[WR__COLLAPSE_TRIES * u + i] = -1;
+        if (wr__cmemo_fails(M, u, w)) continue;
         S->xy[2 * u] = 0.5 * (keep[0] + S->xy[2 * w]);
         S->xy[2 * u + 1] = 0.5 * (keep[1] + S->xy[2 * w + 1]);
-        if (wr__plan_collapse(S, R, u, w, U, P, reg) && !wr__plan_encroaches(S, R, P, u) &&
-            wr__plan_valid(S, R, P, reg)) {
+        pc = wr__plan_collapse(S, R, u, w, U, P, reg);
+        if (pc < 0 && M) {
+            M->fw[WR__COLLAPSE_TRIES * u + i] = w;
+            M->ft[WR__COLLAPSE_TRIES * u + i] = M->now;
+        }
+        if (pc > 0 && !wr__plan_encroaches(S, R, P, u) && wr__plan_valid(S, R, P, reg)) {
             if (S->na > 0) wr__attr_lerp(S, u, u, w, 0.5);
             wr__plan_apply(S, P);
             S->vtri[w] = -1;
@@ -2370,8 +2414,19 @@ static int wr__try_collapse(wr__cdt *S, wr__ref *R, int32_t u, const wr__plan *U
 static void wr__remove_steiner(wr__cdt *S, wr__ref *R) {
     int pass, any = 1, i;
     wr__plan U, P;
+    wr__cmemo memo, *M = &memo;
     unsigned char *mark = (unsigned char *)wr_alloc_array((size_t)S->nv, 1);
     if (mark) memset(mark, 1, (size_t)S->nv);
+    memo.now = 0;
+    memo.stamp = (int32_t *)wr_alloc_array((size_t)S->nv, sizeof(int32_t));
+    memo.fw = (int32_t *)wr_alloc_array((size_t)S->nv * WR__COLLAPSE_TRIES, sizeof(int32_t));
+    memo.ft = (int32_t *)wr_alloc_array((size_t)S->nv * WR__COLLAPSE_TRIES, sizeof(int32_t));
+    if (memo.stamp && memo.fw && memo.ft) {
+        memset(memo.stamp, 0, sizeof(int32_t) * (size_t)S->nv);
+        for (i = 0; i < S->nv * WR__COLLAPSE_TRIES; ++i) memo.fw[i] = -1;
+    } else {
+        M = NULL; /* without memory: every plan computed */
+    }
     for (pass = 0; pass < WR__REMOVE_PASSES && any && (pass == 0 || mark); ++pass) {
         int32_t v;
         any = 0;
@@ -2382,11 +2437,15 @@ static void wr__remove_steiner(wr__cdt *S, wr__ref *R) {
             if (!wr__plan_star(S, v, &U, WR__RING_CAP / 2)) continue;
             if (wr__try_remove(S, R, v, &U))
                 ch = &U;
-            else if (wr__try_collapse(S, R, v, &U, &P))
+            else if (wr__try_collapse(S, R, v, &U, &P, M))
                 ch = &P;
             else
                 continue;
             any = 1;
+            if (M) { /* the stars changed: the ring's and the survivor's */
+                M->stamp[v] = ++M->now;
+                for (i = 0; i < ch->n; ++i) M->stamp[ch->ring[i]] = M->now;
+            }
             /* a vertex's plan reads its star and the apexes across it: what may have changed for the
              * vertices of the changed region's ring and their neighbours */
             for (i = 0; mark && i < ch->n; ++i) {
@@ -2404,6 +2463,9 @@ static void wr__remove_steiner(wr__cdt *S, wr__ref *R) {
             for (v = 0; v < S->nv; ++v) mark[v] >>= 1; /* marks made in this pass count in the next */
     }
     wr_free(mark);
+    wr_free(memo.stamp);
+    wr_free(memo.fw);
+    wr_free(memo.ft);
 }
 
 /* Delaunay refinement: encroached subsegments first, then bad triangles by priority (each may
