@@ -131,6 +131,11 @@ bin/validate_statics_fig7: validation/validate_statics_fig7.c build/obj/impl_arp
 	@mkdir -p bin
 	$(CC) $(ALL_CFLAGS) $(ARPACK_FLAGS) $< build/obj/impl_arpack.o $(filter-out build/obj/impl.o,$(LIB_OBJ)) -o $@ $(LIBS) $(ARPACK_LIBS)
 
+# validate_tfw_sheared_rectangle and _twisted_cylinder: their --stvk-loop references run the stability test.
+bin/validate_tfw_sheared_rectangle bin/validate_tfw_twisted_cylinder: bin/%: validation/%.c build/obj/impl_arpack.o $(filter-out build/obj/impl.o,$(LIB_OBJ)) $(HEADERS) $(EXTRA_HDR)
+	@mkdir -p bin
+	$(CC) $(ALL_CFLAGS) $(ARPACK_FLAGS) $< build/obj/impl_arpack.o $(filter-out build/obj/impl.o,$(LIB_OBJ)) -o $@ $(PROG_LIBS) $(ARPACK_LIBS)
+
 bin/%: validation/%.c $(LIB_OBJ) $(HEADERS) $(EXTRA_HDR)
 	@mkdir -p bin
 	$(CC) $(ALL_CFLAGS) $< $(LIB_OBJ) -o $@ $(PROG_LIBS)

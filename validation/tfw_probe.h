@@ -74,6 +74,33 @@ static inline wr_status tp_clamped_solve(const wr_shell *sh, const wr_mesh *m, c
     return wr_statics_solve_incremental(sh, x, st, c->mo, 2, steps, ss, d);
 }
 
+/* The StVK reference with the Loop element (issue 15; --stvk-loop of the sheared rectangle and the
+ * twisted cylinder): the solver of the stretch scene's converged Loop runs (validate_statics_loop,
+ * validate_statics_fig7): hybrid Newton (projected to 1e-3 of the tolerance, then exact), affine
+ * predictor, absolute reference, grad_tol 1e-8, max_iter per increment, a seeded normal kick of
+ * `perturb` [m] at every increment and statics.h's stability test after each (check 1, perturb_each 1;
+ * the binary needs WR_USE_ARPACK). Progress: one stderr line every 10 Newton steps. */
+static inline void tp__loop_progress(void *user, const wr_statics_stats *s) {
+    (void)user;
+    if (s->iterations % 10 == 0)
+        fprintf(stderr, "    increment %d, Newton %d, |g|/ref %.1e, %.0f s\n", (int)s->increment, (int)s->iterations,
+                s->grad_ref > 0 ? s->grad_norm / s->grad_ref : 0.0, s->t_total);
+}
+static inline void tp_loop_reference_desc(wr_statics_desc *st, double perturb, uint64_t seed, int32_t max_iter) {
+    memset(st, 0, sizeof *st);
+    st->stop.max_iter = max_iter;
+    st->stop.grad_tol = 1e-8;
+    st->start.perturb = perturb;
+    st->start.seed = seed;
+    st->hessian.projection = WR_PROJECT_FAST;
+    st->increments.predictor = WR_STATICS_PREDICT_AFFINE;
+    st->increments.absolute_reference = 1;
+    st->increments.hybrid_switch = 1e-3;
+    st->stability.check = 1;
+    st->stability.perturb_each = 1;
+    st->progress = tp__loop_progress;
+}
+
 /* TFW twice on one clamped base: the paper-literal run (no amplitude condition; the paper states
  * none) into r0, then a = 0 held on the clamped vertices (`flags`) into r; the rest of td is used for
  * both; one progress line each on stderr. td->a_zero_vertices is left at flags. */
