@@ -218,6 +218,7 @@ validate: deps
 # The dynamic-simulator validations (validation/validate_sim_*.c) in full: tens of CPU minutes each
 # on this 2-core box; `make validate` runs their --quick versions.
 # Also validate_statics_fig7 (TFW Fig. 7, linear StVK at 16k-130k vertices, about 1 CPU hour), only here.
+# And validate_tfw_sheared_rectangle / _twisted_cylinder --stvk-loop (StVK with the Loop element, issue 15).
 validate-long: deps
 	@$(MAKE) --no-print-directory all
 	@sh validation/run_all.sh --long
