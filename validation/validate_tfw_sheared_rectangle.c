@@ -190,7 +190,7 @@ static int validation_main(void) {
  * Full StVK simulation of the same set-up (StVK membrane + Koiter bending on the Loop limit surface,
  * shell.h loop_element 1: the faces with a boundary corner keep linear StVK + mid-edge bending), on the
  * kit's Poisson + Delaunay rectangles (scene delaunay_rectangle, seed 1) of r = 5, 3.75 and 2.8 mm, the
- * shear in 4 load steps with tp_loop_reference_desc (2.5 um = h/10 seeded kick at every step, the
+ * shear in 4 load steps with tp_loop_solve (2.5 um = h/10 seeded kick at every step, the
  * stability test after each). Metric, fixed before the runs: the pass row's probe (1024 samples along
  * y = 64 mm in the rest domain) of the equilibrium's z, FFT count and wavelength (spectrum.h).
  * Converged: the two finest solves WR_OK and count and wavelength within 5 % between them (issue 15's
@@ -200,8 +200,9 @@ static int validation_main(void) {
 #define SL_REL 0.05
 
 typedef struct sl_run {
-    double r, count, wavelength, zc, zmax, t;
-    int32_t nv, newton, escapes, modes;
+    double r, count, wavelength, zc, zmax;
+    int32_t nv;
+    tp_loop_stats ls;
     wr_status st, sp;
     double *pts, *zv; /* the probe, kept for the figure */
 } sl_run;
@@ -211,11 +212,9 @@ static void stvk_loop_run(sl_run *o) {
     wr_mesh m;
     wr_shell sh;
     wr_shell_desc sd;
-    wr_statics_desc st;
-    wr_statics_stats ss;
     tp_clamps cl;
     wr_spectrum_result sr;
-    double *x = NULL, *zf = NULL, A[2] = {0.0, 0.5 * H_SHEET}, B[2] = {L_SHEET, 0.5 * H_SHEET}, ds = 0.0, t0;
+    double *x = NULL, *zf = NULL, A[2] = {0.0, 0.5 * H_SHEET}, B[2] = {L_SHEET, 0.5 * H_SHEET}, ds = 0.0;
     int32_t v;
     o->count = o->wavelength = o->zc = o->zmax = NAN;
     o->sp = WR_ERR_INVALID_ARG;
@@ -225,11 +224,7 @@ static void stvk_loop_run(sl_run *o) {
         return;
     }
     o->nv = m.nv;
-    memset(&sd, 0, sizeof sd);
-    sd.membrane = WR_MEMBRANE_STVK;
-    sd.bending = WR_BENDING_MIDEDGE;
-    sd.young = YOUNG, sd.poisson = NU, sd.thickness = THICK;
-    sd.loop_element = 1;
+    tp_loop_shell_desc(YOUNG, NU, THICK, &sd);
     if ((o->st = wr_shell_create(&sh, &m, &sd, &d)) != WR_OK) {
         fprintf(stderr, "stvk-loop shell: %s\n", d.message);
         wr_mesh_free(&m);
@@ -248,16 +243,7 @@ static void stvk_loop_run(sl_run *o) {
     }
     cl.mo[1].kind = WR_MOTION_TRANSLATE;
     cl.mo[1].vec[0] = SHEAR;
-    tp_loop_reference_desc(&st, 0.1 * THICK, 1, 200);
-    fprintf(stderr, "stvk-loop %d vertices (r %.2f mm): solving\n", (int)m.nv, 1e3 * o->r);
-    t0 = wr_time_seconds();
-    o->st = tp_clamped_solve(&sh, &m, &cl, &st, 4, x, &ss, &d);
-    o->t = wr_time_seconds() - t0;
-    o->newton = ss.total_iterations;
-    o->escapes = ss.stability_escapes;
-    o->modes = ss.stability_modes;
-    fprintf(stderr, "stvk-loop %d vertices: %s, %d Newton, %d escapes, %.0f s\n", (int)m.nv, wr_status_string(o->st),
-            (int)o->newton, (int)o->escapes, o->t);
+    o->st = tp_loop_solve(&sh, &m, &cl, 4, 0.1 * THICK, 1, 200, x, &o->ls, &d);
     if (o->st == WR_OK || o->st == WR_ERR_NOT_CONVERGED) {
         for (v = 0; v < m.nv; ++v) zf[v] = x[3 * v + 2];
         o->zmax = tp_max_abs(zf, m.nv);
@@ -312,8 +298,8 @@ static int stvk_loop_main(void) {
                             "|---|---|---|---|---|---|---|---|---|---|---|\n");
     for (i = 0; i < SL_NRUN; ++i)
         off += (size_t)snprintf(table + off, sizeof table - off, "| %.2f | %d | %s | %d | %d | %d | %.2f | %.1f | %.2f | %.3f | %.0f |\n",
-                                1e3 * R[i].r, (int)R[i].nv, wr_status_string(R[i].st), (int)R[i].newton, (int)R[i].escapes,
-                                (int)R[i].modes, R[i].count, R[i].zc, 1e3 * R[i].wavelength, 1e3 * R[i].zmax, R[i].t);
+                                1e3 * R[i].r, (int)R[i].nv, wr_status_string(R[i].st), (int)R[i].ls.newton, (int)R[i].ls.escapes,
+                                (int)R[i].ls.modes, R[i].count, R[i].zc, 1e3 * R[i].wavelength, 1e3 * R[i].zmax, R[i].ls.t);
     wr_vres_table_md(v, table);
     wr_vres_note(v, "Set-up as the TFW rows (Kapton 380 x 128 mm, 25 um, E = 3530 MPa, nu = 0.3, bottom edge clamped, top "
                     "edge translated 3 mm, short edges free), but a full StVK simulation: StVK membrane + Koiter bending on "

@@ -147,6 +147,16 @@ static wr_status diagonal_tube(wr_mesh *out, int32_t nu, int32_t nh, int along, 
     return st;
 }
 
+/* the clamps: bottom ring held, top ring twisted TWIST_DEG about the axis at constant height */
+static wr_status twist_clamps(tp_clamps *cl, const wr_mesh *m, wr_diag *d) {
+    wr_status st = tp_clamps_select(cl, m, 2, 0.0, H_CYL, d);
+    if (st != WR_OK) return st;
+    cl->mo[1].kind = WR_MOTION_TWIST;
+    cl->mo[1].axis[2] = 1.0;
+    cl->mo[1].amount = TWIST_DEG * PI_ / 180.0;
+    return WR_OK;
+}
+
 static void run_case(row *rw, int keep_profile, double *profile) {
     wr_diag d;
     wr_mesh m, sm;
@@ -178,16 +188,13 @@ static void run_case(row *rw, int keep_profile, double *profile) {
         return;
     }
     x = (double *)malloc(sizeof(double) * 3 * m.nv);
-    if (!x || (rw->s_base = tp_clamps_select(&cl, &m, 2, 0.0, H_CYL, &d)) != WR_OK) {
+    if (!x || (rw->s_base = twist_clamps(&cl, &m, &d)) != WR_OK) {
         if (!x) rw->s_base = WR_ERR_NOMEM;
         free(x);
         wr_shell_free(&sh);
         wr_mesh_free(&m);
         return;
     }
-    cl.mo[1].kind = WR_MOTION_TWIST;
-    cl.mo[1].axis[2] = 1.0;
-    cl.mo[1].amount = TWIST_DEG * PI_ / 180.0;
     memset(&st, 0, sizeof st);
     /* TFT + quadratic bending is convex (TFW Sec. 6.5): one increment reaches the same equilibrium
      * (696 vertices: 14 Newton steps against 33 in 4 increments, positions equal to 1e-9 m), and its
@@ -404,7 +411,7 @@ static int validation_main(void) {
  * Full StVK simulation of the twisted tube (StVK membrane + Koiter bending on the Loop limit surface,
  * shell.h loop_element 1: the faces with a corner on the two clamped rings keep linear StVK + mid-edge
  * bending; the seam is interior, its stencils charted from the per-face rest corners), twist in 4
- * load steps with tp_loop_reference_desc (10 um seeded kick at every step, seed 5, max_iter 300, the
+ * load steps with tp_loop_solve (10 um seeded kick at every step, seed 5, max_iter 300, the
  * stability test after each). Tubes: the square-cell 40 x 32 and 56 x 44 (wr_mesh_cylinder_flat,
  * the meshes of validate_tfw_crosscheck's linear-element StVK rows: 8 and 10 waves) and the Delaunay
  * tubes of this driver's sweep aimed at 1309 and 2543 vertices. Metrics, fixed before the runs:
@@ -420,8 +427,9 @@ enum { CL_NRUN = 4 };
 typedef struct cl_run {
     int kind;            /* MESH_SQUARE or MESH_DELAUNAY */
     int32_t nu, nh, nv;  /* square: cells; Delaunay: nu = circumferential edges (estimate) */
-    double r_target, count_ring, count_cut, amp, t;
-    int32_t newton, escapes, modes, ran;
+    double r_target, count_ring, count_cut, amp;
+    int32_t ran;
+    tp_loop_stats ls;
     wr_status st, sp;
 } cl_run;
 
@@ -430,11 +438,9 @@ static void stvk_loop_case(cl_run *o) {
     wr_mesh m;
     wr_shell sh;
     wr_shell_desc sd;
-    wr_statics_desc st;
-    wr_statics_stats ss;
     wr_spectrum_result sr;
     tp_clamps cl;
-    double *x = NULL, *rad = NULL, *sig = NULL, t0;
+    double *x = NULL, *rad = NULL, *sig = NULL;
     int32_t v, i;
     o->ran = 1;
     o->count_ring = o->count_cut = o->amp = NAN;
@@ -446,11 +452,7 @@ static void stvk_loop_case(cl_run *o) {
         return;
     }
     o->nv = m.nv;
-    memset(&sd, 0, sizeof sd);
-    sd.membrane = WR_MEMBRANE_STVK;
-    sd.bending = WR_BENDING_MIDEDGE;
-    sd.young = 10e6, sd.poisson = 0.44, sd.thickness = 1e-4;
-    sd.loop_element = 1;
+    tp_loop_shell_desc(10e6, 0.44, 1e-4, &sd);
     if ((o->st = wr_shell_create(&sh, &m, &sd, &d)) != WR_OK) {
         fprintf(stderr, "stvk-loop shell: %s\n", d.message);
         wr_mesh_free(&m);
@@ -459,26 +461,14 @@ static void stvk_loop_case(cl_run *o) {
     x = (double *)malloc(sizeof(double) * 3 * (size_t)m.nv);
     rad = (double *)malloc(sizeof(double) * (size_t)m.nv);
     sig = (double *)malloc(sizeof(double) * NSAMP);
-    if (!x || !rad || !sig || (o->st = tp_clamps_select(&cl, &m, 2, 0.0, H_CYL, &d)) != WR_OK) {
+    if (!x || !rad || !sig || (o->st = twist_clamps(&cl, &m, &d)) != WR_OK) {
         if (!x || !rad || !sig) o->st = WR_ERR_NOMEM;
         free(x), free(rad), free(sig);
         wr_shell_free(&sh);
         wr_mesh_free(&m);
         return;
     }
-    cl.mo[1].kind = WR_MOTION_TWIST;
-    cl.mo[1].axis[2] = 1.0;
-    cl.mo[1].amount = TWIST_DEG * PI_ / 180.0;
-    tp_loop_reference_desc(&st, 1e-5, 5, 300);
-    fprintf(stderr, "stvk-loop %s tube, %d vertices: solving\n", kind_name(o->kind), (int)m.nv);
-    t0 = wr_time_seconds();
-    o->st = tp_clamped_solve(&sh, &m, &cl, &st, 4, x, &ss, &d);
-    o->t = wr_time_seconds() - t0;
-    o->newton = ss.total_iterations;
-    o->escapes = ss.stability_escapes;
-    o->modes = ss.stability_modes;
-    fprintf(stderr, "stvk-loop %d vertices: %s, %d Newton, %d escapes, %.0f s\n", (int)m.nv, wr_status_string(o->st),
-            (int)o->newton, (int)o->escapes, o->t);
+    o->st = tp_loop_solve(&sh, &m, &cl, 4, 1e-5, 5, 300, x, &o->ls, &d);
     if (o->st == WR_OK || o->st == WR_ERR_NOT_CONVERGED) {
         for (v = 0; v < m.nv; ++v) rad[v] = hypot(x[3 * v], x[3 * v + 1]);
         o->sp = tp_ring(&m, x, rad, 0.5 * H_CYL, 0.0, 0.0, 0.0, NSAMP, sig, NULL, &d);
@@ -543,8 +533,8 @@ static int cl_report(const cl_run *R) {
     for (i = 0; i < CL_NRUN; ++i)
         off += (size_t)snprintf(table + off, sizeof table - off, "| %s | %d | %s | %d | %d | %d | %.0f | %.0f | %.2f | %.0f |\n",
                                 kind_name(R[i].kind), (int)R[i].nv, R[i].ran ? wr_status_string(R[i].st) : "not run yet",
-                                (int)R[i].newton, (int)R[i].escapes, (int)R[i].modes, R[i].count_ring, R[i].count_cut,
-                                1e3 * R[i].amp, R[i].t);
+                                (int)R[i].ls.newton, (int)R[i].ls.escapes, (int)R[i].ls.modes, R[i].count_ring, R[i].count_cut,
+                                1e3 * R[i].amp, R[i].ls.t);
     wr_vres_table_md(v, table);
     wr_vres_note(v, "Set-up as the TFW rows (r = 1 m, 5 m, h = 0.1 mm, E = 10 MPa, nu = 0.44, bottom ring clamped, top ring "
                     "twisted 10 deg at constant height), but a full StVK simulation: StVK membrane + Koiter bending on the Loop "
