@@ -131,6 +131,11 @@ bin/validate_statics_fig7: validation/validate_statics_fig7.c build/obj/impl_arp
 	@mkdir -p bin
 	$(CC) $(ALL_CFLAGS) $(ARPACK_FLAGS) $< build/obj/impl_arpack.o $(filter-out build/obj/impl.o,$(LIB_OBJ)) -o $@ $(LIBS) $(ARPACK_LIBS)
 
+# validate_tfw_sheared_rectangle and _twisted_cylinder: their --stvk-loop references run the stability test.
+bin/validate_tfw_sheared_rectangle bin/validate_tfw_twisted_cylinder: bin/%: validation/%.c build/obj/impl_arpack.o $(filter-out build/obj/impl.o,$(LIB_OBJ)) $(HEADERS) $(EXTRA_HDR)
+	@mkdir -p bin
+	$(CC) $(ALL_CFLAGS) $(ARPACK_FLAGS) $< build/obj/impl_arpack.o $(filter-out build/obj/impl.o,$(LIB_OBJ)) -o $@ $(PROG_LIBS) $(ARPACK_LIBS)
+
 bin/%: validation/%.c $(LIB_OBJ) $(HEADERS) $(EXTRA_HDR)
 	@mkdir -p bin
 	$(CC) $(ALL_CFLAGS) $< $(LIB_OBJ) -o $@ $(PROG_LIBS)
@@ -213,6 +218,7 @@ validate: deps
 # The dynamic-simulator validations (validation/validate_sim_*.c) in full: tens of CPU minutes each
 # on this 2-core box; `make validate` runs their --quick versions.
 # Also validate_statics_fig7 (TFW Fig. 7, linear StVK at 16k-130k vertices, about 1 CPU hour), only here.
+# And validate_tfw_sheared_rectangle / _twisted_cylinder --stvk-loop (StVK with the Loop element, issue 15).
 validate-long: deps
 	@$(MAKE) --no-print-directory all
 	@sh validation/run_all.sh --long

@@ -152,6 +152,17 @@ val_bad validate_sim_stretch --res-mask 8
 val_bad validate_sim_stretch --sheet x
 val_bad validate_statics_stability --grid 0.5
 val_bad validate_statics_stability --grid x
+# on/off flags that pick a long mode (--stvk-loop, issue 15): --help lists the flag, and the flag with
+# an unknown argument is still refused (exit 2, one line) before any run, nothing written
+val_flag() {
+    vd=$root/bin/$1
+    [ -x "$vd" ] || return 0
+    (cd "$tmp/cwd" && "$vd" --help) 2>/dev/null </dev/null | grep -q -e "$2" && ok || bad "$1 --help does not list $2"
+    expect_fail "$1 $2 with an unknown argument" env WRINKLE_RESULTS_DIR="$tmp/vres" "$vd" "$2" --definitely-not-an-option
+    [ -z "$(ls -A "$tmp/vres")" ] && ok || { bad "$1 $2 with an unknown argument: a result written"; rm -rf "$tmp/vres"/*; }
+}
+val_flag validate_tfw_sheared_rectangle --stvk-loop
+val_flag validate_tfw_twisted_cylinder --stvk-loop
 
 B=$root/bin
 if [ -x "$B/wrinkle-resolution" ]; then

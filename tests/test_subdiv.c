@@ -665,3 +665,130 @@ Test(subdiv, loop_shell_ghost_cantilever_clamped_by_two_rows) {
                      r[k][0]);
     }
 }
+
+/* ---- the Loop element's rest from per-face corners (shell.h ON THE LOOP ELEMENT) ------------------ */
+
+/* corner_rest for m: each face's rest corners moved by the rigid motion of its region (faces with
+ * centroid x > cx: rotated by 0.7 rad and translated by (3, -2); y > cy, the rest: by -1.1 rad and
+ * (-5, 1); the others unmoved), so every stencil crossing a region boundary needs the chart's
+ * rotation and translation to be one flat piece again */
+static void corner_rest_pieces(wr_mesh *m, double cx, double cy) {
+    double *cr = (double *)malloc(sizeof(double) * 6 * (size_t)m->nf);
+    int32_t f, k;
+    wr_diag d;
+    for (f = 0; f < m->nf; ++f) {
+        double uv[6], gx = 0.0, gy = 0.0, th = 0.0, t[2] = {0.0, 0.0};
+        wr_mesh_face_rest(m, f, uv);
+        for (k = 0; k < 3; ++k) gx += uv[2 * k] / 3.0, gy += uv[2 * k + 1] / 3.0;
+        if (gx > cx) th = 0.7, t[0] = 3.0, t[1] = -2.0;
+        else if (gy > cy) th = -1.1, t[0] = -5.0, t[1] = 1.0;
+        for (k = 0; k < 3; ++k) {
+            double u = uv[2 * k], w = uv[2 * k + 1];
+            cr[6 * f + 2 * k] = cos(th) * u - sin(th) * w + t[0];
+            cr[6 * f + 2 * k + 1] = sin(th) * u + cos(th) * w + t[1];
+        }
+    }
+    cr_assert_eq(wr_mesh_set_corner_rest(m, cr, &d), WR_OK, "%s", d.message);
+    free(cr);
+}
+
+Test(subdiv, loop_shell_rest_from_corners_matches_the_per_vertex_rest) {
+    /* a flat sheet whose rest is given per face corner in three rigidly moved pieces: the Loop rest
+     * (metric, curvature, weights) equals the per-vertex rest's face by face, the energies agree at a
+     * random state, and at the embedded rest (pos = (rest, 0)) energy and gradient are zero */
+    wr_mesh m, mc;
+    wr_shell s, sc;
+    wr_diag d;
+    double E, Ec, *g, *x, gmax = 0.0;
+    int32_t f, v, i, nloop_cross = 0; /* Loop faces compared */
+    lattice_mesh(&m, 12, 7u);
+    cr_assert_eq(wr_mesh_copy(&mc, &m, &d), WR_OK);
+    corner_rest_pieces(&mc, 6.0, 5.0);
+    loop_shell_elem(&s, &m, 1);
+    loop_shell_elem(&sc, &mc, 1);
+    cr_assert_eq(sc.n_loop_faces, s.n_loop_faces);
+    cr_assert_gt(s.n_loop_faces, 100, "Loop faces %d", s.n_loop_faces);
+    for (f = 0; f < m.nf; ++f) {
+        const wr_shell_koiter_rest *a = s.loop_rest + f, *b = sc.loop_rest + f;
+        cr_assert_eq(sc.loop_start[f + 1] - sc.loop_start[f], s.loop_start[f + 1] - s.loop_start[f]);
+        if (s.loop_start[f + 1] == s.loop_start[f]) continue;
+        for (i = 0; i < 3; ++i) {
+            cr_assert_float_eq(b->A[i], a->A[i], 1e-10 * (a->A[0] + a->A[2]), "face %d: A[%d] %.12g vs %.12g", (int)f, (int)i,
+                               b->A[i], a->A[i]);
+            cr_assert_float_eq(b->B[i], a->B[i], 1e-10 * sqrt(a->A[0] + a->A[2]), "face %d: B[%d] %.3g", (int)f, (int)i, b->B[i]);
+        }
+        cr_assert_float_eq(sc.loop_wt[f], s.loop_wt[f], 1e-10 * s.loop_wt[f], "face %d: weight", (int)f);
+        nloop_cross++;
+    }
+    cr_assert_gt(nloop_cross, 100);
+    cr_assert_eq(wr_shell_energy(&s, m.pos, &E, NULL, &d), WR_OK, "%s", d.message);
+    cr_assert_eq(wr_shell_energy(&sc, m.pos, &Ec, NULL, &d), WR_OK, "%s", d.message);
+    cr_assert_float_eq(Ec, E, 1e-9 * E, "random state: E %.12g (corners) vs %.12g (per vertex)", Ec, E);
+    x = (double *)malloc(sizeof(double) * 3 * (size_t)m.nv);
+    g = (double *)malloc(sizeof(double) * 3 * (size_t)m.nv);
+    for (v = 0; v < m.nv; ++v) x[3 * v] = m.rest[2 * v], x[3 * v + 1] = m.rest[2 * v + 1], x[3 * v + 2] = 0.0;
+    cr_assert_eq(wr_shell_energy(&sc, x, &Ec, g, &d), WR_OK, "%s", d.message);
+    for (i = 0; i < 3 * m.nv; ++i) gmax = fmax(gmax, fabs(g[i]));
+    cr_assert_lt(fabs(Ec), 1e-18, "energy at the rest %.3g J", Ec);
+    cr_assert_lt(gmax, 1e-9, "gradient at the rest %.3g N", gmax); /* Y h = 1e3 N/m on unit cells */
+    free(x), free(g);
+    wr_shell_free(&s), wr_shell_free(&sc);
+    wr_mesh_free(&m), wr_mesh_free(&mc);
+}
+
+/* A closed tube (wr_mesh_cylinder_flat, corner_rest = the unrolled pattern) with its pattern cut moved
+ * by `shift` cells around: the same surface, the seam elsewhere */
+static void tube_seam_shifted(wr_mesh *m, double R, int32_t nu, int32_t shift) {
+    double W = 2.0 * 3.14159265358979323846 * R, *cr = (double *)malloc(sizeof(double) * 6 * (size_t)m->nf);
+    int32_t f, k;
+    wr_diag d;
+    for (f = 0; f < m->nf; ++f) {
+        double umin = 1e300;
+        for (k = 0; k < 3; ++k) {
+            cr[6 * f + 2 * k] = m->corner_rest[6 * f + 2 * k] + shift * W / nu;
+            cr[6 * f + 2 * k + 1] = m->corner_rest[6 * f + 2 * k + 1];
+            umin = fmin(umin, cr[6 * f + 2 * k]);
+        }
+        if (umin > W - 1e-9 * W)
+            for (k = 0; k < 3; ++k) cr[6 * f + 2 * k] -= W;
+    }
+    cr_assert_eq(wr_mesh_set_corner_rest(m, cr, &d), WR_OK, "%s", d.message);
+    free(cr);
+}
+
+Test(subdiv, loop_shell_tube_with_a_seam_has_a_flat_rest_wherever_the_seam_is) {
+    /* the rest-flat tube rolled up: its Loop rest (flat: B = 0, the unrolled metric) does not depend
+     * on where the pattern is cut, so every face's energy is the same with the seam at column 0 or at
+     * nu/2 + 1, and the bending energy of the Loop faces is the closed form ½ D / R² per unit area
+     * within the union-jack grid's bias (8 %, loop_shell_bent_to_a_cylinder) */
+    const double R = 0.3, D = 1e6 * 1e-9 / (12.0 * 0.91);
+    const int32_t nu = 40, nh = 12;
+    wr_mesh m, ms;
+    wr_shell s, ss;
+    wr_diag d;
+    double Eb = 0.0, area = 0.0, bmax = 0.0;
+    int32_t f;
+    cr_assert_eq(wr_mesh_cylinder_flat(&m, R, 0.5, nu, nh, &d), WR_OK, "%s", d.message);
+    cr_assert(m.corner_rest != NULL);
+    cr_assert_eq(wr_mesh_copy(&ms, &m, &d), WR_OK);
+    tube_seam_shifted(&ms, R, nu, nu / 2 + 1);
+    loop_shell_elem(&s, &m, 1);
+    loop_shell_elem(&ss, &ms, 1);
+    cr_assert_gt(s.n_loop_faces, 2 * nu * (nh - 3), "Loop faces %d", s.n_loop_faces);
+    for (f = 0; f < m.nf; ++f) {
+        double em, eb, ems, ebs;
+        int i;
+        if (s.loop_start[f + 1] == s.loop_start[f]) continue;
+        for (i = 0; i < 3; ++i) bmax = fmax(bmax, fabs(s.loop_rest[f].B[i]));
+        cr_assert_eq(wr_shell_face_energy(&s, f, m.pos, &em, &eb), WR_OK);
+        cr_assert_eq(wr_shell_face_energy(&ss, f, m.pos, &ems, &ebs), WR_OK);
+        cr_assert_float_eq(ems, em, 1e-8 * (em + eb), "face %d: membrane %.6g (seam moved) vs %.6g", (int)f, ems, em);
+        cr_assert_float_eq(ebs, eb, 1e-8 * eb, "face %d: bending %.6g (seam moved) vs %.6g", (int)f, ebs, eb);
+        Eb += eb;
+        area += s.area[f];
+    }
+    cr_assert_lt(bmax, 1e-12, "rest curvature %.3g: the rest is not flat", bmax);
+    cr_assert_lt(fabs(Eb / (0.5 * D / (R * R) * area) - 1.0), 0.08, "bending / closed form %.4f", Eb / (0.5 * D / (R * R) * area));
+    wr_shell_free(&s), wr_shell_free(&ss);
+    wr_mesh_free(&m), wr_mesh_free(&ms);
+}

@@ -22,7 +22,8 @@ status=0
 # The dynamic-simulator cases (validate_sim_*) run --quick here (a smoke version, its own result
 # file <case>_quick.json); `sh validation/run_all.sh --long` (make validate-long) runs only them,
 # in full, then rewrites the report. Their full runs take tens of CPU minutes. validate_statics_fig7
-# (TFW Fig. 7, 16k-130k vertices) runs only there.
+# (TFW Fig. 7, 16k-130k vertices) runs only there, and so do the sheared rectangle's and the twisted
+# cylinder's --stvk-loop modes (StVK with the Loop element; their own result files).
 long=0
 [ "$1" = "--long" ] && long=1
 # Cross-check drivers read other cases' result files, so they run last.
@@ -33,6 +34,8 @@ for src in $(ls validation/validate_*.c | grep -v crosscheck) $(ls validation/va
     case "$name" in
         validate_sim_*) [ $long = 1 ] || args=--quick ;;
         validate_statics_fig7) [ $long = 1 ] || continue ;; # long only: 16k-130k-vertex solves, CPU hours
+        validate_tfw_sheared_rectangle | validate_tfw_twisted_cylinder)
+            [ $long = 1 ] && args=--stvk-loop ;; # long: their StVK references with the Loop element (issue 15)
         *) [ $long = 1 ] && continue ;;
     esac
     echo "== $name $args"

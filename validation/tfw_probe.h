@@ -74,6 +74,65 @@ static inline wr_status tp_clamped_solve(const wr_shell *sh, const wr_mesh *m, c
     return wr_statics_solve_incremental(sh, x, st, c->mo, 2, steps, ss, d);
 }
 
+/* The StVK reference with the Loop element (issue 15; --stvk-loop of the sheared rectangle and the
+ * twisted cylinder). tp_loop_shell_desc: StVK membrane, Koiter bending on the Loop limit surface
+ * (loop_element 1: faces with a boundary corner keep linear StVK + mid-edge bending). tp_loop_solve:
+ * `steps` load steps under the clamps with the solver of the stretch scene's converged Loop runs
+ * (validate_statics_loop, validate_statics_fig7): hybrid Newton (projected to 1e-3 of the tolerance,
+ * then exact), affine predictor, absolute reference, grad_tol 1e-8, max_iter per increment, a seeded
+ * normal kick of `perturb` [m] at every increment and statics.h's stability test after each (check 1,
+ * perturb_each 1; the binary needs WR_USE_ARPACK); progress on stderr every 10 Newton steps, a summary
+ * line at the end. */
+typedef struct tp_loop_stats {
+    int32_t newton, escapes, modes;
+    double t; /* solve wall time [s] */
+} tp_loop_stats;
+
+static inline void tp_loop_shell_desc(double young, double nu, double h, wr_shell_desc *sd) {
+    memset(sd, 0, sizeof *sd);
+    sd->membrane = WR_MEMBRANE_STVK;
+    sd->bending = WR_BENDING_MIDEDGE;
+    sd->young = young, sd->poisson = nu, sd->thickness = h;
+    sd->loop_element = 1;
+}
+
+static inline void tp__loop_progress(void *user, const wr_statics_stats *s) {
+    (void)user;
+    if (s->iterations % 10 == 0)
+        fprintf(stderr, "    increment %d, Newton %d, |g|/ref %.1e, %.0f s\n", (int)s->increment, (int)s->iterations,
+                s->grad_ref > 0 ? s->grad_norm / s->grad_ref : 0.0, s->t_total);
+}
+
+static inline wr_status tp_loop_solve(const wr_shell *sh, const wr_mesh *m, const tp_clamps *c, int32_t steps, double perturb,
+                                      uint64_t seed, int32_t max_iter, double *x, tp_loop_stats *out, wr_diag *d) {
+    wr_statics_desc st;
+    wr_statics_stats ss;
+    wr_status rs;
+    double t0 = wr_time_seconds();
+    memset(&st, 0, sizeof st);
+    memset(&ss, 0, sizeof ss);
+    st.stop.max_iter = max_iter;
+    st.stop.grad_tol = 1e-8;
+    st.start.perturb = perturb;
+    st.start.seed = seed;
+    st.hessian.projection = WR_PROJECT_FAST;
+    st.increments.predictor = WR_STATICS_PREDICT_AFFINE;
+    st.increments.absolute_reference = 1;
+    st.increments.hybrid_switch = 1e-3;
+    st.stability.check = 1;
+    st.stability.perturb_each = 1;
+    st.progress = tp__loop_progress;
+    fprintf(stderr, "stvk-loop %d vertices: solving\n", (int)m->nv);
+    rs = tp_clamped_solve(sh, m, c, &st, steps, x, &ss, d);
+    out->t = wr_time_seconds() - t0;
+    out->newton = ss.total_iterations;
+    out->escapes = ss.stability_escapes;
+    out->modes = ss.stability_modes;
+    fprintf(stderr, "stvk-loop %d vertices: %s, %d Newton, %d escapes, %.0f s\n", (int)m->nv, wr_status_string(rs),
+            (int)out->newton, (int)out->escapes, out->t);
+    return rs;
+}
+
 /* TFW twice on one clamped base: the paper-literal run (no amplitude condition; the paper states
  * none) into r0, then a = 0 held on the clamped vertices (`flags`) into r; the rest of td is used for
  * both; one progress line each on stderr. td->a_zero_vertices is left at flags. */
@@ -279,10 +338,10 @@ static inline void tp_figure(wr_vres *v, const char *stem, const char *gp_body, 
 }
 
 /* A probe profile figure: <results>/<stem>_probe.dat (x[i]·1e3, y[i]·1e3: mm), <figures>/<stem>.gp
- * (900 × 450, one line) and <figures>/<stem>.png by gnuplot, added to v on success. */
+ * (900 × 450, one line titled `legend`) and <figures>/<stem>.png by gnuplot, added to v on success. */
 static inline void tp_profile_figure(wr_vres *v, const char *stem, const double *x, int32_t xstride, const double *y,
                                      int32_t n, const char *xlabel, const char *ylabel, const char *title,
-                                     const char *caption) {
+                                     const char *legend, const char *caption) {
     char dat[700], gp[700], png[700], cmd[1600], rel[300];
     wr_afile f;
     wr_diag d;
@@ -297,7 +356,7 @@ static inline void tp_profile_figure(wr_vres *v, const char *stem, const double 
     fprintf(f.fp, "set terminal pngcairo size 900,450\nset output '%s'\n", png);
     fprintf(f.fp, "set xlabel '%s'\nset ylabel '%s'\n", xlabel, ylabel);
     fprintf(f.fp, "set title '%s'\n", title);
-    fprintf(f.fp, "plot '%s' w l t 'TFW, Loop level 3'\n", dat);
+    fprintf(f.fp, "plot '%s' w l t '%s'\n", dat, legend);
     if (wr_afile_commit(&f, &d) != WR_OK) return;
     snprintf(cmd, sizeof cmd, "gnuplot '%s' 2>/dev/null", gp);
     snprintf(rel, sizeof rel, "figures/%s.png", stem);

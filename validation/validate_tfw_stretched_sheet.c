@@ -325,7 +325,7 @@ static int validation_main(void) {
     if (!c.s_sp)
         tp_profile_figure(v, "tfw_stretched_sheet", c.pts + 1, 2, c.zv, NPROBE, "y across the width [mm]",
                           "z of the wrinkled surface [mm]", "TFW stretched sheet (522-vertex base, 12.78%), x = L/2",
-                          "wrinkled-surface profile across the width at mid-length");
+                          "TFW, Loop level 3", "wrinkled-surface profile across the width at mid-length");
     failed = wr_vres_finish(v);
     case_free(&c);
     return failed < 0 ? 1 : 0;

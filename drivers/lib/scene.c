@@ -547,7 +547,7 @@ static double sc_const_sizing(void *user, double x, double y) {
     return *(const double *)user;
 }
 
-static wr_status sc_mesh_delaunay(wr_mesh *m, double w, double h, double r, uint64_t seed, wr_diag *diag) {
+wr_status wr_scene_mesh_delaunay(wr_mesh *m, double w, double h, double r, uint64_t seed, wr_diag *diag) {
     double box[8];
     wr_poisson_domain dom;
     wr_poisson_desc pd;
@@ -670,7 +670,7 @@ static wr_status sc_build_panel(const wr_scene_mesh *g, wr_mesh *m, wr_obj_group
     case WR_SCENE_MESH_DELAUNAY_RECTANGLE:
         est = 1.2 * g->width * g->height / (r * r);
         if (est > SC_MAX_VERTICES) break;
-        return sc_mesh_delaunay(m, g->width, g->height, r, g->seed, diag);
+        return wr_scene_mesh_delaunay(m, g->width, g->height, r, g->seed, diag);
     case WR_SCENE_MESH_LATTICE:
         est = 1.2 * g->width * g->height / (0.8660254037844386 * r * r);
         if (est > SC_MAX_VERTICES) break;

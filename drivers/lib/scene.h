@@ -152,6 +152,9 @@ typedef void (*wr_scene_progress_fn)(void *user, int32_t step, int32_t n_steps, 
  * centre), the points at least r/2 inside [0,w]×[0,h], plus boundary points every ≈ r, constrained
  * Delaunay: interior triangles are the lattice's own (the stretch test's aligned / rotated meshes). */
 wr_status wr_scene_mesh_lattice(wr_mesh *m, double w, double h, double r, double theta_deg, wr_diag *diag);
+/* The scene's delaunay_rectangle: Poisson-disk samples of spacing r on [0,w]×[0,h] (poisson.h, seeded),
+ * constrained Delaunay (triangulate.h); rest = the samples, pos = (rest, 0). */
+wr_status wr_scene_mesh_delaunay(wr_mesh *m, double w, double h, double r, uint64_t seed, wr_diag *diag);
 void wr_scene_defaults(wr_scene *sc);
 wr_status wr_scene_parse(wr_scene *sc, const char *text, size_t len, const char *base_dir, wr_diag *diag);
 wr_status wr_scene_load(wr_scene *sc, const char *path, wr_diag *diag);

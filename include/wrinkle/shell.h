@@ -164,8 +164,13 @@
  *   (subdiv.h ON GHOST VERTICES, our reading of Cirak & Ortiz 2001): an edge whose vertices are free
  *   is a free edge (the ghosts pull the curvature across it towards zero, no bending moment);
  *   holding the boundary vertices alone is a hinge; holding them and the vertices of the faces along
- *   the edge clamps it (the ghosts, hence the tangent plane there, are fixed). Needs the isotropic StVK membrane and a per-vertex rest
- *   (WR_ERR_UNSUPPORTED otherwise); statics only (wr_shell_face_block, hence dynamics.h, refuses Loop
+ *   the edge clamps it (the ghosts, hence the tangent plane there, are fixed). Needs the isotropic StVK
+ *   membrane (WR_ERR_UNSUPPORTED otherwise). Rest state: rest_pos3, else the rest domain, else pos, one
+ *   point per vertex; on a mesh with corner_rest (a sewn seam, a closed tube's unrolled pattern) each
+ *   face's stencil gets its own flat chart instead: the faces around its corners laid into the face's
+ *   rest corners one shared edge at a time by the rigid motion (rotation + translation) that aligns
+ *   the edge, so the rest limit surface is flat and unstrained across a seam (a vertex whose panels'
+ *   angles do not close to 2π takes its first face's placement). Statics only (wr_shell_face_block, hence dynamics.h, refuses Loop
  *   faces). Hessian blocks span the face's stencil (12 vertices on a regular patch, up to
  *   WR_SUBDIV_MAX_STENCIL), larger than newton.h can project: with project_spd != 0 (1, or
  *   WR_SHELL_PROJECT_LARGE as statics.h passes when its Newton step projects) they are projected PSD
@@ -1218,15 +1223,100 @@ static wr_status wr__shell_loop_stencil(const wr_shell_desc *desc, const wr_mesh
                                    : wr_subdiv_loop_stencil(m, f, n, verts, W, NULL);
 }
 
+/* Placement of face g in a 2D chart (ON THE LOOP ELEMENT, per-corner rest): the rigid motion (a
+ * rotation, then a translation) that maps g's rest corners a, b of the shared edge onto their chart
+ * positions Pa, Pb in the neighbour's placement — edge directions aligned, midpoints matched (a sewn
+ * edge may differ slightly in length between its two panels). */
+static void wr__shell_chart_place(const double uvg[6], int ka, int kb, const double Pa[2], const double Pb[2], double out[6]) {
+    double qx = uvg[2 * kb] - uvg[2 * ka], qy = uvg[2 * kb + 1] - uvg[2 * ka + 1], px = Pb[0] - Pa[0], py = Pb[1] - Pa[1];
+    double th = atan2(py, px) - atan2(qy, qx), c = cos(th), sn = sin(th), t[2];
+    double mx = 0.5 * (uvg[2 * ka] + uvg[2 * kb]), my = 0.5 * (uvg[2 * ka + 1] + uvg[2 * kb + 1]);
+    int k;
+    t[0] = 0.5 * (Pa[0] + Pb[0]) - (c * mx - sn * my);
+    t[1] = 0.5 * (Pa[1] + Pb[1]) - (sn * mx + c * my);
+    for (k = 0; k < 3; ++k) {
+        double u = uvg[2 * k], w = uvg[2 * k + 1];
+        out[2 * k] = c * u - sn * w + t[0];
+        out[2 * k + 1] = sn * u + c * w + t[1];
+    }
+}
+
+#define WR__SHELL_CHART_MAX (3 * WR_SUBDIV_MAX_VALENCE)
+
+/* Rest positions Rl (n*3, z = 0) of face f's stencil verts[0..n) from the per-face rest corners
+ * (ON THE LOOP ELEMENT): the faces around f's corners, which hold every stencil vertex, are laid into
+ * f's own chart one shared edge at a time (wr__shell_chart_place), so a seam or a panel boundary
+ * inside the stencil is crossed by a rigid motion and the 1-ring is one flat piece. A vertex gets
+ * the position of the first face that places it. WR_ERR_GEOMETRY when a stencil vertex is not reached. */
+static wr_status wr__shell_loop_chart(const wr_mesh *m, int32_t f, int32_t n, const int32_t *verts, double *Rl, wr_diag *diag) {
+    int32_t F[WR__SHELL_CHART_MAX], nF = 0, c, i, j, k, q;
+    double P[6 * WR__SHELL_CHART_MAX];
+    unsigned char placed[WR__SHELL_CHART_MAX];
+    int grew = 1;
+    F[nF++] = f; /* f first, in its own rest corners */
+    wr_mesh_face_rest(m, f, P);
+    placed[0] = 1;
+    for (c = 0; c < 3; ++c) /* the faces of f's corners' 1-rings */
+        for (i = m->vf_start[m->faces[3 * f + c]]; i < m->vf_start[m->faces[3 * f + c] + 1]; ++i) {
+            int32_t g = m->vf[i], dup = 0;
+            for (j = 0; j < nF; ++j) dup |= F[j] == g;
+            if (!dup && nF < WR__SHELL_CHART_MAX) placed[nF] = 0, F[nF++] = g;
+        }
+    while (grew) {
+        grew = 0;
+        for (j = 1; j < nF; ++j) {
+            double uvg[6];
+            if (placed[j]) continue;
+            wr_mesh_face_rest(m, F[j], uvg);
+            for (k = 0; k < 3 && !placed[j]; ++k) {
+                int32_t e = m->face_edges[3 * F[j] + k], a = m->faces[3 * F[j] + (k + 1) % 3], b = m->faces[3 * F[j] + (k + 2) % 3];
+                int32_t h = m->edge_faces[2 * e] == F[j] ? m->edge_faces[2 * e + 1] : m->edge_faces[2 * e];
+                for (q = 0; q < nF; ++q)
+                    if (placed[q] && F[q] == h) {
+                        int ca = 0, cb = 0, r;
+                        for (r = 0; r < 3; ++r) {
+                            if (m->faces[3 * h + r] == a) ca = r;
+                            if (m->faces[3 * h + r] == b) cb = r;
+                        }
+                        wr__shell_chart_place(uvg, (k + 1) % 3, (k + 2) % 3, P + 6 * q + 2 * ca, P + 6 * q + 2 * cb, P + 6 * j);
+                        placed[j] = 1, grew = 1;
+                        break;
+                    }
+            }
+        }
+    }
+    for (i = 0; i < n; ++i) {
+        int found = 0;
+        for (j = 0; j < nF && !found; ++j)
+            for (c = 0; c < 3 && placed[j] && !found; ++c)
+                if (m->faces[3 * F[j] + c] == verts[i]) {
+                    Rl[3 * i] = P[6 * j + 2 * c], Rl[3 * i + 1] = P[6 * j + 2 * c + 1], Rl[3 * i + 2] = 0.0;
+                    found = 1;
+                }
+        if (!found)
+            return wr_fail(diag, WR_ERR_GEOMETRY, f, "shell: face %d's Loop stencil vertex %d is not reached by its rest chart",
+                           (int)f, (int)verts[i]);
+    }
+    return WR_OK;
+}
+
+/* p of face f's stencil (verts/W, n entries) at local positions Rl (n*3, stencil order) */
+static void wr__shell_loop_p_local(int32_t n, const double *W, const double *Rl, double p[15]) {
+    int32_t j, k, i;
+    memset(p, 0, sizeof(double) * 15);
+    for (k = 0; k < 5; ++k)
+        for (j = 0; j < n; ++j)
+            for (i = 0; i < 3; ++i) p[3 * k + i] += W[(k + 1) * n + j] * Rl[3 * j + i];
+}
+
 static wr_status wr__shell_build_loop(wr_shell *s, const wr_mesh *m, const wr_shell_desc *desc, wr_diag *diag) {
     int32_t f, v, total = 0, n, verts[WR_SUBDIV_MAX_STENCIL];
     double W[6 * WR_SUBDIV_MAX_STENCIL], *R = NULL, nu = s->poisson;
     wr_status st = WR_OK;
     if (desc->loop_element != 1 && desc->loop_element != 2)
         return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "shell: loop_element %d is not 0, 1 or 2", (int)desc->loop_element);
-    if (s->orthotropic || s->membrane != WR_MEMBRANE_STVK || m->corner_rest)
-        return wr_fail(diag, WR_ERR_UNSUPPORTED, -1,
-                       "shell: the Loop element needs the isotropic StVK membrane and one rest position per vertex");
+    if (s->orthotropic || s->membrane != WR_MEMBRANE_STVK)
+        return wr_fail(diag, WR_ERR_UNSUPPORTED, -1, "shell: the Loop element needs the isotropic StVK membrane");
     s->loop_start = (int32_t *)wr_calloc_array((size_t)m->nf + 1, sizeof(int32_t));
     s->loop_rest = (wr_shell_koiter_rest *)wr_calloc_array((size_t)m->nf, sizeof(wr_shell_koiter_rest));
     s->loop_wt = (double *)wr_calloc_array((size_t)m->nf, sizeof(double));
@@ -1262,7 +1352,13 @@ static wr_status wr__shell_build_loop(wr_shell *s, const wr_mesh *m, const wr_sh
         wr__shell_loop_stencil(desc, m, f, &n, verts, W);
         memcpy(s->loop_vert + j0, verts, sizeof(int32_t) * (size_t)n);
         memcpy(s->loop_w + 6 * (size_t)j0, W, sizeof(double) * 6 * (size_t)n);
-        wr__shell_loop_p(s, f, R, p);
+        if (m->corner_rest && !desc->rest_pos3) { /* per-corner rest: each stencil in its own chart */
+            double Rl[3 * WR_SUBDIV_MAX_STENCIL];
+            if ((st = wr__shell_loop_chart(m, f, n, verts, Rl, diag)) != WR_OK) goto done;
+            wr__shell_loop_p_local(n, W, Rl, p);
+        } else {
+            wr__shell_loop_p(s, f, R, p);
+        }
         kr->A[0] = p[0] * p[0] + p[1] * p[1] + p[2] * p[2];
         kr->A[1] = p[0] * p[3] + p[1] * p[4] + p[2] * p[5];
         kr->A[2] = p[3] * p[3] + p[4] * p[4] + p[5] * p[5];
