@@ -228,12 +228,14 @@ static wr_status sheet_solve(sheet_case *c, const wr_obstacle *ob, double R, dou
 }
 
 /* The same sheet on the analytic sphere and on a 48 × 96 lat–long triangulation of it (chord error
- * c = R(1 − cos(π/48)) = 0.21 mm): both converge, no vertex of the mesh solve is inside the mesh
- * (CCD), and every vertex agrees in (ρ, z) = (distance from the vertical axis, height) within 3c.
- * Rotation about the vertical axis through the pin is a zero-energy mode of the analytic problem
- * (frictionless ball), which the facets break, so Cartesian positions are not compared. Measured
- * with this tool's solver (sheet 10 × 10): max (ρ, z) difference 0.57, 0.40, 0.051, 0.028 mm at
- * 24, 48, 96, 192 bands (0.67c, 1.9c, 0.95c, 2.1c); Π differs by 0.21 % at 48 bands. */
+ * c = R(1 − cos(π/48)) = 0.21 mm), d̂ = 2 mm: both converge, no vertex of the mesh solve is inside
+ * the mesh (CCD), and every vertex agrees in (ρ, z) = (distance from the vertical axis, height)
+ * within c + d̂: each contact vertex rests somewhere in (0, d̂) off its surface (where depends on κ
+ * and, for the mesh's IPC sum over the faces within d̂, on how many faces that is: ON MESH
+ * OBSTACLES) and the two surfaces are c apart. Rotation about the vertical axis through the pin is
+ * a zero-energy mode of the analytic problem (frictionless ball), which the facets break, so
+ * Cartesian positions are not compared. Measured (sheet 10 × 10): 1.18 mm at 48 bands, d̂ = 2 mm;
+ * 0.82 / 0.86 mm at 48 / 96 bands with d̂ = 1 mm; 0.65 / 0.32 mm with d̂ = 0.5 mm; Π within 0.1 %. */
 Test(statics_mesh, sheet_on_triangulated_sphere_matches_analytic) {
     const double R = 0.1;
     sheet_case c;
@@ -263,7 +265,7 @@ Test(statics_mesh, sheet_on_triangulated_sphere_matches_analytic) {
     }
     cr_expect(dmin > 0.0 && dmin == sm.min_distance, "mesh: min distance %.3e (stats %.3e)", dmin, sm.min_distance);
     cr_expect(sm.n_contacts > 0 && sa.n_contacts > 0, "both rest on the ball (%d, %d contacts)", sm.n_contacts, sa.n_contacts);
-    cr_expect(dmax <= 3 * chord, "(rho, z) differ by %.3e m (chord error %.2e m)", dmax, chord);
+    cr_expect(dmax <= chord + 2e-3, "(rho, z) differ by %.3e m (chord error %.2e m, d̂ 2 mm)", dmax, chord);
     cr_expect(fabs(sm.energy - sa.energy) <= 1e-2 * fabs(sa.energy), "Π %.6e (mesh) vs %.6e", sm.energy, sa.energy);
     cr_log_info("sheet on sphere: analytic %d Newton, mesh %d Newton, max (rho, z) diff %.3e m, min d %.3e m", sa.iterations,
                 sm.iterations, dmax, sm.min_distance);
