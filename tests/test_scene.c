@@ -294,6 +294,16 @@ Test(scene, end_to_end_uniform_stretch_and_outputs) {
     wr_scene_free(&sc);
 }
 
+/* writes text to dir/name (path out: the full path) */
+static void write_temp_file(const char *dir, const char *name, const char *text, char *path, size_t cap) {
+    FILE *f;
+    snprintf(path, cap, "%s/%s", dir, name);
+    f = fopen(path, "w");
+    cr_assert_not_null(f);
+    fputs(text, f);
+    fclose(f);
+}
+
 /* wr_scene_load reads through core's wr_file_read: a file gives the same scene as parsing its text
  * (relative paths resolve against the file's directory), a missing file is WR_ERR_IO naming it. */
 Test(scene, load_from_file) {
@@ -301,13 +311,8 @@ Test(scene, load_from_file) {
     char dir[] = "/tmp/wr_test_sceneloadXXXXXX", path[256];
     wr_scene sc;
     wr_diag d;
-    FILE *f;
     cr_assert_not_null(mkdtemp(dir));
-    snprintf(path, sizeof path, "%s/scene.json", dir);
-    f = fopen(path, "w");
-    cr_assert_not_null(f);
-    fputs(t, f);
-    fclose(f);
+    write_temp_file(dir, "scene.json", t, path, sizeof path);
     cr_assert_eq(wr_scene_load(&sc, path, &d), WR_OK, "%s", d.message);
     cr_expect_str_eq(sc.name, "from-file");
     cr_expect(strncmp(sc.mesh.path, dir, strlen(dir)) == 0, "obj path '%s' not under '%s'", sc.mesh.path, dir);
@@ -389,13 +394,8 @@ Test(scene, obstacles_reach_the_solve) {
     const char *obs[2] = {"{\"type\": \"obj\", \"path\": \"%s\", \"translate\": [0.05, 0.05, -0.104]}",
                           "{\"type\": \"sphere\", \"center\": [0.1, 0.1, -0.104], \"radius\": 0.1}"};
     int k;
-    FILE *f;
     cr_assert_not_null(mkdtemp(dir));
-    snprintf(obj, sizeof obj, "%s/cube.obj", dir);
-    f = fopen(obj, "w");
-    cr_assert_not_null(f);
-    fputs(cube_obj, f);
-    fclose(f);
+    write_temp_file(dir, "cube.obj", cube_obj, obj, sizeof obj);
     for (k = 0; k < 2; ++k) {
         wr_scene sc;
         wr_scene_run run;
