@@ -165,7 +165,8 @@
  *   cloth edge length should be below the body's feature size). Ownership: wr_obstacle.mesh is
  *   borrowed; the caller keeps the wr_obstacle_mesh alive through every solve that uses it and frees
  *   it with wr_obstacle_mesh_free. Cost: one nearest-face query per free vertex per energy, gradient,
- *   Hessian and CCD evaluation, O(log nf) each on a well-shaped body.
+ *   Hessian and CCD evaluation, O(log nf) each on a well-shaped body. A skirt hung on the mannequin
+ *   and its TFW wrinkles: docs/notes-tfw-dress.md.
  *
  * ON MOTIONS AND INCREMENTS
  *   A wr_motion moves a vertex set rigidly or by a simple deformation of its reference positions
