@@ -291,6 +291,7 @@ static cJSON *summary_fields(const tfw_job *j, cJSON *root) {
         if (run->sc->pressure != 0.0) cJSON_AddNumberToObject(base, "enclosed_volume_m3", ls->volume);
     }
     if (run->sc->pressure != 0.0) cJSON_AddNumberToObject(base, "pressure_Pa", run->sc->pressure);
+    wr_scene_run_contact_json(run, base); /* obstacles, min_obstacle_distance_m, contact_vertices */
     cJSON_AddStringToObject(sqp, "status", wr_status_string(j->tst));
     cJSON_AddNumberToObject(sqp, "iterations", r->sqp.iterations);
     cJSON_AddNumberToObject(sqp, "rejected", r->sqp.n_rejected);

@@ -276,6 +276,29 @@ JSON
         "$B/wrinkle-tfw" "$tmp/tfw.json" -o "$tmp/tfw" --quiet --levels 1
     keep_on_failure "wrinkle-tfw invalid scene" "$tmp/tfw/wrinkled.obj" "$tmp/tfw/summary.json" -- \
         "$B/wrinkle-tfw" "$tmp/badscene.json" -o "$tmp/tfw"
+    # $.obstacles (statics.h ON MESH OBSTACLES): a sheet pinned 4 mm over the mannequin's head converges
+    # and the summary reports the contact; a bad type, a missing and an unreadable OBJ path are refused
+    # with one line naming the JSON path
+    cat > "$tmp/tfwhead.json" <<'JSON'
+{"name": "tfw_mannequin_head", "mesh": {"type": "rectangle", "width": 0.3, "height": 0.3, "nx": 8, "ny": 8},
+ "material": {"young": 1e5, "poisson": 0.3, "thickness": 1e-3, "density": 200},
+ "energy": {"membrane": "tft", "bending": "quadratic"}, "gravity": [0, 0, -9.81],
+ "boundary": [{"name": "pin", "box": {"min": [0.14, 0.14, -0.01], "max": [0.16, 0.16, 0.01]}}],
+ "obstacles": [{"type": "mannequin", "target_faces": 10000, "translate": [0.139, 0.161, -1.740]}],
+ "contact": {"dhat": 2e-3}, "solver": {"load_steps": 1}}
+JSON
+    if (cd "$tmp/cwd" && "$B/wrinkle-tfw" "$tmp/tfwhead.json" -o "$tmp/tfwhead" --quiet --levels 0) >/dev/null 2>"$tmp/err" </dev/null &&
+        python3 -c 'import json, sys; b = json.load(open(sys.argv[1]))["base"]
+sys.exit(not (b["status"] == "WR_OK" and b["obstacles"] == 1 and 0 < b["min_obstacle_distance_m"] < 2e-3 and b["contact_vertices"] > 0))' \
+            "$tmp/tfwhead/summary.json"; then ok
+    else bad "wrinkle-tfw mannequin obstacle: failed, not converged or no contact in summary.json"; head -n 3 "$tmp/err"; fi
+    for c in 'torus|"type": "torus"|$.obstacles[0].type' 'nopath|"type": "obj"|$.obstacles[0].path' \
+             'unreadable|"type": "obj", "path": "missing.obj"|$.obstacles[0].path'; do
+        n=${c%%|*}; r=${c#*|}; r=${r%%|*}; want=${c##*|}
+        sed "s/\"type\": \"mannequin\", \"target_faces\": 10000/$r/" "$tmp/tfwhead.json" > "$tmp/tfwobs_$n.json"
+        expect_fail "wrinkle-tfw obstacle $n" "$B/wrinkle-tfw" "$tmp/tfwobs_$n.json" -o "$tmp/t0" --quiet
+        grep -qF "$want" "$tmp/err" && ok || { bad "wrinkle-tfw obstacle $n: stderr does not name $want"; cat "$tmp/err"; }
+    done
 fi
 if [ -x "$B/wrinkle-sim" ]; then
     expect_fail "wrinkle-sim missing scene" "$B/wrinkle-sim" "$tmp/none.json" -o "$tmp/sim0"

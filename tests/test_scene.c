@@ -139,6 +139,18 @@ Test(scene, every_error_names_the_json_path) {
         {"{" BASE_MESH ", " BASE_MAT ", \"probes\": [{\"from\": [0,0], \"to\": [1,0], \"samples\": 4}]}", "$.probes[0].samples: must be an integer"},
         {"{" BASE_MESH ", " BASE_MAT ", \"probes\": [{\"from\": [0,0], \"to\": [1,0], \"dir\": [0,0,0]}]}", "$.probes[0].dir: must be nonzero"},
         {"{" BASE_MESH ", " BASE_MAT ", \"probes\": [{\"from\": [0,0], \"to\": [1,0], \"closed\": \"no\"}]}", "$.probes[0].closed: must be true or false"},
+        {"{" BASE_MESH ", " BASE_MAT ", \"obstacles\": {}}", "$.obstacles: must be an array"},
+        {"{" BASE_MESH ", " BASE_MAT ", \"obstacles\": [1]}", "$.obstacles[0]: must be an object"},
+        {"{" BASE_MESH ", " BASE_MAT ", \"obstacles\": [{\"type\": \"torus\"}]}", "$.obstacles[0].type: must be one of"},
+        {"{" BASE_MESH ", " BASE_MAT ", \"obstacles\": [{\"radius\": 1}]}", "$.obstacles[0].type: is required"},
+        {"{" BASE_MESH ", " BASE_MAT ", \"obstacles\": [{\"type\": \"plane\", \"point\": [0,0,0], \"normal\": [0,0,1]}, {\"type\": \"obj\"}]}", "$.obstacles[1].path: is required"},
+        {"{" BASE_MESH ", " BASE_MAT ", \"obstacles\": [{\"type\": \"obj\", \"path\": \"b.obj\", \"radius\": 1}]}", "$.obstacles[0].radius: unknown key"},
+        {"{" BASE_MESH ", " BASE_MAT ", \"obstacles\": [{\"type\": \"sphere\", \"center\": [0,0,0]}]}", "$.obstacles[0]: sphere needs center and radius"},
+        {"{" BASE_MESH ", " BASE_MAT ", \"obstacles\": [{\"type\": \"plane\", \"point\": [0,0,0], \"normal\": [0,0,0]}]}", "$.obstacles[0]: plane normal must not be zero"},
+        {"{" BASE_MESH ", " BASE_MAT ", \"obstacles\": [{\"type\": \"mannequin\", \"target_faces\": 10}]}", "$.obstacles[0].target_faces: must be an integer"},
+        {"{" BASE_MESH ", " BASE_MAT ", \"obstacles\": [{\"type\": \"mannequin\", \"translate\": [0, 1]}]}", "$.obstacles[0].translate: must be an array of 3"},
+        {"{" BASE_MESH ", " BASE_MAT ", \"contact\": {\"dhat\": 0}}", "$.contact.dhat: must be > 0"},
+        {"{" BASE_MESH ", " BASE_MAT ", \"contact\": {\"friction\": 0.3}}", "$.contact.friction: unknown key"},
     };
     size_t i;
     for (i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
@@ -193,6 +205,13 @@ Test(scene, build_errors) {
     cr_assert(strstr(d.message, "$.mesh.resolution") != NULL, "%s", d.message);
     cr_assert_eq(parse(t4, &sc, &d), WR_OK);
     cr_assert_eq(wr_scene_run_create(&run, &sc, &d), WR_ERR_IO);
+    {
+        /* an unreadable obstacle OBJ is named by its JSON path */
+        const char *t5 = "{" BASE_MESH ", " BASE_MAT ", \"obstacles\": [{\"type\": \"obj\", \"path\": \"/nonexistent/b.obj\"}]}";
+        cr_assert_eq(parse(t5, &sc, &d), WR_OK, "%s", d.message);
+        cr_assert_eq(wr_scene_run_create(&run, &sc, &d), WR_ERR_IO);
+        cr_assert(strncmp(d.message, "$.obstacles[0].path: ", 21) == 0, "%s", d.message);
+    }
     cr_assert_eq(wr_scene_load(&sc, "/nonexistent/scene.json", &d), WR_ERR_IO);
 }
 
@@ -275,6 +294,16 @@ Test(scene, end_to_end_uniform_stretch_and_outputs) {
     wr_scene_free(&sc);
 }
 
+/* writes text to dir/name (path out: the full path) */
+static void write_temp_file(const char *dir, const char *name, const char *text, char *path, size_t cap) {
+    FILE *f;
+    snprintf(path, cap, "%s/%s", dir, name);
+    f = fopen(path, "w");
+    cr_assert_not_null(f);
+    fputs(text, f);
+    fclose(f);
+}
+
 /* wr_scene_load reads through core's wr_file_read: a file gives the same scene as parsing its text
  * (relative paths resolve against the file's directory), a missing file is WR_ERR_IO naming it. */
 Test(scene, load_from_file) {
@@ -282,13 +311,8 @@ Test(scene, load_from_file) {
     char dir[] = "/tmp/wr_test_sceneloadXXXXXX", path[256];
     wr_scene sc;
     wr_diag d;
-    FILE *f;
     cr_assert_not_null(mkdtemp(dir));
-    snprintf(path, sizeof path, "%s/scene.json", dir);
-    f = fopen(path, "w");
-    cr_assert_not_null(f);
-    fputs(t, f);
-    fclose(f);
+    write_temp_file(dir, "scene.json", t, path, sizeof path);
     cr_assert_eq(wr_scene_load(&sc, path, &d), WR_OK, "%s", d.message);
     cr_expect_str_eq(sc.name, "from-file");
     cr_expect(strncmp(sc.mesh.path, dir, strlen(dir)) == 0, "obj path '%s' not under '%s'", sc.mesh.path, dir);
@@ -357,4 +381,76 @@ Test(scene, pressurised_pillow_is_a_mylar_balloon) {
     cr_assert(run.steps[run.n_steps_done - 1].st.volume > 0.0);
     wr_scene_run_free(&run);
     wr_scene_free(&sc);
+}
+
+/* $.obstacles reach the solve: a sheet pinned at its centre 4 mm above a closed cube read from an
+ * OBJ (moved by translate) and, in a second scene, above an analytic sphere. The sheet drapes over
+ * the obstacle (contacts, flaps below its top) and no vertex is inside it; the summary reports it. */
+Test(scene, obstacles_reach_the_solve) {
+    static const char cube_obj[] = "v 0 0 0\nv 0.1 0 0\nv 0 0.1 0\nv 0.1 0.1 0\nv 0 0 0.1\nv 0.1 0 0.1\nv 0 0.1 0.1\n"
+                                   "v 0.1 0.1 0.1\nf 1 3 4\nf 1 4 2\nf 5 6 8\nf 5 8 7\nf 1 2 6\nf 1 6 5\nf 3 7 8\n"
+                                   "f 3 8 4\nf 1 5 7\nf 1 7 3\nf 2 4 8\nf 2 8 6\n";
+    char dir[] = "/tmp/wr_test_sceneXXXXXX", obj[256], txt[2048], path[256];
+    const char *obs[2] = {"{\"type\": \"obj\", \"path\": \"%s\", \"translate\": [0.05, 0.05, -0.104]}",
+                          "{\"type\": \"sphere\", \"center\": [0.1, 0.1, -0.104], \"radius\": 0.1}"};
+    int k;
+    cr_assert_not_null(mkdtemp(dir));
+    write_temp_file(dir, "cube.obj", cube_obj, obj, sizeof obj);
+    for (k = 0; k < 2; ++k) {
+        wr_scene sc;
+        wr_scene_run run;
+        wr_diag d;
+        char o[512];
+        int32_t i;
+        double zmin = 1e300, dmin = 1e300;
+        const wr_statics_stats *st;
+        snprintf(o, sizeof o, obs[k], obj);
+        snprintf(txt, sizeof txt,
+                 "{\"mesh\": {\"type\": \"rectangle\", \"width\": 0.2, \"height\": 0.2, \"nx\": 8, \"ny\": 8},"
+                 "\"material\": {\"young\": 1e5, \"poisson\": 0.3, \"thickness\": 1e-3, \"density\": 200},"
+                 "\"energy\": {\"membrane\": \"tft\", \"bending\": \"quadratic\"}, \"gravity\": [0, 0, -9.81],"
+                 "\"boundary\": [{\"box\": {\"min\": [0.09, 0.09, -1], \"max\": [0.11, 0.11, 1]}}],"
+                 "\"obstacles\": [%s], \"contact\": {\"dhat\": 2e-3}, \"solver\": {\"load_steps\": 1, \"max_iter\": 400}}",
+                 o);
+        cr_assert_eq(parse(txt, &sc, &d), WR_OK, "%s", d.message);
+        cr_assert_eq(sc.n_obstacles, 1);
+        cr_assert_float_eq(sc.contact_dhat, 2e-3, 0.0);
+        cr_assert_eq(wr_scene_run_create(&run, &sc, &d), WR_OK, "%s", d.message);
+        cr_assert_eq(run.n_fixed, 1);
+        cr_assert_eq(wr_scene_run_solve(&run, NULL, NULL, &d), WR_OK, "case %d: %s", k, d.message);
+        for (i = 0; i < run.mesh.nv; ++i) {
+            zmin = fmin(zmin, run.x[3 * i + 2]);
+            if (!run.fixed[i]) dmin = fmin(dmin, wr_obstacle_distance(&run.obstacles[0], run.x + 3 * i, NULL));
+        }
+        st = &run.steps[run.n_steps_done - 1].st;
+        cr_expect(dmin > 0.0 && dmin < 2e-3 && dmin == st->min_distance, "case %d: min distance %.3e (stats %.3e)", k, dmin,
+                  st->min_distance);
+        cr_expect(st->n_contacts > 0 && zmin < -0.02, "case %d: drapes over the obstacle (%d contacts, z min %.3f)", k,
+                  (int)st->n_contacts, zmin);
+        cr_assert_eq(wr_scene_run_write(&run, dir, &d), WR_OK, "%s", d.message);
+        snprintf(path, sizeof path, "%s/summary.json", dir);
+        {
+            char *js = NULL;
+            size_t n = 0;
+            cJSON *j;
+            cr_assert_eq(wr_file_read(path, &js, &n, &d), WR_OK, "%s", d.message);
+            j = cJSON_Parse(js);
+            cr_assert_not_null(j);
+            cr_expect(cJSON_GetObjectItem(j, "obstacles") && cJSON_GetObjectItem(j, "obstacles")->valuedouble == 1.0);
+            cr_expect(cJSON_GetObjectItem(j, "min_obstacle_distance_m") &&
+                      cJSON_GetObjectItem(j, "min_obstacle_distance_m")->valuedouble == dmin);
+            cr_expect(cJSON_GetObjectItem(j, "contact_vertices") != NULL);
+            cJSON_Delete(j);
+            wr_free(js);
+        }
+        unlink(path);
+        snprintf(path, sizeof path, "%s/deformed.obj", dir);
+        unlink(path);
+        snprintf(path, sizeof path, "%s/fields.ply", dir);
+        unlink(path);
+        wr_scene_run_free(&run);
+        wr_scene_free(&sc);
+    }
+    unlink(obj);
+    rmdir(dir);
 }

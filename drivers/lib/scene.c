@@ -196,6 +196,26 @@ void wr_scene_free(wr_scene *sc) {
     }
 }
 
+/* the file path at key "path" of o (JSON path P), relative to the scene's directory unless absolute */
+static wr_status sc_parse_path(wr_jin *c, const cJSON *o, const char *P, const char *base_dir, char *out, size_t cap) {
+    char rel[WR_SCENE_PATH_LEN], q[160];
+    wr_status st;
+    size_t lb, lr;
+    rel[0] = 0;
+    if ((st = wr_jin_str(c, o, "path", P, rel, sizeof rel, 1)) != WR_OK) return st;
+    if (rel[0] == '/' || !base_dir || !base_dir[0]) {
+        snprintf(out, cap, "%s", rel);
+        return WR_OK;
+    }
+    lb = strlen(base_dir), lr = strlen(rel);
+    wr_jin_path(q, sizeof q, P, "path");
+    if (lb + lr + 2 > cap) return wr_jin_err(c, q, "resolved path too long");
+    memcpy(out, base_dir, lb);
+    out[lb] = '/';
+    memcpy(out + lb + 1, rel, lr + 1);
+    return WR_OK;
+}
+
 static wr_status sc_parse_mesh(wr_jin *c, const cJSON *o, const char *base_dir, wr_scene_mesh *m) {
     static const char *const keys[] = {"type", "path", "width", "height", "radius", "resolution", "nx", "ny",
                                        "seed", "pillow", "angle", NULL};
@@ -222,21 +242,8 @@ static wr_status sc_parse_mesh(wr_jin *c, const cJSON *o, const char *base_dir, 
         m->kind != WR_SCENE_MESH_DELAUNAY_RECTANGLE)
         return wr_jin_err(c, "$.mesh.pillow", "needs a flat panel: type rectangle, disk or delaunay_rectangle");
     switch (m->kind) {
-    case WR_SCENE_MESH_OBJ: {
-        char rel[WR_SCENE_PATH_LEN];
-        rel[0] = 0;
-        if ((st = wr_jin_str(c, o, "path", P, rel, sizeof rel, 1)) != WR_OK) return st;
-        if (rel[0] == '/' || !base_dir || !base_dir[0])
-            snprintf(m->path, sizeof m->path, "%s", rel);
-        else {
-            size_t lb = strlen(base_dir), lr = strlen(rel);
-            if (lb + lr + 2 > sizeof m->path) return wr_jin_err(c, "$.mesh.path", "resolved path too long");
-            memcpy(m->path, base_dir, lb);
-            m->path[lb] = '/';
-            memcpy(m->path + lb + 1, rel, lr + 1);
-        }
-        return WR_OK;
-    }
+    case WR_SCENE_MESH_OBJ:
+        return sc_parse_path(c, o, P, base_dir, m->path, sizeof m->path);
     case WR_SCENE_MESH_RECTANGLE:
     case WR_SCENE_MESH_DELAUNAY_RECTANGLE:
     case WR_SCENE_MESH_LATTICE:
@@ -425,9 +432,82 @@ static wr_status sc_parse_probe(wr_jin *c, const cJSON *o, const char *P, wr_sce
     return wr_jin_bool(c, o, "closed", P, &pr->closed);
 }
 
+static const char *const SC_OBSTACLES[] = {"plane", "sphere", "capsule", "obj", "mannequin", NULL};
+
+/* $.obstacles[k] (P): the keys of its type, required ones present (docs/scene-format.md) */
+static wr_status sc_parse_obstacle(wr_jin *c, const cJSON *e, const char *P, const char *base_dir, wr_scene_obstacle *ob) {
+    static const char *const keys[5][6] = {{"type", "point", "normal", NULL},
+                                           {"type", "center", "radius", NULL},
+                                           {"type", "p", "q", "radius", NULL},
+                                           {"type", "path", "translate", NULL},
+                                           {"type", "height", "target_faces", "cell", "translate", NULL}};
+    wr_obstacle *o = &ob->analytic;
+    int kind = 0, f1 = 0, f2 = 0, f3 = 0;
+    wr_status st;
+    if (!cJSON_IsObject(e)) return wr_jin_err(c, P, "must be an object");
+    if ((st = wr_jin_enum(c, e, "type", P, SC_OBSTACLES, &kind, 1)) != WR_OK) return st;
+    if ((st = wr_jin_keys(c, e, P, keys[kind])) != WR_OK) return st;
+    ob->kind = (wr_scene_obstacle_kind)kind;
+    switch (ob->kind) {
+    case WR_SCENE_OBSTACLE_PLANE:
+        o->kind = WR_OBSTACLE_PLANE;
+        if ((st = wr_jin_vec(c, e, "point", P, 3, o->p, &f1)) != WR_OK || (st = wr_jin_vec(c, e, "normal", P, 3, o->normal, &f2)) != WR_OK)
+            return st;
+        if (!f1 || !f2) return wr_jin_err(c, P, "plane needs point and normal");
+        if (!(o->normal[0] * o->normal[0] + o->normal[1] * o->normal[1] + o->normal[2] * o->normal[2] > 0.0))
+            return wr_jin_err(c, P, "plane normal must not be zero");
+        return WR_OK;
+    case WR_SCENE_OBSTACLE_SPHERE:
+        o->kind = WR_OBSTACLE_SPHERE;
+        if ((st = wr_jin_vec(c, e, "center", P, 3, o->p, &f1)) != WR_OK || (st = wr_jin_num(c, e, "radius", P, WR_JIN_POS, &o->radius, &f2)) != WR_OK)
+            return st;
+        return f1 && f2 ? WR_OK : wr_jin_err(c, P, "sphere needs center and radius");
+    case WR_SCENE_OBSTACLE_CAPSULE:
+        o->kind = WR_OBSTACLE_CAPSULE;
+        if ((st = wr_jin_vec(c, e, "p", P, 3, o->p, &f1)) != WR_OK || (st = wr_jin_vec(c, e, "q", P, 3, o->q, &f2)) != WR_OK ||
+            (st = wr_jin_num(c, e, "radius", P, WR_JIN_POS, &o->radius, &f3)) != WR_OK)
+            return st;
+        return f1 && f2 && f3 ? WR_OK : wr_jin_err(c, P, "capsule needs p, q and radius");
+    case WR_SCENE_OBSTACLE_OBJ:
+        o->kind = WR_OBSTACLE_MESH;
+        if ((st = sc_parse_path(c, e, P, base_dir, ob->path, sizeof ob->path)) != WR_OK) return st;
+        return wr_jin_vec(c, e, "translate", P, 3, ob->translate, NULL);
+    default:
+        o->kind = WR_OBSTACLE_MESH;
+        if ((st = wr_jin_num(c, e, "height", P, WR_JIN_POS, &ob->body.height, NULL)) != WR_OK ||
+            (st = wr_jin_int(c, e, "target_faces", P, WR_BODY_MIN_FACES, 2000000, &ob->body.target_faces, NULL)) != WR_OK ||
+            (st = wr_jin_num(c, e, "cell", P, WR_JIN_POS, &ob->body.cell, NULL)) != WR_OK)
+            return st;
+        return wr_jin_vec(c, e, "translate", P, 3, ob->translate, NULL);
+    }
+}
+
+/* $.obstacles (array, <= WR_SCENE_MAX_OBSTACLES) and $.contact {dhat, stiffness} */
+static wr_status sc_parse_contact(wr_jin *c, const cJSON *root, const char *base_dir, wr_scene *sc) {
+    static const char *const ckeys[] = {"dhat", "stiffness", NULL};
+    const cJSON *o = cJSON_GetObjectItemCaseSensitive(root, "obstacles"), *e;
+    wr_status st;
+    int i;
+    if (o) {
+        if (!cJSON_IsArray(o)) return wr_jin_err(c, "$.obstacles", "must be an array");
+        if (cJSON_GetArraySize(o) > WR_SCENE_MAX_OBSTACLES)
+            return wr_jin_err(c, "$.obstacles", "more than %d obstacles", WR_SCENE_MAX_OBSTACLES);
+        for (e = o->child, i = 0; e; e = e->next, ++i) {
+            char p[64];
+            snprintf(p, sizeof p, "$.obstacles[%d]", i);
+            if ((st = sc_parse_obstacle(c, e, p, base_dir, &sc->obstacle[i])) != WR_OK) return st;
+            sc->n_obstacles = i + 1;
+        }
+    }
+    if (!(o = cJSON_GetObjectItemCaseSensitive(root, "contact"))) return WR_OK;
+    if ((st = wr_jin_keys(c, o, "$.contact", ckeys)) != WR_OK) return st;
+    if ((st = wr_jin_num(c, o, "dhat", "$.contact", WR_JIN_POS, &sc->contact_dhat, NULL)) != WR_OK) return st;
+    return wr_jin_num(c, o, "stiffness", "$.contact", WR_JIN_POS, &sc->contact_stiffness, NULL);
+}
+
 wr_status wr_scene_parse(wr_scene *sc, const char *text, size_t len, const char *base_dir, wr_diag *diag) {
     static const char *const keys[] = {"name", "mesh", "material", "energy", "gravity", "ramp_gravity", "pressure",
-                                       "boundary", "solver", "probes", NULL};
+                                       "boundary", "solver", "probes", "obstacles", "contact", NULL};
     static const char *const ekeys[] = {"membrane", "bending", "element", NULL};
     wr_jin c;
     cJSON *root;
@@ -495,6 +575,7 @@ wr_status wr_scene_parse(wr_scene *sc, const char *text, size_t len, const char 
     }
     o = cJSON_GetObjectItemCaseSensitive(root, "solver");
     if (o && (st = sc_parse_solver(&c, o, sc)) != WR_OK) goto done;
+    if ((st = sc_parse_contact(&c, root, base_dir, sc)) != WR_OK) goto done;
     o = cJSON_GetObjectItemCaseSensitive(root, "probes");
     if (o) {
         if (!cJSON_IsArray(o)) {
@@ -681,7 +762,11 @@ static wr_status sc_build_panel(const wr_scene_mesh *g, wr_mesh *m, wr_obj_group
 }
 
 void wr_scene_run_free(wr_scene_run *run) {
+    int32_t k;
     if (!run) return;
+    for (k = 0; run->obstacle_meshes && run->sc && k < run->sc->n_obstacles; ++k) wr_obstacle_mesh_free(&run->obstacle_meshes[k]);
+    free(run->obstacle_meshes);
+    free(run->obstacles);
     wr_shell_free(&run->shell);
     wr_mesh_free(&run->mesh);
     wr_obj_groups_free(&run->groups);
@@ -690,6 +775,38 @@ void wr_scene_run_free(wr_scene_run *run) {
     free(run->x);
     free(run->steps);
     memset(run, 0, sizeof *run);
+}
+
+/* $.obstacles: the analytic ones as given, the meshes read (obj) or made (mannequin), moved by their
+ * translate, and built into statics.h mesh obstacles; errors name the obstacle's JSON path */
+static wr_status sc_build_obstacles(wr_scene_run *run, wr_diag *diag) {
+    const wr_scene *sc = run->sc;
+    int32_t k, i;
+    if (sc->n_obstacles == 0) return WR_OK;
+    run->obstacles = (wr_obstacle *)calloc((size_t)sc->n_obstacles, sizeof(wr_obstacle));
+    run->obstacle_meshes = (wr_obstacle_mesh *)calloc((size_t)sc->n_obstacles, sizeof(wr_obstacle_mesh));
+    if (!run->obstacles || !run->obstacle_meshes) return wr_fail(diag, WR_ERR_NOMEM, -1, "$.obstacles: out of memory");
+    for (k = 0; k < sc->n_obstacles; ++k) {
+        const wr_scene_obstacle *ob = &sc->obstacle[k];
+        wr_mesh m;
+        wr_status st;
+        char msg[WR_DIAG_MESSAGE_LEN];
+        run->obstacles[k] = ob->analytic;
+        if (ob->kind != WR_SCENE_OBSTACLE_OBJ && ob->kind != WR_SCENE_OBSTACLE_MANNEQUIN) continue;
+        memset(&m, 0, sizeof m);
+        st = ob->kind == WR_SCENE_OBSTACLE_OBJ ? wr_mesh_read_obj(&m, ob->path, diag) : wr_body_mannequin(&m, &ob->body, diag);
+        if (st == WR_OK) {
+            for (i = 0; i < 3 * m.nv; ++i) m.pos[i] += ob->translate[i % 3];
+            st = wr_obstacle_mesh_create(&run->obstacle_meshes[k], m.pos, m.nv, m.faces, m.nf, diag);
+        }
+        wr_mesh_free(&m);
+        if (st != WR_OK) {
+            snprintf(msg, sizeof msg, "%s", diag ? diag->message : "");
+            return wr_fail(diag, st, k, "$.obstacles[%d]%s: %s", (int)k, ob->kind == WR_SCENE_OBSTACLE_OBJ ? ".path" : "", msg);
+        }
+        run->obstacles[k].mesh = &run->obstacle_meshes[k];
+    }
+    return WR_OK;
 }
 
 wr_status wr_scene_run_create(wr_scene_run *run, const wr_scene *sc, wr_diag *diag) {
@@ -747,6 +864,7 @@ wr_status wr_scene_run_create(wr_scene_run *run, const wr_scene *sc, wr_diag *di
             run->fixed[i] = 1;
             run->n_fixed++;
         }
+    if ((st = sc_build_obstacles(run, diag)) != WR_OK) goto fail;
     run->t_setup = wr_time_seconds() - t0;
     return WR_OK;
 fail:
@@ -852,6 +970,10 @@ wr_status wr_scene_run_solve(wr_scene_run *run, wr_scene_progress_fn progress, v
     d.loads.pressure = sc->pressure;
     d.start.perturb = sc->perturb;
     d.start.seed = sc->seed;
+    d.contact.obstacles = run->obstacles;
+    d.contact.n_obstacles = sc->n_obstacles;
+    d.contact.dhat = sc->contact_dhat;
+    d.contact.stiffness = sc->contact_stiffness;
     d.hessian.projection = sc->hessian == WR_SCENE_HESSIAN_EXACT ? WR_PROJECT_NONE : WR_PROJECT_FAST;
     d.linear.solver.method = sc->linear;
     d.linear.solver.rel_tol = sc->linear_tol;
@@ -920,6 +1042,18 @@ wr_status wr_scene_run_probe(const wr_scene_run *run, int32_t i, wr_spectrum_res
 /* ---------------------------------------------------------------------------------------------- */
 /* output                                                                                          */
 
+void wr_scene_run_contact_json(const wr_scene_run *run, cJSON *obj) {
+    const wr_statics_stats *last;
+    if (run->sc->n_obstacles == 0) return;
+    cJSON_AddNumberToObject(obj, "obstacles", run->sc->n_obstacles);
+    if (run->n_steps_done == 0) return;
+    last = &run->steps[run->n_steps_done - 1].st;
+    cJSON_AddNumberToObject(obj, "min_obstacle_distance_m", last->min_distance);
+    cJSON_AddNumberToObject(obj, "contact_vertices", last->n_contacts);
+    cJSON_AddNumberToObject(obj, "contact_dhat_m", last->contact_dhat);
+    cJSON_AddNumberToObject(obj, "contact_stiffness_N_m", last->contact_stiffness);
+}
+
 static wr_status sc_write_summary(const wr_scene_run *run, const char *path, wr_diag *diag) {
     const wr_scene *sc = run->sc;
     cJSON *root = cJSON_CreateObject(), *a, *o;
@@ -955,6 +1089,7 @@ static wr_status sc_write_summary(const wr_scene_run *run, const char *path, wr_
         if (sc->pressure != 0.0) cJSON_AddNumberToObject(root, "enclosed_volume_m3", last->volume);
     }
     if (sc->pressure != 0.0) cJSON_AddNumberToObject(root, "pressure_Pa", sc->pressure);
+    wr_scene_run_contact_json(run, root);
     cJSON_AddNumberToObject(root, "max_displacement_m", maxu);
     cJSON_AddNumberToObject(root, "newton_iterations", run->newton_iterations);
     cJSON_AddNumberToObject(root, "linear_iterations", run->linear_iterations);

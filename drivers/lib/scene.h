@@ -11,7 +11,7 @@
  *                                                  one-line message that names the JSON path, e.g.
  *                                                  "$.material.young: must be a number > 0".
  *   wr_scene_load(sc, path, diag)                  read a file, then parse (base_dir = its directory)
- *   wr_scene_run_create(run, sc, diag)             rest mesh, shell, prescribed vertex sets
+ *   wr_scene_run_create(run, sc, diag)             rest mesh, shell, prescribed vertex sets, obstacles
  *   wr_scene_run_solve(run, progress, user, diag)  load stepping through statics.h's incremental
  *                                                  solve (each set a WR_MOTION_AFFINE): step k of N
  *                                                  applies fraction k/N of every prescribed motion
@@ -33,6 +33,7 @@
 #define WR_SCENE_PATH_LEN 1024
 #define WR_SCENE_MAX_BC 16
 #define WR_SCENE_MAX_PROBES 32
+#define WR_SCENE_MAX_OBSTACLES 16
 
 typedef enum wr_scene_mesh_kind {
     WR_SCENE_MESH_OBJ = 0,
@@ -89,6 +90,24 @@ typedef struct wr_scene_probe {
     int closed;
 } wr_scene_probe;
 
+/* $.obstacles[k]: an analytic obstacle (statics.h wr_obstacle), or a triangle mesh (statics.h ON MESH
+ * OBSTACLES) read from an OBJ or made by body.h's mannequin, moved by translate [m]. */
+typedef enum wr_scene_obstacle_kind {
+    WR_SCENE_OBSTACLE_PLANE = 0,
+    WR_SCENE_OBSTACLE_SPHERE,
+    WR_SCENE_OBSTACLE_CAPSULE,
+    WR_SCENE_OBSTACLE_OBJ,
+    WR_SCENE_OBSTACLE_MANNEQUIN
+} wr_scene_obstacle_kind;
+
+typedef struct wr_scene_obstacle {
+    wr_scene_obstacle_kind kind;
+    wr_obstacle analytic;         /* plane / sphere / capsule (kind, p, q, normal, radius) */
+    char path[WR_SCENE_PATH_LEN]; /* obj, resolved against the scene file's directory */
+    wr_body_desc body;            /* mannequin (height, target_faces, cell; zero = body.h default) */
+    double translate[3];          /* obj / mannequin [m] */
+} wr_scene_obstacle;
+
 /* exact: statics.h hessian.projection = WR_PROJECT_NONE (shifted until SPD); projected: per-element
  * PSD projection; hybrid: projected to a loose tolerance, then exact (statics.h increments.hybrid_switch) */
 typedef enum wr_scene_hessian {
@@ -109,6 +128,9 @@ typedef struct wr_scene {
     int32_t n_bc;
     wr_scene_probe probe[WR_SCENE_MAX_PROBES];
     int32_t n_probes;
+    wr_scene_obstacle obstacle[WR_SCENE_MAX_OBSTACLES];
+    int32_t n_obstacles;
+    double contact_dhat, contact_stiffness; /* $.contact [m], [N/m]; 0 = statics.h ON CONTACT defaults */
     /* solver */
     wr_solver_method linear;
     double linear_tol;
@@ -138,6 +160,8 @@ typedef struct wr_scene_run {
     uint8_t *fixed;       /* nv */
     int32_t *bc_of;       /* nv: prescribed set of each vertex, -1 = free */
     double *x;            /* nv*3 current positions */
+    wr_obstacle *obstacles;     /* n_obstacles of the scene, handed to every solve */
+    wr_obstacle_mesh *obstacle_meshes; /* n_obstacles (zeroed for the analytic ones), owned */
     int32_t n_fixed;
     wr_scene_step_stats *steps; /* load_steps */
     int32_t n_steps_done;
@@ -167,6 +191,10 @@ wr_status wr_scene_run_probe(const wr_scene_run *run, int32_t i, wr_spectrum_res
 wr_status wr_scene_run_probe_samples(const wr_scene_run *run, int32_t i, double *pts, double *vals, double *ds,
                                      wr_diag *diag);
 wr_status wr_scene_run_write(const wr_scene_run *run, const char *dir, wr_diag *diag);
+/* With obstacles: adds "obstacles" (count) and, after a solve, the last load step's
+ * "min_obstacle_distance_m", "contact_vertices", "contact_dhat_m", "contact_stiffness_N_m" to obj. */
+struct cJSON;
+void wr_scene_run_contact_json(const wr_scene_run *run, struct cJSON *obj);
 void wr_scene_run_free(wr_scene_run *run);
 
 const char *wr_scene_mesh_kind_name(wr_scene_mesh_kind k);

@@ -18,6 +18,7 @@
  *   wr_bvh_self_pairs(b, fn, user, diag)         every pair i < j whose boxes overlap
  *   wr_bvh_pairs(a, b, fn, user, diag)           every (i in a, j in b) whose boxes overlap
  *   wr_bvh_box_query(b, box, fn, user, diag)     every i whose box overlaps one query box (no allocation)
+ *   wr_bvh_nearest(b, p, fn, user, best)         the primitive nearest a point (fn: its squared distance)
  *   wr_bvh_free(b)
  *   wr_collision_point_triangle_dist2(p, t0, t1, t2, g, H, w)  squared distance, ∇ (12), ∇² (144)
  *   wr_collision_edge_edge_dist2(a0, a1, b0, b1, g, H, w)      the same for two segments
@@ -189,6 +190,14 @@ WRDEF wr_status wr_bvh_pairs(const wr_bvh *a, const wr_bvh *b, wr_bvh_pair_fn fn
  * Allocates nothing (ON THE BROAD PHASE). A q with a NaN meets nothing. WR_ERR_INVALID_ARG for a
  * NULL tree, box or callback. */
 WRDEF wr_status wr_bvh_box_query(const wr_bvh *b, const double q[6], wr_bvh_prim_fn fn, void *user, wr_diag *diag);
+/* Squared distance [m²] from the query point to primitive i (the nearest-primitive query). */
+typedef double (*wr_bvh_dist2_fn)(void *user, int32_t i);
+/* The primitive nearest point p: depth first, the nearer child first, skipping every node whose box
+ * is farther from p than the best primitive so far (the box distance is a lower bound of its
+ * primitives', so the answer is exact: the smallest fn over all primitives, ties to the first found).
+ * Returns that squared distance and *best = its id; HUGE_VAL and *best = -1 for an empty tree.
+ * Allocates nothing (the fixed stack of wr_bvh_box_query). */
+WRDEF double wr_bvh_nearest(const wr_bvh *b, const double p[3], wr_bvh_dist2_fn fn, void *user, int32_t *best);
 WRDEF void wr_bvh_free(wr_bvh *b);
 
 /* ---- pair distances, barrier, CCD ------------------------------------------------------------- */
@@ -610,6 +619,42 @@ WRDEF wr_status wr_bvh_box_query(const wr_bvh *b, const double q[6], wr_bvh_prim
             if (wr__bvh_overlap(b->pbox + 6 * i, q)) rs = fn(user, b->prim[i]);
     }
     return rs;
+}
+
+/* squared distance from point p to the closed box bx (0 inside) */
+static double wr__bvh_box_dist2(const double *bx, const double p[3]) {
+    double s = 0.0;
+    int a;
+    for (a = 0; a < 3; ++a) {
+        double e = p[a] < bx[a] ? bx[a] - p[a] : (p[a] > bx[3 + a] ? p[a] - bx[3 + a] : 0.0);
+        s += e * e;
+    }
+    return s;
+}
+
+WRDEF double wr_bvh_nearest(const wr_bvh *b, const double p[3], wr_bvh_dist2_fn fn, void *user, int32_t *best) {
+    int32_t st[WR__BVH_QUERY_STACK], n = 0, id = -1;
+    double bd = HUGE_VAL;
+    if (b && b->n > 0) st[n++] = 0;
+    while (n > 0) {
+        int32_t nd = st[--n], i, l;
+        if (!(wr__bvh_box_dist2(b->box + 6 * nd, p) < bd)) continue;
+        if ((l = b->left[nd]) >= 0) {
+            int near = wr__bvh_box_dist2(b->box + 6 * (l + 1), p) < wr__bvh_box_dist2(b->box + 6 * l, p);
+            if (n + 2 > WR__BVH_QUERY_STACK) break; /* cannot happen (ON THE BROAD PHASE: depth <= 31) */
+            st[n++] = near ? l : l + 1;             /* the farther child waits */
+            st[n++] = near ? l + 1 : l;
+            continue;
+        }
+        for (i = b->lo[nd]; i < b->hi[nd]; ++i) {
+            double s;
+            if (!(wr__bvh_box_dist2(b->pbox + 6 * i, p) < bd)) continue;
+            s = fn(user, b->prim[i]);
+            if (s < bd) bd = s, id = b->prim[i];
+        }
+    }
+    if (best) *best = id;
+    return bd;
 }
 
 /* ==== pair distances ============================================================================ */

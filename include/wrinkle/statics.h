@@ -1,6 +1,7 @@
 /* wrinkle/statics.h — static equilibrium of a shell (shell.h): gravity, prescribed vertices and
  * prescribed motions (stretch, shear, twist) with load increments, uniform pressure on closed or
- * sewn surfaces, frictionless contact with analytic obstacles (plane, sphere, capsule), solved by
+ * sewn surfaces, frictionless contact with analytic obstacles (plane, sphere, capsule) and static
+ * triangle meshes (a body: ON MESH OBSTACLES), solved by
  * newton.h's projected Newton with linear solves through spd.h.
  * wrinkle v0.1.0 — MIT licence (see LICENSE). Needs core.h, sparse.h, spd.h (CHOLMOD when built
  * with WR_USE_CHOLMOD=1, see spd.h), newton.h, mesh.h, tft.h, shell.h, eigen.h (the opt-in
@@ -25,6 +26,10 @@
  *   wr_statics_pressure_element(x9, origin, p, g, H) one face's −p·V_f, gradient and Hessian
  *   wr_obstacle_distance(obstacle, x, grad)          signed distance [m] and its gradient
  *   wr_statics_barrier(d, dhat, kappa, b1, b2)       contact barrier κ·b(d) and its d-derivatives
+ *   wr_obstacle_barrier(o, x, dhat, kappa, d, g, H)  one vertex's contact term, ∇ and PSD Hessian
+ *   wr_obstacle_mesh_create(m, V, nv, F, nf, diag)   a triangle-mesh obstacle (BVH, pseudonormals);
+ *   wr_obstacle_mesh_free(m)                         released by the caller after the solves
+ *   wr_obstacle_mesh_closest(m, x, c, grad, face)    signed distance to it, closest point, ∇d
  *   desc.stability                                   test each equilibrium with the true Hessian's
  *                                                    lowest eigenpairs, escape along negative modes
  *   wr_statics_stability_test(shell, x, desc, stats, diag)   that test alone, at a given x
@@ -111,7 +116,7 @@
  *   term enters exactly once either way.)
  *
  * ON CONTACT
- *   Frictionless, vertex against analytic obstacle, one-sided (the obstacle is where d < 0): an
+ *   Frictionless, vertex against obstacle, one-sided (the obstacle is where d < 0): an
  *   IPC-style log barrier (Li et al. 2020) b(d) = −(d − d̂)² ln(d/d̂) for 0 < d < d̂, 0 for d >= d̂
  *   (wr_collision_barrier of collision.h; wr_statics_barrier is the same function)
  *   (C², so Newton sees a smooth energy), scaled by κ [N/m]. Only free vertices feel it; a free
@@ -128,6 +133,40 @@
  *   close to the surface a loaded vertex rests (within d̂), never whether it passes. Contact is
  *   vertex-only: a face between vertices outside a curved obstacle can cut into it by its sagitta
  *   (≈ l²/(8R) for edge length l, radius R); min_distance in the stats is measured at the vertices.
+ *   One function, wr_obstacle_barrier, gives every kind's term, gradient and Hessian.
+ *
+ * ON MESH OBSTACLES (WR_OBSTACLE_MESH: a body, a mannequin, any closed triangle mesh)
+ *   d(x) = ±|x − c|, c the closest point of the mesh, found exactly by collision.h's BVH over the
+ *   face boxes (wr_bvh_nearest: a node is skipped only when its box is farther than the best face
+ *   so far) and its point–triangle distance. The sign is that of (x − c)·n with n the angle-
+ *   weighted pseudonormal of the closest feature (Bærentzen & Aanæs 2005): the face normal when c
+ *   is inside a face, the normalised sum of the two face normals on an edge, Σ corner angle × face
+ *   normal at a vertex. On a closed, consistently oriented (outward, counter-clockwise) 2-manifold
+ *   mesh this is exactly inside (< 0) / outside (> 0), so d is the true signed distance, 1-Lipschitz,
+ *   and the CCD of ON CONTACT is as safe as for the analytic kinds: no vertex crosses to d <= 0 or
+ *   gets closer than WR_STATICS_CCD_KEEP of its distance in one step. On an open mesh
+ *   (n_open_edges > 0) the sign flips behind the boundary, where |d| > 0: d jumps there and the CCD
+ *   is not guaranteed; use closed meshes. ∇d = sign·(x − c)/|x − c|.
+ *   The signed d decides "inside" (WR_ERR_GEOMETRY at the start), the CCD, min_distance and the
+ *   contact count. The barrier itself is IPC's (Li et al. 2020): for 0 < d < d̂, Σ_f κ b(d_f) over
+ *   every face f with unsigned point–triangle distance d_f < d̂ (a box query of the BVH). Not κ b(d)
+ *   of the closest face alone: d is only C⁰ in its gradient where the closest face changes inside a
+ *   concave crease (the medial axis), and a vertex resting in such a crease — everywhere on a
+ *   marching-tetrahedra body — stalls Newton (a 64-vertex sheet on the mannequin's head: |∇Π|
+ *   stuck at 0.77 of its start after 1000 steps, converged in 133 with the sum). Each d_f is C¹
+ *   off its triangle, so the sum is; the price is that a vertex near an edge or mesh vertex feels
+ *   every face there (multiplicity 2 to ~6), so it rests somewhat farther off within (0, d̂) than
+ *   against one smooth surface — never outside d̂, never inside. The curvature term κ b'(d_f) ∇²d_f
+ *   is dropped per face as for the analytic kinds: d_f is the distance to a convex set, ∇²d_f is
+ *   PSD with ∇²d_f ∇d_f = 0, so with b' < 0 that term is negative semidefinite on the complement of
+ *   ∇d_f and the exact PSD projection of each face's term is κ b''(d_f) ∇d_f∇d_fᵀ; their sum is
+ *   assembled. Contact stays vertex-only: a cloth face can cut through a convex mesh
+ *   edge or vertex by its sagitta, and a sharp mesh feature can poke between cloth vertices (the
+ *   cloth edge length should be below the body's feature size). Ownership: wr_obstacle.mesh is
+ *   borrowed; the caller keeps the wr_obstacle_mesh alive through every solve that uses it and frees
+ *   it with wr_obstacle_mesh_free. Cost: one nearest-face query per free vertex per energy, gradient,
+ *   Hessian and CCD evaluation, O(log nf) each on a well-shaped body. A skirt hung on the mannequin
+ *   and its TFW wrinkles: docs/notes-tfw-dress.md.
  *
  * ON MOTIONS AND INCREMENTS
  *   A wr_motion moves a vertex set rigidly or by a simple deformation of its reference positions
@@ -236,10 +275,25 @@ typedef struct wr_statics_stats {
 
 
 typedef enum wr_obstacle_kind {
-    WR_OBSTACLE_PLANE = 0,  /* half-space n·(x − p) < 0 is solid */
-    WR_OBSTACLE_SPHERE = 1, /* |x − p| < radius is solid */
-    WR_OBSTACLE_CAPSULE = 2 /* distance to segment [p, q] < radius is solid */
+    WR_OBSTACLE_PLANE = 0,   /* half-space n·(x − p) < 0 is solid */
+    WR_OBSTACLE_SPHERE = 1,  /* |x − p| < radius is solid */
+    WR_OBSTACLE_CAPSULE = 2, /* distance to segment [p, q] < radius is solid */
+    WR_OBSTACLE_MESH = 3     /* inside a closed triangle mesh is solid (ON MESH OBSTACLES) */
 } wr_obstacle_kind;
+
+/* A static triangle-mesh obstacle (ON MESH OBSTACLES): copies of the positions and faces, unit face
+ * normals, the angle-weighted pseudonormals of its edges and vertices, and a BVH over the face
+ * boxes (collision.h). Made by wr_obstacle_mesh_create, released by wr_obstacle_mesh_free. */
+typedef struct wr_obstacle_mesh {
+    int32_t nv, nf;
+    double *pos;    /* nv*3 [m] */
+    int32_t *faces; /* nf*3, counter-clockwise seen from outside */
+    double *fn;     /* nf*3 unit face normals */
+    double *en;     /* nf*9: unit pseudonormal of edge k = (faces[3f+k], faces[3f+(k+1)%3]) of face f */
+    double *vn;     /* nv*3 unit angle-weighted vertex pseudonormals */
+    int32_t n_open_edges; /* edges with one face (0 for a closed mesh: the sign is then exact) */
+    wr_bvh bvh;     /* over the nf face boxes */
+} wr_obstacle_mesh;
 
 typedef struct wr_obstacle {
     wr_obstacle_kind kind;
@@ -247,6 +301,7 @@ typedef struct wr_obstacle {
     double q[3];      /* capsule: other axis end [m] (p == q is a sphere) */
     double normal[3]; /* plane: normal towards the free side (any length > 0) */
     double radius;    /* sphere, capsule [m] > 0 */
+    const wr_obstacle_mesh *mesh; /* WR_OBSTACLE_MESH: borrowed, kept alive by the caller */
 } wr_obstacle;
 
 /* Options grouped by concern; zero means default everywhere, filled in by one private function:
@@ -400,6 +455,26 @@ WRDEF double wr_obstacle_distance(const wr_obstacle *o, const double x[3], doubl
 /* κ·b(d) with b(d) = −(d−d̂)² ln(d/d̂) on (0, d̂), 0 for d >= d̂, +∞ for d <= 0; b1 = κ b'(d),
  * b2 = κ b''(d) when non-NULL. */
 WRDEF double wr_statics_barrier(double d, double dhat, double kappa, double *b1, double *b2);
+/* The contact term of one vertex x against obstacle o: returns κ b(d(x)) (+∞ when d <= 0); g (3) =
+ * κ b'(d) ∇d and H (9, row-major) = κ b''(d) ∇d∇dᵀ (the PSD Hessian of ON CONTACT) when non-NULL,
+ * zero beyond d̂; *dist (may be NULL) = d(x) [m], signed. For a mesh, when 0 < d < d̂: the sum of
+ * those terms over the faces within d̂, on their unsigned distances (ON MESH OBSTACLES). Every
+ * obstacle kind, one function. */
+WRDEF double wr_obstacle_barrier(const wr_obstacle *o, const double x[3], double dhat, double kappa, double *dist,
+                                 double g[3], double H[9]);
+/* Builds the mesh obstacle from nv vertices V (nv*3 [m]) and nf faces F (nf*3, outward counter-
+ * clockwise); V and F are copied. WR_ERR_INVALID_ARG for NULL arrays, nv < 3 or nf < 1, an index
+ * outside [0, nv) (item = face); WR_ERR_DOMAIN for a non-finite coordinate (item = vertex);
+ * WR_ERR_GEOMETRY for a degenerate face (repeated corner or zero area, item = face); WR_ERR_NOMEM.
+ * On failure m is left zeroed (safe to free). */
+WRDEF wr_status wr_obstacle_mesh_create(wr_obstacle_mesh *m, const double *V, int32_t nv, const int32_t *F, int32_t nf,
+                                        wr_diag *diag);
+WRDEF void wr_obstacle_mesh_free(wr_obstacle_mesh *m);
+/* Signed distance [m] from x to the mesh (> 0 outside, ON MESH OBSTACLES); closest (3) = the nearest
+ * surface point and grad (3) = ∇d = ±(x − closest)/|x − closest| (unit; the feature's pseudonormal
+ * on the surface) when non-NULL; *face (may be NULL) = the nearest face. */
+WRDEF double wr_obstacle_mesh_closest(const wr_obstacle_mesh *m, const double x[3], double closest[3], double grad[3],
+                                      int32_t *face);
 
 #ifdef __cplusplus
 }
@@ -413,6 +488,7 @@ WRDEF double wr_statics_barrier(double d, double dhat, double kappa, double *b1,
 
 #include <float.h>
 #include <math.h>
+#include <stdlib.h> /* qsort */
 #include <string.h>
 
 #ifdef __cplusplus
@@ -493,6 +569,7 @@ WRDEF double wr_statics_volume(const wr_shell *s, const double *x, const double 
 WRDEF double wr_obstacle_distance(const wr_obstacle *o, const double x[3], double grad[3]) {
     double r[3], n, dd;
     int i;
+    if (o->kind == WR_OBSTACLE_MESH) return wr_obstacle_mesh_closest(o->mesh, x, NULL, grad, NULL);
     if (o->kind == WR_OBSTACLE_PLANE) {
         n = sqrt(o->normal[0] * o->normal[0] + o->normal[1] * o->normal[1] + o->normal[2] * o->normal[2]);
         dd = 0.0;
@@ -524,6 +601,236 @@ WRDEF double wr_obstacle_distance(const wr_obstacle *o, const double x[3], doubl
 /* the IPC barrier lives in collision.h (one concept, one place); kept here under its old name */
 WRDEF double wr_statics_barrier(double d, double dhat, double kappa, double *b1, double *b2) {
     return wr_collision_barrier(d, dhat, kappa, b1, b2);
+}
+
+/* ---- mesh obstacles (ON MESH OBSTACLES) ---------------------------------------------------------- */
+
+WRDEF void wr_obstacle_mesh_free(wr_obstacle_mesh *m) {
+    if (!m) return;
+    wr_free(m->pos);
+    wr_free(m->faces);
+    wr_free(m->fn);
+    wr_free(m->en);
+    wr_free(m->vn);
+    wr_bvh_free(&m->bvh);
+    memset(m, 0, sizeof *m);
+}
+
+static void wr__obsmesh_unit(double *v) {
+    double n = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    if (n > 0.0) v[0] /= n, v[1] /= n, v[2] /= n;
+}
+
+/* unit face normals, angle-weighted vertex pseudonormals, face boxes (nf*6); WR_ERR_GEOMETRY on a
+ * degenerate face */
+static wr_status wr__obsmesh_faces(wr_obstacle_mesh *m, double *boxes, wr_diag *diag) {
+    int32_t f, k, i;
+    memset(m->vn, 0, sizeof(double) * 3 * (size_t)m->nv);
+    for (f = 0; f < m->nf; ++f) {
+        const int32_t *t = m->faces + 3 * f;
+        const double *P[3];
+        double e1[3], e2[3], *n = m->fn + 3 * f, area2, scale = 0.0;
+        for (k = 0; k < 3; ++k) P[k] = m->pos + 3 * t[k];
+        for (i = 0; i < 3; ++i) e1[i] = P[1][i] - P[0][i], e2[i] = P[2][i] - P[0][i];
+        n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+        n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+        n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+        area2 = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        for (i = 0; i < 3; ++i) scale += e1[i] * e1[i] + e2[i] * e2[i];
+        if (t[0] == t[1] || t[1] == t[2] || t[2] == t[0] || !(area2 > 1e-12 * scale))
+            return wr_fail(diag, WR_ERR_GEOMETRY, f, "obstacle mesh: face %d is degenerate (zero area)", (int)f);
+        wr__obsmesh_unit(n);
+        for (k = 0; k < 3; ++k) { /* corner angle at P[k] weights the vertex pseudonormal */
+            const double *a = P[k], *b = P[(k + 1) % 3], *c = P[(k + 2) % 3];
+            double u[3], w[3], cr[3], ang;
+            for (i = 0; i < 3; ++i) u[i] = b[i] - a[i], w[i] = c[i] - a[i];
+            cr[0] = u[1] * w[2] - u[2] * w[1], cr[1] = u[2] * w[0] - u[0] * w[2], cr[2] = u[0] * w[1] - u[1] * w[0];
+            ang = atan2(sqrt(cr[0] * cr[0] + cr[1] * cr[1] + cr[2] * cr[2]), u[0] * w[0] + u[1] * w[1] + u[2] * w[2]);
+            for (i = 0; i < 3; ++i) m->vn[3 * t[k] + i] += ang * n[i];
+        }
+        for (i = 0; i < 3; ++i) {
+            boxes[6 * f + i] = fmin(P[0][i], fmin(P[1][i], P[2][i]));
+            boxes[6 * f + 3 + i] = fmax(P[0][i], fmax(P[1][i], P[2][i]));
+        }
+    }
+    for (i = 0; i < m->nv; ++i) wr__obsmesh_unit(m->vn + 3 * i);
+    return WR_OK;
+}
+
+typedef struct wr__obsmesh_he {
+    uint64_t key; /* (min vertex, max vertex) */
+    int32_t he;   /* 3f + k */
+} wr__obsmesh_he;
+
+static int wr__obsmesh_he_cmp(const void *a, const void *b) {
+    const wr__obsmesh_he *x = (const wr__obsmesh_he *)a, *y = (const wr__obsmesh_he *)b;
+    return x->key < y->key ? -1 : (x->key > y->key ? 1 : (x->he > y->he) - (x->he < y->he));
+}
+
+/* edge pseudonormals: the normalised sum of the unit normals of the faces sharing the edge */
+static wr_status wr__obsmesh_edges(wr_obstacle_mesh *m, wr_diag *diag) {
+    int32_t n = 3 * m->nf, i, j, k;
+    wr__obsmesh_he *h = (wr__obsmesh_he *)wr_alloc_array((size_t)n, sizeof(wr__obsmesh_he));
+    if (!h) return wr_fail(diag, WR_ERR_NOMEM, -1, "obstacle mesh: out of memory (%d faces)", (int)m->nf);
+    for (i = 0; i < n; ++i) {
+        uint64_t a = (uint64_t)m->faces[i], b = (uint64_t)m->faces[3 * (i / 3) + (i % 3 + 1) % 3];
+        h[i].key = a < b ? (a << 32 | b) : (b << 32 | a);
+        h[i].he = i;
+    }
+    qsort(h, (size_t)n, sizeof *h, wr__obsmesh_he_cmp);
+    m->n_open_edges = 0;
+    for (i = 0; i < n; i = j) {
+        double s[3] = {0.0, 0.0, 0.0};
+        for (j = i; j < n && h[j].key == h[i].key; ++j)
+            for (k = 0; k < 3; ++k) s[k] += m->fn[3 * (h[j].he / 3) + k];
+        if (j - i == 1) m->n_open_edges++;
+        wr__obsmesh_unit(s);
+        for (k = i; k < j; ++k) memcpy(m->en + 3 * h[k].he, s, sizeof s);
+    }
+    wr_free(h);
+    return WR_OK;
+}
+
+WRDEF wr_status wr_obstacle_mesh_create(wr_obstacle_mesh *m, const double *V, int32_t nv, const int32_t *F, int32_t nf,
+                                        wr_diag *diag) {
+    double *boxes;
+    int32_t i;
+    wr_status rs;
+    if (!m) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "obstacle mesh: NULL mesh");
+    memset(m, 0, sizeof *m);
+    if (!V || !F || nv < 3 || nf < 1)
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "obstacle mesh: %d vertices, %d faces (needs >= 3 and >= 1)", (int)nv,
+                       (int)nf);
+    for (i = 0; i < 3 * nv; ++i)
+        if (!(V[i] - V[i] == 0.0))
+            return wr_fail(diag, WR_ERR_DOMAIN, i / 3, "obstacle mesh: vertex %d is not finite", (int)(i / 3));
+    for (i = 0; i < 3 * nf; ++i)
+        if (F[i] < 0 || F[i] >= nv)
+            return wr_fail(diag, WR_ERR_INVALID_ARG, i / 3, "obstacle mesh: face %d has vertex %d outside [0, %d)",
+                           (int)(i / 3), (int)F[i], (int)nv);
+    m->nv = nv, m->nf = nf;
+    m->pos = (double *)wr_alloc_array(3 * (size_t)nv, sizeof(double));
+    m->faces = (int32_t *)wr_alloc_array(3 * (size_t)nf, sizeof(int32_t));
+    m->fn = (double *)wr_alloc_array(3 * (size_t)nf, sizeof(double));
+    m->en = (double *)wr_alloc_array(9 * (size_t)nf, sizeof(double));
+    m->vn = (double *)wr_alloc_array(3 * (size_t)nv, sizeof(double));
+    boxes = (double *)wr_alloc_array(6 * (size_t)nf, sizeof(double));
+    if (!m->pos || !m->faces || !m->fn || !m->en || !m->vn || !boxes) {
+        rs = wr_fail(diag, WR_ERR_NOMEM, -1, "obstacle mesh: out of memory (%d faces)", (int)nf);
+        goto done;
+    }
+    memcpy(m->pos, V, sizeof(double) * 3 * (size_t)nv);
+    memcpy(m->faces, F, sizeof(int32_t) * 3 * (size_t)nf);
+    if ((rs = wr__obsmesh_faces(m, boxes, diag)) == WR_OK && (rs = wr__obsmesh_edges(m, diag)) == WR_OK)
+        rs = wr_bvh_build(&m->bvh, nf, boxes, diag);
+done:
+    wr_free(boxes);
+    if (rs != WR_OK) wr_obstacle_mesh_free(m);
+    return rs;
+}
+
+typedef struct wr__obsmesh_q {
+    const wr_obstacle_mesh *m;
+    const double *x;
+} wr__obsmesh_q;
+
+static double wr__obsmesh_dist2(void *user, int32_t f) {
+    const wr__obsmesh_q *q = (const wr__obsmesh_q *)user;
+    const int32_t *t = q->m->faces + 3 * f;
+    const double *P = q->m->pos;
+    return wr_collision_point_triangle_dist2(q->x, P + 3 * t[0], P + 3 * t[1], P + 3 * t[2], NULL, NULL, NULL, NULL);
+}
+
+WRDEF double wr_obstacle_mesh_closest(const wr_obstacle_mesh *m, const double x[3], double closest[3], double grad[3],
+                                      int32_t *face) {
+    wr__obsmesh_q q;
+    const double *P, *pn;
+    const int32_t *t;
+    double w[4], c[3], r[3], rr, side;
+    int32_t f, i, nz = 0, last = 0, first = -1;
+    q.m = m, q.x = x;
+    wr_bvh_nearest(&m->bvh, x, wr__obsmesh_dist2, &q, &f);
+    if (face) *face = f;
+    if (f < 0) return HUGE_VAL;
+    t = m->faces + 3 * f, P = m->pos;
+    wr_collision_point_triangle_dist2(x, P + 3 * t[0], P + 3 * t[1], P + 3 * t[2], NULL, NULL, w, NULL);
+    for (i = 0; i < 3; ++i) {
+        c[i] = -(w[1] * P[3 * t[0] + i] + w[2] * P[3 * t[1] + i] + w[3] * P[3 * t[2] + i]);
+        r[i] = x[i] - c[i];
+    }
+    /* the closest feature from the barycentric weights (exact zeros off it): face, edge or vertex */
+    for (i = 0; i < 3; ++i)
+        if (w[1 + i] != 0.0) {
+            if (first < 0) first = i;
+            last = i, ++nz;
+        }
+    if (nz == 3)
+        pn = m->fn + 3 * f;
+    else if (nz == 2) /* edge (first, last): index first unless it is the edge (2, 0) */
+        pn = m->en + 9 * f + 3 * (first == 0 && last == 2 ? 2 : first);
+    else
+        pn = m->vn + 3 * t[first < 0 ? 0 : first];
+    rr = sqrt(r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
+    side = r[0] * pn[0] + r[1] * pn[1] + r[2] * pn[2] < 0.0 ? -1.0 : 1.0;
+    if (closest) memcpy(closest, c, sizeof c);
+    if (grad)
+        for (i = 0; i < 3; ++i) grad[i] = rr > 0.0 ? side * r[i] / rr : pn[i];
+    return side * rr;
+}
+
+/* the IPC sum of ON MESH OBSTACLES over the faces within d̂ of one point */
+typedef struct wr__obsmesh_sum {
+    const wr_obstacle_mesh *m;
+    const double *x;
+    double dhat, kappa, E, g[3], H[9];
+} wr__obsmesh_sum;
+
+static wr_status wr__obsmesh_sum_face(void *user, int32_t f) {
+    wr__obsmesh_sum *q = (wr__obsmesh_sum *)user;
+    const int32_t *t = q->m->faces + 3 * f;
+    const double *P = q->m->pos;
+    double gs[12], s = wr_collision_point_triangle_dist2(q->x, P + 3 * t[0], P + 3 * t[1], P + 3 * t[2], gs, NULL, NULL, NULL);
+    double d = sqrt(s), b1, b2, gd[3];
+    int i, j;
+    if (!(d < q->dhat)) return WR_OK;
+    q->E += wr_statics_barrier(d, q->dhat, q->kappa, &b1, &b2);
+    if (!(d > 0.0)) return WR_OK;
+    for (i = 0; i < 3; ++i) gd[i] = gs[i] / (2.0 * d);
+    for (i = 0; i < 3; ++i) {
+        q->g[i] += b1 * gd[i];
+        for (j = 0; j < 3; ++j) q->H[3 * i + j] += b2 * gd[i] * gd[j];
+    }
+    return WR_OK;
+}
+
+static double wr__obsmesh_barrier(const wr_obstacle_mesh *m, const double x[3], double dhat, double kappa, double g[3],
+                                  double H[9]) {
+    wr__obsmesh_sum q;
+    double box[6];
+    int i;
+    memset(&q, 0, sizeof q);
+    q.m = m, q.x = x, q.dhat = dhat, q.kappa = kappa;
+    for (i = 0; i < 3; ++i) box[i] = x[i] - dhat, box[3 + i] = x[i] + dhat;
+    wr_bvh_box_query(&m->bvh, box, wr__obsmesh_sum_face, &q, NULL);
+    if (g) memcpy(g, q.g, sizeof q.g);
+    if (H) memcpy(H, q.H, sizeof q.H);
+    return q.E;
+}
+
+WRDEF double wr_obstacle_barrier(const wr_obstacle *o, const double x[3], double dhat, double kappa, double *dist,
+                                 double g[3], double H[9]) {
+    double gd[3], b1 = 0.0, b2 = 0.0, d = wr_obstacle_distance(o, x, gd), E;
+    int i, j;
+    if (dist) *dist = d;
+    if (o->kind == WR_OBSTACLE_MESH && d > 0.0 && d < dhat) return wr__obsmesh_barrier(o->mesh, x, dhat, kappa, g, H);
+    E = d < dhat ? wr_statics_barrier(d, dhat, kappa, &b1, &b2) : 0.0;
+    if (!(d > 0.0)) b1 = b2 = 0.0;
+    if (g)
+        for (i = 0; i < 3; ++i) g[i] = b1 * gd[i];
+    if (H)
+        for (i = 0; i < 3; ++i)
+            for (j = 0; j < 3; ++j) H[3 * i + j] = b2 * gd[i] * gd[j];
+    return E;
 }
 
 /* ---- the solver: Π as a newton.h problem ----------------------------------------------------- */
@@ -573,20 +880,17 @@ static wr_status wr__statics_energy(void *user, const double *x, double *Pi, dou
     }
     for (o = 0; o < c->nobs; ++o)
         for (v = 0; v < s->nv; ++v) {
-            double gd[3], b1, d;
+            double gb[3], d, eb;
             if (c->fixv && c->fixv[v]) continue;
-            d = wr_obstacle_distance(c->obs + o, x + 3 * v, gd);
+            eb = wr_obstacle_barrier(c->obs + o, x + 3 * v, c->dhat, c->kappa, &d, g ? gb : NULL, NULL);
             if (!(d > 0.0))
                 return wr_fail(diag, WR_ERR_GEOMETRY, v, "statics: vertex %d is %.3e m inside obstacle %d", (int)v, -d,
                                (int)o);
             if (d >= c->dhat) continue;
-            {
-                double eb = wr_statics_barrier(d, c->dhat, c->kappa, &b1, NULL);
-                E += eb;
-                sc += eb;
-            }
+            E += eb;
+            sc += eb;
             if (g)
-                for (i = 0; i < 3; ++i) g[3 * v + i] += b1 * gd[i];
+                for (i = 0; i < 3; ++i) g[3 * v + i] += gb[i];
         }
     for (i = 0; i < n; ++i) {
         E -= c->fext[i] * x[i];
@@ -684,16 +988,13 @@ static wr_status wr__statics_pressure_rest(wr__statics_ctx *c, const double *x, 
 
 /* Vertex-diagonal contact blocks κ b''(d) ∇d∇dᵀ (ON CONTACT) */
 static wr_status wr__statics_contact_hessian(const wr__statics_ctx *c, const double *x, wr_diag *diag) {
-    int32_t o, v, i, j;
+    int32_t o, v;
     for (o = 0; o < c->nobs; ++o)
         for (v = 0; v < c->s->nv; ++v) {
-            double gd[3], b2, d, B[9];
+            double d, B[9];
             if (c->fixv && c->fixv[v]) continue;
-            d = wr_obstacle_distance(c->obs + o, x + 3 * v, gd);
+            wr_obstacle_barrier(c->obs + o, x + 3 * v, c->dhat, c->kappa, &d, NULL, B);
             if (!(d < c->dhat) || !(d > 0.0)) continue;
-            wr_statics_barrier(d, c->dhat, c->kappa, NULL, &b2);
-            for (i = 0; i < 3; ++i)
-                for (j = 0; j < 3; ++j) B[3 * i + j] = b2 * gd[i] * gd[j];
             if (wr_newton_add_diagonal(c->H, v, B) != WR_OK)
                 return wr_fail(diag, WR_ERR_INVALID_ARG, v, "statics: contact block of vertex %d rejected", (int)v);
         }
@@ -749,6 +1050,10 @@ static wr_status wr__statics_check_obstacles(const wr_obstacle *obs, int32_t n, 
         if (!(fin - fin == 0.0)) return wr_fail(diag, WR_ERR_INVALID_ARG, o, "statics: obstacle %d has non-finite data", (int)o);
         if (b->kind == WR_OBSTACLE_PLANE) {
             if (!(nn > 0.0)) return wr_fail(diag, WR_ERR_INVALID_ARG, o, "statics: plane obstacle %d has a zero normal", (int)o);
+        } else if (b->kind == WR_OBSTACLE_MESH) {
+            if (!b->mesh || b->mesh->nf < 1 || b->mesh->bvh.n != b->mesh->nf)
+                return wr_fail(diag, WR_ERR_INVALID_ARG, o, "statics: mesh obstacle %d has no mesh (wr_obstacle_mesh_create)",
+                               (int)o);
         } else if (b->kind == WR_OBSTACLE_SPHERE || b->kind == WR_OBSTACLE_CAPSULE) {
             if (!(b->radius > 0.0))
                 return wr_fail(diag, WR_ERR_INVALID_ARG, o, "statics: obstacle %d radius %g must be > 0", (int)o, b->radius);
