@@ -119,6 +119,16 @@
  *      shortened to rho of its pattern length, 1/rho = not gathered at all). Band, per run: the max
  *      over the lines <= 1 + TOL_GATHER (5 %: the line shortened by at least ~70 % of 1 − rho = 0.15
  *      for the coat) — both meshes must gather their lines, or the packs they form differ.
+ *   D5 Gathered lines on the body (the shirred skirt: its lines are at the waist): the distance of
+ *      every thread stitch vertex (the chain vertices the thread is stitched to, ON GATHERING of
+ *      garment.h) to the whole mannequin's surface at the end (exact point-triangle distance).
+ *      Band, per run: the mean <= TOL_ONBODY (1 mm = 4 d̂ at the 0.25 scale: a waistband gathered
+ *      onto the body sits at the barrier distance d̂ plus the folds it makes under its stitches);
+ *      the max is reported. A line that cannot gather because the body is in the way (D4 > 1 +
+ *      TOL_GATHER) or that gathers in the air above or beside the body (D5 > TOL_ONBODY) misses.
+ *      Folds of the gathered band: the shirred skirt's band probes (front_band, back_band: half way
+ *      between its two upper shirring lines) count the sign changes of D2's signal across the
+ *      band's folds (reported per run; D2's wavelength band applies to them as to every probe).
  *
  * Options: --quick (smoke, sim_garments_quick.json: each garment at uniform QUICK_REF and QUICK_OPT
  * for QUICK_SECONDS, no floor run, every quantity reported without a band), --seconds S (default
@@ -150,6 +160,7 @@
 #define ZC_BAND 0.05      /* crest-count hysteresis, fraction of the peak (validate_sim_curtain) */
 #define TOL_LAMBDA 0.25   /* D2 band (issue 5's curtain band) */
 #define TOL_GATHER 0.05   /* D4 band: a gathered line's thread within 5 % of rho l at the end */
+#define TOL_ONBODY 1e-3   /* D5 band: mean stitch-vertex distance to the body at the end [m] */
 #define QUICK_REF 0.016   /* --quick: uniform resolutions [m] and simulated time [s] */
 #define QUICK_OPT 0.024
 #define QUICK_SECONDS 0.4
@@ -185,6 +196,7 @@ typedef struct gspec {
     gprobe probes[MAXPROBE];
     int pin_top; /* 1: the vertices on each panel's top edge held (the coat, see GARMENTS) */
     double quilt_E; /* > 0: the modulus of a quilt stitch thread whose E_sh is 0 [Pa] (the coat, see GARMENTS) */
+    int lines_on_body; /* 1: the gathered lines are meant to sit on the body (the shirred waist; METRICS D5) */
 } gspec;
 
 /* The skirt: docs/garments.md's A-line skirt scaled by SKIRT_SCALE (its pattern file carries the
@@ -195,14 +207,15 @@ static const gspec GARMENTS[] = {
     {"skirt", "examples/sim/skirt_table1_pattern.json", "A-line skirt (2 panels, side seams), scaled", 1e6, 5e-4,
      SKIRT_SCALE, 0.201, 0.55, {-PI / 2, PI / 2, 0, 0}, {0.35, 1.25}, 0.60, 4,
      {{"front_hem", 0, 0.10, 0}, {"back_hem", 1, 0.10, 0}, {"front_mid", 0, 0.50, 0}, {"back_mid", 1, 0.50, 0}},
-     0, 0.0},
+     0, 0.0, 0},
     /* the shirred dress reduced to its shirred skirt: the same skirt in the dress's Wine Style fabric
      * (B = 2e-6 N m, E = 3e5 Pa: h = 0.418 mm) with three shirring lines per panel below the waist,
      * gathered by garment.h's threads (ON GATHERING); probes under the lines and at the hem */
     {"shirred", "examples/sim/skirt_shirred_table1_pattern.json", "shirred skirt (the dress's skirt panels and shirring, scaled)",
-     3e5, 4.18e-4, SKIRT_SCALE, 0.201, 0.55, {-PI / 2, PI / 2, 0, 0}, {0.35, 1.25}, 0.60, 4,
-     {{"front_hem", 0, 0.10, 0}, {"back_hem", 1, 0.10, 0}, {"front_below_shirring", 0, 0.80, 0}, {"back_below_shirring", 1, 0.80, 0}},
-     0, 0.0},
+     3e5, 4.18e-4, SKIRT_SCALE, 0.201, 0.55, {-PI / 2, PI / 2, 0, 0}, {0.35, 1.25}, 0.60, 6,
+     {{"front_hem", 0, 0.10, 0}, {"back_hem", 1, 0.10, 0}, {"front_below_shirring", 0, 0.80, 0}, {"back_below_shirring", 1, 0.80, 0},
+      {"front_band", 0, 117.5 / 125.0, 0}, {"back_band", 1, 117.5 / 125.0, 0}},
+     0, 0.0, 1},
     /* the down coat (GARMENTS / coat in the top comment): examples/garment_down_coat.json scaled by 0.25, Pinkish Puff
      * (B = 2e-6 N m, E = 8e5 Pa: h = 0.301 mm); panels front_left 0, back 1, front_right 2 round a cylinder of
      * radius 0.2 m (full scale) with 10 mm seam gaps, the back centred at the back (+y), the fronts leaving
@@ -213,7 +226,7 @@ static const gspec GARMENTS[] = {
      8e5, 3.01e-4, SKIRT_SCALE, 0.2, 0.66, {PI / 2 + 2.3, PI / 2, PI / 2 - 2.3, 0}, {0.50, 1.60}, 0.26, 5,
      {{"front_left_pack2", 0, 250.0 / 700.0, 0}, {"back_pack2", 1, 250.0 / 700.0, 0}, {"back_pack4", 1, 450.0 / 700.0, 0},
       {"front_right_pack2", 2, 250.0 / 700.0, 0}, {"back_centre_vertical", 1, 0.5, 1}},
-     1, QUILT_THREAD_E},
+     1, QUILT_THREAD_E, 0},
 };
 #define NGARMENT ((int)(sizeof GARMENTS / sizeof GARMENTS[0]))
 
@@ -248,6 +261,9 @@ typedef struct grun {
     wr_mesher_result mr;
     /* gathered lines at the end: thread length / pattern length, mean, min, max (target rho) */
     double gath_mean, gath_min, gath_max;
+    /* D5: the thread stitch vertices' distance to the whole mannequin at the end, mean and max [m] */
+    double onbody_mean, onbody_max;
+    int32_t n_stitch;
     /* probes */
     double lzc[MAXPROBE], lfft[MAXPROBE], plen[MAXPROBE], amp[MAXPROBE];
     int32_t ncross[MAXPROBE];
@@ -528,6 +544,33 @@ static int garment_frames(grun *R, wr_garment_sim *gs, const wr_mesh *bm, const 
     return 1;
 }
 
+static void surface_distance(const double *xa, int32_t nva, const double *xb, const int32_t *fb, int32_t nfb, double *mean,
+                             double *max, double *out);
+
+/* D5: the distinct thread stitch vertices of gs (both ends of every thread segment) and their
+ * distance to the mannequin bm; 0 when out of memory. */
+static int stitch_on_body(grun *R, const wr_garment_sim *gs, const wr_mesh *bm) {
+    uint8_t *seen = (uint8_t *)calloc((size_t)gs->mesh.nv, 1);
+    double *p = (double *)malloc(sizeof(double) * 6 * (size_t)(gs->n_thr + 1));
+    int32_t s, k, n = 0;
+    R->onbody_mean = R->onbody_max = NAN, R->n_stitch = 0;
+    if (!seen || !p) {
+        free(seen), free(p);
+        return 0;
+    }
+    for (s = 0; s < gs->n_thr; ++s)
+        for (k = 0; k < 2; ++k) {
+            int32_t v = gs->vmap[gs->thr_seg[2 * s + k]];
+            if (seen[v]) continue;
+            seen[v] = 1;
+            memcpy(p + 3 * n++, gs->x + 3 * v, sizeof(double) * 3);
+        }
+    if (n > 0) surface_distance(p, n, bm->pos, bm->faces, bm->nf, &R->onbody_mean, &R->onbody_max, NULL);
+    R->n_stitch = n;
+    free(seen), free(p);
+    return 1;
+}
+
 /* After the run: the weld's record, the per-frame means and medians, the final drape (unsewn and
  * welded positions, faces), D3 against the whole mannequin and the crop box; 0 when out of memory. */
 static int garment_final(grun *R, const wr_garment_sim *gs, const wr_mesh *bm, const double crop_lo[3],
@@ -547,6 +590,7 @@ static int garment_final(grun *R, const wr_garment_sim *gs, const wr_mesh *bm, c
         R->gath_mean += now / rest / gs->n_lines;
         R->gath_min = fmin(R->gath_min, now / rest), R->gath_max = fmax(R->gath_max, now / rest);
     }
+    if (!stitch_on_body(R, gs, bm)) return 0;
     R->ns_med = median(R->ns, R->frames), R->ch_med = median(R->ch, R->frames);
     R->ns_mean = R->ch_mean = R->nsc_mean = R->chc_mean = 0.0;
     for (f = 0; f < R->frames; ++f) {
@@ -839,6 +883,17 @@ static void report_gather(wr_vres *v, const gspec *g, const grun *A, const grun 
             wr_vres_range(v, name, "", NAN, R[r]->gath_max, 0.0, 1.0 + TOL_GATHER);
             wr_vres_reference(v, 1.0, "1 = every line shortened to rho of its pattern length; band <= 1 + 5 % (METRICS D4)");
         }
+        if (!g->lines_on_body) continue;
+        snprintf(name, sizeof name, "%s: D5 gathered lines on the body, %s: mean distance of the %d thread stitch vertices to the mannequin",
+                 g->name, R[r]->label, (int)R[r]->n_stitch);
+        if (quick) wr_vres_info(v, name, "mm", NAN, 1e3 * R[r]->onbody_mean);
+        else {
+            wr_vres_range(v, name, "mm", NAN, 1e3 * R[r]->onbody_mean, 0.0, 1e3 * TOL_ONBODY);
+            wr_vres_reference(v, 1e3 * TOL_ONBODY, "band: mean <= 1 mm = 4 d^ (METRICS D5)");
+        }
+        snprintf(name, sizeof name, "%s: D5 gathered lines on the body, %s: max distance of a thread stitch vertex to the mannequin",
+                 g->name, R[r]->label);
+        wr_vres_info(v, name, "mm", NAN, 1e3 * R[r]->onbody_max);
     }
 }
 
@@ -1094,6 +1149,18 @@ static void report_opt_only(wr_vres *v, const gspec *g, const grun *runs, int nr
         snprintf(buf, sizeof buf, "%s, %s: D3 cloth-body triangle intersections of the final drape (whole mannequin)", g->name,
                  runs[r].label);
         wr_vres_check(v, buf, "", NAN, (double)runs[r].penetrations, "= 0", runs[r].penetrations == 0);
+        snprintf(buf, sizeof buf, "%s, %s: D3 final vertices outside the body crop box", g->name, runs[r].label);
+        wr_vres_check(v, buf, "", NAN, (double)runs[r].outside_crop, "= 0", runs[r].outside_crop == 0);
+        if (runs[r].n_lines > 0) {
+            snprintf(buf, sizeof buf, "%s, %s: D4 max thread length / rho l at the end (%d lines, mean %.4f)", g->name, runs[r].label,
+                     (int)runs[r].n_lines, runs[r].gath_mean);
+            wr_vres_info(v, buf, "", NAN, runs[r].gath_max);
+        }
+        if (g->lines_on_body) {
+            snprintf(buf, sizeof buf, "%s, %s: D5 mean / max distance of the thread stitch vertices to the mannequin (max %.3f mm)",
+                     g->name, runs[r].label, 1e3 * runs[r].onbody_max);
+            wr_vres_info(v, buf, "mm", NAN, 1e3 * runs[r].onbody_mean);
+        }
         if (runs[r].failed) {
             snprintf(buf, sizeof buf, "%s, %s: the run stopped early: %s", g->name, runs[r].label, runs[r].fail_msg);
             wr_vres_note(v, buf);
