@@ -24,7 +24,30 @@
  *          at any |x| <= 0.60 m, the whole width there: the A-pose hands hang beside the hips
  *          (|x| up to 0.58 m) and the A-line hem reaches |x| ~0.30 m, so no narrower box holds
  *          both the drape and what it can touch (docs/notes-sim-garments.md, crop).
- *   shirred  the shirred dress reduced to its shirred skirt (the table below; garment.h threads).
+ *   shirred  the shirred dress reduced to its shirred skirt: examples/sim/skirt_shirred_table1_pattern.json,
+ *          two 166 × 125 mm rectangles (0.25 scale, a gathered dirndl skirt, side seams) in the
+ *          dress's Wine Style fabric with its three shirring lines per panel (E_sh = 3e5 Pa,
+ *          ρ = 0.6, 5 mm apart, 5-15 mm below the waist, 4 mm clear of the seams). WHY THIS SIZE:
+ *          the lines must gather the waist ONTO the body. The mannequin (0.25 scale) is 202-206 mm
+ *          round between z = 0.245 and 0.295 m (its waist; the hips below reach 232 mm at 0.22 m),
+ *          so a ring gathered to ρ must be about that: each ring is ρ × 2 × 158 + 4 × 4 = 206 mm
+ *          gathered, the body's ~205 mm at the lines (the ~1 mm of folds under the stitches, 2π ×
+ *          1 mm = 6 mm, make it grip by ~3 %), 332 mm ungathered (1.6 × the body). The
+ *          earlier A-line skirt's lines were 215-219 mm round: they could only gather to the
+ *          body's 203 mm (measured: thread at 1.58-1.72 ρ l, D4 missed), i.e. not shirred. The
+ *          hem is at SHIRRED_HEM_Z (full scale) so the lines sit at z = 0.2625-0.2725 m, on the
+ *          waist's nearly cylindrical part (205-206 mm) above the hip flare. THE HOLD: the
+ *          ungathered waist (radius 53 mm on the placement cylinder, the body's 32 mm) is carried
+ *          by nothing until the threads have gathered it, and under gravity the skirt fell off the
+ *          body within the 1/3 s gather ramp (measured, lead's trial), so gravity is held off for
+ *          the gather time and ramped in over the next 1/3 s (garment.h ON HOLDING). THE THREAD:
+ *          Style3D Sec. 4.2.2 raises the shirred band's modulus from E to E + E_sh (its y_sh =
+ *          B/(E + E_sh)), i.e. the band gains E_sh h of stretch stiffness per unit width; lumped
+ *          onto its lines, each line carries the band it represents, its spacing s = 5 mm: EA =
+ *          E_sh h s = 0.63 N (garment.h desc.thread_area = h s). garment.h's default h² (EA =
+ *          0.052 N) cannot hold the skirt up: by friction (μ = 0.5) the rings must carry a total
+ *          tension T with 2π μ T >= the skirt's weight 0.05 N, T >= 0.016 N, i.e. 10 % strain on
+ *          each of three 0.052 N threads (D4 missed by construction) but 0.9 % on 0.63 N ones.
  *   coat   examples/sim/coat_table1_pattern.json: the down coat of examples/garment_down_coat.json
  *          (left front, back, right front; five horizontal quilt stitch lines per panel, rho = 0.85,
  *          E_sh = 0, p = 1; side seams) scaled by SKIRT_SCALE like the skirt, Pinkish Puff fabric
@@ -197,25 +220,32 @@ typedef struct gspec {
     int pin_top; /* 1: the vertices on each panel's top edge held (the coat, see GARMENTS) */
     double quilt_E; /* > 0: the modulus of a quilt stitch thread whose E_sh is 0 [Pa] (the coat, see GARMENTS) */
     int lines_on_body; /* 1: the gathered lines are meant to sit on the body (the shirred waist; METRICS D5) */
+    double thread_width; /* > 0: a thread's cross-section is h × this width [m] (garment.h desc.thread_area; the shirred skirt) */
+    double hold[2];      /* garment.h gravity_delay, gravity_ramp [s] (ON HOLDING; the shirred skirt) */
 } gspec;
 
 /* The skirt: docs/garments.md's A-line skirt scaled by SKIRT_SCALE (its pattern file carries the
  * scaled lengths; the placement and crop numbers here are the full-size ones, scaled at run time). */
 #define SKIRT_SCALE 0.25
+#define SHIRRED_HEM_Z 0.61         /* its hem height, full scale [m]: the lines at 1.05-1.09 m (GARMENTS) */
+#define SHIRRED_RADIUS 0.219       /* the shirred skirt's placement cylinder, full scale [m] (GARMENTS) */
+#define SHIRRED_LINE_SPACING 5e-3  /* its shirring lines' spacing in the (scaled) pattern [m] (GARMENTS) */
 #define QUILT_THREAD_E 3e9 /* a polyester sewing thread's Young's modulus [Pa] (the coat's stitches, GARMENTS) */
 static const gspec GARMENTS[] = {
     {"skirt", "examples/sim/skirt_table1_pattern.json", "A-line skirt (2 panels, side seams), scaled", 1e6, 5e-4,
      SKIRT_SCALE, 0.201, 0.55, {-PI / 2, PI / 2, 0, 0}, {0.35, 1.25}, 0.60, 4,
      {{"front_hem", 0, 0.10, 0}, {"back_hem", 1, 0.10, 0}, {"front_mid", 0, 0.50, 0}, {"back_mid", 1, 0.50, 0}},
-     0, 0.0, 0},
-    /* the shirred dress reduced to its shirred skirt: the same skirt in the dress's Wine Style fabric
-     * (B = 2e-6 N m, E = 3e5 Pa: h = 0.418 mm) with three shirring lines per panel below the waist,
-     * gathered by garment.h's threads (ON GATHERING); probes under the lines and at the hem */
+     0, 0.0, 0, 0.0, {0.0, 0.0}},
+    /* the shirred dress reduced to its shirred skirt (GARMENTS / shirred in the top comment): two gathered
+     * rectangles in the dress's Wine Style fabric (B = 2e-6 N m, E = 3e5 Pa: h = 0.418 mm) with three
+     * shirring lines per panel below the waist, gathered by garment.h's threads (ON GATHERING) of EA =
+     * E_sh h s, gravity held for the gather (ON HOLDING); probes at the hem, under the lines and on the
+     * gathered band between the upper two lines */
     {"shirred", "examples/sim/skirt_shirred_table1_pattern.json", "shirred skirt (the dress's skirt panels and shirring, scaled)",
-     3e5, 4.18e-4, SKIRT_SCALE, 0.201, 0.55, {-PI / 2, PI / 2, 0, 0}, {0.35, 1.25}, 0.60, 6,
+     3e5, 4.18e-4, SKIRT_SCALE, SHIRRED_RADIUS, SHIRRED_HEM_Z, {-PI / 2, PI / 2, 0, 0}, {0.35, 1.25}, 0.60, 6,
      {{"front_hem", 0, 0.10, 0}, {"back_hem", 1, 0.10, 0}, {"front_below_shirring", 0, 0.80, 0}, {"back_below_shirring", 1, 0.80, 0},
       {"front_band", 0, 117.5 / 125.0, 0}, {"back_band", 1, 117.5 / 125.0, 0}},
-     0, 0.0, 1},
+     0, 0.0, 1, SHIRRED_LINE_SPACING, {WR_GARMENT_GATHER_TIME, WR_GARMENT_GATHER_TIME}},
     /* the down coat (GARMENTS / coat in the top comment): examples/garment_down_coat.json scaled by 0.25, Pinkish Puff
      * (B = 2e-6 N m, E = 8e5 Pa: h = 0.301 mm); panels front_left 0, back 1, front_right 2 round a cylinder of
      * radius 0.2 m (full scale) with 10 mm seam gaps, the back centred at the back (+y), the fronts leaving
@@ -226,7 +256,7 @@ static const gspec GARMENTS[] = {
      8e5, 3.01e-4, SKIRT_SCALE, 0.2, 0.66, {PI / 2 + 2.3, PI / 2, PI / 2 - 2.3, 0}, {0.50, 1.60}, 0.26, 5,
      {{"front_left_pack2", 0, 250.0 / 700.0, 0}, {"back_pack2", 1, 250.0 / 700.0, 0}, {"back_pack4", 1, 450.0 / 700.0, 0},
       {"front_right_pack2", 2, 250.0 / 700.0, 0}, {"back_centre_vertical", 1, 0.5, 1}},
-     1, QUILT_THREAD_E, 0},
+     1, QUILT_THREAD_E, 0, 0.0, {0.0, 0.0}},
 };
 #define NGARMENT ((int)(sizeof GARMENTS / sizeof GARMENTS[0]))
 
@@ -488,6 +518,8 @@ static int garment_sim(grun *R, const wr_dyn_body *body, const wr_garment_line *
         dd.fixed = pins;
     }
     memset(&gd, 0, sizeof gd);
+    gd.thread_area = R->g->thread_width > 0.0 ? R->g->thickness * R->g->thread_width : 0.0;
+    gd.gravity_delay = R->g->hold[0], gd.gravity_ramp = R->g->hold[1];
     gd.weld_tol = g_weld_tol;
     gd.no_weld = g_no_weld;
     st = wr_garment_sim_create(gs, &gm, &sd, &dd, &gd, &d);
@@ -587,6 +619,17 @@ static int garment_final(grun *R, const wr_garment_sim *gs, const wr_mesh *bm, c
     for (i = 0; i < gs->n_lines; ++i) { /* each line's thread: current length / final rest rho l */
         double now, rest;
         wr_garment_sim_thread_length(gs, i, &now, &rest);
+        if (g_verbose) {
+            double zl = HUGE_VAL, zh = -HUGE_VAL;
+            int32_t s;
+            for (s = 0; s < gs->n_thr; ++s)
+                if (gs->thr_line[s] == i) {
+                    double z = gs->x[3 * gs->vmap[gs->thr_seg[2 * s]] + 2];
+                    zl = fmin(zl, z), zh = fmax(zh, z);
+                }
+            fprintf(stderr, "   line %d: thread %.2f mm, rho l %.2f mm, ratio %.4f, stitches at z %.1f-%.1f mm\n", (int)i, 1e3 * now,
+                    1e3 * rest, now / rest, 1e3 * zl, 1e3 * zh);
+        }
         R->gath_mean += now / rest / gs->n_lines;
         R->gath_min = fmin(R->gath_min, now / rest), R->gath_max = fmax(R->gath_max, now / rest);
     }
@@ -1194,7 +1237,8 @@ static void setup_note(wr_vres *v, const gspec *g, const gbody *B, double second
              "on, d^ = %.3g mm; %s; %.2f s simulated (%d frames of 1/30 s) for every mesh.",
              g->name, g->title, g->pattern, B->bd.height, g->scale, (int)B->nbf, B->crop_lo[2], B->crop_hi[2], B->crop_hi[0],
              (int)B->bm.nf, g->scale * g->radius, g->scale * g->hem_z, g->young, 1e3 * g->thickness,
-             strstr(g->pattern, "shirred") ? ", shirring lines gathered by garment.h threads (E_sh, rho of the pattern)"
+             strstr(g->pattern, "shirred") ? ", shirring lines gathered by garment.h threads (E_sh, rho of the pattern; EA = E_sh h s, "
+                                             "s = 5 mm the line spacing), gravity held off for the 1/3 s gather and ramped in over the next 1/3 s"
              : (g->pin_top ? ", quilt stitch lines gathered by garment.h threads (rho 0.85, E_sh 0: the fabric's E), no down "
                              "pressure load, every vertex of each panel's top edge held at its placed position" : ""),
              1e3 * (g_dhat > 0.0 ? g_dhat : g->scale * 1e-3),
@@ -1270,7 +1314,9 @@ static void final_notes(wr_vres *v, const gopts *o) {
                     "crest-count wavelength 2 L / sign changes (+-5 % hysteresis) in material length, band +-25 % of the 2.5 mm "
                     "value (issue 5's curtain band; one crest in four); the FFT peak is a reported cross-check. D3 = no cloth-body "
                     "triangle intersection against the whole mannequin, the drape inside the body crop. D4 (garments with "
-                    "gathered lines) = each line's thread length over rho l at the end, max <= 1.05.");
+                    "gathered lines) = each line's thread length over rho l at the end, max <= 1.05. D5 (the shirred skirt, whose lines "
+                    "are at the waist) = the thread stitch vertices' distance to the whole mannequin at the end, mean <= 1 mm (max "
+                    "reported); its band probes (half way between the upper two lines) count the gathered band's folds.");
     wr_vres_note(v, "Times: dynamics.h's NS (assembly, projection, linear solves) and CH (detection, CCD, contact terms) per frame, "
                     "wall-clock sums of a single-threaded run (OMP_THREAD_LIMIT=1 OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1) on a shared "
                     "2-core AMD EPYC; mean over every frame (the paper's 'average ... per frame'), sewing frames included, and the "
