@@ -22,8 +22,9 @@
  *                                                 stitch), in order along it, from the mesher's
  *                                                 constraint segments (caller frees with wr_free)
  *   wr_garment_sim_create(gs, garment, shell, dyn, desc, diag)   place, pair, shell, simulator
- *   wr_garment_sim_step(gs, stats, diag)          one frame: sewing and gathering schedules, step,
- *                                                 seam gap, weld
+ *   wr_garment_sim_step(gs, stats, diag)          one frame: sewing, gathering and gravity
+ *                                                 schedules, step, seam gap, weld
+ *   wr_garment_gravity_scale(desc, t)             the gravity schedule's factor at time t (ON HOLDING)
  *   wr_garment_sim_thread_length(gs, line, &now, &rest)   a gathered line's current length and its
  *                                                 thread's final rest length ρ·l [m]
  *   wr_garment_sim_weld(gs, diag)                 weld now (called by _step once the gap is small)
@@ -175,6 +176,18 @@
  *   At the weld the threads are carried over to the welded vertices (a segment whose two ends
  *   merge is dropped).
  *
+ * ON HOLDING (gravity held off while the garment is sewn and gathered)
+ *   A garment whose waist must be gathered onto the body before it can hang there (a shirred
+ *   skirt: its ungathered waist is wider than the body by 1/ρ) falls off the body if gravity acts
+ *   during the gathering: in the default 1/3 s ramp it would drop ~0.5 m. desc.gravity_delay [s]
+ *   holds gravity off until then and desc.gravity_ramp [s] brings it in linearly after that: the
+ *   dynamics' gravity for the frame ending at t is g · wr_garment_gravity_scale(desc, t), the
+ *   scale 0 for t <= delay, (t − delay)/ramp up to 1 after it (1 at once for ramp 0). This is
+ *   how pattern-based tools dress a body (sew and gather with gravity off, then let it hang); the
+ *   body contact, sewing and threads act throughout. Both 0 (the default): full gravity from the
+ *   first frame, unchanged behaviour. The barrier stiffness is set from the full g at create (and
+ *   at the weld's rebuild), so the schedule does not change the contact model.
+ *
  * ON ERRORS (wr_status + wr_diag, item = the offending index)
  *   WR_ERR_INVALID_ARG: a placement that is not finite, a radius <= 0, an unknown kind (item =
  *   placement); fewer placements than panels (item = first panel without one); a pattern mesh
@@ -280,7 +293,9 @@ typedef struct wr_garment {
  * start_stiffness → WR_DYN_SEW_FACTOR · m̄/dt² (capped at stiffness); weld_tol →
  * WR_GARMENT_WELD_FRACTION · d̂; max_time → WR_GARMENT_MAX_SEW_TIME; no_weld 0;
  * no_self_while_sewing 0; thread_area → h² (the shell's thickness squared); gather_time →
- * WR_GARMENT_GATHER_TIME; gather_immediate 0; stitch_edges → WR_GARMENT_STITCH_EDGES (ON GATHERING). */
+ * WR_GARMENT_GATHER_TIME; gather_immediate 0; stitch_edges → WR_GARMENT_STITCH_EDGES (ON GATHERING);
+ * gravity_delay 0, gravity_ramp 0: full gravity from the start (ON HOLDING; negative or not finite is
+ * WR_ERR_INVALID_ARG). */
 typedef struct wr_garment_desc {
     double stiffness;       /* [N/m] */
     double start_stiffness; /* [N/m] */
@@ -292,6 +307,8 @@ typedef struct wr_garment_desc {
     double gather_time;     /* [s] */
     int32_t gather_immediate; /* 1: threads at ρ·l from the first frame */
     int32_t stitch_edges;   /* mesh edges per stitch, >= 1 */
+    double gravity_delay;   /* [s] gravity off until this time (ON HOLDING; 0: from the start) */
+    double gravity_ramp;    /* [s] then ramped in over this time (ON HOLDING; 0: at once) */
 } wr_garment_desc;
 
 typedef struct wr_garment_sim {
@@ -325,6 +342,7 @@ typedef struct wr_garment_sim {
     double *thr_len, *thr_rho, *thr_axial;
     int32_t n_thr, n_lines;
     double gather;       /* the schedule's fraction of 1 − ρ applied in the last frame */
+    double gravity_scale; /* the gravity schedule's factor in the last frame (ON HOLDING) */
 } wr_garment_sim;
 
 WRDEF void wr_garment_place_point(const wr_garment_placement *pl, double u, double v, double x[3]);
@@ -350,6 +368,9 @@ WRDEF double wr_garment_sim_seam_gap(const wr_garment_sim *gs, int32_t seam);
 /* Line `line`'s current length along its thread (*now) and the thread's final rest length ρ·l
  * (*rest) [m]; both 0 for a line index out of range. */
 WRDEF void wr_garment_sim_thread_length(const wr_garment_sim *gs, int32_t line, double *now, double *rest);
+/* ON HOLDING: 0 for t <= desc->gravity_delay, then (t − delay)/gravity_ramp capped at 1 (1 after
+ * the delay when the ramp is 0); 1 for a NULL desc. */
+WRDEF double wr_garment_gravity_scale(const wr_garment_desc *desc, double t);
 WRDEF void wr_garment_sim_unsewn_positions(const wr_garment_sim *gs, double *out);
 WRDEF void wr_garment_sim_free(wr_garment_sim *gs);
 
@@ -823,6 +844,10 @@ WRDEF wr_status wr_garment_sim_create(wr_garment_sim *gs, const wr_garment *g, c
     gs->shell_desc = *shell;
     if (dyn) gs->dyn_desc = *dyn;
     if (desc) gs->desc = *desc;
+    if (!(gs->desc.gravity_delay >= 0.0 && gs->desc.gravity_ramp >= 0.0) || gs->desc.gravity_delay - gs->desc.gravity_delay != 0.0 ||
+        gs->desc.gravity_ramp - gs->desc.gravity_ramp != 0.0)
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "garment: gravity_delay %g s, gravity_ramp %g s must be finite and >= 0",
+                       gs->desc.gravity_delay, gs->desc.gravity_ramp);
     wr__gar_desc_defaults(&gs->desc);
     gs->nv0 = g->pattern->nv;
     if ((st = wr_mesh_copy(&gs->mesh, g->pattern, diag)) != WR_OK) goto fail;
@@ -1256,9 +1281,19 @@ static void wr__gar_gather_schedule(wr_garment_sim *gs) {
         if (gs->thr_dyn[s] >= 0) gs->dyn.thread_rest[gs->thr_dyn[s]] = wr__gar_thread_rest(gs, s, gs->gather);
 }
 
+WRDEF double wr_garment_gravity_scale(const wr_garment_desc *desc, double t) {
+    if (!desc || t > desc->gravity_delay + desc->gravity_ramp) return 1.0;
+    if (t <= desc->gravity_delay) return 0.0;
+    return (t - desc->gravity_delay) / desc->gravity_ramp;
+}
+
 WRDEF wr_status wr_garment_sim_step(wr_garment_sim *gs, wr_dyn_stats *stats, wr_diag *diag) {
     wr_status st;
+    int i;
     wr__gar_gather_schedule(gs);
+    /* ON HOLDING: the gravity of the frame ending at t + dt */
+    gs->gravity_scale = wr_garment_gravity_scale(&gs->desc, gs->state.t + gs->dyn.desc.time.dt);
+    for (i = 0; i < 3; ++i) gs->dyn.desc.gravity[i] = gs->gravity_scale * gs->dyn_desc.gravity[i];
     if (!gs->welded && gs->n_pairs > 0) {
         /* ON SEWING: the stiffness doubles per frame from k_start to k_full */
         gs->dyn.sew_k = gs->sew_k;
