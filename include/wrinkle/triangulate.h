@@ -2346,10 +2346,11 @@ static int wr__plan_encroaches(const wr__cdt *S, const wr__ref *R, const wr__pla
 #define WR__COLLAPSE_TRIES 2
 /* Failed collapses remembered, so that a pair is not planned again while the answer cannot have
  * changed: a plan of u-w that failed from the merged ring and the midpoint alone fails for w-u too
- * (the same polygon, the same midpoint bits, the same fan triangles) and for u-w again, until an
- * applied plan changes the star of u or w (then u or w is on its ring). now counts the applied
- * plans; stamp[v]: the count when v's star last changed; fw/ft[2v + k]: v's k-th failed partner
- * and the count then (-1: none). */
+ * (the same polygon, the same midpoint bits, the same fan triangles, the same region: u and w share
+ * two triangles across an unconstrained edge) and for u-w again, until an applied plan changes the
+ * star of u or w (then u or w is on its ring). now counts the applied plans; stamp[v]: the count
+ * when v's star last changed; fw/ft[2v + k]: v's k-th failed partner and the count then (-1: none;
+ * a try answered from the memo keeps the record it was answered from). */
 typedef struct wr__cmemo {
     int32_t now, *stamp, *fw, *ft;
 } wr__cmemo;
@@ -2385,8 +2386,8 @@ static int wr__try_collapse(wr__cdt *S, wr__ref *R, int32_t u, const wr__plan *U
     for (i = 0; i < n; ++i) {
         int32_t w = nb[i];
         int pc;
-        if (M) M->fw[WR__COLLAPSE_TRIES * u + i] = -1;
         if (wr__cmemo_fails(M, u, w)) continue;
+        if (M) M->fw[WR__COLLAPSE_TRIES * u + i] = -1;
         S->xy[2 * u] = 0.5 * (keep[0] + S->xy[2 * w]);
         S->xy[2 * u + 1] = 0.5 * (keep[1] + S->xy[2 * w + 1]);
         pc = wr__plan_collapse(S, R, u, w, U, P, reg);
