@@ -17,7 +17,9 @@
  * horizontal mid-line (y = 64 mm) of the wrinkled mesh's out-of-plane coordinate (the wrinkles run at
  * about 45°, so each crosses the mid-line once). Pass band (issue 6, set before either run): 17–27
  * wrinkles, i.e. the paper's 25 within the spread between it and the experiment's 19, plus 2.
- * Output: validation/results/tfw_sheared_rectangle.json, figures/tfw_sheared_rectangle.png. */
+ * Output: validation/results/tfw_sheared_rectangle.json, figures/tfw_sheared_rectangle.png.
+ * --stvk-loop: instead, the full StVK reference with the Loop element (issue 15; see its section below),
+ * into tfw_sheared_rectangle_stvk_loop.json. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>

@@ -21,7 +21,9 @@
  *   - the ~1.3k-vertex Delaunay tube within [41, 51];
  *   - every Delaunay resolution within ±2 of every other (max − min <= 2; the paper: 45–47);
  *   - each regular mesh within ±5 of the paper's count for that mesh (issue 6's band width).
- * Output: validation/results/tfw_twisted_cylinder.json, figures/tfw_twisted_cylinder.png. */
+ * Output: validation/results/tfw_twisted_cylinder.json, figures/tfw_twisted_cylinder.png.
+ * --stvk-loop: instead, the full StVK reference with the Loop element (issue 15; see its section below),
+ * into tfw_twisted_cylinder_stvk_loop.json. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>

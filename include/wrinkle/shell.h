@@ -170,8 +170,8 @@
  *   face's stencil gets its own flat chart instead: the faces around its corners laid into the face's
  *   rest corners one shared edge at a time by the rigid motion (rotation + translation) that aligns
  *   the edge, so the rest limit surface is flat and unstrained across a seam (a vertex whose panels'
- *   angles do not close to 2π takes its first face's placement). Statics only (wr_shell_face_block, hence dynamics.h, refuses Loop
- *   faces). Hessian blocks span the face's stencil (12 vertices on a regular patch, up to
+ *   angles do not close to 2π takes its first face's placement). Statics only (wr_shell_face_block,
+ *   hence dynamics.h, refuses Loop faces). Hessian blocks span the face's stencil (12 vertices on a regular patch, up to
  *   WR_SUBDIV_MAX_STENCIL), larger than newton.h can project: with project_spd != 0 (1, or
  *   WR_SHELL_PROJECT_LARGE as statics.h passes when its Newton step projects) they are projected PSD
  *   in the 15-D point space (x_v, x_w, x_vv, x_vw, x_ww), with 0 they are exact. Accuracy
