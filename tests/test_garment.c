@@ -289,20 +289,20 @@ Test(garment, tube_sews_and_welds_keeping_mass_and_momentum) {
  * after; 1 at once for a zero ramp; 1 without a desc), and on the sewn tube under g = -9.81 z with
  * gravity held 0.2 s and ramped over 0.1 s: the dynamics' gravity follows the schedule frame by
  * frame, the tube's centre of mass does not move while it is held (sewing forces are internal: it
- * stays within 1e-7 m, Newton's inexact solves), while the same tube without a hold falls 0.5 g t² ~ 5 mm in the
- * first frame already; a negative delay is refused. */
+ * stays within 1e-7 m, Newton's inexact solves), while the same tube without a hold falls 0.5 g t²
+ * ~ 5 mm in the first frame already; a negative delay is refused. */
 Test(garment, gravity_hold_schedule) {
-    wr_mesh m;
+    double w = 0.3, z0 = 0.0, z[2][10];
+    int32_t *pairs, *seam, np, f, run;
+    wr_garment_desc gd;
     wr_garment_placement pl[2];
+    wr_mesh m;
     wr_garment g;
-    wr_garment_sim gs;
     wr_shell_desc sd;
     wr_dyn_desc dd;
-    wr_garment_desc gd;
+    wr_garment_sim gs;
     wr_dyn_stats fs;
     wr_diag d;
-    int32_t *pairs, *seam, np, f, run;
-    double w = 0.3, z0 = 0.0, z[2][10];
     memset(&gd, 0, sizeof gd);
     cr_assert_float_eq(wr_garment_gravity_scale(NULL, 0.0), 1.0, 0.0);
     cr_assert_float_eq(wr_garment_gravity_scale(&gd, 1.0 / 30.0), 1.0, 0.0);
