@@ -72,9 +72,10 @@ static void free_run(void *p) { wr_scene_run_free((wr_scene_run *)p); }
 static void free_tfw(void *p) { wr_tfw_result_free((wr_tfw_result *)p); }
 
 /* Probe i of the scene on the wrinkled surface: displacement from the smooth (a = 0) subdivided base
- * along the probe direction. */
-static wr_status probe_wrinkled(const wr_scene_probe *pr, const wr_mesh *fine, const double *smooth,
+ * along the probe direction (only the faces of the probe's panel; fine keeps the base's face_panel). */
+static wr_status probe_wrinkled(const wr_scene_run *run, int32_t i, const wr_mesh *fine, const double *smooth,
                                 wr_spectrum_result *res, wr_diag *d) {
+    const wr_scene_probe *pr = &run->sc->probe[i];
     wr_probe p;
     int32_t n = pr->samples > 0 ? pr->samples : 512, v, nout = 0, start = 0, len;
     double *pts = (double *)malloc(sizeof(double) * 2 * (size_t)n), *val = (double *)malloc(sizeof(double) * (size_t)n);
@@ -93,18 +94,18 @@ static wr_status probe_wrinkled(const wr_scene_probe *pr, const wr_mesh *fine, c
         fld[v] = 0.0;
         for (c = 0; c < 3; ++c) fld[v] += (fine->pos[3 * v + c] - smooth[3 * v + c]) * dir[c];
     }
-    st = wr_probe_create(&p, fine, NULL, d);
+    if (pr->closed) {
+        double c[2], r;
+        c[0] = 0.5 * (pr->from[0] + pr->to[0]);
+        c[1] = 0.5 * (pr->from[1] + pr->to[1]);
+        r = 0.5 * hypot(pr->to[0] - pr->from[0], pr->to[1] - pr->from[1]);
+        st = wr_path_circle(c, r, n, pts, &ds, d);
+    } else {
+        st = wr_path_segment(pr->from, pr->to, n, 0, pts, &ds, d);
+    }
+    if (!st) st = wr_scene_probe_locator(run, i, fine, pts, n, &p, d);
     if (!st) {
-        if (pr->closed) {
-            double c[2], r;
-            c[0] = 0.5 * (pr->from[0] + pr->to[0]);
-            c[1] = 0.5 * (pr->from[1] + pr->to[1]);
-            r = 0.5 * hypot(pr->to[0] - pr->from[0], pr->to[1] - pr->from[1]);
-            st = wr_path_circle(c, r, n, pts, &ds, d);
-        } else {
-            st = wr_path_segment(pr->from, pr->to, n, 0, pts, &ds, d);
-        }
-        if (!st) st = wr_probe_sample(&p, fld, pts, n, val, &nout, d);
+        st = wr_probe_sample(&p, fld, pts, n, val, &nout, d);
         if (!st) {
             len = nout ? wr_probe_longest_run(val, n, &start) : n;
             st = wr_spectrum_analyze(val + start, len, ds, pr->closed && !nout, NULL, res, NULL, 0, d);
@@ -334,7 +335,7 @@ static void summary_probes(const tfw_job *j, cJSON *probes) {
         wr_spectrum_result pr;
         cJSON *o = cJSON_CreateObject();
         cJSON_AddStringToObject(o, "name", sp->name);
-        if (probe_wrinkled(sp, &j->r.wrinkled, smooth, &pr, &d) == WR_OK) {
+        if (probe_wrinkled(&j->run, i, &j->r.wrinkled, smooth, &pr, &d) == WR_OK) {
             cJSON_AddNumberToObject(o, "count", pr.count);
             cJSON_AddNumberToObject(o, "count_rounded", pr.count_rounded);
             cJSON_AddNumberToObject(o, "zero_crossing_waves", pr.zc_waves);

@@ -454,3 +454,78 @@ Test(scene, obstacles_reach_the_solve) {
     unlink(obj);
     rmdir(dir);
 }
+
+/* Two panels "front" (z = 0) and "back" (z = 0.1) of an OBJ, each a 4 x 2 grid over the SAME rest
+ * rectangle [0,1] x [0,0.5] (own vertices, one vt each): text into buf. */
+static void two_panel_obj(char *buf, size_t cap) {
+    size_t len = 0;
+    int p, i, j;
+    for (p = 0; p < 2; ++p)
+        for (j = 0; j <= 2; ++j)
+            for (i = 0; i <= 4; ++i) len += (size_t)snprintf(buf + len, cap - len, "v %g %g %g\nvt %g %g\n", 0.25 * i, 0.25 * j, 0.1 * p, 0.25 * i, 0.25 * j);
+    for (p = 0; p < 2; ++p) {
+        len += (size_t)snprintf(buf + len, cap - len, "g %s\n", p ? "back" : "front");
+        for (j = 0; j < 2; ++j)
+            for (i = 0; i < 4; ++i) {
+                int a = 1 + 15 * p + 5 * j + i, b = a + 1, c = a + 6, e = a + 5;
+                len += (size_t)snprintf(buf + len, cap - len, "f %d/%d %d/%d %d/%d\nf %d/%d %d/%d %d/%d\n", a, a, b, b, c, c,
+                                        a, a, c, c, e, e);
+            }
+    }
+}
+
+/* $.probes[i].panel on a sewn base whose panels overlap in the rest domain: with the selector a probe
+ * samples only its panel (front displaced dz = u, back dz = -1: the samples are exactly u or -1); a
+ * probe without one is refused naming both panels; unknown names and ids name the JSON path. */
+Test(scene, probe_panel_selects_overlapping_panel) {
+    static char obj[16384];
+    const char *t = "{\"mesh\": {\"type\": \"obj\", \"path\": \"two.obj\"}, " BASE_MAT ","
+                    "\"probes\": [{\"from\": [0.05, 0.3], \"to\": [0.95, 0.3], \"samples\": 16, \"panel\": \"front\"},"
+                    " {\"from\": [0.05, 0.3], \"to\": [0.95, 0.3], \"samples\": 16, \"panel\": 1},"
+                    " {\"from\": [0.05, 0.3], \"to\": [0.95, 0.3], \"samples\": 16}]}";
+    const char *bad[3][2] = {{"\"panel\": \"side\"", "$.probes[0].panel: no panel named \"side\" in the mesh (its OBJ groups: front, back)"},
+                             {"\"panel\": 2", "$.probes[0].panel: panel id 2, the mesh has 2 panels"},
+                             {"\"panel\": [1]", "$.probes[0].panel: must be a panel name"}};
+    char dir[] = "/tmp/wr_test_scenepanelXXXXXX", path[256], spath[256], txt[512];
+    double pts[32], vals[16], ds;
+    wr_scene sc;
+    wr_scene_run run;
+    wr_diag d;
+    int32_t v, k;
+    cr_assert_not_null(mkdtemp(dir));
+    two_panel_obj(obj, sizeof obj);
+    write_temp_file(dir, "two.obj", obj, path, sizeof path);
+    write_temp_file(dir, "scene.json", t, spath, sizeof spath);
+    cr_assert_eq(wr_scene_load(&sc, spath, &d), WR_OK, "%s", d.message);
+    cr_assert_eq(wr_scene_run_create(&run, &sc, &d), WR_OK, "%s", d.message);
+    cr_assert_eq(run.probe_panel[0], 0);
+    cr_assert_eq(run.probe_panel[1], 1);
+    cr_assert_eq(run.probe_panel[2], -1);
+    for (v = 0; v < run.mesh.nv; ++v) run.x[3 * v + 2] += run.mesh.pos[3 * v + 2] > 0.05 ? -1.0 : run.mesh.pos[3 * v];
+    cr_assert_eq(wr_scene_run_probe_samples(&run, 0, pts, vals, &ds, &d), WR_OK, "%s", d.message);
+    for (k = 0; k < 16; ++k) cr_expect_float_eq(vals[k], pts[2 * k], 1e-12, "front sample %d: %g at u = %g", k, vals[k], pts[2 * k]);
+    cr_assert_eq(wr_scene_run_probe_samples(&run, 1, pts, vals, &ds, &d), WR_OK, "%s", d.message);
+    for (k = 0; k < 16; ++k) cr_expect_float_eq(vals[k], -1.0, 1e-12, "back sample %d: %g", k, vals[k]);
+    cr_assert_eq(wr_scene_run_probe_samples(&run, 2, pts, vals, &ds, &d), WR_ERR_INVALID_ARG);
+    cr_expect(strstr(d.message, "$.probes[2]: sample 0 at rest (0.05, 0.3) m lies in panels 0 and 1") == d.message, "%s", d.message);
+    wr_scene_run_free(&run);
+    wr_scene_free(&sc);
+    for (k = 0; k < 3; ++k) {
+        snprintf(txt, sizeof txt, "{\"mesh\": {\"type\": \"obj\", \"path\": \"two.obj\"}, " BASE_MAT ","
+                 "\"probes\": [{\"from\": [0.05, 0.3], \"to\": [0.95, 0.3], %s}]}", bad[k][0]);
+        unlink(spath);
+        write_temp_file(dir, "scene.json", txt, spath, sizeof spath);
+        if (k == 2) {
+            cr_expect_eq(wr_scene_load(&sc, spath, &d), WR_ERR_PARSE);
+        } else {
+            cr_assert_eq(wr_scene_load(&sc, spath, &d), WR_OK, "%s", d.message);
+            cr_expect_eq(wr_scene_run_create(&run, &sc, &d), WR_ERR_INVALID_ARG);
+            wr_scene_run_free(&run);
+        }
+        cr_expect(strncmp(d.message, bad[k][1], strlen(bad[k][1])) == 0, "%s", d.message);
+        wr_scene_free(&sc);
+    }
+    unlink(path);
+    unlink(spath);
+    rmdir(dir);
+}

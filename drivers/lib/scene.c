@@ -411,7 +411,8 @@ static wr_status sc_parse_solver(wr_jin *c, const cJSON *o, wr_scene *sc) {
 }
 
 static wr_status sc_parse_probe(wr_jin *c, const cJSON *o, const char *P, wr_scene_probe *pr) {
-    static const char *const keys[] = {"name", "from", "to", "samples", "dir", "closed", NULL};
+    static const char *const keys[] = {"name", "from", "to", "samples", "dir", "closed", "panel", NULL};
+    const cJSON *pn = cJSON_GetObjectItemCaseSensitive(o, "panel");
     wr_status st;
     int f1 = 0, f2 = 0, fd = 0;
     if ((st = wr_jin_keys(c, o, P, keys)) != WR_OK) return st;
@@ -428,6 +429,18 @@ static wr_status sc_parse_probe(wr_jin *c, const cJSON *o, const char *P, wr_sce
         char p[512];
         wr_jin_path(p, sizeof p, P, "dir");
         return wr_jin_err(c, p, "must be nonzero");
+    }
+    if (pn) { /* an OBJ g/o name, or a panel id; resolved against the mesh in wr_scene_run_create */
+        char p[512];
+        pr->has_panel = 1;
+        wr_jin_path(p, sizeof p, P, "panel");
+        if (cJSON_IsString(pn)) {
+            if ((st = wr_jin_str(c, o, "panel", P, pr->panel_name, sizeof pr->panel_name, 0)) != WR_OK) return st;
+        } else if (!cJSON_IsNumber(pn)) {
+            return wr_jin_err(c, p, "must be a panel name (OBJ g/o) or an integer panel id >= 0");
+        } else if ((st = wr_jin_int(c, o, "panel", P, 0, INT32_MAX, &pr->panel_id, NULL)) != WR_OK) {
+            return st;
+        }
     }
     return wr_jin_bool(c, o, "closed", P, &pr->closed);
 }
@@ -809,6 +822,44 @@ static wr_status sc_build_obstacles(wr_scene_run *run, wr_diag *diag) {
     return WR_OK;
 }
 
+/* Panels of m: 1 + the largest face_panel id (1 without face_panel). */
+static int32_t sc_n_panels(const wr_mesh *m) {
+    int32_t f, n = 1;
+    for (f = 0; m->face_panel && f < m->nf; ++f)
+        if (m->face_panel[f] >= n) n = m->face_panel[f] + 1;
+    return n;
+}
+
+/* $.probes[i].panel against the mesh: run->probe_panel[i] = the panel id, or -1 (no selector, or panel
+ * 0 of a mesh without face_panel, which is every face). */
+static wr_status sc_resolve_probe_panels(wr_scene_run *run, wr_diag *diag) {
+    const wr_mesh *m = &run->mesh;
+    int32_t i, k, np = sc_n_panels(m);
+    for (i = 0; i < run->sc->n_probes; ++i) {
+        const wr_scene_probe *P = &run->sc->probe[i];
+        int32_t id = P->panel_id;
+        run->probe_panel[i] = -1;
+        if (!P->has_panel) continue;
+        if (P->panel_name[0]) {
+            char names[256] = "";
+            for (id = -1, k = 0; k < run->groups.n; ++k) {
+                const char *g = run->groups.names[k];
+                if (!g) continue;
+                if (strcmp(g, P->panel_name) == 0) id = k;
+                if (strlen(names) + strlen(g) + 3 < sizeof names) snprintf(names + strlen(names), sizeof names - strlen(names), "%s%s", names[0] ? ", " : "", g);
+            }
+            if (id < 0)
+                return wr_fail(diag, WR_ERR_INVALID_ARG, i, "$.probes[%d].panel: no panel named \"%s\" in the mesh (%s%s)",
+                               (int)i, P->panel_name, names[0] ? "its OBJ groups: " : "it has no OBJ g/o names", names);
+        } else if (id >= np) {
+            return wr_fail(diag, WR_ERR_INVALID_ARG, i, "$.probes[%d].panel: panel id %d, the mesh has %d panel%s", (int)i,
+                           (int)id, (int)np, np == 1 ? "" : "s");
+        }
+        run->probe_panel[i] = m->face_panel ? id : -1;
+    }
+    return WR_OK;
+}
+
 wr_status wr_scene_run_create(wr_scene_run *run, const wr_scene *sc, wr_diag *diag) {
     wr_status st;
     int32_t i, b, nv;
@@ -865,6 +916,7 @@ wr_status wr_scene_run_create(wr_scene_run *run, const wr_scene *sc, wr_diag *di
             run->n_fixed++;
         }
     if ((st = sc_build_obstacles(run, diag)) != WR_OK) goto fail;
+    if ((st = sc_resolve_probe_panels(run, diag)) != WR_OK) goto fail;
     run->t_setup = wr_time_seconds() - t0;
     return WR_OK;
 fail:
@@ -999,6 +1051,73 @@ wr_status wr_scene_run_solve(wr_scene_run *run, wr_scene_progress_fn progress, v
     return pg.worst;
 }
 
+/* Interpolated m->pos at (x, y) in the faces of panel k (mask), and whether it is there. */
+static int sc_panel_point(const wr_mesh *m, const wr_probe *p, double x, double y, double out[3]) {
+    double b[3];
+    int32_t f = wr_probe_locate(p, x, y, b), c, j;
+    if (f < 0) return 0;
+    for (c = 0; c < 3; ++c)
+        for (out[c] = 0.0, j = 0; j < 3; ++j) out[c] += b[j] * m->pos[3 * m->faces[3 * f + j] + c];
+    return 1;
+}
+
+/* Probe i without a panel on a mesh of several: refuse when a point lies in two panels whose positions
+ * differ there (overlapping panels; a seam between abutting panels has one position). */
+static wr_status sc_probe_check_panels(const wr_mesh *m, int32_t i, const double *pts, int32_t n, wr_diag *diag) {
+    int32_t np = sc_n_panels(m), k, f, j, *first = (int32_t *)malloc(sizeof(int32_t) * (size_t)n);
+    double *x0 = (double *)malloc(sizeof(double) * 3 * (size_t)n), lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL},
+           hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL}, tol = 0.0, x[3];
+    uint8_t *mask = (uint8_t *)malloc((size_t)m->nf);
+    wr_status st = WR_OK;
+    if (!first || !x0 || !mask) st = wr_fail(diag, WR_ERR_NOMEM, -1, "probe: out of memory");
+    for (j = 0; j < 3 * m->nv; ++j) lo[j % 3] = fmin(lo[j % 3], m->pos[j]), hi[j % 3] = fmax(hi[j % 3], m->pos[j]);
+    for (k = 0; k < 3; ++k) tol += (hi[k] - lo[k]) * (hi[k] - lo[k]);
+    tol = 1e-9 * sqrt(tol);
+    for (j = 0; j < n && st == WR_OK; ++j) first[j] = -1;
+    for (k = 0; k < np && st == WR_OK; ++k) {
+        wr_probe_desc pd;
+        wr_probe p;
+        memset(&pd, 0, sizeof pd);
+        for (f = 0; f < m->nf; ++f) mask[f] = m->face_panel[f] == k;
+        pd.face_mask = mask;
+        if (wr_probe_create(&p, m, &pd, NULL) != WR_OK) continue; /* a panel without area */
+        for (j = 0; j < n && st == WR_OK; ++j) {
+            if (!sc_panel_point(m, &p, pts[2 * j], pts[2 * j + 1], x)) continue;
+            if (first[j] < 0) {
+                first[j] = k;
+                memcpy(x0 + 3 * j, x, sizeof x);
+            } else if (wr_v3_norm(wr_v3_sub(wr_v3_load(x), wr_v3_load(x0 + 3 * j))) > tol) {
+                st = wr_fail(diag, WR_ERR_INVALID_ARG, i,
+                             "$.probes[%d]: sample %d at rest (%g, %g) m lies in panels %d and %d, which overlap in the rest domain; set \"panel\"",
+                             (int)i, (int)j, pts[2 * j], pts[2 * j + 1], (int)first[j], (int)k);
+            }
+        }
+        wr_probe_free(&p);
+    }
+    free(first), free(x0), free(mask);
+    return st;
+}
+
+wr_status wr_scene_probe_locator(const wr_scene_run *run, int32_t i, const wr_mesh *m, const double *pts, int32_t n,
+                                 wr_probe *p, wr_diag *diag) {
+    int32_t k = run->probe_panel[i], f;
+    wr_probe_desc pd;
+    uint8_t *mask;
+    wr_status st;
+    memset(p, 0, sizeof *p);
+    if (k < 0 || !m->face_panel) {
+        if (m->face_panel && sc_n_panels(m) > 1 && (st = sc_probe_check_panels(m, i, pts, n, diag)) != WR_OK) return st;
+        return wr_probe_create(p, m, NULL, diag);
+    }
+    if (!(mask = (uint8_t *)malloc((size_t)m->nf))) return wr_fail(diag, WR_ERR_NOMEM, -1, "probe: out of memory");
+    for (f = 0; f < m->nf; ++f) mask[f] = m->face_panel[f] == k;
+    memset(&pd, 0, sizeof pd);
+    pd.face_mask = mask;
+    st = wr_probe_create(p, m, &pd, diag);
+    free(mask);
+    return st;
+}
+
 wr_status wr_scene_run_probe_samples(const wr_scene_run *run, int32_t i, double *pts, double *vals, double *ds,
                                      wr_diag *diag) {
     const wr_scene_probe *P = &run->sc->probe[i];
@@ -1010,7 +1129,7 @@ wr_status wr_scene_run_probe_samples(const wr_scene_run *run, int32_t i, double 
     u = (double *)malloc(sizeof(double) * 3 * (size_t)run->mesh.nv);
     if (!u) return wr_fail(diag, WR_ERR_NOMEM, -1, "probe: out of memory");
     for (v = 0; v < 3 * run->mesh.nv; ++v) u[v] = run->x[v] - run->mesh.pos[v];
-    st = wr_probe_create(&pr, &run->mesh, NULL, diag);
+    st = wr_scene_probe_locator(run, i, &run->mesh, pts, n, &pr, diag);
     if (st == WR_OK) {
         st = wr_probe_sample_dir(&pr, u, P->dir, pts, n, vals, &nout, diag);
         if (st == WR_OK && nout > 0)

@@ -16,7 +16,8 @@
  *                                                  solve (each set a WR_MOTION_AFFINE): step k of N
  *                                                  applies fraction k/N of every prescribed motion
  *                                                  (and of gravity unless ramp_gravity is false)
- *   wr_scene_run_probe(run, i, res, diag)          spectrum of probe i on the current state
+ *   wr_scene_run_probe(run, i, res, diag)          spectrum of probe i on the current state (only the
+ *                                                  faces of its panel when it names one)
  *   wr_scene_run_write(run, dir, diag)             deformed.obj, fields.ply, summary.json (atomic)
  *   wr_scene_run_free(run) / wr_scene_free(sc)
  *
@@ -88,6 +89,12 @@ typedef struct wr_scene_probe {
     int32_t samples;       /* default 512 */
     double dir[3];         /* displacement component sampled (default (0,0,1)) */
     int closed;
+    /* $.probes[i].panel: sample only the faces of one panel (face_panel) of a multi-panel mesh whose
+     * panels overlap in the rest domain. has_panel = 0: none; panel_name non-empty: an OBJ g/o name,
+     * else panel_id (>= 0). Resolved against the mesh by wr_scene_run_create. */
+    int has_panel;
+    char panel_name[WR_SCENE_NAME_LEN];
+    int32_t panel_id;
 } wr_scene_probe;
 
 /* $.obstacles[k]: an analytic obstacle (statics.h wr_obstacle), or a triangle mesh (statics.h ON MESH
@@ -156,6 +163,7 @@ typedef struct wr_scene_run {
     const wr_scene *sc;   /* borrowed */
     wr_mesh mesh;         /* rest mesh; pos = initial (rest) 3D positions */
     wr_obj_groups groups; /* an OBJ mesh's g/o names (panel id -> name) for the written OBJs; else empty */
+    int32_t probe_panel[WR_SCENE_MAX_PROBES]; /* probe i's resolved panel id, -1 = every face */
     wr_shell shell;
     uint8_t *fixed;       /* nv */
     int32_t *bc_of;       /* nv: prescribed set of each vertex, -1 = free */
@@ -190,6 +198,14 @@ wr_status wr_scene_run_probe(const wr_scene_run *run, int32_t i, wr_spectrum_res
 /* Probe samples (n = probe samples) of the displacement component, for plots. */
 wr_status wr_scene_run_probe_samples(const wr_scene_run *run, int32_t i, double *pts, double *vals, double *ds,
                                      wr_diag *diag);
+/* The rest-domain locator of probe i over mesh m (the run's mesh, or a mesh refined from it that
+ * keeps face_panel, e.g. the TFW wrinkled surface), restricted to the faces of the probe's panel.
+ * Without a panel on a mesh of several panels, the n points pts are checked first: a point lying in
+ * faces of two panels whose positions m->pos there differ (overlapping panels, not a seam) is
+ * ambiguous, WR_ERR_INVALID_ARG "$.probes[i]: ... set \"panel\"" (docs/scene-format.md). Free *p with
+ * wr_probe_free. */
+wr_status wr_scene_probe_locator(const wr_scene_run *run, int32_t i, const wr_mesh *m, const double *pts, int32_t n,
+                                 wr_probe *p, wr_diag *diag);
 wr_status wr_scene_run_write(const wr_scene_run *run, const char *dir, wr_diag *diag);
 /* With obstacles: adds "obstacles" (count) and, after a solve, the last load step's
  * "min_obstacle_distance_m", "contact_vertices", "contact_dhat_m", "contact_stiffness_N_m" to obj. */

@@ -113,6 +113,8 @@ extern "C" {
 typedef struct wr_probe_desc {
     double cells_per_face; /* grid cells per face; > 0 */
     double tol;            /* accept a face when every barycentric coordinate >= -tol */
+    const uint8_t *face_mask; /* nf, borrowed during create: faces with 0 are left out of the grid (never
+                                 located; e.g. one panel of a sewn mesh); NULL = every face */
 } wr_probe_desc;
 
 typedef struct wr_probe {
@@ -361,6 +363,7 @@ WRDEF wr_status wr_probe_create(wr_probe *p, const wr_mesh *m, const wr_probe_de
                 wr_probe_free(p);
                 return wr_fail(diag, WR_ERR_GEOMETRY, f, "probe: face %d has a non-finite rest coordinate", (int)f);
             }
+        if (desc.face_mask && !desc.face_mask[f]) continue;
         if (wr_polygon_area(uv, 3) == 0.0) {
             ++p->n_degenerate;
             continue;
@@ -375,7 +378,8 @@ WRDEF wr_status wr_probe_create(wr_probe *p, const wr_mesh *m, const wr_probe_de
     }
     if (n_ok == 0) {
         wr_probe_free(p);
-        return wr_fail(diag, WR_ERR_GEOMETRY, -1, "probe: all %d faces have zero rest area", (int)m->nf);
+        return wr_fail(diag, WR_ERR_GEOMETRY, -1, "probe: all %d faces%s have zero rest area", (int)m->nf,
+                       desc.face_mask ? " not masked out" : "");
     }
     w = xmax - xmin;
     hgt = ymax - ymin;
@@ -411,7 +415,7 @@ WRDEF wr_status wr_probe_create(wr_probe *p, const wr_mesh *m, const wr_probe_de
     for (f = 0; f < m->nf; ++f) {
         const double *uv = p->face_uv + 6 * (size_t)f;
         int32_t ix0, ix1, iy0, iy1, ix, iy;
-        if (wr_polygon_area(uv, 3) == 0.0) continue;
+        if ((desc.face_mask && !desc.face_mask[f]) || wr_polygon_area(uv, 3) == 0.0) continue;
         wr__probe_cell_range(p, uv, &ix0, &ix1, &iy0, &iy1);
         for (iy = iy0; iy <= iy1; ++iy)
             for (ix = ix0; ix <= ix1; ++ix) {
@@ -439,7 +443,7 @@ WRDEF wr_status wr_probe_create(wr_probe *p, const wr_mesh *m, const wr_probe_de
         for (f = 0; f < m->nf; ++f) {
             const double *uv = p->face_uv + 6 * (size_t)f;
             int32_t ix0, ix1, iy0, iy1, ix, iy;
-            if (wr_polygon_area(uv, 3) == 0.0) continue;
+            if ((desc.face_mask && !desc.face_mask[f]) || wr_polygon_area(uv, 3) == 0.0) continue;
             wr__probe_cell_range(p, uv, &ix0, &ix1, &iy0, &iy1);
             for (iy = iy0; iy <= iy1; ++iy)
                 for (ix = ix0; ix <= ix1; ++ix) p->cell_faces[fill[iy * p->gx + ix]++] = f;
