@@ -822,6 +822,8 @@ static wr_status sc_build_obstacles(wr_scene_run *run, wr_diag *diag) {
     return WR_OK;
 }
 
+static wr_status sc_probe_check_panels(const wr_mesh *m, int32_t i, const double *pts, int32_t n, wr_diag *diag);
+
 /* Panels of m: 1 + the largest face_panel id (1 without face_panel). */
 static int32_t sc_n_panels(const wr_mesh *m) {
     int32_t f, n = 1;
@@ -839,6 +841,14 @@ static wr_status sc_resolve_probe_panels(wr_scene_run *run, wr_diag *diag) {
         const wr_scene_probe *P = &run->sc->probe[i];
         int32_t id = P->panel_id;
         run->probe_panel[i] = -1;
+        if (!P->has_panel && np > 1) { /* refused before the solve when its line lies on overlapping panels */
+            double *pts = (double *)malloc(sizeof(double) * 2 * (size_t)P->samples), ds;
+            wr_status st = pts ? wr_path_segment(P->from, P->to, P->samples, P->closed, pts, &ds, diag)
+                               : wr_fail(diag, WR_ERR_NOMEM, -1, "probe: out of memory");
+            if (st == WR_OK) st = sc_probe_check_panels(m, i, pts, P->samples, diag);
+            free(pts);
+            if (st != WR_OK) return st;
+        }
         if (!P->has_panel) continue;
         if (P->panel_name[0]) {
             char names[256] = "";
