@@ -276,6 +276,43 @@ JSON
         "$B/wrinkle-tfw" "$tmp/tfw.json" -o "$tmp/tfw" --quiet --levels 1
     keep_on_failure "wrinkle-tfw invalid scene" "$tmp/tfw/wrinkled.obj" "$tmp/tfw/summary.json" -- \
         "$B/wrinkle-tfw" "$tmp/badscene.json" -o "$tmp/tfw"
+    # $.probes[i].panel (docs/scene-format.md): two panels over the same rest rectangle (front at z = 0,
+    # back at z = 0.05, own vertices); probes with a name / an id selector are measured on the wrinkled
+    # surface; an unknown name and a probe without a selector on the overlapping panels are refused
+    # with one line naming the JSON path
+    python3 -c 'import sys
+nx, ny, L = 10, 4, []
+for p in range(2):
+    for j in range(ny + 1):
+        for i in range(nx + 1): L.append("v %g %g %g\nvt %g %g" % (0.025 * i, 0.025 * j, 0.05 * p, 0.025 * i, 0.025 * j))
+n = (nx + 1) * (ny + 1)
+for p in range(2):
+    L.append("g " + ("front", "back")[p])
+    for j in range(ny):
+        for i in range(nx):
+            a = 1 + n * p + (nx + 1) * j + i; b, c, e = a + 1, a + nx + 2, a + nx + 1
+            L.append("f %d/%d %d/%d %d/%d\nf %d/%d %d/%d %d/%d" % (a, a, b, b, c, c, a, a, c, c, e, e))
+open(sys.argv[1], "w").write("\n".join(L) + "\n")' "$tmp/two_panels.obj"
+    cat > "$tmp/tfwpanel.json" <<'JSON'
+{"name": "tfw_two_panels", "mesh": {"type": "obj", "path": "two_panels.obj"},
+ "material": {"young": 1.0e6, "poisson": 0.5, "thickness": 1.0e-4},
+ "boundary": [{"name": "left", "box": {"min": [-1e-9, -1, -1], "max": [1e-9, 1, 1]}},
+  {"name": "right", "box": {"min": [0.249999999, -1, -1], "max": [1, 1, 1]}, "stretch": [1.1, 1, 1]}],
+ "solver": {"load_steps": 2, "hessian": "projected"},
+ "probes": [{"name": "front", "from": [0.02, 0.05], "to": [0.23, 0.05], "samples": 64, "panel": "front"},
+            {"name": "back", "from": [0.02, 0.05], "to": [0.23, 0.05], "samples": 64, "panel": 1}]}
+JSON
+    if "$B/wrinkle-tfw" "$tmp/tfwpanel.json" -o "$tmp/tfwpanel" --quiet --levels 1 >/dev/null 2>"$tmp/err" </dev/null &&
+        python3 -c 'import json, sys; p = json.load(open(sys.argv[1]))["probes"]
+sys.exit(not (len(p) == 2 and all("count" in q and "error" not in q for q in p)))' "$tmp/tfwpanel/summary.json"; then ok
+    else bad "wrinkle-tfw probe panel: failed or a probe without a count in summary.json"; head -n 3 "$tmp/err"; fi
+    for c in 'unknown|"panel": "side"|$.probes[0].panel: no panel named "side"' \
+             'none|"samples": 64|$.probes[0]: sample 0 at rest (0.02, 0.05) m lies in panels 0 and 1'; do
+        n=${c%%|*}; r=${c#*|}; r=${r%%|*}; want=${c##*|}
+        sed "s/\"samples\": 64, \"panel\": \"front\"/$r/" "$tmp/tfwpanel.json" > "$tmp/tfwpanel_$n.json"
+        expect_fail "wrinkle-tfw probe panel $n" "$B/wrinkle-tfw" "$tmp/tfwpanel_$n.json" -o "$tmp/t0" --quiet
+        grep -qF "$want" "$tmp/err" && ok || { bad "wrinkle-tfw probe panel $n: stderr does not name $want"; cat "$tmp/err"; }
+    done
     # $.obstacles (statics.h ON MESH OBSTACLES): a sheet pinned 4 mm over the mannequin's head converges
     # and the summary reports the contact; a bad type, a missing and an unreadable OBJ path are refused
     # with one line naming the JSON path
