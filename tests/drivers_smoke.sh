@@ -519,6 +519,30 @@ s["garment"]["pattern"] = "skirt_m.json"; s["time"]["duration"] = 0
 json.dump(s, open(tmp + "/garment_m.json", "w"))
 PY
     warns "wrinkle-sim garment pattern in metres" "smaller than one edge" "$B/wrinkle-sim" "$tmp/garment_m.json" -o "$tmp/simg" --quiet
+    # $.garment.gravity_hold (garment.h ON HOLDING): the example skirt, 2 frames with gravity held
+    # 0.05 s and ramped over 0.1 s -> the summary carries the hold and frame 1's gravity factor is 0;
+    # a negative delay is one line naming its path (exit 2)
+    python3 - "$root/examples/sim" "$tmp" <<'PY'
+import json, sys
+src, tmp = sys.argv[1], sys.argv[2]
+s = json.load(open(src + "/skirt_on_mannequin.json"))
+s["garment"]["pattern"] = src + "/skirt_pattern.json"; s["time"]["duration"] = 2 / 30 + 1e-12
+s["garment"]["gravity_hold"] = {"delay": 0.05, "ramp": 0.1}
+json.dump(s, open(tmp + "/garment_hold.json", "w"))
+s["garment"]["gravity_hold"] = {"delay": -0.05}
+json.dump(s, open(tmp + "/garment_hold_bad.json", "w"))
+PY
+    if (cd "$tmp/cwd" && "$B/wrinkle-sim" "$tmp/garment_hold.json" -o "$tmp/simh" --quiet) >/dev/null 2>"$tmp/err" </dev/null &&
+       python3 - "$tmp/simh/summary.json" <<'PY'
+import json, sys
+s = json.load(open(sys.argv[1]))
+g, f = s["garment"], s["per_frame"]
+sys.exit(0 if g["gravity_delay"] == 0.05 and g["gravity_ramp"] == 0.1 and len(f) == 2 and f[0]["gravity_scale"] == 0
+         and abs(f[1]["gravity_scale"] - (2 / 30 - 0.05) / 0.1) < 1e-9 else 1)
+PY
+    then ok; else bad "wrinkle-sim garment gravity_hold: run failed or summary without the hold"; head -n 3 "$tmp/err"; fi
+    expect_fail "wrinkle-sim negative gravity_hold.delay" "$B/wrinkle-sim" "$tmp/garment_hold_bad.json" -o "$tmp/simhb" --quiet
+    grep -qF '$.garment.gravity_hold.delay' "$tmp/err" && ok || { bad "wrinkle-sim gravity_hold.delay: stderr does not name the path"; cat "$tmp/err"; }
 fi
 if [ -x "$B/wrinkle-resolution" ]; then
     # an answer that overflows is refused, never printed as "inf" (text) or null (JSON)

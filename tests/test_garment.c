@@ -778,7 +778,15 @@ Test(garment_scene, parse_errors_name_the_path) {
         {"{\"garment\": {\"pattern\": \"p.json\", " GAR_MAT ", \"placements\": [" GAR_FRONT "], \"gathering\": {\"time\": -1}}}",
          "$.garment.gathering.time: must be > 0"},
         {"{\"garment\": {\"pattern\": \"p.json\", " GAR_MAT ", \"placements\": [" GAR_FRONT "], \"gathering\": {\"rho\": 0.5}}}",
-         "$.garment.gathering"}};
+         "$.garment.gathering"},
+        {"{\"garment\": {\"pattern\": \"p.json\", " GAR_MAT ", \"placements\": [" GAR_FRONT "], \"gravity_hold\": {\"delay\": -0.1}}}",
+         "$.garment.gravity_hold.delay: must be >= 0"},
+        {"{\"garment\": {\"pattern\": \"p.json\", " GAR_MAT ", \"placements\": [" GAR_FRONT "], \"gravity_hold\": {\"ramp\": -1}}}",
+         "$.garment.gravity_hold.ramp: must be >= 0"},
+        {"{\"garment\": {\"pattern\": \"p.json\", " GAR_MAT ", \"placements\": [" GAR_FRONT "], \"gravity_hold\": {\"ramp\": \"0.3\"}}}",
+         "$.garment.gravity_hold.ramp: must be a finite number"},
+        {"{\"garment\": {\"pattern\": \"p.json\", " GAR_MAT ", \"placements\": [" GAR_FRONT "], \"gravity_hold\": {\"time\": 1}}}",
+         "$.garment.gravity_hold"}};
     size_t i;
     for (i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
         wr_simscene sc;
@@ -787,6 +795,39 @@ Test(garment_scene, parse_errors_name_the_path) {
         cr_assert(strstr(d.message, cases[i][1]) != NULL, "case %d: got \"%s\", want \"%s\"", (int)i, d.message, cases[i][1]);
         wr_simscene_free(&sc);
     }
+}
+
+/* $.garment.gravity_hold (garment.h ON HOLDING) reaches the garment's desc: parsed into the sewing
+ * desc, kept by run_create, and the recorded per-frame gravity factor follows the schedule (delay
+ * 0.05 s, ramp 0.1 s: frame 1 ending at 1/30 s held, frame 2 at 2/30 s at (2/30 − 0.05)/0.1); without
+ * it both stay 0 and the factor is 1. */
+Test(garment_scene, gravity_hold_reaches_the_desc) {
+    const char *hold[2] = {", \"gravity_hold\": {\"delay\": 0.05, \"ramp\": 0.1}", ""};
+    char dir[512], text[2048];
+    int k;
+    gar_pattern_file(dir);
+    for (k = 0; k < 2; ++k) {
+        wr_simscene sc;
+        wr_simscene_run run;
+        wr_diag d;
+        snprintf(text, sizeof text,
+                 "{\"garment\": {\"pattern\": \"skirt.json\", " GAR_MAT ", \"placements\": [" GAR_FRONT ", " GAR_BACK "]%s},"
+                 " \"gravity\": [0, 0, -9.81], \"time\": {\"duration\": 0.06666666667}}",
+                 hold[k]);
+        cr_assert_eq(wr_simscene_parse(&sc, text, strlen(text), dir, &d), WR_OK, "%s", d.message);
+        cr_assert_float_eq(sc.garment.sewing.gravity_delay, k == 0 ? 0.05 : 0.0, 0.0);
+        cr_assert_float_eq(sc.garment.sewing.gravity_ramp, k == 0 ? 0.1 : 0.0, 0.0);
+        cr_assert_eq(wr_simscene_run_create(&run, &sc, &d), WR_OK, "%s", d.message);
+        cr_assert_float_eq(run.gs.desc.gravity_delay, k == 0 ? 0.05 : 0.0, 0.0);
+        cr_assert_float_eq(run.gs.desc.gravity_ramp, k == 0 ? 0.1 : 0.0, 0.0);
+        cr_assert_eq(wr_simscene_run_frames(&run, NULL, NULL, &d), WR_OK, "%s", d.message);
+        cr_assert_eq(run.n_frames, 2);
+        cr_assert_float_eq(run.frames[1].gravity_scale, k == 0 ? 0.0 : 1.0, 0.0);
+        cr_assert_float_eq(run.frames[2].gravity_scale, k == 0 ? (2.0 / 30.0 - 0.05) / 0.1 : 1.0, 1e-12);
+        wr_simscene_run_free(&run);
+        wr_simscene_free(&sc);
+    }
+    gar_pattern_file_remove(dir);
 }
 
 /* Errors only the pattern can show, at run_create, naming the placement: an unknown panel, a panel

@@ -374,11 +374,12 @@ static wr_status ss_parse_placement(wr_jin *d, const cJSON *e, const char *P, wr
 /* $.garment */
 static wr_status ss_parse_garment(wr_jin *d, const cJSON *o, const char *base_dir, wr_simscene_garment *g) {
     static const char *const keys[] = {"pattern", "resolution", "seed", "material", "placements", "sewing", "gathering", "velocity",
-                                       "pins", NULL};
+                                       "pins", "gravity_hold", NULL};
     static const char *const gkeys[] = {"enabled", "thread_area", "time", "immediate", "stitch_edges", NULL};
     static const char *const skeys[] = {"stiffness", "start_stiffness", "weld_tolerance", "max_time", "weld",
                                         "self_contact", NULL};
-    const cJSON *m, *arr, *e, *sw, *pins, *ga;
+    static const char *const hkeys[] = {"delay", "ramp", NULL};
+    const cJSON *m, *arr, *e, *sw, *pins, *ga, *ho;
     wr_status st;
     int32_t k = 0;
     if ((st = wr_jin_keys(d, o, "$.garment", keys)) != WR_OK) return st;
@@ -425,6 +426,12 @@ static wr_status ss_parse_garment(wr_jin *d, const cJSON *o, const char *base_di
         if ((st = wr_jin_int(d, ga, "stitch_edges", S, 1, 1000, &g->sewing.stitch_edges, NULL)) != WR_OK) return st;
         g->no_gathering = !on;
         g->sewing.gather_immediate = imm;
+    }
+    if ((ho = cJSON_GetObjectItemCaseSensitive(o, "gravity_hold"))) { /* garment.h ON HOLDING */
+        const char *S = "$.garment.gravity_hold";
+        if ((st = wr_jin_keys(d, ho, S, hkeys)) != WR_OK) return st;
+        if ((st = wr_jin_num(d, ho, "delay", S, WR_JIN_NONNEG, &g->sewing.gravity_delay, NULL)) != WR_OK) return st;
+        if ((st = wr_jin_num(d, ho, "ramp", S, WR_JIN_NONNEG, &g->sewing.gravity_ramp, NULL)) != WR_OK) return st;
     }
     return WR_OK;
 }
@@ -1016,6 +1023,7 @@ wr_status wr_simscene_run_frames(wr_simscene_run *run, wr_simscene_frame_fn fn, 
             f->t = run->gs.state.t;
             f->seam_gap = run->gs.gap;
             f->welded = run->gs.welded;
+            f->gravity_scale = run->gs.gravity_scale;
         } else {
             f->t = run->state.t;
         }
@@ -1203,6 +1211,8 @@ wr_status wr_simscene_write_summary(const wr_simscene_run *run, const char *path
         cJSON_AddNumberToObject(g, "sewing_stiffness_start", gs->k_start);
         cJSON_AddNumberToObject(g, "sewing_stiffness", gs->k_full);
         cJSON_AddNumberToObject(g, "weld_tolerance", gs->desc.weld_tol);
+        cJSON_AddNumberToObject(g, "gravity_delay", gs->desc.gravity_delay);
+        cJSON_AddNumberToObject(g, "gravity_ramp", gs->desc.gravity_ramp);
         cJSON_AddBoolToObject(g, "welded", gs->welded);
         cJSON_AddNumberToObject(g, "gathered_lines", gs->n_lines);
         cJSON_AddNumberToObject(g, "thread_segments", gs->n_thr);
@@ -1247,7 +1257,10 @@ wr_status wr_simscene_write_summary(const wr_simscene_run *run, const char *path
         else cJSON_AddNullToObject(o, "min_distance");
         cJSON_AddNumberToObject(o, "residual_rel", f->residual_rel);
         cJSON_AddStringToObject(o, "stop", wr_newton_stop_name(f->stop));
-        if (run->sc->is_garment) cJSON_AddNumberToObject(o, "seam_gap", f->seam_gap);
+        if (run->sc->is_garment) {
+            cJSON_AddNumberToObject(o, "seam_gap", f->seam_gap);
+            cJSON_AddNumberToObject(o, "gravity_scale", f->gravity_scale);
+        }
         cJSON_AddItemToArray(fr, o);
         sns += f->t_ns;
         sch += f->t_ch;

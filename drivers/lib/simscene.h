@@ -93,7 +93,8 @@ typedef struct wr_simscene_garment {
     double areal_density;
     wr_simscene_placement *placements; /* owned */
     int32_t n_placements;
-    wr_garment_desc sewing;             /* also the gathering settings (thread_area, gather_time, ...) */
+    wr_garment_desc sewing;             /* also the gathering settings (thread_area, gather_time, ...) and the
+                                           gravity hold ($.garment.gravity_hold: gravity_delay, gravity_ramp) */
     int no_gathering;                   /* $.garment.gathering.enabled = false */
     double velocity[3];
     wr_simscene_pin pin[WR_SIMSCENE_MAX_PINS];
@@ -137,6 +138,7 @@ typedef struct wr_simscene_frame {
     double t, t_ns, t_ch, t_total, residual_rel, min_distance, h_min;
     double seam_gap; /* garment: largest seam-pair distance after the frame [m] (0 once welded) */
     int32_t welded;  /* garment: 1 once welded */
+    double gravity_scale; /* garment: the gravity factor of the frame (garment.h ON HOLDING; 1 without a hold) */
     int32_t newton, pcg, line_search, contacts, halvings, steps;
     wr_newton_stop stop;
 } wr_simscene_frame;
