@@ -37,6 +37,11 @@ wr_status wr_jin_bool(wr_jin *c, const cJSON *obj, const char *key, const char *
 /* the string must be one of names (NULL-terminated); *out = its index */
 wr_status wr_jin_enum(wr_jin *c, const cJSON *obj, const char *key, const char *path, const char *const *names, int *out,
                       int required);
+/* The keys of an analytic obstacle whose kind the caller has set (plane: point, normal ≠ 0; sphere:
+ * center, radius > 0; capsule: p, q, radius > 0), all required; shared by both scene formats'
+ * $.obstacles[k]. Other keys are the caller's to check. */
+struct wr_obstacle;
+wr_status wr_jin_analytic_obstacle(wr_jin *c, const cJSON *obj, const char *path, struct wr_obstacle *o);
 /* a non-empty string of at most cap − 1 bytes */
 wr_status wr_jin_str(wr_jin *c, const cJSON *obj, const char *key, const char *path, char *out, size_t cap, int required);
 

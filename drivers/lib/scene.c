@@ -445,6 +445,28 @@ static wr_status sc_parse_probe(wr_jin *c, const cJSON *o, const char *P, wr_sce
     return wr_jin_bool(c, o, "closed", P, &pr->closed);
 }
 
+wr_status wr_jin_analytic_obstacle(wr_jin *c, const cJSON *e, const char *P, wr_obstacle *o) {
+    int f1 = 0, f2 = 0, f3 = 0;
+    wr_status st;
+    if (o->kind == WR_OBSTACLE_PLANE) {
+        if ((st = wr_jin_vec(c, e, "point", P, 3, o->p, &f1)) != WR_OK || (st = wr_jin_vec(c, e, "normal", P, 3, o->normal, &f2)) != WR_OK)
+            return st;
+        if (!f1 || !f2) return wr_jin_err(c, P, "plane needs point and normal");
+        if (!(o->normal[0] * o->normal[0] + o->normal[1] * o->normal[1] + o->normal[2] * o->normal[2] > 0.0))
+            return wr_jin_err(c, P, "plane normal must not be zero");
+        return WR_OK;
+    }
+    if (o->kind == WR_OBSTACLE_SPHERE) {
+        if ((st = wr_jin_vec(c, e, "center", P, 3, o->p, &f1)) != WR_OK || (st = wr_jin_num(c, e, "radius", P, WR_JIN_POS, &o->radius, &f2)) != WR_OK)
+            return st;
+        return f1 && f2 ? WR_OK : wr_jin_err(c, P, "sphere needs center and radius");
+    }
+    if ((st = wr_jin_vec(c, e, "p", P, 3, o->p, &f1)) != WR_OK || (st = wr_jin_vec(c, e, "q", P, 3, o->q, &f2)) != WR_OK ||
+        (st = wr_jin_num(c, e, "radius", P, WR_JIN_POS, &o->radius, &f3)) != WR_OK)
+        return st;
+    return f1 && f2 && f3 ? WR_OK : wr_jin_err(c, P, "capsule needs p, q and radius");
+}
+
 static const char *const SC_OBSTACLES[] = {"plane", "sphere", "capsule", "obj", "mannequin", NULL};
 
 /* $.obstacles[k] (P): the keys of its type, required ones present (docs/scene-format.md) */
@@ -455,7 +477,7 @@ static wr_status sc_parse_obstacle(wr_jin *c, const cJSON *e, const char *P, con
                                            {"type", "path", "translate", NULL},
                                            {"type", "height", "target_faces", "cell", "translate", NULL}};
     wr_obstacle *o = &ob->analytic;
-    int kind = 0, f1 = 0, f2 = 0, f3 = 0;
+    int kind = 0;
     wr_status st;
     if (!cJSON_IsObject(e)) return wr_jin_err(c, P, "must be an object");
     if ((st = wr_jin_enum(c, e, "type", P, SC_OBSTACLES, &kind, 1)) != WR_OK) return st;
@@ -463,24 +485,12 @@ static wr_status sc_parse_obstacle(wr_jin *c, const cJSON *e, const char *P, con
     ob->kind = (wr_scene_obstacle_kind)kind;
     switch (ob->kind) {
     case WR_SCENE_OBSTACLE_PLANE:
-        o->kind = WR_OBSTACLE_PLANE;
-        if ((st = wr_jin_vec(c, e, "point", P, 3, o->p, &f1)) != WR_OK || (st = wr_jin_vec(c, e, "normal", P, 3, o->normal, &f2)) != WR_OK)
-            return st;
-        if (!f1 || !f2) return wr_jin_err(c, P, "plane needs point and normal");
-        if (!(o->normal[0] * o->normal[0] + o->normal[1] * o->normal[1] + o->normal[2] * o->normal[2] > 0.0))
-            return wr_jin_err(c, P, "plane normal must not be zero");
-        return WR_OK;
     case WR_SCENE_OBSTACLE_SPHERE:
-        o->kind = WR_OBSTACLE_SPHERE;
-        if ((st = wr_jin_vec(c, e, "center", P, 3, o->p, &f1)) != WR_OK || (st = wr_jin_num(c, e, "radius", P, WR_JIN_POS, &o->radius, &f2)) != WR_OK)
-            return st;
-        return f1 && f2 ? WR_OK : wr_jin_err(c, P, "sphere needs center and radius");
     case WR_SCENE_OBSTACLE_CAPSULE:
-        o->kind = WR_OBSTACLE_CAPSULE;
-        if ((st = wr_jin_vec(c, e, "p", P, 3, o->p, &f1)) != WR_OK || (st = wr_jin_vec(c, e, "q", P, 3, o->q, &f2)) != WR_OK ||
-            (st = wr_jin_num(c, e, "radius", P, WR_JIN_POS, &o->radius, &f3)) != WR_OK)
-            return st;
-        return f1 && f2 && f3 ? WR_OK : wr_jin_err(c, P, "capsule needs p, q and radius");
+        o->kind = ob->kind == WR_SCENE_OBSTACLE_PLANE ? WR_OBSTACLE_PLANE
+                  : ob->kind == WR_SCENE_OBSTACLE_SPHERE ? WR_OBSTACLE_SPHERE
+                                                        : WR_OBSTACLE_CAPSULE;
+        return wr_jin_analytic_obstacle(c, e, P, o);
     case WR_SCENE_OBSTACLE_OBJ:
         o->kind = WR_OBSTACLE_MESH;
         if ((st = sc_parse_path(c, e, P, base_dir, ob->path, sizeof ob->path)) != WR_OK) return st;

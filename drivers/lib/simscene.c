@@ -213,7 +213,7 @@ static wr_status ss_parse_obstacles(wr_jin *d, const cJSON *arr, const char *bas
         return wr_jin_err(d, "$.obstacles", "at most %d obstacles", WR_SIMSCENE_MAX_OBSTACLES);
     for (e = arr->child; e; e = e->next, ++k) {
         char P[64];
-        int kind = -1, f1 = 0, f2 = 0, f3 = 0;
+        int kind = -1;
         wr_obstacle *o = sc->analytic + sc->n_analytic;
         snprintf(P, sizeof P, "$.obstacles[%d]", k);
         if ((st = wr_jin_keys(d, e, P, keys)) != WR_OK) return st;
@@ -227,22 +227,7 @@ static wr_status ss_parse_obstacles(wr_jin *d, const cJSON *arr, const char *bas
         }
         memset(o, 0, sizeof *o);
         o->kind = (wr_obstacle_kind)kind;
-        if (o->kind == WR_OBSTACLE_PLANE) {
-            if ((st = wr_jin_vec(d, e, "point", P, 3, o->p, &f1)) != WR_OK) return st;
-            if ((st = wr_jin_vec(d, e, "normal", P, 3, o->normal, &f2)) != WR_OK) return st;
-            if (!f1 || !f2) return wr_jin_err(d, P, "plane needs point and normal");
-            if (!(o->normal[0] * o->normal[0] + o->normal[1] * o->normal[1] + o->normal[2] * o->normal[2] > 0.0))
-                return wr_jin_err(d, P, "plane normal must not be zero");
-        } else if (o->kind == WR_OBSTACLE_SPHERE) {
-            if ((st = wr_jin_vec(d, e, "center", P, 3, o->p, &f1)) != WR_OK) return st;
-            if ((st = wr_jin_num(d, e, "radius", P, WR_JIN_POS, &o->radius, &f2)) != WR_OK) return st;
-            if (!f1 || !f2) return wr_jin_err(d, P, "sphere needs center and radius");
-        } else {
-            if ((st = wr_jin_vec(d, e, "p", P, 3, o->p, &f1)) != WR_OK) return st;
-            if ((st = wr_jin_vec(d, e, "q", P, 3, o->q, &f2)) != WR_OK) return st;
-            if ((st = wr_jin_num(d, e, "radius", P, WR_JIN_POS, &o->radius, &f3)) != WR_OK) return st;
-            if (!f1 || !f2 || !f3) return wr_jin_err(d, P, "capsule needs p, q and radius");
-        }
+        if ((st = wr_jin_analytic_obstacle(d, e, P, o)) != WR_OK) return st;
         sc->n_analytic++;
     }
     return WR_OK;
