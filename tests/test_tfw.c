@@ -386,10 +386,14 @@ Test(tfw, base_shell_desc_is_the_sec41_model) {
  * docs/notes-tfw-solver.md); an iteration-count guard, not a timing: a half-size Kapton sheet sheared
  * by 1.5 mm (the validator's set-up at half scale). The energy, not the positions, is compared: at the
  * free short edges the faces carry no tension and the positions are set only to ~10 µm by the
- * quadratic bending's in-plane part, while E is set to round-off. Measured: 4 increments 312 Newton
- * steps, one increment 71 (stop GRADIENT), E equal to 1.2e-13 relative. */
-static wr_status sheared_base(const wr_mesh *m, const wr_shell *sh, int32_t n_inc, int32_t max_iter, double *x,
-                              wr_statics_stats *ss) {
+ * quadratic bending's in-plane part, while E is set to round-off. The four-increment path crawls to
+ * its iteration limit, and where it stops depends on the last bits of the factorisation (7.6e-10
+ * relative above the minimum with OpenBLAS's SkylakeX kernels, 1.7e-13 with Haswell's), so the
+ * reference energy is that path's end polished at full load (both edges held where it left them):
+ * the test then does not depend on the BLAS kernels. Measured: 4 increments 312 Newton steps, one
+ * increment 71 (stop GRADIENT), E equal to 1.3e-13 relative (Haswell; 1.5e-13 SkylakeX; bound 1e-12). */
+static wr_status sheared_base(const wr_mesh *m, const wr_shell *sh, const double *start, double shear, int32_t n_inc,
+                              int32_t max_iter, double *x, wr_statics_stats *ss) {
     int32_t *held = (int32_t *)malloc(sizeof(int32_t) * (size_t)m->nv), *moved = (int32_t *)malloc(sizeof(int32_t) * (size_t)m->nv);
     int32_t v, nh = 0, nm = 0;
     wr_motion mo[2];
@@ -407,10 +411,10 @@ static wr_status sheared_base(const wr_mesh *m, const wr_shell *sh, int32_t n_in
     mo[1].kind = WR_MOTION_TRANSLATE;
     mo[1].verts = moved;
     mo[1].n_verts = nm;
-    mo[1].vec[0] = 1.5e-3;
+    mo[1].vec[0] = shear;
     memset(&st, 0, sizeof st);
     st.stop.max_iter = max_iter;
-    memcpy(x, m->pos, sizeof(double) * 3 * (size_t)m->nv);
+    memcpy(x, start, sizeof(double) * 3 * (size_t)m->nv);
     s = wr_statics_solve_incremental(sh, x, &st, mo, 2, n_inc, ss, NULL);
     free(held);
     free(moved);
@@ -421,32 +425,38 @@ Test(tfw, convex_tft_base_needs_no_load_increments) {
     wr_mesh m;
     wr_shell sh;
     wr_shell_desc sd;
-    wr_statics_stats ss4, ss1;
+    wr_statics_stats ss4, ss1, ssp;
     int32_t n4, n1;
-    double e4, e1;
-    wr_status r4, r1;
-    double *x4, *x1;
+    double e4, e1, ep;
+    wr_status r4, r1, rp;
+    double *x4, *x1, *xp;
     cr_assert_eq(wr_mesh_rectangle(&m, 0.19, 0.064, 27, 9, NULL), WR_OK);
     wr_tfw_base_shell_desc(3530e6, 0.3, 25e-6, 0.0, &sd);
     cr_assert_eq(wr_shell_create(&sh, &m, &sd, NULL), WR_OK);
     x4 = (double *)malloc(sizeof(double) * 3 * (size_t)m.nv);
     x1 = (double *)malloc(sizeof(double) * 3 * (size_t)m.nv);
-    cr_assert(x4 && x1);
-    r4 = sheared_base(&m, &sh, 4, 200, x4, &ss4);
-    r1 = sheared_base(&m, &sh, 1, 800, x1, &ss1);
+    xp = (double *)malloc(sizeof(double) * 3 * (size_t)m.nv);
+    cr_assert(x4 && x1 && xp);
+    r4 = sheared_base(&m, &sh, m.pos, 1.5e-3, 4, 200, x4, &ss4);
+    r1 = sheared_base(&m, &sh, m.pos, 1.5e-3, 1, 800, x1, &ss1);
+    rp = sheared_base(&m, &sh, x4, 0.0, 1, 800, xp, &ssp); /* the four-increment end, polished */
     n4 = ss4.total_iterations;
     n1 = ss1.total_iterations;
-    cr_log_info("4 increments: %s, %d steps, E %.15e; 1 increment: %s, %d steps (%s), E %.15e", wr_status_string(r4),
-                n4, ss4.energy, wr_status_string(r1), n1, wr_newton_stop_name(ss1.stop),
-                ss1.energy);
+    cr_log_info("4 increments: %s, %d steps, E %.15e (polished: %s, %d more steps, E %.15e); 1 increment: %s, %d steps (%s), E %.15e",
+                wr_status_string(r4), n4, ss4.energy, wr_status_string(rp), (int)ssp.total_iterations, ssp.energy,
+                wr_status_string(r1), n1, wr_newton_stop_name(ss1.stop), ss1.energy);
     cr_assert(r4 == WR_OK || r4 == WR_ERR_NOT_CONVERGED);
     cr_assert_eq(r1, WR_OK, "one increment converges: %s", wr_status_string(r1));
+    cr_assert_eq(rp, WR_OK, "the polish of the four-increment end converges: %s", wr_status_string(rp));
     e1 = ss1.energy;
     e4 = ss4.energy;
-    cr_assert(fabs(e1 - e4) <= 1e-10 * fabs(e4), "same equilibrium energy: %.15e vs %.15e J", e1, e4);
+    ep = ssp.energy;
+    cr_assert(ep <= e4 * (1.0 + 1e-12), "polishing does not raise the energy beyond round-off: %.15e vs %.15e J", ep, e4);
+    cr_assert(fabs(e1 - ep) <= 1e-12 * fabs(ep), "same equilibrium energy: %.15e vs %.15e J", e1, ep);
     cr_assert(n1 <= n4 / 2, "one increment: %d Newton steps, four: %d", (int)n1, (int)n4);
     free(x4);
     free(x1);
+    free(xp);
     wr_shell_free(&sh);
     wr_mesh_free(&m);
 }
