@@ -395,6 +395,8 @@ static int gather_lines(const wr_pattern *pat, const wr_mesher_result *mr, doubl
             lines[*n_lines].rho = quilt ? pat->quilts[q].rho : pat->shirrings[i].rho;
             lines[*n_lines].modulus = quilt ? pat->quilts[q].E_sh : pat->shirrings[i].E_sh;
             if (quilt && lines[*n_lines].modulus == 0.0 && quilt_E > 0.0) lines[*n_lines].modulus = quilt_E; /* gspec */
+            lines[*n_lines].stitch_length = quilt ? pat->quilts[q].stitch_length : pat->shirrings[i].stitch_length;
+            lines[*n_lines].xy = xy, lines[*n_lines].n_xy = np;
             (*n_lines)++;
         }
     }

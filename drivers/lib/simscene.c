@@ -842,6 +842,8 @@ static wr_status ss_gather_lines(wr_simscene_run *run, const wr_pattern *pat, wr
             run->glines[k].n_vertices = nv;
             run->glines[k].rho = quilt ? pat->quilts[q].rho : pat->shirrings[i].rho;
             run->glines[k].modulus = quilt ? pat->quilts[q].E_sh : pat->shirrings[i].E_sh;
+            run->glines[k].stitch_length = quilt ? pat->quilts[q].stitch_length : pat->shirrings[i].stitch_length;
+            run->glines[k].xy = xy, run->glines[k].n_xy = np;
         }
     }
     return WR_OK;
