@@ -331,7 +331,7 @@ typedef struct wr_garment_desc {
     double thread_area;     /* gathering thread cross-section [m²] */
     double gather_time;     /* [s] */
     int32_t gather_immediate; /* 1: threads at ρ·l from the first frame */
-    int32_t stitch_edges;   /* mesh edges per stitch, >= 1 */
+    int32_t stitch_edges;   /* mesh edges per stitch, >= 1 (lines without a stitch_length) */
     double gravity_delay;   /* [s] gravity off until this time (ON HOLDING; 0: from the start) */
     double gravity_ramp;    /* [s] then ramped in over this time (ON HOLDING; 0: at once) */
 } wr_garment_desc;
