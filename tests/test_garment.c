@@ -1152,6 +1152,17 @@ Test(gather, line_split_closed_form) {
     cr_expect(o == NULL && n == 0);
 }
 
+/* wr_garment_sim_create's status for an input expected to be refused (the sim freed if it was not;
+ * the diag cleared first, so its message is this call's) */
+static wr_status gar_create_status(wr_garment_sim *gs, const wr_garment *g, const wr_shell_desc *sd, const wr_garment_desc *gd,
+                                   wr_diag *d) {
+    wr_status st;
+    memset(d, 0, sizeof *d);
+    st = wr_garment_sim_create(gs, g, sd, NULL, gd, d);
+    if (st == WR_OK) wr_garment_sim_free(gs);
+    return st;
+}
+
 /* One mesh of the square with the split shirring line; the garment's threads on it (gather at ρ from
  * the start): *nthr segments, stitch positions x (rest, along the line) and pattern lengths. */
 static void gar_stitch_mesh(const wr_pattern *pat, double uniform, const double *xy, int32_t n, double s, int32_t *nc,
@@ -1190,14 +1201,14 @@ static void gar_stitch_mesh(const wr_pattern *pat, double uniform, const double 
     wr_garment_sim_free(&gs);
     /* the same line with a negative / non-finite stitch length, or none of its polyline, is refused */
     ln.stitch_length = -s;
-    cr_expect_eq(wr_garment_sim_create(&gs, &g, &sd, NULL, &gd, &d), WR_ERR_INVALID_ARG);
+    cr_expect_eq(gar_create_status(&gs, &g, &sd, &gd, &d), WR_ERR_INVALID_ARG);
     cr_expect(d.item == 0 && strstr(d.message, "line 0 stitch length") != NULL, "%s", d.message);
     ln.stitch_length = HUGE_VAL;
-    cr_expect_eq(wr_garment_sim_create(&gs, &g, &sd, NULL, &gd, &d), WR_ERR_INVALID_ARG);
+    cr_expect_eq(gar_create_status(&gs, &g, &sd, &gd, &d), WR_ERR_INVALID_ARG);
     ln.stitch_length = s, ln.xy = NULL;
-    cr_expect_eq(wr_garment_sim_create(&gs, &g, &sd, NULL, &gd, &d), WR_ERR_INVALID_ARG);
+    cr_expect_eq(gar_create_status(&gs, &g, &sd, &gd, &d), WR_ERR_INVALID_ARG);
     ln.xy = xy, ln.stitch_length = 0.7 * s; /* stitches the mesher was not given: no vertex there */
-    cr_expect_eq(wr_garment_sim_create(&gs, &g, &sd, NULL, &gd, &d), WR_ERR_GEOMETRY);
+    cr_expect_eq(gar_create_status(&gs, &g, &sd, &gd, &d), WR_ERR_GEOMETRY);
     cr_expect(strstr(d.message, "no mesh vertex at its stitch") != NULL, "%s", d.message);
     wr_free(c);
     wr_mesher_free(&res);
