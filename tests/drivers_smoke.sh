@@ -214,6 +214,11 @@ if [ -x "$B/wrinkle-mesh" ]; then
     expect_fail "wrinkle-mesh missing pattern" "$B/wrinkle-mesh" "$tmp/none.json" -o "$tmp/m0"
     printf '{"panels": [' > "$tmp/broken.json"
     expect_fail "wrinkle-mesh malformed pattern" "$B/wrinkle-mesh" "$tmp/broken.json" -o "$tmp/m0"
+    for c in -2 1e999; do # a gathered line's stitch length (garment.h ON GATHERING): negative / not finite
+        printf '{"fabrics": {"f": {"B": 2e-6, "E": 1e6}}, "panels": [{"name": "a", "fabric": "f", "outer": [[0, 0], [100, 0], [100, 100], [0, 100]]}], "shirring": [{"panel": "a", "line": [[10, 50], [90, 50]], "rho": 0.6, "stitch_length": %s}]}' "$c" > "$tmp/stitch.json"
+        expect_fail "wrinkle-mesh stitch_length $c" "$B/wrinkle-mesh" "$tmp/stitch.json" -o "$tmp/m0"
+        if grep -q 'shirring\[0\]\.stitch_length' "$tmp/err"; then ok; else bad "wrinkle-mesh stitch_length $c: no JSON path in the error"; cat "$tmp/err"; fi
+    done
     if command -v gnuplot >/dev/null 2>&1; then png="$tmp/mesh/sizing.png"; nopng=""; else png=""; nopng=--no-png; fi
     atomic wrinkle-mesh "$tmp/mesh/mesh.obj" "$tmp/mesh/mesh.ply" "$tmp/mesh/summary.json" $png -- \
         "$B/wrinkle-mesh" -o "$tmp/mesh" $nopng -q --seed 1

@@ -1015,6 +1015,7 @@ static void gar_strip_run(double young, double EA, double rho, int32_t stitch, d
         cr_assert_eq(wr_garment_line_chain(&m, segs, ns, xy, 2, &chain[k], &nc[k], &d), WR_OK, "%s", d.message);
         cr_assert_eq(nc[k], nx + 1, "edge %d: chain of %d vertices", (int)k, (int)nc[k]);
         cr_assert_float_eq(m.rest[2 * chain[k][0]], 0.0, 1e-15, "the chain starts at the line's first point");
+        memset(&ln[k], 0, sizeof ln[k]);
         ln[k].vertices = chain[k], ln[k].n_vertices = nc[k], ln[k].rho = rho, ln[k].modulus = 0.0;
     }
     memset(&pl, 0, sizeof pl);
@@ -1104,6 +1105,7 @@ Test(gather, line_chain_from_the_mesher) {
     cr_assert(c2 == NULL && n2 == 0);
     /* a bad line refused, naming it */
     memset(&pl, 0, sizeof pl), memset(&g, 0, sizeof g), memset(&sd, 0, sizeof sd);
+    memset(&ln, 0, sizeof ln);
     ln.vertices = c, ln.n_vertices = n, ln.rho = 1.5, ln.modulus = 0.0;
     g.pattern = &res.mesh, g.placements = &pl, g.n_placements = 1, g.lines = &ln, g.n_lines = 1;
     gar_fabric(&sd);
@@ -1126,6 +1128,129 @@ Test(gather, line_chain_from_the_mesher) {
     wr_mesher_free(&res);
 }
 
+/* wr_garment_line_split: a stitch at every k·s (k·s <= l − s/2) inserted, input vertices kept, a
+ * stitch on an input vertex is that vertex; bad stitch lengths refused. */
+Test(gather, line_split_closed_form) {
+    double corner[6] = {0.0, 0.0, 0.025, 0.0, 0.025, 0.03}, straight[6] = {0.0, 0.0, 0.02, 0.0, 0.04, 0.0}, *o, nan_ = NAN;
+    double want[16] = {0, 0, 0.01, 0, 0.02, 0, 0.025, 0, 0.025, 0.005, 0.025, 0.015, 0.025, 0.025, 0.025, 0.03};
+    int32_t n, k;
+    wr_diag d;
+    cr_assert_eq(wr_garment_line_split(corner, 3, 0.01, &o, &n, &d), WR_OK, "%s", d.message);
+    cr_assert_eq(n, 8); /* l = 55 mm: stitches at 10..50 mm, the corner (25 mm) kept */
+    for (k = 0; k < 16; ++k) cr_expect_float_eq(o[k], want[k], 1e-15, "coordinate %d: %g, want %g", (int)k, o[k], want[k]);
+    wr_free(o);
+    cr_assert_eq(wr_garment_line_split(straight, 3, 0.01, &o, &n, &d), WR_OK, "%s", d.message);
+    cr_assert_eq(n, 5); /* 10, 20 (the input vertex), 30 mm */
+    for (k = 0; k < 5; ++k) cr_expect_float_eq(o[2 * k], 0.01 * k, 1e-15);
+    wr_free(o);
+    cr_assert_eq(wr_garment_line_split(straight, 3, 0.05, &o, &n, &d), WR_OK, "%s", d.message);
+    cr_expect_eq(n, 3); /* 40 mm < 1.5 s: no stitch inside */
+    wr_free(o);
+    cr_expect_eq(wr_garment_line_split(straight, 3, -0.01, &o, &n, &d), WR_ERR_INVALID_ARG);
+    cr_expect_eq(wr_garment_line_split(straight, 3, nan_, &o, &n, &d), WR_ERR_INVALID_ARG);
+    cr_expect_eq(wr_garment_line_split(straight, 3, 1e-12, &o, &n, &d), WR_ERR_INVALID_ARG);
+    cr_expect(o == NULL && n == 0);
+}
+
+/* wr_garment_sim_create's status for an input expected to be refused (the sim freed if it was not;
+ * the diag cleared first, so its message is this call's) */
+static wr_status gar_create_status(wr_garment_sim *gs, const wr_garment *g, const wr_shell_desc *sd, const wr_garment_desc *gd,
+                                   wr_diag *d) {
+    wr_status st;
+    memset(d, 0, sizeof *d);
+    st = wr_garment_sim_create(gs, g, sd, NULL, gd, d);
+    if (st == WR_OK) wr_garment_sim_free(gs);
+    return st;
+}
+
+/* One mesh of the square with the split shirring line; the garment's threads on it (gather at ρ from
+ * the start): *nthr segments, stitch positions x (rest, along the line) and pattern lengths. */
+static void gar_stitch_mesh(const wr_pattern *pat, double uniform, const double *xy, int32_t n, double s, int32_t *nc,
+                            int32_t *nthr, double *sx, double *len, double *rest) {
+    wr_mesher_desc md;
+    wr_mesher_result res;
+    wr_garment_placement pl;
+    wr_garment g;
+    wr_garment_line ln;
+    wr_garment_sim gs;
+    wr_shell_desc sd;
+    wr_garment_desc gd;
+    wr_dyn_stats fs;
+    wr_diag d;
+    int32_t *c, i;
+    memset(&md, 0, sizeof md);
+    md.uniform_resolution = uniform;
+    cr_assert_eq(wr_mesher_run(pat, &md, &res, &d), WR_OK, "%s", d.message);
+    cr_assert_eq(wr_garment_line_chain(&res.mesh, res.constraint_segments, res.n_constraint_segments, xy, n, &c, nc, &d), WR_OK,
+                 "%s", d.message);
+    memset(&pl, 0, sizeof pl), memset(&g, 0, sizeof g), memset(&ln, 0, sizeof ln), memset(&gd, 0, sizeof gd);
+    ln.vertices = c, ln.n_vertices = *nc, ln.rho = 0.6, ln.stitch_length = s, ln.xy = xy, ln.n_xy = n;
+    g.pattern = &res.mesh, g.placements = &pl, g.n_placements = 1, g.lines = &ln, g.n_lines = 1;
+    gar_fabric(&sd);
+    gd.gather_immediate = 1;
+    cr_assert_eq(wr_garment_sim_create(&gs, &g, &sd, NULL, &gd, &d), WR_OK, "%s", d.message);
+    cr_assert_eq(wr_garment_sim_step(&gs, &fs, &d), WR_OK, "%s", d.message); /* the rests the dynamics gets */
+    *nthr = gs.n_thr;
+    for (i = 0; i < gs.n_thr && i < 16; ++i) {
+        sx[i] = res.mesh.rest[2 * gs.thr_seg[2 * i]];
+        sx[i + 1] = res.mesh.rest[2 * gs.thr_seg[2 * i + 1]];
+        len[i] = gs.thr_len[i];
+        rest[i] = gs.dyn.thread_rest[i];
+        cr_expect_float_eq(res.mesh.rest[2 * gs.thr_seg[2 * i] + 1], 0.1, 1e-12);
+    }
+    wr_garment_sim_free(&gs);
+    /* the same line with a negative / non-finite stitch length, or none of its polyline, is refused */
+    ln.stitch_length = -s;
+    cr_expect_eq(gar_create_status(&gs, &g, &sd, &gd, &d), WR_ERR_INVALID_ARG);
+    cr_expect(d.item == 0 && strstr(d.message, "line 0 stitch length") != NULL, "%s", d.message);
+    ln.stitch_length = HUGE_VAL;
+    cr_expect_eq(gar_create_status(&gs, &g, &sd, &gd, &d), WR_ERR_INVALID_ARG);
+    ln.stitch_length = s, ln.xy = NULL;
+    cr_expect_eq(gar_create_status(&gs, &g, &sd, &gd, &d), WR_ERR_INVALID_ARG);
+    ln.xy = xy, ln.stitch_length = 0.7 * s; /* stitches the mesher was not given: no vertex there */
+    cr_expect_eq(gar_create_status(&gs, &g, &sd, &gd, &d), WR_ERR_GEOMETRY);
+    cr_expect(strstr(d.message, "no mesh vertex at its stitch") != NULL, "%s", d.message);
+    wr_free(c);
+    wr_mesher_free(&res);
+}
+
+/* A stitch length of the pattern (ON GATHERING): the 195 mm line split at s = 20 mm and meshed with
+ * the sizing map and at a uniform 5 mm gets its stitches at the same pattern points on both meshes,
+ * x = 30 mm + k·s (k = 0..9) and the end at 225 mm, though the chains differ; each thread segment's
+ * pattern length is s (the last 15 mm) and its rest in the dynamics ρ·s. */
+Test(gather, stitch_length_is_mesh_independent) {
+    double sq[8] = {0, 0, 0.25, 0, 0.25, 0.25, 0, 0.25}, line[4] = {0.03, 0.1, 0.225, 0.1}, *xy, s = 0.02;
+    double sx[2][17], len[2][16], rest[2][16];
+    int32_t n, nc[2], nthr[2], r, k;
+    wr_pattern_panel pn;
+    wr_pattern_shirring sh;
+    wr_pattern pat;
+    wr_diag d;
+    cr_assert_eq(wr_garment_line_split(line, 2, s, &xy, &n, &d), WR_OK, "%s", d.message);
+    cr_assert_eq(n, 11);
+    memset(&pn, 0, sizeof pn), memset(&sh, 0, sizeof sh), memset(&pat, 0, sizeof pat);
+    pn.outer.xy = sq, pn.outer.n = 4, pn.fabric.B = 2.6e-6, pn.fabric.E = 2.0e6;
+    sh.panel = 0, sh.xy = xy, sh.n = n, sh.E_sh = 2.0e6, sh.rho = 0.6, sh.stitch_length = s;
+    pat.panels = &pn, pat.n_panels = 1, pat.shirrings = &sh, pat.n_shirrings = 1;
+    for (r = 0; r < 2; ++r) gar_stitch_mesh(&pat, r ? 0.005 : 0.0, xy, n, s, &nc[r], &nthr[r], sx[r], len[r], rest[r]);
+    cr_log_info("stitch length: chains of %d and %d vertices", (int)nc[0], (int)nc[1]);
+    cr_expect_neq(nc[0], nc[1], "two different meshes of the line");
+    for (r = 0; r < 2; ++r) {
+        cr_assert_eq(nthr[r], 10, "mesh %d: %d thread segments", (int)r, (int)nthr[r]);
+        cr_expect_gt(nc[r], 2 * nthr[r], "mesh %d: at least two edges per stitch", (int)r);
+        for (k = 0; k <= 10; ++k) {
+            double want = k < 10 ? 0.03 + k * s : 0.225;
+            cr_expect_float_eq(sx[r][k], want, 1e-12, "mesh %d stitch %d at x %.6f, want %.6f", (int)r, (int)k, sx[r][k], want);
+        }
+        for (k = 0; k < 10; ++k) {
+            double want = k < 9 ? s : 0.015;
+            cr_expect_float_eq(len[r][k], want, 1e-12, "mesh %d segment %d: length %.9f", (int)r, (int)k, len[r][k]);
+            cr_expect_float_eq(rest[r][k], 0.6 * want, 1e-12, "mesh %d segment %d: rest %.9f", (int)r, (int)k, rest[r][k]);
+        }
+    }
+    wr_free(xy);
+}
+
 /* The threads survive the weld: a gathered line along one panel of the sewn tube keeps its five
  * stitches on the welded vertices, their rest lengths follow the schedule to ρ·l (exactly, after
  * gather_time), and the line keeps shortening across the weld (its stitch-to-stitch length after
@@ -1146,6 +1271,7 @@ Test(gather, threads_carried_across_the_weld) {
     gar_tube(&m, &pairs, &seam, &np, w, 10, 6);
     gar_tube_placements(pl, w, 0.04);
     for (i = 0; i <= 10; ++i) row[i] = 3 * 11 + i;
+    memset(&ln, 0, sizeof ln);
     ln.vertices = row, ln.n_vertices = 11, ln.rho = 0.7, ln.modulus = 0.0;
     memset(&g, 0, sizeof g);
     g.pattern = &m, g.seam_pairs = pairs, g.seam_pair_seam = seam, g.n_seam_pairs = np;

@@ -898,6 +898,38 @@ Test(pattern_file, errors_name_the_json_path) {
     parse_expect("{\"panels\":[" PANEL "],\"panels\":[" PANEL "]}", WR_ERR_PARSE, "duplicate key");
     parse_expect("{\"panels\":[{\"fabric\":{\"B\":1,\"E\":1e999},\"outer\":[[0,0],[1,0],[1,1]]}]}", WR_ERR_PARSE,
                  "not finite");
+    parse_expect("{\"panels\":[" PANEL "],\"shirring\":[{\"panel\":\"a\",\"line\":[[1,1],[2,2]],\"rho\":0.5,"
+                 "\"stitch_length\":-2}]}",
+                 WR_ERR_PARSE, "shirring[0].stitch_length: -2 outside [0");
+    parse_expect("{\"panels\":[" PANEL "],\"quilts\":[{\"panel\":\"a\",\"lines\":[[[1,1],[2,2]]],\"rho\":0.5,"
+                 "\"stitch_length\":1e999}]}",
+                 WR_ERR_PARSE, "quilts[0].stitch_length: number is not finite");
+}
+
+/* A shirring's and a quilt's stitch_length (mm) reach the pattern in metres with each line split at
+ * its stitches k·s (k·s <= l − s/2, garment.h ON GATHERING): the 80 mm line at 20 mm gets points at
+ * 30, 50, 70 mm (x from 10), the quilt's 100 mm line at 30 mm at 30, 60 mm (the 90 mm one would leave
+ * 10 < 15 mm); absent or 0: the line as given. */
+Test(pattern_file, stitch_length_splits_the_lines) {
+    const char *js = "{\"panels\":[" PANEL "],"
+                     "\"shirring\":[{\"panel\":\"a\",\"line\":[[10,50],[90,50]],\"rho\":0.5,\"stitch_length\":20},"
+                     "{\"panel\":\"a\",\"line\":[[10,40],[90,40]],\"rho\":0.5,\"stitch_length\":0}],"
+                     "\"quilts\":[{\"panel\":\"a\",\"lines\":[[[0,80],[100,80]]],\"rho\":0.9,\"stitch_length\":30}]}";
+    double want[5] = {0.01, 0.03, 0.05, 0.07, 0.09}, wq[4] = {0.0, 0.03, 0.06, 0.1};
+    wr_pattern_file pf;
+    wr_diag d;
+    int k;
+    cr_assert_eq(wr_pattern_parse(js, strlen(js), "t.json", &pf, &d), WR_OK, "%s", d.message);
+    cr_expect(fabs(pf.pattern.shirrings[0].stitch_length - 0.02) < 1e-15);
+    cr_assert_eq(pf.pattern.shirrings[0].n, 5);
+    for (k = 0; k < 5; ++k)
+        cr_expect(fabs(pf.pattern.shirrings[0].xy[2 * k] - want[k]) < 1e-12 && fabs(pf.pattern.shirrings[0].xy[2 * k + 1] - 0.05) < 1e-15,
+                  "point %d at (%g, %g)", k, pf.pattern.shirrings[0].xy[2 * k], pf.pattern.shirrings[0].xy[2 * k + 1]);
+    cr_expect_eq(pf.pattern.shirrings[1].n, 2);
+    cr_expect_eq(pf.pattern.shirrings[1].stitch_length, 0.0);
+    cr_assert_eq(pf.pattern.quilts[0].lines[0].n, 4);
+    for (k = 0; k < 4; ++k) cr_expect(fabs(pf.pattern.quilts[0].lines[0].xy[2 * k] - wq[k]) < 1e-12, "quilt point %d", k);
+    wr_pattern_file_free(&pf);
 }
 
 /* Mutation fuzz of the reader: every truncation and single-byte change of a valid file either parses

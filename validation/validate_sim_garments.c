@@ -48,6 +48,12 @@
  *          0.052 N) cannot hold the skirt up: by friction (μ = 0.5) the rings must carry a total
  *          tension T with 2π μ T >= the skirt's weight 0.05 N, T >= 0.016 N, i.e. 10 % strain on
  *          each of three 0.052 N threads (D4 missed by construction) but 0.9 % on 0.63 N ones.
+ *          THE STITCHES: every 11 mm of each line (the pattern's stitch_length, garment.h ON
+ *          GATHERING), the same pattern points on both meshes, so the band's puckers are a length
+ *          of fabric, not a number of mesh edges: 11 mm is the shirring's own wrinkle wavelength
+ *          λ_sh = r_sh/c(δ) (r_sh = 4.2 mm the sizing map's line resolution, δ = 0.4, c = 0.379,
+ *          sizing.h), a fabric length the 0.25 garment scale leaves alone, and 3 (r_opt) / 4
+ *          (2.5 mm) mesh edges per stitch.
  *   coat   examples/sim/coat_table1_pattern.json: the down coat of examples/garment_down_coat.json
  *          (left front, back, right front; five horizontal quilt stitch lines per panel, rho = 0.85,
  *          E_sh = 0, p = 1; side seams) scaled by SKIRT_SCALE like the skirt, Pinkish Puff fabric
@@ -370,9 +376,10 @@ static void fabric(const gspec *g, wr_shell_desc *sd) {
 }
 
 /* The pattern's shirring lines and quilt stitch lines as gathered lines (garment.h ON GATHERING):
- * each polyline's vertex chain among the mesher's constraint segments. */
+ * each polyline's vertex chain among the mesher's constraint segments (chains, wr_free) and a copy of the
+ * polyline (xys, free: the stitch points of a stitch_length, read at the garment's create). */
 static int gather_lines(const wr_pattern *pat, const wr_mesher_result *mr, double quilt_E, wr_garment_line *lines,
-                        int32_t **chains, int32_t *n_lines) {
+                        int32_t **chains, double **xys, int32_t *n_lines) {
     int32_t i, u, nv;
     wr_diag d;
     *n_lines = 0;
@@ -387,7 +394,7 @@ static int gather_lines(const wr_pattern *pat, const wr_mesher_result *mr, doubl
                                       &d) != WR_OK) {
                 fprintf(stderr, "validate_sim_garments: gathered line %d: %s\n", (int)*n_lines,
                         *n_lines >= MAXLINES ? "too many" : d.message);
-                for (u = 0; u < *n_lines; ++u) wr_free(chains[u]);
+                for (u = 0; u < *n_lines; ++u) wr_free(chains[u]), free(xys[u]);
                 return -1;
             }
             lines[*n_lines].vertices = chains[*n_lines];
@@ -395,6 +402,15 @@ static int gather_lines(const wr_pattern *pat, const wr_mesher_result *mr, doubl
             lines[*n_lines].rho = quilt ? pat->quilts[q].rho : pat->shirrings[i].rho;
             lines[*n_lines].modulus = quilt ? pat->quilts[q].E_sh : pat->shirrings[i].E_sh;
             if (quilt && lines[*n_lines].modulus == 0.0 && quilt_E > 0.0) lines[*n_lines].modulus = quilt_E; /* gspec */
+            lines[*n_lines].stitch_length = quilt ? pat->quilts[q].stitch_length : pat->shirrings[i].stitch_length;
+            if (!(xys[*n_lines] = (double *)malloc(sizeof(double) * 2 * (size_t)np))) { /* the pattern is freed before create */
+                fprintf(stderr, "validate_sim_garments: out of memory\n");
+                for (u = 0; u <= *n_lines; ++u) wr_free(chains[u]);
+                for (u = 0; u < *n_lines; ++u) free(xys[u]);
+                return -1;
+            }
+            memcpy(xys[*n_lines], xy, sizeof(double) * 2 * (size_t)np);
+            lines[*n_lines].xy = xys[*n_lines], lines[*n_lines].n_xy = np;
             (*n_lines)++;
         }
     }
@@ -424,8 +440,8 @@ static int weld_hits(const wr_garment_sim *gs, const wr_mesh *bm, grun *R) {
 
 /* Garment R->g meshed (unsewn: garment.h sews) at R->uniform (0: the sizing map), its gathering
  * lines matched to mesh chains, the mesh statistics, each panel placed; 0 on failure. */
-static int garment_mesh(grun *R, wr_garment_line *lines, int32_t **chains, int32_t *n_lines, wr_garment_placement *pl,
-                        int32_t *np) {
+static int garment_mesh(grun *R, wr_garment_line *lines, int32_t **chains, double **xys, int32_t *n_lines,
+                        wr_garment_placement *pl, int32_t *np) {
     wr_pattern_file pf;
     wr_diag d;
     double *el;
@@ -443,7 +459,7 @@ static int garment_mesh(grun *R, wr_garment_line *lines, int32_t **chains, int32
         wr_pattern_file_free(&pf);
         return 0;
     }
-    if (gather_lines(&pf.pattern, &R->mr, g_quilt_E > 0.0 ? g_quilt_E : R->g->quilt_E, lines, chains, n_lines) != 0) {
+    if (gather_lines(&pf.pattern, &R->mr, g_quilt_E > 0.0 ? g_quilt_E : R->g->quilt_E, lines, chains, xys, n_lines) != 0) {
         wr_pattern_file_free(&pf);
         return 0;
     }
@@ -672,11 +688,12 @@ static int garment_simulate(grun *R, const wr_mesh *bm, const wr_dyn_body *body,
     wr_garment_sim gs;
     double cpu0 = (double)clock() / CLOCKS_PER_SEC, wall0 = wr_time_seconds();
     int32_t *chains[MAXLINES], n_lines = 0, np, i;
+    double *xys[MAXLINES];
     int ok;
     memset(&gs, 0, sizeof gs);
-    if (!garment_mesh(R, lines, chains, &n_lines, pl, &np)) return -1;
+    if (!garment_mesh(R, lines, chains, xys, &n_lines, pl, &np)) return -1;
     ok = garment_sim(R, body, lines, n_lines, pl, np, &gs);
-    for (i = 0; i < n_lines; ++i) wr_free(chains[i]); /* the garment is a view read during create */
+    for (i = 0; i < n_lines; ++i) wr_free(chains[i]), free(xys[i]); /* the garment is a view read during create */
     if (!ok) return -1;
     ok = garment_frames(R, &gs, bm, body, cpu0);
     R->cpu = (double)clock() / CLOCKS_PER_SEC - cpu0;
@@ -1238,7 +1255,7 @@ static void setup_note(wr_vres *v, const gspec *g, const gbody *B, double second
              g->name, g->title, g->pattern, B->bd.height, g->scale, (int)B->nbf, B->crop_lo[2], B->crop_hi[2], B->crop_hi[0],
              (int)B->bm.nf, g->scale * g->radius, g->scale * g->hem_z, g->young, 1e3 * g->thickness,
              strstr(g->pattern, "shirred") ? ", shirring lines gathered by garment.h threads (E_sh, rho of the pattern; EA = E_sh h s, "
-                                             "s = 5 mm the line spacing), gravity held off for the 1/3 s gather and ramped in over the next 1/3 s"
+                                             "s = 5 mm the line spacing; stitched every 11 mm of the line, the pattern's stitch_length), gravity held off for the 1/3 s gather and ramped in over the next 1/3 s"
              : (g->pin_top ? ", quilt stitch lines gathered by garment.h threads (rho 0.85, E_sh 0: the fabric's E), no down "
                              "pressure load, every vertex of each panel's top edge held at its placed position" : ""),
              1e3 * (g_dhat > 0.0 ? g_dhat : g->scale * 1e-3),

@@ -183,6 +183,7 @@ static int shirring_simulate(srun *R, const wr_pattern_file *pf0, int k) {
             return -1;
         }
         ln[L].vertices = chain[L], ln[L].n_vertices = nc, ln[L].rho = sh->rho, ln[L].modulus = sh->E_sh;
+        ln[L].stitch_length = sh->stitch_length, ln[L].xy = sh->xy, ln[L].n_xy = sh->n;
     }
     h = cbrt(12.0 * (1.0 - NU * NU) * B / E);
     memset(&sd, 0, sizeof sd);

@@ -1,5 +1,6 @@
 /* pattern.c — see pattern.h and docs/pattern-format.md. Uses cJSON (Debian libcjson-dev). */
 #include "pattern.h"
+#include "wrinkle/garment.h"
 
 #include <cjson/cJSON.h>
 #include <math.h>
@@ -357,6 +358,33 @@ static wr_status get_tl(pctx *c, const cJSON *o, const char *p, double *out) {
     return st;
 }
 
+/* stitch_length (mm, optional, >= 0; 0 or absent: the garment's mesh-edge stitches): in metres into
+ * *out, and each polyline lines[0..n_lines) split at its stitches (garment.h wr_garment_line_split),
+ * so the mesher keeps a vertex at every stitch (garment.h ON GATHERING). */
+static wr_status get_stitch(pctx *c, const cJSON *o, const char *p, double *out, wr_pattern_curve *lines, int32_t n_lines) {
+    double x = 0.0;
+    int pr = 0;
+    int32_t k;
+    char q[512];
+    wr_status st = get_range(c, o, p, "stitch_length", 0, 0.0, 0, HUGE_VAL, 1, &x, &pr);
+    if (st != WR_OK || !pr || x == 0.0) return st;
+    *out = x * MM;
+    join(q, sizeof q, p, "stitch_length");
+    for (k = 0; k < n_lines; ++k) {
+        double *xy = NULL, *kept;
+        int32_t n = 0;
+        wr_diag d;
+        if (wr_garment_line_split(lines[k].xy, lines[k].n, *out, &xy, &n, &d) != WR_OK) return perr(c, WR_ERR_PARSE, q, "%s", d.message);
+        kept = (double *)pf_alloc(c->f, (size_t)n, 2 * sizeof(double));
+        if (kept) memcpy(kept, xy, sizeof(double) * 2 * (size_t)n);
+        wr_free(xy);
+        if (!kept) return perr(c, WR_ERR_NOMEM, q, "out of memory");
+        lines[k].xy = kept;
+        lines[k].n = n;
+    }
+    return WR_OK;
+}
+
 /* One technique entry of a list: the object at path p, already checked against its keys. */
 typedef wr_status (*tech_item_fn)(pctx *c, const cJSON *it, const char *p, void *item);
 
@@ -400,6 +428,12 @@ static wr_status shirring_item(pctx *c, const cJSON *it, const char *p, void *it
     if ((st = get_range(c, it, p, "E_sh", 0, 0.0, 0, HUGE_VAL, 1, &a->E_sh, NULL)) != WR_OK) return st;
     if ((st = get_range(c, it, p, "rho", 1, 0.0, 1, 1.0, 0, &a->rho, NULL)) != WR_OK) return st;
     if ((st = get_range(c, it, p, "n", 0, 0.0, 1, HUGE_VAL, 1, &a->n_exp, NULL)) != WR_OK) return st;
+    {
+        wr_pattern_curve ln;
+        ln.xy = a->xy, ln.n = a->n;
+        if ((st = get_stitch(c, it, p, &a->stitch_length, &ln, 1)) != WR_OK) return st;
+        a->xy = ln.xy, a->n = ln.n;
+    }
     return get_tl(c, it, p, &a->transition_length);
 }
 
@@ -471,6 +505,7 @@ static wr_status quilt_item(pctx *c, const cJSON *it, const char *p, void *item)
     if ((st = get_range(c, it, p, "rho", 1, 0.0, 1, 1.0, 0, &a->rho, NULL)) != WR_OK) return st;
     if ((st = get_range(c, it, p, "E_sh", 0, 0.0, 0, HUGE_VAL, 1, &a->E_sh, NULL)) != WR_OK) return st;
     if ((st = get_range(c, it, p, "pressure", 0, 0.0, 0, HUGE_VAL, 1, &a->pressure, NULL)) != WR_OK) return st;
+    if ((st = get_stitch(c, it, p, &a->stitch_length, lc, nl)) != WR_OK) return st;
     return get_tl(c, it, p, &a->transition_length);
 }
 
@@ -499,11 +534,13 @@ static wr_status collision_item(pctx *c, const cJSON *it, const char *p, void *i
 
 /* The garment techniques of Style3D Sec. 4.2, each an optional list, in this order. */
 static wr_status parse_techniques(pctx *c, const cJSON *root) {
-    static const char *const shirring_keys[] = {"panel", "line", "E_sh", "rho", "n", "transition_length", NULL};
+    static const char *const shirring_keys[] = {"panel", "line", "E_sh", "rho", "n", "transition_length", "stitch_length",
+                                                NULL};
     static const char *const fold_keys[] = {"panel", "line", "angle_deg", "offset", "curvature_radius", "transition_length",
                                             NULL};
     static const char *const seam_keys[] = {"a", "b", "transition_length", NULL};
-    static const char *const quilt_keys[] = {"panel", "lines", "rho", "E_sh", "pressure", "transition_length", NULL};
+    static const char *const quilt_keys[] = {"panel", "lines", "rho", "E_sh", "pressure", "transition_length", "stitch_length",
+                                             NULL};
     static const char *const collision_keys[] = {"panel", "polygon", "center", "radius", "compression",
                                                  "transition_length", NULL};
     wr_pattern *pt = &c->f->pattern;

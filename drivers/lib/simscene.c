@@ -643,8 +643,9 @@ void wr_simscene_run_free(wr_simscene_run *run) {
     wr_shell_free(&run->shell);
     wr_garment_sim_free(&run->gs);
     wr_mesher_free(&run->mr);
-    for (i = 0; i < run->n_glines; ++i) wr_free(run->gline_verts[i]);
+    for (i = 0; i < run->n_glines; ++i) wr_free(run->gline_verts[i]), wr_free(run->gline_xy ? run->gline_xy[i] : NULL);
     wr_free(run->gline_verts);
+    wr_free(run->gline_xy);
     wr_free(run->glines);
     for (i = 0; i < run->n_panels; ++i) wr_free(run->panel_names ? run->panel_names[i] : NULL);
     wr_free(run->panel_names);
@@ -822,7 +823,8 @@ static wr_status ss_gather_lines(wr_simscene_run *run, const wr_pattern *pat, wr
     if (n == 0) return WR_OK;
     run->glines = (wr_garment_line *)wr_calloc_array((size_t)n, sizeof(wr_garment_line));
     run->gline_verts = (int32_t **)wr_calloc_array((size_t)n, sizeof(int32_t *));
-    if (!run->glines || !run->gline_verts) return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
+    run->gline_xy = (double **)wr_calloc_array((size_t)n, sizeof(double *));
+    if (!run->glines || !run->gline_verts || !run->gline_xy) return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
     for (i = 0; i < pat->n_shirrings + pat->n_quilts; ++i) {
         int quilt = i >= pat->n_shirrings;
         int32_t q = i - pat->n_shirrings, nl = quilt ? pat->quilts[q].n_lines : 1;
@@ -842,6 +844,11 @@ static wr_status ss_gather_lines(wr_simscene_run *run, const wr_pattern *pat, wr
             run->glines[k].n_vertices = nv;
             run->glines[k].rho = quilt ? pat->quilts[q].rho : pat->shirrings[i].rho;
             run->glines[k].modulus = quilt ? pat->quilts[q].E_sh : pat->shirrings[i].E_sh;
+            run->glines[k].stitch_length = quilt ? pat->quilts[q].stitch_length : pat->shirrings[i].stitch_length;
+            if (!(run->gline_xy[k] = (double *)wr_alloc_array((size_t)np, 2 * sizeof(double))))
+                return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory");
+            memcpy(run->gline_xy[k], xy, sizeof(double) * 2 * (size_t)np);
+            run->glines[k].xy = run->gline_xy[k], run->glines[k].n_xy = np;
         }
     }
     return WR_OK;

@@ -158,6 +158,7 @@ typedef struct wr_simscene_run {
     int32_t n_panels;
     wr_garment_line *glines; /* the pattern's shirring lines, then its quilt stitches (garment.h ON GATHERING) */
     int32_t **gline_verts;   /* their vertex chains (owned) */
+    double **gline_xy;       /* their pattern polylines (owned copies: the stitch points of a stitch_length) */
     int32_t n_glines;
     wr_mesh bodies[1 + WR_SIMSCENE_MAX_OBSTACLES]; /* triangle-mesh bodies: $.body, then mesh obstacles */
     wr_dyn_body dbodies[1 + WR_SIMSCENE_MAX_OBSTACLES];

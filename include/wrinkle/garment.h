@@ -21,6 +21,9 @@
  *                                                 pattern polyline (a shirring line, a quilt
  *                                                 stitch), in order along it, from the mesher's
  *                                                 constraint segments (caller frees with wr_free)
+ *   wr_garment_line_split(xy, n, s, out, n_out, diag)   the polyline with a vertex at every stitch
+ *                                                 of stitch length s (ON GATHERING; mesh the
+ *                                                 split line so the stitches are mesh vertices)
  *   wr_garment_sim_create(gs, garment, shell, dyn, desc, diag)   place, pair, shell, simulator
  *   wr_garment_sim_step(gs, stats, diag)          one frame: sewing, gathering and gravity
  *                                                 schedules, step, seam gap, weld
@@ -175,6 +178,23 @@
  *   than puffing its packs (that needs the two layers and the down between them).
  *   At the weld the threads are carried over to the welded vertices (a segment whose two ends
  *   merge is dropped).
+ *   Stitch length (line.stitch_length s [m] > 0, a length of the pattern, not of the mesh): the
+ *   stitches are the points at arc length k·s along the line's pattern polyline (line.xy),
+ *   k = 1, 2, ... while k·s <= l − s/2 (l its length), plus the chain's two ends, so the last
+ *   stitch interval is in [s/2, 3s/2). The thread segment between two stitches then has the
+ *   pattern length s (the last one its remainder) and rest ρ·s on every mesh, and the pucker a
+ *   stitch interval makes is the same length of fabric at every resolution. The stitch points
+ *   must be mesh vertices: wr_garment_line_split inserts them into the polyline, and the mesher
+ *   keeps every input vertex of a constraint line as a mesh vertex (mesher.h: "a break at every
+ *   input vertex"), so meshing the split line puts a vertex exactly there whatever the sizing;
+ *   a stitch point with no chain vertex within WR_GARMENT_LINE_TOL is WR_ERR_GEOMETRY (item =
+ *   line). A line end the mesher trimmed off the boundary (mesher.h ON THE CONSTRAINTS) keeps
+ *   its chain end as the first / last stitch, so only that end interval depends on the sizing.
+ *   Why s = 0 keeps the mesh-edge stitches (desc.stitch_edges) rather than a default length:
+ *   the pattern gives no stitch length, any default would be a guess at a garment scale, and
+ *   every gathered result measured so far (the dress, the coat, Fig. 14) was made with the
+ *   edge rule. A stitch interval needs at least two mesh edges (one free vertex to fold out,
+ *   see above), so s should be at least twice the line's coarsest edge on every mesh compared.
  *
  * ON HOLDING (gravity held off while the garment is sewn and gathered)
  *   A garment whose waist must be gathered onto the body before it can hang there (a shirred
@@ -270,12 +290,17 @@ typedef struct wr_garment_placement {
  * vertex ids (mesher result.seam_pairs); seam_pair_seam: the seam of each pair (may be NULL: all
  * seam 0). placements: one per panel. */
 /* A gathered line (ON GATHERING): vertices (n_vertices >= 2) of the pattern mesh in order along
- * it (wr_garment_line_chain), rho in (0, 1], modulus E_sh [Pa] (0: the shell's Young's modulus). */
+ * it (wr_garment_line_chain), rho in (0, 1], modulus E_sh [Pa] (0: the shell's Young's modulus).
+ * stitch_length [m] >= 0 (0: a stitch every desc.stitch_edges mesh edges); when > 0, xy (n_xy >= 2
+ * points [m]) is the line's pattern polyline, split by wr_garment_line_split before meshing. */
 typedef struct wr_garment_line {
     const int32_t *vertices;
     int32_t n_vertices;
     double rho;
     double modulus;
+    double stitch_length;
+    const double *xy;
+    int32_t n_xy;
 } wr_garment_line;
 
 typedef struct wr_garment {
@@ -306,7 +331,7 @@ typedef struct wr_garment_desc {
     double thread_area;     /* gathering thread cross-section [m²] */
     double gather_time;     /* [s] */
     int32_t gather_immediate; /* 1: threads at ρ·l from the first frame */
-    int32_t stitch_edges;   /* mesh edges per stitch, >= 1 */
+    int32_t stitch_edges;   /* mesh edges per stitch, >= 1 (lines without a stitch_length) */
     double gravity_delay;   /* [s] gravity off until this time (ON HOLDING; 0: from the start) */
     double gravity_ramp;    /* [s] then ramped in over this time (ON HOLDING; 0: at once) */
 } wr_garment_desc;
@@ -357,6 +382,11 @@ WRDEF wr_status wr_garment_sewing_pairs(const wr_mesh *m, const int32_t *pairs, 
  * segment lies on the line or the segments on it do not form one open chain. */
 WRDEF wr_status wr_garment_line_chain(const wr_mesh *m, const int32_t *segs, int32_t n_segs, const double *xy, int32_t n,
                                       int32_t **out, int32_t *n_out, wr_diag *diag);
+/* The polyline xy (n >= 2 points [m]) with a point inserted at arc length k·s for k = 1, 2, ...
+ * while k·s <= l − s/2 (ON GATHERING: the stitch points of stitch length s > 0 [m]; a point within
+ * WR_GARMENT_LINE_TOL of an input vertex is that vertex). *out (wr_free) gets *n_out points, the
+ * input vertices kept. WR_ERR_INVALID_ARG: s not finite or <= 0, n < 2, a point not finite. */
+WRDEF wr_status wr_garment_line_split(const double *xy, int32_t n, double s, double **out, int32_t *n_out, wr_diag *diag);
 /* Joins two meshes into one with face_panel 0 (a's faces) and 1 (b's), b's vertices after a's;
  * rest coordinates kept (a helper for hand-made two-panel garments and the EXAMPLE). */
 WRDEF wr_status wr_garment_example_join(wr_mesh *out, const wr_mesh *a, const wr_mesh *b, wr_diag *diag);
@@ -664,23 +694,134 @@ done:
     return st;
 }
 
+/* the polyline xy's length (n points) */
+static double wr__gar_poly_len(const double *xy, int32_t n) {
+    double l = 0.0;
+    int32_t i;
+    for (i = 0; i + 1 < n; ++i) l += hypot(xy[2 * i + 2] - xy[2 * i], xy[2 * i + 3] - xy[2 * i + 1]);
+    return l;
+}
+
+/* the point p at arc length t along the polyline xy (n >= 2 points), clamped to its ends */
+static void wr__gar_poly_at(const double *xy, int32_t n, double t, double p[2]) {
+    int32_t i;
+    for (i = 0; i + 1 < n; ++i) {
+        const double *a = xy + 2 * i, *b = a + 2;
+        double l = hypot(b[0] - a[0], b[1] - a[1]), f;
+        if (t > l && i + 2 < n) {
+            t -= l;
+            continue;
+        }
+        f = l > 0.0 ? fmin(1.0, fmax(0.0, t / l)) : 0.0;
+        p[0] = a[0] + f * (b[0] - a[0]);
+        p[1] = a[1] + f * (b[1] - a[1]);
+        return;
+    }
+    p[0] = xy[0];
+    p[1] = xy[1];
+}
+
+/* interior stitch points of stitch length s on a line of length l: k = 1..K with k·s <= l − s/2 */
+static int32_t wr__gar_n_stitch(double l, double s) {
+    double k = floor(l / s - 0.5 + 1e-9);
+    return k > 0.0 ? (int32_t)fmin(k, 2e9) : 0;
+}
+
+WRDEF wr_status wr_garment_line_split(const double *xy, int32_t n, double s, double **out, int32_t *n_out, wr_diag *diag) {
+    double l, acc = 0.0, *o;
+    int32_t i, K, k = 1, m = 0;
+    if (out) *out = NULL;
+    if (n_out) *n_out = 0;
+    if (!xy || !out || !n_out || n < 2 || !(s > 0.0) || !isfinite(s))
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "garment: line split needs >= 2 points and a finite stitch length > 0 (%d, %g m)",
+                       (int)n, s);
+    for (i = 0; i < 2 * n; ++i)
+        if (!isfinite(xy[i])) return wr_fail(diag, WR_ERR_INVALID_ARG, i / 2, "garment: line point %d is not finite", (int)(i / 2));
+    l = wr__gar_poly_len(xy, n);
+    if (l / s > 1e6) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "garment: stitch length %g m on a %g m line: over 1e6 stitches", s, l);
+    K = wr__gar_n_stitch(l, s);
+    o = (double *)wr_alloc_array((size_t)(n + K), 2 * sizeof(double));
+    if (!o) return wr_fail(diag, WR_ERR_NOMEM, -1, "garment: out of memory");
+    o[m++] = xy[0];
+    o[m++] = xy[1];
+    for (i = 0; i + 1 < n; ++i) {
+        double end = acc + hypot(xy[2 * i + 2] - xy[2 * i], xy[2 * i + 3] - xy[2 * i + 1]);
+        for (; k <= K && k * s < end - WR_GARMENT_LINE_TOL; ++k)
+            if (k * s > acc + WR_GARMENT_LINE_TOL) {
+                wr__gar_poly_at(xy, n, k * s, o + m);
+                m += 2;
+            }
+        while (k <= K && k * s <= end + WR_GARMENT_LINE_TOL) ++k; /* the stitch is vertex i + 1 */
+        o[m++] = xy[2 * i + 2];
+        o[m++] = xy[2 * i + 3];
+        acc = end;
+    }
+    *out = o;
+    *n_out = m / 2;
+    return WR_OK;
+}
+
+/* Chain indices idx (*n_idx of them, room for n_vertices) of line L's stitches (ON GATHERING):
+ * every se-th vertex and the last, or with a stitch length the chain vertices at k·s along ln->xy
+ * and the chain's two ends. */
+static wr_status wr__gar_line_stitches(const wr_mesh *m, const wr_garment_line *ln, int32_t L, int32_t se, int32_t *idx,
+                                       int32_t *n_idx, wr_diag *diag) {
+    int32_t i, k, K, c = 1, n = 0;
+    if (!(ln->stitch_length > 0.0)) {
+        for (i = 0; i + 1 < ln->n_vertices; i += se) idx[n++] = i;
+        idx[n++] = ln->n_vertices - 1;
+        *n_idx = n;
+        return WR_OK;
+    }
+    K = wr__gar_n_stitch(wr__gar_poly_len(ln->xy, ln->n_xy), ln->stitch_length);
+    idx[n++] = 0;
+    for (k = 1; k <= K; ++k) {
+        double p[2];
+        wr__gar_poly_at(ln->xy, ln->n_xy, k * ln->stitch_length, p);
+        while (c < ln->n_vertices &&
+               hypot(m->rest[2 * ln->vertices[c]] - p[0], m->rest[2 * ln->vertices[c] + 1] - p[1]) > WR_GARMENT_LINE_TOL)
+            ++c;
+        if (c >= ln->n_vertices)
+            return wr_fail(diag, WR_ERR_GEOMETRY, L,
+                           "garment: line %d has no mesh vertex at its stitch %d (%g m along it): mesh the line split at its "
+                           "stitches (wr_garment_line_split)",
+                           (int)L, (int)k, k * ln->stitch_length);
+        if (c < ln->n_vertices - 1) idx[n++] = c++;
+    }
+    idx[n++] = ln->n_vertices - 1;
+    *n_idx = n;
+    return WR_OK;
+}
+
+/* Line L of the garment checked against the pattern mesh m (ON GATHERING). */
+static wr_status wr__gar_line_check(const wr_mesh *m, const wr_garment_line *ln, int32_t L, wr_diag *diag) {
+    int32_t i;
+    if (ln->n_vertices < 2 || !ln->vertices || !(ln->rho > 0.0 && ln->rho <= 1.0) || !(ln->modulus >= 0.0) ||
+        ln->modulus - ln->modulus != 0.0)
+        return wr_fail(diag, WR_ERR_INVALID_ARG, L, "garment: line %d (%d vertices, rho %g, modulus %g) is invalid", (int)L,
+                       (int)ln->n_vertices, ln->rho, ln->modulus);
+    if (!(ln->stitch_length >= 0.0) || !isfinite(ln->stitch_length) || (ln->stitch_length > 0.0 && (!ln->xy || ln->n_xy < 2)))
+        return wr_fail(diag, WR_ERR_INVALID_ARG, L,
+                       "garment: line %d stitch length %g m is invalid (finite, >= 0; > 0 needs the line's polyline xy)", (int)L,
+                       ln->stitch_length);
+    for (i = 0; i < ln->n_vertices; ++i)
+        if (ln->vertices[i] < 0 || ln->vertices[i] >= m->nv || (i > 0 && ln->vertices[i] == ln->vertices[i - 1]))
+            return wr_fail(diag, WR_ERR_INVALID_ARG, L, "garment: line %d vertex %d (%d) is invalid", (int)L, (int)i,
+                           (int)ln->vertices[i]);
+    return WR_OK;
+}
+
 /* The threads of the garment's lines (ON GATHERING), checked against the pattern mesh. */
 static wr_status wr__gar_threads(wr_garment_sim *gs, const wr_garment *g, wr_diag *diag) {
     const wr_mesh *m = g->pattern;
     double area = gs->desc.thread_area > 0.0 ? gs->desc.thread_area : gs->shell.thickness * gs->shell.thickness;
-    int32_t L, i, n = 0, se = gs->desc.stitch_edges > 0 ? gs->desc.stitch_edges : WR_GARMENT_STITCH_EDGES;
+    int32_t L, i, n = 0, nmax = 0, n_idx = 0, *idx, se = gs->desc.stitch_edges > 0 ? gs->desc.stitch_edges : WR_GARMENT_STITCH_EDGES;
+    wr_status st;
     if (g->n_lines > 0 && !g->lines) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "garment: %d lines with a NULL array", (int)g->n_lines);
     for (L = 0; L < g->n_lines; ++L) {
-        const wr_garment_line *ln = g->lines + L;
-        if (ln->n_vertices < 2 || !ln->vertices || !(ln->rho > 0.0 && ln->rho <= 1.0) || !(ln->modulus >= 0.0) ||
-            ln->modulus - ln->modulus != 0.0)
-            return wr_fail(diag, WR_ERR_INVALID_ARG, L, "garment: line %d (%d vertices, rho %g, modulus %g) is invalid", (int)L,
-                           (int)ln->n_vertices, ln->rho, ln->modulus);
-        for (i = 0; i < ln->n_vertices; ++i)
-            if (ln->vertices[i] < 0 || ln->vertices[i] >= m->nv || (i > 0 && ln->vertices[i] == ln->vertices[i - 1]))
-                return wr_fail(diag, WR_ERR_INVALID_ARG, L, "garment: line %d vertex %d (%d) is invalid", (int)L, (int)i,
-                               (int)ln->vertices[i]);
-        n += (ln->n_vertices - 1 + se - 1) / se;
+        if ((st = wr__gar_line_check(m, g->lines + L, L, diag)) != WR_OK) return st;
+        n += g->lines[L].n_vertices - 1; /* at most one segment per chain edge */
+        if (g->lines[L].n_vertices > nmax) nmax = g->lines[L].n_vertices;
     }
     gs->n_lines = g->n_lines;
     if (n == 0) return WR_OK;
@@ -692,27 +833,33 @@ static wr_status wr__gar_threads(wr_garment_sim *gs, const wr_garment *g, wr_dia
     gs->thr_axial = (double *)wr_alloc_array((size_t)n, sizeof(double));
     if (!gs->thr_seg || !gs->thr_line || !gs->thr_dyn || !gs->thr_len || !gs->thr_rho || !gs->thr_axial)
         return wr_fail(diag, WR_ERR_NOMEM, -1, "garment: out of memory (%d thread segments)", (int)n);
-    for (L = 0; L < g->n_lines; ++L) {
+    idx = (int32_t *)wr_alloc_array((size_t)nmax, sizeof(int32_t));
+    if (!idx) return wr_fail(diag, WR_ERR_NOMEM, -1, "garment: out of memory");
+    for (L = 0, st = WR_OK; L < g->n_lines && st == WR_OK; ++L) {
         const wr_garment_line *ln = g->lines + L;
         double E = ln->modulus > 0.0 ? ln->modulus : gs->shell.young > 0.0 ? gs->shell.young : gs->shell_desc.young_warp;
-        for (i = 0; i + 1 < ln->n_vertices; i += se) {
-            int32_t j, e = i + se < ln->n_vertices ? i + se : ln->n_vertices - 1, a = ln->vertices[i], b = ln->vertices[e];
+        if ((st = wr__gar_line_stitches(m, ln, L, se, idx, &n_idx, diag)) != WR_OK) break;
+        for (i = 0; i + 1 < n_idx; ++i) {
+            int32_t j, e = idx[i + 1], a = ln->vertices[idx[i]], b = ln->vertices[e];
             int32_t s = gs->n_thr++;
             gs->thr_seg[2 * s] = a;
             gs->thr_seg[2 * s + 1] = b;
             gs->thr_line[s] = L;
             gs->thr_len[s] = 0.0; /* the pattern length of the chain between the two stitches */
-            for (j = i; j < e; ++j) {
+            for (j = idx[i]; j < e; ++j) {
                 const double *p = m->rest + 2 * ln->vertices[j], *q = m->rest + 2 * ln->vertices[j + 1];
                 gs->thr_len[s] += hypot(p[0] - q[0], p[1] - q[1]);
             }
             gs->thr_rho[s] = ln->rho;
             gs->thr_axial[s] = E * area;
-            if (!(gs->thr_len[s] > 0.0))
-                return wr_fail(diag, WR_ERR_INVALID_ARG, L, "garment: line %d has a zero-length edge at vertex %d", (int)L, (int)a);
+            if (!(gs->thr_len[s] > 0.0)) {
+                st = wr_fail(diag, WR_ERR_INVALID_ARG, L, "garment: line %d has a zero-length edge at vertex %d", (int)L, (int)a);
+                break;
+            }
         }
     }
-    return WR_OK;
+    wr_free(idx);
+    return st;
 }
 
 /* rest length of thread segment s under the schedule's fraction gather (ON GATHERING) */

@@ -161,12 +161,16 @@ typedef struct wr_pattern_panel {
     wr_pattern_fabric fabric;
 } wr_pattern_panel;
 
-/* Sec. 4.2.2. rho in (0, 1]; n_exp 0 → 1; E_sh >= 0; transition_length 0 → compression law. */
+/* Sec. 4.2.2. rho in (0, 1]; n_exp 0 → 1; E_sh >= 0; transition_length 0 → compression law.
+ * stitch_length [m] >= 0: the gathering thread's stitch length (garment.h ON GATHERING; 0: a stitch
+ * every few mesh edges); not used by the sizing; xy must then carry a vertex at every stitch
+ * (wr_garment_line_split; the pattern reader splits the line it reads). */
 typedef struct wr_pattern_shirring {
     int32_t panel;
     const double *xy;
     int32_t n;
     double E_sh, rho, n_exp, transition_length;
+    double stitch_length;
 } wr_pattern_shirring;
 
 /* Sec. 4.2.3. angle_deg Δθ in (0, 360], 0 → 180; offset 0 → 0.5 mm; curvature_radius 0 → 20 mm. */
@@ -189,12 +193,14 @@ typedef struct wr_pattern_seam {
     double transition_length;
 } wr_pattern_seam;
 
-/* Sec. 4.2.5: a quilted (down-filled) panel's stitch lines. rho in (0, 1], E_sh >= 0, pressure >= 0. */
+/* Sec. 4.2.5: a quilted (down-filled) panel's stitch lines. rho in (0, 1], E_sh >= 0, pressure >= 0;
+ * stitch_length [m] >= 0 of every line as for a shirring. */
 typedef struct wr_pattern_quilt {
     int32_t panel;
     const wr_pattern_curve *lines;
     int32_t n_lines;
     double rho, E_sh, pressure, transition_length;
+    double stitch_length;
 } wr_pattern_quilt;
 
 /* Sec. 4.2.6: polygon (n >= 3) or, when n == 0, the disk (center, radius). compression δ in (0, 1). */
@@ -1190,6 +1196,7 @@ WRDEF wr_status wr_pattern_validate(const wr_pattern *pat, wr_diag *diag) {
         if ((st = wr__sz_check_nonneg(s->n_exp, "shirrings", i, "n", diag)) != WR_OK) return st;
         if ((st = wr__sz_check_nonneg(s->transition_length, "shirrings", i, "transition_length", diag)) != WR_OK)
             return st;
+        if ((st = wr__sz_check_nonneg(s->stitch_length, "shirrings", i, "stitch_length", diag)) != WR_OK) return st;
     }
     for (i = 0; i < pat->n_folds; ++i) {
         const wr_pattern_fold *f = &pat->folds[i];
@@ -1222,6 +1229,7 @@ WRDEF wr_status wr_pattern_validate(const wr_pattern *pat, wr_diag *diag) {
             return wr_fail(diag, WR_ERR_INVALID_ARG, i, "quilts[%d]: pressure = %g must be >= 0", (int)i, q->pressure);
         if ((st = wr__sz_check_nonneg(q->transition_length, "quilts", i, "transition_length", diag)) != WR_OK)
             return st;
+        if ((st = wr__sz_check_nonneg(q->stitch_length, "quilts", i, "stitch_length", diag)) != WR_OK) return st;
         if (q->n_lines < 1 || !q->lines)
             return wr_fail(diag, WR_ERR_INVALID_ARG, i, "quilts[%d]: no stitch lines", (int)i);
     }
