@@ -543,6 +543,35 @@ PY
     then ok; else bad "wrinkle-sim garment gravity_hold: run failed or summary without the hold"; head -n 3 "$tmp/err"; fi
     expect_fail "wrinkle-sim negative gravity_hold.delay" "$B/wrinkle-sim" "$tmp/garment_hold_bad.json" -o "$tmp/simhb" --quiet
     grep -qF '$.garment.gravity_hold.delay' "$tmp/err" && ok || { bad "wrinkle-sim gravity_hold.delay: stderr does not name the path"; cat "$tmp/err"; }
+    # --weld-final FILE: the last frame sewn (2 frames of the example skirt: the seams still open, so
+    # warned): one vertex per seam pair fewer than the frames, vt per face corner, the panels' names as
+    # groups, written atomically; refused (exit 2, one line) on a cloth scene and over the scene file
+    python3 - "$root/examples/sim" "$tmp" <<'PY'
+import json, sys
+src, tmp = sys.argv[1], sys.argv[2]
+s = json.load(open(src + "/skirt_on_mannequin.json"))
+s["garment"]["pattern"] = src + "/skirt_pattern.json"; s["time"]["duration"] = 2 / 30 + 1e-12
+json.dump(s, open(tmp + "/garment_weld.json", "w"))
+PY
+    warns "wrinkle-sim --weld-final seams open" "not welded" "$B/wrinkle-sim" "$tmp/garment_weld.json" -o "$tmp/simwf" \
+        --quiet --weld-final "$tmp/simwf_sewn.obj"
+    if python3 - "$tmp/simwf/frame_0002.obj" "$tmp/simwf_sewn.obj" "$tmp/simwf/summary.json" <<'PY'
+import json, sys
+def obj(p):
+    L = open(p).read().split("\n")
+    return [sum(1 for l in L if l.startswith(k + " ")) for k in ("v", "vt", "f")], [l[2:] for l in L if l.startswith("g ")]
+(fv, fvt, ff), _ = obj(sys.argv[1])
+(wv, wvt, wf), g = obj(sys.argv[2])
+pairs = json.load(open(sys.argv[3]))["garment"]["seam_pairs"]
+sys.exit(0 if wv == fv - pairs and wf == ff and wvt == 3 * wf and g == ["front", "back"] else 1)
+PY
+    then ok; else bad "wrinkle-sim --weld-final: the sewn OBJ is not the frame with its pairs merged"; fi
+    atomic "wrinkle-sim --weld-final" "$tmp/simwf2_sewn.obj" -- "$B/wrinkle-sim" "$tmp/garment_weld.json" -o "$tmp/simwf2" \
+        --quiet --weld-final "$tmp/simwf2_sewn.obj"
+    expect_fail "wrinkle-sim --weld-final on a cloth scene" "$B/wrinkle-sim" "$root/examples/sim/drape_ball.json" -o "$tmp/simwc" \
+        --weld-final "$tmp/simwc.obj"
+    expect_fail "wrinkle-sim --weld-final over the scene" "$B/wrinkle-sim" "$tmp/garment_weld.json" -o "$tmp/simwo" \
+        --weld-final "$tmp/garment_weld.json"
 fi
 if [ -x "$B/wrinkle-resolution" ]; then
     # an answer that overflows is refused, never printed as "inf" (text) or null (JSON)

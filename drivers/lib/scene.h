@@ -55,6 +55,8 @@ typedef struct wr_scene_mesh {
     uint64_t seed;                /* delaunay_rectangle sampling seed */
     double angle_deg;             /* lattice: rotation of the lattice rows from the x axis [deg] */
     double pillow_lift;           /* > 0: the flat panel doubled into a closed pillow (wr_mesh_pillow) [m] */
+    int has_weld;                 /* obj: $.mesh.weld given */
+    double weld_tol;              /* obj: vertices closer than this in 3D are merged (wr_mesh_weld) [m], >= 0 */
 } wr_scene_mesh;
 
 typedef enum wr_scene_select { WR_SCENE_SELECT_BOX = 0, WR_SCENE_SELECT_INDICES } wr_scene_select;
