@@ -426,7 +426,13 @@ static wr_status sc_parse_probe(wr_jin *c, const cJSON *o, const char *P, wr_sce
     pr->samples = 512;
     if ((st = wr_jin_int(c, o, "samples", P, WR_SPECTRUM_MIN_SAMPLES, 1 << 22, &pr->samples, NULL)) != WR_OK) return st;
     pr->dir[2] = 1.0;
-    if ((st = wr_jin_vec(c, o, "dir", P, 3, pr->dir, &fd)) != WR_OK) return st;
+    if (cJSON_IsString(cJSON_GetObjectItemCaseSensitive(o, "dir"))) {
+        char p[512], w[16];
+        wr_jin_path(p, sizeof p, P, "dir");
+        if (wr_jin_str(c, o, "dir", P, w, sizeof w, 0) != WR_OK || strcmp(w, "normal") != 0)
+            return wr_jin_err(c, p, "must be [x, y, z] or \"normal\"");
+        pr->dir_normal = 1;
+    } else if ((st = wr_jin_vec(c, o, "dir", P, 3, pr->dir, &fd)) != WR_OK) return st;
     if (fd && !(fabs(pr->dir[0]) + fabs(pr->dir[1]) + fabs(pr->dir[2]) > 0.0)) {
         char p[512];
         wr_jin_path(p, sizeof p, P, "dir");
@@ -1195,20 +1201,42 @@ wr_status wr_scene_probe_locator(const wr_scene_run *run, int32_t i, const wr_me
     return st;
 }
 
+wr_status wr_scene_probe_field(const wr_scene_probe *P, const wr_mesh *m, const double *x, const double *x0,
+                               double *field, wr_diag *diag) {
+    double *nrm = NULL, d[3], len = sqrt(P->dir[0] * P->dir[0] + P->dir[1] * P->dir[1] + P->dir[2] * P->dir[2]);
+    int32_t v;
+    int k;
+    if (P->dir_normal) {
+        wr_mesh ref = *m; /* a shallow view: m's topology at the reference positions */
+        ref.pos = (double *)x0;
+        if (!(nrm = (double *)malloc(sizeof(double) * 3 * (size_t)m->nv)))
+            return wr_fail(diag, WR_ERR_NOMEM, -1, "probe: out of memory");
+        wr_mesh_vertex_normals(&ref, nrm);
+    }
+    for (k = 0; k < 3; ++k) d[k] = len > 0.0 ? P->dir[k] / len : (k == 2);
+    for (v = 0; v < m->nv; ++v) {
+        const double *n = nrm ? nrm + 3 * v : d;
+        field[v] = 0.0;
+        for (k = 0; k < 3; ++k) field[v] += (x[3 * v + k] - x0[3 * v + k]) * n[k];
+    }
+    free(nrm);
+    return WR_OK;
+}
+
 wr_status wr_scene_run_probe_samples(const wr_scene_run *run, int32_t i, double *pts, double *vals, double *ds,
                                      wr_diag *diag) {
     const wr_scene_probe *P = &run->sc->probe[i];
     wr_probe pr;
     double *u;
-    int32_t v, nout = 0, n = P->samples;
+    int32_t nout = 0, n = P->samples;
     wr_status st;
     if ((st = wr_path_segment(P->from, P->to, n, P->closed, pts, ds, diag)) != WR_OK) return st;
-    u = (double *)malloc(sizeof(double) * 3 * (size_t)run->mesh.nv);
+    u = (double *)malloc(sizeof(double) * (size_t)run->mesh.nv);
     if (!u) return wr_fail(diag, WR_ERR_NOMEM, -1, "probe: out of memory");
-    for (v = 0; v < 3 * run->mesh.nv; ++v) u[v] = run->x[v] - run->mesh.pos[v];
-    st = wr_scene_probe_locator(run, i, &run->mesh, pts, n, &pr, diag);
+    st = wr_scene_probe_field(P, &run->mesh, run->x, run->mesh.pos, u, diag);
+    if (st == WR_OK) st = wr_scene_probe_locator(run, i, &run->mesh, pts, n, &pr, diag);
     if (st == WR_OK) {
-        st = wr_probe_sample_dir(&pr, u, P->dir, pts, n, vals, &nout, diag);
+        st = wr_probe_sample(&pr, u, pts, n, vals, &nout, diag);
         if (st == WR_OK && nout > 0)
             st = wr_fail(diag, WR_ERR_GEOMETRY, i, "$.probes[%d]: %d of %d samples fall outside the rest mesh", (int)i,
                          (int)nout, (int)n);
