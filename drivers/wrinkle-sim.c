@@ -11,8 +11,9 @@
  * milliseconds, Newton and PCG iterations, contacts, minimum distance, seam gap; totals and
  * medians); with --weld-final FILE.obj a garment's last frame as one sewn mesh (the seam pairs merged
  * by mesh.h wr_mesh_weld, per-corner vt = each panel's pattern corners, g = panel names: the base
- * bin/wrinkle-tfw reads, docs/notes-tfw-dress.md). Every file appears atomically (temporary + rename). Progress on stderr: one updating
- * line on a terminal, a line per tenth of the run otherwise. Warnings (stderr, the run goes on,
+ * bin/wrinkle-tfw reads, docs/notes-tfw-dress.md). Every file appears atomically (temporary +
+ * rename). Progress on stderr: one updating line on a terminal, a line per tenth of the run
+ * otherwise. Warnings (stderr, the run goes on,
  * plausible.h): a thickness above 1 cm (millimetres read as metres?), a garment panel smaller than
  * one edge or its base resolution outside Eq. 4's band, an edge strained by more than 100 % in any
  * frame (the worst frame is named: a transient runaway that settles is still a runaway).
