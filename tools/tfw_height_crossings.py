@@ -8,7 +8,9 @@ Samples the per-vertex `height` (a cos phase: the wrinkle height along the smoot
 OUTDIR/wrinkled.ply at 1024 points of the segment (U0, V0)-(U1, V1) [m] in the rest chart of the
 faces of group PANEL of OUTDIR/wrinkled.obj (per-corner vt on a welded sewn base; a point is taken in
 the face where it is deepest inside), and prints the zero crossings (rest arc length from the start
-[mm]), their spacings, and the waves = crossings / 2. Used for docs/notes-tfw-dress.md.
+[mm]), their spacings, and the waves = crossings / 2. A crossing counts only when the height has
+reached ±10 % of the line's largest |height| since the last one (a Schmitt trigger: a wrinkle-free
+stretch, height ≈ 0, would otherwise give crossings of round-off). Used for docs/notes-tfw-dress.md.
 """
 import math
 import struct
@@ -72,8 +74,18 @@ def main(argv):
         panel, u0, v0, u1, v1 = argv[k], *map(float, argv[k + 1:k + 5])
         s, ds = sample(faces, hgt, panel, (u0, v0), (u1, v1), 1024)
         inside = [x for x in s if x is not None]
-        z = [1e3 * ds * (i + s[i] / (s[i] - s[i + 1])) for i in range(len(s) - 1)
-             if s[i] is not None and s[i + 1] is not None and s[i] * s[i + 1] < 0]
+        thr = 0.1 * max(abs(x) for x in inside)
+        z, side, last = [], 0, None  # side: sign of the last excursion beyond thr; last: its last zero
+        for i in range(len(s) - 1):
+            if s[i] is None or s[i + 1] is None:
+                continue
+            if s[i] * s[i + 1] < 0:
+                last = 1e3 * ds * (i + s[i] / (s[i] - s[i + 1]))
+            if abs(s[i + 1]) >= thr:
+                sg = 1 if s[i + 1] > 0 else -1
+                if side and sg != side and last is not None:
+                    z.append(last)
+                side = sg
         print('%s: %d of %d samples inside, peak-to-peak %.1f mm, %d zero crossings (%.1f waves)'
               % (panel, len(inside), len(s), 1e3 * (max(inside) - min(inside)), len(z), len(z) / 2))
         print('  crossings [mm]:', ' '.join('%.0f' % x for x in z))
