@@ -1,6 +1,6 @@
 /* wrinkle-sim — dynamic cloth simulation of a JSON scene (backward Euler on the shared Newton).
  *
- *   wrinkle-sim SCENE.json -o DIR [--quiet] [--every N] [--duration T] [--png]
+ *   wrinkle-sim SCENE.json -o DIR [--quiet] [--every N] [--duration T] [--png] [--weld-final FILE.obj]
  *
  * Reads the scene (docs/sim-scene-format.md), builds the cloth (a sheet, or a garment: a pattern
  * meshed by the kit's mesher, placed panel by panel and sewn, garment.h), its pins, the body (the
@@ -9,8 +9,11 @@
  * it (OBJ or PLY, $.output), DIR/body.obj (the triangle-mesh bodies at their first pose),
  * DIR/frame_NNNN.png with --png (front and 3/4 views), and DIR/summary.json (per-frame NS and CH
  * milliseconds, Newton and PCG iterations, contacts, minimum distance, seam gap; totals and
- * medians). Every file appears atomically (temporary + rename). Progress on stderr: one updating
- * line on a terminal, a line per tenth of the run otherwise. Warnings (stderr, the run goes on,
+ * medians); with --weld-final FILE.obj a garment's last frame as one sewn mesh (the seam pairs merged
+ * by mesh.h wr_mesh_weld, per-corner vt = each panel's pattern corners, g = panel names: the base
+ * bin/wrinkle-tfw reads, docs/notes-tfw-dress.md). Every file appears atomically (temporary +
+ * rename). Progress on stderr: one updating line on a terminal, a line per tenth of the run
+ * otherwise. Warnings (stderr, the run goes on,
  * plausible.h): a thickness above 1 cm (millimetres read as metres?), a garment panel smaller than
  * one edge or its base resolution outside Eq. 4's band, an edge strained by more than 100 % in any
  * frame (the worst frame is named: a transient runaway that settles is still a runaway).
@@ -42,6 +45,9 @@ static void usage(FILE *f) {
             "  --every N            write every Nth frame (overrides $.output.every)\n"
             "  --duration T         simulated time [s] (overrides $.time.duration)\n"
             "  --png                also DIR/frame_NNNN.png for every written frame (front and 3/4 views)\n"
+            "  --weld-final FILE    garment scenes: also FILE (OBJ), the last frame sewn into one mesh (seam\n"
+            "                       pairs merged, per-corner vt = the panels' pattern corners, g = panel names),\n"
+            "                       e.g. a base for wrinkle-tfw; written when the run finishes without error\n"
             "  --quiet              no progress on stderr\n"
             "  -h, --help           this text\n"
             "warnings (stderr, the run goes on): a thickness over 1 cm (it is in metres), a garment panel\n"
@@ -121,7 +127,7 @@ static int make_dir(const char *dir) {
  * its picture) against the inputs (the scene, the cloth OBJ, the pattern, body and obstacle OBJs):
  * DIR must not be an existing file, no output may resolve to an input. 1 when all are fine. */
 static int outputs_ok(const wr_simscene *sc, const char *scene_path, const char *dir, int32_t n_frames, int32_t every,
-                      int png) {
+                      int png, const char *welded) {
     static const char *const fixed[] = {"summary.json", "body.obj"};
     const char *inputs[1 + WR_SIMSCENE_MAX_INPUTS + WR_SIMSCENE_MAX_BODY_KEYS];
     char name[32], path[WR_PATH_MAX + 32];
@@ -130,6 +136,7 @@ static int outputs_ok(const wr_simscene *sc, const char *scene_path, const char 
     inputs[0] = scene_path;
     n = 1 + (int)wr_simscene_inputs(sc, inputs + 1, (int32_t)(sizeof inputs / sizeof inputs[0]) - 1);
     if (!wr_cli_dir_outputs_ok(dir, fixed, 2, inputs, n)) return 0;
+    if (welded && !wr_cli_output_ok(welded, inputs, n)) return 0;
     for (k = 0; k <= n_frames; ++k) {
         if (k % every && k != n_frames) continue;
         wr_simscene_frame_name(sc, k, name);
@@ -141,11 +148,26 @@ static int outputs_ok(const wr_simscene *sc, const char *scene_path, const char 
     return 1;
 }
 
+/* --weld-final: the last frame sewn into one OBJ; warns when the seams were not welded by the run
+ * (the pairs' positions are then averaged across the gap). 0 on success (error printed otherwise). */
+static int write_welded(const wr_simscene_run *run, const char *path, int quiet) {
+    wr_diag d;
+    if (!run->gs.welded)
+        fprintf(stderr, "%s: warning: the seams were not welded during the run (largest seam gap %.2f mm): %s "
+                        "merges each pair at its midpoint\n", wr_cli_program(), 1e3 * run->gs.gap, path);
+    if (wr_simscene_write_welded(run, path, &d) != WR_OK) {
+        wr_cli_error("writing %s: %s", path, d.message);
+        return -1;
+    }
+    if (!quiet) fprintf(stderr, "  welded last frame: %s\n", path);
+    return 0;
+}
+
 static void free_scene(void *p) { wr_simscene_free((wr_simscene *)p); }
 static void free_run(void *p) { wr_simscene_run_free((wr_simscene_run *)p); }
 
 int main(int argc, char **argv) {
-    const char *scene_path = NULL, *out = NULL;
+    const char *scene_path = NULL, *out = NULL, *welded = NULL;
     double every = 0.0, duration = -1.0;
     int quiet = 0, png = 0, n_pos = 0, k;
     wr_simscene sc;
@@ -154,7 +176,7 @@ int main(int argc, char **argv) {
     wr_diag d;
     wr_status st;
     char summary[WR_PATH_MAX];
-    wr_cli_opt opts[5];
+    wr_cli_opt opts[6];
     memset(opts, 0, sizeof opts);
     opts[0].name = "--output", opts[0].alias = "-o", opts[0].kind = WR_CLI_STRING, opts[0].out = (void *)&out;
     opts[1].name = "--every", opts[1].kind = WR_CLI_INTEGER, opts[1].out = &every, opts[1].lo = 1.0, opts[1].hi = 1e6;
@@ -162,14 +184,19 @@ int main(int argc, char **argv) {
     opts[2].hi = 1e9; /* the frame count is checked against the scene's dt below */
     opts[3].name = "--quiet", opts[3].kind = WR_CLI_FLAG, opts[3].out = &quiet;
     opts[4].name = "--png", opts[4].kind = WR_CLI_FLAG, opts[4].out = &png;
+    opts[5].name = "--weld-final", opts[5].kind = WR_CLI_STRING, opts[5].out = (void *)&welded;
     wr_cli_set_program(argv[0]);
-    if ((k = wr_cli_parse(argc, argv, opts, 5, &scene_path, 1, &n_pos, usage)) <= 0) return k < 0 ? WR_CLI_EXIT_USAGE : 0;
+    if ((k = wr_cli_parse(argc, argv, opts, 6, &scene_path, 1, &n_pos, usage)) <= 0) return k < 0 ? WR_CLI_EXIT_USAGE : 0;
     if (!wr_cli_scene_args_ok(scene_path, out)) return WR_CLI_EXIT_USAGE;
     if (wr_simscene_load(&sc, scene_path, &d) != WR_OK) {
         wr_cli_error("%s: %s", scene_path, d.message);
         return WR_CLI_EXIT_USAGE;
     }
     wr_cli_defer(free_scene, &sc);
+    if (welded && !sc.is_garment) {
+        wr_cli_error("--weld-final: %s is not a garment scene (no $.garment: nothing to weld)", scene_path);
+        return wr_cli_exit(WR_CLI_EXIT_USAGE);
+    }
     {
         char what[WR_PATH_MAX + 48];
         snprintf(what, sizeof what, "%s: $.%s.material.thickness", scene_path, sc.is_garment ? "garment" : "cloth");
@@ -190,7 +217,7 @@ int main(int argc, char **argv) {
     }
     wr_cli_defer(free_run, &run);
     garment_plausibility(&sc, &run);
-    if (!outputs_ok(&sc, scene_path, out, run.n_frames_max - 1, sc.output_every, png)) return wr_cli_exit(WR_CLI_EXIT_USAGE);
+    if (!outputs_ok(&sc, scene_path, out, run.n_frames_max - 1, sc.output_every, png, welded)) return wr_cli_exit(WR_CLI_EXIT_USAGE);
     if (make_dir(out) != 0) {
         wr_cli_error("cannot create output directory %s", out);
         return wr_cli_exit(WR_CLI_EXIT_FAILURE);
@@ -240,5 +267,6 @@ int main(int argc, char **argv) {
         return wr_cli_exit(1);
     }
     if (!quiet) fprintf(stderr, "  %d frames in %.2f s (setup %.2f s)\n", (int)run.n_frames, run.t_run, run.t_setup);
+    if (welded && write_welded(&run, welded, quiet) != 0) return wr_cli_exit(WR_CLI_EXIT_FAILURE);
     return wr_cli_exit(0);
 }

@@ -38,7 +38,8 @@ static void usage(FILE *f) {
             "  TFW wrinkles (Chen et al. 2021) on the scene's TFT base surface (format: docs/scene-format.md).\n"
             "  Writes DIR/base.obj, DIR/wrinkled.obj (vt, vn, the input OBJ's panel names), DIR/fields.ply + .vtk\n"
             "  (a, |omega|, W, phase, sizing per base vertex), DIR/wrinkled.ply + .vtk (a, height, phase, W, sizing\n"
-            "  per fine vertex), DIR/summary.json.\n"
+            "  per fine vertex), DIR/summary.json (with the scene's probes measured on the wrinkled surface:\n"
+            "  per-panel probes also on a welded sewn base, $.mesh.weld; docs/scene-format.md).\n"
             "options:\n"
             "  -o, --output DIR     output directory (created if missing)\n"
             "  --levels N           Loop subdivision levels of the wrinkled mesh (default 2, 0..5)\n"
@@ -72,14 +73,14 @@ static void free_run(void *p) { wr_scene_run_free((wr_scene_run *)p); }
 static void free_tfw(void *p) { wr_tfw_result_free((wr_tfw_result *)p); }
 
 /* Probe i of the scene on the wrinkled surface: displacement from the smooth (a = 0) subdivided base
- * along the probe direction (only the faces of the probe's panel; fine keeps the base's face_panel). */
+ * along the probe direction, or along the smooth base's normal with "dir": "normal" (only the faces of the probe's panel; fine keeps the base's face_panel). */
 static wr_status probe_wrinkled(const wr_scene_run *run, int32_t i, const wr_mesh *fine, const double *smooth,
                                 wr_spectrum_result *res, wr_diag *d) {
     const wr_scene_probe *pr = &run->sc->probe[i];
     wr_probe p;
-    int32_t n = pr->samples > 0 ? pr->samples : 512, v, nout = 0, start = 0, len;
+    int32_t n = pr->samples > 0 ? pr->samples : 512, nout = 0, start = 0, len;
     double *pts = (double *)malloc(sizeof(double) * 2 * (size_t)n), *val = (double *)malloc(sizeof(double) * (size_t)n);
-    double *fld = (double *)malloc(sizeof(double) * (size_t)fine->nv), ds = 0.0, dir[3], nrm;
+    double *fld = (double *)malloc(sizeof(double) * (size_t)fine->nv), ds = 0.0;
     wr_status st;
     if (!pts || !val || !fld) {
         free(pts);
@@ -87,20 +88,14 @@ static wr_status probe_wrinkled(const wr_scene_run *run, int32_t i, const wr_mes
         free(fld);
         return wr_fail(d, WR_ERR_NOMEM, -1, "probe: out of memory");
     }
-    nrm = sqrt(pr->dir[0] * pr->dir[0] + pr->dir[1] * pr->dir[1] + pr->dir[2] * pr->dir[2]);
-    for (v = 0; v < 3; ++v) dir[v] = nrm > 0.0 ? pr->dir[v] / nrm : (v == 2 ? 1.0 : 0.0);
-    for (v = 0; v < fine->nv; ++v) {
-        int c;
-        fld[v] = 0.0;
-        for (c = 0; c < 3; ++c) fld[v] += (fine->pos[3 * v + c] - smooth[3 * v + c]) * dir[c];
-    }
-    if (pr->closed) {
+    st = wr_scene_probe_field(pr, fine, fine->pos, smooth, fld, d);
+    if (!st && pr->closed) {
         double c[2], r;
         c[0] = 0.5 * (pr->from[0] + pr->to[0]);
         c[1] = 0.5 * (pr->from[1] + pr->to[1]);
         r = 0.5 * hypot(pr->to[0] - pr->from[0], pr->to[1] - pr->from[1]);
         st = wr_path_circle(c, r, n, pts, &ds, d);
-    } else {
+    } else if (!st) {
         st = wr_path_segment(pr->from, pr->to, n, 0, pts, &ds, d);
     }
     if (!st) st = wr_scene_probe_locator(run, i, fine, pts, n, &p, d);

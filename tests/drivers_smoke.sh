@@ -318,6 +318,40 @@ sys.exit(not (len(p) == 2 and all("count" in q and "error" not in q for q in p))
         expect_fail "wrinkle-tfw probe panel $n" "$B/wrinkle-tfw" "$tmp/tfwpanel_$n.json" -o "$tmp/t0" --quiet
         grep -qF "$want" "$tmp/err" && ok || { bad "wrinkle-tfw probe panel $n: stderr does not name $want"; cat "$tmp/err"; }
     done
+    # $.mesh.weld + probes on a welded sewn base (wrinkle_field.h ON SEWN BASES): the stretched sheet as
+    # two panels (left, right) with the seam column x = 0.125 written twice and the charts overlapping
+    # (right's u = x - 0.125); "weld": 0 sews them (60 -> 55 vertices, corner_rest), probes across the
+    # wrinkles in each panel ("dir": "normal") are measured on the wrinkled surface; a negative
+    # tolerance is one line naming $.mesh.weld
+    python3 -c 'import sys
+L, idx = [], {}
+for p in range(2):
+    for j in range(5):
+        for i in range(6):
+            x = 0.025 * (i + 5 * p); L.append("v %g %g 0\nvt %g %g" % (x, 0.025 * j, x - 0.125 * p, 0.025 * j)); idx[p, i, j] = len(idx) + 1
+for p in range(2):
+    L.append("g " + ("left", "right")[p])
+    for j in range(4):
+        for i in range(5):
+            a, b, c, e = idx[p, i, j], idx[p, i + 1, j], idx[p, i + 1, j + 1], idx[p, i, j + 1]
+            L.append("f %d/%d %d/%d %d/%d\nf %d/%d %d/%d %d/%d" % (a, a, b, b, c, c, a, a, c, c, e, e))
+open(sys.argv[1], "w").write("\n".join(L) + "\n")' "$tmp/sewn_parts.obj"
+    cat > "$tmp/tfwsewn.json" <<'JSON'
+{"name": "tfw_sewn", "mesh": {"type": "obj", "path": "sewn_parts.obj", "weld": 0},
+ "material": {"young": 1.0e6, "poisson": 0.5, "thickness": 1.0e-4},
+ "boundary": [{"name": "left", "box": {"min": [-1e-9, -1, -1], "max": [1e-9, 1, 1]}},
+  {"name": "right", "box": {"min": [0.249999999, -1, -1], "max": [1, 1, 1]}, "stretch": [1.1, 1, 1]}],
+ "solver": {"load_steps": 2, "hessian": "projected"},
+ "probes": [{"name": "left", "from": [0.06, 0.005], "to": [0.06, 0.095], "samples": 64, "panel": "left", "dir": "normal"},
+            {"name": "right", "from": [0.06, 0.005], "to": [0.06, 0.095], "samples": 64, "panel": "right", "dir": "normal"}]}
+JSON
+    if "$B/wrinkle-tfw" "$tmp/tfwsewn.json" -o "$tmp/tfwsewn" --quiet --levels 1 >/dev/null 2>"$tmp/err" </dev/null &&
+        python3 -c 'import json, sys; s = json.load(open(sys.argv[1])); p = s["probes"]
+sys.exit(not (s["base_vertices"] == 55 and len(p) == 2 and all("count" in q and "error" not in q for q in p)))' "$tmp/tfwsewn/summary.json"; then ok
+    else bad "wrinkle-tfw welded base: failed, not sewn, or a probe without a count in summary.json"; head -n 3 "$tmp/err"; fi
+    sed 's/"weld": 0/"weld": -1e-3/' "$tmp/tfwsewn.json" > "$tmp/tfwsewn_neg.json"
+    expect_fail "wrinkle-tfw negative mesh weld" "$B/wrinkle-tfw" "$tmp/tfwsewn_neg.json" -o "$tmp/t0" --quiet
+    grep -qF '$.mesh.weld: must be >= 0' "$tmp/err" && ok || { bad "wrinkle-tfw mesh weld: stderr does not name the path"; cat "$tmp/err"; }
     # $.obstacles (statics.h ON MESH OBSTACLES): a sheet pinned 4 mm over the mannequin's head converges
     # and the summary reports the contact; a bad type, a missing and an unreadable OBJ path are refused
     # with one line naming the JSON path
@@ -548,6 +582,35 @@ PY
     then ok; else bad "wrinkle-sim garment gravity_hold: run failed or summary without the hold"; head -n 3 "$tmp/err"; fi
     expect_fail "wrinkle-sim negative gravity_hold.delay" "$B/wrinkle-sim" "$tmp/garment_hold_bad.json" -o "$tmp/simhb" --quiet
     grep -qF '$.garment.gravity_hold.delay' "$tmp/err" && ok || { bad "wrinkle-sim gravity_hold.delay: stderr does not name the path"; cat "$tmp/err"; }
+    # --weld-final FILE: the last frame sewn (2 frames of the example skirt: the seams still open, so
+    # warned): one vertex per seam pair fewer than the frames, vt per face corner, the panels' names as
+    # groups, written atomically; refused (exit 2, one line) on a cloth scene and over the scene file
+    python3 - "$root/examples/sim" "$tmp" <<'PY'
+import json, sys
+src, tmp = sys.argv[1], sys.argv[2]
+s = json.load(open(src + "/skirt_on_mannequin.json"))
+s["garment"]["pattern"] = src + "/skirt_pattern.json"; s["time"]["duration"] = 2 / 30 + 1e-12
+json.dump(s, open(tmp + "/garment_weld.json", "w"))
+PY
+    warns "wrinkle-sim --weld-final seams open" "not welded" "$B/wrinkle-sim" "$tmp/garment_weld.json" -o "$tmp/simwf" \
+        --quiet --weld-final "$tmp/simwf_sewn.obj"
+    if python3 - "$tmp/simwf/frame_0002.obj" "$tmp/simwf_sewn.obj" "$tmp/simwf/summary.json" <<'PY'
+import json, sys
+def obj(p):
+    L = open(p).read().split("\n")
+    return [sum(1 for l in L if l.startswith(k + " ")) for k in ("v", "vt", "f")], [l[2:] for l in L if l.startswith("g ")]
+(fv, fvt, ff), _ = obj(sys.argv[1])
+(wv, wvt, wf), g = obj(sys.argv[2])
+pairs = json.load(open(sys.argv[3]))["garment"]["seam_pairs"]
+sys.exit(0 if wv == fv - pairs and wf == ff and wvt == 3 * wf and g == ["front", "back"] else 1)
+PY
+    then ok; else bad "wrinkle-sim --weld-final: the sewn OBJ is not the frame with its pairs merged"; fi
+    atomic "wrinkle-sim --weld-final" "$tmp/simwf2_sewn.obj" -- "$B/wrinkle-sim" "$tmp/garment_weld.json" -o "$tmp/simwf2" \
+        --quiet --weld-final "$tmp/simwf2_sewn.obj"
+    expect_fail "wrinkle-sim --weld-final on a cloth scene" "$B/wrinkle-sim" "$root/examples/sim/drape_ball.json" -o "$tmp/simwc" \
+        --weld-final "$tmp/simwc.obj"
+    expect_fail "wrinkle-sim --weld-final over the scene" "$B/wrinkle-sim" "$tmp/garment_weld.json" -o "$tmp/simwo" \
+        --weld-final "$tmp/garment_weld.json"
 fi
 if [ -x "$B/wrinkle-resolution" ]; then
     # an answer that overflows is refused, never printed as "inf" (text) or null (JSON)

@@ -115,6 +115,9 @@ Test(scene, every_error_names_the_json_path) {
         {"{\"mesh\": {\"type\": \"disk\", \"radius\": 1, \"resolution\": 0.1, \"pillow\": 0}, " BASE_MAT "}", "$.mesh.pillow: must be > 0"},
         {"{\"mesh\": {\"type\": \"cylinder\", \"radius\": 1, \"height\": 1, \"resolution\": 0.1, \"pillow\": 0.1}, " BASE_MAT "}", "$.mesh.pillow: needs a flat panel"},
         {"{\"mesh\": {\"type\": \"obj\", \"path\": \"a.obj\", \"pillow\": 0.1}, " BASE_MAT "}", "$.mesh.pillow: needs a flat panel"},
+        {"{\"mesh\": {\"type\": \"obj\", \"path\": \"a.obj\", \"weld\": -1e-6}, " BASE_MAT "}", "$.mesh.weld: must be >= 0"},
+        {"{\"mesh\": {\"type\": \"disk\", \"radius\": 1, \"resolution\": 0.1, \"weld\": 0}, " BASE_MAT "}", "$.mesh.weld: only for type obj"},
+        {"{" BASE_MESH ", " BASE_MAT ", \"probes\": [{\"from\": [0, 0], \"to\": [1, 0], \"dir\": \"up\"}]}", "$.probes[0].dir: must be [x, y, z] or \"normal\""},
         {"{" BASE_MESH ", " BASE_MAT ", \"boundary\": {}}", "$.boundary: must be an array"},
         {"{" BASE_MESH ", " BASE_MAT ", \"boundary\": [{}]}", "$.boundary[0]: needs exactly one of box or indices"},
         {"{" BASE_MESH ", " BASE_MAT ", \"boundary\": [{\"box\": {\"min\": [0,0,0]}}]}", "$.boundary[0].box: needs min and max"},
@@ -472,6 +475,79 @@ static void two_panel_obj(char *buf, size_t cap) {
                                         a, a, c, c, e, e);
             }
     }
+}
+
+/* $.mesh.weld: an OBJ of two triangles in separate charts (panels front, back) whose shared edge is
+ * written twice at identical positions: weld 0 merges the two duplicate pairs (6 -> 4 vertices), each
+ * face keeps its own chart as corner_rest and its panel; without weld the file is read as it is; a
+ * tolerance that reaches a face's own corners is refused naming $.mesh.weld. */
+Test(scene, mesh_weld_merges_coincident_vertices) {
+    const char *obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 0 0\nv 0 1 0\nv 1 1 0.5\n"
+                      "vt 0 0\nvt 1 0\nvt 0 1\nvt 3 0\nvt 2 0\nvt 3 1\n"
+                      "g front\nf 1/1 2/2 3/3\ng back\nf 5/5 4/4 6/6\n";
+    static const double cr1[6] = {2, 0, 3, 0, 3, 1};
+    const char *weld[3] = {", \"weld\": 0", "", ", \"weld\": 2"};
+    char dir[] = "/tmp/wr_test_sceneweldXXXXXX", path[256], spath[256], txt[512];
+    wr_scene sc;
+    wr_scene_run run;
+    wr_diag d;
+    int k, c;
+    cr_assert_not_null(mkdtemp(dir));
+    write_temp_file(dir, "two.obj", obj, path, sizeof path);
+    for (k = 0; k < 3; ++k) {
+        snprintf(txt, sizeof txt, "{\"mesh\": {\"type\": \"obj\", \"path\": \"two.obj\"%s}, " BASE_MAT "}", weld[k]);
+        write_temp_file(dir, "scene.json", txt, spath, sizeof spath);
+        cr_assert_eq(wr_scene_load(&sc, spath, &d), WR_OK, "%s", d.message);
+        if (k == 2) {
+            cr_assert_neq(wr_scene_run_create(&run, &sc, &d), WR_OK);
+            cr_expect(strncmp(d.message, "$.mesh.weld: merging the ", 25) == 0, "%s", d.message);
+        } else {
+            cr_assert_eq(wr_scene_run_create(&run, &sc, &d), WR_OK, "%s", d.message);
+            cr_expect_eq(run.mesh.nv, k == 0 ? 4 : 6);
+            cr_expect_eq(run.mesh.n_loops, k == 0 ? 1 : 2);
+            if (k == 0) {
+                cr_assert_not_null(run.mesh.corner_rest);
+                for (c = 0; c < 6; ++c) cr_expect(run.mesh.corner_rest[6 + c] == cr1[c], "back corner rest %d", c);
+                cr_assert_not_null(run.mesh.face_panel);
+                cr_expect(run.mesh.face_panel[0] == 0 && run.mesh.face_panel[1] == 1);
+                cr_expect(run.mesh.pos[3 * 3 + 2] == 0.5); /* the back's own vertex follows the merged ones */
+            }
+        }
+        wr_scene_run_free(&run);
+        wr_scene_free(&sc);
+        unlink(spath);
+    }
+    unlink(path);
+    rmdir(dir);
+}
+
+/* "dir": "normal" samples the displacement along the reference surface's unit vertex normal: a
+ * cylinder (radius 0.2, 64 cells round so the alternating diagonals close up at the seam, its own
+ * outward normals) displaced radially by 1 mm reads 1 mm all round
+ * (the fixed default dir (0, 0, 1) would read 0). */
+Test(scene, probe_dir_normal_reads_the_normal_displacement) {
+    const char *t = "{\"mesh\": {\"type\": \"cylinder\", \"radius\": 0.2, \"height\": 0.3, \"resolution\": 0.019635}, " BASE_MAT ","
+                    "\"probes\": [{\"from\": [0.01, 0.15], \"to\": [1.24, 0.15], \"samples\": 64, \"dir\": \"normal\"},"
+                    " {\"from\": [0.01, 0.15], \"to\": [1.24, 0.15], \"samples\": 64}]}";
+    double pts[128], vals[64], ds;
+    wr_scene sc;
+    wr_scene_run run;
+    wr_diag d;
+    int32_t v, k;
+    cr_assert_eq(parse(t, &sc, &d), WR_OK, "%s", d.message);
+    cr_assert(sc.probe[0].dir_normal && !sc.probe[1].dir_normal);
+    cr_assert_eq(wr_scene_run_create(&run, &sc, &d), WR_OK, "%s", d.message);
+    for (v = 0; v < run.mesh.nv; ++v) {
+        double x = run.mesh.pos[3 * v], y = run.mesh.pos[3 * v + 1], r = sqrt(x * x + y * y);
+        run.x[3 * v] += 1e-3 * x / r;
+        run.x[3 * v + 1] += 1e-3 * y / r;
+    }
+    cr_assert_eq(wr_scene_run_probe_samples(&run, 0, pts, vals, &ds, &d), WR_OK, "%s", d.message);
+    for (k = 0; k < 64; ++k) cr_expect(fabs(vals[k] - 1e-3) < 1e-9, "normal sample %d: %.12g", (int)k, vals[k]);
+    cr_assert_eq(wr_scene_run_probe_samples(&run, 1, pts, vals, &ds, &d), WR_OK, "%s", d.message);
+    for (k = 0; k < 64; ++k) cr_expect(fabs(vals[k]) < 1e-15, "z sample %d: %g", (int)k, vals[k]);
+    wr_scene_run_free(&run);
+    wr_scene_free(&sc);
 }
 
 /* $.probes[i].panel on a sewn base whose panels overlap in the rest domain: with the selector a probe

@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "wrinkle/spectrum.h"
 #include "wrinkle/wrinkle_field.h"
 
 #define PI 3.14159265358979323846
@@ -662,6 +663,70 @@ Test(wrinkle_field, upsample_keeps_the_base_panels) {
     free(a);
     free(phi);
     free(panel);
+    wr_mesh_free(&m);
+}
+
+/* A sewn base's per-corner rest coordinates and panels through the upsampling (ON SEWN BASES), in
+ * closed form: two faces sharing the edge (1, 2), each with its own chart, the two charts OVERLAPPING
+ * in the rest plane as a welded skirt's front and back do (face 0: (0,0) (1,0) (0,1); face 1, corners
+ * (2, 1, 3): (0,0) (1,0) (1,1)). One step gives each child the parent's corners and the midpoints of
+ * the parent's edges in the parent's chart, cornered as wr_wf_loop_step's children; a child face has
+ * its parent's panel; two levels are two steps; a rest point in the overlap is located in panel 1's
+ * fine faces at the barycentric position it has in face 1's chart. */
+Test(wrinkle_field, upsample_carries_corner_rest_and_panels) {
+    static const double P[12] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0.2};
+    static const int32_t T[6] = {0, 1, 2, 2, 1, 3}, panel[2] = {4, 7};
+    static const double CR[12] = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 1, 1};
+    static const double want[48] = {0, 0, .5, 0, 0, .5,     1, 0, .5, .5, .5, 0,   0, 1, 0, .5, .5, .5,
+                                    .5, .5, 0, .5, .5, 0,   0, 0, .5, 0, .5, .5,   1, 0, 1, .5, .5, 0,
+                                    1, 1, .5, .5, 1, .5,    1, .5, .5, .5, .5, 0};
+    double got[48], lv2[192], a[4] = {0, 0, 0, 0}, phi[6] = {0, 0, 0, 0, 0, 0}, bary[3];
+    wr_mesh m, fine;
+    wr_wf wf;
+    wr_wf_material mat = material();
+    wr_wf_upsample_desc ud;
+    wr_probe pr;
+    wr_probe_desc pd;
+    uint8_t mask[32];
+    int32_t i, F;
+    cr_assert_eq(wr_mesh_create(&m, 4, P, NULL, 2, T, NULL), WR_OK);
+    cr_assert_eq(wr_mesh_set_corner_rest(&m, CR, NULL), WR_OK);
+    cr_assert_eq(wr_mesh_set_face_panel(&m, panel, NULL), WR_OK);
+    wr_wf_loop_corner_rest(2, CR, got);
+    for (i = 0; i < 48; ++i) cr_assert(got[i] == want[i], "corner rest %d: %g, want %g", (int)i, got[i], want[i]);
+    wr_wf_loop_corner_rest(8, got, lv2);
+    cr_assert_eq(wr_wf_create(&wf, &m, NULL, &mat, NULL), WR_OK);
+    memset(&ud, 0, sizeof ud);
+    ud.levels = 2;
+    cr_assert_eq(wr_wf_upsample(&wf, a, phi, &ud, &fine, NULL, NULL), WR_OK);
+    cr_assert_eq(fine.nf, 32);
+    cr_assert_not_null(fine.corner_rest);
+    cr_assert_not_null(fine.face_panel);
+    for (i = 0; i < 192; ++i) cr_assert(fine.corner_rest[i] == lv2[i], "level 2 corner rest %d", (int)i);
+    for (F = 0; F < 32; ++F) {
+        cr_assert_eq(fine.face_panel[F], panel[F >> 4], "fine face %d: panel %d", (int)F, (int)fine.face_panel[F]);
+        mask[F] = fine.face_panel[F] == 7;
+    }
+    memset(&pd, 0, sizeof pd);
+    pd.face_mask = mask;
+    cr_assert_eq(wr_probe_create(&pr, &fine, &pd, NULL), WR_OK);
+    F = wr_probe_locate(&pr, 0.6, 0.2, bary); /* in both charts; in face 1's: 0.4 c0 + 0.4 c1 + 0.2 c2 */
+    cr_assert(F >= 16 && fine.face_panel[F] == 7, "located in fine face %d", (int)F);
+    {
+        const double *c = fine.corner_rest + 6 * F;
+        double x = bary[0] * c[0] + bary[1] * c[2] + bary[2] * c[4], y = bary[0] * c[1] + bary[1] * c[3] + bary[2] * c[5];
+        cr_assert(fabs(x - 0.6) < 1e-12 && fabs(y - 0.2) < 1e-12, "located at (%g, %g)", x, y);
+    }
+    wr_probe_free(&pr);
+    wr_mesh_free(&fine);
+    wr_wf_free(&wf);
+    /* a base without corner_rest gives a fine mesh without */
+    cr_assert_eq(wr_mesh_set_corner_rest(&m, NULL, NULL), WR_OK);
+    cr_assert_eq(wr_wf_create(&wf, &m, NULL, &mat, NULL), WR_OK);
+    cr_assert_eq(wr_wf_upsample(&wf, a, phi, &ud, &fine, NULL, NULL), WR_OK);
+    cr_assert_null(fine.corner_rest);
+    wr_mesh_free(&fine);
+    wr_wf_free(&wf);
     wr_mesh_free(&m);
 }
 

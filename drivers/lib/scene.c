@@ -218,7 +218,7 @@ static wr_status sc_parse_path(wr_jin *c, const cJSON *o, const char *P, const c
 
 static wr_status sc_parse_mesh(wr_jin *c, const cJSON *o, const char *base_dir, wr_scene_mesh *m) {
     static const char *const keys[] = {"type", "path", "width", "height", "radius", "resolution", "nx", "ny",
-                                       "seed", "pillow", "angle", NULL};
+                                       "seed", "pillow", "angle", "weld", NULL};
     const char *P = "$.mesh";
     wr_status st;
     int kind = 0, fw = 0, fh = 0, fr = 0, fres = 0, fnx = 0, fny = 0, fs = 0, fp = 0, fa = 0;
@@ -237,6 +237,8 @@ static wr_status sc_parse_mesh(wr_jin *c, const cJSON *o, const char *base_dir, 
     if ((st = wr_jin_num(c, o, "pillow", P, WR_JIN_POS, &m->pillow_lift, &fp)) != WR_OK) return st;
     if ((st = wr_jin_num(c, o, "angle", P, WR_JIN_ANY, &m->angle_deg, &fa)) != WR_OK) return st;
     if (fa && m->kind != WR_SCENE_MESH_LATTICE) return wr_jin_err(c, "$.mesh.angle", "only for type lattice");
+    if ((st = wr_jin_num(c, o, "weld", P, WR_JIN_NONNEG, &m->weld_tol, &m->has_weld)) != WR_OK) return st;
+    if (m->has_weld && m->kind != WR_SCENE_MESH_OBJ) return wr_jin_err(c, "$.mesh.weld", "only for type obj");
     /* a pillow doubles a flat panel with a boundary (statics.h ON PRESSURE needs a closed surface) */
     if (fp && m->kind != WR_SCENE_MESH_RECTANGLE && m->kind != WR_SCENE_MESH_DISK &&
         m->kind != WR_SCENE_MESH_DELAUNAY_RECTANGLE)
@@ -424,7 +426,13 @@ static wr_status sc_parse_probe(wr_jin *c, const cJSON *o, const char *P, wr_sce
     pr->samples = 512;
     if ((st = wr_jin_int(c, o, "samples", P, WR_SPECTRUM_MIN_SAMPLES, 1 << 22, &pr->samples, NULL)) != WR_OK) return st;
     pr->dir[2] = 1.0;
-    if ((st = wr_jin_vec(c, o, "dir", P, 3, pr->dir, &fd)) != WR_OK) return st;
+    if (cJSON_IsString(cJSON_GetObjectItemCaseSensitive(o, "dir"))) {
+        char p[512], w[16];
+        wr_jin_path(p, sizeof p, P, "dir");
+        if (wr_jin_str(c, o, "dir", P, w, sizeof w, 0) != WR_OK || strcmp(w, "normal") != 0)
+            return wr_jin_err(c, p, "must be [x, y, z] or \"normal\"");
+        pr->dir_normal = 1;
+    } else if ((st = wr_jin_vec(c, o, "dir", P, 3, pr->dir, &fd)) != WR_OK) return st;
     if (fd && !(fabs(pr->dir[0]) + fabs(pr->dir[1]) + fabs(pr->dir[2]) > 0.0)) {
         char p[512];
         wr_jin_path(p, sizeof p, P, "dir");
@@ -744,12 +752,67 @@ static wr_status sc_build_mesh(const wr_scene_mesh *g, wr_mesh *m, wr_obj_groups
     return st;
 }
 
+typedef struct sc_xkey {
+    double x;
+    int32_t v;
+} sc_xkey;
+static int sc_xkey_cmp(const void *a, const void *b) {
+    double d = ((const sc_xkey *)a)->x - ((const sc_xkey *)b)->x;
+    return d < 0.0 ? -1 : d > 0.0;
+}
+
+/* $.mesh.weld: every two vertices at most tol apart in 3D (a sweep over the vertices sorted by x)
+ * merged by mesh.h wr_mesh_weld, each face keeping its rest corners (corner_rest) and its panel. */
+static wr_status sc_weld_coincident(wr_mesh *m, double tol, wr_diag *diag) {
+    sc_xkey *key = (sc_xkey *)malloc(sizeof(sc_xkey) * (size_t)m->nv);
+    int32_t *pairs = NULL, np = 0, cap = 0, i, j;
+    wr_mesh w;
+    wr_status st = WR_OK;
+    if (!key) return wr_fail(diag, WR_ERR_NOMEM, -1, "$.mesh.weld: out of memory");
+    for (i = 0; i < m->nv; ++i) key[i].x = m->pos[3 * i], key[i].v = i;
+    qsort(key, (size_t)m->nv, sizeof *key, sc_xkey_cmp);
+    for (i = 0; i < m->nv && st == WR_OK; ++i)
+        for (j = i + 1; j < m->nv && key[j].x - key[i].x <= tol; ++j) {
+            const double *a = m->pos + 3 * key[i].v, *b = m->pos + 3 * key[j].v;
+            double dy = a[1] - b[1], dz = a[2] - b[2], dx = a[0] - b[0];
+            if (dx * dx + dy * dy + dz * dz > tol * tol) continue;
+            if (np == cap) {
+                int32_t *t = (int32_t *)realloc(pairs, sizeof(int32_t) * 2 * (size_t)(cap = 2 * cap + 64));
+                if (!t) {
+                    st = wr_fail(diag, WR_ERR_NOMEM, -1, "$.mesh.weld: out of memory");
+                    break;
+                }
+                pairs = t;
+            }
+            pairs[2 * np] = key[i].v, pairs[2 * np + 1] = key[j].v, ++np;
+        }
+    free(key);
+    if (st == WR_OK && np > 0) {
+        if ((st = wr_mesh_weld(&w, m, np, pairs, NULL, diag)) == WR_OK) {
+            wr_mesh_free(m);
+            *m = w;
+        } else {
+            char msg[WR_DIAG_MESSAGE_LEN];
+            snprintf(msg, sizeof msg, "%s", diag ? diag->message : "");
+            st = wr_fail(diag, st, -1, "$.mesh.weld: merging the %d vertex pairs within %g m: %s", (int)np, tol, msg);
+        }
+    }
+    free(pairs);
+    return st;
+}
+
 static wr_status sc_build_panel(const wr_scene_mesh *g, wr_mesh *m, wr_obj_groups *groups, wr_diag *diag) {
     double r = g->resolution;
     double est = 0.0;
+    wr_status st;
     switch (g->kind) {
     case WR_SCENE_MESH_OBJ:
-        return wr_mesh_read_obj_groups(m, g->path, groups, diag);
+        if ((st = wr_mesh_read_obj_groups(m, g->path, groups, diag)) != WR_OK || !g->has_weld) return st;
+        if ((st = sc_weld_coincident(m, g->weld_tol, diag)) != WR_OK) {
+            wr_mesh_free(m);
+            if (groups) wr_obj_groups_free(groups);
+        }
+        return st;
     case WR_SCENE_MESH_RECTANGLE: {
         int32_t nx = g->nx, ny = g->ny;
         if (nx <= 0) {
@@ -1138,20 +1201,42 @@ wr_status wr_scene_probe_locator(const wr_scene_run *run, int32_t i, const wr_me
     return st;
 }
 
+wr_status wr_scene_probe_field(const wr_scene_probe *P, const wr_mesh *m, const double *x, const double *x0,
+                               double *field, wr_diag *diag) {
+    double *nrm = NULL, d[3], len = sqrt(P->dir[0] * P->dir[0] + P->dir[1] * P->dir[1] + P->dir[2] * P->dir[2]);
+    int32_t v;
+    int k;
+    if (P->dir_normal) {
+        wr_mesh ref = *m; /* a shallow view: m's topology at the reference positions */
+        ref.pos = (double *)x0;
+        if (!(nrm = (double *)malloc(sizeof(double) * 3 * (size_t)m->nv)))
+            return wr_fail(diag, WR_ERR_NOMEM, -1, "probe: out of memory");
+        wr_mesh_vertex_normals(&ref, nrm);
+    }
+    for (k = 0; k < 3; ++k) d[k] = len > 0.0 ? P->dir[k] / len : (k == 2);
+    for (v = 0; v < m->nv; ++v) {
+        const double *n = nrm ? nrm + 3 * v : d;
+        field[v] = 0.0;
+        for (k = 0; k < 3; ++k) field[v] += (x[3 * v + k] - x0[3 * v + k]) * n[k];
+    }
+    free(nrm);
+    return WR_OK;
+}
+
 wr_status wr_scene_run_probe_samples(const wr_scene_run *run, int32_t i, double *pts, double *vals, double *ds,
                                      wr_diag *diag) {
     const wr_scene_probe *P = &run->sc->probe[i];
     wr_probe pr;
     double *u;
-    int32_t v, nout = 0, n = P->samples;
+    int32_t nout = 0, n = P->samples;
     wr_status st;
     if ((st = wr_path_segment(P->from, P->to, n, P->closed, pts, ds, diag)) != WR_OK) return st;
-    u = (double *)malloc(sizeof(double) * 3 * (size_t)run->mesh.nv);
+    u = (double *)malloc(sizeof(double) * (size_t)run->mesh.nv);
     if (!u) return wr_fail(diag, WR_ERR_NOMEM, -1, "probe: out of memory");
-    for (v = 0; v < 3 * run->mesh.nv; ++v) u[v] = run->x[v] - run->mesh.pos[v];
-    st = wr_scene_probe_locator(run, i, &run->mesh, pts, n, &pr, diag);
+    st = wr_scene_probe_field(P, &run->mesh, run->x, run->mesh.pos, u, diag);
+    if (st == WR_OK) st = wr_scene_probe_locator(run, i, &run->mesh, pts, n, &pr, diag);
     if (st == WR_OK) {
-        st = wr_probe_sample_dir(&pr, u, P->dir, pts, n, vals, &nout, diag);
+        st = wr_probe_sample(&pr, u, pts, n, vals, &nout, diag);
         if (st == WR_OK && nout > 0)
             st = wr_fail(diag, WR_ERR_GEOMETRY, i, "$.probes[%d]: %d of %d samples fall outside the rest mesh", (int)i,
                          (int)nout, (int)n);

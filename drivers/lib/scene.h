@@ -55,6 +55,8 @@ typedef struct wr_scene_mesh {
     uint64_t seed;                /* delaunay_rectangle sampling seed */
     double angle_deg;             /* lattice: rotation of the lattice rows from the x axis [deg] */
     double pillow_lift;           /* > 0: the flat panel doubled into a closed pillow (wr_mesh_pillow) [m] */
+    int has_weld;                 /* obj: $.mesh.weld given */
+    double weld_tol;              /* obj: vertices closer than this in 3D are merged (wr_mesh_weld) [m], >= 0 */
 } wr_scene_mesh;
 
 typedef enum wr_scene_select { WR_SCENE_SELECT_BOX = 0, WR_SCENE_SELECT_INDICES } wr_scene_select;
@@ -88,6 +90,7 @@ typedef struct wr_scene_probe {
     double from[2], to[2]; /* rest-domain endpoints [m] */
     int32_t samples;       /* default 512 */
     double dir[3];         /* displacement component sampled (default (0,0,1)) */
+    int dir_normal;        /* "dir": "normal": along the reference surface's unit vertex normal instead */
     int closed;
     /* $.probes[i].panel: sample only the faces of one panel (face_panel) of a multi-panel mesh whose
      * panels overlap in the rest domain. has_panel = 0: none; panel_name non-empty: an OBJ g/o name,
@@ -204,6 +207,12 @@ wr_status wr_scene_run_probe_samples(const wr_scene_run *run, int32_t i, double 
  * faces of two panels whose positions m->pos there differ (overlapping panels, not a seam) is
  * ambiguous, WR_ERR_INVALID_ARG "$.probes[i]: ... set \"panel\"" (docs/scene-format.md). Free *p with
  * wr_probe_free. */
+/* Probe i's sampled field per vertex of m: (x − x0)·d, d = the probe's unit dir, or with "dir":
+ * "normal" the unit area-weighted vertex normal of m's faces at the positions x0 (the reference
+ * surface: the initial positions for wrinkle-statics, the smooth subdivided base for wrinkle-tfw).
+ * field: m->nv values. WR_ERR_NOMEM. */
+wr_status wr_scene_probe_field(const wr_scene_probe *P, const wr_mesh *m, const double *x, const double *x0,
+                               double *field, wr_diag *diag);
 wr_status wr_scene_probe_locator(const wr_scene_run *run, int32_t i, const wr_mesh *m, const double *pts, int32_t n,
                                  wr_probe *p, wr_diag *diag);
 wr_status wr_scene_run_write(const wr_scene_run *run, const char *dir, wr_diag *diag);

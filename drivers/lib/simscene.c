@@ -1058,6 +1058,22 @@ wr_status wr_simscene_write_frame(const wr_simscene_run *run, const char *dir, i
     return wr_mesh_write_obj(&m, path, &od, diag);
 }
 
+wr_status wr_simscene_write_welded(const wr_simscene_run *run, const char *path, wr_diag *diag) {
+    wr_mesh m = run->mesh, w;
+    wr_obj_desc od;
+    wr_status st;
+    if (!run->sc->is_garment) return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "welded output: not a garment scene");
+    m.pos = run->x; /* a shallow view, as in write_frame: the pattern mesh at the current positions */
+    if ((st = wr_mesh_weld(&w, &m, run->gs.n_pairs, run->gs.pairs, NULL, diag)) != WR_OK) return st;
+    memset(&od, 0, sizeof od);
+    od.group_names = (const char *const *)run->panel_names;
+    od.n_group_names = run->panel_names ? run->n_panels : 0;
+    od.comment = "wrinkle-sim --weld-final: the last frame sewn (seam pairs merged, vt = each face's pattern corners)";
+    st = wr_mesh_write_obj(&w, path, &od, diag);
+    wr_mesh_free(&w);
+    return st;
+}
+
 /* Body positions now: the sim's copy (moving bodies move), as one array per body. */
 static const double *ss_body_pos(const wr_simscene_run *run, int32_t b) {
     const wr_dyn *dyn = wr_simscene_dyn(run);

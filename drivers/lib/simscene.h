@@ -12,6 +12,9 @@
  *                                  the obstacles, the sim
  *   wr_simscene_run_frames(run, frame_fn, user, diag)  every frame to the scene's duration
  *   wr_simscene_write_frame(run, dir, k, diag)   DIR/frame_%04d.obj|ply (atomic)
+ *   wr_simscene_write_welded(run, path, diag)  a garment's current state as one sewn OBJ: the seam
+ *                                  pairs merged (mesh.h wr_mesh_weld, positions averaged), per-corner
+ *                                  vt = each panel's pattern corners, g = panel names (atomic)
  *   wr_simscene_write_png(run, dir, k, diag)     DIR/frame_%04d.png: front and 3/4 views, cloth
  *                                  over the triangle-mesh bodies (render.h, atomic)
  *   wr_simscene_write_bodies(run, dir, diag)     DIR/body.obj: every triangle-mesh body/obstacle
@@ -184,6 +187,7 @@ wr_status wr_simscene_run_create(wr_simscene_run *run, const wr_simscene *sc, wr
  * the frames before it stay recorded. */
 wr_status wr_simscene_run_frames(wr_simscene_run *run, wr_simscene_frame_fn fn, void *user, wr_diag *diag);
 wr_status wr_simscene_write_frame(const wr_simscene_run *run, const char *dir, int32_t k, wr_diag *diag);
+wr_status wr_simscene_write_welded(const wr_simscene_run *run, const char *path, wr_diag *diag);
 wr_status wr_simscene_write_png(const wr_simscene_run *run, const char *dir, int32_t k, wr_diag *diag);
 wr_status wr_simscene_write_bodies(const wr_simscene_run *run, const char *dir, wr_diag *diag);
 /* The simulator of the run (the cloth's, or the garment's current one). */

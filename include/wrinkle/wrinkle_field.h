@@ -29,6 +29,7 @@
  *   wr_wf_unfold(wf, a, omega, diag)                  re-orient dφ consistently, project to dω = 0
  *   wr_wf_phase(wf, omega, phi, stats, diag)          App. E.4: per-corner φ, 2π-integer jumps
  *   wr_wf_loop_step(m, ncomp, vals, desc, fine_faces, fine_vals, diag)  one Loop step, any fields
+ *   wr_wf_loop_corner_rest(nf, corner_rest, fine)     one step of per-corner rest (ON SEWN BASES)
  *   wr_wf_upsample(wf, a, phi, desc, out, out_a, diag)  App. E.5: Loop n levels + Eq. 19 (v2 term)
  *   wr_wf_upsample_fields(wf, a, phi, desc, out, fields, diag)  the same, with the fine level's a,
  *                                                     phase and wrinkle-free flag per vertex (viewers)
@@ -129,6 +130,22 @@
  *   faces) at no cost; near 2 edges per wavelength the SQP does end in such states (same notes).
  *   wr_wf_count_folds finds them, wr_wf_unfold re-orients dφ (breadth-first from the largest
  *   amplitude) and projects to dω = 0; tfw.h then solves again from there.
+ *
+ * ON SEWN BASES (corner_rest and face_panel through the upsampling)
+ *   A welded multi-panel base (mesh.h ON SEWING) has rest coordinates per face corner only: a seam
+ *   vertex has one pattern position in each panel, and the panels' charts may overlap in the rest
+ *   plane (a skirt's front and back over the same rectangle). wr_wf_upsample carries both to the
+ *   wrinkled mesh, so rest-domain probes (spectrum.h, with a panel mask) can sample it:
+ *   - face_panel: a child face is its parent's panel (after L levels fine face F descends from
+ *     coarse face F >> 2L).
+ *   - corner_rest: a child corner that is a parent corner keeps the parent's rest corner, one on a
+ *     parent edge gets the midpoint of that edge's two rest corners IN THE PARENT'S CHART. This is
+ *     the linear (midpoint) rule, not Loop's: the rest map of a face is affine (TFW App. A charts),
+ *     so the midpoint is exact for it, and a per-face rule never averages corners of two panels
+ *     across a seam, which Loop's stencils (neighbouring faces, other charts) would. Per-vertex rest
+ *     (when present) is still Loop-subdivided as before; with corner_rest present that one wins for
+ *     the rest metric (mesh.h). The fine positions are Loop's, so a rest point maps to a fine 3D
+ *     point that differs from the linear image by the Loop smoothing, O(h²) of the base's faces.
  *
  * ON THREADS
  *   No global state; a wr_wf is read-only after classify/set, so concurrent energy calls are fine.
@@ -365,6 +382,10 @@ typedef struct wr_wf_loop_desc {
  * with wr_free. Interior even weight β = (1/n)(5/8 - (3/8 + cos(2π/n)/4)²) (Loop 1987). */
 WRDEF wr_status wr_wf_loop_step(const wr_mesh *m, int32_t ncomp, const double *vals, const wr_wf_loop_desc *desc,
                                 int32_t **fine_faces, double **fine_vals, wr_diag *diag);
+/* One Loop step of per-corner rest coordinates (mesh.h corner_rest, nf*6 [m]) into fine (4nf*6),
+ * child faces numbered and cornered as wr_wf_loop_step's (ON SEWN BASES): a child's corners are its
+ * parent's corners and the midpoints of the parent's edges, taken in the parent's own chart. */
+WRDEF void wr_wf_loop_corner_rest(int32_t nf, const double *corner_rest, double *fine);
 
 /* Defaults: levels = 2, boundary FIXED, no_inplane = 0 (the v2 term of Eq. 19 is on). */
 typedef struct wr_wf_upsample_desc {
@@ -375,8 +396,10 @@ typedef struct wr_wf_upsample_desc {
 /* App. E.5: Loop-subdivide the base mesh, a and the per-corner phase (differences taken inside one
  * sheet, so 2π jumps never enter a stencil; faces in W keep a = 0 at vertices touching only W), then
  * displace by Eq. 19 without the v1 term: r = r_b + a cos φ n̂_b + (a²/8) sin 2φ ∇_b φ. out: the
- * wrinkled mesh (rest = subdivided rest when the input has rest coordinates; corner_rest is not
- * subdivided; face_panel = the coarse face's panel when the input has one). out_a (or NULL): *out_a = fine amplitudes (out->nv), free with wr_free. */
+ * wrinkled mesh (rest = subdivided rest when the input has rest coordinates; corner_rest = the base's
+ * corner_rest split by wr_wf_loop_corner_rest at every level when the input has one; face_panel =
+ * the coarse face's panel when the input has one: ON SEWN BASES). out_a (or NULL): *out_a = fine
+ * amplitudes (out->nv), free with wr_free. */
 WRDEF wr_status wr_wf_upsample(const wr_wf *wf, const double *a, const double *phi, const wr_wf_upsample_desc *desc,
                                wr_mesh *out, double **out_a, wr_diag *diag);
 
@@ -2398,6 +2421,27 @@ WRDEF wr_status wr_wf_loop_step(const wr_mesh *m, int32_t ncomp, const double *v
     return WR_OK;
 }
 
+WRDEF void wr_wf_loop_corner_rest(int32_t nf, const double *corner_rest, double *fine) {
+    int32_t f, c, k;
+    for (f = 0; f < nf; ++f) {
+        const double *p = corner_rest + 6 * (size_t)f;
+        double q[12], *o = fine + 24 * (size_t)f; /* corners 0..2, then midpoints m0..m2 */
+        /* children as in wr_wf_loop_step: (c0, m2, m1), (c1, m0, m2), (c2, m1, m0), (m0, m1, m2) */
+        static const int child[12] = {0, 5, 4, 1, 3, 5, 2, 4, 3, 3, 4, 5};
+        for (c = 0; c < 6; ++c) q[c] = p[c];
+        for (k = 0; k < 3; ++k) { /* m_k: the midpoint of the edge opposite corner k */
+            int32_t a = (k + 1) % 3, b = (k + 2) % 3;
+            q[6 + 2 * k] = 0.5 * (p[2 * a] + p[2 * b]);
+            q[7 + 2 * k] = 0.5 * (p[2 * a + 1] + p[2 * b + 1]);
+        }
+        for (c = 0; c < 12; ++c) {
+            int32_t j = child[c] < 3 ? 2 * child[c] : 6 + 2 * (child[c] - 3);
+            o[2 * c] = q[j];
+            o[2 * c + 1] = q[j + 1];
+        }
+    }
+}
+
 /* One Loop step of the per-corner phase (nf*3) outside W: every stencil is written as the corner's
  * own value plus weighted differences along edges, and a difference along an edge is taken inside a
  * face outside W containing it (0 when there is none), so 2π jumps between sheets never mix. */
@@ -2683,6 +2727,28 @@ static wr_status wr__wf_up_panels(const wr_mesh *src, int32_t levels, wr_mesh *o
     return st;
 }
 
+/* The base's corner_rest on the fine mesh: wr_wf_loop_corner_rest once per level (ON SEWN BASES). */
+static wr_status wr__wf_up_corner_rest(const wr_mesh *src, int32_t levels, wr_mesh *out, wr_diag *diag) {
+    double *cur = (double *)wr_alloc_array((size_t)out->nf * 6, sizeof(double));
+    double *nxt = (double *)wr_alloc_array((size_t)out->nf * 6, sizeof(double)), *t;
+    int32_t nf = src->nf, lvl;
+    wr_status st;
+    if (!cur || !nxt) {
+        wr_free(cur);
+        wr_free(nxt);
+        return wr_fail(diag, WR_ERR_NOMEM, -1, "wf upsample: out of memory");
+    }
+    memcpy(cur, src->corner_rest, sizeof(double) * 6 * (size_t)nf);
+    for (lvl = 0; lvl < levels; ++lvl, nf *= 4) {
+        wr_wf_loop_corner_rest(nf, cur, nxt);
+        t = cur, cur = nxt, nxt = t;
+    }
+    st = wr_mesh_set_corner_rest(out, cur, diag);
+    wr_free(cur);
+    wr_free(nxt);
+    return st;
+}
+
 WRDEF wr_status wr_wf_upsample_fields(const wr_wf *wf, const double *a, const double *phi,
                                       const wr_wf_upsample_desc *desc, wr_mesh *out, wr_wf_fine_fields *fields,
                                       wr_diag *diag) {
@@ -2729,6 +2795,7 @@ WRDEF wr_status wr_wf_upsample_fields(const wr_wf *wf, const double *a, const do
     if (!st) st = wr__wf_up_displace(&U, inplane, disp, vphi, vwr, diag);
     if (!st) st = wr_mesh_create(out, U.cur.nv, disp, U.cur.rest, U.cur.nf, U.cur.faces, diag);
     if (!st && src->face_panel) st = wr__wf_up_panels(src, levels, out, diag);
+    if (!st && src->corner_rest) st = wr__wf_up_corner_rest(src, levels, out, diag);
     if (!st) {
         wr__wf_up_fields(&U, vphi, vwr, fields);
         vphi = NULL;
