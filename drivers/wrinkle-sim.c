@@ -47,7 +47,8 @@ static void usage(FILE *f) {
             "  --png                also DIR/frame_NNNN.png for every written frame (front and 3/4 views)\n"
             "  --weld-final FILE    garment scenes: also FILE (OBJ), the last frame sewn into one mesh (seam\n"
             "                       pairs merged, per-corner vt = the panels' pattern corners, g = panel names),\n"
-            "                       e.g. a base for wrinkle-tfw; written when the run finishes without error\n"
+            "                       e.g. a base for wrinkle-tfw; written when the run finishes without error;\n"
+            "                       refused before the run if its folder is missing or the run writes FILE itself\n"
             "  --quiet              no progress on stderr\n"
             "  -h, --help           this text\n"
             "warnings (stderr, the run goes on): a thickness over 1 cm (it is in metres), a garment panel\n"
@@ -148,6 +149,44 @@ static int outputs_ok(const wr_simscene *sc, const char *scene_path, const char 
     return 1;
 }
 
+/* --weld-final FILE against the run's own outputs, checked once DIR exists and before any frame is
+ * run: FILE's folder must exist, and FILE must not be one of the files the run writes into DIR
+ * (summary, bodies, frames, pictures), which would be overwritten after the run or overwrite them.
+ * 1 when fine (error printed otherwise). */
+static int welded_path_ok(const wr_simscene *sc, const char *dir, int32_t n_frames, int32_t every, int png, const char *welded) {
+    static const char *const fixed[] = {"summary.json", "body.obj"};
+    char wdir[WR_PATH_MAX], rw[PATH_MAX], rd[PATH_MAX], name[32];
+    const char *slash = strrchr(welded, '/'), *base = slash ? slash + 1 : welded;
+    int32_t k;
+    if (!slash)
+        strcpy(wdir, ".");
+    else if (slash == welded)
+        strcpy(wdir, "/");
+    else if ((size_t)(slash - welded) < sizeof wdir) {
+        memcpy(wdir, welded, (size_t)(slash - welded));
+        wdir[slash - welded] = 0;
+    } else
+        wdir[0] = 0; /* too long: refused below */
+    if (*base == 0 || !wdir[0] || !realpath(wdir, rw)) {
+        wr_cli_error("--weld-final %s: no such folder or no file name", welded);
+        return 0;
+    }
+    if (!realpath(dir, rd) || strcmp(rw, rd) != 0) return 1;
+    for (k = 0; k < 2; ++k)
+        if (strcmp(base, fixed[k]) == 0) goto clash;
+    for (k = 0; k <= n_frames; ++k) {
+        if (k % every && k != n_frames) continue;
+        wr_simscene_frame_name(sc, k, name);
+        if (strcmp(base, name) == 0) goto clash;
+        snprintf(name, sizeof name, "frame_%04d.png", (int)k);
+        if (png && strcmp(base, name) == 0) goto clash;
+    }
+    return 1;
+clash:
+    wr_cli_error("--weld-final %s: the run itself writes %s/%s; choose another name", welded, dir, base);
+    return 0;
+}
+
 /* --weld-final: the last frame sewn into one OBJ; warns when the seams were not welded by the run
  * (the pairs' positions are then averaged across the gap). 0 on success (error printed otherwise). */
 static int write_welded(const wr_simscene_run *run, const char *path, int quiet) {
@@ -222,6 +261,8 @@ int main(int argc, char **argv) {
         wr_cli_error("cannot create output directory %s", out);
         return wr_cli_exit(WR_CLI_EXIT_FAILURE);
     }
+    if (welded && !welded_path_ok(&sc, out, run.n_frames_max - 1, sc.output_every, png, welded))
+        return wr_cli_exit(WR_CLI_EXIT_USAGE);
     if ((size_t)snprintf(summary, sizeof summary, "%s/summary.json", out) >= sizeof summary) {
         wr_cli_error("output path too long: %s", out);
         return wr_cli_exit(WR_CLI_EXIT_USAGE);

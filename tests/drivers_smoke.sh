@@ -611,6 +611,14 @@ PY
         --weld-final "$tmp/simwc.obj"
     expect_fail "wrinkle-sim --weld-final over the scene" "$B/wrinkle-sim" "$tmp/garment_weld.json" -o "$tmp/simwo" \
         --weld-final "$tmp/garment_weld.json"
+    # ... and before any frame is run, into a folder that does not exist or onto a file the run writes itself
+    expect_fail "wrinkle-sim --weld-final into a missing folder" "$B/wrinkle-sim" "$tmp/garment_weld.json" -o "$tmp/simwm" \
+        --quiet --weld-final "$tmp/no_such_dir/sewn.obj"
+    grep -qF 'no such folder' "$tmp/err" && ok || { bad "wrinkle-sim --weld-final missing folder: stderr does not say so"; cat "$tmp/err"; }
+    expect_fail "wrinkle-sim --weld-final onto its own frame" "$B/wrinkle-sim" "$tmp/garment_weld.json" -o "$tmp/simwl" \
+        --quiet --weld-final "$tmp/simwl/frame_0002.obj"
+    grep -qF 'the run itself writes' "$tmp/err" && ok || { bad "wrinkle-sim --weld-final onto a frame: stderr does not say so"; cat "$tmp/err"; }
+    [ ! -e "$tmp/simwl/summary.json" ] && ok || bad "wrinkle-sim --weld-final onto a frame: the run went ahead"
 fi
 if [ -x "$B/wrinkle-resolution" ]; then
     # an answer that overflows is refused, never printed as "inf" (text) or null (JSON)
