@@ -91,38 +91,50 @@ static wr_status check_as_cdt(const wr_mesher_result *r, int32_t holes, wr_diag 
     return st;
 }
 
-Test(mesher, output_is_a_constrained_delaunay_triangulation) {
-    /* a hole, a shirring line and a fold (line + two parallels): the sampler fills between our own
-     * curves, and the CDT of the result is what the mesher hands back */
+/* The 250 mm square with a hole, a shirring line and a fold (line + two parallels). */
+typedef struct hole_line_fold {
+    double hxy[8], line[6], fl[4];
     wr_pattern pat;
     wr_pattern_panel pn;
     wr_pattern_curve hole;
     wr_pattern_shirring sh;
     wr_pattern_fold fd;
+} hole_line_fold;
+
+static void make_hole_line_fold(hole_line_fold *t) {
+    const double hxy[8] = {0.15, 0.15, 0.2, 0.15, 0.2, 0.2, 0.15, 0.2};
+    const double line[6] = {0.03, 0.1, 0.125, 0.14, 0.22, 0.1}, fl[4] = {0.05, 0.04, 0.2, 0.06};
+    memset(t, 0, sizeof *t);
+    memcpy(t->hxy, hxy, sizeof hxy);
+    memcpy(t->line, line, sizeof line);
+    memcpy(t->fl, fl, sizeof fl);
+    one_panel(&t->pat, &t->pn, sq250, 4);
+    t->hole.xy = t->hxy;
+    t->hole.n = 4;
+    t->pn.holes = &t->hole;
+    t->pn.n_holes = 1;
+    t->sh.xy = t->line;
+    t->sh.n = 3;
+    t->sh.E_sh = 2.0e6;
+    t->sh.rho = 0.5;
+    t->fd.xy = t->fl;
+    t->fd.n = 2;
+    t->fd.angle_deg = 180.0;
+    t->pat.shirrings = &t->sh;
+    t->pat.n_shirrings = 1;
+    t->pat.folds = &t->fd;
+    t->pat.n_folds = 1;
+}
+
+Test(mesher, output_is_a_constrained_delaunay_triangulation) {
+    /* a hole, a shirring line and a fold (line + two parallels): the sampler fills between our own
+     * curves, and the CDT of the result is what the mesher hands back */
+    hole_line_fold t;
     wr_mesher_result r;
     wr_diag d;
-    double hxy[8] = {0.15, 0.15, 0.2, 0.15, 0.2, 0.2, 0.15, 0.2};
-    double line[6] = {0.03, 0.1, 0.125, 0.14, 0.22, 0.1}, fl[4] = {0.05, 0.04, 0.2, 0.06};
     int k;
-    one_panel(&pat, &pn, sq250, 4);
-    hole.xy = hxy;
-    hole.n = 4;
-    pn.holes = &hole;
-    pn.n_holes = 1;
-    memset(&sh, 0, sizeof sh);
-    sh.xy = line;
-    sh.n = 3;
-    sh.E_sh = 2.0e6;
-    sh.rho = 0.5;
-    memset(&fd, 0, sizeof fd);
-    fd.xy = fl;
-    fd.n = 2;
-    fd.angle_deg = 180.0;
-    pat.shirrings = &sh;
-    pat.n_shirrings = 1;
-    pat.folds = &fd;
-    pat.n_folds = 1;
-    cr_assert_eq(wr_mesher_run(&pat, NULL, &r, &d), WR_OK, "%s", d.message);
+    make_hole_line_fold(&t);
+    cr_assert_eq(wr_mesher_run(&t.pat, NULL, &r, &d), WR_OK, "%s", d.message);
     for (k = 0; k < 4; ++k) cr_assert_eq(r.panels[0].T[k], k == 0 || k == 3 ? 1.0 : 0.0, "isotropic: T = I");
     cr_expect_eq(check_as_cdt(&r, 1, &d), WR_OK, "%s", d.message);
     cr_expect_eq(r.report.n_inverted + r.report.n_zero_area, 0);
@@ -1228,43 +1240,21 @@ static void expect_spatial_layout(const wr_mesher_result *r) {
 }
 
 Test(mesher, spatial_order_permutes_the_sampled_order) {
-    wr_pattern pat;
-    wr_pattern_panel pn;
-    wr_pattern_curve hole;
-    wr_pattern_shirring sh;
-    wr_pattern_fold fd;
+    hole_line_fold h;
     wr_mesher_result r, s;
     wr_mesher_desc desc;
     wr_diag d;
     two_panels t;
-    double hxy[8] = {0.15, 0.15, 0.2, 0.15, 0.2, 0.2, 0.15, 0.2};
-    double line[6] = {0.03, 0.1, 0.125, 0.14, 0.22, 0.1}, fl[4] = {0.05, 0.04, 0.2, 0.06}, med_s, med_r;
+    double med_s, med_r;
     int sew;
     /* one panel with a hole, a shirring line and a fold (line + parallels), 4 mm */
-    one_panel(&pat, &pn, sq250, 4);
-    pn.fabric.resolution = 4e-3;
-    hole.xy = hxy;
-    hole.n = 4;
-    pn.holes = &hole;
-    pn.n_holes = 1;
-    memset(&sh, 0, sizeof sh);
-    sh.xy = line;
-    sh.n = 3;
-    sh.E_sh = 2.0e6;
-    sh.rho = 0.5;
-    memset(&fd, 0, sizeof fd);
-    fd.xy = fl;
-    fd.n = 2;
-    fd.angle_deg = 180.0;
-    pat.shirrings = &sh;
-    pat.n_shirrings = 1;
-    pat.folds = &fd;
-    pat.n_folds = 1;
+    make_hole_line_fold(&h);
+    h.pn.fabric.resolution = 4e-3;
     memset(&desc, 0, sizeof desc);
     desc.vertex_order = WR_MESHER_ORDER_SAMPLED;
-    cr_assert_eq(wr_mesher_run(&pat, &desc, &r, &d), WR_OK, "%s", d.message);
+    cr_assert_eq(wr_mesher_run(&h.pat, &desc, &r, &d), WR_OK, "%s", d.message);
     desc.vertex_order = WR_MESHER_ORDER_SPATIAL;
-    cr_assert_eq(wr_mesher_run(&pat, &desc, &s, &d), WR_OK, "%s", d.message);
+    cr_assert_eq(wr_mesher_run(&h.pat, &desc, &s, &d), WR_OK, "%s", d.message);
     cr_assert_gt(s.mesh.nv, 3000);
     expect_same_up_to_numbering(&r, &s);
     expect_spatial_layout(&s);

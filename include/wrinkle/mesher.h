@@ -1400,9 +1400,9 @@ static double wr__msh_metric_min_angle(const double *T, const double *uv, double
     return am;
 }
 
-/* The faces' corners are far apart in vertex order (the sampler's front order: ~1700 apart in a
- * face), so the report's reads of rest and sizing miss the cache at every face; GCC/Clang builds
- * prefetch them this many faces ahead. */
+/* In the sampler's order (WR_MESHER_ORDER_SAMPLED) a face's corners are ~1700 ids apart, so the
+ * report's reads of rest and sizing miss the cache at every face; GCC/Clang builds prefetch them this
+ * many faces ahead (in the spatial order the lines are mostly in cache already). */
 #define WR__MSH_AHEAD 16
 
 /* One pass over the faces: angles in pattern space and in each panel's metric (stretched) space,
