@@ -212,9 +212,9 @@ WRDEF void wr_cdt_free(wr_cdt_result *r);
 /* Spatially coherent order of points: order[0..n) := ids[0..n) (NULL: 0..n-1) sorted along a Hilbert
  * curve over their bounding box (a grid of about 4n..16n cells, at most 2^16 per side; points in one
  * cell keep their order in ids). The curve wr_cdt_triangulate's BRIO rounds follow; for numbering a
- * mesh so that nearby vertices get nearby ids (mesher.h). xy holds every point ids names (×2). O(n)
- * (one radix sort), 16 bytes of scratch per point. WR_ERR_INVALID_ARG (n < 0, NULL arrays),
- * WR_ERR_NOMEM. */
+ * mesh so that nearby vertices get nearby ids (mesher.h). xy holds every point ids names (×2); order
+ * may be ids itself. O(n) (one radix sort), 12 bytes of scratch per point. WR_ERR_INVALID_ARG (n < 0,
+ * NULL arrays), WR_ERR_NOMEM. */
 WRDEF wr_status wr_cdt_hilbert_order(const double *xy, const int32_t *ids, int32_t n, int32_t *order, wr_diag *diag);
 
 /* What wr_cdt_check measured. */
