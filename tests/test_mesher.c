@@ -91,38 +91,50 @@ static wr_status check_as_cdt(const wr_mesher_result *r, int32_t holes, wr_diag 
     return st;
 }
 
-Test(mesher, output_is_a_constrained_delaunay_triangulation) {
-    /* a hole, a shirring line and a fold (line + two parallels): the sampler fills between our own
-     * curves, and the CDT of the result is what the mesher hands back */
+/* The 250 mm square with a hole, a shirring line and a fold (line + two parallels). */
+typedef struct hole_line_fold {
+    double hxy[8], line[6], fl[4];
     wr_pattern pat;
     wr_pattern_panel pn;
     wr_pattern_curve hole;
     wr_pattern_shirring sh;
     wr_pattern_fold fd;
+} hole_line_fold;
+
+static void make_hole_line_fold(hole_line_fold *t) {
+    const double hxy[8] = {0.15, 0.15, 0.2, 0.15, 0.2, 0.2, 0.15, 0.2};
+    const double line[6] = {0.03, 0.1, 0.125, 0.14, 0.22, 0.1}, fl[4] = {0.05, 0.04, 0.2, 0.06};
+    memset(t, 0, sizeof *t);
+    memcpy(t->hxy, hxy, sizeof hxy);
+    memcpy(t->line, line, sizeof line);
+    memcpy(t->fl, fl, sizeof fl);
+    one_panel(&t->pat, &t->pn, sq250, 4);
+    t->hole.xy = t->hxy;
+    t->hole.n = 4;
+    t->pn.holes = &t->hole;
+    t->pn.n_holes = 1;
+    t->sh.xy = t->line;
+    t->sh.n = 3;
+    t->sh.E_sh = 2.0e6;
+    t->sh.rho = 0.5;
+    t->fd.xy = t->fl;
+    t->fd.n = 2;
+    t->fd.angle_deg = 180.0;
+    t->pat.shirrings = &t->sh;
+    t->pat.n_shirrings = 1;
+    t->pat.folds = &t->fd;
+    t->pat.n_folds = 1;
+}
+
+Test(mesher, output_is_a_constrained_delaunay_triangulation) {
+    /* a hole, a shirring line and a fold (line + two parallels): the sampler fills between our own
+     * curves, and the CDT of the result is what the mesher hands back */
+    hole_line_fold t;
     wr_mesher_result r;
     wr_diag d;
-    double hxy[8] = {0.15, 0.15, 0.2, 0.15, 0.2, 0.2, 0.15, 0.2};
-    double line[6] = {0.03, 0.1, 0.125, 0.14, 0.22, 0.1}, fl[4] = {0.05, 0.04, 0.2, 0.06};
     int k;
-    one_panel(&pat, &pn, sq250, 4);
-    hole.xy = hxy;
-    hole.n = 4;
-    pn.holes = &hole;
-    pn.n_holes = 1;
-    memset(&sh, 0, sizeof sh);
-    sh.xy = line;
-    sh.n = 3;
-    sh.E_sh = 2.0e6;
-    sh.rho = 0.5;
-    memset(&fd, 0, sizeof fd);
-    fd.xy = fl;
-    fd.n = 2;
-    fd.angle_deg = 180.0;
-    pat.shirrings = &sh;
-    pat.n_shirrings = 1;
-    pat.folds = &fd;
-    pat.n_folds = 1;
-    cr_assert_eq(wr_mesher_run(&pat, NULL, &r, &d), WR_OK, "%s", d.message);
+    make_hole_line_fold(&t);
+    cr_assert_eq(wr_mesher_run(&t.pat, NULL, &r, &d), WR_OK, "%s", d.message);
     for (k = 0; k < 4; ++k) cr_assert_eq(r.panels[0].T[k], k == 0 || k == 3 ? 1.0 : 0.0, "isotropic: T = I");
     cr_expect_eq(check_as_cdt(&r, 1, &d), WR_OK, "%s", d.message);
     cr_expect_eq(r.report.n_inverted + r.report.n_zero_area, 0);
@@ -1116,4 +1128,197 @@ Test(mesher_errors, budget_from_area_before_any_work) {
     desc.uniform_resolution = 5e-3;
     desc.max_vertices = 20000;
     run_expect(&pat, &desc, WR_ERR_BUDGET, "need at least 4.04e+04 vertices");
+}
+
+/* ---- the output numbering (ON THE OUTPUT: WR_MESHER_ORDER_SPATIAL against _SAMPLED) ---------------- */
+static const double *vertex_xy(const wr_mesher_result *r, int32_t v) { /* rest, or pos when sewn */
+    static double q[2];
+    if (r->mesh.rest) return r->mesh.rest + 2 * v;
+    q[0] = r->mesh.pos[3 * v];
+    q[1] = r->mesh.pos[3 * v + 1];
+    return q;
+}
+static const wr_mesher_result *g_sort_res; /* qsort context */
+static int cmp_vertex_xy(const void *x, const void *y) {
+    double a[2], b[2];
+    memcpy(a, vertex_xy(g_sort_res, *(const int32_t *)x), sizeof a);
+    memcpy(b, vertex_xy(g_sort_res, *(const int32_t *)y), sizeof b);
+    if (a[0] != b[0]) return a[0] < b[0] ? -1 : 1;
+    return a[1] < b[1] ? -1 : a[1] > b[1];
+}
+static int cmp_face4(const void *x, const void *y) {
+    const int32_t *a = (const int32_t *)x, *b = (const int32_t *)y;
+    int k;
+    for (k = 0; k < 4; ++k)
+        if (a[k] != b[k]) return a[k] < b[k] ? -1 : 1;
+    return 0;
+}
+/* map[v of s] = the vertex of r at the same position (positions are distinct in these patterns). */
+static void match_vertices(const wr_mesher_result *r, const wr_mesher_result *s, int32_t *map) {
+    int32_t n = r->mesh.nv, i, *ir = (int32_t *)malloc(sizeof(int32_t) * (size_t)n), *is = (int32_t *)malloc(sizeof(int32_t) * (size_t)n);
+    cr_assert(ir && is);
+    for (i = 0; i < n; ++i) ir[i] = is[i] = i;
+    g_sort_res = r;
+    qsort(ir, (size_t)n, sizeof(int32_t), cmp_vertex_xy);
+    g_sort_res = s;
+    qsort(is, (size_t)n, sizeof(int32_t), cmp_vertex_xy);
+    for (i = 0; i < n; ++i) {
+        double a[2];
+        memcpy(a, vertex_xy(r, ir[i]), sizeof a);
+        cr_assert(a[0] == vertex_xy(s, is[i])[0] && a[1] == vertex_xy(s, is[i])[1], "vertex positions differ at %d", i);
+        if (i > 0) cr_assert(cmp_vertex_xy(&is[i - 1], &is[i]) != 0, "two vertices at one position");
+        map[is[i]] = ir[i];
+    }
+    free(ir);
+    free(is);
+}
+/* (corners mapped to r's ids, panel) per face, sorted: equal lists = the same triangles, corners in the
+ * same rotation, on the same panels; corner_rest (sewn) compared per corner through the same sort. */
+static int32_t *face_list(const wr_mesher_result *r, const int32_t *map) {
+    int32_t f, k, *L = (int32_t *)malloc(sizeof(int32_t) * 5 * (size_t)r->mesh.nf);
+    cr_assert(L);
+    for (f = 0; f < r->mesh.nf; ++f) {
+        for (k = 0; k < 3; ++k) L[5 * f + k] = map ? map[r->mesh.faces[3 * f + k]] : r->mesh.faces[3 * f + k];
+        L[5 * f + 3] = r->mesh.face_panel[f];
+        L[5 * f + 4] = f;
+    }
+    qsort(L, (size_t)r->mesh.nf, 5 * sizeof(int32_t), cmp_face4);
+    return L;
+}
+static void expect_same_up_to_numbering(const wr_mesher_result *r, const wr_mesher_result *s) {
+    const wr_mesh *a = &r->mesh, *b = &s->mesh;
+    int32_t *map, *La, *Lb, i, k;
+    cr_assert_eq(a->nv, b->nv);
+    cr_assert_eq(a->nf, b->nf);
+    cr_assert_eq(a->ne, b->ne);
+    cr_assert_eq(r->n_seam_pairs, s->n_seam_pairs);
+    cr_assert_eq(r->n_constraint_segments, s->n_constraint_segments);
+    map = (int32_t *)malloc(sizeof(int32_t) * (size_t)a->nv);
+    cr_assert(map);
+    match_vertices(r, s, map);
+    for (i = 0; i < b->nv; ++i)
+        cr_expect(s->sizing[i] == r->sizing[map[i]] && s->sizing_warp[i] == r->sizing_warp[map[i]] &&
+                      s->sizing_weft[i] == r->sizing_weft[map[i]], "sizing of vertex %d", i);
+    La = face_list(r, NULL);
+    Lb = face_list(s, map);
+    for (i = 0; i < a->nf; ++i) {
+        cr_assert(cmp_face4(La + 5 * i, Lb + 5 * i) == 0, "face %d differs", i);
+        for (k = 0; k < 6 && a->corner_rest; ++k)
+            cr_expect(a->corner_rest[6 * La[5 * i + 4] + k] == b->corner_rest[6 * Lb[5 * i + 4] + k]);
+    }
+    for (i = 0; i < 2 * r->n_seam_pairs; ++i) cr_expect_eq(map[s->seam_pairs[i]], r->seam_pairs[i], "seam pair %d", i / 2);
+    for (i = 0; i < 2 * r->n_constraint_segments; ++i)
+        cr_expect_eq(map[s->constraint_segments[i]], r->constraint_segments[i], "constraint segment %d", i / 2);
+    for (i = 0; i < r->n_panels; ++i)
+        cr_expect(r->panels[i].v_begin == s->panels[i].v_begin && r->panels[i].v_end == s->panels[i].v_end &&
+                  r->panels[i].f_begin == s->panels[i].f_begin && r->panels[i].f_end == s->panels[i].f_end);
+    /* the report: extremes and counts exact, means up to summation order */
+    cr_expect(r->report.min_angle_deg == s->report.min_angle_deg && r->report.max_angle_deg == s->report.max_angle_deg);
+    cr_expect(r->report.ratio_min == s->report.ratio_min && r->report.ratio_max == s->report.ratio_max);
+    cr_expect(memcmp(r->report.ratio_hist, s->report.ratio_hist, sizeof r->report.ratio_hist) == 0);
+    cr_expect(fabs(r->report.mean_min_angle_deg - s->report.mean_min_angle_deg) < 1e-12 * r->report.mean_min_angle_deg);
+    cr_expect(fabs(r->report.ratio_mean - s->report.ratio_mean) < 1e-12);
+    free(map);
+    free(La);
+    free(Lb);
+}
+static int cmp_i32(const void *x, const void *y) {
+    int32_t a = *(const int32_t *)x, b = *(const int32_t *)y;
+    return a < b ? -1 : a > b;
+}
+/* Median over the faces without a curve corner of (largest - smallest corner id). */
+static double face_span_median(const wr_mesher_result *r, const char *on) {
+    int32_t f, n = 0, *span = (int32_t *)malloc(sizeof(int32_t) * (size_t)(r->mesh.nf + 1));
+    double med;
+    cr_assert(span);
+    for (f = 0; f < r->mesh.nf; ++f) {
+        const int32_t *F = r->mesh.faces + 3 * f;
+        int32_t hi = F[0] > F[1] ? F[0] : F[1], lo = F[0] < F[1] ? F[0] : F[1];
+        hi = hi > F[2] ? hi : F[2];
+        lo = lo < F[2] ? lo : F[2];
+        if (!on[F[0]] && !on[F[1]] && !on[F[2]]) span[n++] = hi - lo;
+    }
+    qsort(span, (size_t)n, sizeof(int32_t), cmp_i32);
+    med = n ? span[n / 2] : 0.0;
+    free(span);
+    return med;
+}
+/* The curve points (the constraint segments' ends: outer loops, holes, lines) of r, 1 each. */
+static char *curve_marks(const wr_mesher_result *r) {
+    char *on = (char *)calloc((size_t)r->mesh.nv, 1);
+    int32_t i;
+    cr_assert(on);
+    for (i = 0; i < 2 * r->n_constraint_segments; ++i) on[r->constraint_segments[i]] = 1;
+    return on;
+}
+/* The spatial order's own promises (unsewn): per panel the curve points are its first ids and the
+ * faces go by nondecreasing largest corner. */
+static void expect_spatial_layout(const wr_mesher_result *r) {
+    int32_t p, f;
+    char *on = curve_marks(r);
+    for (p = 0; p < r->n_panels; ++p) {
+        int32_t v = r->panels[p].v_begin, last = -1;
+        while (v < r->panels[p].v_end && on[v]) ++v;
+        for (; v < r->panels[p].v_end; ++v) cr_expect(!on[v], "panel %d: curve vertex %d after an interior one", p, v);
+        for (f = r->panels[p].f_begin; f < r->panels[p].f_end; ++f) {
+            const int32_t *F = r->mesh.faces + 3 * f;
+            int32_t hi = F[0] > F[1] ? F[0] : F[1];
+            hi = hi > F[2] ? hi : F[2];
+            cr_expect_geq(hi, last, "panel %d face %d: largest corner %d after %d", p, f, hi, last);
+            last = hi;
+        }
+    }
+    free(on);
+}
+
+Test(mesher, spatial_order_permutes_the_sampled_order) {
+    hole_line_fold h;
+    wr_mesher_result r, s;
+    wr_mesher_desc desc;
+    wr_diag d;
+    two_panels t;
+    double med_s, med_r;
+    int sew;
+    /* one panel with a hole, a shirring line and a fold (line + parallels), 4 mm */
+    make_hole_line_fold(&h);
+    h.pn.fabric.resolution = 4e-3;
+    memset(&desc, 0, sizeof desc);
+    desc.vertex_order = WR_MESHER_ORDER_SAMPLED;
+    cr_assert_eq(wr_mesher_run(&h.pat, &desc, &r, &d), WR_OK, "%s", d.message);
+    desc.vertex_order = WR_MESHER_ORDER_SPATIAL;
+    cr_assert_eq(wr_mesher_run(&h.pat, &desc, &s, &d), WR_OK, "%s", d.message);
+    cr_assert_gt(s.mesh.nv, 3000);
+    expect_same_up_to_numbering(&r, &s);
+    expect_spatial_layout(&s);
+    { /* nearby ids: the median id span of an interior face, against the sampler's order */
+        char *on_r = curve_marks(&r), *on_s = curve_marks(&s);
+        med_r = face_span_median(&r, on_r);
+        med_s = face_span_median(&s, on_s);
+        cr_expect_lt(med_s, 0.25 * med_r, "median face id span: spatial %g, sampled %g", med_s, med_r);
+        cr_log_info("median face id span: spatial %g, sampled %g (%d vertices)", med_s, med_r, (int)s.mesh.nv);
+        free(on_r);
+        free(on_s);
+    }
+    cr_expect_eq(check_as_cdt(&s, 1, &d), WR_OK, "%s", d.message);
+    wr_mesher_free(&r);
+    wr_mesher_free(&s);
+    /* two panels with a seam, unsewn and sewn */
+    make_two(&t);
+    for (sew = 0; sew < 2; ++sew) {
+        desc.sew = sew;
+        desc.vertex_order = WR_MESHER_ORDER_SAMPLED;
+        cr_assert_eq(wr_mesher_run(&t.pat, &desc, &r, &d), WR_OK, "%s", d.message);
+        desc.vertex_order = WR_MESHER_ORDER_SPATIAL;
+        cr_assert_eq(wr_mesher_run(&t.pat, &desc, &s, &d), WR_OK, "%s", d.message);
+        expect_same_up_to_numbering(&r, &s);
+        if (!sew) {
+            expect_spatial_layout(&s);
+            cr_expect_eq(check_as_cdt(&s, 0, &d), WR_OK, "%s", d.message);
+        }
+        wr_mesher_free(&r);
+        wr_mesher_free(&s);
+    }
+    desc.vertex_order = 2;
+    cr_expect_eq(wr_mesher_run(&t.pat, &desc, &s, &d), WR_ERR_INVALID_ARG);
+    cr_expect(strstr(d.message, "vertex_order") != NULL, "%s", d.message);
 }

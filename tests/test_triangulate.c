@@ -5,6 +5,7 @@
 #include <criterion/criterion.h>
 #include <math.h>
 #include <stdint.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "wrinkle/polyfile.h"
@@ -1819,4 +1820,53 @@ Test(polyfile, g17_writer_matches_printf_and_round_trips) {
     wr_cdt_poly_free(&P);
     remove(path);
     pf_read_check(tok, 2 * N);
+}
+
+/* wr_cdt_hilbert_order: a permutation of ids, points in one cell kept in ids order, and a short path: on a
+ * 64 x 64 lattice given row by row (path 4095 steps of 1) shuffled, the curve's path stays short. */
+Test(triangulate, hilbert_order_is_a_short_permutation) {
+    enum { N = 64 * 64 };
+    static double xy[2 * N + 4];
+    static int32_t ids[N], order[N];
+    char *seen = (char *)calloc(N + 2, 1);
+    wr_rng rng;
+    double path = 0.0;
+    int32_t i, n;
+    wr_diag d;
+    cr_assert(seen);
+    wr_rng_seed(&rng, 7);
+    for (i = 0; i < N; ++i) {
+        xy[2 * i] = (double)(i % 64);
+        xy[2 * i + 1] = (double)(i / 64);
+        ids[i] = i;
+    }
+    for (i = N - 1; i > 0; --i) { /* shuffle ids */
+        int32_t j = (int32_t)(wr_rng_u64(&rng) % (uint64_t)(i + 1)), t = ids[i];
+        ids[i] = ids[j];
+        ids[j] = t;
+    }
+    cr_assert_eq(wr_cdt_hilbert_order(xy, ids, N, order, &d), WR_OK);
+    for (i = 0; i < N; ++i) {
+        cr_assert(order[i] >= 0 && order[i] < N && !seen[order[i]], "not a permutation at %d", i);
+        seen[order[i]] = 1;
+        if (i > 0) path += hypot(xy[2 * order[i]] - xy[2 * order[i - 1]], xy[2 * order[i] + 1] - xy[2 * order[i - 1] + 1]);
+    }
+    cr_expect_lt(path, 1.5 * (N - 1), "path %g for %d points (row order: %d)", path, N, N - 1);
+    /* a subset through ids, and ties: two points in one cell keep their ids order; NULL ids = 0..n-1 */
+    xy[2 * N] = xy[2 * N + 2] = 10.0;
+    xy[2 * N + 1] = xy[2 * N + 3] = 20.0;
+    ids[0] = N + 1;
+    ids[1] = 5;
+    ids[2] = N;
+    cr_assert_eq(wr_cdt_hilbert_order(xy, ids, 3, order, &d), WR_OK);
+    for (i = 0, n = 0; i < 3; ++i) n += order[i] == N + 1 ? 1 : order[i] == N ? 2 : order[i] == 5 ? 4 : 8;
+    cr_expect_eq(n, 7, "the order is a permutation of the ids given");
+    for (i = 0; i < 3; ++i)
+        if (order[i] == N) cr_expect(i > 0 && order[i - 1] == N + 1, "tie kept in ids order");
+    cr_assert_eq(wr_cdt_hilbert_order(xy, NULL, N, order, &d), WR_OK);
+    for (i = 0, path = 0.0; i + 1 < N; ++i)
+        path += hypot(xy[2 * order[i + 1]] - xy[2 * order[i]], xy[2 * order[i + 1] + 1] - xy[2 * order[i] + 1]);
+    cr_expect_lt(path, 1.5 * (N - 1));
+    cr_expect_eq(wr_cdt_hilbert_order(xy, ids, -1, order, &d), WR_ERR_INVALID_ARG);
+    free(seen);
 }

@@ -15,6 +15,7 @@
  *   wr_cdt_triangulate(in, desc, out, diag)   CDT (+ carving, + refinement) -> wr_cdt_result
  *   wr_cdt_free(out)              release a result (also after a failed call)
  *   wr_cdt_check(res, expected_holes, info, diag)  exact verification of a result
+ *   wr_cdt_hilbert_order(xy, ids, n, order, diag)  points sorted along a Hilbert curve (numbering)
  *   (Triangle's .node/.poly files: wrinkle/polyfile.h)
  *
  * EXAMPLE
@@ -207,6 +208,14 @@ typedef struct wr_cdt_result {
 WRDEF wr_status wr_cdt_triangulate(const wr_cdt_input *in, const wr_cdt_desc *desc, wr_cdt_result *out,
                                    wr_diag *diag);
 WRDEF void wr_cdt_free(wr_cdt_result *r);
+
+/* Spatially coherent order of points: order[0..n) := ids[0..n) (NULL: 0..n-1) sorted along a Hilbert
+ * curve over their bounding box (a grid of about 4n..16n cells, at most 2^16 per side; points in one
+ * cell keep their order in ids). The curve wr_cdt_triangulate's BRIO rounds follow; for numbering a
+ * mesh so that nearby vertices get nearby ids (mesher.h). xy holds every point ids names (×2); order
+ * may be ids itself. O(n) (one radix sort), 12 bytes of scratch per point. WR_ERR_INVALID_ARG (n < 0,
+ * NULL arrays), WR_ERR_NOMEM. */
+WRDEF wr_status wr_cdt_hilbert_order(const double *xy, const int32_t *ids, int32_t n, int32_t *order, wr_diag *diag);
 
 /* What wr_cdt_check measured. */
 typedef struct wr_cdt_check_info {
@@ -811,15 +820,45 @@ static void wr__radix_sort(uint32_t *key, int32_t *idx, uint32_t *tkey, int32_t 
     }
 }
 
+/* key[i] := Hilbert index of point ids[i] (NULL: i) on a 2^levels grid over the points' bounding box;
+ * order[i] := that point. */
+static void wr__hilbert_keys(const double *xy, const int32_t *ids, int32_t n, int levels, uint32_t *key, int32_t *order) {
+    uint32_t side = 1u << levels;
+    int32_t i;
+    double lo[2] = {HUGE_VAL, HUGE_VAL}, hi[2] = {-HUGE_VAL, -HUGE_VAL}, sc[2], lim = (double)(side - 1);
+    unsigned char htab[64];
+    wr__hilbert_table(htab);
+    for (i = 0; i < n; ++i) {
+        const double *p = xy + 2 * (size_t)(ids ? ids[i] : i);
+        if (p[0] < lo[0]) lo[0] = p[0];
+        if (p[1] < lo[1]) lo[1] = p[1];
+        if (p[0] > hi[0]) hi[0] = p[0];
+        if (p[1] > hi[1]) hi[1] = p[1];
+    }
+    for (i = 0; i < 2; ++i) sc[i] = hi[i] > lo[i] ? lim / (hi[i] - lo[i]) : 0.0;
+    for (i = 0; i < n; ++i) {
+        const double *p = xy + 2 * (size_t)(ids ? ids[i] : i);
+        double fx = (p[0] - lo[0]) * sc[0], fy = (p[1] - lo[1]) * sc[1];
+        uint32_t qx = (uint32_t)(fx < 0.0 ? 0.0 : fx > lim ? lim : fx);
+        uint32_t qy = (uint32_t)(fy < 0.0 ? 0.0 : fy > lim ? lim : fy);
+        key[i] = wr__hilbert_key(htab, qx, qy, levels);
+        order[i] = ids ? ids[i] : i;
+    }
+}
+
+/* Grid levels for n points: the smallest with 4n cells or more, in [4, max_levels]. */
+static int wr__hilbert_levels(int32_t n, int max_levels) {
+    int levels = 4;
+    while (levels < max_levels && ((int64_t)1 << (2 * levels)) < 4 * (int64_t)n) ++levels;
+    return levels;
+}
+
 /* order[0..n) := BRIO order of the points listed in ids. */
 static int wr__brio(const double *xy, const int32_t *ids, int32_t n, wr_rng *rng, int32_t *order) {
-    uint32_t *key, *tkey, side;
+    uint32_t *key, *tkey;
     int32_t *tidx, i, nr = 0;
-    int levels = 4;
-    double lo[2] = {HUGE_VAL, HUGE_VAL}, hi[2] = {-HUGE_VAL, -HUGE_VAL}, sc[2];
-    unsigned char htab[64];
+    int levels = wr__hilbert_levels(n, 14);
     if (n <= 0) return 1;
-    wr__hilbert_table(htab);
     key = (uint32_t *)wr_alloc_array((size_t)n, sizeof(uint32_t));
     tkey = (uint32_t *)wr_alloc_array((size_t)n, sizeof(uint32_t));
     tidx = (int32_t *)wr_alloc_array((size_t)n, sizeof(int32_t));
@@ -829,22 +868,9 @@ static int wr__brio(const double *xy, const int32_t *ids, int32_t n, wr_rng *rng
         wr_free(tidx);
         return 0;
     }
-    while (levels < 14 && ((int64_t)1 << (2 * levels)) < 4 * (int64_t)n) ++levels;
-    side = 1u << levels;
     while (nr < 15 && (n >> (nr + 1)) >= 4096) ++nr; /* rounds 0..nr; the first holds >= ~4096 */
+    wr__hilbert_keys(xy, ids, n, levels, key, order);
     for (i = 0; i < n; ++i) {
-        const double *p = xy + 2 * (size_t)ids[i];
-        if (p[0] < lo[0]) lo[0] = p[0];
-        if (p[1] < lo[1]) lo[1] = p[1];
-        if (p[0] > hi[0]) hi[0] = p[0];
-        if (p[1] > hi[1]) hi[1] = p[1];
-    }
-    for (i = 0; i < 2; ++i) sc[i] = hi[i] > lo[i] ? (double)(side - 1) / (hi[i] - lo[i]) : 0.0;
-    for (i = 0; i < n; ++i) {
-        const double *p = xy + 2 * (size_t)ids[i];
-        double fx = (p[0] - lo[0]) * sc[0], fy = (p[1] - lo[1]) * sc[1], lim = (double)(side - 1);
-        uint32_t qx = (uint32_t)(fx < 0.0 ? 0.0 : fx > lim ? lim : fx);
-        uint32_t qy = (uint32_t)(fy < 0.0 ? 0.0 : fy > lim ? lim : fy);
         uint64_t u = wr_rng_u64(rng);
         int32_t tz = 0, round;
         while (tz < nr && !(u & 1u)) { /* geometric: P(tz = j) = 2^-(j+1) */
@@ -852,14 +878,34 @@ static int wr__brio(const double *xy, const int32_t *ids, int32_t n, wr_rng *rng
             ++tz;
         }
         round = nr - tz;
-        key[i] = ((uint32_t)round << (2 * levels)) | wr__hilbert_key(htab, qx, qy, levels);
-        order[i] = ids[i];
+        key[i] |= (uint32_t)round << (2 * levels);
     }
     wr__radix_sort(key, order, tkey, tidx, n, 2 * levels + 4);
     wr_free(key);
     wr_free(tkey);
     wr_free(tidx);
     return 1;
+}
+
+WRDEF wr_status wr_cdt_hilbert_order(const double *xy, const int32_t *ids, int32_t n, int32_t *order, wr_diag *diag) {
+    uint32_t *key, *tkey;
+    int32_t *tidx;
+    int levels = wr__hilbert_levels(n, 16), ok;
+    if (n < 0 || (n > 0 && (!xy || !order)))
+        return wr_fail(diag, WR_ERR_INVALID_ARG, -1, "wr_cdt_hilbert_order: n < 0 or NULL arrays");
+    if (n == 0) return WR_OK;
+    key = (uint32_t *)wr_alloc_array((size_t)n, sizeof(uint32_t));
+    tkey = (uint32_t *)wr_alloc_array((size_t)n, sizeof(uint32_t));
+    tidx = (int32_t *)wr_alloc_array((size_t)n, sizeof(int32_t));
+    ok = key && tkey && tidx;
+    if (ok) {
+        wr__hilbert_keys(xy, ids, n, levels, key, order);
+        wr__radix_sort(key, order, tkey, tidx, n, 2 * levels);
+    }
+    wr_free(key);
+    wr_free(tkey);
+    wr_free(tidx);
+    return ok ? WR_OK : wr_fail(diag, WR_ERR_NOMEM, -1, "wr_cdt_hilbert_order: out of memory (%d points)", (int)n);
 }
 
 /* merge points closer than tol (greedy, input order) with a hash grid of cell size tol. */
