@@ -102,10 +102,7 @@
  *   until E(x + αΔx) <= E(x) + c α ∇E·Δx, c = WR_NEWTON_ARMIJO (1e-4, Nocedal & Wright's usual
  *   value); a trial outside the domain counts as +∞. With linear.forcing = η_max > 0 each PCG solve
  *   stops at the relative residual min(η_max, max(tol, √(‖∇E‖ / reference))) (inexact Newton,
- *   Eisenstat & Walker 1996); CHOLMOD solves exactly. A STEP stop needs a step solved to tol: PCG's
- *   iterates from 0 grow monotonically in the preconditioner's norm (Steihaug 1983), so a truncated
- *   solve's step is shorter than the Newton step and a small one is no sign the minimum is near;
- *   after a small loose step every further solve of that call goes to tol.
+ *   Eisenstat & Walker 1996); CHOLMOD solves exactly.
  *
  * ON OWNERSHIP AND THREADS
  *   Newton allocates its work arrays, the matrix and the solver per call and frees them before it
@@ -569,7 +566,7 @@ typedef struct wr__newton {
     wr_assembly A;
     wr_newton_hessian H;
     wr_spd_solver S;
-    int have_S, tight; /* tight: solve to lin_tol from now on (a small step came from a loose solve) */
+    int have_S;
     double lin_tol;
     /* iteration state */
     double Pi, Pibest, Pscale, gref, gbest, shift, mean_diag, exact_retry_g;
@@ -746,7 +743,7 @@ static wr_status wr__newton_direction(wr__newton *c, double *gdx, int *from_solv
             c->lin_tol = c->S.rel_tol;
         }
         if (c->d.linear.forcing > 0.0 && c->S.method != WR_SOLVER_CHOLMOD) /* inexact Newton (ON LINE SEARCH) */
-            c->S.rel_tol = c->tight ? c->lin_tol : fmin(c->d.linear.forcing, fmax(c->lin_tol, sqrt(c->st.grad_norm / c->gref)));
+            c->S.rel_tol = fmin(c->d.linear.forcing, fmax(c->lin_tol, sqrt(c->st.grad_norm / c->gref)));
         rs = wr_spd_solver_factor(&c->S, K, diag);
         if (rs == WR_OK) rs = wr_spd_solver_solve(&c->S, K, c->xt, c->dx, &ls, diag);
         if (rs == WR_OK || rs == WR_ERR_NOT_CONVERGED) {
@@ -883,14 +880,9 @@ static wr_status wr__newton_step(wr__newton *c, double *x, double t_start, wr_di
         c->st.stop = WR_NEWTON_STOP_GRADIENT;
     /* only a full step is small because the minimum is near; a cut one may just be stalled */
     else if (c->d.stop.step_tol > 0.0 && c->st.last_step <= c->d.stop.step_tol && alpha == 1.0 &&
-             c->st.grad_norm <= WR_NEWTON_STEP_GRAD_MAX * c->gref) {
-        /* a truncated PCG step is shorter than the Newton step (ON LINE SEARCH): not a stop, the
-         * following solves go to lin_tol and the test is repeated on their step */
-        if (c->S.rel_tol > c->lin_tol)
-            c->tight = 1;
-        else
-            c->st.stop = WR_NEWTON_STOP_STEP;
-    } else if (c->roundoff_hits >= WR_NEWTON_ROUNDOFF_HITS)
+             c->st.grad_norm <= WR_NEWTON_STEP_GRAD_MAX * c->gref)
+        c->st.stop = WR_NEWTON_STOP_STEP;
+    else if (c->roundoff_hits >= WR_NEWTON_ROUNDOFF_HITS)
         c->st.stop = WR_NEWTON_STOP_ROUNDOFF;
     return WR_OK;
 }
