@@ -25,7 +25,10 @@
  *        bench_dynamics frames CASE N FRAMES [mu] per-frame detail of one case (profiling):
  *                                               CASE sphere|mannequin, N grid cells per side
  *        BENCH_LINEAR=pcg-ic0 (any wr_solver_method_name) picks desc.linear.method (default
- *        pcg-block3); per-frame lines show the linear solves' wall time (lin, part of NS). */
+ *        pcg-block3); per-frame lines show the linear solves' wall time (lin, part of NS).
+ *        BENCH_FORCING=0.1 sets desc.newton.forcing (η_max of the inexact-Newton PCG tolerance);
+ *        BENCH_VEL_TOL=5e-3 sets desc.newton.velocity_tol [m/s];
+ *        BENCH_DUMP=FILE writes the final positions (raw doubles) to FILE. */
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdio.h>
@@ -175,6 +178,8 @@ static int case_run(const char *kind, int32_t n, double mu, int frames, int verb
         for (m = 1; m < WR_SOLVER_METHOD_COUNT; ++m)
             if (!strcmp(getenv("BENCH_LINEAR"), wr_solver_method_name((wr_solver_method)m))) c.dd.linear.method = (wr_solver_method)m;
     }
+    if (getenv("BENCH_FORCING")) c.dd.newton.forcing = atof(getenv("BENCH_FORCING")); /* η_max, 0 = off */
+    if (getenv("BENCH_VEL_TOL")) c.dd.newton.velocity_tol = atof(getenv("BENCH_VEL_TOL")); /* m/s, 0 = default */
     if (wr_dyn_create(&sim, &c.s, &c.dd, &dg) != WR_OK) {
         fprintf(stderr, "%s\n", dg.message);
         case_free(&c);
@@ -218,6 +223,11 @@ static int case_run(const char *kind, int32_t n, double mu, int frames, int verb
     }
     out->ok = rc == 0;
     out->hash = fnv(c.x, 3 * (size_t)c.m.nv);
+    if (getenv("BENCH_DUMP")) { /* final positions, raw doubles, for comparing two settings */
+        FILE *fp = fopen(getenv("BENCH_DUMP"), "wb");
+        if (!fp || fwrite(c.x, sizeof(double), 3 * (size_t)c.m.nv, fp) != 3 * (size_t)c.m.nv) rc = 1;
+        if (fp) fclose(fp);
+    }
     wr_dyn_free(&sim);
     case_free(&c);
     return rc;

@@ -381,6 +381,9 @@ if [ -x "$B/wrinkle-sim" ]; then
     printf '{"cloth": {"mesh": {"type": "rectangle", "width": 0.1, "height": 0.1, "nx": 2, "ny": 2}, "material": {"young": 1e5, "thickness": 1e-3, "density": 100}}, "time": {"dt": -1}}' > "$tmp/badsim.json"
     expect_fail "wrinkle-sim invalid scene" "$B/wrinkle-sim" "$tmp/badsim.json" -o "$tmp/sim0"
     expect_fail "wrinkle-sim bad --every" "$B/wrinkle-sim" "$root/examples/sim/drape_ball.json" -o "$tmp/sim0" --every 0
+    sed 's/"time": {"dt": -1}/"solver": {"linear_forcing": 1}/' "$tmp/badsim.json" > "$tmp/badforcing.json"
+    expect_fail "wrinkle-sim linear_forcing 1" "$B/wrinkle-sim" "$tmp/badforcing.json" -o "$tmp/sim0"
+    grep -qF '$.solver.linear_forcing' "$tmp/err" && ok || { bad "wrinkle-sim linear_forcing: stderr does not name the path"; cat "$tmp/err"; }
     cat > "$tmp/sim.json" <<'JSON'
 {"name": "sim_small", "cloth": {"mesh": {"type": "rectangle", "width": 0.2, "height": 0.2, "nx": 4, "ny": 4},
   "material": {"young": 1e5, "poisson": 0.3, "thickness": 5e-4, "areal_density": 0.15},

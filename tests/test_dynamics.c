@@ -294,6 +294,25 @@ Test(dynamics, hanging_sheet_rests_at_statics_equilibrium) {
 /* A sheet dropped 2 cm onto an analytic ball with friction comes to rest on it: every frame every
  * vertex stays outside (d > 0, the barrier's guarantee with CCD), the rest state is supported
  * (centre vertex within d̂ of the ball) and still (max speed < 1 mm/s after 2 s; measured 0.4 mm/s at 2 s, 0.07 mm/s at 2.8 s). */
+/* The ball drop: the 0.4 m sheet m centred at 0.12 m height (into x) over an analytic ball of radius
+ * 0.1 m at the origin; dd: gravity, the ball, mass damping 1/s, the rest default. */
+static void dyn_ball_drop(const wr_mesh *m, double *x, wr_obstacle *ball, wr_dyn_desc *dd) {
+    int32_t i;
+    for (i = 0; i < m->nv; ++i) {
+        x[3 * i] = m->pos[3 * i] - 0.2;
+        x[3 * i + 1] = m->pos[3 * i + 1] - 0.2;
+        x[3 * i + 2] = 0.12;
+    }
+    memset(ball, 0, sizeof *ball);
+    ball->kind = WR_OBSTACLE_SPHERE;
+    ball->radius = 0.1;
+    memset(dd, 0, sizeof *dd);
+    dd->gravity[2] = -9.81;
+    dd->contact.analytic = ball;
+    dd->contact.n_analytic = 1;
+    dd->damping.mass = 1.0;
+}
+
 Test(dynamics, sheet_rests_on_ball_without_penetration) {
     wr_mesh m;
     wr_shell s;
@@ -307,21 +326,9 @@ Test(dynamics, sheet_rests_on_ball_without_penetration) {
     double *x, *vel, dmin = HUGE_VAL, speed;
     dyn_sheet(&m, &s, 0.4, n, WR_MEMBRANE_STVK, WR_BENDING_MIDEDGE);
     x = dyn_copy(m.pos, 3 * m.nv);
-    for (i = 0; i < m.nv; ++i) {
-        x[3 * i] -= 0.2;
-        x[3 * i + 1] -= 0.2;
-        x[3 * i + 2] = 0.12;
-    }
     vel = (double *)calloc(3 * (size_t)m.nv, sizeof(double));
-    memset(&ball, 0, sizeof ball);
-    ball.kind = WR_OBSTACLE_SPHERE;
-    ball.radius = 0.1;
-    memset(&dd, 0, sizeof dd);
-    dd.gravity[2] = -9.81;
-    dd.contact.analytic = &ball;
-    dd.contact.n_analytic = 1;
+    dyn_ball_drop(&m, x, &ball, &dd);
     dd.contact.friction = 0.5;
-    dd.damping.mass = 1.0;
     cr_assert_eq(wr_dyn_create(&sim, &s, &dd, &dg), WR_OK, "%s", dg.message);
     wr_dyn_state_init(&sim, &st, x, vel);
     for (f = 0; f < 60; ++f) {
@@ -910,6 +917,93 @@ Test(dynamics, ic0_preconditioner_same_answer_fewer_pcg) {
     free(x[0]);
     free(x[1]);
     free(fixed);
+    wr_shell_free(&s);
+    wr_mesh_free(&m);
+}
+
+/* FNV-1a of n doubles' bytes (bit-identity check) */
+static uint64_t dyn_fnv(const double *x, int32_t n) {
+    const unsigned char *p = (const unsigned char *)x;
+    uint64_t h = 1469598103934665603ULL;
+    size_t i;
+    for (i = 0; i < sizeof(double) * (size_t)n; ++i) h = (h ^ p[i]) * 1099511628211ULL;
+    return h;
+}
+
+/* Inexact Newton (dynamics.h ON THE LINEAR SOLVE, desc.newton.forcing): a 0.4 m sheet (10 × 10
+ * cells) dropped 2 cm onto an analytic ball, DYN_FORCING_FRAMES frames with the default (forcing 0)
+ * and with forcing 0.1 (and, for scale, the default with velocity_tol halved). The default must be
+ * bit-identical to the kit before the option: FNV of the final positions and the Newton and PCG totals
+ * recorded at lead 9da16e3 (change them only with an intended change of the dynamics' numerics). With
+ * forcing every frame must still converge and the PCG total must drop (bounds: see the assertions).
+ * The positions are not compared: forcing moves them by 3.4 cm here, halving velocity_tol by 1.4e-4 m
+ * (bench/RESULTS.md "bench_dynamics", inexact Newton). */
+#define DYN_FORCING_FRAMES 6
+static void dyn_forcing_drop(double forcing, double vel_tol, double *x, int32_t *newton, int32_t *pcg, int32_t *halvings) {
+    wr_mesh m;
+    wr_shell s;
+    wr_dyn_desc dd;
+    wr_dyn sim;
+    wr_dyn_state st;
+    wr_dyn_stats fs;
+    wr_obstacle ball;
+    wr_diag dg;
+    int32_t f;
+    double *vel;
+    dyn_sheet(&m, &s, 0.4, 10, WR_MEMBRANE_STVK, WR_BENDING_MIDEDGE);
+    vel = (double *)calloc(3 * (size_t)m.nv, sizeof(double));
+    dyn_ball_drop(&m, x, &ball, &dd);
+    dd.newton.forcing = forcing;
+    dd.newton.velocity_tol = vel_tol;
+    cr_assert_eq(wr_dyn_create(&sim, &s, &dd, &dg), WR_OK, "%s", dg.message);
+    wr_dyn_state_init(&sim, &st, x, vel);
+    *newton = *pcg = *halvings = 0;
+    for (f = 0; f < DYN_FORCING_FRAMES; ++f) {
+        cr_assert_eq(wr_dyn_step(&sim, &st, &fs, &dg), WR_OK, "forcing %g frame %d: %s", forcing, (int)f, dg.message);
+        cr_assert_neq(fs.stop, WR_NEWTON_STOP_MAX_ITER, "forcing %g frame %d", forcing, (int)f);
+        *newton += fs.newton_iterations;
+        *pcg += fs.linear_iterations;
+        *halvings += fs.halvings;
+    }
+    wr_dyn_free(&sim);
+    free(vel);
+    wr_shell_free(&s);
+    wr_mesh_free(&m);
+}
+
+Test(dynamics, forcing_off_is_bit_identical_and_on_saves_pcg) {
+    int32_t nv = 121, v, newton[3], pcg[3], halv[3];
+    double x[3][3 * 121], err = 0.0, err_tol = 0.0;
+    wr_dyn_desc dd;
+    wr_dyn sim;
+    wr_shell s;
+    wr_mesh m;
+    wr_diag dg;
+    dyn_forcing_drop(0.0, 0.0, x[0], &newton[0], &pcg[0], &halv[0]);
+    dyn_forcing_drop(0.1, 0.0, x[1], &newton[1], &pcg[1], &halv[1]);
+    dyn_forcing_drop(0.0, 5e-3, x[2], &newton[2], &pcg[2], &halv[2]);
+    for (v = 0; v < 3 * nv; ++v) err = fmax(err, fabs(x[1][v] - x[0][v]));
+    for (v = 0; v < 3 * nv; ++v) err_tol = fmax(err_tol, fabs(x[2][v] - x[0][v]));
+    cr_log_info("forcing off: %d Newton, %d PCG, %d halvings, FNV %016llx; forcing 0.1: %d / %d / %d; max |dx| %.3e m; velocity_tol halved: %d / %d / %d, max |dx| %.3e m",
+                (int)newton[0], (int)pcg[0], (int)halv[0], (unsigned long long)dyn_fnv(x[0], 3 * nv), (int)newton[1],
+                (int)pcg[1], (int)halv[1], err, (int)newton[2], (int)pcg[2], (int)halv[2], err_tol);
+    /* default: exactly the kit before the option (recorded at lead 9da16e3) */
+    cr_assert_eq(dyn_fnv(x[0], 3 * nv), 0x66aadf2072169735ULL, "default positions changed: FNV %016llx",
+                 (unsigned long long)dyn_fnv(x[0], 3 * nv));
+    cr_assert_eq(pcg[0], 1557);
+    cr_assert_eq(newton[0], 39);
+    /* forcing 0.1: measured 664 PCG (0.43 of the default's) in 41 Newton (1.05x), no halving; bounds
+     * 0.6x and 1.5x leave ~40 % margin each. Every frame converged (dyn_forcing_drop). */
+    cr_assert_lt(pcg[1], 0.6 * pcg[0], "forcing: %d PCG vs %d without", (int)pcg[1], (int)pcg[0]);
+    cr_assert_leq(newton[1], 1.5 * newton[0], "forcing: %d Newton vs %d without", (int)newton[1], (int)newton[0]);
+    cr_assert_eq(halv[1], 0);
+    /* the option refused outside [0, 1) */
+    dyn_sheet(&m, &s, 0.4, 2, WR_MEMBRANE_STVK, WR_BENDING_MIDEDGE);
+    memset(&dd, 0, sizeof dd);
+    dd.newton.forcing = 1.0;
+    cr_assert_eq(wr_dyn_create(&sim, &s, &dd, &dg), WR_ERR_INVALID_ARG);
+    dd.newton.forcing = -0.1;
+    cr_assert_eq(wr_dyn_create(&sim, &s, &dd, &dg), WR_ERR_INVALID_ARG);
     wr_shell_free(&s);
     wr_mesh_free(&m);
 }

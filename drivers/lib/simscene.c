@@ -425,7 +425,8 @@ static wr_status ss_parse_settings(wr_jin *d, const cJSON *root, wr_simscene *sc
     static const char *const tkeys[] = {"duration", "dt", "substeps", "max_halvings", NULL};
     static const char *const dkeys[] = {"mass", "stiffness", NULL};
     static const char *const ckeys[] = {"dhat", "stiffness", "friction", "friction_eps_v", "self", NULL};
-    static const char *const skeys[] = {"linear", "linear_tol", "max_iter", "velocity_tol", "grad_tol", "hessian", NULL};
+    static const char *const skeys[] = {"linear", "linear_tol", "linear_forcing", "max_iter", "velocity_tol", "grad_tol",
+                                        "hessian", NULL};
     static const char *const okeys[] = {"every", "format", NULL};
     static const char *const lin[] = {"auto", "pcg-jacobi", "pcg-block3", "pcg-ic0", "cholmod", "pcg-amg", NULL};
     static const char *const hess[] = {"projected", "jacobi", "exact", NULL};
@@ -471,6 +472,8 @@ static wr_status ss_parse_settings(wr_jin *d, const cJSON *root, wr_simscene *sc
         dd->linear.method = (wr_solver_method)m;
         if ((st = wr_jin_num(d, o, "linear_tol", "$.solver", WR_JIN_POS, &dd->linear.rel_tol, &f)) != WR_OK) return st;
         if (f && !(dd->linear.rel_tol < 1.0)) return wr_jin_err(d, "$.solver.linear_tol", "must be < 1");
+        if ((st = wr_jin_num(d, o, "linear_forcing", "$.solver", WR_JIN_NONNEG, &dd->newton.forcing, &f)) != WR_OK) return st;
+        if (f && !(dd->newton.forcing < 1.0)) return wr_jin_err(d, "$.solver.linear_forcing", "must be < 1");
         if ((st = wr_jin_int(d, o, "max_iter", "$.solver", 1, 100000, &dd->newton.max_iter, NULL)) != WR_OK) return st;
         if ((st = wr_jin_num(d, o, "velocity_tol", "$.solver", WR_JIN_POS, &dd->newton.velocity_tol, NULL)) != WR_OK) return st;
         if ((st = wr_jin_num(d, o, "grad_tol", "$.solver", WR_JIN_POS, &dd->newton.grad_tol, NULL)) != WR_OK) return st;
@@ -1207,6 +1210,7 @@ wr_status wr_simscene_write_summary(const wr_simscene_run *run, const char *path
     cJSON_AddNumberToObject(root, "substeps", dyn->desc.time.substeps);
     cJSON_AddStringToObject(root, "linear", wr_solver_method_name(dyn->desc.linear.method));
     cJSON_AddNumberToObject(root, "linear_tol", dyn->desc.linear.rel_tol);
+    cJSON_AddNumberToObject(root, "linear_forcing", dyn->desc.newton.forcing);
     cJSON_AddNumberToObject(root, "contact_dhat", dyn->dhat);
     cJSON_AddNumberToObject(root, "contact_stiffness", dyn->kappa);
     cJSON_AddNumberToObject(root, "bodies", run->n_bodies);
