@@ -338,7 +338,7 @@ static inline void tp_figure(wr_vres *v, const char *stem, const char *gp_body, 
 }
 
 /* A probe profile figure: <results>/<stem>_probe.dat (x[i]·1e3, y[i]·1e3: mm), <figures>/<stem>.gp
- * (900 × 450, one line titled `legend`) and <figures>/<stem>.png by gnuplot, added to v on success. */
+ * (900 × 450, one line titled `legend`, the key below the frame) and <figures>/<stem>.png by gnuplot, added to v on success. */
 static inline void tp_profile_figure(wr_vres *v, const char *stem, const double *x, int32_t xstride, const double *y,
                                      int32_t n, const char *xlabel, const char *ylabel, const char *title,
                                      const char *legend, const char *caption) {
@@ -356,6 +356,7 @@ static inline void tp_profile_figure(wr_vres *v, const char *stem, const double 
     fprintf(f.fp, "set terminal pngcairo size 900,450\nset output '%s'\n", png);
     fprintf(f.fp, "set xlabel '%s'\nset ylabel '%s'\n", xlabel, ylabel);
     fprintf(f.fp, "set title '%s'\n", title);
+    fprintf(f.fp, "set key below\n"); /* a key inside the frame covered the end crests */
     fprintf(f.fp, "plot '%s' w l t '%s'\n", dat, legend);
     if (wr_afile_commit(&f, &d) != WR_OK) return;
     snprintf(cmd, sizeof cmd, "gnuplot '%s' 2>/dev/null", gp);

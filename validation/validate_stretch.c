@@ -372,7 +372,8 @@ static void profile_figure(wr_vres *v, const stretch_case *c, wr_diag *d) {
     snprintf(gp, sizeof gp, "%s/stretch.gp", figdir);
     snprintf(png, sizeof png, "%s/stretch.png", figdir);
     if (wr_afile_open(&f, gp, d) != WR_OK) return;
-    fprintf(f.fp, "set terminal pngcairo size 900,500 noenhanced\nset output '%s'\n", png);
+    /* eight curves: the key goes beside the frame, inside it covered the crests */
+    fprintf(f.fp, "set terminal pngcairo size 1200,500 noenhanced\nset output '%s'\nset key outside right top\n", png);
     fprintf(f.fp, "set xlabel 'y across the width [mm]'\nset ylabel 'out-of-plane displacement [mm]'\n");
     fprintf(f.fp, "set title 'Stretch test, x = L/2 (solid: union-jack grid, dashed: Delaunay)'\nplot ");
     for (i = 0; i < NROWS; ++i) {

@@ -384,6 +384,7 @@ static void report_figures(wr_vres *v, const infl cs[4], wr_diag *d) {
             snprintf(buf, sizeof buf,
                      "set xlabel 'angle about the vertical axis [deg]'\nset ylabel 'wrinkle displacement off the base [mm]'\n"
                      "set title 'TFW inflatables, cut f = 0.25 above the seam'\n"
+                     "set xrange [-180:180]\nset xtics 45\nset key outside right top\n"
                      "plot '%s' u 1:2 w l t 'torus (outer)', '' u 1:3 w l t 'Mylar balloon', '' u 1:4 w l t 'teabag'\n", dat);
             tp_figure(v, "tfw_inflatables", buf, "normal wrinkle displacement on a horizontal cut near the seam");
         }

@@ -468,6 +468,7 @@ static void ring_figure(wr_vres *v, const drape_case *c, wr_diag *d) {
     snprintf(buf, sizeof buf,
              "set xlabel 'angle on the rest circle [deg]'\nset ylabel 'wrinkle displacement off the base [mm]'\n"
              "set title 'TFW sphere drape, %d-vertex base'\n"
+             "set xrange [0:360]\nset xtics 45\nset key outside right top\n"
              "plot '%s' u 1:2 w l t 'r = 0.30 m', '' u 1:3 w l t 'r = 0.35 m', '' u 1:4 w l t 'r = 0.40 m'\n",
              (int)c->m.nv, dat);
     tp_figure(v, "tfw_sphere_drape", buf, "normal wrinkle displacement on three rest circles");

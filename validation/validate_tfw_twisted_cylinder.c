@@ -396,6 +396,7 @@ static int validation_main(void) {
                 fprintf(f.fp, "set terminal pngcairo size 1000,420\nset output '%s'\n", png);
                 fprintf(f.fp, "set xlabel 'angle [deg]'\nset ylabel 'radial wrinkle displacement [mm]'\n");
                 fprintf(f.fp, "set title 'TFW twisted cylinder, z = 2.5 m, %d-vertex base'\n", (int)rows[i13].nv);
+                fprintf(f.fp, "set xrange [-180:180]\nset xtics 45\n");
                 fprintf(f.fp, "plot '%s' w l notitle\n", dat);
                 if (wr_afile_commit(&f, &d) == WR_OK) {
                     snprintf(cmd, sizeof cmd, "gnuplot '%s' 2>/dev/null", gp);

@@ -1,5 +1,6 @@
-set terminal pngcairo size 900,500 noenhanced
+set terminal pngcairo size 1200,500 noenhanced
 set output 'validation/results/../figures/stretch.png'
+set key outside right top
 set xlabel 'y across the width [mm]'
 set ylabel 'out-of-plane displacement [mm]'
 set title 'Stretch test, x = L/2 (solid: union-jack grid, dashed: Delaunay)'
