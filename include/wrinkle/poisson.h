@@ -1694,6 +1694,16 @@ static int wr__pz_neighbours(wr__pz *z, double px, double py, double R0, double 
     return 0;
 }
 
+/* Level l present in the presence-grid cell of (x, y). */
+static void wr__pz_mark(wr__pz *z, double x, double y, int l) {
+    int64_t mx = wr__pz_ifloor((x - z->x0) * z->inv_mg), my = wr__pz_ifloor((y - z->y0) * z->inv_mg);
+    if (mx >= z->mx) mx = z->mx - 1;
+    if (my >= z->my) my = z->my - 1;
+    if (mx < 0) mx = 0;
+    if (my < 0) my = 0;
+    z->mask[my * z->mx + mx] |= (uint64_t)1 << l;
+}
+
 /* Store a point of sizing h with conflict radius r (samples: r = c h; fixed points: see
  * wr__pz_fixed_radius). The level is that of c h in both cases, so a constant sizing stays one
  * level; the level's rmax covers r, so the queries still reach every conflict. */
@@ -1750,15 +1760,14 @@ static wr_status wr__pz_insert(wr__pz *z, double x, double y, double h, double r
     z->heads[s * WR__PZ_TILE * WR__PZ_TILE + (size_t)j] = i;
     if (r > z->rmax[l]) z->rmax[l] = r;
     if (r > z->rmax_all) z->rmax_all = r;
-    {
-        int64_t mx = wr__pz_ifloor((x - z->x0) * z->inv_mg), my = wr__pz_ifloor((y - z->y0) * z->inv_mg);
-        if (mx >= z->mx) mx = z->mx - 1;
-        if (my >= z->my) my = z->my - 1;
-        if (mx < 0) mx = 0;
-        if (my < 0) my = 0;
-        z->mask[my * z->mx + mx] |= (uint64_t)1 << l;
+    /* the presence grid is read only once two levels are in use (wr__pz_levels_near): until then
+     * it is left empty, and the sample that brings the second level marks every sample so far */
+    if (!(z->levels >> l & 1u)) { /* a new level */
+        if (z->levels && !(z->levels & (z->levels - 1u)))
+            for (j = 0; j < i; ++j) wr__pz_mark(z, z->sm[j].x, z->sm[j].y, z->sm[j].lvl);
         z->levels |= (uint64_t)1 << l;
     }
+    if (z->levels & (z->levels - 1u)) wr__pz_mark(z, x, y, l);
     return WR_OK;
 nomem:
     return wr_fail(z->diag, WR_ERR_NOMEM, -1, "samples: out of memory");
