@@ -1363,6 +1363,9 @@ static void wr__msh_face_ratios(wr_mesher_result *res, int32_t f, const wr__msh_
     const wr_mesh *M = &res->mesh;
     const int32_t *F = M->faces + 3 * f;
     wr_mesher_report *rp = &res->report;
+    /* T = I (an isotropic panel, grain along x): |T e|² is then t->L[k] to the bit (1·x + (±0)·y
+     * is x up to the sign of a zero, which the square drops; the same sum in the same order) */
+    const int unit = T[0] == 1.0 && T[1] == 0.0 && T[2] == 0.0 && T[3] == 1.0;
     int k;
     for (k = 0; k < 3; ++k) {
         int32_t p = F[k == 2 ? 0 : k + 1], q = F[k == 0 ? 2 : k - 1]; /* corners (k+1)%3, (k+2)%3 */
@@ -1370,9 +1373,13 @@ static void wr__msh_face_ratios(wr_mesher_result *res, int32_t f, const wr__msh_
         double dx = t->e[2 * k], dy = t->e[2 * k + 1], mx, my, ratio, bin;
         if (M->face_edge_sign[3 * f + k] < 0 && !(bnd[a] && bnd[b] && M->edge_faces[2 * M->face_edges[3 * f + k]] < 0))
             continue;
-        mx = T[0] * dx + T[1] * dy;
-        my = T[2] * dx + T[3] * dy;
-        ratio = sqrt(mx * mx + my * my) / (0.5 * (res->sizing[a] + res->sizing[b]));
+        if (unit) {
+            ratio = sqrt(t->L[k]) / (0.5 * (res->sizing[a] + res->sizing[b]));
+        } else {
+            mx = T[0] * dx + T[1] * dy;
+            my = T[2] * dx + T[3] * dy;
+            ratio = sqrt(mx * mx + my * my) / (0.5 * (res->sizing[a] + res->sizing[b]));
+        }
         qa->sum_ratio += ratio;
         ++qa->n_ratio;
         if (!bnd[a] && !bnd[b]) {
@@ -1440,7 +1447,15 @@ static wr_status wr__msh_report(wr__msh_ctx *c) {
 #endif
         double uv[6], amin, amax, amin_m, area, lmax;
         wr__msh_tri t;
-        wr_mesh_face_rest(M, f, uv);
+        if (!M->corner_rest && M->rest) { /* wr_mesh_face_rest's case for an unsewn mesh, inline */
+            const int32_t *F = M->faces + 3 * f;
+            for (k = 0; k < 3; ++k) {
+                uv[2 * k] = M->rest[2 * F[k]];
+                uv[2 * k + 1] = M->rest[2 * F[k] + 1];
+            }
+        } else {
+            wr_mesh_face_rest(M, f, uv);
+        }
         wr__msh_tri_edges(uv, &t);
         wr__msh_tri_angles(&t, cos_skip, &amin, &amax);
         amin_m = wr__msh_metric_min_angle(T, uv, amin);
