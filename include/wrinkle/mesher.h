@@ -1363,9 +1363,6 @@ static void wr__msh_face_ratios(wr_mesher_result *res, int32_t f, const wr__msh_
     const wr_mesh *M = &res->mesh;
     const int32_t *F = M->faces + 3 * f;
     wr_mesher_report *rp = &res->report;
-    /* T = I (an isotropic panel, grain along x): |T e|² is then t->L[k] to the bit (1·x + (±0)·y
-     * is x up to the sign of a zero, which the square drops; the same sum in the same order) */
-    const int unit = T[0] == 1.0 && T[1] == 0.0 && T[2] == 0.0 && T[3] == 1.0;
     int k;
     for (k = 0; k < 3; ++k) {
         int32_t p = F[k == 2 ? 0 : k + 1], q = F[k == 0 ? 2 : k - 1]; /* corners (k+1)%3, (k+2)%3 */
@@ -1373,13 +1370,9 @@ static void wr__msh_face_ratios(wr_mesher_result *res, int32_t f, const wr__msh_
         double dx = t->e[2 * k], dy = t->e[2 * k + 1], mx, my, ratio, bin;
         if (M->face_edge_sign[3 * f + k] < 0 && !(bnd[a] && bnd[b] && M->edge_faces[2 * M->face_edges[3 * f + k]] < 0))
             continue;
-        if (unit) {
-            ratio = sqrt(t->L[k]) / (0.5 * (res->sizing[a] + res->sizing[b]));
-        } else {
-            mx = T[0] * dx + T[1] * dy;
-            my = T[2] * dx + T[3] * dy;
-            ratio = sqrt(mx * mx + my * my) / (0.5 * (res->sizing[a] + res->sizing[b]));
-        }
+        mx = T[0] * dx + T[1] * dy;
+        my = T[2] * dx + T[3] * dy;
+        ratio = sqrt(mx * mx + my * my) / (0.5 * (res->sizing[a] + res->sizing[b]));
         qa->sum_ratio += ratio;
         ++qa->n_ratio;
         if (!bnd[a] && !bnd[b]) {
