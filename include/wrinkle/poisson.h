@@ -811,6 +811,7 @@ typedef struct wr__pz {
     int hbits;
     double x0, y0, W, H, s_base, xmag; /* xmag: the largest |coordinate| of the box */
     double cs[64], inv_cs[64], rmax[64], rmax_all;
+    int64_t lim_x[64], lim_y[64]; /* the last cell column / row of each level (wr__pz_cell_box) */
     uint64_t tw[64], th[64]; /* tiles per row and rows at each level (home slot of a tile) */
     uint64_t rowstep[64];    /* tw, or 0 where the level's rows start at hashed slots */
     /* presence grid */
@@ -1566,9 +1567,9 @@ static inline int wr__pz_ctz(uint64_t mask) {
 }
 
 /* Level l's cells within Rl of q: b = {cx0, cx1, cy0, cy1}, clamped to the level's grid. */
-static void wr__pz_cell_box(const wr__pz *z, int l, double qx, double qy, double Rl, int64_t b[4]) {
+static inline void wr__pz_cell_box(const wr__pz *z, int l, double qx, double qy, double Rl, int64_t b[4]) {
     double ic = z->inv_cs[l];
-    int64_t lim_x = (int64_t)(z->W * ic) + 1, lim_y = (int64_t)(z->H * ic) + 1;
+    const int64_t lim_x = z->lim_x[l], lim_y = z->lim_y[l];
     b[0] = wr__pz_ifloor((qx - Rl - z->x0) * ic);
     b[1] = wr__pz_ifloor((qx + Rl - z->x0) * ic);
     b[2] = wr__pz_ifloor((qy - Rl - z->y0) * ic);
@@ -1908,6 +1909,8 @@ static wr_status wr__pz_grids_init(wr__pz *z, double x0, double y0, double W, do
     for (i = 0; i < 64; ++i) {
         z->cs[i] = ldexp(z->s_base, i + 1);
         z->inv_cs[i] = 1.0 / z->cs[i];
+        z->lim_x[i] = (int64_t)(W * z->inv_cs[i]) + 1;
+        z->lim_y[i] = (int64_t)(H * z->inv_cs[i]) + 1;
         z->rmax[i] = 0.0;
         z->tw[i] = (uint64_t)fmin(W * z->inv_cs[i] / WR__PZ_TILE, 1e9) + 2u;
         z->th[i] = (uint64_t)fmin(H * z->inv_cs[i] / WR__PZ_TILE, 1e9) + 2u;
