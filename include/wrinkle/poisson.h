@@ -106,7 +106,8 @@
  *   s = bbox size / 2^28. Each level is a hashed grid (open addressing, key = level + 8×8 tile of
  *   cells, with a 64-bit mask of the tile's occupied cells) with cell size 2·s·2^l >= every radius
  *   of that level, so a same-level query touches few cells and skips the empty ones. A dense "presence" grid with cells of ≈ 2·r_max keeps, per cell, a 64-bit mask of the
- *   levels present in it; a query probes only the levels present around the point. For a sizing
+ *   levels present in it (filled once a second level is in use: with one level, every query probes
+ *   that one); a query probes only the levels present around the point. For a sizing
  *   that is smooth on the scale of r_max, only 1–2 levels are present around a point, so the work
  *   per sample is bounded independently of n and of r_max/r_min; memory is O(n). The segments sit in
  *   a bucket grid with O(segments) cells for any aspect ratio (inside test and clearance).
