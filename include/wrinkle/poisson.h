@@ -808,6 +808,7 @@ typedef struct wr__pz {
     /* level hash of tiles */
     wr__pz_tile *tiles;
     int32_t *heads; /* 64 per slot: the first sample of each cell (list through wr__pz_s.next) */
+    int32_t *tcnt;  /* per slot: the samples in the tile, a bound on a query's visits there */
     size_t hcap, hcount;
     int hbits;
     double x0, y0, W, H, s_base, xmag; /* xmag: the largest |coordinate| of the box */
@@ -1051,7 +1052,8 @@ static wr_status wr__pz_hash_alloc(wr__pz *z) {
     for (i = 0; i < 64; ++i) z->rowstep[i] = z->tw[i] * z->th[i] <= z->hcap ? z->tw[i] : 0u;
     z->tiles = (wr__pz_tile *)wr_alloc_array(z->hcap, sizeof(wr__pz_tile));
     z->heads = (int32_t *)wr_alloc_array(z->hcap, WR__PZ_TILE * WR__PZ_TILE * sizeof(int32_t));
-    if (!z->tiles || !z->heads) return wr_fail(z->diag, WR_ERR_NOMEM, -1, "sampling grid: out of memory");
+    z->tcnt = (int32_t *)wr_alloc_array(z->hcap, sizeof(int32_t));
+    if (!z->tiles || !z->heads || !z->tcnt) return wr_fail(z->diag, WR_ERR_NOMEM, -1, "sampling grid: out of memory");
     for (i = 0; i < z->hcap; ++i) z->tiles[i].key = 0;
     return WR_OK;
 }
@@ -1065,24 +1067,27 @@ static wr_status wr__pz_hash_init(wr__pz *z, size_t expect_tiles) {
 
 static wr_status wr__pz_hash_grow(wr__pz *z) {
     wr__pz_tile *old = z->tiles;
-    int32_t *oldh = z->heads;
+    int32_t *oldh = z->heads, *oldc = z->tcnt;
     size_t oc = z->hcap, i, s;
     wr_status st;
     z->hbits += 1;
     if ((st = wr__pz_hash_alloc(z)) != WR_OK) {
         wr_free(old);
         wr_free(oldh);
+        wr_free(oldc);
         return st;
     }
     for (i = 0; i < oc; ++i)
         if (old[i].key) {
             s = wr__pz_slot(z, old[i].key);
             z->tiles[s] = old[i];
+            z->tcnt[s] = oldc[i];
             memcpy(z->heads + s * WR__PZ_TILE * WR__PZ_TILE, oldh + i * WR__PZ_TILE * WR__PZ_TILE,
                    WR__PZ_TILE * WR__PZ_TILE * sizeof(int32_t));
         }
     wr_free(old);
     wr_free(oldh);
+    wr_free(oldc);
     return WR_OK;
 }
 
@@ -1104,6 +1109,13 @@ static wr_status wr__pz_nb_grow(wr__pz *z) {
     if (!a) return wr_fail(z->diag, WR_ERR_NOMEM, -1, "neighbour list: out of memory");
     z->nb = a;
     z->nb_cap = nc;
+    return WR_OK;
+}
+
+/* Room for `need` entries in the neighbour list (its first z->nb_n kept). */
+static wr_status wr__pz_nb_reserve(wr__pz *z, int64_t need) {
+    while (z->nb_cap < need)
+        if (wr__pz_nb_grow(z) != WR_OK) return WR_ERR_NOMEM;
     return WR_OK;
 }
 
@@ -1673,16 +1685,18 @@ static int wr__pz_neighbours(wr__pz *z, double px, double py, double R0, double 
                 const int32_t *T;
                 uint64_t cells = wr__pz_box_tile(z, l, tx, ty, b, &T);
                 int32_t p;
+                /* room for every visit in this tile (the append below is unconditional) */
+                if (cells && nn + (int64_t)z->tcnt[(size_t)(T - z->heads) / (WR__PZ_TILE * WR__PZ_TILE)] > cap) {
+                    z->nb_n = nn;
+                    if (wr__pz_nb_reserve(z, nn + (int64_t)z->tcnt[(size_t)(T - z->heads) / (WR__PZ_TILE * WR__PZ_TILE)]) != WR_OK)
+                        return -1;
+                    nb = z->nb;
+                    cap = z->nb_cap;
+                }
                 for (; cells; cells &= cells - 1u)
                     for (p = T[wr__pz_ctz(cells)]; p >= 0; p = sm[p].next) {
                         const double sx = sm[p].x, sy = sm[p].y, sr = sm[p].r;
                         double dx = sx - px, dy = sy - py, md = base + 0.5 * sr;
-                        if (nn == cap) { /* room for this visit (the append below is unconditional) */
-                            z->nb_n = nn;
-                            if (wr__pz_nb_grow(z) != WR_OK) return -1;
-                            nb = z->nb;
-                            cap = z->nb_cap;
-                        }
                         nb[nn].x = sx;
                         nb[nn].y = sy;
                         nb[nn].r = sr;
@@ -1754,11 +1768,13 @@ static wr_status wr__pz_insert(wr__pz *z, double x, double y, double h, double r
     if (z->tiles[s].key != key) { /* a new tile: its heads are read only under occupied bits */
         z->tiles[s].key = key;
         z->tiles[s].occ = 0;
+        z->tcnt[s] = 0;
         ++z->hcount;
     }
     j = (int32_t)((cy % WR__PZ_TILE) * WR__PZ_TILE + cx % WR__PZ_TILE);
     z->sm[i].next = z->tiles[s].occ >> j & 1u ? z->heads[s * WR__PZ_TILE * WR__PZ_TILE + (size_t)j] : -1;
     z->tiles[s].occ |= (uint64_t)1 << j;
+    ++z->tcnt[s];
     z->heads[s * WR__PZ_TILE * WR__PZ_TILE + (size_t)j] = i;
     if (r > z->rmax[l]) z->rmax[l] = r;
     if (r > z->rmax_all) z->rmax_all = r;
@@ -1980,6 +1996,7 @@ static void wr__pz_free(wr__pz *z) {
     wr_free(z->g);
     wr_free(z->tiles);
     wr_free(z->heads);
+    wr_free(z->tcnt);
     wr_free(z->mask);
     wr_free(z->tx);
     wr_free(z->ty);
