@@ -106,7 +106,8 @@
  *   s = bbox size / 2^28. Each level is a hashed grid (open addressing, key = level + 8×8 tile of
  *   cells, with a 64-bit mask of the tile's occupied cells) with cell size 2·s·2^l >= every radius
  *   of that level, so a same-level query touches few cells and skips the empty ones. A dense "presence" grid with cells of ≈ 2·r_max keeps, per cell, a 64-bit mask of the
- *   levels present in it; a query probes only the levels present around the point. For a sizing
+ *   levels present in it (filled once a second level is in use: with one level, every query probes
+ *   that one); a query probes only the levels present around the point. For a sizing
  *   that is smooth on the scale of r_max, only 1–2 levels are present around a point, so the work
  *   per sample is bounded independently of n and of r_max/r_min; memory is O(n). The segments sit in
  *   a bucket grid with O(segments) cells for any aspect ratio (inside test and clearance).
@@ -807,10 +808,12 @@ typedef struct wr__pz {
     /* level hash of tiles */
     wr__pz_tile *tiles;
     int32_t *heads; /* 64 per slot: the first sample of each cell (list through wr__pz_s.next) */
+    int32_t *tcnt;  /* per slot: the samples in the tile, a bound on a query's visits there */
     size_t hcap, hcount;
     int hbits;
     double x0, y0, W, H, s_base, xmag; /* xmag: the largest |coordinate| of the box */
     double cs[64], inv_cs[64], rmax[64], rmax_all;
+    int64_t lim_x[64], lim_y[64]; /* the last cell column / row of each level (wr__pz_cell_box) */
     uint64_t tw[64], th[64]; /* tiles per row and rows at each level (home slot of a tile) */
     uint64_t rowstep[64];    /* tw, or 0 where the level's rows start at hashed slots */
     /* presence grid */
@@ -1049,7 +1052,8 @@ static wr_status wr__pz_hash_alloc(wr__pz *z) {
     for (i = 0; i < 64; ++i) z->rowstep[i] = z->tw[i] * z->th[i] <= z->hcap ? z->tw[i] : 0u;
     z->tiles = (wr__pz_tile *)wr_alloc_array(z->hcap, sizeof(wr__pz_tile));
     z->heads = (int32_t *)wr_alloc_array(z->hcap, WR__PZ_TILE * WR__PZ_TILE * sizeof(int32_t));
-    if (!z->tiles || !z->heads) return wr_fail(z->diag, WR_ERR_NOMEM, -1, "sampling grid: out of memory");
+    z->tcnt = (int32_t *)wr_alloc_array(z->hcap, sizeof(int32_t));
+    if (!z->tiles || !z->heads || !z->tcnt) return wr_fail(z->diag, WR_ERR_NOMEM, -1, "sampling grid: out of memory");
     for (i = 0; i < z->hcap; ++i) z->tiles[i].key = 0;
     return WR_OK;
 }
@@ -1063,24 +1067,27 @@ static wr_status wr__pz_hash_init(wr__pz *z, size_t expect_tiles) {
 
 static wr_status wr__pz_hash_grow(wr__pz *z) {
     wr__pz_tile *old = z->tiles;
-    int32_t *oldh = z->heads;
+    int32_t *oldh = z->heads, *oldc = z->tcnt;
     size_t oc = z->hcap, i, s;
     wr_status st;
     z->hbits += 1;
     if ((st = wr__pz_hash_alloc(z)) != WR_OK) {
         wr_free(old);
         wr_free(oldh);
+        wr_free(oldc);
         return st;
     }
     for (i = 0; i < oc; ++i)
         if (old[i].key) {
             s = wr__pz_slot(z, old[i].key);
             z->tiles[s] = old[i];
+            z->tcnt[s] = oldc[i];
             memcpy(z->heads + s * WR__PZ_TILE * WR__PZ_TILE, oldh + i * WR__PZ_TILE * WR__PZ_TILE,
                    WR__PZ_TILE * WR__PZ_TILE * sizeof(int32_t));
         }
     wr_free(old);
     wr_free(oldh);
+    wr_free(oldc);
     return WR_OK;
 }
 
@@ -1102,6 +1109,13 @@ static wr_status wr__pz_nb_grow(wr__pz *z) {
     if (!a) return wr_fail(z->diag, WR_ERR_NOMEM, -1, "neighbour list: out of memory");
     z->nb = a;
     z->nb_cap = nc;
+    return WR_OK;
+}
+
+/* Room for `need` entries in the neighbour list (its first z->nb_n kept). */
+static wr_status wr__pz_nb_reserve(wr__pz *z, int64_t need) {
+    while (z->nb_cap < need)
+        if (wr__pz_nb_grow(z) != WR_OK) return WR_ERR_NOMEM;
     return WR_OK;
 }
 
@@ -1566,9 +1580,9 @@ static inline int wr__pz_ctz(uint64_t mask) {
 }
 
 /* Level l's cells within Rl of q: b = {cx0, cx1, cy0, cy1}, clamped to the level's grid. */
-static void wr__pz_cell_box(const wr__pz *z, int l, double qx, double qy, double Rl, int64_t b[4]) {
+static inline void wr__pz_cell_box(const wr__pz *z, int l, double qx, double qy, double Rl, int64_t b[4]) {
     double ic = z->inv_cs[l];
-    int64_t lim_x = (int64_t)(z->W * ic) + 1, lim_y = (int64_t)(z->H * ic) + 1;
+    const int64_t lim_x = z->lim_x[l], lim_y = z->lim_y[l];
     b[0] = wr__pz_ifloor((qx - Rl - z->x0) * ic);
     b[1] = wr__pz_ifloor((qx + Rl - z->x0) * ic);
     b[2] = wr__pz_ifloor((qy - Rl - z->y0) * ic);
@@ -1671,16 +1685,18 @@ static int wr__pz_neighbours(wr__pz *z, double px, double py, double R0, double 
                 const int32_t *T;
                 uint64_t cells = wr__pz_box_tile(z, l, tx, ty, b, &T);
                 int32_t p;
+                /* room for every visit in this tile (the append below is unconditional) */
+                if (cells && nn + (int64_t)z->tcnt[(size_t)(T - z->heads) / (WR__PZ_TILE * WR__PZ_TILE)] > cap) {
+                    z->nb_n = nn;
+                    if (wr__pz_nb_reserve(z, nn + (int64_t)z->tcnt[(size_t)(T - z->heads) / (WR__PZ_TILE * WR__PZ_TILE)]) != WR_OK)
+                        return -1;
+                    nb = z->nb;
+                    cap = z->nb_cap;
+                }
                 for (; cells; cells &= cells - 1u)
                     for (p = T[wr__pz_ctz(cells)]; p >= 0; p = sm[p].next) {
                         const double sx = sm[p].x, sy = sm[p].y, sr = sm[p].r;
                         double dx = sx - px, dy = sy - py, md = base + 0.5 * sr;
-                        if (nn == cap) { /* room for this visit (the append below is unconditional) */
-                            z->nb_n = nn;
-                            if (wr__pz_nb_grow(z) != WR_OK) return -1;
-                            nb = z->nb;
-                            cap = z->nb_cap;
-                        }
                         nb[nn].x = sx;
                         nb[nn].y = sy;
                         nb[nn].r = sr;
@@ -1692,6 +1708,16 @@ static int wr__pz_neighbours(wr__pz *z, double px, double py, double R0, double 
     z->nb_n = nn;
     wr__pz_cut_lenses(nb, nn, px, py, ip, C);
     return 0;
+}
+
+/* Level l present in the presence-grid cell of (x, y). */
+static void wr__pz_mark(wr__pz *z, double x, double y, int l) {
+    int64_t mx = wr__pz_ifloor((x - z->x0) * z->inv_mg), my = wr__pz_ifloor((y - z->y0) * z->inv_mg);
+    if (mx >= z->mx) mx = z->mx - 1;
+    if (my >= z->my) my = z->my - 1;
+    if (mx < 0) mx = 0;
+    if (my < 0) my = 0;
+    z->mask[my * z->mx + mx] |= (uint64_t)1 << l;
 }
 
 /* Store a point of sizing h with conflict radius r (samples: r = c h; fixed points: see
@@ -1742,23 +1768,24 @@ static wr_status wr__pz_insert(wr__pz *z, double x, double y, double h, double r
     if (z->tiles[s].key != key) { /* a new tile: its heads are read only under occupied bits */
         z->tiles[s].key = key;
         z->tiles[s].occ = 0;
+        z->tcnt[s] = 0;
         ++z->hcount;
     }
     j = (int32_t)((cy % WR__PZ_TILE) * WR__PZ_TILE + cx % WR__PZ_TILE);
     z->sm[i].next = z->tiles[s].occ >> j & 1u ? z->heads[s * WR__PZ_TILE * WR__PZ_TILE + (size_t)j] : -1;
     z->tiles[s].occ |= (uint64_t)1 << j;
+    ++z->tcnt[s];
     z->heads[s * WR__PZ_TILE * WR__PZ_TILE + (size_t)j] = i;
     if (r > z->rmax[l]) z->rmax[l] = r;
     if (r > z->rmax_all) z->rmax_all = r;
-    {
-        int64_t mx = wr__pz_ifloor((x - z->x0) * z->inv_mg), my = wr__pz_ifloor((y - z->y0) * z->inv_mg);
-        if (mx >= z->mx) mx = z->mx - 1;
-        if (my >= z->my) my = z->my - 1;
-        if (mx < 0) mx = 0;
-        if (my < 0) my = 0;
-        z->mask[my * z->mx + mx] |= (uint64_t)1 << l;
+    /* the presence grid is read only once two levels are in use (wr__pz_levels_near): until then
+     * it is left empty, and the sample that brings the second level marks every sample so far */
+    if (!(z->levels >> l & 1u)) { /* a new level */
+        if (z->levels && !(z->levels & (z->levels - 1u)))
+            for (j = 0; j < i; ++j) wr__pz_mark(z, z->sm[j].x, z->sm[j].y, z->sm[j].lvl);
         z->levels |= (uint64_t)1 << l;
     }
+    if (z->levels & (z->levels - 1u)) wr__pz_mark(z, x, y, l);
     return WR_OK;
 nomem:
     return wr_fail(z->diag, WR_ERR_NOMEM, -1, "samples: out of memory");
@@ -1899,6 +1926,8 @@ static wr_status wr__pz_grids_init(wr__pz *z, double x0, double y0, double W, do
     for (i = 0; i < 64; ++i) {
         z->cs[i] = ldexp(z->s_base, i + 1);
         z->inv_cs[i] = 1.0 / z->cs[i];
+        z->lim_x[i] = (int64_t)(W * z->inv_cs[i]) + 1;
+        z->lim_y[i] = (int64_t)(H * z->inv_cs[i]) + 1;
         z->rmax[i] = 0.0;
         z->tw[i] = (uint64_t)fmin(W * z->inv_cs[i] / WR__PZ_TILE, 1e9) + 2u;
         z->th[i] = (uint64_t)fmin(H * z->inv_cs[i] / WR__PZ_TILE, 1e9) + 2u;
@@ -1967,6 +1996,7 @@ static void wr__pz_free(wr__pz *z) {
     wr_free(z->g);
     wr_free(z->tiles);
     wr_free(z->heads);
+    wr_free(z->tcnt);
     wr_free(z->mask);
     wr_free(z->tx);
     wr_free(z->ty);
