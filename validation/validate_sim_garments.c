@@ -74,7 +74,11 @@
  *          the mesh refines). A quilting stitch is a sewing thread, so the coat's stitches get
  *          QUILT_THREAD_E = 3 GPa (polyester, order of magnitude) on the same h² (EA = 270 N;
  *          --quilt-E overrides): nearly inextensible, "a compressive ratio ... to keep the packs
- *          tight" (Sec. 4.2.5). No
+ *          tight" (Sec. 4.2.5). THE STITCHES: every 18.7 mm of each line (the pattern's
+ *          stitch_length), the same pattern points on both meshes: λ_sh = r_sh/c(δ) with r_sh =
+ *          ρ r = 5.687 mm the sizing map's line resolution (E_sh = 0, n = 1), δ = 0.15, c = 0.305
+ *          (sizing.h), as for the shirred skirt; 3-4 (r_opt) / 7-8 (2.5 mm) mesh edges per stitch
+ *          (before: every 2 mesh edges, 11.6 / 5 mm). No
  *          pressure / inflation between two layers is simulated (the kit's coat has no second layer
  *          and dynamics.h no enclosed-volume term); the packs puff only because the fabric between
  *          two gathered lines is longer than the lines. PLACEMENT: the coat pattern has no shoulder

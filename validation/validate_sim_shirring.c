@@ -13,15 +13,31 @@
  * over the square) competes with the threads' tension (≈ 0.1 N) and the gathered state would depend
  * on the sliding history. Fabric: ν = 0.3, h = (12(1−ν²)B/E)^{1/3} = 0.242 mm, 0.15 kg/m² (our
  * choice: a light shirt cotton), mass damping 3/s (the rest state does not depend on it); threads
- * EA = E_sh h² = 0.117 N, stitched every other vertex, rest length ramped to ρ over 1/3 s;
- * self-contact on; dynamics.h defaults otherwise (dt 1/30 s, Newton velocity tolerance 1 cm/s,
- * CHOLMOD for the linear solves: the buckled sheet's systems took PCG 1–2 thousand iterations).
+ * EA = E_sh h² = 0.117 N, rest length ramped to ρ over 1/3 s; self-contact on; dynamics.h defaults
+ * otherwise (dt 1/30 s, Newton velocity tolerance 1 cm/s, CHOLMOD for the linear solves: the
+ * buckled sheet's systems took PCG 1–2 thousand iterations).
+ * THE STITCHES: the simulated pattern is SIM_PATTERN (examples/sim/fig14_square_stitched.json): the
+ * same square and the same sine lines, each sampled at 33 equal chords of the stitch length s =
+ * 6.6135 mm, the pattern's stitch_length (garment.h ON GATHERING): a stitch at every polyline point,
+ * the same pattern points on every mesh, so a line's pucker interval is a length of the fabric, not
+ * 2 mesh edges (the earlier rule: 18 mm at 9 mm, 5 mm at 2.5 mm). s = λ_sh = r_sh / c(δ), r_sh =
+ * 2.709 mm the mesher's sizing on the lines, δ = 0.5, c = sqrt(1/16 + 2δ/π²) = 0.405 (Sec. 4.1.1,
+ * sizing.h's source wavelength): 6.69 mm, rounded to whole chords (docs/notes-sim-garments.md).
+ * Equal chords because stitches at k·s on the 17-point polyline of PATTERN fell 0.16-1.6 mm from
+ * its corners (mesh min angle 0.9-3.9°). The probes below stay those of PATTERN (its polyline,
+ * the METRIC of the earlier runs).
+ * (Before 2026-12-07 the threads were stitched every other chain vertex of PATTERN's mesh.)
+ * --runs-dir DIR keeps each run's end state in DIR (sim_shirring_<mesh>_s<seed>.run) and reuses a
+ * stored one instead of simulating it, so the runs of one result can be shared between processes
+ * (e.g. one --case 3 --reverse-seeds next to the full run); the stored state is the end of a run
+ * of this binary with the same mesh, seed and simulated time (checked), so reuse changes nothing.
  *
  * METRIC (fixed before the runs)
  *   Probes are curves in the pattern (material) plane, sampled every 0.25 mm, the deformed height z
  *   interpolated at them (spectrum.h wr_probe_sample on the rest domain):
  *     B12, B23  the gathered bands: shirring line 1 (resp. 2) shifted by +31.25 mm in y, i.e.
- *               midway between lines 1 and 2 (2 and 3), x in [30, 220] mm;
+ *               midway between lines 1 and 2 (2 and 3), x in [30, 220] mm (PATTERN's polyline
+ *               points inside it: x = 37.5-212.5 mm);
  *     O0, O4    the outer zones: line 1 shifted by −31.25 mm, line 3 by +31.25 mm.
  *   Per probe: the wrinkle count = Schmitt-trigger zero crossings / 2 of the detrended, lightly
  *   smoothed height (spectrum.h zc_waves: amplitude-gated crossings, so ripples far below the
@@ -53,7 +69,8 @@
  * cases: a diagnostic, use with a WRINKLE_RESULTS_DIR of its own), --transition-length MM (every
  * shirring line's transition_length set to MM instead of the compression law's L_w: a diagnostic of
  * the sizing map's reach, e.g. the wavelength reading of Sec. 4.2.1 in docs/garments.md; own
- * WRINKLE_RESULTS_DIR), --verbose.
+ * WRINKLE_RESULTS_DIR), --runs-dir DIR and --reverse-seeds (each mesh's seed runs last to first;
+ * both: SET-UP, not with --transition-length), --verbose.
  * Outputs: validation/results/sim_shirring.json, sim_shirring_<k>_s<j>.dat (probe heights of mesh k,
  * seed run j), validation/figures/sim_shirring_<k>.png and sim_shirring.png (the four squares, seed
  * run 0). */
@@ -70,7 +87,8 @@
 
 #define NCASE 4
 #define NPROBE 4
-#define PATTERN "examples/fig14_square_shirring.json"
+#define PATTERN "examples/fig14_square_shirring.json"   /* the probes' lines (METRIC) */
+#define SIM_PATTERN "examples/sim/fig14_square_stitched.json" /* meshed and simulated (SET-UP, THE STITCHES) */
 #define AREAL 0.15         /* kg/m², our choice (SET-UP) */
 #define NU 0.3
 #define ALPHA 3.0          /* mass damping [1/s] */
@@ -148,12 +166,69 @@ static int probe_points(const wr_pattern *pat, int p, double **pts, int32_t *n) 
     return 0;
 }
 
-/* Mesh (uniform or sizing map), gathered lines, garment sim on the table, run to `seconds`. */
-static int shirring_simulate(srun *R, const wr_pattern_file *pf0, int k) {
+/* --runs-dir: one run's end state (header, then the positions), written whole (tmp + rename). */
+typedef struct srec {
+    char magic[8];
+    int32_t idx, k, nv, frames, newton, halvings, ok;
+    uint64_t jitter_seed;
+    double res, seconds, cpu, gathered[3], h_min;
+} srec;
+static const char *g_runs_dir = NULL;
+
+static void run_path(char *path, size_t n, int idx, int k) {
+    snprintf(path, n, "%s/sim_shirring_%d_s%d.run", g_runs_dir, idx, k);
+}
+
+/* 1 when a stored run of this mesh, seed and time was loaded into R and x (nv positions). */
+static int run_load(srun *R, int idx, int k, double *x, int32_t nv) {
+    char path[4096];
+    srec h;
+    FILE *fp;
+    int ok;
+    if (!g_runs_dir) return 0;
+    run_path(path, sizeof path, idx, k);
+    if (!(fp = fopen(path, "rb"))) return 0;
+    ok = fread(&h, sizeof h, 1, fp) == 1 && memcmp(h.magic, "WRSHRUN1", 8) == 0 && h.idx == idx && h.k == k && h.nv == nv &&
+         h.jitter_seed == (uint64_t)g_seed + (uint64_t)k && h.res == R->c->res && h.seconds == R->seconds &&
+         fread(x, sizeof(double), 3 * (size_t)nv, fp) == 3 * (size_t)nv;
+    fclose(fp);
+    if (!ok) {
+        fprintf(stderr, "validate_sim_shirring: %s does not match this run: simulated instead\n", path);
+        return 0;
+    }
+    R->frames = h.frames, R->newton = h.newton, R->halvings = h.halvings, R->ok = h.ok, R->cpu = h.cpu, R->h_min = h.h_min;
+    memcpy(R->gathered, h.gathered, sizeof h.gathered);
+    fprintf(stderr, "   reused %s\n", path);
+    return 1;
+}
+
+static void run_store(const srun *R, int idx, int k, const double *x) {
+    char path[4096], tmp[4200];
+    srec h;
+    FILE *fp;
+    int ok;
+    if (!g_runs_dir) return;
+    memset(&h, 0, sizeof h);
+    memcpy(h.magic, "WRSHRUN1", 8);
+    h.idx = idx, h.k = k, h.nv = R->nv, h.frames = R->frames, h.newton = R->newton, h.halvings = R->halvings, h.ok = R->ok;
+    h.jitter_seed = (uint64_t)g_seed + (uint64_t)k, h.res = R->c->res, h.seconds = R->seconds, h.cpu = R->cpu, h.h_min = R->h_min;
+    memcpy(h.gathered, R->gathered, sizeof h.gathered);
+    run_path(path, sizeof path, idx, k);
+    snprintf(tmp, sizeof tmp, "%s.tmp", path);
+    if (!(fp = fopen(tmp, "wb"))) return;
+    ok = fwrite(&h, sizeof h, 1, fp) == 1 && fwrite(x, sizeof(double), 3 * (size_t)R->nv, fp) == 3 * (size_t)R->nv;
+    ok = fclose(fp) == 0 && ok;
+    if (ok) rename(tmp, path);
+}
+
+/* Mesh (uniform or sizing map), gathered lines, garment sim on the table, run to `seconds`
+ * (or, with --runs-dir, the stored end state of the same run). */
+static int shirring_simulate(srun *R, const wr_pattern_file *pf0, int idx, int k) {
     wr_mesher_desc md;
     wr_mesher_result mr;
     wr_garment_line ln[3];
     int32_t *chain[3] = {NULL, NULL, NULL}, nc, i, L, f;
+    int reused;
     wr_garment_placement pl;
     wr_garment g;
     wr_garment_sim gs;
@@ -208,7 +283,8 @@ static int shirring_simulate(srun *R, const wr_pattern_file *pf0, int k) {
     for (i = 0; i < gs.mesh.nv; ++i) gs.x[3 * i + 2] += JITTER * (2.0 * wr_rng_uniform(&rng) - 1.0);
     R->nv = gs.mesh.nv, R->nf = gs.mesh.nf, R->h_min = HUGE_VAL, R->ok = 1;
     cpu0 = (double)clock() / CLOCKS_PER_SEC;
-    for (f = 0; gs.state.t < R->seconds - 1e-9; ++f) {
+    reused = run_load(R, idx, k, gs.x, gs.mesh.nv);
+    for (f = 0; !reused && gs.state.t < R->seconds - 1e-9; ++f) {
         wr_status st = wr_garment_sim_step(&gs, &fs, &d);
         R->frames++, R->newton += fs.newton_iterations, R->halvings += fs.halvings, R->h_min = fmin(R->h_min, fs.h_min);
         if (g_verbose)
@@ -222,11 +298,14 @@ static int shirring_simulate(srun *R, const wr_pattern_file *pf0, int k) {
             break;
         }
     }
-    R->cpu = (double)clock() / CLOCKS_PER_SEC - cpu0;
-    for (L = 0; L < 3; ++L) {
-        double now, rest;
-        wr_garment_sim_thread_length(&gs, L, &now, &rest);
-        R->gathered[L] = now / (rest / ln[L].rho); /* thread length / its pattern length */
+    if (!reused) {
+        R->cpu = (double)clock() / CLOCKS_PER_SEC - cpu0;
+        for (L = 0; L < 3; ++L) {
+            double now, rest;
+            wr_garment_sim_thread_length(&gs, L, &now, &rest);
+            R->gathered[L] = now / (rest / ln[L].rho); /* thread length / its pattern length */
+        }
+        run_store(R, idx, k, gs.x);
     }
     R->x = (double *)malloc(sizeof(double) * 3 * (size_t)gs.mesh.nv);
     R->sizing = (double *)malloc(sizeof(double) * (size_t)gs.mesh.nv);
@@ -431,7 +510,9 @@ static void report(wr_vres *v, srun (*runs)[MAX_SEEDS], const sagg *A, const int
     }
     wr_vres_note(v, "Set-up: the Fig. 14 square (250 mm, Green fabric, three curved shirring lines rho 0.5, E_sh = E) lying on a "
                     "frictionless table under gravity, 1.5 mm above it with a 0.05 mm seeded jitter; threads EA = E_sh h^2 stitched "
-                    "every other vertex, rest length ramped to rho over 1/3 s; mass damping 3/s; self-contact on; dt 1/30 s.");
+                    "every s = 6.61 mm of the line (the pattern's stitch_length = r_sh / c(delta), examples/sim/"
+                    "fig14_square_stitched.json: the same sine lines at 33 equal chords of s; probes on the lines of "
+                    "examples/fig14_square_shirring.json), rest length ramped to rho over 1/3 s; mass damping 3/s; self-contact on; dt 1/30 s.");
     wr_vres_note(v, "Metric (fixed before the runs): probes in the pattern plane every 0.25 mm, B12/B23 midway between shirring "
                     "lines 1-2 and 2-3 (the lines shifted +31.25 mm), O0/O4 outside lines 1 and 3, x in [30, 220] mm; the height z "
                     "interpolated there; count = Schmitt zero crossings / 2, wavelength = least-squares tone at the FFT peak "
@@ -453,15 +534,16 @@ static void report(wr_vres *v, srun (*runs)[MAX_SEEDS], const sagg *A, const int
 }
 
 /* One run of mesh idx with seed offset k: simulate, measure (probe heights to a .dat), print. */
-static int run_one(srun *R, const scase *c, int idx, int k, double seconds, const wr_pattern_file *pf, const char *case_id) {
+static int run_one(srun *R, const scase *c, int idx, int k, double seconds, const wr_pattern_file *pf, const wr_pattern *probe_pat,
+                   const char *case_id) {
     char path[4096];
     int p;
     R->c = c;
     R->seconds = seconds;
     fprintf(stderr, "== case %d: %s, seed +%d\n", idx, c->name, k);
-    if (shirring_simulate(R, pf, k) != 0) return -1;
+    if (shirring_simulate(R, pf, idx, k) != 0) return -1;
     snprintf(path, sizeof path, "%s/%s_%d_s%d.dat", wr_vres_dir(), case_id, idx, k);
-    if (shirring_measure(R, &pf->pattern, path) != 0) return -1;
+    if (shirring_measure(R, probe_pat, path) != 0) return -1;
     fprintf(stderr, "   %d vertices, %d frames, %d Newton, %d halvings, cpu %.0f s; gathered %.3f %.3f %.3f\n", (int)R->nv,
             (int)R->frames, (int)R->newton, (int)R->halvings, R->cpu, R->gathered[0], R->gathered[1], R->gathered[2]);
     for (p = 0; p < NPROBE; ++p)
@@ -497,7 +579,7 @@ static void figures(wr_vres *v, srun (*runs)[MAX_SEEDS], const int *idx, int n, 
 
 static void usage(FILE *f) {
     fprintf(f, "usage: validate_sim_shirring [--quick] [--seeds N] [--case N] [--seconds S] [--no-png] [--pcg] [--immediate]\n"
-               "       [--seed N] [--resolution MM] [--transition-length MM] [--verbose]\n"
+               "       [--seed N] [--resolution MM] [--transition-length MM] [--runs-dir DIR] [--reverse-seeds] [--verbose]\n"
                "  Style3D Fig. 15 with the dynamic simulator; writes validation/results/sim_shirring.json\n"
                "  (--quick: sim_shirring_quick.json, uniform 9 mm for 0.4 s, one seed, smoke only).\n"
                "  --seeds N: runs per mesh (1-%d, default %d), compared by their medians; --case N (0-%d): one mesh.\n",
@@ -507,10 +589,10 @@ static void usage(FILE *f) {
 int main(int argc, char **argv) {
     static srun runs[NCASE][MAX_SEEDS];
     sagg agg[NCASE];
-    int i, k, quick = 0, only = -1, png = 1, n = 0, idx[NCASE], no_png = 0, pcg = 0;
+    int i, k, kk, quick = 0, only = -1, png = 1, n = 0, idx[NCASE], no_png = 0, pcg = 0, reverse = 0;
     double seconds = 2.0, case_arg = -1.0, seeds_arg = g_seeds, seed_arg = (double)g_seed, res_mm = 0.0, lw_mm = 0.0;
     const char *case_id = "sim_shirring";
-    wr_pattern_file pf;
+    wr_pattern_file pf, pf_probe;
     wr_diag d;
     wr_vres *v;
     /* cli.h's strict parsing: a malformed or out-of-range value is an error (exit 2), never a 0 that
@@ -527,6 +609,8 @@ int main(int argc, char **argv) {
         {"--seed", NULL, WR_CLI_INTEGER, &seed_arg, 0.0, 4294967295.0, NULL},
         {"--resolution", NULL, WR_CLI_NUMBER, &res_mm, 1e-3, 1e3, NULL},
         {"--transition-length", NULL, WR_CLI_NUMBER, &lw_mm, 0.0, 1e4, NULL},
+        {"--runs-dir", NULL, WR_CLI_STRING, (void *)&g_runs_dir, 0.0, 0.0, NULL},
+        {"--reverse-seeds", NULL, WR_CLI_FLAG, &reverse, 0.0, 0.0, NULL},
     };
     wr_cli_set_program(argv[0]);
     if ((i = wr_cli_parse(argc, argv, opts, (int)(sizeof opts / sizeof opts[0]), NULL, 0, NULL, usage)) <= 0)
@@ -538,7 +622,11 @@ int main(int argc, char **argv) {
     if (g_adhoc.res > 0.0) only = 0;
     for (i = 0; i < NCASE; ++i)
         if (only < 0 || only == i) idx[n++] = i;
-    if (wr_pattern_load(PATTERN, &pf, &d) != WR_OK || pf.pattern.n_shirrings != 3) {
+    if (wr_pattern_load(SIM_PATTERN, &pf, &d) != WR_OK || pf.pattern.n_shirrings != 3) {
+        fprintf(stderr, "validate_sim_shirring: %s: %s\n", SIM_PATTERN, d.message);
+        return 2;
+    }
+    if (wr_pattern_load(PATTERN, &pf_probe, &d) != WR_OK || pf_probe.pattern.n_shirrings != 3) {
         fprintf(stderr, "validate_sim_shirring: %s: %s\n", PATTERN, d.message);
         return 2;
     }
@@ -550,8 +638,12 @@ int main(int argc, char **argv) {
     v = wr_vres_begin(case_id, "Style3D Fig. 15 shirring square, dynamic simulator: 9 mm / 4.5 mm / sizing map vs uniform 2.5 mm");
     if (!v) return 2;
     for (i = 0; i < n; ++i) {
-        for (k = 0; k < g_seeds; ++k)
-            if (run_one(&runs[i][k], g_adhoc.res > 0.0 ? &g_adhoc : &CASES[idx[i]], idx[i], k, seconds, &pf, case_id) != 0) return 2;
+        for (kk = 0; kk < g_seeds; ++kk) {
+            k = reverse ? g_seeds - 1 - kk : kk;
+            if (run_one(&runs[i][k], g_adhoc.res > 0.0 ? &g_adhoc : &CASES[idx[i]], idx[i], k, seconds, &pf, &pf_probe.pattern,
+                        case_id) != 0)
+                return 2;
+        }
         aggregate(runs[i], g_seeds, &agg[i]);
     }
     if (png) figures(v, runs, idx, n, case_id);
@@ -563,5 +655,6 @@ int main(int argc, char **argv) {
             wr_mesh_free(&runs[i][k].mesh);
         }
     wr_pattern_file_free(&pf);
+    wr_pattern_file_free(&pf_probe);
     return wr_vres_finish(v);
 }
