@@ -474,7 +474,7 @@ extern "C" {
 #define WR__WF_ROUNDOFF_FLOOR 1e-6 /* ... of at least 1e-6 |E_wf(start)| (excess energy can be ~0) */
 #define WR__WF_MAX_ESCAPES 50     /* second-order escapes from a = 0 per solve */
 #define WR__WF_AREF_FALLBACK 1e-3 /* a_ref = 1e-3 × bbox diagonal when the start has a = 0 everywhere */
-#define WR__WF_NC_ITERS 8         /* inverse iterations for the negative-curvature direction */
+#define WR__WF_NC_LANCZOS 20      /* shift-invert Lanczos steps for the negative-curvature direction */
 #define WR__WF_NC_SEED 0x5eedULL  /* their (fixed) random start */
 #define WR__WF_NC_CUTS 4          /* Δ_nc cuts per iteration before the trial counts as rejected */
 
@@ -2987,7 +2987,7 @@ typedef struct wr__wf_sqp {
     double aref, eref, greg, ebase;      /* scales (ON THE SQP SOLVER), regulariser weight, constant part of E */
     double mu, nu_up;                    /* Marquardt damping and its growth factor (Nielsen 1999) */
     double E;                            /* objective at y (E_wf without its constant part + regulariser) */
-    double *pnc, *wnc, *dnc;             /* negative_curvature option: direction p, s(σ), raw step (n each) */
+    double *pnc, *wnc, *dnc, *lz;        /* negative_curvature option: direction p, s(σ), raw step (n each), Lanczos basis */
     double nc_radius;                    /* its Δ_nc (ON NEGATIVE CURVATURE), 0 until the first such step */
     int hess_true;
 } wr__wf_sqp;
@@ -3026,6 +3026,7 @@ static void wr__wf_sqp_free(wr__wf_sqp *Q) {
     wr_free(Q->pnc);
     wr_free(Q->wnc);
     wr_free(Q->dnc);
+    wr_free(Q->lz);
 }
 
 /* Defaults of wr_wf_solve_desc (the comment above the struct lists them). */
@@ -3232,7 +3233,8 @@ static wr_status wr__wf_sqp_pattern(wr__wf_sqp *Q, wr_diag *diag) {
         Q->pnc = (double *)wr_calloc_array((size_t)n + 1, sizeof(double));
         Q->wnc = (double *)wr_calloc_array((size_t)n + 1, sizeof(double));
         Q->dnc = (double *)wr_calloc_array((size_t)n + 1, sizeof(double));
-        if (!Q->pnc || !Q->wnc || !Q->dnc) return wr_fail(diag, WR_ERR_NOMEM, -1, "wf solve: out of memory");
+        Q->lz = (double *)wr_alloc_array((size_t)WR__WF_NC_LANCZOS * ((size_t)n + 1), sizeof(double));
+        if (!Q->pnc || !Q->wnc || !Q->dnc || !Q->lz) return wr_fail(diag, WR_ERR_NOMEM, -1, "wf solve: out of memory");
     }
     return WR_OK;
 }
@@ -3384,9 +3386,10 @@ static double wr__wf_sqp_predicted(wr__wf_sqp *Q) {
  * E is even in a, so ∂E/∂a = 0 there) s(σ) hardly moves along it: the saddle crawl of
  * docs/notes-tfw-solver.md. The option takes d = s(σ) + τ p instead (Moré & Sorensen 1979's
  * pairing of a Newton-type step with a direction of negative curvature), p an M-unit direction with
- * pᵀKp < 0, from inverse iteration with the factor of K + σ M already at hand (its eigenvalues
- * 1/(λ + σ) > 0 are largest for the most negative λ of the pencil (K, M)) from a seeded random
- * start, used only if its Rayleigh quotient is negative. Of ±p the sign with the larger model
+ * pᵀKp < 0: the Ritz vector of the largest eigenvalue of (K + σ M)⁻¹ M (its eigenvalues 1/(λ + σ)
+ * > 0 are largest for the most negative λ of the pencil (K, M)) after WR__WF_NC_LANCZOS steps of
+ * shift-invert Lanczos in the M inner product, with the factor of K + σ M already at hand and a
+ * seeded random start, used only if its Rayleigh quotient with K is negative. Of ±p the sign with the larger model
  * decrease of the projected step (a ≥ 0) is taken. τ = Δ_nc, a radius of its own (M-norm), set to
  * ‖s(σ)‖_M on the first such step of a solve, doubled after a step with ρ > 3/4, ×¼ after a
  * rejection (up to WR__WF_NC_CUTS cuts per iteration, reusing the factor; then the trial counts as
@@ -3394,29 +3397,55 @@ static double wr__wf_sqp_predicted(wr__wf_sqp *Q) {
  * from ρ as for any other step. */
 static int wr__wf_sqp_negcurv(wr__wf_sqp *Q, wr__wf_trial *out) {
     const wr_csr *K = &Q->KA.A;
-    double *p = Q->pnc, lam = 0.0, sm = 0.0;
-    int32_t i, it, n = Q->n;
+    double *p = Q->pnc, *V = Q->lz, T[WR__WF_NC_LANCZOS * WR__WF_NC_LANCZOS], th[WR__WF_NC_LANCZOS];
+    double Y[WR__WF_NC_LANCZOS * WR__WF_NC_LANCZOS], lam = 0.0, sm = 0.0, beta = 0.0;
+    int32_t i, j, l, k = 0, n = Q->n;
+    size_t ns = (size_t)n;
     wr_rng rng;
     wr_spd_stats ss;
     wr_rng_seed(&rng, WR__WF_NC_SEED);
+    memset(T, 0, sizeof T);
+    memcpy(Q->wnc, Q->d, sizeof(double) * ns); /* s(σ), raw (0 on the held set) */
     for (i = 0; i < n; ++i) p[i] = Q->active[i] ? 0.0 : wr_rng_uniform(&rng) - 0.5;
-    memcpy(Q->wnc, Q->d, sizeof(double) * (size_t)n); /* s(σ), raw (0 on the held set) */
-    for (it = 0;; ++it) {
-        double nrm = 0.0;
+    /* shift-invert Lanczos in the M inner product on (K + σ M)⁻¹ M, full reorthogonalisation */
+    for (k = 0; k < WR__WF_NC_LANCZOS; ++k) {
+        double *q = V + (size_t)k * ns, nrm = 0.0, al = 0.0;
         for (i = 0; i < n; ++i) nrm += Q->mdiag[i] * p[i] * p[i];
-        if (!(nrm > 0.0) || !isfinite(nrm)) return 0;
-        nrm = 1.0 / sqrt(nrm);
-        for (i = 0; i < n; ++i) p[i] *= nrm; /* ‖p‖_M = 1 */
-        if (it == WR__WF_NC_ITERS) break;
+        nrm = sqrt(nrm);
+        if (k > 0) T[(k - 1) * WR__WF_NC_LANCZOS + k] = T[k * WR__WF_NC_LANCZOS + k - 1] = beta = nrm;
+        if (!(nrm > 0.0) || !isfinite(nrm) || (k > 0 && beta <= 1e-12 * fabs(T[0]))) break; /* invariant subspace */
         for (i = 0; i < n; ++i) {
-            Q->dnc[i] = Q->active[i] ? 0.0 : Q->mdiag[i] * p[i];
+            q[i] = p[i] / nrm;
+            Q->dnc[i] = Q->active[i] ? 0.0 : Q->mdiag[i] * q[i];
             p[i] = 0.0;
         }
         if (wr_spd_solver_solve(&Q->SV, K, Q->dnc, p, &ss, NULL) != WR_OK) return 0;
         for (i = 0; i < n; ++i)
             if (Q->active[i]) p[i] = 0.0;
+        for (l = 0; l < 2; ++l) /* twice is enough (Parlett) */
+            for (j = 0; j <= k; ++j) {
+                const double *qj = V + (size_t)j * ns;
+                double c = 0.0;
+                for (i = 0; i < n; ++i) c += Q->mdiag[i] * qj[i] * p[i];
+                for (i = 0; i < n; ++i) p[i] -= c * qj[i];
+                if (j == k) al += c;
+            }
+        T[k * WR__WF_NC_LANCZOS + k] = al;
     }
-    for (i = 0; i < n; ++i) { /* Rayleigh quotient pᵀKp with the undamped model on the free set */
+    if (k < 2) return 0;
+    {   /* the Ritz pair of the largest θ = 1 / (λ + σ) */
+        double Tk[WR__WF_NC_LANCZOS * WR__WF_NC_LANCZOS];
+        for (i = 0; i < k; ++i)
+            for (j = 0; j < k; ++j) Tk[i * k + j] = T[i * WR__WF_NC_LANCZOS + j];
+        wr_dense_sym_eig((int)k, Tk, th, Y);
+    }
+    for (i = 0; i < n; ++i) p[i] = 0.0;
+    for (j = 0; j < k; ++j) {
+        const double *qj = V + (size_t)j * ns;
+        double c = Y[j * k + (k - 1)];
+        for (i = 0; i < n; ++i) p[i] += c * qj[i];
+    }
+    for (i = 0; i < n; ++i) { /* Rayleigh quotient pᵀKp / pᵀMp with the undamped model on the free set */
         int32_t t;
         double r = 0.0;
         if (Q->active[i]) continue;
@@ -3425,7 +3454,15 @@ static int wr__wf_sqp_negcurv(wr__wf_sqp *Q, wr__wf_trial *out) {
         lam += p[i] * r;
         sm += Q->mdiag[i] * Q->wnc[i] * Q->wnc[i];
     }
+    {
+        double pm = 0.0;
+        for (i = 0; i < n; ++i) pm += Q->mdiag[i] * p[i] * p[i];
+        if (!(pm > 0.0)) return 0;
+        for (i = 0; i < n; ++i) p[i] /= sqrt(pm); /* ‖p‖_M = 1 */
+        lam /= pm;
+    }
     if (!(lam < 0.0) || !(sm > 0.0)) return 0; /* no direction of negative curvature found */
+    /* SCRATCH_RADIUS_HOOK */
     if (!(Q->nc_radius > 0.0)) Q->nc_radius = sqrt(sm);
     out->curv = lam;
     return 1;
