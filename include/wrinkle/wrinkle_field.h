@@ -3469,19 +3469,21 @@ static int wr__wf_sqp_negcurv(wr__wf_sqp *Q, wr__wf_trial *out) {
 }
 
 /* d = s(σ) + Δ_nc (±p) in Q->dnc, the sign with the larger model decrease of the projected step;
- * out->gain = that decrease minus the other sign's. */
+ * out->gain = the chosen step's model decrease minus the other sign's (≥ 0 by the choice). */
 static void wr__wf_sqp_nc_step(wr__wf_sqp *Q, wr__wf_trial *out) {
-    double pred[2] = {0.0, 0.0};
+    double pred[2] = {0.0, 0.0}, sp;
     int32_t i, n = Q->n;
     int sgn;
-    for (sgn = 0; sgn < 3; ++sgn) {
-        double tau = (sgn == 2 ? pred[0] >= pred[1] : sgn == 0) ? Q->nc_radius : -Q->nc_radius;
+    for (sgn = 0; sgn < 2; ++sgn) {
+        double tau = sgn == 0 ? Q->nc_radius : -Q->nc_radius;
         for (i = 0; i < n; ++i) Q->dnc[i] = Q->wnc[i] + tau * Q->pnc[i];
-        if (sgn == 2) break;
         wr__wf_sqp_project(Q, Q->dnc);
         pred[sgn] = wr__wf_sqp_predicted(Q);
     }
-    out->gain = pred[0] >= pred[1] ? pred[0] - pred[1] : pred[1] - pred[0];
+    sp = pred[0] >= pred[1] ? 1.0 : -1.0;
+    for (i = 0; i < n; ++i) Q->dnc[i] = Q->wnc[i] + sp * Q->nc_radius * Q->pnc[i];
+    wr__wf_sqp_project(Q, Q->dnc);
+    out->gain = wr__wf_sqp_predicted(Q) - pred[sp > 0.0 ? 1 : 0];
 }
 
 /* Evaluate the projected trial step in Q->d / Q->yt and decide it: 1 when accepted (or stopped
