@@ -477,6 +477,7 @@ extern "C" {
 #define WR__WF_NC_LANCZOS 20      /* shift-invert Lanczos steps for the negative-curvature direction */
 #define WR__WF_NC_SEED 0x5eedULL  /* their (fixed) random start */
 #define WR__WF_NC_CUTS 4          /* Δ_nc cuts per iteration before the trial counts as rejected */
+#define WR__WF_NC_FLOOR 1e-2      /* Δ_nc >= this × ‖s(σ)‖_M (ON NEGATIVE CURVATURE) */
 
 /* Barycentric quadrature points (λ0, λ1, λ2), weight 1/3 each: symmetric degree-2 rule. */
 static const double wr__wf_qp[3][3] = {
@@ -2988,7 +2989,7 @@ typedef struct wr__wf_sqp {
     double mu, nu_up;                    /* Marquardt damping and its growth factor (Nielsen 1999) */
     double E;                            /* objective at y (E_wf without its constant part + regulariser) */
     double *pnc, *wnc, *dnc, *lz;        /* negative_curvature option: direction p, s(σ), raw step (n each), Lanczos basis */
-    double nc_radius;                    /* its Δ_nc (ON NEGATIVE CURVATURE), 0 until the first such step */
+    double nc_radius, nc_floor;          /* its Δ_nc (ON NEGATIVE CURVATURE), 0 until the first such step; floor */
     int hess_true;
 } wr__wf_sqp;
 
@@ -3393,7 +3394,10 @@ static double wr__wf_sqp_predicted(wr__wf_sqp *Q) {
  * decrease of the projected step (a ≥ 0) is taken. τ = Δ_nc, a radius of its own (M-norm), set to
  * ‖s(σ)‖_M on the first such step of a solve, doubled after a step with ρ > 3/4, ×¼ after a
  * rejection (up to WR__WF_NC_CUTS cuts per iteration, reusing the factor; then the trial counts as
- * rejected as any other). μ is not raised to σ: the damping stays the trust region's and is adapted
+ * rejected as any other), never below WR__WF_NC_FLOOR ‖s(σ)‖_M: a shorter component along p changes
+ * nothing that s(σ) alone does not, so a rejection there is the damping's to answer (without the
+ * floor Δ_nc fell to 1e-47 … 1e-65 on the stretched sheet and the wasted cuts cost iterations:
+ * docs/notes-tfw-solver.md). μ is not raised to σ: the damping stays the trust region's and is adapted
  * from ρ as for any other step. */
 static int wr__wf_sqp_negcurv(wr__wf_sqp *Q, wr__wf_trial *out) {
     const wr_csr *K = &Q->KA.A;
@@ -3464,6 +3468,8 @@ static int wr__wf_sqp_negcurv(wr__wf_sqp *Q, wr__wf_trial *out) {
     if (!(lam < 0.0) || !(sm > 0.0)) return 0; /* no direction of negative curvature found */
     /* SCRATCH_RADIUS_HOOK */
     if (!(Q->nc_radius > 0.0)) Q->nc_radius = sqrt(sm);
+    Q->nc_floor = WR__WF_NC_FLOOR * sqrt(sm);
+    if (Q->nc_radius < Q->nc_floor) Q->nc_radius = Q->nc_floor;
     out->curv = lam;
     return 1;
 }
@@ -3561,6 +3567,10 @@ static wr_status wr__wf_sqp_trust_region(wr__wf_sqp *Q, double kkt, wr__wf_trial
             ++out->nfail;
             if (!out->negcurv) break;
             Q->nc_radius *= 0.25;
+            if (Q->nc_radius < Q->nc_floor) { /* shorter changes nothing s(σ) does not: μ's turn */
+                Q->nc_radius = Q->nc_floor;
+                break;
+            }
             if (cut + 1 >= WR__WF_NC_CUTS) break;
         }
         /* after a rejection ε shrinks ×0.1: snapping a near-bound amplitude to 0 is the one part of
