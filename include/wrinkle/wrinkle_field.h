@@ -326,7 +326,8 @@ typedef struct wr_wf_solve_desc {
 
 typedef struct wr_wf_solve_stats {
     int32_t iterations;     /* accepted steps */
-    int32_t n_rejected;     /* rejected trial steps (each cost one factorisation + one energy) */
+    int32_t n_rejected;     /* rejected trial steps (each cost one energy and, but for a Δ_nc cut of the
+                             * negative_curvature option, one factorisation) */
     int32_t n_factorizations;
     int32_t n_escapes;      /* second-order escapes from stationary a = 0 (see wr__wf_escape) */
     int32_t n_negcurv;      /* accepted steps along a direction of negative curvature (negative_curvature option) */
