@@ -3476,9 +3476,11 @@ static int wr__wf_sqp_negcurv(wr__wf_sqp *Q, wr__wf_trial *out) {
 }
 
 /* d = s(σ) + Δ_nc (±p) in Q->dnc, the sign with the larger model decrease of the projected step;
- * out->gain = the chosen step's model decrease minus the other sign's (≥ 0 by the choice). */
+ * out->gain = the chosen step's model decrease minus the other sign's (≥ 0 by the choice), and
+ * out->curv = the Rayleigh quotient of the direction d - s(σ) actually added (pᵀKp/pᵀMp, < 0). */
 static void wr__wf_sqp_nc_step(wr__wf_sqp *Q, wr__wf_trial *out) {
-    double pred[2] = {0.0, 0.0}, sp;
+    const wr_csr *K = &Q->KA.A;
+    double pred[2] = {0.0, 0.0}, sp, qk = 0.0, qm = 0.0;
     int32_t i, n = Q->n;
     int sgn;
     for (sgn = 0; sgn < 2; ++sgn) {
@@ -3491,6 +3493,16 @@ static void wr__wf_sqp_nc_step(wr__wf_sqp *Q, wr__wf_trial *out) {
     for (i = 0; i < n; ++i) Q->dnc[i] = Q->wnc[i] + sp * Q->nc_radius * Q->pnc[i];
     wr__wf_sqp_project(Q, Q->dnc);
     out->gain = wr__wf_sqp_predicted(Q) - pred[sp > 0.0 ? 1 : 0];
+    for (i = 0; i < n; ++i) {
+        int32_t t;
+        double r = 0.0, di = Q->dnc[i] - Q->wnc[i];
+        if (Q->active[i]) continue;
+        for (t = K->rowptr[i]; t < K->rowptr[i + 1]; ++t)
+            if (!Q->active[K->col[t]]) r += Q->kmodel[t] * (Q->dnc[K->col[t]] - Q->wnc[K->col[t]]);
+        qk += di * r;
+        qm += Q->mdiag[i] * di * di;
+    }
+    out->curv = qm > 0.0 ? qk / qm : 0.0;
 }
 
 /* Evaluate the projected trial step in Q->d / Q->yt and decide it: 1 when accepted (or stopped
