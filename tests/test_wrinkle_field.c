@@ -928,6 +928,116 @@ Test(wrinkle_field, sqp_converges_to_kkt_1e8_on_clamped_stretched_sheet) {
     wr_mesh_free(&m);
 }
 
+/* The negative_curvature option (wrinkle_field.h ON NEGATIVE CURVATURE), as the progress callback
+ * reports it: steps holding a direction p, its curvature pᵀKp/pᵀMp and the model's sign preference. */
+typedef struct nc_log {
+    int32_t calls, nc_steps, bad_curv, bad_sign;
+    double min_curv;
+} nc_log;
+static void nc_progress(const wr_wf_iter_info *info, void *user) {
+    nc_log *L = (nc_log *)user;
+    ++L->calls;
+    if (!info->negcurv) return;
+    ++L->nc_steps;
+    L->bad_curv += !(info->curvature < 0.0);
+    L->bad_sign += !(info->nc_gain >= 0.0);
+    L->min_curv = fmin(L->min_curv, info->curvature);
+}
+
+/* "Same final fields" of docs/notes-tfw-solver.md (issue 16): |ΔE|/|E| <= 1e-8, max |Δa| <= 2.5e-2
+ * max a, and on edges whose mean amplitude is >= 0.1 max a, max |Δω| <= 5e-2 max |ω| (up to a global
+ * sign of ω). Returns 1 when (a1, o1, E1) and (a2, o2, E2) agree so. */
+static int same_fields(const wr_mesh *m, const double *a1, const double *o1, double E1, const double *a2,
+                       const double *o2, double E2) {
+    double amax = 0.0, omax = 0.0, da = 0.0, dp = 0.0, dm = 0.0;
+    int32_t v, e;
+    for (v = 0; v < m->nv; ++v) {
+        amax = fmax(amax, a1[v]);
+        da = fmax(da, fabs(a1[v] - a2[v]));
+    }
+    for (e = 0; e < m->ne; ++e) {
+        double ae = 0.5 * (a1[m->edges[2 * e]] + a1[m->edges[2 * e + 1]]);
+        omax = fmax(omax, fabs(o1[e]));
+        if (ae < 0.1 * amax) continue;
+        dp = fmax(dp, fabs(o1[e] - o2[e]));
+        dm = fmax(dm, fabs(o1[e] + o2[e]));
+    }
+    cr_log_info("same fields: |dE|/E %.3g, max|da|/max a %.3g, max|dw|/max|w| %.3g", fabs(E1 - E2) / fabs(E1),
+                da / amax, fmin(dp, dm) / omax);
+    return fabs(E1 - E2) <= 1e-8 * fabs(E1) && da <= 2.5e-2 * amax && fmin(dp, dm) <= 5e-2 * omax;
+}
+
+/* Off (the default) the option changes nothing: no step reports a direction. On, on the clamped
+ * stretched sheet with the true Hessian throughout (whose factorisation fails on the saddle of the
+ * E.2 start), the solve takes steps along negative curvature, each with pᵀKp < 0 and the sign the
+ * model prefers, and ends at the default's minimum by the criterion above (KKT stop 1e-8). */
+Test(wrinkle_field, sqp_negative_curvature_option_same_minimum) {
+    const double L = 0.25, Hh = 0.1;
+    wr_mesh m;
+    wr_wf wf;
+    double *base, *a0, *o0, *a[2], *om[2], E[2] = {0.0, 0.0};
+    uint8_t *wfl;
+    int32_t it[2] = {0, 0}, k, h;
+    static const wr_wf_hessian strat[2] = {WR_WF_HESSIAN_TRUE, WR_WF_HESSIAN_AUTO};
+    clamped_sheet_setup(&m, &wf, L, Hh, &base, &wfl, &a0, &o0);
+    for (k = 0; k < 2; ++k) {
+        a[k] = (double *)malloc(sizeof(double) * m.nv);
+        om[k] = (double *)malloc(sizeof(double) * m.ne);
+    }
+    for (h = 0; h < 2; ++h) {
+        int32_t ntot = 0;
+        for (k = 0; k < 2; ++k) {
+            wr_wf_solve_desc sd;
+            wr_wf_solve_stats ss;
+            nc_log lg;
+            memset(&lg, 0, sizeof lg);
+            memcpy(a[k], a0, sizeof(double) * m.nv);
+            memcpy(om[k], o0, sizeof(double) * m.ne);
+            memset(&sd, 0, sizeof sd);
+            sd.hessian = strat[h];
+            sd.negative_curvature = k;
+            sd.tol_energy = 1e-300; /* only the KKT rule may stop */
+            sd.tol_step = 1e-300;
+            sd.max_iter = 200;
+            sd.progress = nc_progress;
+            sd.user = &lg;
+            cr_assert_eq(wr_wf_solve(&wf, &sd, a[k], om[k], &ss, NULL), WR_OK);
+            cr_log_info("hessian %d, negative_curvature %d: %d iterations (%d rejected, %d factorisations), %d "
+                        "negative-curvature steps (min curvature %g), E %.12g, KKT %g / %g",
+                        (int)strat[h], (int)k, ss.iterations, ss.n_rejected, ss.n_factorizations, ss.n_negcurv,
+                        lg.min_curv, ss.energy, ss.kkt, ss.kkt0);
+            cr_assert_eq(ss.stop, WR_WF_STOP_KKT);
+            cr_assert_eq(lg.calls, ss.iterations);
+            cr_assert_eq(lg.nc_steps, ss.n_negcurv);
+            cr_assert_eq(lg.bad_curv, 0, "%d steps along a direction of positive curvature", lg.bad_curv);
+            cr_assert_eq(lg.bad_sign, 0, "%d steps along the sign the model does not prefer", lg.bad_sign);
+            if (k == 0) cr_assert_eq(ss.n_negcurv, 0);
+            ntot += ss.n_negcurv;
+            it[k] = ss.iterations;
+            E[k] = ss.energy;
+        }
+        if (h == 0) cr_assert(ntot >= 1, "the true Hessian's saddle must be left along negative curvature");
+        cr_assert(same_fields(&m, a[0], om[0], E[0], a[1], om[1], E[1]), "hessian %d: %d vs %d iterations",
+                  (int)strat[h], it[0], it[1]);
+    }
+    {
+        wr_wf_solve_desc sd;
+        memset(&sd, 0, sizeof sd);
+        sd.negative_curvature = 2;
+        cr_assert_eq(wr_wf_solve(&wf, &sd, a[0], om[0], NULL, NULL), WR_ERR_INVALID_ARG);
+    }
+    for (k = 0; k < 2; ++k) {
+        free(a[k]);
+        free(om[k]);
+    }
+    free(base);
+    free(a0);
+    free(o0);
+    free(wfl);
+    wr_wf_free(&wf);
+    wr_mesh_free(&m);
+}
+
 /* Energies and ρ of the accepted steps, as the progress callback reports them. */
 #define TERM_MAX_STEPS 400
 static double g_step_e[TERM_MAX_STEPS], g_step_rho[TERM_MAX_STEPS];

@@ -113,7 +113,8 @@ typedef struct wr_tfw_result {
     double *wrinkled_a, *wrinkled_phase; /* per wrinkled vertex: a [m], φ wrapped to (-π, π] [rad] */
     uint8_t *wrinkled_wfree;             /* per wrinkled vertex: 1 when it touches only W faces */
     wr_wf_solve_stats sqp;          /* the returned solve (energy, KKT, stop); work counts (iterations, rejected
-                                     * steps, factorisations, escapes, seconds) summed over both solves */
+                                     * steps, factorisations, escapes, negative-curvature steps, seconds) summed
+                                     * over both solves */
     wr_wf_solve_stats sqp_first;    /* the first SQP from the App. E.2 start */
     int32_t n_folds_first, n_folds; /* fold edges after the first SQP and in the returned ω */
     int32_t unfolded;               /* 1: the returned fields come from wr_wf_unfold + a second SQP */
@@ -302,6 +303,7 @@ WRDEF wr_status wr_tfw_fields(const wr_mesh *m, const double *base_pos, const wr
                 res->sqp.n_rejected += res->sqp_first.n_rejected;
                 res->sqp.n_factorizations += res->sqp_first.n_factorizations;
                 res->sqp.n_escapes += res->sqp_first.n_escapes;
+                res->sqp.n_negcurv += res->sqp_first.n_negcurv;
                 res->sqp.seconds += res->sqp_first.seconds;
                 res->sqp.seconds_assembly += res->sqp_first.seconds_assembly;
                 res->sqp.seconds_solve += res->sqp_first.seconds_solve;

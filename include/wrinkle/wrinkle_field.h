@@ -118,6 +118,9 @@
  *   rule 1 stops.
  *   omega_reg (default 0 = the paper's energy) adds a tiny Tikhonov term on ω; it is not needed for
  *   convergence and changes the solution, so it is off unless asked for.
+ *   negative_curvature (default 0 = off) replaces the μ raise after a failed factorisation of the
+ *   true Hessian by a Moré–Sorensen-type step along a direction of negative curvature (see ON
+ *   NEGATIVE CURVATURE at wr__wf_sqp_negcurv; its figures: docs/notes-tfw-solver.md).
  *
  * ON CLAMPED EDGES AND PHASE FOLDS
  *   wr_wf_set_amplitude_zero holds a = 0 on given vertices: a clamp keeps the sheet in the base
@@ -298,11 +301,17 @@ typedef struct wr_wf_iter_info {
     int32_t n_active;   /* amplitudes held at the bound a = 0 */
     int32_t n_rejected; /* trial steps rejected in this iteration */
     int32_t true_hessian;
+    /* negative_curvature option (ON NEGATIVE CURVATURE): 1 when the accepted step holds a direction
+     * of negative curvature p; curvature = pᵀKp / pᵀMp (< 0) of that p, nc_gain = the step's model
+     * decrease minus that of the same step with p reversed (≥ 0: the sign the model prefers) */
+    int32_t negcurv;
+    double curvature, nc_gain;
 } wr_wf_iter_info;
 
 /* Defaults (App. E.3, applied relative where the paper's absolute numbers have no units):
  *   max_iter 1000, tol_energy 1e-10, tol_kkt 1e-8, tol_step 1e-10, hessian AUTO with
- *   hessian_switch 1e-2, solver: WR_SOLVER_AUTO (spd.h), progress: none. */
+ *   hessian_switch 1e-2, solver: WR_SOLVER_AUTO (spd.h), negative_curvature 0 (off: a failed
+ *   factorisation raises μ), progress: none. */
 typedef struct wr_wf_solve_desc {
     int32_t max_iter;
     double tol_energy, tol_kkt, tol_step;
@@ -310,15 +319,18 @@ typedef struct wr_wf_solve_desc {
     wr_wf_hessian hessian;
     double hessian_switch; /* relative KKT below which AUTO switches to the true Hessian */
     double omega_reg;      /* ≥ 0: adds (γ/2) Σ ω_e², γ = omega_reg · E_ref / #edges (see ON THE SQP SOLVER) */
+    int32_t negative_curvature; /* 0: off; 1: Moré–Sorensen-type step on an indefinite true Hessian (ON NEGATIVE CURVATURE) */
     void (*progress)(const wr_wf_iter_info *info, void *user); /* called once per accepted step */
     void *user;
 } wr_wf_solve_desc;
 
 typedef struct wr_wf_solve_stats {
     int32_t iterations;     /* accepted steps */
-    int32_t n_rejected;     /* rejected trial steps (each cost one factorisation + one energy) */
+    int32_t n_rejected;     /* rejected trial steps (each cost one energy and, but for a Δ_nc cut of the
+                             * negative_curvature option, one factorisation) */
     int32_t n_factorizations;
     int32_t n_escapes;      /* second-order escapes from stationary a = 0 (see wr__wf_escape) */
+    int32_t n_negcurv;      /* accepted steps along a direction of negative curvature (negative_curvature option) */
     int32_t switch_iteration; /* first iteration with the true Hessian, -1 if never */
     int32_t n_vars;         /* reduced unknowns: free amplitudes + closed-form coordinates */
     int32_t n_generators;   /* cohomology generators of the complex outside W */
@@ -463,6 +475,10 @@ extern "C" {
 #define WR__WF_ROUNDOFF_FLOOR 1e-6 /* ... of at least 1e-6 |E_wf(start)| (excess energy can be ~0) */
 #define WR__WF_MAX_ESCAPES 50     /* second-order escapes from a = 0 per solve */
 #define WR__WF_AREF_FALLBACK 1e-3 /* a_ref = 1e-3 × bbox diagonal when the start has a = 0 everywhere */
+#define WR__WF_NC_LANCZOS 20      /* shift-invert Lanczos steps for the negative-curvature direction */
+#define WR__WF_NC_SEED 0x5eedULL  /* their (fixed) random start */
+#define WR__WF_NC_CUTS 4          /* Δ_nc cuts per iteration before the trial counts as rejected */
+#define WR__WF_NC_FLOOR 1e-2      /* Δ_nc >= this × ‖s(σ)‖_M (ON NEGATIVE CURVATURE) */
 
 /* Barycentric quadrature points (λ0, λ1, λ2), weight 1/3 each: symmetric degree-2 rule. */
 static const double wr__wf_qp[3][3] = {
@@ -2973,14 +2989,16 @@ typedef struct wr__wf_sqp {
     double aref, eref, greg, ebase;      /* scales (ON THE SQP SOLVER), regulariser weight, constant part of E */
     double mu, nu_up;                    /* Marquardt damping and its growth factor (Nielsen 1999) */
     double E;                            /* objective at y (E_wf without its constant part + regulariser) */
+    double *pnc, *wnc, *dnc, *lz;        /* negative_curvature option: direction p, s(σ), raw step (n each), Lanczos basis */
+    double nc_radius, nc_floor;          /* its Δ_nc (ON NEGATIVE CURVATURE), 0 until the first such step; floor */
     int hess_true;
 } wr__wf_sqp;
 
 /* One Levenberg–Marquardt trial sequence's outcome. */
 typedef struct wr__wf_trial {
-    int accepted, roundoff;
+    int accepted, roundoff, negcurv;
     int32_t nact, nfail;
-    double Et, rho;
+    double Et, rho, curv, gain; /* curv, gain: see wr_wf_iter_info */
 } wr__wf_trial;
 
 static void wr__wf_sqp_free(wr__wf_sqp *Q) {
@@ -3007,6 +3025,10 @@ static void wr__wf_sqp_free(wr__wf_sqp *Q) {
     wr_free(Q->mdiag);
     wr_free(Q->ks);
     wr_free(Q->ainit);
+    wr_free(Q->pnc);
+    wr_free(Q->wnc);
+    wr_free(Q->dnc);
+    wr_free(Q->lz);
 }
 
 /* Defaults of wr_wf_solve_desc (the comment above the struct lists them). */
@@ -3023,6 +3045,9 @@ static wr_status wr__wf_sqp_defaults(wr_wf_solve_desc *D, const wr_wf_solve_desc
     if ((int)D->hessian < 0 || (int)D->hessian > (int)WR_WF_HESSIAN_TRUE)
         return wr_fail(diag, WR_ERR_INVALID_ARG, (int32_t)D->hessian, "wf solve: unknown Hessian strategy %d",
                        (int)D->hessian);
+    if (D->negative_curvature != 0 && D->negative_curvature != 1)
+        return wr_fail(diag, WR_ERR_INVALID_ARG, D->negative_curvature, "wf solve: negative_curvature %d (0 or 1)",
+                       (int)D->negative_curvature);
     return WR_OK;
 }
 
@@ -3206,6 +3231,13 @@ static wr_status wr__wf_sqp_pattern(wr__wf_sqp *Q, wr_diag *diag) {
     Q->mdiag = (double *)wr_alloc_array((size_t)n + 1, sizeof(double));
     Q->ks = (double *)wr_alloc_array((size_t)n + 1, sizeof(double));
     if (!Q->kmodel || !Q->mdiag || !Q->ks) return wr_fail(diag, WR_ERR_NOMEM, -1, "wf solve: out of memory");
+    if (Q->D.negative_curvature) {
+        Q->pnc = (double *)wr_calloc_array((size_t)n + 1, sizeof(double));
+        Q->wnc = (double *)wr_calloc_array((size_t)n + 1, sizeof(double));
+        Q->dnc = (double *)wr_calloc_array((size_t)n + 1, sizeof(double));
+        Q->lz = (double *)wr_alloc_array((size_t)WR__WF_NC_LANCZOS * ((size_t)n + 1), sizeof(double));
+        if (!Q->pnc || !Q->wnc || !Q->dnc || !Q->lz) return wr_fail(diag, WR_ERR_NOMEM, -1, "wf solve: out of memory");
+    }
     return WR_OK;
 }
 
@@ -3290,8 +3322,9 @@ static void wr__wf_sqp_damping(wr__wf_sqp *Q) {
 
 /* Solve (K + μ M) d = -g on the free set of the ε-active set (Bertsekas 1982 projected Newton:
  * amplitudes within ε of the bound whose scaled gradient pushes them down are held and moved onto
- * it) and turn d into the projected step yt - y. Returns the factor/solve status. */
-static wr_status wr__wf_sqp_damped_step(wr__wf_sqp *Q, double epsact, int32_t *nact) {
+ * it); d is 0 on the held set (wr__wf_sqp_project moves those onto the bound). Returns the
+ * factor/solve status; K's values stay the factored K + μ M. */
+static wr_status wr__wf_sqp_damped_solve(wr__wf_sqp *Q, double epsact, int32_t *nact) {
     wr_csr *K = &Q->KA.A;
     wr_spd_stats ss;
     wr_status fs;
@@ -3318,14 +3351,19 @@ static wr_status wr__wf_sqp_damped_step(wr__wf_sqp *Q, double epsact, int32_t *n
     if (!fs) fs = wr_spd_solver_solve(&Q->SV, K, Q->rhs, Q->d, &ss, NULL);
     Q->S.n_factorizations++;
     Q->S.seconds_solve += wr_time_seconds() - t1;
-    if (fs) return fs;
-    for (i = 0; i < n; ++i) {
-        if (Q->active[i]) Q->d[i] = -Q->y[i]; /* onto the bound */
-        Q->yt[i] = Q->y[i] + Q->d[i];
+    return fs;
+}
+
+/* The raw step dr (0 on the held set) as the projected step: held amplitudes onto the bound, yt =
+ * max(y + dr, 0) on the amplitudes, d = yt - y. dr may be Q->d. */
+static void wr__wf_sqp_project(wr__wf_sqp *Q, const double *dr) {
+    int32_t i;
+    for (i = 0; i < Q->n; ++i) {
+        double di = Q->active[i] ? -Q->y[i] : dr[i]; /* onto the bound */
+        Q->yt[i] = Q->y[i] + di;
         if (i < Q->na && Q->yt[i] < 0.0) Q->yt[i] = 0.0;
         Q->d[i] = Q->yt[i] - Q->y[i]; /* the projected step s */
     }
-    return WR_OK;
 }
 
 /* Model decrease of the projected step s = d: -(gᵀs + ½ sᵀ K s) with the undamped model K. */
@@ -3343,60 +3381,211 @@ static double wr__wf_sqp_predicted(wr__wf_sqp *Q) {
     return pred;
 }
 
+/* ON NEGATIVE CURVATURE (wr_wf_solve_desc.negative_curvature). The factorisation of K + μ M failed at
+ * the trust region's μ and succeeded at σ = 10^k μ: the true Hessian has a direction of curvature
+ * below -μ in the M metric, and the default takes s(σ) = -(K + σ M)⁻¹ g with μ raised to σ. Where g
+ * is nearly orthogonal to that direction (Moré & Sorensen's "hard case"; at a = 0 under compression
+ * E is even in a, so ∂E/∂a = 0 there) s(σ) hardly moves along it: the saddle crawl of
+ * docs/notes-tfw-solver.md. The option takes d = s(σ) + τ p instead (Moré & Sorensen 1979's
+ * pairing of a Newton-type step with a direction of negative curvature), p an M-unit direction with
+ * pᵀKp < 0: the Ritz vector of the largest eigenvalue of (K + σ M)⁻¹ M (its eigenvalues 1/(λ + σ)
+ * > 0 are largest for the most negative λ of the pencil (K, M)) after WR__WF_NC_LANCZOS steps of
+ * shift-invert Lanczos in the M inner product, with the factor of K + σ M already at hand and a
+ * seeded random start, used only if its Rayleigh quotient with K is negative. Of ±p the sign with the larger model
+ * decrease of the projected step (a ≥ 0) is taken. τ = Δ_nc, a radius of its own (M-norm), set to
+ * ‖s(σ)‖_M on the first such step of a solve, doubled after a step with ρ > 3/4, ×¼ after a
+ * rejection (up to WR__WF_NC_CUTS cuts per iteration, reusing the factor; then the trial counts as
+ * rejected as any other), never below WR__WF_NC_FLOOR ‖s(σ)‖_M: a shorter component along p changes
+ * nothing that s(σ) alone does not, so a rejection there is the damping's to answer (without the
+ * floor Δ_nc fell to 1e-47 … 1e-65 on the stretched sheet and the wasted cuts cost iterations:
+ * docs/notes-tfw-solver.md). μ is not raised to σ: the damping stays the trust region's and is adapted
+ * from ρ as for any other step. */
+static int wr__wf_sqp_negcurv(wr__wf_sqp *Q, wr__wf_trial *out) {
+    const wr_csr *K = &Q->KA.A;
+    double *p = Q->pnc, *V = Q->lz, T[WR__WF_NC_LANCZOS * WR__WF_NC_LANCZOS], th[WR__WF_NC_LANCZOS];
+    double Y[WR__WF_NC_LANCZOS * WR__WF_NC_LANCZOS], lam = 0.0, sm = 0.0, beta = 0.0;
+    int32_t i, j, l, k = 0, n = Q->n;
+    size_t ns = (size_t)n;
+    wr_rng rng;
+    wr_spd_stats ss;
+    wr_rng_seed(&rng, WR__WF_NC_SEED);
+    memset(T, 0, sizeof T);
+    memcpy(Q->wnc, Q->d, sizeof(double) * ns); /* s(σ), raw (0 on the held set) */
+    for (i = 0; i < n; ++i) p[i] = Q->active[i] ? 0.0 : wr_rng_uniform(&rng) - 0.5;
+    /* shift-invert Lanczos in the M inner product on (K + σ M)⁻¹ M, full reorthogonalisation */
+    for (k = 0; k < WR__WF_NC_LANCZOS; ++k) {
+        double *q = V + (size_t)k * ns, nrm = 0.0, al = 0.0;
+        for (i = 0; i < n; ++i) nrm += Q->mdiag[i] * p[i] * p[i];
+        nrm = sqrt(nrm);
+        if (k > 0) T[(k - 1) * WR__WF_NC_LANCZOS + k] = T[k * WR__WF_NC_LANCZOS + k - 1] = beta = nrm;
+        if (!(nrm > 0.0) || !isfinite(nrm) || (k > 0 && beta <= 1e-12 * fabs(T[0]))) break; /* invariant subspace */
+        for (i = 0; i < n; ++i) {
+            q[i] = p[i] / nrm;
+            Q->dnc[i] = Q->active[i] ? 0.0 : Q->mdiag[i] * q[i];
+            p[i] = 0.0;
+        }
+        if (wr_spd_solver_solve(&Q->SV, K, Q->dnc, p, &ss, NULL) != WR_OK) return 0;
+        for (i = 0; i < n; ++i)
+            if (Q->active[i]) p[i] = 0.0;
+        for (l = 0; l < 2; ++l) /* twice is enough (Parlett) */
+            for (j = 0; j <= k; ++j) {
+                const double *qj = V + (size_t)j * ns;
+                double c = 0.0;
+                for (i = 0; i < n; ++i) c += Q->mdiag[i] * qj[i] * p[i];
+                for (i = 0; i < n; ++i) p[i] -= c * qj[i];
+                if (j == k) al += c;
+            }
+        T[k * WR__WF_NC_LANCZOS + k] = al;
+    }
+    if (k < 2) return 0;
+    {   /* the Ritz pair of the largest θ = 1 / (λ + σ) */
+        double Tk[WR__WF_NC_LANCZOS * WR__WF_NC_LANCZOS];
+        for (i = 0; i < k; ++i)
+            for (j = 0; j < k; ++j) Tk[i * k + j] = T[i * WR__WF_NC_LANCZOS + j];
+        wr_dense_sym_eig((int)k, Tk, th, Y);
+    }
+    for (i = 0; i < n; ++i) p[i] = 0.0;
+    for (j = 0; j < k; ++j) {
+        const double *qj = V + (size_t)j * ns;
+        double c = Y[j * k + (k - 1)];
+        for (i = 0; i < n; ++i) p[i] += c * qj[i];
+    }
+    for (i = 0; i < n; ++i) { /* Rayleigh quotient pᵀKp / pᵀMp with the undamped model on the free set */
+        int32_t t;
+        double r = 0.0;
+        if (Q->active[i]) continue;
+        for (t = K->rowptr[i]; t < K->rowptr[i + 1]; ++t)
+            if (!Q->active[K->col[t]]) r += Q->kmodel[t] * p[K->col[t]];
+        lam += p[i] * r;
+        sm += Q->mdiag[i] * Q->wnc[i] * Q->wnc[i];
+    }
+    {
+        double pm = 0.0;
+        for (i = 0; i < n; ++i) pm += Q->mdiag[i] * p[i] * p[i];
+        if (!(pm > 0.0)) return 0;
+        for (i = 0; i < n; ++i) p[i] /= sqrt(pm); /* ‖p‖_M = 1 */
+        lam /= pm;
+    }
+    if (!(lam < 0.0) || !(sm > 0.0)) return 0; /* no direction of negative curvature found */
+    /* SCRATCH_RADIUS_HOOK */
+    if (!(Q->nc_radius > 0.0)) Q->nc_radius = sqrt(sm);
+    Q->nc_floor = WR__WF_NC_FLOOR * sqrt(sm);
+    if (Q->nc_radius < Q->nc_floor) Q->nc_radius = Q->nc_floor;
+    out->curv = lam;
+    return 1;
+}
+
+/* d = s(σ) + Δ_nc (±p) in Q->dnc, the sign with the larger model decrease of the projected step;
+ * out->gain = the chosen step's model decrease minus the other sign's (≥ 0 by the choice), and
+ * out->curv = the Rayleigh quotient of the direction d - s(σ) actually added (pᵀKp/pᵀMp, < 0). */
+static void wr__wf_sqp_nc_step(wr__wf_sqp *Q, wr__wf_trial *out) {
+    const wr_csr *K = &Q->KA.A;
+    double pred[2] = {0.0, 0.0}, sp, qk = 0.0, qm = 0.0;
+    int32_t i, n = Q->n;
+    int sgn;
+    for (sgn = 0; sgn < 2; ++sgn) {
+        double tau = sgn == 0 ? Q->nc_radius : -Q->nc_radius;
+        for (i = 0; i < n; ++i) Q->dnc[i] = Q->wnc[i] + tau * Q->pnc[i];
+        wr__wf_sqp_project(Q, Q->dnc);
+        pred[sgn] = wr__wf_sqp_predicted(Q);
+    }
+    sp = pred[0] >= pred[1] ? 1.0 : -1.0;
+    for (i = 0; i < n; ++i) Q->dnc[i] = Q->wnc[i] + sp * Q->nc_radius * Q->pnc[i];
+    wr__wf_sqp_project(Q, Q->dnc);
+    out->gain = wr__wf_sqp_predicted(Q) - pred[sp > 0.0 ? 1 : 0];
+    for (i = 0; i < n; ++i) {
+        int32_t t;
+        double r = 0.0, di = Q->dnc[i] - Q->wnc[i];
+        if (Q->active[i]) continue;
+        for (t = K->rowptr[i]; t < K->rowptr[i + 1]; ++t)
+            if (!Q->active[K->col[t]]) r += Q->kmodel[t] * (Q->dnc[K->col[t]] - Q->wnc[K->col[t]]);
+        qk += di * r;
+        qm += Q->mdiag[i] * di * di;
+    }
+    out->curv = qm > 0.0 ? qk / qm : 0.0;
+}
+
+/* Evaluate the projected trial step in Q->d / Q->yt and decide it: 1 when accepted (or stopped
+ * by round-off: out->roundoff), μ adapted; 0 when rejected (the caller adapts μ). */
+static int wr__wf_sqp_judge(wr__wf_sqp *Q, double kkt, wr__wf_trial *out) {
+    const wr_wf *wf = Q->wf;
+    double pred = wr__wf_sqp_predicted(Q);
+    wr_status fs;
+    wr__wf_sqp_tox(wf, &Q->B, Q->avar, Q->yt, Q->na, Q->xa, Q->xo);
+    fs = wr__wf_energy_impl(wf, Q->xa, Q->xo, 1, &out->Et, NULL, NULL, NULL, NULL);
+    out->Et += wr__wf_reg(&Q->B, Q->greg, Q->xo, NULL);
+    out->rho = (fs == WR_OK && pred > 0.0) ? (Q->E - out->Et) / pred : -1.0;
+    /* the model promises less than the energy's round-off: E - Et is noise and ρ a coin flip
+     * (whether the last Newton step was taken used to depend on the last bits of E). Decide
+     * by the stationarity residual instead: take the step when it lowers it (a Newton step
+     * near a minimiser does), else no evaluation can confirm a decrease any more and rule 1
+     * (energy change below resolution) holds. */
+    if (fs == WR_OK && pred >= 0.0 && pred <= WR__WF_ROUNDOFF * fmax(fabs(Q->E), WR__WF_ROUNDOFF_FLOOR * Q->eref)) {
+        double Eg = 0.0, kt = HUGE_VAL;
+        if (wr__wf_energy_impl(wf, Q->xa, Q->xo, 1, &Eg, Q->gx, NULL, NULL, NULL) == WR_OK) {
+            wr__wf_reg(&Q->B, Q->greg, Q->xo, Q->gx + wf->nv);
+            wr__wf_sqp_reduce(Q, Q->gx, Q->ks);
+            kt = wr__wf_kkt(Q->yt, Q->ks, Q->n, Q->na, Q->aref, Q->eref);
+        }
+        if (kt < kkt) {
+            out->rho = 1.0; /* for the report and rules 1/3: the model is as good as it can be checked */
+            Q->mu = fmax(WR__WF_MU_MIN, Q->mu / 3.0);
+            Q->nu_up = 2.0;
+            out->accepted = 1;
+        } else {
+            out->roundoff = 1;
+        }
+        return 1;
+    }
+    if (fs == WR_OK && pred > 0.0 && out->rho > WR__WF_RHO_ACCEPT) {
+        double c3 = 2.0 * out->rho - 1.0;
+        Q->mu *= fmax(1.0 / 3.0, 1.0 - c3 * c3 * c3);
+        if (Q->mu < WR__WF_MU_MIN) Q->mu = WR__WF_MU_MIN;
+        Q->nu_up = 2.0;
+        out->accepted = 1;
+        return 1;
+    }
+    return 0;
+}
+
 /* Levenberg–Marquardt trust region (Nielsen 1999): damped steps until one is accepted on sufficient
  * actual/predicted decrease ρ, adapting μ. A step whose predicted decrease is below E's round-off
- * is judged by the stationarity residual instead (out->roundoff when it does not lower it). */
+ * is judged by the stationarity residual instead (out->roundoff when it does not lower it). With
+ * the negative_curvature option, see ON NEGATIVE CURVATURE. */
 static wr_status wr__wf_sqp_trust_region(wr__wf_sqp *Q, double kkt, wr__wf_trial *out, wr_diag *diag) {
-    const wr_wf *wf = Q->wf;
     double epsact = WR__WF_EPS_ACTIVE;
     memset(out, 0, sizeof *out);
     for (;;) {
-        double pred;
-        wr_status fs = wr__wf_sqp_damped_step(Q, epsact, &out->nact);
-        if (fs) {
+        double mu_tr = Q->mu; /* the trust region's μ; raised below while K + μM does not factor */
+        int failed = 0, cut;
+        wr_status fs;
+        while ((fs = wr__wf_sqp_damped_solve(Q, epsact, &out->nact)) != WR_OK) {
             if (fs != WR_ERR_NOT_SPD && fs != WR_ERR_NOT_CONVERGED)
                 return wr_fail(diag, fs, -1, "wf solve: linear solve failed (%s)", wr_status_string(fs));
+            failed = 1;
             Q->mu = fmax(WR__WF_MU_MIN, Q->mu) * WR__WF_MU_UP;
             if (Q->mu > WR__WF_MU_MAX) return WR_OK;
-            continue;
         }
-        pred = wr__wf_sqp_predicted(Q);
-        wr__wf_sqp_tox(wf, &Q->B, Q->avar, Q->yt, Q->na, Q->xa, Q->xo);
-        fs = wr__wf_energy_impl(wf, Q->xa, Q->xo, 1, &out->Et, NULL, NULL, NULL, NULL);
-        out->Et += wr__wf_reg(&Q->B, Q->greg, Q->xo, NULL);
-        out->rho = (fs == WR_OK && pred > 0.0) ? (Q->E - out->Et) / pred : -1.0;
-        /* the model promises less than the energy's round-off: E - Et is noise and ρ a coin flip
-         * (whether the last Newton step was taken used to depend on the last bits of E). Decide
-         * by the stationarity residual instead: take the step when it lowers it (a Newton step
-         * near a minimiser does), else no evaluation can confirm a decrease any more and rule 1
-         * (energy change below resolution) holds. */
-        if (fs == WR_OK && pred >= 0.0 && pred <= WR__WF_ROUNDOFF * fmax(fabs(Q->E), WR__WF_ROUNDOFF_FLOOR * Q->eref)) {
-            double Eg = 0.0, kt = HUGE_VAL;
-            if (wr__wf_energy_impl(wf, Q->xa, Q->xo, 1, &Eg, Q->gx, NULL, NULL, NULL) == WR_OK) {
-                wr__wf_reg(&Q->B, Q->greg, Q->xo, Q->gx + wf->nv);
-                wr__wf_sqp_reduce(Q, Q->gx, Q->ks);
-                kt = wr__wf_kkt(Q->yt, Q->ks, Q->n, Q->na, Q->aref, Q->eref);
+        out->negcurv = failed && Q->hess_true && Q->D.negative_curvature && wr__wf_sqp_negcurv(Q, out);
+        if (out->negcurv) Q->mu = mu_tr; /* ON NEGATIVE CURVATURE: μ stays the trust region's */
+        for (cut = 0;; ++cut) {
+            if (out->negcurv) wr__wf_sqp_nc_step(Q, out);
+            wr__wf_sqp_project(Q, out->negcurv ? Q->dnc : Q->d);
+            if (wr__wf_sqp_judge(Q, kkt, out)) {
+                if (out->negcurv && out->rho > 0.75) Q->nc_radius *= 2.0;
+                if (!out->negcurv) out->curv = out->gain = 0.0;
+                return WR_OK;
             }
-            if (kt < kkt) {
-                out->rho = 1.0; /* for the report and rules 1/3: the model is as good as it can be checked */
-                Q->mu = fmax(WR__WF_MU_MIN, Q->mu / 3.0);
-                Q->nu_up = 2.0;
-                out->accepted = 1;
-            } else {
-                out->roundoff = 1;
+            ++Q->S.n_rejected;
+            ++out->nfail;
+            if (!out->negcurv) break;
+            Q->nc_radius *= 0.25;
+            if (Q->nc_radius < Q->nc_floor) { /* shorter changes nothing s(σ) does not: μ's turn */
+                Q->nc_radius = Q->nc_floor;
+                break;
             }
-            return WR_OK;
+            if (cut + 1 >= WR__WF_NC_CUTS) break;
         }
-        if (fs == WR_OK && pred > 0.0 && out->rho > WR__WF_RHO_ACCEPT) {
-            double c3 = 2.0 * out->rho - 1.0;
-            Q->mu *= fmax(1.0 / 3.0, 1.0 - c3 * c3 * c3);
-            if (Q->mu < WR__WF_MU_MIN) Q->mu = WR__WF_MU_MIN;
-            Q->nu_up = 2.0;
-            out->accepted = 1;
-            return WR_OK;
-        }
-        ++Q->S.n_rejected;
-        ++out->nfail;
         /* after a rejection ε shrinks ×0.1: snapping a near-bound amplitude to 0 is the one part of
          * the step μ does not shorten */
         epsact *= 0.1;
@@ -3433,6 +3622,10 @@ static int wr__wf_sqp_take(wr__wf_sqp *Q, int32_t it, double kkt, const wr__wf_t
     info.n_active = tr->nact;
     info.n_rejected = tr->nfail;
     info.true_hessian = Q->hess_true;
+    info.negcurv = tr->negcurv;
+    info.curvature = tr->curv;
+    info.nc_gain = tr->gain;
+    Q->S.n_negcurv += tr->negcurv;
     if (Q->D.progress) Q->D.progress(&info, Q->D.user);
     Q->S.iterations = it + 1;
     if (Q->hess_true && Q->S.switch_iteration < 0) Q->S.switch_iteration = it;
