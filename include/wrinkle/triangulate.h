@@ -438,9 +438,9 @@ static void wr__attr_bary(wr__cdt *S, int32_t q, int32_t a, int32_t b, int32_t c
 static int wr__conflict(const wr__cdt *S, int32_t u, const double *p) {
     const int32_t *v = S->tv + 3 * u;
     int g;
-    if (v[0] >= 0 && v[1] >= 0 && v[2] >= 0) return wr_incircle(WR__P(S, v[0]), WR__P(S, v[1]), WR__P(S, v[2]), p) > 0.0;
+    if (v[0] >= 0 && v[1] >= 0 && v[2] >= 0) return wr__incircle_in(WR__P(S, v[0]), WR__P(S, v[1]), WR__P(S, v[2]), p) > 0.0;
     g = v[0] < 0 ? 0 : v[1] < 0 ? 1 : 2;
-    return wr_orient2d(WR__P(S, v[wr__n1[g]]), WR__P(S, v[wr__n2[g]]), p) > 0.0;
+    return wr__orient2d_in(WR__P(S, v[wr__n1[g]]), WR__P(S, v[wr__n2[g]]), p) > 0.0;
 }
 
 /* Flip the edge half-edge he = (t, k) across to its twin: (a,b,c)+(d,c,b) -> (a,b,d)+(d,c,a). a ends
@@ -633,7 +633,7 @@ static int wr__locate(wr__cdt *S, const double *p, int32_t start, int blocking, 
             int g = v[0] < 0 ? 0 : v[1] < 0 ? 1 : 2;
             int32_t x = v[wr__n1[g]], y = v[wr__n2[g]];
             const double *px = WR__P(S, x), *py = WR__P(S, y);
-            double o = wr_orient2d(px, py, p);
+            double o = wr__orient2d_in(px, py, p);
             if (o > 0.0) {
                 *res = t;
                 return WR__LOC_TRI;
@@ -679,7 +679,7 @@ static int wr__locate(wr__cdt *S, const double *p, int32_t start, int blocking, 
                     o[k] = 1.0;
                     continue;
                 }
-                o[k] = wr_orient2d(WR__P(S, v[wr__n1[k]]), WR__P(S, v[wr__n2[k]]), p);
+                o[k] = wr__orient2d_in(WR__P(S, v[wr__n1[k]]), WR__P(S, v[wr__n2[k]]), p);
                 if (o[k] < 0.0) {
                     if (blocking && wr__cmark(S, he) != -1) {
                         *res = he;
@@ -1005,7 +1005,7 @@ static int wr__restore_delaunay(wr__cdt *S, wr__ivec *fresh) {
         v = S->tv + 3 * t;
         p = S->tv[he];
         d = S->tv[S->tn[he]];
-        if (wr_incircle(WR__P(S, v[0]), WR__P(S, v[1]), WR__P(S, v[2]), WR__P(S, d)) <= 0.0) continue;
+        if (wr__incircle_in(WR__P(S, v[0]), WR__P(S, v[1]), WR__P(S, v[2]), WR__P(S, d)) <= 0.0) continue;
         wr__flip(S, he, &t, &u);
         if (!wr__ivec_push(fresh, x) || !wr__ivec_push(fresh, d) || !wr__ivec_push(fresh, d) ||
             !wr__ivec_push(fresh, y) || !wr__ivec_push(fresh, y) || !wr__ivec_push(fresh, p) ||
@@ -1030,7 +1030,7 @@ static int wr__push3(wr__ivec *v, int32_t a, int32_t b, int32_t c) {
 /* x lies exactly on segment p-q strictly between its ends (exact orientation; for collinear points
  * the sign of (p-x)·(q-x) is exact: both terms are <= 0, each a correctly rounded product). */
 static int wr__strictly_on(const double *p, const double *q, const double *x) {
-    return wr_orient2d(p, q, x) == 0.0 && wr__dot3(x, p, q) < 0.0;
+    return wr__orient2d_in(p, q, x) == 0.0 && wr__dot3(x, p, q) < 0.0;
 }
 
 /* Input segment o lies on input segment s's line (exact orientation of its input end points):
@@ -1040,8 +1040,8 @@ static int wr__same_line(const wr__cdt *S, const wr__segctx *C, int32_t s, int32
     if (s < 0 || o < 0 || !C->seg) return 0;
     p = WR__P(S, C->in2int[C->seg[2 * s]]);
     q = WR__P(S, C->in2int[C->seg[2 * s + 1]]);
-    return wr_orient2d(p, q, WR__P(S, C->in2int[C->seg[2 * o]])) == 0.0 &&
-           wr_orient2d(p, q, WR__P(S, C->in2int[C->seg[2 * o + 1]])) == 0.0;
+    return wr__orient2d_in(p, q, WR__P(S, C->in2int[C->seg[2 * o]])) == 0.0 &&
+           wr__orient2d_in(p, q, WR__P(S, C->in2int[C->seg[2 * o + 1]])) == 0.0;
 }
 
 /* u-v is an edge constrained by an input segment other than s and not on its line. */
@@ -1178,7 +1178,7 @@ static wr_status wr__rc_leave_star(wr__cdt *S, wr__segctx *C, wr__rcpiece *P, in
         x = v[wr__n1[i]];
         y = v[wr__n2[i]];
         if (x >= 0 && y >= 0) {
-            double ox = wr_orient2d(pa, pb, WR__P(S, x)), oy = wr_orient2d(pa, pb, WR__P(S, y));
+            double ox = wr__orient2d_in(pa, pb, WR__P(S, x)), oy = wr__orient2d_in(pa, pb, WR__P(S, y));
             int32_t on = -1, hon = -1;
             if (ox == 0.0 && wr__dot3(pa, WR__P(S, x), pb) > 0.0)
                 on = x, hon = 3 * t + wr__n2[i];
@@ -1291,7 +1291,7 @@ static wr_status wr__rc_walk(wr__cdt *S, wr__segctx *C, wr__rcpiece *P, int32_t 
          * wrong (overflow), and its coordinates must not be read. */
         if (d < 0)
             return wr_fail(diag, WR_ERR_GEOMETRY, P->sid, "segment %d: the walk along it left the triangulation", P->sid);
-        o = wr_orient2d(pa, pb, WR__P(S, d));
+        o = wr__orient2d_in(pa, pb, WR__P(S, d));
         if (o == 0.0) { /* d lies on the segment: recover a-d now, d-b later */
             *bend = d;
             if (!wr__push3(&C->pieces, d, P->b, P->s)) return wr_fail(diag, WR_ERR_NOMEM, P->sid, "out of memory");
@@ -1330,14 +1330,14 @@ static wr_status wr__rc_flip_away(wr__cdt *S, wr__segctx *C, int32_t a, int32_t 
         if (he < 0) return wr_fail(diag, WR_ERR_GEOMETRY, sid, "segment %d: lost a crossing edge", sid);
         p = S->tv[he];
         q = S->tv[S->tn[he]];
-        o1 = wr_orient2d(WR__P(S, p), WR__P(S, q), WR__P(S, ex));
-        o2 = wr_orient2d(WR__P(S, p), WR__P(S, q), WR__P(S, ey));
+        o1 = wr__orient2d_in(WR__P(S, p), WR__P(S, q), WR__P(S, ex));
+        o2 = wr__orient2d_in(WR__P(S, p), WR__P(S, q), WR__P(S, ey));
         if ((o1 > 0.0 && o2 < 0.0) || (o1 < 0.0 && o2 > 0.0)) {
             int32_t t1, t2;
             double op, oq;
             wr__flip(S, he, &t1, &t2);
-            op = wr_orient2d(pa, pb, WR__P(S, p));
-            oq = wr_orient2d(pa, pb, WR__P(S, q));
+            op = wr__orient2d_in(pa, pb, WR__P(S, p));
+            oq = wr__orient2d_in(pa, pb, WR__P(S, q));
             if ((op > 0.0 && oq < 0.0) || (op < 0.0 && oq > 0.0)) {
                 if (!wr__ivec_push(&C->cross, p) || !wr__ivec_push(&C->cross, q))
                     return wr_fail(diag, WR_ERR_NOMEM, sid, "out of memory");
@@ -1488,8 +1488,8 @@ static int wr__segs_meet_sharply(const wr__cdt *S, const wr__ref *R, int32_t s1,
     double c = ux * vx + uy * vy, nn = (ux * ux + uy * uy) * (vx * vx + vy * vy);
     int meet = A[0] == B[0] || A[0] == B[1] || A[1] == B[0] || A[1] == B[1];
     if (!meet) {
-        double o1 = wr_orient2d(a0, a1, b0), o2 = wr_orient2d(a0, a1, b1), o3 = wr_orient2d(b0, b1, a0),
-               o4 = wr_orient2d(b0, b1, a1);
+        double o1 = wr__orient2d_in(a0, a1, b0), o2 = wr__orient2d_in(a0, a1, b1), o3 = wr__orient2d_in(b0, b1, a0),
+               o4 = wr__orient2d_in(b0, b1, a1);
         meet = ((o1 > 0 && o2 < 0) || (o1 < 0 && o2 > 0)) && ((o3 > 0 && o4 < 0) || (o3 < 0 && o4 > 0));
         if (!meet) return 0;
         return c * c > 0.25 * nn; /* crossing lines: the acute angle between them */
@@ -1721,7 +1721,7 @@ static int wr__continues(const wr__cdt *S, int32_t x, int32_t y) {
         int i = v[0] == x ? 0 : v[1] == x ? 1 : 2;
         int32_t w = v[wr__n1[i]];
         if (w >= 0 && w != y && S->cm[3 * t + wr__n2[i]] != -1 &&
-            wr_orient2d(WR__P(S, x), WR__P(S, y), WR__P(S, w)) == 0.0 && wr__dot3(WR__P(S, x), WR__P(S, y), WR__P(S, w)) < 0.0)
+            wr__orient2d_in(WR__P(S, x), WR__P(S, y), WR__P(S, w)) == 0.0 && wr__dot3(WR__P(S, x), WR__P(S, y), WR__P(S, w)) < 0.0)
             return 1;
         t = S->tn[3 * t + wr__n1[i]] / 3;
     } while (t != t0 && ++guard < 1 << 20);
@@ -1790,8 +1790,8 @@ static int wr__split_segment(wr__cdt *S, wr__ref *R, int32_t he) {
         p[1] = px[1] + f * (py[1] - px[1]);
     }
     if (!wr__coord_ok(R, p)) return 0;
-    if (a >= 0 && !(wr_orient2d(WR__P(S, a), px, p) > 0.0 && wr_orient2d(WR__P(S, a), p, py) > 0.0)) return 0;
-    if (d >= 0 && !(wr_orient2d(WR__P(S, d), py, p) > 0.0 && wr_orient2d(WR__P(S, d), p, px) > 0.0)) return 0;
+    if (a >= 0 && !(wr__orient2d_in(WR__P(S, a), px, p) > 0.0 && wr__orient2d_in(WR__P(S, a), p, py) > 0.0)) return 0;
+    if (d >= 0 && !(wr__orient2d_in(WR__P(S, d), py, p) > 0.0 && wr__orient2d_in(WR__P(S, d), p, px) > 0.0)) return 0;
     if (S->nv >= S->max_vertices) return -1;
     if (!wr__reserve_verts(S, 1)) return -2;
     q = S->nv++;
@@ -2141,7 +2141,7 @@ static int wr__plan_valid(const wr__cdt *S, const wr__ref *R, const wr__plan *P,
     for (i = 0; i < P->nt; ++i) {
         const int32_t *v = P->tri + 3 * i;
         const double *a = WR__P(S, v[0]), *b = WR__P(S, v[1]), *c = WR__P(S, v[2]);
-        if (!(wr_orient2d(a, b, c) > 0.0)) return 0;
+        if (!(wr__orient2d_in(a, b, c) > 0.0)) return 0;
         for (e = 0; e < 3; ++e) {
             int32_t h = P->nbr[3 * i + e], x = v[wr__n1[e]], y = v[wr__n2[e]], d;
             if (h >= 0) { /* inner edge x -> y: the other triangle holds y -> x */
@@ -2154,7 +2154,7 @@ static int wr__plan_valid(const wr__cdt *S, const wr__ref *R, const wr__plan *P,
             used |= 1u << h;
             ++open;
             d = S->tv[P->out[h]];
-            if (P->ocm[h] == -1 && d >= 0 && wr_incircle(a, b, c, WR__P(S, d)) > 0.0) return 0;
+            if (P->ocm[h] == -1 && d >= 0 && wr__incircle_in(a, b, c, WR__P(S, d)) > 0.0) return 0;
         }
     }
     return open == P->n;
@@ -2237,9 +2237,9 @@ static int wr__plan_removal(const wr__cdt *S, const wr__ref *R, wr__plan *P, int
         for (i = 0; i < n && found < 0; ++i) {
             int32_t a = idx[(i + n - 1) % n], b = idx[i], cc = idx[(i + 1) % n];
             const double *pa = WR__P(S, a), *pb = WR__P(S, b), *pc = WR__P(S, cc);
-            int ok = wr_orient2d(pa, pb, pc) > 0.0;
+            int ok = wr__orient2d_in(pa, pb, pc) > 0.0;
             for (j = 0; j < n - 3 && ok; ++j) /* the ear's edge a -> c is ring edge i-1 -> i+1 of n-1 */
-                if (wr_incircle(pa, pb, pc, WR__P(S, idx[wr__ring_out((i + 2) % n, (i + n - 2) % n, j, n)])) > 0.0) ok = 0;
+                if (wr__incircle_in(pa, pb, pc, WR__P(S, idx[wr__ring_out((i + 2) % n, (i + n - 2) % n, j, n)])) > 0.0) ok = 0;
             if (ok) found = i;
         }
         if (found < 0) return 0;
@@ -2313,7 +2313,7 @@ static int wr__plan_collapse(const wr__cdt *S, const wr__ref *R, int32_t u, int3
         f[2] = P->ring[(i + 1) % n];
         if (wr__tri_ok(S, R, f, reg)) continue;
         for (j = 0; j < n - 2 && empty; ++j) /* nearest ring vertices first: i+2, i-1, i+3, i-2, ... */
-            if (!(wr_incircle(pa, pb, pc, WR__P(S, P->ring[wr__ring_out((i + 2) % n, (i + n - 1) % n, j, n)])) < 0.0))
+            if (!(wr__incircle_in(pa, pb, pc, WR__P(S, P->ring[wr__ring_out((i + 2) % n, (i + n - 1) % n, j, n)])) < 0.0))
                 empty = 0;
         if (empty) return -1;
     }
@@ -2344,7 +2344,7 @@ static int wr__plan_collapse(const wr__cdt *S, const wr__ref *R, int32_t u, int3
         nbr[3 * ((i + 1) % P->n) + 2] = 3 * i + 1;
     }
     for (i = 0; i < P->nt; ++i) /* u in the kernel of the polygon: the fan is a triangulation */
-        if (!(wr_orient2d(WR__P(S, u), WR__P(S, P->ring[i]), WR__P(S, P->ring[(i + 1) % P->n])) > 0.0)) return -1;
+        if (!(wr__orient2d_in(WR__P(S, u), WR__P(S, P->ring[i]), WR__P(S, P->ring[(i + 1) % P->n])) > 0.0)) return -1;
     while (again && flips < 4 * WR__RING_CAP) { /* Lawson within the polygon (ring edges stay) */
         again = 0;
         for (i = 0; i < P->nt; ++i)
@@ -2352,7 +2352,7 @@ static int wr__plan_collapse(const wr__cdt *S, const wr__ref *R, int32_t u, int3
                 int32_t *v = P->tri + 3 * i, x = v[wr__n1[e]], y = v[wr__n2[e]], a = v[e], d;
                 int h = nbr[3 * i + e], f, Nya, Nax, Nxd, Ndy;
                 if (h < 3 * i + 3 || /* a ring edge, or an inner edge seen from its lower triangle */
-                    !(wr_incircle(WR__P(S, v[0]), WR__P(S, v[1]), WR__P(S, v[2]), WR__P(S, P->tri[h])) > 0.0))
+                    !(wr__incircle_in(WR__P(S, v[0]), WR__P(S, v[1]), WR__P(S, v[2]), WR__P(S, P->tri[h])) > 0.0))
                     continue; /* each inner edge once per sweep, from its lower triangle */
                 /* (a, x, y) + (d, y, x) -> (a, x, d) + (d, y, a), relinking the four outer edges */
                 j = h / 3;
@@ -2834,7 +2834,7 @@ static int wr__prev_boundary(wr__tctx *X) {
     if (!e) return -1;
     for (i = 0; i < nt; ++i) {
         const int32_t *v = in->triangles + 3 * i;
-        int ccw = wr_orient2d(in->points + 2 * v[0], in->points + 2 * v[1], in->points + 2 * v[2]) > 0.0;
+        int ccw = wr__orient2d_in(in->points + 2 * v[0], in->points + 2 * v[1], in->points + 2 * v[2]) > 0.0;
         for (k = 0; k < 3; ++k) {
             int32_t a = v[wr__n1[k]], b = v[wr__n2[k]];
             e[6 * i + 2 * k] = ccw ? a : b;
@@ -2906,11 +2906,11 @@ static wr_status wr__cdt_delaunay(wr__tctx *X, wr_diag *diag) {
     for (i = 1; i < nid && i1 < 0; ++i)
         if (S->xy[2 * i] != S->xy[0] || S->xy[2 * i + 1] != S->xy[1]) i1 = i;
     for (i = 1; i < nid && i1 >= 0 && i2 < 0; ++i)
-        if (wr_orient2d(WR__P(S, i0), WR__P(S, i1), WR__P(S, i)) != 0.0) i2 = i;
+        if (wr__orient2d_in(WR__P(S, i0), WR__P(S, i1), WR__P(S, i)) != 0.0) i2 = i;
     if (i1 < 0) return wr_fail(diag, WR_ERR_GEOMETRY, -1, "fewer than 3 distinct points (%d given, all coincide)", n);
     if (i2 < 0) return wr_fail(diag, WR_ERR_GEOMETRY, -1, "all %d distinct points are collinear: no triangle exists", nid);
     if (!wr__reserve_tris(S, 2 * nid + 16)) return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory (%d points)", n);
-    if (wr_orient2d(WR__P(S, i0), WR__P(S, i1), WR__P(S, i2)) > 0.0)
+    if (wr__orient2d_in(WR__P(S, i0), WR__P(S, i1), WR__P(S, i2)) > 0.0)
         wr__init_tri(S, i0, i1, i2);
     else
         wr__init_tri(S, i0, i2, i1);
@@ -3282,7 +3282,7 @@ static wr_status wr__chk_triangles(wr__cdtchk *K, wr_diag *diag) {
         for (k = 0; k < 3; ++k)
             if (v[k] < 0 || v[k] >= K->nP)
                 return wr_fail(diag, WR_ERR_TOPOLOGY, t, "triangle %d: vertex %d out of range [0, %d)", t, v[k], K->nP);
-        a = wr_orient2d(r->points + 2 * v[0], r->points + 2 * v[1], r->points + 2 * v[2]);
+        a = wr__orient2d_in(r->points + 2 * v[0], r->points + 2 * v[1], r->points + 2 * v[2]);
         if (!(a > 0.0))
             return wr_fail(diag, WR_ERR_GEOMETRY, t, "triangle %d (%d, %d, %d) is %s", t, v[0], v[1], v[2],
                            a == 0.0 ? "degenerate (zero area)" : "clockwise (inverted)");
@@ -3319,7 +3319,7 @@ static wr_status wr__chk_adjacency(wr__cdtchk *K, wr_diag *diag) {
             if (t >= nb) continue; /* each interior edge once, from its lower triangle */
             ++K->E;
             K->uf[wr__uf_find(K->uf, t)] = wr__uf_find(K->uf, nb);
-            if (m < 0 && wr_incircle(r->points + 2 * v[0], r->points + 2 * v[1], r->points + 2 * v[2],
+            if (m < 0 && wr__incircle_in(r->points + 2 * v[0], r->points + 2 * v[1], r->points + 2 * v[2],
                                       r->points + 2 * w[k2]) > 0.0)
                 return wr_fail(diag, WR_ERR_GEOMETRY, t, "edge (%d, %d) between triangles %d and %d is not locally Delaunay",
                                a, b, t, nb);
@@ -3459,8 +3459,8 @@ static wr_status wr__chk_input_chains(wr__cdtchk *K, wr_diag *diag) {
                     const int32_t *e;
                     if (o < 0 || o >= r->n_input_segments) continue;
                     e = r->input_segments + 2 * o;
-                    if (!(wr_orient2d(P + 2 * a, P + 2 * b, P + 2 * e[0]) == 0.0 &&
-                          wr_orient2d(P + 2 * a, P + 2 * b, P + 2 * e[1]) == 0.0))
+                    if (!(wr__orient2d_in(P + 2 * a, P + 2 * b, P + 2 * e[0]) == 0.0 &&
+                          wr__orient2d_in(P + 2 * a, P + 2 * b, P + 2 * e[1]) == 0.0))
                         continue;
                 }
                 if (y == b) {
