@@ -1218,7 +1218,8 @@ WRDEF wr_status wr_cdt_out_write(const wr_cdt_out *o, const wr_cdt_poly *poly, c
     f = desc->has_first_number ? desc->first_number : poly ? poly->first_index : 0;
     mk = !desc->no_markers;
     na = o->n_node_attributes;
-    memset(&w, 0, sizeof w);
+    w.f.fp = NULL; /* not memset: w holds three path buffers (12 KB), each written before it is read */
+    w.f.path[0] = w.f.tmp[0] = w.path[0] = 0;
     w.command = desc->command;
     if (!desc->no_node) {
         if ((st = wr__ow_open(&w, base, "node", diag)) != WR_OK) goto fail;
