@@ -2035,6 +2035,7 @@ typedef struct wr__plan {
     int32_t slot[WR__RING_CAP], tri[3 * WR__RING_CAP];                /* region triangles; new ones */
     int32_t nbr[3 * WR__RING_CAP]; /* across new corner 3i+e: the new corner 3j+f facing the same edge,
                                     * or -1 - k for ring edge k (kept as the plan is built) */
+    uint32_t known_ok; /* bit i: new triangle i passed wr__tri_ok as it stands (wr__plan_valid skips it) */
     int n, ns, nt;
 } wr__plan;
 
@@ -2136,8 +2137,8 @@ static void wr__plan_nbr(wr__plan *P, int32_t c, int32_t h) {
 static int wr__plan_valid(const wr__cdt *S, const wr__ref *R, const wr__plan *P, int32_t reg) {
     int i, e, open = 0;
     uint32_t used = 0;
-    for (i = 0; i < P->nt; ++i)
-        if (!wr__tri_ok(S, R, P->tri + 3 * i, reg)) return 0;
+    for (i = 0; i < P->nt; ++i) /* the same test on the same vertex triple: the same answer */
+        if (!(P->known_ok >> i & 1u) && !wr__tri_ok(S, R, P->tri + 3 * i, reg)) return 0;
     for (i = 0; i < P->nt; ++i) {
         const int32_t *v = P->tri + 3 * i;
         const double *a = WR__P(S, v[0]), *b = WR__P(S, v[1]), *c = WR__P(S, v[2]);
@@ -2221,6 +2222,7 @@ static int wr__plan_star(const wr__cdt *S, int32_t v, wr__plan *P, int cap) {
 static int wr__plan_removal(const wr__cdt *S, const wr__ref *R, wr__plan *P, int32_t reg) {
     int32_t idx[WR__RING_CAP], lab[WR__RING_CAP], *t;
     int n, i, j, ears = 0;
+    P->known_ok = 0;
     /* every triangulation of a polygon of four or more vertices has two ears (r_i-1, r_i, r_i+1):
      * fewer than two corners whose ear meets the angle bound, and the plan fails */
     for (i = 0; i < P->n && ears < 2 && P->n > 3; ++i)
@@ -2249,6 +2251,7 @@ static int wr__plan_removal(const wr__cdt *S, const wr__ref *R, wr__plan *P, int
         t[1] = idx[found];
         t[2] = idx[(found + 1) % n];
         if (!wr__tri_ok(S, R, t, reg)) return 0;
+        P->known_ok |= 1u << P->nt; /* only the last triangle is left to wr__plan_valid's angle test */
         wr__plan_nbr(P, c, lab[found]);    /* corner a faces b -> c */
         wr__plan_nbr(P, c + 2, lab[prev]); /* corner c faces a -> b */
         lab[prev] = c + 1;                 /* the cut a -> c faces corner b */
@@ -2289,6 +2292,7 @@ static int wr__plan_collapse(const wr__cdt *S, const wr__ref *R, int32_t u, int3
     wr__plan Q;
     int32_t *nbr = P->nbr;
     int iu, iw, i, j, e, n = 0, flips = 0, again = 1;
+    P->known_ok = 0;
     if (!wr__plan_star(S, w, &Q, WR__RING_CAP / 2)) return 0;
     for (iu = 0; iu < U->n && U->ring[iu] != w; ++iu) {}
     for (iw = 0; iw < Q.n && Q.ring[iw] != u; ++iw) {}
@@ -2311,7 +2315,10 @@ static int wr__plan_collapse(const wr__cdt *S, const wr__ref *R, int32_t u, int3
         f[0] = u;
         f[1] = P->ring[i];
         f[2] = P->ring[(i + 1) % n];
-        if (wr__tri_ok(S, R, f, reg)) continue;
+        if (wr__tri_ok(S, R, f, reg)) { /* fan triangle i as it will be built; cleared if flipped */
+            P->known_ok |= 1u << i;
+            continue;
+        }
         for (j = 0; j < n - 2 && empty; ++j) /* nearest ring vertices first: i+2, i-1, i+3, i-2, ... */
             if (!(wr__incircle_in(pa, pb, pc, WR__P(S, P->ring[wr__ring_out((i + 2) % n, (i + n - 1) % n, j, n)])) < 0.0))
                 empty = 0;
@@ -2370,6 +2377,7 @@ static int wr__plan_collapse(const wr__cdt *S, const wr__ref *R, int32_t u, int3
                 if (Nax >= 0) nbr[Nax] = 3 * i + 2;
                 if (Nya >= 0) nbr[Nya] = 3 * j;
                 if (Ndy >= 0) nbr[Ndy] = 3 * j + 2;
+                P->known_ok &= ~((1u << i) | (1u << j));
                 again = 1;
                 ++flips;
             }
