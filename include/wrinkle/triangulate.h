@@ -290,6 +290,15 @@ typedef struct wr__cdt {
     int32_t *treg;      /* capt: region of each triangle (-1 none), NULL without regions */
     double *attr;       /* capv × na vertex attributes, NULL without them */
     int32_t na;
+    /* Refinement: the in-conflict answers of the last cavity search (wr__cavity_encroached), reused by
+     * wr__legalize when that cavity's point is inserted. ktag[t] = (kid << 1) | answer for the triangles
+     * the search tested; kon while the insertion runs. The triangles legalize tests are those across the
+     * new point's star, never modified since the search (a flip or split only changes triangles that
+     * then hold the new point), so the answer is the one it would compute. */
+    uint32_t *ktag;
+    int32_t kcap;
+    uint32_t kid;
+    int kon;
 } wr__cdt;
 
 static int wr__push(wr__cdt *S, int32_t x) {
@@ -485,7 +494,8 @@ static void wr__legalize(wr__cdt *S, int32_t p) {
          * enlarge the domain (fuzzer findings cdt_needle_hull_not_delaunay, cdt_tiny_edge_refine_cubic:
          * the buried hull edges were non-Delaunay and the new hull edge unconstrained). */
         if (S->fixed_boundary && WR__GHOSTLY(S, he / 3)) continue;
-        if (!wr__conflict(S, S->tn[he] / 3, pp)) continue;
+        u = S->tn[he] / 3;
+        if (S->kon && u < S->kcap && S->ktag[u] >> 1 == S->kid ? !(S->ktag[u] & 1u) : !wr__conflict(S, u, pp)) continue;
         wr__flip(S, he, &t, &u);
         S->stk[S->nstk++] = 3 * t; /* room: two pushes replace one pop, reserved by callers */
         S->stk[S->nstk++] = 3 * u + 2;
@@ -1882,6 +1892,18 @@ static int wr__cavity_encroached(wr__cdt *S, wr__ref *R, int32_t tt, int loc, in
     int32_t i, k;
     R->cav.n = 0;
     S->nstk = 0;
+    if (S->kcap < S->nt) { /* room for every triangle's answer (without it, legalize computes its own) */
+        uint32_t *kt = (uint32_t *)wr_realloc_array(S->ktag, (size_t)S->capt, sizeof(uint32_t));
+        if (kt) {
+            memset(kt + S->kcap, 0, sizeof(uint32_t) * (size_t)(S->capt - S->kcap));
+            S->ktag = kt;
+            S->kcap = S->capt;
+        }
+    }
+    if (++S->kid >= 1u << 31) { /* the tags wrap: none is current */
+        if (S->ktag) memset(S->ktag, 0, sizeof(uint32_t) * (size_t)S->kcap);
+        S->kid = 1;
+    }
     if (!wr__ivec_push(&R->cav, tt)) return 0;
     if (loc == WR__LOC_EDGE && S->cm[r] == -1 && wr__is_live(S, S->tn[r] / 3))
         if (!wr__ivec_push(&R->cav, S->tn[r] / 3)) return 0;
@@ -1898,7 +1920,10 @@ static int wr__cavity_encroached(wr__cdt *S, wr__ref *R, int32_t tt, int loc, in
             }
             if (!wr__is_live(S, u)) continue;
             for (j = 0; j < R->cav.n && !seen; ++j) seen = R->cav.a[j] == u;
-            if (seen || !wr__conflict(S, u, cp)) continue;
+            if (seen) continue;
+            j = wr__conflict(S, u, cp);
+            if (u < S->kcap) S->ktag[u] = S->kid << 1 | (uint32_t)j;
+            if (!j) continue;
             if (!wr__ivec_push(&R->cav, u)) return 0;
         }
         /* A candidate's cavity is a handful of triangles in a graded mesh. Hundreds mean huge,
@@ -1944,6 +1969,7 @@ static int wr__drain_segq(wr__cdt *S, wr__ref *R) {
  * triangle (a, b, c). 1 ok, 0 not inserted, -1 budget, -2 out of memory. */
 static int wr__insert_free(wr__cdt *S, wr__ref *R, int loc, int32_t r, const double *cp, const wr__bad *bt) {
     int32_t q;
+    int i;
     /* checked here, not before the walk: a point outside the domain is not inserted anyway (the
      * segment it lies beyond is split instead) */
     if (!wr__coord_ok(R, cp)) return 0;
@@ -1955,7 +1981,10 @@ static int wr__insert_free(wr__cdt *S, wr__ref *R, int loc, int32_t r, const dou
     S->vtri[q] = -1;
     S->vseg[q] = -1;
     wr__attr_bary(S, q, bt->a, bt->b, bt->c);
-    if (loc == WR__LOC_TRI ? !wr__split_tri(S, r, q) : !wr__split_edge(S, r, q)) return -2;
+    S->kon = 1; /* the cavity of cp was searched just before (wr__fix_bad) */
+    i = loc == WR__LOC_TRI ? wr__split_tri(S, r, q) : wr__split_edge(S, r, q);
+    S->kon = 0;
+    if (!i) return -2;
     R->n_steiner++;
     return wr__scan_star(S, R, q) ? 1 : -2;
 }
@@ -2581,6 +2610,7 @@ static void wr__cdt_release(wr__cdt *S) {
     wr_free(S->stk);
     wr_free(S->treg);
     wr_free(S->attr);
+    wr_free(S->ktag);
     memset(S, 0, sizeof *S);
 }
 
