@@ -348,6 +348,43 @@ WRDEF double wr_incircle(const double *a, const double *b, const double *c, cons
     return wr__incircle_in(a, b, c, d);
 }
 
+/* incircle(a, b, c, x) for one triangle (a, b, c) and many x (triangulate.h's scans of a ring): the
+ * filter of incircle(b, c, x, a), whose sign is the opposite one (the lifted 4x4 determinant of
+ * (b, c, x, a) is that of (a, b, c, x) with its rows shifted cyclically: an odd permutation), with the
+ * terms without x computed once. Each rounded value is the one the filter of wr__incircle_in(b, c, x,
+ * a) computes, in the same order, so its error bound holds; when it cannot decide, the exact
+ * wr__incircle_in(a, b, c, x). */
+typedef struct wr__icfix {
+    const double *a, *b, *c;
+    double pdx, pdy, qdx, qdy, pl, ql, pq, pqa; /* b - a, c - a, their lifts, cross product, permanent */
+} wr__icfix;
+static inline void wr__icfix_set(wr__icfix *F, const double *a, const double *b, const double *c) {
+    double pq1, pq2;
+    F->a = a;
+    F->b = b;
+    F->c = c;
+    F->pdx = b[0] - a[0];
+    F->pdy = b[1] - a[1];
+    F->qdx = c[0] - a[0];
+    F->qdy = c[1] - a[1];
+    pq1 = F->pdx * F->qdy;
+    pq2 = F->qdx * F->pdy;
+    F->pl = F->pdx * F->pdx + F->pdy * F->pdy;
+    F->ql = F->qdx * F->qdx + F->qdy * F->qdy;
+    F->pq = pq1 - pq2;
+    F->pqa = fabs(pq1) + fabs(pq2);
+}
+static inline double wr__incircle_fixed(const wr__icfix *F, const double *x) {
+    double rdx = x[0] - F->a[0], rdy = x[1] - F->a[1];
+    double qr1 = F->qdx * rdy, qr2 = rdx * F->qdy, rp1 = rdx * F->pdy, rp2 = F->pdx * rdy;
+    double rl = rdx * rdx + rdy * rdy;
+    double det = F->pl * (qr1 - qr2) + F->ql * (rp1 - rp2) + rl * F->pq;
+    double perm = (fabs(qr1) + fabs(qr2)) * F->pl + (fabs(rp1) + fabs(rp2)) * F->ql + F->pqa * rl;
+    double eb = WR__ICC_BOUND * perm;
+    if (det > eb || -det > eb) return -det;
+    return wr__incircle_in(F->a, F->b, F->c, x);
+}
+
 /* det[b−a, c−a, d−a] exactly, cofactor expansion along the first row (expansions by magnitude). */
 static double wr__orient3d_exact(const double *a, const double *b, const double *c, const double *d) {
     double e[3][3][2], m1[8], m2[8], cof[16], term[3][64], s01[128], tot[192];

@@ -2269,8 +2269,10 @@ static int wr__plan_removal(const wr__cdt *S, const wr__ref *R, wr__plan *P, int
             int32_t a = idx[(i + n - 1) % n], b = idx[i], cc = idx[(i + 1) % n];
             const double *pa = WR__P(S, a), *pb = WR__P(S, b), *pc = WR__P(S, cc);
             int ok = wr__orient2d_in(pa, pb, pc) > 0.0;
+            wr__icfix F;
+            if (ok) wr__icfix_set(&F, pa, pb, pc);
             for (j = 0; j < n - 3 && ok; ++j) /* the ear's edge a -> c is ring edge i-1 -> i+1 of n-1 */
-                if (wr__incircle_in(pa, pb, pc, WR__P(S, idx[wr__ring_out((i + 2) % n, (i + n - 2) % n, j, n)])) > 0.0) ok = 0;
+                if (wr__incircle_fixed(&F, WR__P(S, idx[wr__ring_out((i + 2) % n, (i + n - 2) % n, j, n)])) > 0.0) ok = 0;
             if (ok) found = i;
         }
         if (found < 0) return 0;
@@ -2319,6 +2321,7 @@ static int wr__try_remove(wr__cdt *S, wr__ref *R, int32_t v, wr__plan *P) {
 static int wr__plan_collapse(const wr__cdt *S, const wr__ref *R, int32_t u, int32_t w, const wr__plan *U, wr__plan *P,
                              int32_t reg) {
     wr__plan Q;
+    wr__icfix F;
     int32_t *nbr = P->nbr;
     int iu, iw, i, j, e, n = 0, flips = 0, again = 1;
     P->known_ok = 0;
@@ -2348,8 +2351,9 @@ static int wr__plan_collapse(const wr__cdt *S, const wr__ref *R, int32_t u, int3
             P->known_ok |= 1u << i;
             continue;
         }
+        wr__icfix_set(&F, pa, pb, pc);
         for (j = 0; j < n - 2 && empty; ++j) /* nearest ring vertices first: i+2, i-1, i+3, i-2, ... */
-            if (!(wr__incircle_in(pa, pb, pc, WR__P(S, P->ring[wr__ring_out((i + 2) % n, (i + n - 1) % n, j, n)])) < 0.0))
+            if (!(wr__incircle_fixed(&F, WR__P(S, P->ring[wr__ring_out((i + 2) % n, (i + n - 1) % n, j, n)])) < 0.0))
                 empty = 0;
         if (empty) return -1;
     }
