@@ -2231,18 +2231,23 @@ static void wr__plan_apply(wr__cdt *S, wr__plan *P) {
  * all live. Also the outer half-edges. */
 static int wr__plan_star(const wr__cdt *S, int32_t v, wr__plan *P, int cap) {
     int32_t t0 = S->vtri[v], t = t0;
-    P->n = P->ns = P->nt = 0;
+    int n = 0; /* the counts in locals: the int32_t stores below may alias P->n for the compiler */
+    P->nt = 0;
     do {
         const int32_t *tv = S->tv + 3 * t;
         int i = tv[0] == v ? 0 : tv[1] == v ? 1 : 2;
-        if (P->n == cap || !wr__is_live(S, t)) return 0;
-        P->slot[P->ns++] = t;
-        P->out[P->n] = S->tn[3 * t + i];
-        P->ocm[P->n] = S->cm[3 * t + i];
-        P->ring[P->n++] = tv[wr__n1[i]];
+        if (n == cap || !wr__is_live(S, t)) {
+            P->n = P->ns = n;
+            return 0;
+        }
+        P->slot[n] = t;
+        P->out[n] = S->tn[3 * t + i];
+        P->ocm[n] = S->cm[3 * t + i];
+        P->ring[n++] = tv[wr__n1[i]];
         t = S->tn[3 * t + wr__n1[i]] / 3;
     } while (t != t0);
-    return P->n >= 3;
+    P->n = P->ns = n;
+    return n >= 3;
 }
 
 /* Removal plan on the star in *P (from wr__plan_star, kept): ear clipping of the ring, Delaunay ears
@@ -2374,17 +2379,18 @@ static int wr__plan_collapse(const wr__cdt *S, const wr__ref *R, int32_t u, int3
     for (i = 0; i < U->ns; ++i) P->slot[P->ns++] = U->slot[i];
     for (i = 0; i < Q.ns; ++i)
         if (Q.slot[i] != U->slot[iu] && Q.slot[i] != U->slot[(iu + U->n - 1) % U->n]) P->slot[P->ns++] = Q.slot[i];
-    for (P->nt = 0; P->nt < P->n; ++P->nt) {
-        i = P->nt;
+    for (i = 0; i < n; ++i) {
+        int i1 = i + 1 < n ? i + 1 : 0;
         P->tri[3 * i] = u;
         P->tri[3 * i + 1] = P->ring[i];
-        P->tri[3 * i + 2] = P->ring[(i + 1) % P->n];
+        P->tri[3 * i + 2] = P->ring[i1];
         nbr[3 * i] = -1 - i; /* ring edge i */
-        nbr[3 * i + 1] = 3 * ((i + 1) % P->n) + 2;
-        nbr[3 * ((i + 1) % P->n) + 2] = 3 * i + 1;
+        nbr[3 * i + 1] = 3 * i1 + 2;
+        nbr[3 * i1 + 2] = 3 * i + 1;
     }
-    for (i = 0; i < P->nt; ++i) /* u in the kernel of the polygon: the fan is a triangulation */
-        if (!(wr__orient2d_in(WR__P(S, u), WR__P(S, P->ring[i]), WR__P(S, P->ring[(i + 1) % P->n])) > 0.0)) return -1;
+    P->nt = n;
+    for (i = 0; i < n; ++i) /* u in the kernel of the polygon: the fan is a triangulation */
+        if (!(wr__orient2d_in(WR__P(S, u), WR__P(S, P->ring[i]), WR__P(S, P->ring[i + 1 < n ? i + 1 : 0])) > 0.0)) return -1;
     while (again && flips < 4 * WR__RING_CAP) { /* Lawson within the polygon (ring edges stay) */
         again = 0;
         for (i = 0; i < P->nt; ++i)
