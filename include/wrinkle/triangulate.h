@@ -2393,13 +2393,16 @@ static int wr__plan_collapse(const wr__cdt *S, const wr__ref *R, int32_t u, int3
         if (!(wr__orient2d_in(WR__P(S, u), WR__P(S, P->ring[i]), WR__P(S, P->ring[i + 1 < n ? i + 1 : 0])) > 0.0)) return -1;
     while (again && flips < 4 * WR__RING_CAP) { /* Lawson within the polygon (ring edges stay) */
         again = 0;
-        for (i = 0; i < P->nt; ++i)
+        for (i = 0; i < n; ++i)
             for (e = 0; e < 3; ++e) {
-                int32_t *v = P->tri + 3 * i, x = v[wr__n1[e]], y = v[wr__n2[e]], a = v[e], d;
+                int32_t *v = P->tri + 3 * i, x, y, a, d;
                 int h = nbr[3 * i + e], f, Nya, Nax, Nxd, Ndy;
-                if (h < 3 * i + 3 || /* a ring edge, or an inner edge seen from its lower triangle */
-                    !(wr__incircle_in(WR__P(S, v[0]), WR__P(S, v[1]), WR__P(S, v[2]), WR__P(S, P->tri[h])) > 0.0))
+                if (h < 3 * i + 3) continue; /* a ring edge, or an inner edge seen from its lower triangle */
+                if (!(wr__incircle_in(WR__P(S, v[0]), WR__P(S, v[1]), WR__P(S, v[2]), WR__P(S, P->tri[h])) > 0.0))
                     continue; /* each inner edge once per sweep, from its lower triangle */
+                x = v[wr__n1[e]];
+                y = v[wr__n2[e]];
+                a = v[e];
                 /* (a, x, y) + (d, y, x) -> (a, x, d) + (d, y, a), relinking the four outer edges */
                 j = h / 3;
                 f = h % 3;
