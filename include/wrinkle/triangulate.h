@@ -2235,16 +2235,18 @@ static int wr__plan_star(const wr__cdt *S, int32_t v, wr__plan *P, int cap) {
     P->nt = 0;
     do {
         const int32_t *tv = S->tv + 3 * t;
-        int i = tv[0] == v ? 0 : tv[1] == v ? 1 : 2;
-        if (n == cap || !wr__is_live(S, t)) {
+        int i = tv[0] == v ? 0 : tv[1] == v ? 1 : 2, i1 = wr__n1[i];
+        int32_t r = tv[i1];
+        /* wr__is_live(S, t) with v >= 0 known: a ghost holds -1 at one of the other two corners */
+        if (n == cap || r < 0 || tv[wr__n2[i]] < 0 || (S->tf[t] & WR__F_OUT)) {
             P->n = P->ns = n;
             return 0;
         }
         P->slot[n] = t;
         P->out[n] = S->tn[3 * t + i];
         P->ocm[n] = S->cm[3 * t + i];
-        P->ring[n++] = tv[wr__n1[i]];
-        t = S->tn[3 * t + wr__n1[i]] / 3;
+        P->ring[n++] = r;
+        t = S->tn[3 * t + i1] / 3;
     } while (t != t0);
     P->n = P->ns = n;
     return n >= 3;
