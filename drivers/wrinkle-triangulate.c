@@ -442,7 +442,11 @@ int main(int argc, char **argv) {
     char base[WR_PATH_MAX + 16];
     int rc = 0, e;
     wr_cli_set_program(argv[0]);
-    memset(&I, 0, sizeof I);
+    /* not memset whole: I holds five path buffers (20 KB), each written before it is read */
+    I.stem[0] = I.src[0] = I.node[0] = I.ele[0] = I.area[0] = 0;
+    I.node_from_file = 0;
+    memset(&I.P, 0, sizeof I.P);
+    memset(&I.prev, 0, sizeof I.prev);
     memset(&r, 0, sizeof r);
     memset(&w, 0, sizeof w);
     if ((e = parse_cmdline(argc, argv, &o)) >= 0) return e;

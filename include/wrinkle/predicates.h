@@ -31,6 +31,8 @@
  *                                 (the opposite sign of the paper's orient3d)
  *   wr_orient2d_fast / wr_incircle_fast   plain floating point (not robust), for comparison
  *   WR_PRED_EPS                   ε = 2^-53, the relative rounding error of one operation
+ *   (internal, for triangulate.h's loops: wr__orient2d_in, wr__incircle_in, wr__incircle_fixed — the
+ *   same signs with the filter inline; see their comment below)
  *   The magnitudes returned by the exact predicates are approximations; only the signs are exact
  *   (wr_orient2d_value is the one that returns an accurate value).
  *
@@ -58,6 +60,8 @@
 #ifndef WRINKLE_PREDICATES_H
 #define WRINKLE_PREDICATES_H
 
+#include <math.h> /* fabs: the inline filters below */
+
 #include "core.h"
 
 #ifdef __cplusplus
@@ -75,6 +79,73 @@ WRDEF double wr_incircle(const double *a, const double *b, const double *c, cons
 WRDEF double wr_orient3d(const double a[3], const double b[3], const double c[3], const double d[3]);
 WRDEF double wr_orient2d_fast(const double *a, const double *b, const double *c);
 WRDEF double wr_incircle_fast(const double *a, const double *b, const double *c, const double *d);
+
+/* ---- internal: the filters inline (triangulate.h's hot loops; issue 17) ----
+ * wr__orient2d_in / wr__incircle_in: the same sign as wr_orient2d / wr_incircle, the filter evaluated
+ * in place (its rounded values and bound are those of the public predicate) and the public predicate
+ * called only when the filter cannot decide. wr__incircle_fixed: incircle(a, b, c, x) for one triangle
+ * and many x, through the filter of incircle(b, c, x, a), whose sign is the opposite one (the lifted
+ * 4x4 determinant of (b, c, x, a) is that of (a, b, c, x) with its rows shifted cyclically: an odd
+ * permutation); the terms without x are computed once (wr__icfix_set), each rounded value the one that
+ * filter computes, in the same order, so its error bound holds; undecided: wr_incircle(a, b, c, x). */
+#define WR__CCW_BOUND ((3.0 + 16.0 * WR_PRED_EPS) * WR_PRED_EPS)  /* Shewchuk's ccwerrboundA */
+#define WR__ICC_BOUND ((10.0 + 96.0 * WR_PRED_EPS) * WR_PRED_EPS) /* Shewchuk's iccerrboundA */
+static inline double wr__orient2d_in(const double *a, const double *b, const double *c) {
+    double l = (a[0] - c[0]) * (b[1] - c[1]), r = (a[1] - c[1]) * (b[0] - c[0]), det = l - r, sum;
+    if (l > 0.0) {
+        if (r <= 0.0) return det;
+        sum = l + r;
+    } else if (l < 0.0) {
+        if (r >= 0.0) return det;
+        sum = -l - r;
+    } else {
+        return det;
+    }
+    sum *= WR__CCW_BOUND; /* the public filter's bound, the same product */
+    if (det >= sum || -det >= sum) return det;
+    return wr_orient2d(a, b, c);
+}
+static inline double wr__incircle_in(const double *a, const double *b, const double *c, const double *d) {
+    double adx = a[0] - d[0], ady = a[1] - d[1], bdx = b[0] - d[0], bdy = b[1] - d[1];
+    double cdx = c[0] - d[0], cdy = c[1] - d[1];
+    double bc1 = bdx * cdy, bc2 = cdx * bdy, ca1 = cdx * ady, ca2 = adx * cdy, ab1 = adx * bdy, ab2 = bdx * ady;
+    double al = adx * adx + ady * ady, bl = bdx * bdx + bdy * bdy, cl = cdx * cdx + cdy * cdy;
+    double det = al * (bc1 - bc2) + bl * (ca1 - ca2) + cl * (ab1 - ab2);
+    double perm = (fabs(bc1) + fabs(bc2)) * al + (fabs(ca1) + fabs(ca2)) * bl + (fabs(ab1) + fabs(ab2)) * cl;
+    double bound = WR__ICC_BOUND * perm;
+    if (det > bound || -det > bound) return det;
+    return wr_incircle(a, b, c, d);
+}
+typedef struct wr__icfix {
+    const double *a, *b, *c;
+    double pdx, pdy, qdx, qdy, pl, ql, pq, pqa; /* b - a, c - a, their lifts, cross product, permanent */
+} wr__icfix;
+static inline void wr__icfix_set(wr__icfix *F, const double *a, const double *b, const double *c) {
+    double pq1, pq2;
+    F->a = a;
+    F->b = b;
+    F->c = c;
+    F->pdx = b[0] - a[0];
+    F->pdy = b[1] - a[1];
+    F->qdx = c[0] - a[0];
+    F->qdy = c[1] - a[1];
+    pq1 = F->pdx * F->qdy;
+    pq2 = F->qdx * F->pdy;
+    F->pl = F->pdx * F->pdx + F->pdy * F->pdy;
+    F->ql = F->qdx * F->qdx + F->qdy * F->qdy;
+    F->pq = pq1 - pq2;
+    F->pqa = fabs(pq1) + fabs(pq2);
+}
+static inline double wr__incircle_fixed(const wr__icfix *F, const double *x) {
+    double rdx = x[0] - F->a[0], rdy = x[1] - F->a[1];
+    double qr1 = F->qdx * rdy, qr2 = rdx * F->qdy, rp1 = rdx * F->pdy, rp2 = F->pdx * rdy;
+    double rl = rdx * rdx + rdy * rdy;
+    double det = F->pl * (qr1 - qr2) + F->ql * (rp1 - rp2) + rl * F->pq;
+    double perm = (fabs(qr1) + fabs(qr2)) * F->pl + (fabs(rp1) + fabs(rp2)) * F->ql + F->pqa * rl;
+    double fixed_bound = WR__ICC_BOUND * perm;
+    if (det > fixed_bound || -det > fixed_bound) return -det;
+    return wr_incircle(F->a, F->b, F->c, x);
+}
 
 #ifdef __cplusplus
 }
@@ -97,8 +168,6 @@ extern "C" {
  * An expansion is an array of doubles, increasing magnitude, nonoverlapping, whose exact sum is the
  * value; its sign is the sign of its last (largest) component. */
 #define WR__SPLITTER 134217729.0                               /* 2^27 + 1: Dekker's split into 26+26 bits */
-#define WR__CCW_BOUND ((3.0 + 16.0 * WR_PRED_EPS) * WR_PRED_EPS)  /* Shewchuk's ccwerrboundA */
-#define WR__ICC_BOUND ((10.0 + 96.0 * WR_PRED_EPS) * WR_PRED_EPS) /* Shewchuk's iccerrboundA */
 #define WR__O3D_BOUND ((7.0 + 56.0 * WR_PRED_EPS) * WR_PRED_EPS)  /* Shewchuk's o3derrboundA */
 
 static void wr__two_sum(double a, double b, double *x, double *y) {

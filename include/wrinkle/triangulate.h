@@ -290,6 +290,15 @@ typedef struct wr__cdt {
     int32_t *treg;      /* capt: region of each triangle (-1 none), NULL without regions */
     double *attr;       /* capv × na vertex attributes, NULL without them */
     int32_t na;
+    /* Refinement: the in-conflict answers of the last cavity search (wr__cavity_encroached), reused by
+     * wr__legalize when that cavity's point is inserted. ktag[t] = (kid << 1) | answer for the triangles
+     * the search tested; kon while the insertion runs. The triangles legalize tests are those across the
+     * new point's star, never modified since the search (a flip or split only changes triangles that
+     * then hold the new point), so the answer is the one it would compute. */
+    uint32_t *ktag;
+    int32_t kcap;
+    uint32_t kid;
+    int kon;
 } wr__cdt;
 
 static int wr__push(wr__cdt *S, int32_t x) {
@@ -438,9 +447,9 @@ static void wr__attr_bary(wr__cdt *S, int32_t q, int32_t a, int32_t b, int32_t c
 static int wr__conflict(const wr__cdt *S, int32_t u, const double *p) {
     const int32_t *v = S->tv + 3 * u;
     int g;
-    if (v[0] >= 0 && v[1] >= 0 && v[2] >= 0) return wr_incircle(WR__P(S, v[0]), WR__P(S, v[1]), WR__P(S, v[2]), p) > 0.0;
+    if (v[0] >= 0 && v[1] >= 0 && v[2] >= 0) return wr__incircle_in(WR__P(S, v[0]), WR__P(S, v[1]), WR__P(S, v[2]), p) > 0.0;
     g = v[0] < 0 ? 0 : v[1] < 0 ? 1 : 2;
-    return wr_orient2d(WR__P(S, v[wr__n1[g]]), WR__P(S, v[wr__n2[g]]), p) > 0.0;
+    return wr__orient2d_in(WR__P(S, v[wr__n1[g]]), WR__P(S, v[wr__n2[g]]), p) > 0.0;
 }
 
 /* Flip the edge half-edge he = (t, k) across to its twin: (a,b,c)+(d,c,b) -> (a,b,d)+(d,c,a). a ends
@@ -485,7 +494,8 @@ static void wr__legalize(wr__cdt *S, int32_t p) {
          * enlarge the domain (fuzzer findings cdt_needle_hull_not_delaunay, cdt_tiny_edge_refine_cubic:
          * the buried hull edges were non-Delaunay and the new hull edge unconstrained). */
         if (S->fixed_boundary && WR__GHOSTLY(S, he / 3)) continue;
-        if (!wr__conflict(S, S->tn[he] / 3, pp)) continue;
+        u = S->tn[he] / 3;
+        if (S->kon && u < S->kcap && S->ktag[u] >> 1 == S->kid ? !(S->ktag[u] & 1u) : !wr__conflict(S, u, pp)) continue;
         wr__flip(S, he, &t, &u);
         S->stk[S->nstk++] = 3 * t; /* room: two pushes replace one pop, reserved by callers */
         S->stk[S->nstk++] = 3 * u + 2;
@@ -633,7 +643,7 @@ static int wr__locate(wr__cdt *S, const double *p, int32_t start, int blocking, 
             int g = v[0] < 0 ? 0 : v[1] < 0 ? 1 : 2;
             int32_t x = v[wr__n1[g]], y = v[wr__n2[g]];
             const double *px = WR__P(S, x), *py = WR__P(S, y);
-            double o = wr_orient2d(px, py, p);
+            double o = wr__orient2d_in(px, py, p);
             if (o > 0.0) {
                 *res = t;
                 return WR__LOC_TRI;
@@ -679,7 +689,7 @@ static int wr__locate(wr__cdt *S, const double *p, int32_t start, int blocking, 
                     o[k] = 1.0;
                     continue;
                 }
-                o[k] = wr_orient2d(WR__P(S, v[wr__n1[k]]), WR__P(S, v[wr__n2[k]]), p);
+                o[k] = wr__orient2d_in(WR__P(S, v[wr__n1[k]]), WR__P(S, v[wr__n2[k]]), p);
                 if (o[k] < 0.0) {
                     if (blocking && wr__cmark(S, he) != -1) {
                         *res = he;
@@ -1005,7 +1015,7 @@ static int wr__restore_delaunay(wr__cdt *S, wr__ivec *fresh) {
         v = S->tv + 3 * t;
         p = S->tv[he];
         d = S->tv[S->tn[he]];
-        if (wr_incircle(WR__P(S, v[0]), WR__P(S, v[1]), WR__P(S, v[2]), WR__P(S, d)) <= 0.0) continue;
+        if (wr__incircle_in(WR__P(S, v[0]), WR__P(S, v[1]), WR__P(S, v[2]), WR__P(S, d)) <= 0.0) continue;
         wr__flip(S, he, &t, &u);
         if (!wr__ivec_push(fresh, x) || !wr__ivec_push(fresh, d) || !wr__ivec_push(fresh, d) ||
             !wr__ivec_push(fresh, y) || !wr__ivec_push(fresh, y) || !wr__ivec_push(fresh, p) ||
@@ -1030,7 +1040,7 @@ static int wr__push3(wr__ivec *v, int32_t a, int32_t b, int32_t c) {
 /* x lies exactly on segment p-q strictly between its ends (exact orientation; for collinear points
  * the sign of (p-x)·(q-x) is exact: both terms are <= 0, each a correctly rounded product). */
 static int wr__strictly_on(const double *p, const double *q, const double *x) {
-    return wr_orient2d(p, q, x) == 0.0 && wr__dot3(x, p, q) < 0.0;
+    return wr__orient2d_in(p, q, x) == 0.0 && wr__dot3(x, p, q) < 0.0;
 }
 
 /* Input segment o lies on input segment s's line (exact orientation of its input end points):
@@ -1040,8 +1050,8 @@ static int wr__same_line(const wr__cdt *S, const wr__segctx *C, int32_t s, int32
     if (s < 0 || o < 0 || !C->seg) return 0;
     p = WR__P(S, C->in2int[C->seg[2 * s]]);
     q = WR__P(S, C->in2int[C->seg[2 * s + 1]]);
-    return wr_orient2d(p, q, WR__P(S, C->in2int[C->seg[2 * o]])) == 0.0 &&
-           wr_orient2d(p, q, WR__P(S, C->in2int[C->seg[2 * o + 1]])) == 0.0;
+    return wr__orient2d_in(p, q, WR__P(S, C->in2int[C->seg[2 * o]])) == 0.0 &&
+           wr__orient2d_in(p, q, WR__P(S, C->in2int[C->seg[2 * o + 1]])) == 0.0;
 }
 
 /* u-v is an edge constrained by an input segment other than s and not on its line. */
@@ -1178,7 +1188,7 @@ static wr_status wr__rc_leave_star(wr__cdt *S, wr__segctx *C, wr__rcpiece *P, in
         x = v[wr__n1[i]];
         y = v[wr__n2[i]];
         if (x >= 0 && y >= 0) {
-            double ox = wr_orient2d(pa, pb, WR__P(S, x)), oy = wr_orient2d(pa, pb, WR__P(S, y));
+            double ox = wr__orient2d_in(pa, pb, WR__P(S, x)), oy = wr__orient2d_in(pa, pb, WR__P(S, y));
             int32_t on = -1, hon = -1;
             if (ox == 0.0 && wr__dot3(pa, WR__P(S, x), pb) > 0.0)
                 on = x, hon = 3 * t + wr__n2[i];
@@ -1291,7 +1301,7 @@ static wr_status wr__rc_walk(wr__cdt *S, wr__segctx *C, wr__rcpiece *P, int32_t 
          * wrong (overflow), and its coordinates must not be read. */
         if (d < 0)
             return wr_fail(diag, WR_ERR_GEOMETRY, P->sid, "segment %d: the walk along it left the triangulation", P->sid);
-        o = wr_orient2d(pa, pb, WR__P(S, d));
+        o = wr__orient2d_in(pa, pb, WR__P(S, d));
         if (o == 0.0) { /* d lies on the segment: recover a-d now, d-b later */
             *bend = d;
             if (!wr__push3(&C->pieces, d, P->b, P->s)) return wr_fail(diag, WR_ERR_NOMEM, P->sid, "out of memory");
@@ -1330,14 +1340,14 @@ static wr_status wr__rc_flip_away(wr__cdt *S, wr__segctx *C, int32_t a, int32_t 
         if (he < 0) return wr_fail(diag, WR_ERR_GEOMETRY, sid, "segment %d: lost a crossing edge", sid);
         p = S->tv[he];
         q = S->tv[S->tn[he]];
-        o1 = wr_orient2d(WR__P(S, p), WR__P(S, q), WR__P(S, ex));
-        o2 = wr_orient2d(WR__P(S, p), WR__P(S, q), WR__P(S, ey));
+        o1 = wr__orient2d_in(WR__P(S, p), WR__P(S, q), WR__P(S, ex));
+        o2 = wr__orient2d_in(WR__P(S, p), WR__P(S, q), WR__P(S, ey));
         if ((o1 > 0.0 && o2 < 0.0) || (o1 < 0.0 && o2 > 0.0)) {
             int32_t t1, t2;
             double op, oq;
             wr__flip(S, he, &t1, &t2);
-            op = wr_orient2d(pa, pb, WR__P(S, p));
-            oq = wr_orient2d(pa, pb, WR__P(S, q));
+            op = wr__orient2d_in(pa, pb, WR__P(S, p));
+            oq = wr__orient2d_in(pa, pb, WR__P(S, q));
             if ((op > 0.0 && oq < 0.0) || (op < 0.0 && oq > 0.0)) {
                 if (!wr__ivec_push(&C->cross, p) || !wr__ivec_push(&C->cross, q))
                     return wr_fail(diag, WR_ERR_NOMEM, sid, "out of memory");
@@ -1488,8 +1498,8 @@ static int wr__segs_meet_sharply(const wr__cdt *S, const wr__ref *R, int32_t s1,
     double c = ux * vx + uy * vy, nn = (ux * ux + uy * uy) * (vx * vx + vy * vy);
     int meet = A[0] == B[0] || A[0] == B[1] || A[1] == B[0] || A[1] == B[1];
     if (!meet) {
-        double o1 = wr_orient2d(a0, a1, b0), o2 = wr_orient2d(a0, a1, b1), o3 = wr_orient2d(b0, b1, a0),
-               o4 = wr_orient2d(b0, b1, a1);
+        double o1 = wr__orient2d_in(a0, a1, b0), o2 = wr__orient2d_in(a0, a1, b1), o3 = wr__orient2d_in(b0, b1, a0),
+               o4 = wr__orient2d_in(b0, b1, a1);
         meet = ((o1 > 0 && o2 < 0) || (o1 < 0 && o2 > 0)) && ((o3 > 0 && o4 < 0) || (o3 < 0 && o4 > 0));
         if (!meet) return 0;
         return c * c > 0.25 * nn; /* crossing lines: the acute angle between them */
@@ -1721,7 +1731,7 @@ static int wr__continues(const wr__cdt *S, int32_t x, int32_t y) {
         int i = v[0] == x ? 0 : v[1] == x ? 1 : 2;
         int32_t w = v[wr__n1[i]];
         if (w >= 0 && w != y && S->cm[3 * t + wr__n2[i]] != -1 &&
-            wr_orient2d(WR__P(S, x), WR__P(S, y), WR__P(S, w)) == 0.0 && wr__dot3(WR__P(S, x), WR__P(S, y), WR__P(S, w)) < 0.0)
+            wr__orient2d_in(WR__P(S, x), WR__P(S, y), WR__P(S, w)) == 0.0 && wr__dot3(WR__P(S, x), WR__P(S, y), WR__P(S, w)) < 0.0)
             return 1;
         t = S->tn[3 * t + wr__n1[i]] / 3;
     } while (t != t0 && ++guard < 1 << 20);
@@ -1790,8 +1800,8 @@ static int wr__split_segment(wr__cdt *S, wr__ref *R, int32_t he) {
         p[1] = px[1] + f * (py[1] - px[1]);
     }
     if (!wr__coord_ok(R, p)) return 0;
-    if (a >= 0 && !(wr_orient2d(WR__P(S, a), px, p) > 0.0 && wr_orient2d(WR__P(S, a), p, py) > 0.0)) return 0;
-    if (d >= 0 && !(wr_orient2d(WR__P(S, d), py, p) > 0.0 && wr_orient2d(WR__P(S, d), p, px) > 0.0)) return 0;
+    if (a >= 0 && !(wr__orient2d_in(WR__P(S, a), px, p) > 0.0 && wr__orient2d_in(WR__P(S, a), p, py) > 0.0)) return 0;
+    if (d >= 0 && !(wr__orient2d_in(WR__P(S, d), py, p) > 0.0 && wr__orient2d_in(WR__P(S, d), p, px) > 0.0)) return 0;
     if (S->nv >= S->max_vertices) return -1;
     if (!wr__reserve_verts(S, 1)) return -2;
     q = S->nv++;
@@ -1882,6 +1892,18 @@ static int wr__cavity_encroached(wr__cdt *S, wr__ref *R, int32_t tt, int loc, in
     int32_t i, k;
     R->cav.n = 0;
     S->nstk = 0;
+    if (S->kcap < S->nt) { /* room for every triangle's answer (without it, legalize computes its own) */
+        uint32_t *kt = (uint32_t *)wr_realloc_array(S->ktag, (size_t)S->capt, sizeof(uint32_t));
+        if (kt) {
+            memset(kt + S->kcap, 0, sizeof(uint32_t) * (size_t)(S->capt - S->kcap));
+            S->ktag = kt;
+            S->kcap = S->capt;
+        }
+    }
+    if (++S->kid >= 1u << 31) { /* the tags wrap: none is current */
+        if (S->ktag) memset(S->ktag, 0, sizeof(uint32_t) * (size_t)S->kcap);
+        S->kid = 1;
+    }
     if (!wr__ivec_push(&R->cav, tt)) return 0;
     if (loc == WR__LOC_EDGE && S->cm[r] == -1 && wr__is_live(S, S->tn[r] / 3))
         if (!wr__ivec_push(&R->cav, S->tn[r] / 3)) return 0;
@@ -1898,7 +1920,10 @@ static int wr__cavity_encroached(wr__cdt *S, wr__ref *R, int32_t tt, int loc, in
             }
             if (!wr__is_live(S, u)) continue;
             for (j = 0; j < R->cav.n && !seen; ++j) seen = R->cav.a[j] == u;
-            if (seen || !wr__conflict(S, u, cp)) continue;
+            if (seen) continue;
+            j = wr__conflict(S, u, cp);
+            if (u < S->kcap) S->ktag[u] = S->kid << 1 | (uint32_t)j;
+            if (!j) continue;
             if (!wr__ivec_push(&R->cav, u)) return 0;
         }
         /* A candidate's cavity is a handful of triangles in a graded mesh. Hundreds mean huge,
@@ -1944,6 +1969,7 @@ static int wr__drain_segq(wr__cdt *S, wr__ref *R) {
  * triangle (a, b, c). 1 ok, 0 not inserted, -1 budget, -2 out of memory. */
 static int wr__insert_free(wr__cdt *S, wr__ref *R, int loc, int32_t r, const double *cp, const wr__bad *bt) {
     int32_t q;
+    int i;
     /* checked here, not before the walk: a point outside the domain is not inserted anyway (the
      * segment it lies beyond is split instead) */
     if (!wr__coord_ok(R, cp)) return 0;
@@ -1955,7 +1981,10 @@ static int wr__insert_free(wr__cdt *S, wr__ref *R, int loc, int32_t r, const dou
     S->vtri[q] = -1;
     S->vseg[q] = -1;
     wr__attr_bary(S, q, bt->a, bt->b, bt->c);
-    if (loc == WR__LOC_TRI ? !wr__split_tri(S, r, q) : !wr__split_edge(S, r, q)) return -2;
+    S->kon = 1; /* the cavity of cp was searched just before (wr__fix_bad) */
+    i = loc == WR__LOC_TRI ? wr__split_tri(S, r, q) : wr__split_edge(S, r, q);
+    S->kon = 0;
+    if (!i) return -2;
     R->n_steiner++;
     return wr__scan_star(S, R, q) ? 1 : -2;
 }
@@ -2035,6 +2064,7 @@ typedef struct wr__plan {
     int32_t slot[WR__RING_CAP], tri[3 * WR__RING_CAP];                /* region triangles; new ones */
     int32_t nbr[3 * WR__RING_CAP]; /* across new corner 3i+e: the new corner 3j+f facing the same edge,
                                     * or -1 - k for ring edge k (kept as the plan is built) */
+    uint32_t known_ok; /* bit i: new triangle i passed wr__tri_ok as it stands (wr__plan_valid skips it) */
     int n, ns, nt;
 } wr__plan;
 
@@ -2136,12 +2166,12 @@ static void wr__plan_nbr(wr__plan *P, int32_t c, int32_t h) {
 static int wr__plan_valid(const wr__cdt *S, const wr__ref *R, const wr__plan *P, int32_t reg) {
     int i, e, open = 0;
     uint32_t used = 0;
-    for (i = 0; i < P->nt; ++i)
-        if (!wr__tri_ok(S, R, P->tri + 3 * i, reg)) return 0;
+    for (i = 0; i < P->nt; ++i) /* the same test on the same vertex triple: the same answer */
+        if (!(P->known_ok >> i & 1u) && !wr__tri_ok(S, R, P->tri + 3 * i, reg)) return 0;
     for (i = 0; i < P->nt; ++i) {
         const int32_t *v = P->tri + 3 * i;
         const double *a = WR__P(S, v[0]), *b = WR__P(S, v[1]), *c = WR__P(S, v[2]);
-        if (!(wr_orient2d(a, b, c) > 0.0)) return 0;
+        if (!(wr__orient2d_in(a, b, c) > 0.0)) return 0;
         for (e = 0; e < 3; ++e) {
             int32_t h = P->nbr[3 * i + e], x = v[wr__n1[e]], y = v[wr__n2[e]], d;
             if (h >= 0) { /* inner edge x -> y: the other triangle holds y -> x */
@@ -2154,7 +2184,7 @@ static int wr__plan_valid(const wr__cdt *S, const wr__ref *R, const wr__plan *P,
             used |= 1u << h;
             ++open;
             d = S->tv[P->out[h]];
-            if (P->ocm[h] == -1 && d >= 0 && wr_incircle(a, b, c, WR__P(S, d)) > 0.0) return 0;
+            if (P->ocm[h] == -1 && d >= 0 && wr__incircle_in(a, b, c, WR__P(S, d)) > 0.0) return 0;
         }
     }
     return open == P->n;
@@ -2201,18 +2231,25 @@ static void wr__plan_apply(wr__cdt *S, wr__plan *P) {
  * all live. Also the outer half-edges. */
 static int wr__plan_star(const wr__cdt *S, int32_t v, wr__plan *P, int cap) {
     int32_t t0 = S->vtri[v], t = t0;
-    P->n = P->ns = P->nt = 0;
+    int n = 0; /* the counts in locals: the int32_t stores below may alias P->n for the compiler */
+    P->nt = 0;
     do {
         const int32_t *tv = S->tv + 3 * t;
-        int i = tv[0] == v ? 0 : tv[1] == v ? 1 : 2;
-        if (P->n == cap || !wr__is_live(S, t)) return 0;
-        P->slot[P->ns++] = t;
-        P->out[P->n] = S->tn[3 * t + i];
-        P->ocm[P->n] = S->cm[3 * t + i];
-        P->ring[P->n++] = tv[wr__n1[i]];
-        t = S->tn[3 * t + wr__n1[i]] / 3;
+        int i = tv[0] == v ? 0 : tv[1] == v ? 1 : 2, i1 = wr__n1[i];
+        int32_t r = tv[i1];
+        /* wr__is_live(S, t) with v >= 0 known: a ghost holds -1 at one of the other two corners */
+        if (n == cap || r < 0 || tv[wr__n2[i]] < 0 || (S->tf[t] & WR__F_OUT)) {
+            P->n = P->ns = n;
+            return 0;
+        }
+        P->slot[n] = t;
+        P->out[n] = S->tn[3 * t + i];
+        P->ocm[n] = S->cm[3 * t + i];
+        P->ring[n++] = r;
+        t = S->tn[3 * t + i1] / 3;
     } while (t != t0);
-    return P->n >= 3;
+    P->n = P->ns = n;
+    return n >= 3;
 }
 
 /* Removal plan on the star in *P (from wr__plan_star, kept): ear clipping of the ring, Delaunay ears
@@ -2221,6 +2258,7 @@ static int wr__plan_star(const wr__cdt *S, int32_t v, wr__plan *P, int cap) {
 static int wr__plan_removal(const wr__cdt *S, const wr__ref *R, wr__plan *P, int32_t reg) {
     int32_t idx[WR__RING_CAP], lab[WR__RING_CAP], *t;
     int n, i, j, ears = 0;
+    P->known_ok = 0;
     /* every triangulation of a polygon of four or more vertices has two ears (r_i-1, r_i, r_i+1):
      * fewer than two corners whose ear meets the angle bound, and the plan fails */
     for (i = 0; i < P->n && ears < 2 && P->n > 3; ++i)
@@ -2237,9 +2275,11 @@ static int wr__plan_removal(const wr__cdt *S, const wr__ref *R, wr__plan *P, int
         for (i = 0; i < n && found < 0; ++i) {
             int32_t a = idx[(i + n - 1) % n], b = idx[i], cc = idx[(i + 1) % n];
             const double *pa = WR__P(S, a), *pb = WR__P(S, b), *pc = WR__P(S, cc);
-            int ok = wr_orient2d(pa, pb, pc) > 0.0;
+            int ok = wr__orient2d_in(pa, pb, pc) > 0.0;
+            wr__icfix F;
+            if (ok) wr__icfix_set(&F, pa, pb, pc);
             for (j = 0; j < n - 3 && ok; ++j) /* the ear's edge a -> c is ring edge i-1 -> i+1 of n-1 */
-                if (wr_incircle(pa, pb, pc, WR__P(S, idx[wr__ring_out((i + 2) % n, (i + n - 2) % n, j, n)])) > 0.0) ok = 0;
+                if (wr__incircle_fixed(&F, WR__P(S, idx[wr__ring_out((i + 2) % n, (i + n - 2) % n, j, n)])) > 0.0) ok = 0;
             if (ok) found = i;
         }
         if (found < 0) return 0;
@@ -2249,6 +2289,7 @@ static int wr__plan_removal(const wr__cdt *S, const wr__ref *R, wr__plan *P, int
         t[1] = idx[found];
         t[2] = idx[(found + 1) % n];
         if (!wr__tri_ok(S, R, t, reg)) return 0;
+        P->known_ok |= 1u << P->nt; /* only the last triangle is left to wr__plan_valid's angle test */
         wr__plan_nbr(P, c, lab[found]);    /* corner a faces b -> c */
         wr__plan_nbr(P, c + 2, lab[prev]); /* corner c faces a -> b */
         lab[prev] = c + 1;                 /* the cut a -> c faces corner b */
@@ -2287,8 +2328,10 @@ static int wr__try_remove(wr__cdt *S, wr__ref *R, int32_t v, wr__plan *P) {
 static int wr__plan_collapse(const wr__cdt *S, const wr__ref *R, int32_t u, int32_t w, const wr__plan *U, wr__plan *P,
                              int32_t reg) {
     wr__plan Q;
+    wr__icfix F;
     int32_t *nbr = P->nbr;
     int iu, iw, i, j, e, n = 0, flips = 0, again = 1;
+    P->known_ok = 0;
     if (!wr__plan_star(S, w, &Q, WR__RING_CAP / 2)) return 0;
     for (iu = 0; iu < U->n && U->ring[iu] != w; ++iu) {}
     for (iw = 0; iw < Q.n && Q.ring[iw] != u; ++iw) {}
@@ -2311,9 +2354,13 @@ static int wr__plan_collapse(const wr__cdt *S, const wr__ref *R, int32_t u, int3
         f[0] = u;
         f[1] = P->ring[i];
         f[2] = P->ring[(i + 1) % n];
-        if (wr__tri_ok(S, R, f, reg)) continue;
+        if (wr__tri_ok(S, R, f, reg)) { /* fan triangle i as it will be built; cleared if flipped */
+            P->known_ok |= 1u << i;
+            continue;
+        }
+        wr__icfix_set(&F, pa, pb, pc);
         for (j = 0; j < n - 2 && empty; ++j) /* nearest ring vertices first: i+2, i-1, i+3, i-2, ... */
-            if (!(wr_incircle(pa, pb, pc, WR__P(S, P->ring[wr__ring_out((i + 2) % n, (i + n - 1) % n, j, n)])) < 0.0))
+            if (!(wr__incircle_fixed(&F, WR__P(S, P->ring[wr__ring_out((i + 2) % n, (i + n - 1) % n, j, n)])) < 0.0))
                 empty = 0;
         if (empty) return -1;
     }
@@ -2334,26 +2381,30 @@ static int wr__plan_collapse(const wr__cdt *S, const wr__ref *R, int32_t u, int3
     for (i = 0; i < U->ns; ++i) P->slot[P->ns++] = U->slot[i];
     for (i = 0; i < Q.ns; ++i)
         if (Q.slot[i] != U->slot[iu] && Q.slot[i] != U->slot[(iu + U->n - 1) % U->n]) P->slot[P->ns++] = Q.slot[i];
-    for (P->nt = 0; P->nt < P->n; ++P->nt) {
-        i = P->nt;
+    for (i = 0; i < n; ++i) {
+        int i1 = i + 1 < n ? i + 1 : 0;
         P->tri[3 * i] = u;
         P->tri[3 * i + 1] = P->ring[i];
-        P->tri[3 * i + 2] = P->ring[(i + 1) % P->n];
+        P->tri[3 * i + 2] = P->ring[i1];
         nbr[3 * i] = -1 - i; /* ring edge i */
-        nbr[3 * i + 1] = 3 * ((i + 1) % P->n) + 2;
-        nbr[3 * ((i + 1) % P->n) + 2] = 3 * i + 1;
+        nbr[3 * i + 1] = 3 * i1 + 2;
+        nbr[3 * i1 + 2] = 3 * i + 1;
     }
-    for (i = 0; i < P->nt; ++i) /* u in the kernel of the polygon: the fan is a triangulation */
-        if (!(wr_orient2d(WR__P(S, u), WR__P(S, P->ring[i]), WR__P(S, P->ring[(i + 1) % P->n])) > 0.0)) return -1;
+    P->nt = n;
+    for (i = 0; i < n; ++i) /* u in the kernel of the polygon: the fan is a triangulation */
+        if (!(wr__orient2d_in(WR__P(S, u), WR__P(S, P->ring[i]), WR__P(S, P->ring[i + 1 < n ? i + 1 : 0])) > 0.0)) return -1;
     while (again && flips < 4 * WR__RING_CAP) { /* Lawson within the polygon (ring edges stay) */
         again = 0;
-        for (i = 0; i < P->nt; ++i)
+        for (i = 0; i < n; ++i)
             for (e = 0; e < 3; ++e) {
-                int32_t *v = P->tri + 3 * i, x = v[wr__n1[e]], y = v[wr__n2[e]], a = v[e], d;
+                int32_t *v = P->tri + 3 * i, x, y, a, d;
                 int h = nbr[3 * i + e], f, Nya, Nax, Nxd, Ndy;
-                if (h < 3 * i + 3 || /* a ring edge, or an inner edge seen from its lower triangle */
-                    !(wr_incircle(WR__P(S, v[0]), WR__P(S, v[1]), WR__P(S, v[2]), WR__P(S, P->tri[h])) > 0.0))
+                if (h < 3 * i + 3) continue; /* a ring edge, or an inner edge seen from its lower triangle */
+                if (!(wr__incircle_in(WR__P(S, v[0]), WR__P(S, v[1]), WR__P(S, v[2]), WR__P(S, P->tri[h])) > 0.0))
                     continue; /* each inner edge once per sweep, from its lower triangle */
+                x = v[wr__n1[e]];
+                y = v[wr__n2[e]];
+                a = v[e];
                 /* (a, x, y) + (d, y, x) -> (a, x, d) + (d, y, a), relinking the four outer edges */
                 j = h / 3;
                 f = h % 3;
@@ -2370,6 +2421,7 @@ static int wr__plan_collapse(const wr__cdt *S, const wr__ref *R, int32_t u, int3
                 if (Nax >= 0) nbr[Nax] = 3 * i + 2;
                 if (Nya >= 0) nbr[Nya] = 3 * j;
                 if (Ndy >= 0) nbr[Ndy] = 3 * j + 2;
+                P->known_ok &= ~((1u << i) | (1u << j));
                 again = 1;
                 ++flips;
             }
@@ -2573,6 +2625,7 @@ static void wr__cdt_release(wr__cdt *S) {
     wr_free(S->stk);
     wr_free(S->treg);
     wr_free(S->attr);
+    wr_free(S->ktag);
     memset(S, 0, sizeof *S);
 }
 
@@ -2834,7 +2887,7 @@ static int wr__prev_boundary(wr__tctx *X) {
     if (!e) return -1;
     for (i = 0; i < nt; ++i) {
         const int32_t *v = in->triangles + 3 * i;
-        int ccw = wr_orient2d(in->points + 2 * v[0], in->points + 2 * v[1], in->points + 2 * v[2]) > 0.0;
+        int ccw = wr__orient2d_in(in->points + 2 * v[0], in->points + 2 * v[1], in->points + 2 * v[2]) > 0.0;
         for (k = 0; k < 3; ++k) {
             int32_t a = v[wr__n1[k]], b = v[wr__n2[k]];
             e[6 * i + 2 * k] = ccw ? a : b;
@@ -2906,11 +2959,11 @@ static wr_status wr__cdt_delaunay(wr__tctx *X, wr_diag *diag) {
     for (i = 1; i < nid && i1 < 0; ++i)
         if (S->xy[2 * i] != S->xy[0] || S->xy[2 * i + 1] != S->xy[1]) i1 = i;
     for (i = 1; i < nid && i1 >= 0 && i2 < 0; ++i)
-        if (wr_orient2d(WR__P(S, i0), WR__P(S, i1), WR__P(S, i)) != 0.0) i2 = i;
+        if (wr__orient2d_in(WR__P(S, i0), WR__P(S, i1), WR__P(S, i)) != 0.0) i2 = i;
     if (i1 < 0) return wr_fail(diag, WR_ERR_GEOMETRY, -1, "fewer than 3 distinct points (%d given, all coincide)", n);
     if (i2 < 0) return wr_fail(diag, WR_ERR_GEOMETRY, -1, "all %d distinct points are collinear: no triangle exists", nid);
     if (!wr__reserve_tris(S, 2 * nid + 16)) return wr_fail(diag, WR_ERR_NOMEM, -1, "out of memory (%d points)", n);
-    if (wr_orient2d(WR__P(S, i0), WR__P(S, i1), WR__P(S, i2)) > 0.0)
+    if (wr__orient2d_in(WR__P(S, i0), WR__P(S, i1), WR__P(S, i2)) > 0.0)
         wr__init_tri(S, i0, i1, i2);
     else
         wr__init_tri(S, i0, i2, i1);
@@ -3282,7 +3335,7 @@ static wr_status wr__chk_triangles(wr__cdtchk *K, wr_diag *diag) {
         for (k = 0; k < 3; ++k)
             if (v[k] < 0 || v[k] >= K->nP)
                 return wr_fail(diag, WR_ERR_TOPOLOGY, t, "triangle %d: vertex %d out of range [0, %d)", t, v[k], K->nP);
-        a = wr_orient2d(r->points + 2 * v[0], r->points + 2 * v[1], r->points + 2 * v[2]);
+        a = wr__orient2d_in(r->points + 2 * v[0], r->points + 2 * v[1], r->points + 2 * v[2]);
         if (!(a > 0.0))
             return wr_fail(diag, WR_ERR_GEOMETRY, t, "triangle %d (%d, %d, %d) is %s", t, v[0], v[1], v[2],
                            a == 0.0 ? "degenerate (zero area)" : "clockwise (inverted)");
@@ -3319,7 +3372,7 @@ static wr_status wr__chk_adjacency(wr__cdtchk *K, wr_diag *diag) {
             if (t >= nb) continue; /* each interior edge once, from its lower triangle */
             ++K->E;
             K->uf[wr__uf_find(K->uf, t)] = wr__uf_find(K->uf, nb);
-            if (m < 0 && wr_incircle(r->points + 2 * v[0], r->points + 2 * v[1], r->points + 2 * v[2],
+            if (m < 0 && wr__incircle_in(r->points + 2 * v[0], r->points + 2 * v[1], r->points + 2 * v[2],
                                       r->points + 2 * w[k2]) > 0.0)
                 return wr_fail(diag, WR_ERR_GEOMETRY, t, "edge (%d, %d) between triangles %d and %d is not locally Delaunay",
                                a, b, t, nb);
@@ -3459,8 +3512,8 @@ static wr_status wr__chk_input_chains(wr__cdtchk *K, wr_diag *diag) {
                     const int32_t *e;
                     if (o < 0 || o >= r->n_input_segments) continue;
                     e = r->input_segments + 2 * o;
-                    if (!(wr_orient2d(P + 2 * a, P + 2 * b, P + 2 * e[0]) == 0.0 &&
-                          wr_orient2d(P + 2 * a, P + 2 * b, P + 2 * e[1]) == 0.0))
+                    if (!(wr__orient2d_in(P + 2 * a, P + 2 * b, P + 2 * e[0]) == 0.0 &&
+                          wr__orient2d_in(P + 2 * a, P + 2 * b, P + 2 * e[1]) == 0.0))
                         continue;
                 }
                 if (y == b) {
