@@ -769,11 +769,25 @@ static void wr__normalize_hess(const double u[3], double r, const double w[3], d
             N2[3 * i + j] = (-(w[i] * u[j] + u[i] * w[j]) - (i == j ? wu : 0.0) + 3.0 * wu * u[i] * u[j]) / (r * r);
 }
 
+/* ON ZERO COLUMNS: a Jacobian here is nonzero only in the columns of the vertices it depends on
+ * (3 or 4 of the 6). A sum that starts at +0 and adds M·0 stays +0, and one whose value is never
+ * −0 is unchanged by adding ±0 (round to nearest), so for finite entries skipping the zero
+ * columns gives the same bits as the full loops (the matrices below start from +0 and only
+ * accumulate, so none holds −0). */
+static int wr__J_cols(const double *J, int cols[18]) {
+    int c, n = 0;
+    for (c = 0; c < 18; ++c)
+        if (J[c] != 0.0 || J[18 + c] != 0.0 || J[36 + c] != 0.0) cols[n++] = c;
+    return n;
+}
+
 static void wr__m3_mul_J(const double *M, const double *J, double *out) {
-    int i, k, c;
+    int i, k, c, q, cols[18], nc = wr__J_cols(J, cols);
+    for (i = 0; i < 54; ++i) out[i] = 0.0;
     for (i = 0; i < 3; ++i)
-        for (c = 0; c < 18; ++c) {
+        for (q = 0; q < nc; ++q) {
             double t = 0.0;
+            c = cols[q];
             for (k = 0; k < 3; ++k) t += M[3 * i + k] * J[k * 18 + c];
             out[i * 18 + c] = t;
         }
@@ -784,20 +798,23 @@ static void wr__m3_mulv(const double *M, const double *v, double *out) {
     for (i = 0; i < 3; ++i) out[i] = M[3 * i] * v[0] + M[3 * i + 1] * v[1] + M[3 * i + 2] * v[2];
 }
 
-/* H += s · Jaᵀ A Jb (A 3×3, NULL = identity). */
+/* H += s · Jaᵀ A Jb (A 3×3, NULL = identity), over the nonzero rows and columns (ON ZERO COLUMNS). */
 static void wr__add_JtAJ(double *H, const double *Ja, const double *A, const double *Jb, double s) {
     double AJ[54];
-    int r, c, k;
+    int r, c, q, cols[18], nc;
     if (A)
         wr__m3_mul_J(A, Jb, AJ);
     else
         memcpy(AJ, Jb, sizeof AJ);
+    nc = wr__J_cols(AJ, cols);
     for (r = 0; r < 18; ++r) {
-        double a0 = Ja[r], a1 = Ja[18 + r], a2 = Ja[36 + r];
+        double a0 = Ja[r], a1 = Ja[18 + r], a2 = Ja[36 + r], *h = H + r * 18;
         if (a0 == 0.0 && a1 == 0.0 && a2 == 0.0) continue;
-        for (c = 0; c < 18; ++c) H[r * 18 + c] += s * (a0 * AJ[c] + a1 * AJ[18 + c] + a2 * AJ[36 + c]);
+        for (q = 0; q < nc; ++q) {
+            c = cols[q];
+            h[c] += s * (a0 * AJ[c] + a1 * AJ[18 + c] + a2 * AJ[36 + c]);
+        }
     }
-    (void)k;
 }
 
 WRDEF wr_status wr_shell_midedge_element(const double x[18], int32_t mask, const double Q[9], const double *bbar,
@@ -880,15 +897,21 @@ WRDEF wr_status wr_shell_midedge_element(const double x[18], int32_t mask, const
         double w[3][3], vf[3], vg[3][3], N2[9], z[3];
         int r, col;
         memset(H, 0, sizeof(double) * 324);
-        /* Gauss–Newton part Jbᵀ Q Jb */
-        for (r = 0; r < 18; ++r)
+        /* Gauss–Newton part Jbᵀ Q Jb (the products Jb_pr Q_pq formed once per row: the same
+         * left-to-right products; a row whose Jb column is zero stays +0, ON ZERO COLUMNS) */
+        for (r = 0; r < 18; ++r) {
+            double JQ[9];
+            int p, q;
+            if (Jb[0][r] == 0.0 && Jb[1][r] == 0.0 && Jb[2][r] == 0.0) continue;
+            for (p = 0; p < 3; ++p)
+                for (q = 0; q < 3; ++q) JQ[3 * p + q] = Jb[p][r] * Q[3 * p + q];
             for (col = 0; col < 18; ++col) {
                 double t = 0.0;
-                int p, q;
                 for (p = 0; p < 3; ++p)
-                    for (q = 0; q < 3; ++q) t += Jb[p][r] * Q[3 * p + q] * Jb[q][col];
+                    for (q = 0; q < 3; ++q) t += JQ[3 * p + q] * Jb[q][col];
                 H[r * 18 + col] = t;
             }
+        }
         /* Σ_c gb_c ∇²b_c: the bilinear cross terms 2(Jeᵀ Jdm + Jdmᵀ Je) … */
         for (c = 0; c < 3; ++c) {
             const double *Je = c == 0 ? Je1 : Je2;
