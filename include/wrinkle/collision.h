@@ -329,7 +329,9 @@ WRDEF wr_status wr_collision_mesh_create(wr_collision_mesh *cm, int32_t nv, int3
                                          const uint8_t *obstacle, const wr_collision_desc *desc, wr_diag *diag);
 WRDEF void wr_collision_mesh_free(wr_collision_mesh *cm);
 /* Replaces set's content by every vertex–face and edge–edge pair (ON PAIRS) with distance < dhat
- * at x (nv*3 [m]). dhat > 0. WR_ERR_GEOMETRY (item = first vertex) when a pair's distance is 0. */
+ * at x (nv*3 [m]). dhat > 0. WR_ERR_GEOMETRY (item = first vertex) when a pair's distance is 0.
+ * A repeat of the last call (same x, d̂ and untouched set) is answered from a record (ON REPEATED
+ * QUERIES). */
 WRDEF wr_status wr_collision_contacts(wr_collision_mesh *cm, const double *x, double dhat, wr_contact_set *set,
                                       wr_diag *diag);
 /* E = Σ κ b(d) over the set at x; grad (nv*3, ADDED to, may be NULL); sink gets one 4-vertex block

@@ -340,12 +340,8 @@ static void wr__newton_tridiag(int n, double *a, double *V, double *beta, double
         }
         K *= 0.5 * bk;
         for (i = k + 1; i < n; ++i) p[i] -= K * v[i];
-        /* a stays symmetric bit for bit (v_i p_j + p_i v_j is the same sum for (j, i): products and
-         * sums commute exactly), so the lower triangle is updated and mirrored */
-        for (i = k + 1; i < n; ++i) {
-            for (j = k + 1; j < i; ++j) a[i * n + j] = a[j * n + i] = a[i * n + j] - (v[i] * p[j] + p[i] * v[j]);
-            a[i * n + i] -= v[i] * p[i] + p[i] * v[i];
-        }
+        for (i = k + 1; i < n; ++i)
+            for (j = k + 1; j < n; ++j) a[i * n + j] -= v[i] * p[j] + p[i] * v[j];
         a[(k + 1) * n + k] = a[k * n + k + 1] = alpha;
         for (i = k + 2; i < n; ++i) a[i * n + k] = a[k * n + i] = 0.0;
     }

@@ -657,7 +657,12 @@ WRDEF double wr_shell_membrane_element(const wr_shell *s, int32_t f, const doubl
     if (g)
         for (v = 0; v < 3; ++v)
             for (i = 0; i < 3; ++i) g[3 * v + i] = A * (dW[0] * D[0][v][i] + dW[1] * D[1][v][i] + dW[2] * D[2][v][i]);
-    if (H)
+    if (H) {
+        double P[3][3][9]; /* d2W_cd · D[c][v][i], the left-to-right products of the sum below */
+        for (v = 0; v < 3; ++v)
+            for (i = 0; i < 3; ++i)
+                for (c = 0; c < 3; ++c)
+                    for (d = 0; d < 3; ++d) P[v][i][3 * c + d] = d2W[3 * c + d] * D[c][v][i];
         for (v = 0; v < 3; ++v)
             for (w = 0; w < 3; ++w) {
                 /* geometric stiffness: Σ_c dW_c ∂²ε_c/∂x_v∂x_w, a multiple of the 3×3 identity */
@@ -667,10 +672,11 @@ WRDEF double wr_shell_membrane_element(const wr_shell *s, int32_t f, const doubl
                     for (j = 0; j < 3; ++j) {
                         double hv = i == j ? geo : 0.0;
                         for (c = 0; c < 3; ++c)
-                            for (d = 0; d < 3; ++d) hv += d2W[3 * c + d] * D[c][v][i] * D[d][w][j];
+                            for (d = 0; d < 3; ++d) hv += P[v][i][3 * c + d] * D[d][w][j];
                         H[(3 * v + i) * 9 + 3 * w + j] = A * hv;
                     }
             }
+    }
     return A * W;
 }
 
@@ -769,25 +775,11 @@ static void wr__normalize_hess(const double u[3], double r, const double w[3], d
             N2[3 * i + j] = (-(w[i] * u[j] + u[i] * w[j]) - (i == j ? wu : 0.0) + 3.0 * wu * u[i] * u[j]) / (r * r);
 }
 
-/* ON ZERO COLUMNS: a Jacobian here is nonzero only in the columns of the vertices it depends on
- * (3 or 4 of the 6). A sum that starts at +0 and adds M·0 stays +0, and one whose value is never
- * −0 is unchanged by adding ±0 (round to nearest), so for finite entries skipping the zero
- * columns gives the same bits as the full loops (the matrices below start from +0 and only
- * accumulate, so none holds −0). */
-static int wr__J_cols(const double *J, int cols[18]) {
-    int c, n = 0;
-    for (c = 0; c < 18; ++c)
-        if (J[c] != 0.0 || J[18 + c] != 0.0 || J[36 + c] != 0.0) cols[n++] = c;
-    return n;
-}
-
 static void wr__m3_mul_J(const double *M, const double *J, double *out) {
-    int i, k, c, q, cols[18], nc = wr__J_cols(J, cols);
-    for (i = 0; i < 54; ++i) out[i] = 0.0;
+    int i, k, c;
     for (i = 0; i < 3; ++i)
-        for (q = 0; q < nc; ++q) {
+        for (c = 0; c < 18; ++c) {
             double t = 0.0;
-            c = cols[q];
             for (k = 0; k < 3; ++k) t += M[3 * i + k] * J[k * 18 + c];
             out[i * 18 + c] = t;
         }
@@ -798,23 +790,20 @@ static void wr__m3_mulv(const double *M, const double *v, double *out) {
     for (i = 0; i < 3; ++i) out[i] = M[3 * i] * v[0] + M[3 * i + 1] * v[1] + M[3 * i + 2] * v[2];
 }
 
-/* H += s · Jaᵀ A Jb (A 3×3, NULL = identity), over the nonzero rows and columns (ON ZERO COLUMNS). */
+/* H += s · Jaᵀ A Jb (A 3×3, NULL = identity). */
 static void wr__add_JtAJ(double *H, const double *Ja, const double *A, const double *Jb, double s) {
     double AJ[54];
-    int r, c, q, cols[18], nc;
+    int r, c, k;
     if (A)
         wr__m3_mul_J(A, Jb, AJ);
     else
         memcpy(AJ, Jb, sizeof AJ);
-    nc = wr__J_cols(AJ, cols);
     for (r = 0; r < 18; ++r) {
-        double a0 = Ja[r], a1 = Ja[18 + r], a2 = Ja[36 + r], *h = H + r * 18;
+        double a0 = Ja[r], a1 = Ja[18 + r], a2 = Ja[36 + r];
         if (a0 == 0.0 && a1 == 0.0 && a2 == 0.0) continue;
-        for (q = 0; q < nc; ++q) {
-            c = cols[q];
-            h[c] += s * (a0 * AJ[c] + a1 * AJ[18 + c] + a2 * AJ[36 + c]);
-        }
+        for (c = 0; c < 18; ++c) H[r * 18 + c] += s * (a0 * AJ[c] + a1 * AJ[18 + c] + a2 * AJ[36 + c]);
     }
+    (void)k;
 }
 
 WRDEF wr_status wr_shell_midedge_element(const double x[18], int32_t mask, const double Q[9], const double *bbar,
@@ -898,7 +887,8 @@ WRDEF wr_status wr_shell_midedge_element(const double x[18], int32_t mask, const
         int r, col;
         memset(H, 0, sizeof(double) * 324);
         /* Gauss–Newton part Jbᵀ Q Jb (the products Jb_pr Q_pq formed once per row: the same
-         * left-to-right products; a row whose Jb column is zero stays +0, ON ZERO COLUMNS) */
+         * left-to-right products; a row whose Jb column is zero is left at +0, which is what the
+         * sum 0 + (0·Q)·Jb gives for finite Q, Jb) */
         for (r = 0; r < 18; ++r) {
             double JQ[9];
             int p, q;

@@ -1584,37 +1584,10 @@ WRDEF wr_status wr_spd_solver_solve(wr_spd_solver *S, const wr_csr *A, const dou
                 break;
             }
             alpha = rz / pq;
-            if (S->method == WR_SOLVER_PCG_BLOCK3) {
-                /* the update and the block-Jacobi z = M r in one pass: the same operations in the
-                 * same order as the loop below and wr__prec_apply (rr and rᵀz summed by DOF) */
-                rz_new = 0.0;
-                for (i = 0; i < n; i += 3) {
-                    const double *M = S->prec + 3 * (size_t)i;
-                    double a, b, c;
-                    int32_t d;
-                    for (d = i; d < i + 3; ++d) {
-                        x[d] += alpha * pv[d];
-                        r[d] -= alpha * q[d];
-                        rr += r[d] * r[d];
-                    }
-                    a = r[i], b = r[i + 1], c = r[i + 2];
-                    z[i] = M[0] * a + M[1] * b + M[2] * c;
-                    z[i + 1] = M[3] * a + M[4] * b + M[5] * c;
-                    z[i + 2] = M[6] * a + M[7] * b + M[8] * c;
-                    if (S->fixed)
-                        for (d = i; d < i + 3; ++d)
-                            if (S->fixed[d]) z[d] = 0.0;
-                    rz_new += r[i] * z[i];
-                    rz_new += r[i + 1] * z[i + 1];
-                    rz_new += r[i + 2] * z[i + 2];
-                }
-            } else {
-                for (i = 0; i < n; ++i) {
-                    x[i] += alpha * pv[i];
-                    r[i] -= alpha * q[i];
-                    rr += r[i] * r[i];
-                }
-                rz_new = 0.0;
+            for (i = 0; i < n; ++i) {
+                x[i] += alpha * pv[i];
+                r[i] -= alpha * q[i];
+                rr += r[i] * r[i];
             }
             it++;
             if (sqrt(rr) <= tol_abs) {
@@ -1633,7 +1606,7 @@ WRDEF wr_status wr_spd_solver_solve(wr_spd_solver *S, const wr_csr *A, const dou
                 memcpy(pv, z, sizeof(double) * (size_t)n);
                 continue;
             }
-            if (S->method != WR_SOLVER_PCG_BLOCK3) rz_new = wr__prec_apply(S, r, z);
+            rz_new = wr__prec_apply(S, r, z);
             beta = rz_new / rz;
             rz = rz_new;
             for (i = 0; i < n; ++i) pv[i] = z[i] + beta * pv[i];
