@@ -704,9 +704,10 @@ static void co_expect_same_set(const wr_contact_set *a, const wr_contact_set *b,
 /* ON REPEATED QUERIES: a mesh answering repeated wr_collision_contacts calls from its record gives,
  * at every call, the set (same pairs, same order, same bits) of a mesh that queries every time (its
  * record dropped before each call, so both follow one rebuild schedule), over 150 steps of a wavy
- * cloth sheet sliding over an obstacle sheet (self-contact on): each step asks at x twice, every
- * third step a CCD query comes between, every fifth step another d̂ does, so the record must be
- * refused there; the cloth trees are rebuilt twice and the obstacle trees' schedule runs on the
+ * cloth sheet sliding over an obstacle sheet that shifts too (self-contact on): each step asks at
+ * x twice, every third step a CCD query comes between, every fifth step another d̂ does, so the
+ * record must be refused there; the cloth trees are rebuilt twice, each time on a repeated call
+ * (where the record must be refused too), and the obstacle trees' rebuild schedule runs on the
  * CCD / contact paddings. A repeated call does answer from the record (a mark left in the set
  * survives it), and one after the caller emptied the set queries again. */
 Test(collision, repeated_contact_queries_answer_as_a_fresh_mesh) {
@@ -723,7 +724,11 @@ Test(collision, repeated_contact_queries_answer_as_a_fresh_mesh) {
     for (i = nv / 2; i < nv; ++i) dx[3 * i + 2] = -2e-3;
     cr_assert_eq(wr_collision_mesh_create(&cm, nv, nf, f, ob, NULL, NULL), WR_OK);
     cr_assert_eq(wr_collision_mesh_create(&ref, nv, nf, f, ob, NULL, NULL), WR_OK);
+    /* one query first, so the rebuilds (every 64th query) fall on repeated calls (4 per step) */
+    cr_assert_eq(wr_collision_contacts(&cm, x, 0.5 * dhat, &a, NULL), WR_OK);
+    cr_assert_eq(wr_collision_contacts(&ref, x, 0.5 * dhat, &b, NULL), WR_OK);
     for (step = 0; step < 150; ++step) {
+        for (i = 0; i < nv / 2; ++i) x[3 * i + 1] = (double)(i / (n + 1)) / n + 1e-3 * (step % 7); /* obstacle moves */
         for (i = nv / 2; i < nv; ++i) { /* the cloth: slid along x, waved in z (some pairs within d̂) */
             double u = (double)((i - nv / 2) % (n + 1)) / n, v = (double)((i - nv / 2) / (n + 1)) / n;
             x[3 * i] = u + 0.37 / n + 0.013 * (step % 40);
