@@ -685,6 +685,95 @@ Test(collision, kept_obstacle_boxes_answer_as_a_fresh_mesh) {
     free(ob);
 }
 
+static void co_expect_same_set(const wr_contact_set *a, const wr_contact_set *b, int32_t step, int32_t call) {
+    int32_t i, k;
+    cr_expect_eq(a->n, b->n, "step %d call %d: %d contacts, no-record mesh %d", (int)step, (int)call, (int)a->n, (int)b->n);
+    cr_expect_eq(a->min_distance, b->min_distance, "step %d call %d: min distance %.17g vs %.17g", (int)step, (int)call,
+                 a->min_distance, b->min_distance);
+    for (i = 0; i < a->n && i < b->n; ++i) {
+        const wr_contact *p = a->c + i, *q = b->c + i;
+        int same = p->kind == q->kind && p->piece == q->piece && p->d == q->d;
+        for (k = 0; k < 4; ++k) same = same && p->v[k] == q->v[k] && p->w[k] == q->w[k];
+        if (!same) {
+            cr_expect(same, "step %d call %d: contact %d differs (in order, bit for bit)", (int)step, (int)call, (int)i);
+            return;
+        }
+    }
+}
+
+/* ON REPEATED QUERIES: a mesh answering repeated wr_collision_contacts calls from its record gives,
+ * at every call, the set (same pairs, same order, same bits) of a mesh that queries every time (its
+ * record dropped before each call, so both follow one rebuild schedule), over 150 steps of a wavy
+ * cloth sheet sliding over an obstacle sheet that shifts too (self-contact on): each step asks at
+ * x twice, every third step a CCD query comes between, every fifth step another d̂ does, so the
+ * record must be refused there; the cloth trees are rebuilt twice, each time on a repeated call
+ * (where the record must be refused too), and the obstacle trees' rebuild schedule runs on the
+ * CCD / contact paddings. A repeated call does answer from the record (a mark left in the set
+ * survives it), and one after the caller emptied the set queries again. */
+Test(collision, repeated_contact_queries_answer_as_a_fresh_mesh) {
+    const double dhat = 4e-3;
+    double *x, *dx;
+    int32_t *f, nv, nf, n = 8, i, step, call;
+    uint8_t *ob;
+    wr_collision_mesh cm, ref;
+    wr_contact_set a, b;
+    co_two_sheets(n, 3e-3, &x, &f, &nv, &nf, &ob);
+    memset(&a, 0, sizeof a);
+    memset(&b, 0, sizeof b);
+    dx = (double *)calloc(3 * (size_t)nv, sizeof(double));
+    for (i = nv / 2; i < nv; ++i) dx[3 * i + 2] = -2e-3;
+    cr_assert_eq(wr_collision_mesh_create(&cm, nv, nf, f, ob, NULL, NULL), WR_OK);
+    cr_assert_eq(wr_collision_mesh_create(&ref, nv, nf, f, ob, NULL, NULL), WR_OK);
+    /* one query first, so the rebuilds (every 64th query) fall on repeated calls (4 per step) */
+    cr_assert_eq(wr_collision_contacts(&cm, x, 0.5 * dhat, &a, NULL), WR_OK);
+    cr_assert_eq(wr_collision_contacts(&ref, x, 0.5 * dhat, &b, NULL), WR_OK);
+    for (step = 0; step < 150; ++step) {
+        for (i = 0; i < nv / 2; ++i) x[3 * i + 1] = (double)(i / (n + 1)) / n + 1e-3 * (step % 7); /* obstacle moves */
+        for (i = nv / 2; i < nv; ++i) { /* the cloth: slid along x, waved in z (some pairs within d̂) */
+            double u = (double)((i - nv / 2) % (n + 1)) / n, v = (double)((i - nv / 2) / (n + 1)) / n;
+            x[3 * i] = u + 0.37 / n + 0.013 * (step % 40);
+            x[3 * i + 2] = 3e-3 + 2.5e-3 * sin(6.0 * u + 4.0 * v + 0.21 * step);
+        }
+        for (call = 0; call < 4; ++call) {
+            double d = call == 2 && step % 5 == 0 ? 0.5 * dhat : dhat;
+            if (call == 2 && step % 3 == 0) {
+                double al, bl;
+                cr_assert_eq(wr_collision_max_step(&cm, x, dx, &al, NULL, NULL), WR_OK);
+                cr_assert_eq(wr_collision_max_step(&ref, x, dx, &bl, NULL, NULL), WR_OK);
+                cr_expect_eq(al, bl, "step %d: CCD alpha %.17g, no-record mesh %.17g", (int)step, al, bl);
+                continue;
+            }
+            ref.cvalid = 0; /* the reference queries every time */
+            cr_assert_eq(wr_collision_contacts(&cm, x, d, &a, NULL), WR_OK);
+            cr_assert_eq(wr_collision_contacts(&ref, x, d, &b, NULL), WR_OK);
+            co_expect_same_set(&a, &b, step, call);
+        }
+        cr_expect_eq(cm.queries, ref.queries, "step %d: %d queries, no-record mesh %d", (int)step, (int)cm.queries,
+                     (int)ref.queries);
+    }
+    /* the last call at x was answered: a repeat is answered from the record (the mark stays), and
+     * after the caller emptied the set, by a query again */
+    cr_assert(a.n > 0, "the last step has contacts (%d)", (int)a.n);
+    if (cm.queries % 64 == 0) { /* a rebuild due (collision.h's WR__COLL_REBUILD): two queries on */
+        cr_assert_eq(wr_collision_contacts(&cm, x, 0.5 * dhat, &a, NULL), WR_OK);
+        cr_assert_eq(wr_collision_contacts(&cm, x, dhat, &a, NULL), WR_OK);
+    }
+    a.min_distance = -1.0;
+    cr_assert_eq(wr_collision_contacts(&cm, x, dhat, &a, NULL), WR_OK);
+    cr_expect_eq(a.min_distance, -1.0, "a repeated call queried again");
+    a.n = 0;
+    cr_assert_eq(wr_collision_contacts(&cm, x, dhat, &a, NULL), WR_OK);
+    cr_expect_eq(a.n, b.n, "after the set was emptied: %d contacts, expected %d", (int)a.n, (int)b.n);
+    wr_contact_set_free(&a);
+    wr_contact_set_free(&b);
+    wr_collision_mesh_free(&cm);
+    wr_collision_mesh_free(&ref);
+    free(x);
+    free(dx);
+    free(f);
+    free(ob);
+}
+
 /* ON LOCAL CCD: wr_collision_max_step_local returns wr_collision_max_step's alpha bit for bit, and
  * the same limiting pair, on 600 random moves of 1-4 neighbouring vertices of a cloth sheet (z
  * jittered by ±0.3 mm round 1 mm, self-contact on) over an obstacle sheet, one move in eight of

@@ -657,7 +657,12 @@ WRDEF double wr_shell_membrane_element(const wr_shell *s, int32_t f, const doubl
     if (g)
         for (v = 0; v < 3; ++v)
             for (i = 0; i < 3; ++i) g[3 * v + i] = A * (dW[0] * D[0][v][i] + dW[1] * D[1][v][i] + dW[2] * D[2][v][i]);
-    if (H)
+    if (H) {
+        double P[3][3][9]; /* d2W_cd · D[c][v][i], the left-to-right products of the sum below */
+        for (v = 0; v < 3; ++v)
+            for (i = 0; i < 3; ++i)
+                for (c = 0; c < 3; ++c)
+                    for (d = 0; d < 3; ++d) P[v][i][3 * c + d] = d2W[3 * c + d] * D[c][v][i];
         for (v = 0; v < 3; ++v)
             for (w = 0; w < 3; ++w) {
                 /* geometric stiffness: Σ_c dW_c ∂²ε_c/∂x_v∂x_w, a multiple of the 3×3 identity */
@@ -667,10 +672,11 @@ WRDEF double wr_shell_membrane_element(const wr_shell *s, int32_t f, const doubl
                     for (j = 0; j < 3; ++j) {
                         double hv = i == j ? geo : 0.0;
                         for (c = 0; c < 3; ++c)
-                            for (d = 0; d < 3; ++d) hv += d2W[3 * c + d] * D[c][v][i] * D[d][w][j];
+                            for (d = 0; d < 3; ++d) hv += P[v][i][3 * c + d] * D[d][w][j];
                         H[(3 * v + i) * 9 + 3 * w + j] = A * hv;
                     }
             }
+    }
     return A * W;
 }
 
@@ -880,15 +886,22 @@ WRDEF wr_status wr_shell_midedge_element(const double x[18], int32_t mask, const
         double w[3][3], vf[3], vg[3][3], N2[9], z[3];
         int r, col;
         memset(H, 0, sizeof(double) * 324);
-        /* Gauss–Newton part Jbᵀ Q Jb */
-        for (r = 0; r < 18; ++r)
+        /* Gauss–Newton part Jbᵀ Q Jb (the products Jb_pr Q_pq formed once per row: the same
+         * left-to-right products; a row whose Jb column is zero is left at +0, which is what the
+         * sum 0 + (0·Q)·Jb gives for finite Q, Jb) */
+        for (r = 0; r < 18; ++r) {
+            double JQ[9];
+            int p, q;
+            if (Jb[0][r] == 0.0 && Jb[1][r] == 0.0 && Jb[2][r] == 0.0) continue;
+            for (p = 0; p < 3; ++p)
+                for (q = 0; q < 3; ++q) JQ[3 * p + q] = Jb[p][r] * Q[3 * p + q];
             for (col = 0; col < 18; ++col) {
                 double t = 0.0;
-                int p, q;
                 for (p = 0; p < 3; ++p)
-                    for (q = 0; q < 3; ++q) t += Jb[p][r] * Q[3 * p + q] * Jb[q][col];
+                    for (q = 0; q < 3; ++q) t += JQ[3 * p + q] * Jb[q][col];
                 H[r * 18 + col] = t;
             }
+        }
         /* Σ_c gb_c ∇²b_c: the bilinear cross terms 2(Jeᵀ Jdm + Jdmᵀ Je) … */
         for (c = 0; c < 3; ++c) {
             const double *Je = c == 0 ? Je1 : Je2;

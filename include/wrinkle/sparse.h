@@ -671,6 +671,23 @@ WRDEF wr_status wr_csr_block_offsets(const wr_csr *A, int32_t k, const int32_t *
 static void wr__csr_add_element_blocks_bs(wr_csr *A, int32_t bs, int32_t k, const int32_t *verts, const int32_t *off,
                                           const double *Ke) {
     int32_t a, b, i, j, n = bs * k;
+    if (bs == 3) { /* the shells' vertex blocks: the same additions, with the block size known */
+        for (a = 0; a < k; ++a) {
+            if (verts[a] < 0) continue;
+            for (i = 0; i < 3; ++i) {
+                double *row = A->val + A->rowptr[3 * verts[a] + i];
+                const double *ke = Ke + (size_t)(3 * a + i) * (size_t)n;
+                for (b = 0; b < k; ++b) {
+                    int32_t p = off[a * k + b];
+                    if (p < 0) continue;
+                    row[p] += ke[3 * b];
+                    row[p + 1] += ke[3 * b + 1];
+                    row[p + 2] += ke[3 * b + 2];
+                }
+            }
+        }
+        return;
+    }
     for (a = 0; a < k; ++a) {
         if (verts[a] < 0) continue;
         for (i = 0; i < bs; ++i) {
