@@ -90,31 +90,42 @@ WRDEF double wr_incircle_fast(const double *a, const double *b, const double *c,
  * filter computes, in the same order, so its error bound holds; undecided: wr_incircle(a, b, c, x). */
 #define WR__CCW_BOUND ((3.0 + 16.0 * WR_PRED_EPS) * WR_PRED_EPS)  /* Shewchuk's ccwerrboundA */
 #define WR__ICC_BOUND ((10.0 + 96.0 * WR_PRED_EPS) * WR_PRED_EPS) /* Shewchuk's iccerrboundA */
-static inline double wr__orient2d_in(const double *a, const double *b, const double *c) {
-    double l = (a[0] - c[0]) * (b[1] - c[1]), r = (a[1] - c[1]) * (b[0] - c[0]), det = l - r, sum;
+/* The two filters (Shewchuk 1997, error bound A), the one place both the public predicates and the
+ * inline calls evaluate them: 1 with *det when the rounded determinant's sign is certain, else 0
+ * (incircle's *perm, the permanent, is what the slower stages of wr_incircle reuse). */
+static inline int wr__orient2d_filter(const double *a, const double *b, const double *c, double *det) {
+    double l = (a[0] - c[0]) * (b[1] - c[1]), r = (a[1] - c[1]) * (b[0] - c[0]), sum;
+    *det = l - r;
     if (l > 0.0) {
-        if (r <= 0.0) return det;
+        if (r <= 0.0) return 1;
         sum = l + r;
     } else if (l < 0.0) {
-        if (r >= 0.0) return det;
+        if (r >= 0.0) return 1;
         sum = -l - r;
     } else {
-        return det;
+        return 1;
     }
-    sum *= WR__CCW_BOUND; /* the public filter's bound, the same product */
-    if (det >= sum || -det >= sum) return det;
-    return wr_orient2d(a, b, c);
+    sum *= WR__CCW_BOUND;
+    return *det >= sum || -*det >= sum;
 }
-static inline double wr__incircle_in(const double *a, const double *b, const double *c, const double *d) {
+static inline int wr__incircle_filter(const double *a, const double *b, const double *c, const double *d, double *det,
+                                      double *perm) {
     double adx = a[0] - d[0], ady = a[1] - d[1], bdx = b[0] - d[0], bdy = b[1] - d[1];
     double cdx = c[0] - d[0], cdy = c[1] - d[1];
     double bc1 = bdx * cdy, bc2 = cdx * bdy, ca1 = cdx * ady, ca2 = adx * cdy, ab1 = adx * bdy, ab2 = bdx * ady;
-    double al = adx * adx + ady * ady, bl = bdx * bdx + bdy * bdy, cl = cdx * cdx + cdy * cdy;
-    double det = al * (bc1 - bc2) + bl * (ca1 - ca2) + cl * (ab1 - ab2);
-    double perm = (fabs(bc1) + fabs(bc2)) * al + (fabs(ca1) + fabs(ca2)) * bl + (fabs(ab1) + fabs(ab2)) * cl;
-    double bound = WR__ICC_BOUND * perm;
-    if (det > bound || -det > bound) return det;
-    return wr_incircle(a, b, c, d);
+    double al = adx * adx + ady * ady, bl = bdx * bdx + bdy * bdy, cl = cdx * cdx + cdy * cdy, eb;
+    *det = al * (bc1 - bc2) + bl * (ca1 - ca2) + cl * (ab1 - ab2);
+    *perm = (fabs(bc1) + fabs(bc2)) * al + (fabs(ca1) + fabs(ca2)) * bl + (fabs(ab1) + fabs(ab2)) * cl;
+    eb = WR__ICC_BOUND * *perm;
+    return *det > eb || -*det > eb;
+}
+static inline double wr__orient2d_in(const double *a, const double *b, const double *c) {
+    double det;
+    return wr__orient2d_filter(a, b, c, &det) ? det : wr_orient2d(a, b, c);
+}
+static inline double wr__incircle_in(const double *a, const double *b, const double *c, const double *d) {
+    double det, perm;
+    return wr__incircle_filter(a, b, c, d, &det, &perm) ? det : wr_incircle(a, b, c, d);
 }
 typedef struct wr__icfix {
     const double *a, *b, *c;
@@ -384,29 +395,14 @@ WRDEF double wr_orient2d_value(const double *a, const double *b, const double *c
 
 /* ---- the adaptive predicates: filter with error bound A (Shewchuk 1997, Sec. 4), else exact ---- */
 WRDEF double wr_orient2d(const double *a, const double *b, const double *c) {
-    double l = (a[0] - c[0]) * (b[1] - c[1]), r = (a[1] - c[1]) * (b[0] - c[0]), det = l - r, sum;
-    if (l > 0.0) {
-        if (r <= 0.0) return det;
-        sum = l + r;
-    } else if (l < 0.0) {
-        if (r >= 0.0) return det;
-        sum = -l - r;
-    } else {
-        return det;
-    }
-    if (det >= WR__CCW_BOUND * sum || -det >= WR__CCW_BOUND * sum) return det;
+    double det;
+    if (wr__orient2d_filter(a, b, c, &det)) return det;
     return wr__orient_exact(a, b, c);
 }
 
 WRDEF double wr_incircle(const double *a, const double *b, const double *c, const double *d) {
-    double adx = a[0] - d[0], ady = a[1] - d[1], bdx = b[0] - d[0], bdy = b[1] - d[1];
-    double cdx = c[0] - d[0], cdy = c[1] - d[1];
-    double bc1 = bdx * cdy, bc2 = cdx * bdy, ca1 = cdx * ady, ca2 = adx * cdy, ab1 = adx * bdy, ab2 = bdx * ady;
-    double al = adx * adx + ady * ady, bl = bdx * bdx + bdy * bdy, cl = cdx * cdx + cdy * cdy;
-    double det = al * (bc1 - bc2) + bl * (ca1 - ca2) + cl * (ab1 - ab2);
-    double perm = (fabs(bc1) + fabs(bc2)) * al + (fabs(ca1) + fabs(ca2)) * bl + (fabs(ab1) + fabs(ab2)) * cl;
-    double eb = WR__ICC_BOUND * perm;
-    if (det > eb || -det > eb) return det;
+    double det, perm;
+    if (wr__incircle_filter(a, b, c, d, &det, &perm)) return det;
     return wr__incircle_slow(a, b, c, d, perm);
 }
 
