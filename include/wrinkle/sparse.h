@@ -668,26 +668,11 @@ WRDEF wr_status wr_csr_block_offsets(const wr_csr *A, int32_t k, const int32_t *
     return wr__csr_block_offsets_bs(A, 3, k, verts, off, diag);
 }
 
-static void wr__csr_add_element_blocks_bs(wr_csr *A, int32_t bs, int32_t k, const int32_t *verts, const int32_t *off,
-                                          const double *Ke) {
+/* Ke added into A's blocks; inline so that the call with bs = 3 below gets the block size as a constant
+ * (the shells' vertex blocks: the inner loop unrolled, the same additions in the same order). */
+static inline void wr__csr_add_blocks_loop(wr_csr *A, int32_t bs, int32_t k, const int32_t *verts, const int32_t *off,
+                                           const double *Ke) {
     int32_t a, b, i, j, n = bs * k;
-    if (bs == 3) { /* the shells' vertex blocks: the same additions, with the block size known */
-        for (a = 0; a < k; ++a) {
-            if (verts[a] < 0) continue;
-            for (i = 0; i < 3; ++i) {
-                double *row = A->val + A->rowptr[3 * verts[a] + i];
-                const double *ke = Ke + (size_t)(3 * a + i) * (size_t)n;
-                for (b = 0; b < k; ++b) {
-                    int32_t p = off[a * k + b];
-                    if (p < 0) continue;
-                    row[p] += ke[3 * b];
-                    row[p + 1] += ke[3 * b + 1];
-                    row[p + 2] += ke[3 * b + 2];
-                }
-            }
-        }
-        return;
-    }
     for (a = 0; a < k; ++a) {
         if (verts[a] < 0) continue;
         for (i = 0; i < bs; ++i) {
@@ -700,6 +685,14 @@ static void wr__csr_add_element_blocks_bs(wr_csr *A, int32_t bs, int32_t k, cons
             }
         }
     }
+}
+
+static void wr__csr_add_element_blocks_bs(wr_csr *A, int32_t bs, int32_t k, const int32_t *verts, const int32_t *off,
+                                          const double *Ke) {
+    if (bs == 3)
+        wr__csr_add_blocks_loop(A, 3, k, verts, off, Ke);
+    else
+        wr__csr_add_blocks_loop(A, bs, k, verts, off, Ke);
 }
 
 WRDEF void wr_csr_add_element_blocks(wr_csr *A, int32_t k, const int32_t *verts, const int32_t *off, const double *Ke) {
