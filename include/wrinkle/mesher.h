@@ -1440,15 +1440,7 @@ static wr_status wr__msh_report(wr__msh_ctx *c) {
 #endif
         double uv[6], amin, amax, amin_m, area, lmax;
         wr__msh_tri t;
-        if (!M->corner_rest && M->rest) { /* wr_mesh_face_rest's case for an unsewn mesh, inline */
-            const int32_t *F = M->faces + 3 * f;
-            for (k = 0; k < 3; ++k) {
-                uv[2 * k] = M->rest[2 * F[k]];
-                uv[2 * k + 1] = M->rest[2 * F[k] + 1];
-            }
-        } else {
-            wr_mesh_face_rest(M, f, uv);
-        }
+        wr_mesh_face_rest(M, f, uv);
         wr__msh_tri_edges(uv, &t);
         wr__msh_tri_angles(&t, cos_skip, &amin, &amax);
         amin_m = wr__msh_metric_min_angle(T, uv, amin);

@@ -1685,13 +1685,16 @@ static int wr__pz_neighbours(wr__pz *z, double px, double py, double R0, double 
                 const int32_t *T;
                 uint64_t cells = wr__pz_box_tile(z, l, tx, ty, b, &T);
                 int32_t p;
-                /* room for every visit in this tile (the append below is unconditional) */
-                if (cells && nn + (int64_t)z->tcnt[(size_t)(T - z->heads) / (WR__PZ_TILE * WR__PZ_TILE)] > cap) {
-                    z->nb_n = nn;
-                    if (wr__pz_nb_reserve(z, nn + (int64_t)z->tcnt[(size_t)(T - z->heads) / (WR__PZ_TILE * WR__PZ_TILE)]) != WR_OK)
-                        return -1;
-                    nb = z->nb;
-                    cap = z->nb_cap;
+                /* room for every visit in this tile (the append below is unconditional): at most the
+                 * tile's sample count, tcnt of its slot (T is that slot's heads) */
+                if (cells) {
+                    const int64_t need = nn + (int64_t)z->tcnt[(size_t)(T - z->heads) / (WR__PZ_TILE * WR__PZ_TILE)];
+                    if (need > cap) {
+                        z->nb_n = nn;
+                        if (wr__pz_nb_reserve(z, need) != WR_OK) return -1;
+                        nb = z->nb;
+                        cap = z->nb_cap;
+                    }
                 }
                 for (; cells; cells &= cells - 1u)
                     for (p = T[wr__pz_ctz(cells)]; p >= 0; p = sm[p].next) {
