@@ -3381,6 +3381,24 @@ static double wr__wf_sqp_predicted(wr__wf_sqp *Q) {
     return pred;
 }
 
+/* uᵀ K u with the undamped model (kmodel) on the free set, u = a - b (b NULL: u = a); *um = uᵀ M u
+ * on the free set when um is given. The curvature the negative-curvature step is judged by. */
+static double wr__wf_sqp_curv(const wr__wf_sqp *Q, const double *a, const double *b, double *um) {
+    const wr_csr *K = &Q->KA.A;
+    double uk = 0.0, m = 0.0;
+    int32_t i, t;
+    for (i = 0; i < Q->n; ++i) {
+        double r = 0.0, ui = b ? a[i] - b[i] : a[i];
+        if (Q->active[i]) continue;
+        for (t = K->rowptr[i]; t < K->rowptr[i + 1]; ++t)
+            if (!Q->active[K->col[t]]) r += Q->kmodel[t] * (b ? a[K->col[t]] - b[K->col[t]] : a[K->col[t]]);
+        uk += ui * r;
+        m += Q->mdiag[i] * ui * ui;
+    }
+    if (um) *um = m;
+    return uk;
+}
+
 /* ON NEGATIVE CURVATURE (wr_wf_solve_desc.negative_curvature). The factorisation of K + μ M failed at
  * the trust region's μ and succeeded at σ = 10^k μ: the true Hessian has a direction of curvature
  * below -μ in the M metric, and the default takes s(σ) = -(K + σ M)⁻¹ g with μ raised to σ. Where g
@@ -3450,15 +3468,9 @@ static int wr__wf_sqp_negcurv(wr__wf_sqp *Q, wr__wf_trial *out) {
         double c = Y[j * k + (k - 1)];
         for (i = 0; i < n; ++i) p[i] += c * qj[i];
     }
-    for (i = 0; i < n; ++i) { /* Rayleigh quotient pᵀKp / pᵀMp with the undamped model on the free set */
-        int32_t t;
-        double r = 0.0;
-        if (Q->active[i]) continue;
-        for (t = K->rowptr[i]; t < K->rowptr[i + 1]; ++t)
-            if (!Q->active[K->col[t]]) r += Q->kmodel[t] * p[K->col[t]];
-        lam += p[i] * r;
-        sm += Q->mdiag[i] * Q->wnc[i] * Q->wnc[i];
-    }
+    lam = wr__wf_sqp_curv(Q, p, NULL, NULL); /* Rayleigh quotient pᵀKp / pᵀMp: pᵀMp below */
+    for (i = 0; i < n; ++i)
+        if (!Q->active[i]) sm += Q->mdiag[i] * Q->wnc[i] * Q->wnc[i];
     {
         double pm = 0.0;
         for (i = 0; i < n; ++i) pm += Q->mdiag[i] * p[i] * p[i];
@@ -3467,7 +3479,6 @@ static int wr__wf_sqp_negcurv(wr__wf_sqp *Q, wr__wf_trial *out) {
         lam /= pm;
     }
     if (!(lam < 0.0) || !(sm > 0.0)) return 0; /* no direction of negative curvature found */
-    /* SCRATCH_RADIUS_HOOK */
     if (!(Q->nc_radius > 0.0)) Q->nc_radius = sqrt(sm);
     Q->nc_floor = WR__WF_NC_FLOOR * sqrt(sm);
     if (Q->nc_radius < Q->nc_floor) Q->nc_radius = Q->nc_floor;
@@ -3479,8 +3490,7 @@ static int wr__wf_sqp_negcurv(wr__wf_sqp *Q, wr__wf_trial *out) {
  * out->gain = the chosen step's model decrease minus the other sign's (≥ 0 by the choice), and
  * out->curv = the Rayleigh quotient of the direction d - s(σ) actually added (pᵀKp/pᵀMp, < 0). */
 static void wr__wf_sqp_nc_step(wr__wf_sqp *Q, wr__wf_trial *out) {
-    const wr_csr *K = &Q->KA.A;
-    double pred[2] = {0.0, 0.0}, sp, qk = 0.0, qm = 0.0;
+    double pred[2] = {0.0, 0.0}, sp, qk, qm = 0.0;
     int32_t i, n = Q->n;
     int sgn;
     for (sgn = 0; sgn < 2; ++sgn) {
@@ -3493,15 +3503,7 @@ static void wr__wf_sqp_nc_step(wr__wf_sqp *Q, wr__wf_trial *out) {
     for (i = 0; i < n; ++i) Q->dnc[i] = Q->wnc[i] + sp * Q->nc_radius * Q->pnc[i];
     wr__wf_sqp_project(Q, Q->dnc);
     out->gain = wr__wf_sqp_predicted(Q) - pred[sp > 0.0 ? 1 : 0];
-    for (i = 0; i < n; ++i) {
-        int32_t t;
-        double r = 0.0, di = Q->dnc[i] - Q->wnc[i];
-        if (Q->active[i]) continue;
-        for (t = K->rowptr[i]; t < K->rowptr[i + 1]; ++t)
-            if (!Q->active[K->col[t]]) r += Q->kmodel[t] * (Q->dnc[K->col[t]] - Q->wnc[K->col[t]]);
-        qk += di * r;
-        qm += Q->mdiag[i] * di * di;
-    }
+    qk = wr__wf_sqp_curv(Q, Q->dnc, Q->wnc, &qm);
     out->curv = qm > 0.0 ? qk / qm : 0.0;
 }
 
