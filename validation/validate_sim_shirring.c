@@ -203,10 +203,9 @@ static int run_load(srun *R, int idx, int k, double *x, int32_t nv) {
 }
 
 static void run_store(const srun *R, int idx, int k, const double *x) {
-    char path[4096], tmp[4200];
+    char path[4096];
     srec h;
-    FILE *fp;
-    int ok;
+    wr_afile f;
     if (!g_runs_dir) return;
     memset(&h, 0, sizeof h);
     memcpy(h.magic, "WRSHRUN1", 8);
@@ -214,11 +213,11 @@ static void run_store(const srun *R, int idx, int k, const double *x) {
     h.jitter_seed = (uint64_t)g_seed + (uint64_t)k, h.res = R->c->res, h.seconds = R->seconds, h.cpu = R->cpu, h.h_min = R->h_min;
     memcpy(h.gathered, R->gathered, sizeof h.gathered);
     run_path(path, sizeof path, idx, k);
-    snprintf(tmp, sizeof tmp, "%s.tmp", path);
-    if (!(fp = fopen(tmp, "wb"))) return;
-    ok = fwrite(&h, sizeof h, 1, fp) == 1 && fwrite(x, sizeof(double), 3 * (size_t)R->nv, fp) == 3 * (size_t)R->nv;
-    ok = fclose(fp) == 0 && ok;
-    if (ok) rename(tmp, path);
+    if (wr_afile_open(&f, path, NULL) != WR_OK) return; /* a cache: no record, the run is simulated next time */
+    if (fwrite(&h, sizeof h, 1, f.fp) == 1 && fwrite(x, sizeof(double), 3 * (size_t)R->nv, f.fp) == 3 * (size_t)R->nv)
+        wr_afile_commit(&f, NULL);
+    else
+        wr_afile_abort(&f);
 }
 
 /* Mesh (uniform or sizing map), gathered lines, garment sim on the table, run to `seconds`
